@@ -65,7 +65,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._frozen import ReadOnlyMapping, frozen_value, restore_frozen  # noqa: F401 (ReadOnlyMapping re-exported)
+from fusion._frozen import ReadOnlyMapping, frozen_value, protect_frames, restore_frozen  # noqa: F401 (ReadOnlyMapping re-exported)
 from fusion import _validation
 from fusion._validation import _numeric, as_array, instance_of, shown
 
@@ -139,9 +139,12 @@ class ResultSpec:
 
     def __set_name__(self, owner: type, name: str) -> None:
         """Declared as ``__result_spec__`` in a class body: the class's copies and unpickled objects keep read-only
-        arrays (``__setstate__`` = :func:`fusion._frozen.restore_frozen`)."""
+        arrays (``__setstate__`` = ``fusion._frozen.restore_frozen``) and its :func:`table` fields are stored as a
+        private copy, handed out as a copy on each read (``fusion._frozen.FrameField``: an in-place edit of a
+        table read from the object never reaches it)."""
         if "__setstate__" not in vars(owner):
             owner.__setstate__ = restore_frozen  # type: ignore[attr-defined]
+        protect_frames(owner, [n for n, fs in self.fields.items() if isinstance(fs, ValueSpec) and fs.kind == "table"])
 
 
 def array(*dims: Dim, covariance: bool = False, increasing: bool = False, optional: bool = False,

@@ -3,7 +3,9 @@
 ``typing.get_type_hints`` must work on every public class, its public methods and every public function, although
 the packages rename their objects' ``__module__`` (:func:`fusion._public.name_by_package`). Every public frozen
 dataclass with an ndarray field is declared with :func:`fusion._frozen.frozen_arrays` (one decorator instead of a
-``__post_init__`` per class), except the results listed in :data:`NOT_YET_FROZEN`, which still hand out writable arrays.
+``__post_init__`` per class) or validates its fields (``fusion._results``); :data:`NOT_YET_FROZEN` and
+:data:`CONTAINERS_NOT_YET_FROZEN` are empty since fuzz 19 (the main package's and the chapter layer's results alike;
+tests/test_frozen_results.py checks the produced objects and their DataFrame fields).
 """
 
 from __future__ import annotations
@@ -24,7 +26,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import fusion
-from fusion._frozen import freeze_arrays, frozen_arrays, restore_frozen
+from fusion._frozen import freeze_arrays, freeze_shared, frozen_arrays, restore_frozen
 
 
 def _public() -> dict[str, object]:
@@ -44,25 +46,7 @@ DATACLASSES = {k: v for k, v in CLASSES.items() if dataclasses.is_dataclass(v)}
 
 #: Public frozen dataclasses with ndarray fields that do not freeze them yet (they predate frozen_arrays; making them
 #: read-only changes what their callers may do with the arrays). Shrink this list; do not grow it.
-NOT_YET_FROZEN = frozenset({
-    "fusion.book.chapters.chernoff.ToyStudy", "fusion.book.chapters.chernoff_scaling.ScalingStudy",
-    "fusion.book.chapters.chernoff_scaling.FrameClouds", "fusion.book.chapters.chernoff_steps.SnisDelta",
-    "fusion.book.chapters.chernoff_steps.ToyReference", "fusion.book.chapters.ci.StraightLeg",
-    "fusion.book.chapters.ci.PairedInputs", "fusion.book.chapters.ci.LedgerStudies",
-    "fusion.book.chapters.ci.LedgerInputs", "fusion.book.chapters.ci.WeightPair",
-    "fusion.book.chapters.ci.PairedClaimInputs", "fusion.book.chapters.ci.PairedStudies",
-    "fusion.book.chapters.ofs.TableReproduction", "fusion.book.chapters.ofs.MembershipStudy",
-    "fusion.book.chapters.ofs.WeightStudy", "fusion.book.chapters.time_registration_ledger.RegistrationStudy",
-    "fusion.data._published.Published", "fusion.estimates.ci.FusedEstimate",
-    "fusion.estimates.chernoff.ChernoffGaussian", "fusion.estimates.chernoff.MixtureFusion",
-    "fusion.estimates.fuzzy_cluster.ClusterFusion", "fusion.filtering.kalman.GainSequence",
-    "fusion.filtering.tracks.LocalTrack", "fusion.filtering.tracks.FusedTracks",
-    "fusion.readings.fusion_set.ReadingsFusion", "fusion.readings.fusion_set.EpochFusion",
-    "fusion.readings.wavelet.Reconstruction",
-    "fusion.scenarios.infrared_radar.IrRadarRuns", "fusion.scenarios.lecture_weighting.consistency.ConsistencyStudy",
-    "fusion.scenarios.thermocouples.PairedStudy", "fusion.scenarios.time_registration.FusionRuns",
-    "fusion.scenarios.two_sensor.Scenario", "fusion.scenarios.two_sensor.FruitFlySeeds",
-})
+NOT_YET_FROZEN: frozenset[str] = frozenset()
 #: Frozen results that validate their fields and make their arrays read-only in their own ``__post_init__``.
 SELF_FROZEN = frozenset({"fusion.estimates.mixtures.GaussianMixture", "fusion.scenarios.fusion_networks.NetworkStudy",
                          "fusion.optimise.result.OptimumResult"})
@@ -137,7 +121,7 @@ def test_renamed_classes_keep_their_hints() -> None:
 
 
 def _declared(cls: type) -> bool:
-    return getattr(cls, "__post_init__", None) is freeze_arrays
+    return getattr(cls, "__post_init__", None) in (freeze_arrays, freeze_shared)
 
 
 def _validated(cls: type) -> bool:
@@ -155,7 +139,7 @@ def test_every_frozen_result_with_arrays_declares_frozen_arrays() -> None:
     assert not {k for k in NOT_YET_FROZEN | SELF_FROZEN if _declared(DATACLASSES[k])}
 
 
-FROZEN = sorted(k for k, c in DATACLASSES.items() if _declared(c))
+FROZEN = sorted(k for k, c in DATACLASSES.items() if getattr(c, "__post_init__", None) is freeze_arrays)
 
 
 @pytest.mark.parametrize("name", FROZEN)
@@ -314,18 +298,9 @@ def _container_fields(cls: type) -> list[str]:
 #: Public frozen dataclasses with dict or list fields (and no array field) that do not freeze them yet. Shrink this
 #: list; do not grow it (fuzz 16 found seven such results whose dicts held writeable arrays; they are frozen now).
 #: (BenchmarkResult keeps its mapping read-only itself.)
-CONTAINERS_NOT_YET_FROZEN: frozenset[str] = frozenset({
-    "fusion.book.benchmarks.BenchmarkResult",
-    "fusion.book.chapters.chernoff.DesignStudy",
-    "fusion.book.chapters.chernoff_scaling.SwarmStudy",
-    "fusion.book.chapters.chernoff_steps.DefensiveStudy",
-    "fusion.book.chapters.chernoff_steps.SnisBiasStudy",
-    "fusion.book.chapters.lecture_wavelets.verdicts.Cell",
-    "fusion.book.chapters.time_registration.RobustnessReading",
-    "fusion.book.claims.ClaimsFile",
-    "fusion.book.claims.ReadingSpec",
-    "fusion.scenarios.correlated_sensors.EstimatedCovarianceStudy",
-})
+CONTAINERS_NOT_YET_FROZEN: frozenset[str] = frozenset()
+#: Results with containers that validate and freeze them in their own ``__post_init__`` (``freeze_arrays`` last).
+SELF_FROZEN_CONTAINERS = frozenset({"fusion.book.claims.ReadingSpec"})
 
 
 def test_every_frozen_result_with_containers_freezes_them() -> None:
@@ -333,4 +308,23 @@ def test_every_frozen_result_with_containers_freezes_them() -> None:
     holding = {k for k, c in DATACLASSES.items() if c.__dataclass_params__.frozen and _container_fields(c)
                and k not in NOT_YET_FROZEN and k not in SELF_FROZEN}
     missing = {k for k in holding if not (_declared(DATACLASSES[k]) or _validated(DATACLASSES[k]))}
-    assert missing == set(CONTAINERS_NOT_YET_FROZEN), sorted(missing ^ set(CONTAINERS_NOT_YET_FROZEN))
+    assert missing == set(CONTAINERS_NOT_YET_FROZEN) | SELF_FROZEN_CONTAINERS, \
+        sorted(missing ^ (set(CONTAINERS_NOT_YET_FROZEN) | SELF_FROZEN_CONTAINERS))
+    assert all(getattr(DATACLASSES[k], "__setstate__", None) is restore_frozen for k in SELF_FROZEN_CONTAINERS)
+
+
+def test_every_frozen_result_protects_its_dataframe_fields() -> None:
+    """fuzz 19 G1-G3: a DataFrame field of a frozen result (chapter layer and main package alike) is a private copy
+    handed out as a copy on each read (``fusion._frozen.FrameField``), so an in-place edit never reaches the object."""
+    from fusion._frozen import FrameField
+
+    found = {}
+    for k, c in DATACLASSES.items():
+        if not c.__dataclass_params__.frozen:
+            continue
+        hints = typing.get_type_hints(c)
+        frames = [f.name for f in dataclasses.fields(c) if "DataFrame" in str(hints[f.name])]
+        if frames:
+            found[k] = [n for n in frames if not isinstance(inspect.getattr_static(c, n, None), FrameField)]
+    assert len(found) >= 7, sorted(found)          # AuditResult, TableReproduction, LedgerInputs, chapter 06 studies
+    assert not {k: v for k, v in found.items() if v}

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from fusion._frozen import frozen_arrays
 from fusion._results import ReadOnlyMapping
 from fusion._validation import text
 from fusion._shown import shown
@@ -35,6 +36,7 @@ IGNORE_OUTPUT_TAG = "nbval-ignore-output"
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class BenchmarkResult:
     """One stored benchmark run.
 

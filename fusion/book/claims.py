@@ -56,6 +56,7 @@ from typing import Any
 
 import yaml
 
+from fusion._frozen import freeze_arrays, frozen_arrays, restore_frozen
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger.evidence import _KIND_OF_TEST
@@ -152,8 +153,8 @@ class ReadingSpec:
         The open choice and this reading of it (texts).
     kind : str
         One of :data:`fusion.book.rulebook.READING_KINDS`.
-    settings : dict
-        The settings the evidence function takes.
+    settings : Mapping
+        The settings the evidence function takes (stored read-only).
     runs : int or None
         Monte-Carlo runs, when the file states them.
 
@@ -180,6 +181,9 @@ class ReadingSpec:
         instance_of(self.settings, Mapping, "settings")
         if self.runs is not None:
             count(self.runs, "runs")
+        freeze_arrays(self)  # settings stored as a read-only mapping (fuzz 19: a frozen result cannot change)
+
+    __setstate__ = restore_frozen  # copies and unpickled objects keep it read-only
 
 
 @dataclass(frozen=True)
@@ -267,6 +271,7 @@ class ClaimSpec:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ClaimsFile:
     """A validated claim file.
 

@@ -2,16 +2,19 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import FloatArray
 
 __all__ = ["Published", "read_only"]
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Published:
     """A published number or array with where it was printed.
 
@@ -36,7 +39,7 @@ class Published:
     where: str
     unit: str = ""
     note: str = ""
-    columns: dict[str, FloatArray] = field(default_factory=dict)
+    columns: Mapping[str, FloatArray] = field(default_factory=dict)
 
 
 def read_only(a: object) -> FloatArray:

@@ -42,6 +42,7 @@ from scipy.linalg import eigh
 from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import chi2
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, covariance_pair, one_of,
                                 scalar, singular_error, singular_system, unit_scalar)
 from fusion._validation import flag
@@ -61,6 +62,7 @@ Criterion = Literal["trace", "det"]
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class FusedEstimate:
     """A fused state estimate.
 

@@ -22,12 +22,14 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.stats import chi2
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import singular_system, _numeric, FloatArray, as_covariance, check_magnitude, scalar
 
 __all__ = ["ClusterFusion", "fuzzy_cluster_fusion"]
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ClusterFusion:
     """Result of :func:`fuzzy_cluster_fusion`.
 

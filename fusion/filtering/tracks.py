@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import frozen_arrays
 from fusion._results import ResultSpec, array, nested, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, _numeric, as_array, as_covariance, as_semidefinite, finite_result,
@@ -153,6 +154,7 @@ def local_track(
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class FusedTracks:
     """Output of :func:`fuse_tracks`.
 

@@ -39,7 +39,7 @@ from typing import Callable, Literal, TypeAlias
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._frozen import frozen_arrays
+from fusion._frozen import fresh, frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, flag, keywords,
                                 one_of, positive_scalar, scalar, shown, text)
 from fusion.readings._row_blocks import _BLOCK_ELEMENTS, CUBIC, PAIRS, _row_blocks  # noqa: F401 (the blocks of kernels)
@@ -78,6 +78,7 @@ TIE_RTOL = 1e-9
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ReadingsFusion:
     """Result of fusing one epoch of readings.
 
@@ -101,6 +102,7 @@ class ReadingsFusion:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class EpochFusion:
     """Result of fusing many epochs at once (see :func:`fuse_epochs`).
 
@@ -513,18 +515,14 @@ def fuse_epochs(x: ArrayLike, method: str = "optimal_fusion_set", **options: obj
     rule, _ = METHODS[method]
     weights, members = rule(s, **_check_options(method, options))
     values = np.einsum("ij,ij->i", weights, s)
-    return EpochFusion(values=values, weights=weights, members=members, method=method)
+    return fresh(EpochFusion, values=values, weights=weights, members=members, method=method)  # computed here
 
 
 def _single(x: ArrayLike, method: str, **options: object) -> ReadingsFusion:
     s = as_readings(x)
     res = fuse_epochs(s[None, :], method, **options)
-    return ReadingsFusion(
-        value=float(res.values[0]),
-        weights=res.weights[0],
-        members=res.members[0],
-        method=method,
-    )
+    return fresh(ReadingsFusion, value=float(res.values[0]), weights=res.weights[0], members=res.members[0],
+                 method=method)  # views of res, computed here
 
 
 # ---------------------------------------------------------------------------
@@ -994,4 +992,4 @@ def binary_deletion(x: ArrayLike, eps: float, min_support: float = 0.5) -> Readi
     if not keep.any():
         keep = np.ones(s.size, dtype=bool)
     w = keep / keep.sum()
-    return ReadingsFusion(value=float(w @ s), weights=w, members=keep, method="binary_deletion")
+    return fresh(ReadingsFusion, value=float(w @ s), weights=w, members=keep, method="binary_deletion")

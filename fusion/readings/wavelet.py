@@ -49,6 +49,7 @@ import numpy as np
 import pywt
 from numpy.typing import ArrayLike
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import shown
 from fusion._validation import text
@@ -243,6 +244,7 @@ def variance_estimates(X: ArrayLike, Y: ArrayLike, norms: ArrayLike, variance: V
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Reconstruction:
     """Result of :func:`reconstruct` (shapes: n sensors, I samples, optional leading batch axes ``...``).
 

@@ -98,6 +98,7 @@ class CouplingStudy:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class EstimatedCovarianceStudy:
     r"""GLS with an estimated or a misstated noise covariance (:func:`estimated_covariance_study`).
 
@@ -114,7 +115,7 @@ class EstimatedCovarianceStudy:
     misstate : float
     """
 
-    rows: list[dict[str, Any]]
+    rows: tuple[Mapping[str, Any], ...]
     ns: tuple[int, ...]
     reps: int
     seed: int

@@ -8,12 +8,13 @@ parameter here and the chapter states and varies its choice.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import distinct, loop_work, one_of
 from fusion._validation import allocation, record, seed as check_seed
@@ -340,6 +341,7 @@ def best_linear_abs_error(sigma: ArrayLike, n_sensors: int = 10) -> float:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class PairedStudy:
     """Absolute errors of several methods on the same Monte-Carlo draws, with and without failure.
 
@@ -363,8 +365,8 @@ class PairedStudy:
         The reading of the failure (:data:`FAILURE_MODES`).
     """
 
-    clean: dict[str, FloatArray]
-    failed: dict[str, FloatArray]
+    clean: Mapping[str, FloatArray]
+    failed: Mapping[str, FloatArray]
     set_size: FloatArray
     window: tuple[int, int]
     seed: int

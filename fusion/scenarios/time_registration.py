@@ -793,6 +793,7 @@ def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | No
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class FusionRuns:
     """Per-run MSE (m²) of sensor 2 alone and of its fusion with sensor 1 registered several ways.
 
@@ -811,7 +812,7 @@ class FusionRuns:
 
     alone: FloatArray
     unregistered: FloatArray
-    fused: dict[RegMethod, FloatArray]
+    fused: Mapping[RegMethod, FloatArray]
     sigma: float
     runs: int
     seed: int

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
+from fusion._frozen import frozen_arrays
 from fusion._validation import FloatArray, count, instance_of
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch
@@ -224,6 +225,7 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class SigmaFirstOrderStudy:
     """Step D's first-order mixture against the sigma-point mixture: the two-mixture example and random problems.
 

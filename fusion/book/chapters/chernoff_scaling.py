@@ -6,12 +6,15 @@ reading ``ten-nodes`` of ``chf-pso-rebuild`` (:func:`swarm_within_se`).
 """
 
 from __future__ import annotations
+
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 from matplotlib.figure import Figure
+from fusion._frozen import frozen_arrays
 from fusion._docstrings import with_sections
 from fusion._results import ResultSpec, array, integer, validated_post_init
 from fusion._validation import FloatArray, allocation, as_array, count, counts, distinct, instance_of, scalar
@@ -69,6 +72,7 @@ SWARM_VARIANTS: dict[str, SwarmOptions] = {"pso_defaults": SwarmOptions(),
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class SwarmStudy:
     r"""The swarm against SLSQP on the same samples as the number of nodes grows.
 
@@ -86,9 +90,9 @@ class SwarmStudy:
     runs, r : int
     """
 
-    gap: dict[tuple[int, str], FloatArray]
-    evaluations: dict[tuple[int, str], FloatArray]
-    corner: dict[tuple[int, str], np.ndarray]
+    gap: Mapping[tuple[int, str], FloatArray]
+    evaluations: Mapping[tuple[int, str], FloatArray]
+    corner: Mapping[tuple[int, str], np.ndarray]
     runs: int
     r: int
 
@@ -294,6 +298,7 @@ def box_corner(eps: ArrayLike, tol: float = 1e-9) -> np.ndarray:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ScalingStudy:
     r"""Accuracy of steps E-G in R against the exact Chernoff exponents, and the cost of steps D-F in N, S, R.
 

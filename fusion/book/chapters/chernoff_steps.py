@@ -30,8 +30,10 @@ References
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 import dataclasses
 from dataclasses import dataclass
+from fusion._frozen import frozen_arrays
 from fusion.book.study_cache import study_cache
 from typing import Any
 
@@ -77,6 +79,7 @@ CHAPTER_R = 2000
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class SnisDelta:
     r"""Delta-method terms of the self-normalised importance-sampling mean.
 
@@ -161,6 +164,7 @@ def snis_delta_terms(points: ArrayLike, log_target: ArrayLike, log_proposal: Arr
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ToyReference:
     """Exact references of the two-mixture example by quadrature.
 
@@ -289,6 +293,7 @@ def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4,
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class SnisBiasStudy:
     r"""Step H's self-normalised mean on the two-mixture example: delta method against simulation.
 
@@ -305,7 +310,7 @@ class SnisBiasStudy:
     """
 
     table: pd.DataFrame
-    delta: dict[float, SnisDelta]
+    delta: Mapping[float, SnisDelta]
     total: int
 
     def glue(self) -> GlueValues:
@@ -459,6 +464,7 @@ def defensive_mixture(proposal: mx.GaussianMixture, local: list[mx.GaussianMixtu
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class DefensiveStudy:
     """Step E's proposals on the two-mixture example, run by run (paired: run k of each method is the same replicate).
 
@@ -476,10 +482,10 @@ class DefensiveStudy:
     alpha : float
     """
 
-    omega_err: dict[str, FloatArray]
-    sq_err: dict[str, FloatArray]
-    ess: dict[str, FloatArray]
-    ess_vertex: dict[str, FloatArray]
+    omega_err: Mapping[str, FloatArray]
+    sq_err: Mapping[str, FloatArray]
+    ess: Mapping[str, FloatArray]
+    ess_vertex: Mapping[str, FloatArray]
     runs: int
     r: int
     alpha: float
@@ -753,6 +759,7 @@ def _block_minimum(L: FloatArray, lg: FloatArray, iterations: int = 60) -> Float
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ChosenBiasStudy:
     r"""Step H's mean with the exponent fixed at :math:`\omega^*` and chosen on the same samples (steps F-G).
 

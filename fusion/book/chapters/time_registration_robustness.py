@@ -7,7 +7,7 @@ ledger's readings, an unmodelled delay (table and break-even delay) and the read
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -15,6 +15,7 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 
+from fusion._frozen import frozen_arrays
 from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
@@ -26,6 +27,7 @@ __all__ = ["robustness_table", "delay_table", "delay_break_even", "RobustnessRea
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class RobustnessReading:
     """One open choice or stress test of the §3-4 comparison (:func:`robustness_readings`).
 
@@ -44,7 +46,7 @@ class RobustnessReading:
     key: str
     choice: str
     reading: str
-    options: dict[str, object]
+    options: Mapping[str, object]
 
 TWO = RegMethod.TWO_POINT
 IMPROVED = RegMethod.IMPROVED

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import (singular_system, _numeric, FloatArray, as_covariance, check_magnitude, gaussian_pair,
                                 one_of, unit_scalar)
 from fusion._validation import flag
@@ -42,6 +43,7 @@ __all__ = [
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ChernoffGaussian:
     """Chernoff fusion of Gaussians: the fused Gaussian and the log normaliser.
 

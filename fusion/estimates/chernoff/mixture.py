@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import frozen_arrays
 from fusion._timing import LapTimer
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
                                 instance_of, one_of)
@@ -495,6 +496,7 @@ class FusionTimings:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class MixtureFusion:
     """Result of the patent's steps D-I on one frame (see :func:`fuse_mixtures`).
 

@@ -3,7 +3,7 @@ r"""Lecture §2.3 (E2.3): the consistency check + AWF with a faulty sensor, and 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
@@ -139,6 +139,7 @@ class FaultDiagnostics:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ConsistencyStudy:
     r"""Experiment E2.3: consistency check + AWF with a fault on one sensor (:func:`consistency_study`).
 
@@ -179,20 +180,20 @@ class ConsistencyStudy:
     bias: float
     x: float
     window: tuple[int, int]
-    out: dict[tuple[FaultCase, AwfMethod], np.ndarray]
-    mask: dict[FaultCase, np.ndarray]
-    names: list[AwfMethod]
-    sq: dict[FaultCase, dict[AwfMethod, np.ndarray]]
+    out: Mapping[tuple[FaultCase, AwfMethod], np.ndarray]
+    mask: Mapping[FaultCase, np.ndarray]
+    names: tuple[AwfMethod, ...]
+    sq: Mapping[FaultCase, Mapping[AwfMethod, np.ndarray]]
     p_excl_fault: float
     p_excl_clean: float
     p_excl_any_clean: float
     ratio: np.ndarray
     pdet: np.ndarray
-    diag: dict[FaultCase, FaultDiagnostics]
+    diag: Mapping[FaultCase, FaultDiagnostics]
     runs: int
     samples: int
     seed: int
-    index_order: dict[tuple[int, ...], dict[FaultCase, np.ndarray]]
+    index_order: Mapping[tuple[int, ...], Mapping[FaultCase, np.ndarray]]
     index_guard: str
 
 

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import seed as check_seed, seeds as check_seeds
 from fusion._validation import LOOP_STEP, distinct, loop_work
 from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_semidefinite, count, instance_of,
@@ -87,6 +88,7 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class FruitFlySeeds:
     r"""FOA repeated over seeds against one exhaustive search, on one CI objective (:func:`fruit_fly_over_seeds`).
 

@@ -4,12 +4,14 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 import dataclasses
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import FloatArray
 from fusion.book.tables import rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, RangeBearingScenario, TrackingRun, min_local_ess,
@@ -178,6 +180,7 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class DesignStudy:
     """The first update of the local filters under three designs, on the same runs (:func:`design_study`).
 
@@ -194,8 +197,8 @@ class DesignStudy:
         Effective particles below which a node counts as collapsed (:data:`COLLAPSE_FRACTION` × ``n_particles``).
     """
 
-    ess: dict[str, FloatArray]
-    weighted: dict[str, float]
+    ess: Mapping[str, FloatArray]
+    weighted: Mapping[str, float]
     n_initial: int
     threshold: float
 

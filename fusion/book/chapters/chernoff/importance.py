@@ -5,6 +5,7 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from fusion._frozen import frozen_arrays
 from fusion._counts import seed as check_seed
 from fusion.book.study_cache import study_cache
 from typing import Any
@@ -47,6 +48,7 @@ def _moment_region(covs: list[FloatArray], e0: FloatArray, k: int) -> Any:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class IsVarianceStudy:
     """Bias of the importance-sampled objective and the finite-moment regions, on the Gaussian pair of
     :func:`criteria_example` with the proposal at ω⁽⁰⁾ = 1/2.

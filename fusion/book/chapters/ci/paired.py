@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import frozen_arrays
 from fusion import data
 from fusion._docstrings import reads_results
 from fusion._validation import as_array, count, instance_of
@@ -127,6 +128,7 @@ def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> GlueValue
 
 
 @dataclass(frozen=True)
+@frozen_arrays(shared=True)  # the study's values, shared
 class PairedClaimInputs:
     """The ledger's entries of :class:`PairedStudies` (:meth:`PairedStudies.claim_inputs`).
 
@@ -167,6 +169,7 @@ class PairedClaimInputs:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class PairedStudies:
     """The ledger's paired Monte-Carlo studies (:func:`paired_studies`): per-run RMSE on x (m) of every rule.
 
@@ -195,12 +198,12 @@ class PairedStudies:
     runs: int
     seeds: tuple[int, int, int]
     sc: Scenario
-    paired: dict[str, np.ndarray]
-    paired_fig6: dict[float, np.ndarray]
+    paired: Mapping[str, np.ndarray]
+    paired_fig6: Mapping[float, np.ndarray]
     paired_random: np.ndarray
-    paired_u: dict[str, np.ndarray]
-    omega_u: list[float]
-    paired_an: dict[str, np.ndarray]
+    paired_u: Mapping[str, np.ndarray]
+    omega_u: tuple[float, ...]
+    paired_an: Mapping[str, np.ndarray]
 
     def claim_inputs(self, levels: ArrayLike = (0.001, 0.05, 0.1)) -> PairedClaimInputs:
         """The ledger's entries of the paired studies (for ``claims``).

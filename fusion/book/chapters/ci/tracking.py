@@ -14,6 +14,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
+from fusion._frozen import frozen_arrays
 from fusion import data
 from fusion._docstrings import reads_results
 from fusion._validation import count, record, scalar, std_scalar, instance_of
@@ -544,6 +545,7 @@ class LegClaimInputs:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class StraightLeg:
     """The straight-leg floors of :func:`fusion.scenarios.two_sensor.straight_leg_floor` set beside a fusion study.
 
@@ -564,7 +566,7 @@ class StraightLeg:
     floor: np.ndarray
     causal: np.ndarray
     steady: np.ndarray
-    rmse: dict[str, float]
+    rmse: Mapping[str, float]
 
     def claim_inputs(self) -> LegClaimInputs:
         """The ledger's entries ``leg_floor``, ``leg_best`` and ``leg_floor_causal`` (m), for ``claims``.

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion._frozen import frozen_arrays
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
@@ -134,6 +135,7 @@ def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, see
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Cell:
     """One case of a signal study, with the run count and seed of the study it comes from (:func:`cell`).
 

@@ -68,6 +68,9 @@ class TableReproduction:
         subsets reproducing it, and the change of the readings' sum implied by the published mean.
     alpha : DataFrame
         Per observation: the support-degree parameters α (°C⁻²) reproducing Table 3's value.
+
+    The tables are the result's own copies, and each read returns a copy: an in-place edit of one never reaches
+    the result (fuzz 19).
     """
 
     ofs: FloatArray

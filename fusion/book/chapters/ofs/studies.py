@@ -5,6 +5,7 @@ Each is cached per (seed, runs); the shares of the set's members are computed on
 
 from __future__ import annotations
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import instance_of
 
 from collections.abc import Mapping
@@ -111,6 +112,7 @@ def _alpha_study(seed: int, runs: int) -> PairedStudy:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class MembershipStudy:
     """The membership-function study on the primary draws: scales of eq. 6, families, equal weights.
 
@@ -128,9 +130,9 @@ class MembershipStudy:
     """
 
     scales: FloatArray
-    sweep: dict[FailureCase, FloatArray]
-    family: dict[FailureCase, dict[str, FloatArray]]
-    ablation: dict[FailureCase, dict[str, FloatArray]]
+    sweep: Mapping[FailureCase, FloatArray]
+    family: Mapping[FailureCase, Mapping[str, FloatArray]]
+    ablation: Mapping[FailureCase, Mapping[str, FloatArray]]
 
 
 #: Scales of eq. 6 swept (°C).
