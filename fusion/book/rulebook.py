@@ -192,10 +192,9 @@ _PCT = f"{CONFIDENCE_LEVEL * 100:.0f} %"
 #: Every rule, in the order the Verdicts page prints them.
 RULES: tuple[Rule, ...] = (
     Rule("R1", "published values",
-         "A published number is reproduced iff ours, rounded to the printed decimals, equals it; when ours lies "
-         "exactly halfway between two printed values, either is its rounding (half to even and half away from zero "
-         "are both readings of the rule). A record of several numbers is reproduced iff every one is, otherwise not "
-         "reproduced."),
+         "A published number is reproduced iff ours, rounded to the printed decimals, equals it (at an exact tie "
+         "either neighbour counts: the source does not say how it rounds); a record of several numbers is "
+         "reproduced iff every one is, otherwise not reproduced."),
     Rule("R2", "paired comparisons",
          f"Both methods run on the same runs; the {_PCT} Student-t interval of the mean paired difference A − B is "
          "placed against zero and the record's practical margin m (one margin per quantity: "
@@ -209,18 +208,16 @@ RULES: tuple[Rule, ...] = (
          "A statistic that is infinite or undefined is never \"not distinguishable\". If one method's mean is "
          "infinite (a run gives an infinite value, or the record states the closed-form reason) and the other's "
          "is finite, the claim's own criterion decides: the infinite mean is the higher. If both means are "
-         f"infinite, the median difference and its distribution-free {_PCT} interval decide, against the same "
-         "margin as R2; a run in which both are infinite has no difference and is left out, and when the median "
-         "difference is undefined (fewer than 6 runs left, or its two middle values are −∞ and +∞) the claim "
-         "cannot be checked on this evidence. An infinite median difference (+∞ or −∞) decides the claim only when "
-         "its interval lies on one side of zero (its sign is then decided), and an interval [−∞, +∞] decides "
-         "nothing: otherwise the claim cannot be checked on this evidence. Otherwise the mean decides (R2), "
+         f"infinite, the median difference and its distribution-free {_PCT} interval decide against R2's margin, "
+         "runs infinite in both left out; when that median is undefined (fewer than 6 runs, or middle values −∞ "
+         "and +∞) or infinite with an interval on both sides of zero, the claim cannot be checked on this evidence. "
+         "Otherwise the mean decides (R2), "
          "whatever the tail: a heavy tail (Hill tail index of "
          f"the differences below {HEAVY_TAIL_INDEX:g}, or {DOMINANCE_SHARE:.0%} of the runs carrying half of "
          f"Σ|A − B|; tested from {HEAVY_TAIL_MIN_RUNS} runs up) is shown beside the status with the median "
          "difference and the share of runs in which A lies on the claimed side, and the reseeding sweep "
-         "re-derives the status at ten times the runs. A tail estimated from a few hundred finite draws does "
-         "not show an infinite variance, so it never changes the statistic that decides."),
+         "re-derives the status at ten times the runs. A tail estimated from finite draws cannot show an "
+         "infinite variance: it never changes the statistic that decides."),
     Rule("R4", "power",
          f"Every reading of a stochastic record runs at least as many runs as its primary reading and at least "
          f"{MIN_RUNS}; a reading with fewer is marked underpowered and not counted."),
