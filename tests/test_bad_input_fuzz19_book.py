@@ -11,6 +11,7 @@ R1's tie rule in the ledger's ``PublishedValues``; the evidence classes a test t
 from __future__ import annotations
 
 import math
+from decimal import Decimal
 from pathlib import Path
 
 import numpy as np
@@ -22,6 +23,7 @@ from fusion.book import claims as C
 from fusion.book import ledger as L
 from fusion.book import rulebook as RB
 from fusion.book import tables as T
+from fusion.book.glue import glue_all
 from fusion.book.chapters import chernoff_steps as CST
 from fusion.book.chapters import lecture_correlated as LC
 from fusion.book.chapters import time_registration_ledger as TRL
@@ -233,15 +235,25 @@ def test_keep_refuses_a_key_that_is_not_an_identifier(keep):
     assert store == {}
 
 
-def test_keep_never_replaces_a_kept_value():
+def test_keep_takes_the_new_value_of_a_key_kept_again():
+    """Re-running a notebook's cell keeps its values again: the new value replaces the old (fuzz 20, K1: refusing
+    a different value broke the re-run of chapter 07's figure cell); the claim texts read the store when the ledger
+    is built."""
     key = sorted(LC.GLUED)[0]
     for keep, k in ((TRL.keep, "k"), (LC.keep, key)):
         store = {k: 2.5}
-        with pytest.raises(ValueError, match=rf"^values\['{k}'\] = 3\.0 would replace"):
-            keep(store, {k: 3.0})
-        assert store == {k: 2.5}
-        keep(store, {k: 2.5})  # the same value again: kept once
-        assert store == {k: 2.5}
+        keep(store, {k: 3.0})
+        assert store == {k: 3.0}
+
+
+@pytest.mark.parametrize("value", [np.array(nan), Decimal("nan"), Decimal("inf"), np.float32("inf")],
+                         ids=["0-d", "Decimal-nan", "Decimal-inf", "float32-inf"])
+def test_keep_and_glue_all_refuse_non_finite_numbers_in_any_form(value):
+    """fuzz 20, K2-K4: NaN as a 0-d array or a Decimal was stored or glued."""
+    with pytest.raises(ValueError, match=r"^values\['k'\]"):
+        TRL.keep({}, {"k": value})
+    with pytest.raises(ValueError, match=r"^values\['k'\]"):
+        glue_all({"k": value})
 
 
 def test_keep_refuses_non_finite():

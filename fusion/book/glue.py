@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from decimal import Decimal
+
 import math
 from collections.abc import Mapping
 from typing import Any, TypeAlias, Union
@@ -25,28 +27,14 @@ GlueValue: TypeAlias = Union[float, int, str, Figure, pd.DataFrame, Styler]
 GlueValues: TypeAlias = dict[str, GlueValue]
 
 
-def _same_value(a: object, b: object) -> bool:
-    """Whether two glue values are the same (arrays and tables compared element by element)."""
-    if a is b:
-        return True
-    if isinstance(a, (pd.DataFrame, pd.Series)) or isinstance(b, (pd.DataFrame, pd.Series)):
-        return type(a) is type(b) and a.equals(b)  # type: ignore[union-attr]
-    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
-        return bool(np.array_equal(np.asarray(a), np.asarray(b)))
-    try:
-        return bool(a == b)
-    except (TypeError, ValueError):
-        return False
-
-
 def _checked_keep(store: object, values: object) -> None:
     """The one rule of the chapters' ``keep(store, values)``, which store glue values for the claim texts.
 
     ``store`` a mutable mapping and ``values`` a mapping (TypeError naming them); every key a str (TypeError) that
     is an identifier (a ``{name}`` field of a claim text; ValueError naming ``values``); a float finite (ValueError
-    naming ``values[key]``); a key already in ``store`` kept again only with the same value (ValueError naming
-    ``values[key]``: a silent replacement would change a claim text that already read the old value). Checked
-    before ``store`` changes.
+    naming ``values[key]``, also given as a 0-d array or a :class:`~decimal.Decimal`). A key kept again takes the
+    new value: re-running a notebook's cell recomputes it, and the claim texts read the store when the ledger is
+    built, after every cell. Checked before ``store`` changes.
     """
     from collections.abc import MutableMapping
 
@@ -58,11 +46,8 @@ def _checked_keep(store: object, values: object) -> None:
             raise TypeError(f"values must have str glue keys, got the key {shown(k, 60)}")
         if not k.isidentifier():
             raise ValueError(f"values must have glue keys that are identifiers (a claim text's {{name}}), got {shown(k)}")
-        if isinstance(v, (float, np.floating)):
+        if isinstance(v, (float, np.floating, Decimal)) or (isinstance(v, np.ndarray) and v.ndim == 0):
             scalar(v, f"values[{k!r}]", tiny=True)
-        if k in store and not _same_value(store[k], v):  # type: ignore[operator,index]
-            raise ValueError(f"values[{shown(k)}] = {shown(v, 60)} would replace the stored {shown(store[k], 60)}: "  # type: ignore[index]
-                             "a kept value is kept once (the claim texts read it)")
 
 
 def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
@@ -83,7 +68,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     TypeError
         ``values`` not a mapping, a key not a string, ``decimals`` not an integer.
     ValueError
-        A number (a float, a NumPy scalar or a 0-d array) NaN or infinite, naming ``values[key]``; checked for every
+        A number (a float, a NumPy scalar, a 0-d array or a Decimal) NaN or infinite, naming ``values[key]``; checked for every
         value before any is glued, whatever ``decimals``.
     """
     if not isinstance(values, Mapping):
@@ -94,7 +79,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         if not isinstance(key, str):
             raise TypeError(f"values must have str glue keys, got the key {shown(key, 60)}")
         number = value.item() if isinstance(value, np.ndarray) and value.ndim == 0 else value  # a 0-d array: its number
-        if isinstance(number, (float, np.floating)) and not math.isfinite(number):
+        if isinstance(number, (float, np.floating, Decimal)) and not math.isfinite(number):
             raise ValueError(f"values[{shown(key)}] must be finite, got {shown(value)} (a glued number is printed in the book)")
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 
