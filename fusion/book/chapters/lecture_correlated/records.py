@@ -512,8 +512,8 @@ def keep(store: GlueValues, values: Mapping[str, GlueValue]) -> GlueValues:
     TypeError
         ``store`` is not a mutable mapping, ``values`` not a mapping, or a key of ``values`` not a str.
     ValueError
-        As ``time_registration_ledger.keep`` (one rule): a key that is not an identifier, a float that is not
-        finite, or a key already in ``store`` with a different value; ``store`` is then left unchanged.
+        As ``time_registration_ledger.keep`` (one rule): a key that is not an identifier or a number that is not
+        finite; ``store`` is then left unchanged. A key kept again takes its new value (a re-run cell).
     """
     _checked_keep(store, values)
     out = {k: v for k, v in values.items() if k in GLUED}

@@ -61,10 +61,9 @@ def keep(store: GlueValues, values: GlueValues) -> GlueValues:
     TypeError
         ``store`` is not a mutable mapping, ``values`` not a mapping, or a key of ``values`` not a str.
     ValueError
-        A key of ``values`` is not an identifier (a claim text's ``{name}``); a float of ``values`` is not
-        finite (NaN or infinite, which the book would print), named ``values[key]``; a key already in ``store``
-        with a different value (named ``values[key]``: a kept value is never replaced). ``store`` is then left
-        unchanged.
+        A key of ``values`` is not an identifier (a claim text's ``{name}``); a number of ``values`` is not
+        finite (NaN or infinite, which the book would print), named ``values[key]``. ``store`` is then left
+        unchanged. A key kept again takes its new value (a re-run cell).
     """
     _checked_keep(store, values)
     store.update(values)
