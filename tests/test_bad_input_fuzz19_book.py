@@ -259,3 +259,12 @@ def test_keep_and_glue_all_refuse_non_finite_numbers_in_any_form(value):
 def test_keep_refuses_non_finite():
     with pytest.raises(ValueError, match=r"^values\['k'\]"):
         TRL.keep({}, {"k": nan})
+
+
+@pytest.mark.parametrize("value, text", [(5e-324, "4.9 × 10⁻³²⁴"), (-5e-324, "-4.9 × 10⁻³²⁴"), (1e-310, "1.0 × 10⁻³¹⁰"),
+                                         (1.75e-300, "1.8 × 10⁻³⁰⁰")])
+def test_lecture_sci_prints_subnormal_numbers(value, text):
+    """fuzz 20, A: ``lecture.sci(5e-324)`` raised ZeroDivisionError (10.0**-324 underflows to 0)."""
+    from fusion.book.chapters.lecture import sci
+
+    assert sci(value) == text

@@ -122,7 +122,8 @@ def sci(value: float, digits: int = 2) -> str:
     if v == 0.0:
         return "0"  # also for -0.0: "0 is written 0", as ledger.fmt and tables.sci print it (fuzz 19, E8)
     e = int(np.floor(np.log10(abs(v))))
-    m = round(v / 10.0**e, digits - 1)
+    # 10.0**e underflows to 0 below 1e-323 (a subnormal value: 5e-324): scale up first (fuzz 20, A)
+    m = round(v / 10.0**e, digits - 1) if e > -300 else round((v * 1e300) / 10.0 ** (e + 300), digits - 1)
     if abs(m) >= 10:
         m, e = m / 10, e + 1
     return f"{m:.{digits - 1}f} × 10{str(e).translate(_SUPERSCRIPT)}"
