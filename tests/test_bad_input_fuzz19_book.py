@@ -15,6 +15,7 @@ from decimal import Decimal
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 import yaml
 from scipy import stats
@@ -268,3 +269,22 @@ def test_lecture_sci_prints_subnormal_numbers(value, text):
     from fusion.book.chapters.lecture import sci
 
     assert sci(value) == text
+
+
+def _pub_rep(column):
+    return pd.DataFrame({"published a": [1.0, 2.0], "reproduced a": column})
+
+
+@pytest.mark.parametrize("column", [["1.0", "two"], [True, False], pd.to_timedelta([1, 5], unit="s"),
+                                    pd.Series(["1", "2"], dtype="string")], ids=["text", "bool", "timedelta", "string"])
+def test_mismatches_refuses_columns_that_are_not_numbers(column):
+    """fuzz 20, M1-M4: a text, bool or duration column was compared as numbers (a text cell reported a mismatch)."""
+    with pytest.raises(TypeError, match=r"^table\['reproduced a'\]"):
+        T.mismatches(_pub_rep(column))
+    with pytest.raises(TypeError, match=r"^table\['reproduced a'\]"):
+        T.highlight_mismatches(_pub_rep(column))
+
+
+def test_mismatches_reads_missing_values_in_an_object_column():
+    got = T.mismatches(_pub_rep(pd.Series([1.0, None], dtype=object)))
+    assert list(got["reproduced a"]) == [False, True]   # a reproduced None beside a published value is a mismatch

@@ -151,6 +151,22 @@ def _pairs(columns: pd.Index) -> list[tuple[object, object, object | None]]:
     return out
 
 
+def _number_column(table: pd.DataFrame, column: object) -> np.ndarray:
+    """A compared column as floats: numbers, and ``None``/NaN for a missing value; a TypeError naming
+    ``table[column]`` for text, booleans, durations or dates (a text cell is not a mismatch: it is not a number)."""
+    col = table[column]
+    kind = col.dtype.kind
+    if kind in "iuf":
+        return col.to_numpy(dtype=float)
+    if kind == "O":
+        bad = [v for v in col if not (v is None or (isinstance(v, (int, float, np.integer, np.floating))
+                                                    and not isinstance(v, (bool, np.bool_))))]
+        if not bad:
+            return np.array([np.nan if v is None else float(v) for v in col], dtype=float)
+        raise TypeError(f"table[{shown(column)}] must hold numbers (None or NaN where missing), got {shown(bad[0])}")
+    raise TypeError(f"table[{shown(column)}] must hold numbers, got the dtype {col.dtype}")
+
+
 def mismatches(table: pd.DataFrame, decimals: int = 4) -> pd.DataFrame:
     """Which reproduced values differ from the published ones at the printed precision.
 
@@ -172,6 +188,9 @@ def mismatches(table: pd.DataFrame, decimals: int = 4) -> pd.DataFrame:
 
     Raises
     ------
+    TypeError
+        ``table`` is not a DataFrame, or a compared column holds text, booleans, durations or dates, naming
+        ``table[column]``.
     ValueError
         If ``table`` holds no published/reproduced pair, or repeats a column name.
     """
@@ -186,8 +205,7 @@ def mismatches(table: pd.DataFrame, decimals: int = 4) -> pd.DataFrame:
     mask = pd.DataFrame(False, index=table.index, columns=table.columns)
     tol = 0.5 * 10.0 ** (-decimals) * (1 + 1e-9)
     for pub, rep, diff in pairs:
-        p = pd.to_numeric(table[pub], errors="coerce").to_numpy(dtype=float)
-        r = pd.to_numeric(table[rep], errors="coerce").to_numpy(dtype=float)
+        p, r = _number_column(table, pub), _number_column(table, rep)
         bad = ~np.isnan(p) & ~(np.abs(r - p) <= tol)      # rows without a published value are not compared
         mask[rep] = bad
         if diff is not None:
