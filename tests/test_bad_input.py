@@ -514,8 +514,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[bk + "style.method_style"] = dict(method=A("mean", ("notstr", "unknown")), markers=A(True, ()))  # unknown names are grey (documented)
     R[bk + "study_cache.study_cache"] = dict(maxsize=A(4, ("neg", "frac", "str")))
     R[bk + "study_cache.process_cache"] = dict(maxsize=A(4, ("neg", "frac", "str")))
-    R[bk + "study_cache.study_key"] = dict(qualname=A("m.f", ()), arguments=A({"x": 1}, ()))
-    R[bk + "study_cache.source_digest"] = dict()
+    R[bk + "study_cache.study_key"] = dict(qualname=A("m.f", ()), arguments=A({"x": 1}, ()), digest=A("0" * 64, ("notstr",)))
+    R[bk + "study_cache.source_digest"] = dict(package=A(str(Path(__file__).resolve().parents[1] / "fusion"), ("notstr",)))
     R[bk + "style.is_registered_label"] = dict(label=A("published", ("notstr",)))
     R[bk + "tables.side_by_side"] = dict(published=A(np.array([1.0, 2.0]), ("nan", "inf", "empty", "more", "str", "len")),
                                          reproduced=A(np.array([1.1, 2.1]), ("nan", "inf", "more", "str", "len")),

@@ -118,13 +118,13 @@ def test_the_source_digest_follows_every_source_file(tmp_path: Path) -> None:
     (pkg / "sub").mkdir(parents=True)
     (pkg / "a.py").write_text("x = 1\n")
     (pkg / "sub" / "b.py").write_text("y = 2\n")
-    d0 = sc.source_digest.__wrapped__(pkg)
+    d0 = sc._source_digest.__wrapped__(pkg)
     (pkg / "sub" / "b.py").write_text("y = 3\n")
-    d1 = sc.source_digest.__wrapped__(pkg)
+    d1 = sc._source_digest.__wrapped__(pkg)
     (pkg / "sub" / "b.py").rename(pkg / "sub" / "c.py")
-    d2 = sc.source_digest.__wrapped__(pkg)
+    d2 = sc._source_digest.__wrapped__(pkg)
     (pkg / "notes.txt").write_text("not a source")
-    assert len({d0, d1, d2}) == 3 and sc.source_digest.__wrapped__(pkg) == d2
+    assert len({d0, d1, d2}) == 3 and sc._source_digest.__wrapped__(pkg) == d2
 
 
 def test_defaults_and_keywords_share_one_entry(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -387,7 +387,7 @@ def test_an_object_array_is_copied_not_shared(monkeypatch: pytest.MonkeyPatch) -
 #: Bare functools caches allowed in fusion/: private helpers whose results are immutable, each with a call the test
 #: checks (module, function name, arguments).
 BARE_CACHE_ALLOWED = {
-    ("fusion/book/study_cache.py", "source_digest"): (),
+    ("fusion/book/study_cache.py", "_source_digest"): (sc._PACKAGE,),
     ("fusion/estimates/mixtures.py", "_triu"): (3,),
     ("fusion/readings/biased.py", "_quadrature"): (8, 5),
     ("fusion/book/chapters/chernoff/glue.py", "_referenced_keys"): (),

@@ -72,20 +72,31 @@ LOG_ENV = "FUSION_STUDY_CACHE_LOG"
 _PACKAGE = Path(__file__).resolve().parents[1]
 
 
-@functools.lru_cache(maxsize=1)
-def source_digest(package: Path = _PACKAGE) -> str:
+def source_digest(package: Path | str = _PACKAGE) -> str:
     """SHA-256 of the package's Python sources: every ``**/*.py`` under ``package``, by relative path and bytes.
 
     Parameters
     ----------
-    package : Path
+    package : Path or str
         The package's folder (default: ``fusion``).
 
     Returns
     -------
     str
         Hex digest; it changes with any edit, addition, removal or renaming of a source file.
+
+    Raises
+    ------
+    TypeError
+        If ``package`` is not a path (a ``str`` or an ``os.PathLike``).
     """
+    if not isinstance(package, (str, os.PathLike)):
+        raise TypeError(f"package must be a path (str or os.PathLike), got {type(package).__name__} {shown(package, 40)}")
+    return _source_digest(Path(package))
+
+
+@functools.lru_cache(maxsize=1)
+def _source_digest(package: Path) -> str:
     h = hashlib.sha256()
     for path in sorted(package.rglob("*.py")):
         rel = path.relative_to(package).as_posix().encode()
@@ -151,9 +162,9 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
     Raises
     ------
     TypeError
-        If ``qualname`` is not a string, ``arguments`` is not a dict with string keys, or an argument
-        has no canonical encoding (a container that contains itself has none; then the call bypasses
-        the disk).
+        If ``qualname`` or ``digest`` is not a string, ``arguments`` is not a dict with string keys, or an
+        argument has no canonical encoding (a container that contains itself, or one nested deeper than the
+        interpreter's recursion limit, has none; then the call bypasses the disk).
     """
     text(qualname, "qualname")
     if not isinstance(arguments, dict):
@@ -166,6 +177,10 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
             encoded.append([k, _canonical(v)])
         except TypeError as exc:  # named by the argument it came from
             raise TypeError(f"arguments[{shown(k)}]: {str(exc).removeprefix('value: ')}") from None
+        except RecursionError:   # nested deeper than the interpreter's stack: no encoding (the call bypasses the disk)
+            raise TypeError(f"arguments[{shown(k)}]: nested too deeply for a canonical encoding") from None
+    if digest is not None:
+        digest = text(digest, "digest")
     payload = json.dumps([digest if digest is not None else source_digest(), np.__version__, qualname, encoded],
                          separators=(",", ":"))
     return hashlib.sha256(payload.encode()).hexdigest()
@@ -285,6 +300,30 @@ def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any]
         return value
 
 
+def _name_unhashable(fn: Callable[..., Any], args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
+    """Raise a TypeError naming the first argument of ``fn``'s call that cannot be hashed (a cache key); else return."""
+    try:
+        sig = inspect.signature(fn)
+        bound = sig.bind_partial(*args, **kwargs).arguments
+    except (TypeError, ValueError):
+        sig, bound = None, {**{f"argument {i}": a for i, a in enumerate(args)}, **kwargs}
+    named: list[tuple[str, Any]] = []
+    for name, value in bound.items():
+        kind = sig.parameters[name].kind if sig is not None else None
+        if kind is inspect.Parameter.VAR_POSITIONAL:
+            named += [(f"{name}[{i}]", v) for i, v in enumerate(value)]
+        elif kind is inspect.Parameter.VAR_KEYWORD:
+            named += list(value.items())
+        else:
+            named.append((name, value))
+    for name, value in named:
+        try:
+            hash(value)
+        except TypeError:
+            raise TypeError(f"{name} must be hashable (the function caches its results), got "
+                            f"{type(value).__name__} {shown(value, 40)}") from None
+
+
 #: What a cached function's ``cache_info()`` returns (the fields of ``functools.lru_cache``'s).
 CacheInfo = collections.namedtuple("CacheInfo", ["hits", "misses", "maxsize", "currsize"])
 
@@ -322,7 +361,11 @@ def process_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], A
 
         @functools.wraps(fn)
         def cached(*args: Any, **kwargs: Any) -> Any:
-            entry = shared(*args, **kwargs)
+            try:
+                entry = shared(*args, **kwargs)
+            except TypeError:
+                _name_unhashable(fn, args, kwargs)   # the cache hashes the arguments before fn's own checks
+                raise
             return entry.value if maxsize == 0 else entry.get()
 
         cached.cache_clear = shared.cache_clear   # type: ignore[attr-defined]

@@ -177,7 +177,7 @@ def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) 
     seed, runs : int
         The chapter's root seed and runs per network.
     factor : int
-        Multiple of the runs.
+        Multiple of the runs (an integer type, 1 or more).
 
     Returns
     -------
@@ -188,8 +188,9 @@ def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) 
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
+    factor = count(factor, "factor")
     j = PREMISE_NETWORKS.index(Network.NON_GAUSSIAN)
-    st = run_network_study(premise_scenarios()[Network.NON_GAUSSIAN], seed + 10 + j, int(factor) * runs)
+    st = run_network_study(premise_scenarios()[Network.NON_GAUSSIAN], seed + 10 + j, factor * runs)
     c = _pcmp(st, "chernoff_pso", "ci_gaussian")
     jd = c.judgement()
     d = st.mse("chernoff_pso") - st.mse("ci_gaussian")
