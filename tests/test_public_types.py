@@ -300,7 +300,7 @@ def _container_fields(cls: type) -> list[str]:
 #: (BenchmarkResult keeps its mapping read-only itself.)
 CONTAINERS_NOT_YET_FROZEN: frozenset[str] = frozenset()
 #: Results with containers that validate and freeze them in their own ``__post_init__`` (``freeze_arrays`` last).
-SELF_FROZEN_CONTAINERS = frozenset({"fusion.book.claims.ReadingSpec"})
+SELF_FROZEN_CONTAINERS = frozenset({"fusion.book.claims.ReadingSpec", "fusion.book.claims.ClaimsFile"})
 
 
 def test_every_frozen_result_with_containers_freezes_them() -> None:

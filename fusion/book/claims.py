@@ -54,9 +54,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import yaml
 
-from fusion._frozen import freeze_arrays, frozen_arrays, restore_frozen
+from fusion._frozen import freeze_arrays, frozen_value, restore_frozen
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger.evidence import _KIND_OF_TEST
@@ -196,10 +197,12 @@ class ClaimSpec:
         As in the file (``published`` joined into one text: value, unit, precision).
     quantity, direction : str
         Paired and equivalence tests ("" otherwise).
-    margin : dict or None
-        The record's own margin (``{"relative": r}`` or ``{"absolute": x}``), if it declares one.
-    baseline : dict or None
-        ``{"name", "defined", "reason", "stand_in"}`` for a method the source names.
+    margin : Mapping or None
+        The record's own margin (``{"relative": r}`` or ``{"absolute": x}``), if it declares one (stored
+        read-only).
+    baseline : Mapping or None
+        ``{"name", "defined", "reason", "stand_in"}`` for a method the source names (``name`` and ``defined``
+        required; stored read-only).
     headline : bool
     critiques, assumptions : tuple of str
     bound, reason, evidence : str
@@ -209,12 +212,14 @@ class ClaimSpec:
     Raises
     ------
     TypeError
-        A text field not a str; ``headline`` not a bool; ``margin`` or ``baseline`` not a mapping;
+        A text field not a str; ``headline`` not a bool; ``margin`` or ``baseline`` not a mapping; ``baseline``'s
+        ``name``, ``reason`` or ``stand_in`` not a str or its ``defined`` not a bool;
         ``critiques`` or ``assumptions`` not a tuple of str; ``readings`` not a tuple of ReadingSpec.
     ValueError
         An empty ``id``, ``chapter``, ``where``, ``claim``, ``published`` or ``link``; ``claimant``, ``test``
         or ``direction`` outside its vocabulary; a margin not ``{"relative": r}`` or ``{"absolute": x}`` with
-        a finite value in [0, 1e150]; a repeated critique label; ``evidence`` not ``module:function``.
+        a finite value in [0, 1e150]; a ``baseline`` without ``name`` and ``defined`` or with another key; a
+        repeated critique label; ``evidence`` not ``module:function``.
     """
 
     id: str
@@ -256,6 +261,11 @@ class ClaimSpec:
                 _check_margin(self.margin, "margin")
             except ClaimsFileError as e:
                 raise ValueError(str(e)) from None
+        if self.baseline is not None:
+            _check_baseline(self.baseline)
+        for name in ("margin", "baseline"):  # stored read-only: a frozen record's margin cannot be edited (fuzz 20)
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, frozen_value(getattr(self, name)))
         for name in ("critiques", "assumptions"):
             v = getattr(self, name)
             if not (isinstance(v, tuple) and all(isinstance(x, str) for x in v)):
@@ -271,7 +281,6 @@ class ClaimSpec:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class ClaimsFile:
     """A validated claim file.
 
@@ -279,15 +288,32 @@ class ClaimsFile:
     ----------
     path : pathlib.Path
     source : str
-    quantities : dict
-        Quantity key → {"label", "margin", "why"}.
+    quantities : Mapping
+        Quantity key → {"label", "margin", "why"} (stored read-only).
     records : tuple of ClaimSpec
+        (A list is stored as a tuple.)
+
+    Raises
+    ------
+    TypeError
+        ``path`` not a :class:`pathlib.Path`, ``source`` not a str, ``quantities`` not a mapping, ``records``
+        not a sequence of :class:`ClaimSpec`.
     """
 
     path: Path
     source: str
     quantities: Mapping[str, Mapping[str, Any]]
     records: tuple[ClaimSpec, ...]
+
+    def __post_init__(self) -> None:
+        instance_of(self.path, Path, "path")
+        text(self.source, "source")
+        instance_of(self.quantities, Mapping, "quantities")
+        if not (isinstance(self.records, (tuple, list)) and all(isinstance(r, ClaimSpec) for r in self.records)):
+            raise TypeError(f"records must be a tuple of ClaimSpec, got {shown(self.records)}")
+        freeze_arrays(self)  # quantities a read-only mapping, records a tuple (fuzz 20: a rebuilt file is checked)
+
+    __setstate__ = restore_frozen  # copies and unpickled objects keep it read-only
 
     def record(self, rid: str) -> ClaimSpec:
         """The record with id ``rid`` (ClaimsFileError if absent)."""
@@ -361,6 +387,9 @@ def _unique_mapping(loader: _UniqueKeyLoader, node: yaml.MappingNode, deep: bool
     seen: set[Any] = set()
     for key_node, _ in node.value:
         key = loader.construct_object(key_node, deep=deep)
+        if not isinstance(key, str):  # a sequence, a number, null, a bool: every key of a claim file is a text
+            raise yaml.constructor.ConstructorError(None, None, f"a key must be a text, got {shown(key)}",
+                                                    key_node.start_mark)
         if key in seen:
             raise yaml.constructor.ConstructorError(None, None, f"repeated key {shown(key)}", key_node.start_mark)
         seen.add(key)
@@ -368,6 +397,36 @@ def _unique_mapping(loader: _UniqueKeyLoader, node: yaml.MappingNode, deep: bool
 
 
 _UniqueKeyLoader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _unique_mapping)
+
+
+def _bounded_int(loader: _UniqueKeyLoader, node: yaml.ScalarNode) -> int:
+    """PyYAML's integer, refused (with its place in the file) beyond Python's digit limit for str -> int."""
+    try:
+        return loader.construct_yaml_int(node)
+    except ValueError as e:
+        raise yaml.constructor.ConstructorError(None, None, f"an integer too long to read ({e})",
+                                                node.start_mark) from None
+
+
+_UniqueKeyLoader.add_constructor("tag:yaml.org,2002:int", _bounded_int)
+
+#: Deepest nesting of mappings and lists a claim file may have (its records are 5 deep; PyYAML and jsonschema
+#: recurse, so a file nested thousands deep would end in a RecursionError).
+_MAX_DEPTH = 32
+
+
+def _check_depth(doc: Any, name: str) -> None:
+    """ClaimsFileError naming the file and the field where ``doc`` nests deeper than ``_MAX_DEPTH``."""
+    stack: list[tuple[Any, tuple[Any, ...]]] = [(doc, ())]
+    while stack:
+        node, where = stack.pop()
+        if len(where) > _MAX_DEPTH:
+            field = ".".join(str(p) for p in where[:3])
+            raise ClaimsFileError(f"{name}: field {field}: nested more than {_MAX_DEPTH} deep")
+        if isinstance(node, dict):
+            stack.extend((v, (*where, k)) for k, v in node.items())
+        elif isinstance(node, list):
+            stack.extend((v, (*where, i)) for i, v in enumerate(node))
 
 #: Tests that compare methods on a quantity, the only ones that take ``quantity``, ``direction`` and ``margin``.
 _COMPARING_TESTS = ("paired", "equivalence", "exact")
@@ -377,8 +436,24 @@ def _check_margin(margin: Mapping[str, Any], where: str) -> None:
     """A margin of a claim file: its one value a finite number in [0, 1e150] (the schema checks type and sign only:
     YAML's ``.nan`` and ``.inf`` are numbers to it)."""
     for k, v in margin.items():
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not 0 <= v <= MAX_MAGNITUDE:
+        # a numpy real scalar (float32, int64) is a number, as for the shared scalar reader; a bool is not
+        if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, float, np.integer, np.floating)) \
+                or not 0 <= (float(v) if isinstance(v, np.generic) else v) <= MAX_MAGNITUDE:  # float32 vs 1e150
             raise ClaimsFileError(f"{where}.{k}: must be a finite number in [0, {MAX_MAGNITUDE:g}], got {shown(v)}")
+
+
+def _check_baseline(baseline: Mapping[str, Any]) -> None:
+    """A record's baseline as the schema states it (ValueError or TypeError naming ``baseline``): a record built without
+    :func:`load` (``dataclasses.replace``) is held to the file's rules."""
+    keys = set(baseline)
+    if not {"name", "defined"} <= keys <= {"name", "defined", "reason", "stand_in"}:
+        raise ValueError(f"baseline must hold 'name' and 'defined' (and optionally 'reason', 'stand_in'), "
+                         f"got {shown(baseline)}")
+    for k in ("name", "reason", "stand_in"):
+        if k in baseline and not isinstance(baseline[k], str):
+            raise TypeError(f"baseline.{k} must be a str, got {shown(baseline[k])}")
+    if not isinstance(baseline["defined"], bool):
+        raise TypeError(f"baseline.defined must be a bool, got {shown(baseline['defined'])}")
 
 
 def _evidence_function(evidence: str, where: str) -> Any:
@@ -435,6 +510,9 @@ def load(path: Path | str) -> ClaimsFile:
         doc = yaml.load(raw, Loader=_UniqueKeyLoader)  # noqa: S506 - a SafeLoader that refuses repeated keys
     except yaml.YAMLError as e:
         raise ClaimsFileError(f"{path.name}: not valid YAML ({e})") from None
+    except RecursionError:  # PyYAML composes and constructs recursively
+        raise ClaimsFileError(f"{path.name}: not valid YAML (nested more than {_MAX_DEPTH} deep)") from None
+    _check_depth(doc, path.name)
     errors = sorted(jsonschema.Draft202012Validator(SCHEMA).iter_errors(doc), key=lambda e: list(e.absolute_path))
     if errors:
         e = errors[0]

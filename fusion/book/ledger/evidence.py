@@ -183,7 +183,8 @@ class Comparison:
         :data:`fusion.book.rulebook.DEFAULT_RELATIVE_MARGIN`). Given with ``margin``, it must give the same
         margin (a copy of a comparison passes both), else ValueError; ``margin`` is stored.
     conditions : tuple of (str, str)
-        The conditions (e.g. a stress test) under which A and B ran; R6 refuses different ones.
+        The conditions (e.g. a stress test) under which A and B ran; R6 refuses different ones. A list pair
+        is accepted and stored as a tuple.
     infinite_mean : tuple of str
         ``"a"``, ``"b"``: methods whose population mean is infinite by a closed-form argument (R3).
 
@@ -230,6 +231,8 @@ class Comparison:
         if av.size < MIN_RUNS and not reason:
             raise ValueError(f"a and b hold {av.size} runs < {MIN_RUNS}: give more runs or a reason (the argument "
                              "reason: why fewer runs are enough)")
+        if isinstance(conditions, list):  # a list pair is a pair (the chapter results store lists as tuples)
+            conditions = tuple(conditions)
         if not (isinstance(conditions, tuple) and len(conditions) == 2 and all(isinstance(c, str) for c in conditions)):
             raise TypeError(f"conditions must be a pair of str, got {shown(conditions)}")
         if conditions[0] != conditions[1]:  # R6
@@ -488,7 +491,8 @@ class Conjunction:
     Parameters
     ----------
     parts : sequence of (str, Comparison, ExactComparison or Proposition)
-        Each member's label (e.g. ``"sensor 1"``) and evidence; at least two, labels distinct.
+        Each member's label (e.g. ``"sensor 1"``) and evidence (a tuple or list pair, stored as a tuple); at least
+        two, labels distinct.
 
     Raises
     ------
@@ -513,6 +517,8 @@ class Conjunction:
             raise TypeError(f"parts must be a sequence of (label, evidence) pairs, got {type(parts).__name__}")
         out = []
         for i, p in enumerate(parts):
+            if isinstance(p, list):  # a list pair is a pair (as the chapter results store lists as tuples)
+                p = tuple(p)
             if not (isinstance(p, tuple) and len(p) == 2):
                 raise TypeError(f"parts must hold (label, evidence) pairs, got {shown(p)}")
             label, ev = p
