@@ -89,10 +89,19 @@ def source_digest(package: Path | str = _PACKAGE) -> str:
     ------
     TypeError
         If ``package`` is not a path (a ``str`` or an ``os.PathLike``).
+    ValueError
+        If ``package`` is not an existing folder (or the system cannot read it as a path: too long, a NUL byte).
     """
     if not isinstance(package, (str, os.PathLike)):
         raise TypeError(f"package must be a path (str or os.PathLike), got {type(package).__name__} {shown(package, 40)}")
-    return _source_digest(Path(package))
+    try:
+        folder = Path(package)
+        is_dir = folder.is_dir()
+    except (OSError, ValueError) as exc:   # a name too long for the system, a NUL byte
+        raise ValueError(f"package must be a folder, got {shown(package, 60)} ({type(exc).__name__})") from None
+    if not is_dir:
+        raise ValueError(f"package must be an existing folder, got {shown(package, 60)}")
+    return _source_digest(folder)
 
 
 @functools.lru_cache(maxsize=1)
