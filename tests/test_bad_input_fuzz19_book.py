@@ -288,3 +288,22 @@ def test_mismatches_refuses_columns_that_are_not_numbers(column):
 def test_mismatches_reads_missing_values_in_an_object_column():
     got = T.mismatches(_pub_rep(pd.Series([1.0, None], dtype=object)))
     assert list(got["reproduced a"]) == [False, True]   # a reproduced None beside a published value is a mismatch
+
+
+def test_fuzz20_left_cases_are_decided():
+    """fuzz 20: D1/D2 a repeated delay or level is refused (the tables are keyed by them); X1 an integer beyond the
+    float range is refused citing that range, not rule 2's 1e150 (a printed number has no such bound); L1
+    ``roundoff`` prints a discrepancy's size, documented."""
+    from fusion.book.chapters import time_registration as tr
+    from fusion.book.chapters.lecture_weighting import estimators, studies
+
+    with pytest.raises(ValueError, match="^delays must not repeat"):
+        tr.delay_table([0.0, 0.0, 0.01], [0.1, 0.3])
+    with pytest.raises(ValueError, match="^sigmas must not repeat"):
+        tr.delay_table([0.0, 0.01], [0.1, 0.1])
+    with pytest.raises(ValueError, match="^levels must not repeat"):
+        estimators.table_21(studies.study("s21"), levels=(0.0, 0.0))
+    with pytest.raises(ValueError, match="float range"):
+        T.rounded(10**400)
+    assert T.rounded(1e200) == 1e200
+    assert T.roundoff(-1.0) == T.roundoff(1.0)

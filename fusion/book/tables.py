@@ -25,6 +25,10 @@ __all__ = ["side_by_side", "rounded", "mismatches", "highlight_mismatches", "int
            "sci", "roundoff", "ROUNDOFF_EXPONENT", "NONFINITE_RULE", "cell_text", "tidy_table_html", "use_book_tables"]
 
 
+#: The largest finite float64 (about 1.8e308): the only bound on a number the book prints.
+_FLOAT_MAX = float(np.finfo(np.float64).max)
+
+
 def _printed_number(value: object, name: str) -> float:
     """A finite number to print or round for print: any finite double, whatever its magnitude.
 
@@ -35,6 +39,9 @@ def _printed_number(value: object, name: str) -> float:
     non-number (the shared reader); ValueError naming ``name`` for NaN or an infinity (the callers that print those
     as words, :data:`NONFINITE_RULE`, test for them first).
     """
+    if is_integer(value) and abs(int(value)) > _FLOAT_MAX:   # not rule 2's 1e150: a printed number has no such bound
+        raise ValueError(f"{name} must be a number within the float range (magnitude at most {_FLOAT_MAX:.3g}), "
+                         "got an integer beyond it")
     v = _real_number(value, name)
     if not math.isfinite(v):
         raise ValueError(f"{name} must be finite, got {shown(value)}")
@@ -446,7 +453,9 @@ def roundoff(value: float, exponent: int = ROUNDOFF_EXPONENT) -> str:
     Parameters
     ----------
     value : float
-        A finite difference (absolute or relative); its magnitude is compared.
+        A finite difference (absolute or relative); its magnitude is compared and printed (the size of a
+        discrepancy: the sign of a round-off residual is itself round-off, so ``roundoff(-3.1e-9)`` is
+        ``"3.1×10⁻⁹"``, as the prose around it says "differ by").
     exponent : int
         The power of ten it is compared with (default :data:`ROUNDOFF_EXPONENT`, -12).
 

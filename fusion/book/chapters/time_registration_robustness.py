@@ -120,18 +120,18 @@ def delay_table(delays: Sequence[float], sigmas: Sequence[float]) -> pd.DataFram
     TypeError
         ``delays`` or ``sigmas`` is not a sequence of numbers.
     ValueError
-        ``delays`` or ``sigmas`` is empty, a latency is not finite or outside the flight, or a noise level is not a
-        valid standard deviation.
+        ``delays`` or ``sigmas`` is empty or repeats an entry (the table is keyed by them: a repeat would merge into
+        one row or column), a latency is not finite or outside the flight, or a noise level is not a valid standard
+        deviation.
     """
-    from fusion._validation import scalar, sequence, std_scalar
+    from fusion._validation import distinct, scalar, sequence, std_scalar
 
     lo, hi = sc._delay_bounds(*sc.instants())  # the true sample times in the flight (-1 s to 1 s)
     for name, values, check in (("delays", delays, lambda v, n: scalar(v, n, lo, hi)), ("sigmas", sigmas, std_scalar)):
         items = sequence(values, name)
         if not items:
             raise ValueError(f"{name} is empty")
-        for i, v in enumerate(items):
-            check(v, f"{name}[{i}]")
+        distinct([float(check(v, f"{name}[{i}]")) for i, v in enumerate(items)], name)
     rows = {round(1e3 * float(d), 6): {f"σ_x = {s:g} m": sc.expected(IMPROVED, float(s), delay=float(d))
                              - sc.expected(TWO, float(s), delay=float(d)) for s in sigmas} for d in delays}
     out = pd.DataFrame(rows).T

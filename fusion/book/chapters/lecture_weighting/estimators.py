@@ -4,7 +4,7 @@ linear-unbiased-minimum-variance under each reading of the weights: tables, figu
 from __future__ import annotations
 
 from fusion._counts import sequence
-from fusion._validation import instance_of, scalar, shown
+from fusion._validation import distinct, instance_of, scalar, shown
 
 from dataclasses import dataclass
 
@@ -83,7 +83,7 @@ def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd
         ``s`` not an AwfStudy (E2.1's study), or ``levels`` not a sequence (a list, tuple or 1-D array) of
         numbers.
     ValueError
-        ``levels`` empty or an entry not a level of the study.
+        ``levels`` empty, repeating a level, or an entry not a level of the study.
     """
     instance_of(s, AwfStudy, "s")
     tab = _estimates_table(s)
@@ -92,6 +92,7 @@ def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd
     for i, v in enumerate(levels):
         if scalar(v, f"levels[{i}]") not in known:
             raise ValueError(f"levels[{i}] = {shown(v)} is not a level of the study (its levels: {list(known)})")
+    distinct([float(v) for v in levels], "levels")   # a repeated level would print its row twice (fuzz 20, D2)
     return integral_index(tab.loc[list(levels)])   # X = 900, not 900.0
 
 
