@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Collection, Sequence
+from collections.abc import Callable, Collection, Sequence
 from typing import Any
 
 import numpy as np
@@ -424,6 +424,35 @@ def sci(x: float, digits: int = 4) -> str:
         return YES if x else NO
     if x is None or x is pd.NA:
         return MISSING
+    return _significant(x, digits, power_of_ten)
+
+
+def _significant(x: Any, digits: int, power: Callable[[str, int], str]) -> str:
+    """The number rule shared by :func:`sci` and ``fusion.book.ledger.fmt``: ``{:g}`` digits, exact integers.
+
+    Parameters
+    ----------
+    x : float or int
+        The number (not a bool or a missing value: the callers decide those).
+    digits : int
+        Significant digits of a float.
+    power : callable
+        ``power(mantissa, exponent)`` writes a power of ten (:func:`power_of_ten` for the pages).
+
+    Returns
+    -------
+    str
+        An integer's exact digits, ``"0"``, the word of :data:`NONFINITE_RULE`, plain ``{:g}`` digits or
+        ``power(mantissa, exponent)``.
+
+    Raises
+    ------
+    TypeError
+        ``x`` is text, bytes, complex, a bool, ``None`` or a container (naming ``x``); ``digits`` not an integer.
+    ValueError
+        ``x`` an integer beyond the float range.
+    """
+    digits = count(digits, "digits")
     if is_integer(x):
         return str(_printable_integer(x, "x"))
     x = _real_number(x, "x")  # TypeError naming x for text, complex, containers
@@ -435,7 +464,7 @@ def sci(x: float, digits: int = 4) -> str:
     text = f"{x:.{digits}g}"
     if "e" in text:
         mant, exp = text.split("e")
-        return power_of_ten(mant, int(exp))
+        return power(mant, int(exp))
     return text
 
 

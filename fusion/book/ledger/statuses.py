@@ -8,10 +8,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from fusion._validation import _real_number, count, is_integer, sequence, shown
+from fusion._validation import sequence, shown
 from fusion._validation import text as _text   # the shared rule (claim.py imports it from here)
 from fusion.book import rulebook as R
-from fusion.book.tables import _nonfinite_word, _printable_integer
+from fusion.book.tables import _significant
 
 __all__ = [
     "STATUSES",
@@ -85,17 +85,8 @@ def fmt(x: float, digits: int = 4) -> str:
     ValueError
         ``x`` an integer beyond the float range (its literal would run to hundreds of digits).
     """
-    digits = count(digits, "digits")
-    if is_integer(x):
-        return str(_printable_integer(x, "x"))
-    x = _real_number(x, "x")  # TypeError naming x for text, booleans, complex, None, containers
-    word = _nonfinite_word(x)  # the book's one rule for non-finite numbers
-    if word is not None:
-        return word
-    if x == 0:
-        return "0"
-    s = f"{x:.{digits}g}"
-    if "e" in s:
-        mant, exp = s.split("e")
-        s = f"{mant}×10^{int(exp)}"
-    return s
+    return _significant(x, digits, _caret_power)   # the rule of sci, with the ledger's ASCII exponent
+
+
+def _caret_power(mantissa: str, exponent: int) -> str:
+    return f"{mantissa}×10^{exponent}"
