@@ -94,7 +94,7 @@ def prior_means(sc: NetworkScenario, seed: int, runs: int) -> FloatArray:
     Returns
     -------
     ndarray, shape (runs, 2)
-        Per run, the truth plus prior_std times one standard normal draw (m): the shared prior's mean that run used.
+        Per run, the truth plus ``prior_std`` times one standard normal draw (m): the shared prior's mean that run used.
     """
     instance_of(sc, NetworkScenario, "sc")
     seed = check_seed(seed)
@@ -433,7 +433,8 @@ def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) ->
     Returns
     -------
     dict
-        The chf_cf_* values of :func:`baseline_table` and the chf_crit_* values of :func:`criteria_table`, by glue key.
+        The ``chf_cf_*`` values of :func:`baseline_table` and the ``chf_crit_*`` values of :func:`criteria_table`, by
+        glue key.
     """
     _networks(studies, labels)
     return baseline_table(studies, labels)[1] | criteria_table(studies, labels)[1]

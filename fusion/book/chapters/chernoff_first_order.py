@@ -126,7 +126,7 @@ def random_two_mixtures(rng: np.random.Generator) -> tuple[mx.GaussianMixture, m
     Returns
     -------
     tuple of GaussianMixture
-        The two mixtures (a, b), each of 2 or 3 components, drawn one after the other from rng.
+        The two mixtures (a, b), each of 2 or 3 components, drawn one after the other from ``rng``.
     """
     instance_of(rng, np.random.Generator, "rng")
     out = []

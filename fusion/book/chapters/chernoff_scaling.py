@@ -234,7 +234,8 @@ def within_se_counts(seed: int, ns: tuple[int, ...] = (3, 5, 10), runs: int = 10
     Returns
     -------
     dict
-        chf_sw_within_<N>: the count of problems within the standard error at each N; chf_sw_within_runs: runs.
+        ``chf_sw_within_<N>``: the count of problems within the standard error at each N; ``chf_sw_within_runs``:
+        ``runs``.
 
     Raises
     ------
@@ -275,7 +276,7 @@ def box_corner(eps: ArrayLike, tol: float = 1e-9) -> np.ndarray:
     Returns
     -------
     ndarray of bool, shape (k,)
-        True for a row whose exponents above 1e-3 include two equal within tol (a box corner of the swarm).
+        True for a row whose exponents above 1e-3 include two equal within ``tol`` (a box corner of the swarm).
 
     Raises
     ------
@@ -376,7 +377,7 @@ def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2,
     Returns
     -------
     DataFrame
-        Index N (name "N"), one column "S = s" per S: S^N + N S component densities per sample.
+        Index N (name ``"N"``), one column ``"S = s"`` per S: S^N + N S component densities per sample.
 
     Raises
     ------
@@ -490,7 +491,7 @@ def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, f
     Returns
     -------
     FrameClouds
-        Sensor positions, the true path up to frame, the nodes' particles and the fused and centralised estimates
+        Sensor positions, the true path up to ``frame``, the nodes' particles and the fused and centralised estimates
         there.
     """
     seed = check_seed(seed)

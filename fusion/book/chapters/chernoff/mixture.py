@@ -94,7 +94,7 @@ def toy_study(rng: np.random.Generator, r: int = 20_000, base: ToyStudy | None =
     -------
     ToyStudy
         log Z at 101 values of ω (exact on a grid, first-order, importance-sampled from g(0.5) with r samples) and the
-        three minimisers ω*; with base, its exact parts kept.
+        three minimisers ω*; with ``base``, its exact parts kept.
     """
     toy = two_mixtures.toy_mixtures()
     gms = (toy.a, toy.b)
