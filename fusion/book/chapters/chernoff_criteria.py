@@ -94,6 +94,7 @@ def prior_means(sc: NetworkScenario, seed: int, runs: int) -> FloatArray:
     Returns
     -------
     ndarray, shape (runs, 2)
+        Per run, the truth plus ``prior_std`` times one standard normal draw (m): the shared prior's mean that run used.
     """
     instance_of(sc, NetworkScenario, "sc")
     seed = check_seed(seed)
@@ -186,7 +187,9 @@ def gaussian_exchange(study: NetworkStudy, rule: str) -> tuple[FloatArray, Float
     Returns
     -------
     estimates : ndarray, shape (runs, N, 2)
+        Each node's fused mean (m) after the last round.
     covariances : ndarray, shape (runs, N, 2, 2)
+        Each node's fused covariance (m²) after the last round.
     eps : ndarray, shape (runs, rounds, N, N)
         Per round and node, the exponent of each node's density (NaN for a node it does not hear; over identical
         densities, their sum on the first of them: ``_first_of_identical``).
@@ -229,6 +232,7 @@ def channel_filter(study: NetworkStudy) -> tuple[FloatArray, FloatArray, FloatAr
     Returns
     -------
     estimates : ndarray, shape (runs, N, 2)
+        Each node's fused mean (m) after the last round; NaN where its fused information is not positive definite.
     covariances : ndarray, shape (runs, N, 2, 2)
         NaN for a node whose fused information is not positive definite (counted by :func:`baseline_table`).
     not_pd : ndarray of bool, shape (runs, N)
@@ -273,6 +277,7 @@ def network_mse(study: NetworkStudy, estimates: FloatArray) -> FloatArray:
     Returns
     -------
     ndarray, shape (runs,)
+        Per run, the squared distance of the estimates from the truth averaged over the nodes (m², 6 decimals).
     """
     instance_of(study, NetworkStudy, "study")
     e = np.asarray(estimates, dtype=float)
@@ -428,6 +433,8 @@ def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) ->
     Returns
     -------
     dict
+        The ``chf_cf_*`` values of :func:`baseline_table` and the ``chf_crit_*`` values of :func:`criteria_table`, by
+        glue key.
     """
     _networks(studies, labels)
     return baseline_table(studies, labels)[1] | criteria_table(studies, labels)[1]

@@ -126,6 +126,7 @@ def random_two_mixtures(rng: np.random.Generator) -> tuple[mx.GaussianMixture, m
     Returns
     -------
     tuple of GaussianMixture
+        The two mixtures (a, b), each of 2 or 3 components, drawn one after the other from ``rng``.
     """
     instance_of(rng, np.random.Generator, "rng")
     out = []
@@ -188,6 +189,8 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
     Returns
     -------
     SigmaProblem
+        The exact minimiser ω*; per method its own minimiser, the total variation to the exact fusion at ω* and its
+        log-normaliser error there (nats).
     """
     instance_of(a, mx.GaussianMixture, "a"), instance_of(b, mx.GaussianMixture, "b")
     from scipy.optimize import minimize_scalar
@@ -282,6 +285,7 @@ def sigma_first_order_study(rng: np.random.Generator, runs: int = 100) -> SigmaF
     Returns
     -------
     SigmaFirstOrderStudy
+        The two-mixture example's :class:`SigmaProblem` and a DataFrame of the random problems, one row each.
     """
     instance_of(rng, np.random.Generator, "rng")
     runs = count(runs, "runs")

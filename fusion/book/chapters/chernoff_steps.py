@@ -141,6 +141,7 @@ def snis_delta_terms(points: ArrayLike, log_target: ArrayLike, log_proposal: Arr
     Returns
     -------
     SnisDelta
+        The target's mean μ, the bias coefficient c (bias ≈ c/R), the covariance coefficient V (≈ V/R) and ∫p²/g.
 
     Raises
     ------
@@ -212,6 +213,8 @@ def toy_reference() -> ToyReference:
     Returns
     -------
     ToyReference
+        The two mixtures, the quadrature grid, its cell and log densities, the exact ω* and fused mean there, and step
+        D's proposal at ω = 1/2.
     """
     toy = two_mixtures.toy_mixtures()
     gms = (toy.a, toy.b)
@@ -386,6 +389,8 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
     Returns
     -------
     SnisBiasStudy
+        One row per (ω, R): blocks, the norm of c, R × bias along c with its 95 % interval and across c; the delta
+        terms per ω; ``total``.
     """
     total, rs = _pool_blocks(rng, rs, total)
     far_omega = unit_scalar(far_omega, "far_omega")
@@ -440,6 +445,8 @@ def defensive_mixture(proposal: mx.GaussianMixture, local: list[mx.GaussianMixtu
     Returns
     -------
     GaussianMixture
+        The components of ``proposal`` weighted 1 − α followed by every local mixture's weighted α/N, weights
+        normalised.
 
     Raises
     ------
@@ -613,6 +620,8 @@ def defensive_study(rng: np.random.Generator, runs: int = 100, r: int = CHAPTER_
     Returns
     -------
     DefensiveStudy
+        Per proposal (patent, redraw, defensive) and replicate: the absolute error of ω̂, the squared error of the
+        mean, the ESS and the ESS at the simplex's vertices.
     """
     instance_of(rng, np.random.Generator, "rng")
     runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
@@ -670,6 +679,7 @@ def study_truths(sc: RangeBearingScenario, seed: int, runs: int) -> FloatArray:
     Returns
     -------
     ndarray, shape (runs, K, 4)
+        Per run the target's true state (x, vx, y, vy) at each of the K frames, as the study drew it.
     """
     seed = check_seed(seed)
     instance_of(sc, RangeBearingScenario, "sc")
@@ -812,6 +822,8 @@ def chosen_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (20, 80, 4
     Returns
     -------
     ChosenBiasStudy
+        One row per R: blocks, R × bias along c with ω* fixed and with ω chosen, their paired difference with its 95 %
+        interval, and the mean absolute error of ω.
     """
     total, rs = _pool_blocks(rng, rs, total)
     ref = toy_reference()

@@ -608,6 +608,7 @@ def describe(c: Correction) -> str:
     Returns
     -------
     str
+        ``"Table 1 as printed"``, or the observation, sensor, printed and corrected value (°C, 1 decimal) and the kind.
 
     Raises
     ------
@@ -643,6 +644,8 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
     Returns
     -------
     AuditResult
+        The best hypothesis of each (program, set rule, correction class, order class), the hypotheses that explain all
+        26 printed values, the count scored.
     """
     one_of(order_search, ("mean-consistent", "slips"), "order_search")
     window = _window(window)

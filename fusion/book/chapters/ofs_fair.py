@@ -58,6 +58,8 @@ def information(method: str) -> str:
     Returns
     -------
     str
+        The information it uses: ``"readings only"``, or ``"readings and known noise standard deviations"`` for
+        inverse-variance weights.
     """
     one_of(method, FAIR_METHODS, "method")
     if method in ("optimal_fusion_set", "mean", "trimmed_mean_25"):
@@ -334,6 +336,7 @@ def figure_fair(study: FairStudy) -> Figure:
     Returns
     -------
     Figure
+        One panel per sweep: each method's mean absolute error over the runs (°C, log scale) against the swept value.
     """
     _fair_study(study)
     sweeps = list(dict.fromkeys(s for s, _ in study.mae))

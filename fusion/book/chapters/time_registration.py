@@ -240,8 +240,9 @@ def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
 
     Returns
     -------
-    DataFrame, index the instants, one column per method (rounded to mm) and the derived
-    two-point remainder :func:`fusion.scenarios.time_registration.two_point_remainder`.
+    DataFrame
+        Index the instants, one column per method (rounded to mm) and the derived two-point remainder
+        :func:`fusion.scenarios.time_registration.two_point_remainder`.
     """
     as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # sample times, refused by name
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
@@ -418,6 +419,7 @@ def sigma_sweep(sigmas: Sequence[float], names: Sequence[str]) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
+        Index the noise levels σ (m), one column per method of ``names``: the exact expected MSE (m²).
     """
     _noise_levels(sigmas, "sigmas"), _method_names(names, "names")
     return pd.DataFrame({n: [sc.expected(n, s) for s in sigmas] for n in names},
@@ -475,6 +477,7 @@ def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) ->
     Returns
     -------
     pandas.DataFrame
+        Index sensor 2's period (s), one column per method of ``names``: the exact expected MSE (m²) at ``sigma``.
 
     Raises
     ------
@@ -547,9 +550,10 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
 
     Returns
     -------
-    DataFrame, index σ, columns: runs; fraction of runs with both methods' MSE inside
-    ``[0, axis_max]``; P(improved < two-point in one run); P(all ``block`` runs so ordered)
-    estimated as the fraction of disjoint blocks of ``block`` runs that are.
+    DataFrame
+        Index σ, columns: runs; fraction of runs with both methods' MSE inside ``[0, axis_max]``; P(improved <
+        two-point in one run); P(all ``block`` runs so ordered) estimated as the fraction of disjoint blocks of
+        ``block`` runs that are.
 
     Raises
     ------

@@ -90,7 +90,9 @@ _TRACK_METHODS = (*METHODS, "consistent")
                            ``"plain-kept"``: no guard, the runs with a collapsed filter left out), ``window``
                            (``"late"``, default: frames 5 on; ``"early"``: 1-4; ``"all"``), ``metric`` (``"mse"``,
                            default, or ``"nees"``) and ``claim`` (``"less"``, default, or ``"greater"``).""",
-               seed_runs="The study's root seed and run count (:func:`tracking_study`).")
+               seed_runs="The study's root seed and run count (:func:`tracking_study`).",
+               returns="""Per-run values of ``a`` and ``b`` (MSE in m² or NEES, averaged over the window's frames),
+                         their labels, the claimed direction and the metric's text.""")
 def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
                 sc: RangeBearingScenario | None = None) -> Comparison:
     """A paired comparison of two methods of the tracking study (records ``chf-gain-*``, ``chf-double-count``)."""
@@ -123,7 +125,10 @@ def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
                            ``"gap-mse"`` / ``"literal-mse"`` (the estimate's per-run MSE against SLSQP's / the
                            stagnation rule's within ±5 %), ``"nodes"`` (ten nodes instead of three: random Gaussian
                            problems of :func:`fusion.book.chapters.chernoff_scaling.swarm_within_se`, every problem
-                           within Ĵ's standard error of SLSQP).""")
+                           within Ĵ's standard error of SLSQP).""",
+               returns="""For ``"within-se"``, ``"fixed-tolerance"``, ``"literal"``, ``"nodes"``: the yes/no and the
+                         gaps it counted (nats); for ``"within-se-and-cost"``: that and the ±5 % MSE comparison;
+                         for ``"gap-mse"``, ``"literal-mse"``: whether the two per-run MSEs agree within ±5 %.""")
 def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
            sc: RangeBearingScenario | None = None) -> Proposition | Conjunction:
     """Record chf-pso-rebuild: does the swarm of step G find the minimum of Ĵ (SLSQP's, on the same samples)?"""
@@ -174,7 +179,8 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
 
 
 @_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does
-                            not change this exact check, which runs on fixed cases.""")
+                            not change this exact check, which runs on fixed cases.""",
+               returns="""The reason the record cannot be checked: the patent prints no formula.""")
 def ev_formulas(settings: dict[str, Any], *, seed: int, runs: int) -> Unverifiable:
     """Record chf-formulas: nothing to compute (the reason is the claim file's)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
@@ -183,7 +189,9 @@ def ev_formulas(settings: dict[str, Any], *, seed: int, runs: int) -> Unverifiab
 
 
 @_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does
-                            not change this exact check, which runs on fixed cases.""")
+                            not change this exact check, which runs on fixed cases.""",
+               returns="""Whether the common information enters once, with the largest relative and density errors of
+                         the Gaussian and grid cases in words.""")
 def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Record chf-common-once: :func:`common_information_check` (a common factor c enters as c^(Σε) = c)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
@@ -197,7 +205,9 @@ def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
 @_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does
                             not change this exact check, which runs on fixed cases.""", settings="""``statement``: ``"ci"`` (default: Chernoff fusion of Gaussians is covariance intersection,
                            K1), ``"normaliser"`` (the closed form eq. ``eq-chf-k2``, K2) or ``"z-bound"`` (Z <= 1,
-                           K3).""")
+                           K3).""",
+               returns="""Whether the statement holds (K1, K2 or K3) on the 100 random 4-D pairs, with the tolerance
+                         it was checked to.""")
 def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Records chf-gaussian-ci (K1), chf-gaussian-normaliser (K2) and chf-gaussian-z-bound (K3): one statement each."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
@@ -214,7 +224,9 @@ def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
 
 
 @_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does
-                            not change this exact check, which runs on fixed cases.""")
+                            not change this exact check, which runs on fixed cases.""",
+               returns="""Whether log Z_FO >= log Z at every ω of the two-mixture example, with the range of the gap
+                         (nats).""")
 def ev_first_order(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Record chf-foa-rebuild: log Z_FO >= log Z on the two-mixture example (g approximates, and bounds, the fusion)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
@@ -241,7 +253,8 @@ def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
                       "the first-order approximation", "less", _MINERR, seed=seed, reason=_reason(err.size))
 
 
-@_evidence_doc()
+@_evidence_doc(returns="""Whether the finite-variance region of the weights contains [0, 1], with its ends and the
+                         study's frames outside the exact condition.""")
 def ev_is_variance(settings: dict[str, Any], *, seed: int, runs: int,
                    sc: RangeBearingScenario | None = None) -> Proposition:
     """Record chf-is-variance: the finite-variance region of the weights (Gaussian pair) and the study's frames."""
@@ -268,7 +281,8 @@ def _is_region_counts(rs: list[TrackingRun]) -> dict[str, int]:
             "chf_is_out": int(np.sum(np.min(pso, axis=2) < 1.0 / (2 * n) - 1e-12))}
 
 
-@_evidence_doc()
+@_evidence_doc(returns="""Whether the equal-divergence rule has a solution in the simplex in every frame, with the
+                         frame counts and the gap to SLSQP's minimum.""")
 def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
                 sc: RangeBearingScenario | None = None) -> Proposition:
     """Record chf-equal-kl: frames where the equal-divergence rule has a solution in the simplex (``readings``)."""
@@ -286,7 +300,9 @@ def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
                            repaired filter as consistent as the same filter in the untouched runs: a conjunction),
                            ``"plain"``, ``"more"`` (first update only), ``"study-plain"`` (every frame of the study,
                            plain filters), ``"runs"`` (the rule first fixed: the repaired runs' local NEES and fused
-                           MSE against the untouched runs').""")
+                           MSE against the untouched runs').""",
+               returns="""For ``"plain"``, ``"more"``, ``"study-plain"``, ``"runs"``: the yes/no with the collapse or
+                         NEES counts; for ``"guard"``: no collapse and the repaired filters usable, both.""")
 def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
                      sc: RangeBearingScenario | None = None) -> Proposition | Conjunction:
     """Record chf-filter-design: collapses of the local filters under each design, and the repaired runs' use."""
@@ -329,7 +345,9 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
 
 
 @_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does
-                            not change this exact check, which runs on fixed cases.""")
+                            not change this exact check, which runs on fixed cases.""",
+               returns="""Whether Stone Soup's fused estimate (and, for ``"both"``, innovation covariance) equals
+                         ours, with the differences in words.""")
 def ev_peer(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Record chf-peer-stonesoup: Stone Soup's fused estimate and innovation covariance (:func:`stonesoup_check`)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
@@ -352,7 +370,9 @@ _NET_METHODS = (*NETWORK_METHODS, "nominal", "oracle")
                            (the indicator that a is *not* more accurate than b, against one half: a sign test) or
                            ``"over"`` (share of overconfident nodes, "a greater than b").""",
                seed_runs="The chapter's root seed and runs per network (:func:`premise_study`).",
-               scenarios=("dict, optional", "Other networks (tests)."))
+               scenarios=("dict, optional", "Other networks (tests)."),
+               returns="""Per-run values of ``a`` and ``b`` in the network (MSE, loss indicator or share of
+                         overconfident nodes), their labels, the claimed direction and the metric's text.""")
 def ev_premise(settings: dict[str, Any], *, seed: int, runs: int,
                scenarios: dict[str, Any] | None = None) -> Comparison:
     """A paired comparison in one designed network (records ``chf-premise-*``)."""

@@ -29,6 +29,7 @@ def random_spd(rng: np.random.Generator, n: int) -> FloatArray:
     Returns
     -------
     ndarray, shape (n, n); smallest eigenvalue >= 0.5
+        A Aᵀ + I/2 for one standard normal n × n draw A: symmetric, positive definite.
 
     Raises
     ------
@@ -110,6 +111,8 @@ def gaussian_checks(rng: np.random.Generator, cases: int = 100, triples: int = 2
     Returns
     -------
     GaussianChecks
+        Largest errors of K1-K3 over the pairs, of the IS identity, and of K5 over the triples, with the count of
+        interior triples and the tolerances.
 
     Raises
     ------

@@ -119,6 +119,8 @@ def is_variance_study(rng: np.random.Generator, R: int = 100, replicates: int = 
     Returns
     -------
     IsVarianceStudy
+        Predicted and sampled bias of Ĵ and ρ at nine values of ω, the finite-moment regions' ends and the check's
+        verdict.
     """
     a, A = np.array([0.0, 0.0]), np.diag([4.0, 1.0])
     b, B = np.array([2.0, 1.0]), np.array([[1.0, 0.5], [0.5, 3.0]])

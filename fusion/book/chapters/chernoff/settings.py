@@ -62,6 +62,7 @@ def study_scenario() -> RangeBearingScenario:
     Returns
     -------
     RangeBearingScenario
+        The default scenario with ``readings=True`` and ``prev_optimiser="newton"``, no collapse guard.
     """
     return dataclasses.replace(RangeBearingScenario(), readings=True, prev_optimiser="newton")
 

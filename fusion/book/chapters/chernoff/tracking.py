@@ -398,6 +398,7 @@ def central_collapsed(runs: list[TrackingRun], n_central: int) -> np.ndarray:
     Returns
     -------
     ndarray of bool, shape (runs,)
+        True for a run whose centralised filter's effective sample size falls below the threshold at some frame.
     """
     return np.array([float(np.min(r.ess["centralised_pf"])) < COLLAPSE_FRACTION * n_central for r in runs], dtype=bool)
 
@@ -414,6 +415,7 @@ def any_collapsed(runs: list[TrackingRun], sc: RangeBearingScenario) -> np.ndarr
     Returns
     -------
     ndarray of bool, shape (runs,)
+        True for a run in which a node's filter or the centralised filter collapses at some frame.
     """
     return collapsed(runs, sc.n_particles) | central_collapsed(runs, sc.n_central)
 

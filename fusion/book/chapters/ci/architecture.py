@@ -47,6 +47,8 @@ def rule_label(rule: str) -> str:
     Returns
     -------
     str
+        The rule's label in :data:`fusion.book.style.METHOD_LABELS`, or for a fixed weight its base rule's label with
+        ``as printed, ω = <weight>``.
 
     Raises
     ------
@@ -81,6 +83,8 @@ def architecture_row(key: tuple[str, str]) -> tuple[str, str]:
     Returns
     -------
     (str, str)
+        The architecture's short label (:data:`fusion.book.style.METHOD_SHORT_LABELS`) and the rule's label
+        (:func:`rule_label`).
 
     Raises
     ------
@@ -225,6 +229,8 @@ def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        One panel per pair of sensors, one row per rule: each architecture's mean RMSE on x (m, log axis) with its 95 %
+        interval, open markers at the reported √P.
 
     Raises
     ------

@@ -342,6 +342,8 @@ def ledger_inputs(*bundles: object, **parts: Any) -> LedgerInputs:
     Returns
     -------
     LedgerInputs
+        Every field of the bundles and of ``parts`` by name: the studies, the weight search's and the straight leg's
+        claim inputs.
 
     Raises
     ------
@@ -871,6 +873,7 @@ def evidence(r: LedgerInputs) -> RecordEvidence:
     Returns
     -------
     dict
+        Record id -> reading key -> evidence, the union of every function of ``EVIDENCE_FUNCTIONS``.
     """
     instance_of(r, LedgerInputs, "r")
     out: dict[str, Any] = {}
@@ -896,6 +899,8 @@ def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
     Returns
     -------
     Ledger
+        The ``wang2024covariance`` claim file's records with their evidence and statuses, ready to write to
+        ``book/ledger``.
     """
     instance_of(r, LedgerInputs, "r")
     return build_ledger(BIBKEY, None, evidence(r), values=values, claims=claim_file())

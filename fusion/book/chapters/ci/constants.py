@@ -102,6 +102,7 @@ def study_seed(seed: int, study: str) -> int:
     Returns
     -------
     int
+        ``seed`` plus the study's offset in :data:`SEED_OFFSETS`.
 
     Raises
     ------

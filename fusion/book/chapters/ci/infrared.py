@@ -57,6 +57,7 @@ def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
     Returns
     -------
     sim : IrRadarRuns
+        The true path, the infrared and radar measurements and the three local tracks of every run, at period ``T``.
     rmse : dict of str to ndarray, shape (K, 4)
         :func:`fusion.scenarios.infrared_radar.rmse_by_rule`.
     """
@@ -154,6 +155,7 @@ def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -
     Returns
     -------
     pandas.DataFrame
+        One row per method and one for the published improved CI, columns azimuth and elevation (mrad), x and y (m).
 
     Raises
     ------
@@ -191,6 +193,8 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray], bound: ArrayLike | N
     Returns
     -------
     matplotlib.figure.Figure
+        Four log-scale panels (azimuth, elevation in rad; x, y in m): each shown method's RMSE against time, the
+        published value and the optional bound.
 
     Raises
     ------
@@ -249,6 +253,8 @@ def fig11(sim: ir.IrRadarRuns, run: int = 0, t_min: float = 2.0) -> tuple[Figure
     Returns
     -------
     fig : Figure
+        Three panels against time: the improved CI's range (m), elevation and azimuth (rad) errors in run ``run``, with
+        the ±2σ band.
     inside : float
         Smallest, over the three panels, share of scans with ``t >= t_min`` whose error lies inside ±2σ.
     """
@@ -561,6 +567,8 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
     Returns
     -------
     IrReadings
+        Per (axis, reading) and method the per-run RMSEs after ``t_min`` (mrad, mrad, m, m), the many-scan bounds and
+        the simulated runs.
 
     Raises
     ------
@@ -634,6 +642,7 @@ def ir_rms(run_rmse: np.ndarray) -> np.ndarray:
     Returns
     -------
     ndarray, shape (4,)
+        Per column (azimuth, elevation, x, y) the root mean square of the per-run RMSEs, in their units.
 
     Raises
     ------
@@ -663,6 +672,7 @@ def ir_ratio(run_rmse: np.ndarray, seed: int) -> tuple[float, float, float]:
     Returns
     -------
     ratio, low, high : float
+        The y/x RMSE ratio over every run and scan and the ends of its bootstrap 95 % interval.
 
     Raises
     ------
@@ -694,6 +704,7 @@ def ir_ratio_band() -> tuple[float, float]:
     Returns
     -------
     low, high : float
+        (y − 0.5)/(x + 0.5) and (y + 0.5)/(x − 0.5) for the published x and y RMSEs (m).
     """
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     x, y = float(pub["x_m"][0]), float(pub["y_m"][0])
@@ -791,6 +802,7 @@ def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[
     Returns
     -------
     dict of str to Any
+        Glue key ``ci_irb_*`` -> rounded number: the bounds, the readings' RMSEs and y/x ratios, and the run count.
     """
     instance_of(readings, IrReadings, "readings")
     instance_of(sim, ir.IrRadarRuns, "sim")

@@ -310,6 +310,7 @@ def nees_table(nees: Mapping[str, float]) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
+        One row per rule (its label), one column ``"mean NEES (consistent: ≈ 4 or less)"``, 2 decimals.
 
     Raises
     ------

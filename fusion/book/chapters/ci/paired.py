@@ -216,6 +216,8 @@ class PairedStudies:
         Returns
         -------
         PairedClaimInputs
+            The per-run RMSEs of the three pairs, of the Fig. 6 weights and of random weights, their seeds and runs,
+            and the fuzzy rule's levels.
         """
         seed, unequal_seed, random_seed = self.seeds
         return PairedClaimInputs(paired=self.paired, paired_runs=self.runs, paired_seed=seed, paired_unequal=self.paired_u,
@@ -278,6 +280,8 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     Returns
     -------
     PairedStudies
+        Per rule the per-run RMSE on x after 20 s (m) for the identical, unequal and anisotropic pairs, at the Fig. 6
+        and random weights.
 
     Raises
     ------

@@ -77,6 +77,7 @@ def source_scenario(seed: int = SEED) -> Scenario:
     Returns
     -------
     Scenario
+        The true path and both sensors' measurements and Kalman tracks over the source's runs, from this seed.
     """
     seed = check_seed(seed)
     Q, R1, R2 = printed_covariances()
@@ -99,6 +100,7 @@ def step_weights(seed: int = SEED) -> tuple[np.ndarray, np.ndarray]:
     Returns
     -------
     w_fruit_fly, w_grid : ndarray, shape (K,)
+        CI's weight ω at each of the K steps, chosen by FOA and by the 1001-point grid.
     """
     seed = check_seed(seed)
     return two_sensor.per_step_weights(*source_scenario(seed).tracks, seed)
@@ -116,6 +118,8 @@ def unequal_pair(seed: int = SEED) -> WeightPair:
     Returns
     -------
     WeightPair
+        The unequal pair's scenario and covariances at :data:`SEARCH_STEP`, every method's optimum of ω and FOA's over
+        100 seeds.
     """
     seed = check_seed(seed)
     Q, R1, _ = printed_covariances()
@@ -138,6 +142,8 @@ def aniso_pair(seed: int = SEED, runs: int = LEDGER_RUNS) -> WeightPair:
     Returns
     -------
     WeightPair
+        The anisotropic pair's scenario and covariances at :data:`SEARCH_STEP`, every method's optimum of ω and FOA's
+        over 100 seeds.
     """
     seed = check_seed(seed)
     Q = printed_covariances()[0]
@@ -180,6 +186,8 @@ def paired_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> PairedStudies:
     Returns
     -------
     PairedStudies
+        Per rule the per-run RMSE on x after 20 s (m) of the identical, unequal and anisotropic pairs, on ``runs``
+        runs.
     """
     seed = check_seed(seed)
     Q, R1, R2 = printed_covariances()
@@ -333,6 +341,8 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     Returns
     -------
     Evidence
+        The comparison, proposition or conjunction of the reading ``settings["reading"]`` (default ``"primary"``) of
+        record ``rid``.
 
     Raises
     ------
@@ -363,6 +373,8 @@ seed, runs : int
 Returns
 -------
 Evidence
+    The reading's comparison, proposition or conjunction (default reading ``"primary"``), recomputed by
+    :func:`record_evidence` from the cached studies of ``seed`` and ``runs``.
 
 Raises
 ------

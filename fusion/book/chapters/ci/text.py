@@ -70,6 +70,8 @@ def paired_text(a: ArrayLike, b: ArrayLike, digits: int = 2) -> str:
     Returns
     -------
     str
+        The mean of ``a - b`` and the ends of its 95 % interval, each with ``digits`` significant digits
+        (:func:`readable`).
 
     References
     ----------

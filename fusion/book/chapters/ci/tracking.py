@@ -54,6 +54,7 @@ def fig3(sc: Scenario, run: int = 0) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        One panel, y against x (m): the true path as a line and sensor 1's measurements of run ``run`` as dots.
     """
     instance_of(sc, Scenario, "sc")
     fig, ax = new_figure(figsize=(6.0, 5.0))
@@ -237,6 +238,8 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
     Returns
     -------
     matplotlib.figure.Figure
+        Four rows (source Figs. 4, 6, 7, 8), columns x and y: each method's RMSE per step (m, log scale), the published
+        values, the causal floor.
     """
     instance_of(study, FusionStudy, "study")
     full = np.full(study.t.size, np.nan)   # gaps in the turns, for the plot only
@@ -574,6 +577,8 @@ class StraightLeg:
         Returns
         -------
         LegClaimInputs
+            The floor and the causal floor averaged over the steady straight-leg steps, and the smallest method RMSE
+            there (m).
         """
         return LegClaimInputs(leg_floor=float(self.floor[self.steady].mean()), leg_best=min(self.rmse.values()),
                               leg_floor_causal=float(self.causal[self.steady].mean()))
@@ -596,6 +601,8 @@ def straight_leg(study: FusionStudy, T: float, sigma: float) -> StraightLeg:
     Returns
     -------
     StraightLeg
+        The straight-leg steps, both floors per step (m), which of them are steady, and every method's mean RMSE on x
+        there (m).
 
     Raises
     ------

@@ -101,6 +101,8 @@ def figure_readings(readings: ArrayLike, highlight: Sequence[int] = (), window: 
     Returns
     -------
     matplotlib.figure.Figure
+        One panel: each sensor's readings (°C) against the sample, the ``highlight`` sensors in colour, the truth
+        dotted, the window shaded.
     """
     z = as_array(readings, "readings", ndim=2)
     hl = [count(h, f"highlight[{i}]", maximum=z.shape[1]) for i, h in enumerate(sequence(highlight, "highlight"))]
@@ -136,6 +138,7 @@ def figure_errors(errors: Mapping[str, ArrayLike]) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        One panel: each method's absolute error (°C) against the sample number, with a legend below.
 
     Raises
     ------
@@ -199,6 +202,8 @@ def figure_mc(table: pd.DataFrame) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        One panel per noise setting: per failure case a bar per method (mean absolute error, °C) and the bound without
+        failure.
 
     Raises
     ------
@@ -252,6 +257,8 @@ def figure_scale(scales: ArrayLike, sweep: Mapping[str, ArrayLike], default: flo
     Returns
     -------
     matplotlib.figure.Figure
+        One panel: each case's mean absolute error (°C) against the scale of eq. 6 (log₂ axis), the default scale
+        dotted.
 
     Raises
     ------

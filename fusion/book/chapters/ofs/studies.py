@@ -75,6 +75,7 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", 
     Returns
     -------
     PairedStudy
+        The absolute errors (°C) of every method per run and sample, without and with the failure, on the same draws.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
@@ -174,6 +175,7 @@ def fair(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
     Returns
     -------
     FairStudy
+        (sweep, value) -> method -> per-run mean absolute error (°C), over the default sweeps.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
@@ -245,6 +247,8 @@ def weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy
     Returns
     -------
     WeightStudy
+        Per run and sensor the weight relative to an equal share of its set, and each sensor's share of epochs as a
+        member.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
@@ -273,6 +277,7 @@ def not_neighbourhood_share(seed: int, runs: int, noise: str = "unequal") -> flo
     Returns
     -------
     float
+        The fraction, in [0, 1], of all epochs at which a dropped reading lies nearer 900 °C than a kept one.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")

@@ -187,6 +187,8 @@ def blue_whole_record(sigma: float) -> float:
     Returns
     -------
     float
+        The expected MSE (m²) of a least-squares quadratic through every sample at noise ``sigma``, averaged over
+        sensor 2's instants.
 
     Raises
     ------
