@@ -212,6 +212,8 @@ def toy_reference() -> ToyReference:
     Returns
     -------
     ToyReference
+        The two mixtures, the quadrature grid and its cell area, their log-densities on it, the exact minimiser ω* with
+        its fused mean, and the first-order proposal.
     """
     toy = two_mixtures.toy_mixtures()
     gms = (toy.a, toy.b)

@@ -95,6 +95,8 @@ def checks_study(seed: int) -> GaussianChecks:
     Returns
     -------
     GaussianChecks
+        The largest errors of the exact checks (``k1`` to ``k5``, ``kis``), the interior count and their tolerances, for
+        this seed.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     return gaussian_checks(np.random.default_rng(seed))
@@ -130,6 +132,8 @@ def isv_study(seed: int) -> IsVarianceStudy:
     Returns
     -------
     IsVarianceStudy
+        Per ω the closed-form and sampled ρ and the predicted and sampled bias, the finite-moment regions, and whether
+        the checks pass.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     return is_variance_study(np.random.default_rng(seed + 3))

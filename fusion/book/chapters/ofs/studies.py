@@ -273,6 +273,8 @@ def not_neighbourhood_share(seed: int, runs: int, noise: str = "unequal") -> flo
     Returns
     -------
     float
+        Fraction (0 to 1) of the 10-reading epochs of ``runs`` runs in which a dropped reading is nearer 900 °C than a
+        kept one.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
