@@ -887,6 +887,7 @@ def step_scalar(value: float, name: str, power: int, *, zero: bool = False) -> f
     Returns
     -------
     float
+        The step, a float at most ``MAX_MAGNITUDE ** (1 / power)``.
 
     Raises
     ------

@@ -3,8 +3,11 @@
 "Public" means listed in the ``__all__`` of the module that defines it (subpackages re-export
 names; each is checked once, where it is defined). A function needs a one-line summary, a
 ``Parameters`` section naming every parameter of its signature (when it has any) and a
-``Returns`` (or ``Yields``) section when it is annotated to return something. A class needs a
-summary and an ``Attributes`` or ``Parameters`` section. Each algorithm module (readings,
+``Returns`` (or ``Yields``) section when it is annotated to return something, each entry of which
+(an unindented type line) has an indented description saying what the value is (numpydoc's RT03;
+issue 36: the bare ``Returns / matplotlib.figure.Figure / Raises`` skeletons repeated across the
+book's functions were what ``duplicates --change`` listed). A class needs a summary and an
+``Attributes`` or ``Parameters`` section. Each algorithm module (readings,
 estimates, filtering, optimise, registration) cites the original literature in a
 ``References`` section, in its module docstring or in a public docstring.
 """
@@ -69,9 +72,27 @@ def _documented_names(lines: list[str]) -> set[str]:
     return names
 
 
+def _undescribed(lines: list[str]) -> list[str]:
+    """Entries of a Returns (or Yields) section, unindented lines, not followed by an indented description line."""
+    bare = []
+    for i, line in enumerate(lines):
+        if line and not line[0].isspace():
+            following = lines[i + 1] if i + 1 < len(lines) else ""
+            if not (following.strip() and following[0].isspace()):
+                bare.append(line.strip())
+    return bare
+
+
 def _returns_something(obj: object) -> bool:
     annotation = inspect.signature(obj).return_annotation  # type: ignore[arg-type]
     return annotation not in (inspect.Signature.empty, None, "None")
+
+
+def test_undescribed_finds_bare_entries() -> None:
+    # the check itself: a bare entry (last, or followed by another entry or a blank line) is found, a described one not
+    lines = ["fig : Figure", "    The figure.", "ax : Axes", "", "float", "str"]
+    assert _undescribed(lines) == ["ax : Axes", "float", "str"]
+    assert _undescribed(["Figure", "    Left: x against y."]) == []
 
 
 def test_public_names_found() -> None:
@@ -96,6 +117,8 @@ def test_docstring_complete(qualname: str, obj: object) -> None:
         assert not missing, f"{qualname}: parameters not documented: {sorted(missing)}"
     if _returns_something(obj):
         assert "Returns" in sections or "Yields" in sections, f"{qualname}: no Returns section"
+    bare = [entry for title in ("Returns", "Yields") for entry in _undescribed(sections.get(title, []))]
+    assert not bare, f"{qualname}: Returns entries without a description (RT03): {bare}"
 
 
 ALGORITHM_MODULES = [

@@ -88,6 +88,8 @@ def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
     Returns
     -------
     BenchmarkResult
+        The run's ``name``, ``date`` and ``machine``, its ``measurements`` (read-only mappings) and the whole JSON
+        ``record``.
 
     Raises
     ------

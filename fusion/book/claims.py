@@ -364,6 +364,7 @@ def claims_dir(start: Path | None = None) -> Path:
     Returns
     -------
     pathlib.Path
+        The ``claims`` folder beside the ledger folder found from ``start`` (``<repository>/book/claims``).
     """
     return ledger_dir(start).parent / "claims"
 
@@ -485,6 +486,7 @@ def load(path: Path | str) -> ClaimsFile:
     Returns
     -------
     ClaimsFile
+        The file's path, source key, quantities and records, validated against the schema.
 
     Raises
     ------
@@ -600,6 +602,7 @@ def load_all(directory: Path | None = None) -> dict[str, ClaimsFile]:
     Returns
     -------
     dict of str to ClaimsFile
+        Source key (``"lecture003"``) → its claim file, for every ``*.yaml`` file of the folder, in name order.
 
     Raises
     ------
@@ -672,6 +675,8 @@ def build_ledger(source: str, chapter: str | None, evidence: Mapping[str, Mappin
     Returns
     -------
     Ledger
+        One Claim per record of the file for ``chapter``: its texts filled from ``values``, its primary evidence and its
+        readings as alternatives.
 
     Raises
     ------
@@ -756,6 +761,7 @@ def evaluate(spec: ClaimSpec, reading: str, seed: int, runs: int) -> Evidence:
     Returns
     -------
     Evidence
+        What the record's evidence function returns for ``reading`` (its settings) at ``seed`` and ``runs``.
 
     Raises
     ------

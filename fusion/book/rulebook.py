@@ -396,6 +396,7 @@ def median_interval(d: ArrayLike, level: float = CONFIDENCE_LEVEL) -> tuple[floa
     Returns
     -------
     median, low, high : float
+        The median of ``d`` and the order statistics that bound it at ``level`` (values sorted, infinite ones kept).
 
     Raises
     ------
@@ -441,6 +442,7 @@ def share_interval(wins: int, runs: int, level: float = CONFIDENCE_LEVEL) -> tup
     Returns
     -------
     share, low, high : float
+        ``wins / runs`` and its two-sided Clopper-Pearson interval at ``level``, all between 0 and 1.
     """
     runs = count(runs, "runs")
     wins = count(wins, "wins", minimum=0)
@@ -475,6 +477,8 @@ def region(low: float, high: float, margin: float) -> Region:
     Returns
     -------
     {"lower", "higher", "equivalent", "undecided"}
+        ``"equivalent"`` inside (−margin, margin) for a positive margin, ``"lower"`` below 0, ``"higher"`` above 0, else
+        ``"undecided"``.
     """
     low, high = (float(a) if a.ndim == 0 else math.nan for a in (_numeric(low, "low"), _numeric(high, "high")))
     margin = scalar(margin, "margin", 0.0)
@@ -500,6 +504,8 @@ def status_from_region(where: Region, direction: Direction) -> str:
     Returns
     -------
     str
+        ``"reproduced"`` (the region the direction claims), ``"contradicted"`` (the opposite one) or
+        ``"not distinguishable"``.
     """
     text(where, "where")
     text(direction, "direction")
@@ -583,6 +589,8 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     Returns
     -------
     Judgement
+        The status with the rule and statistic that decided it, the estimate and its interval, the margin, region, runs,
+        share of runs won (with interval) and tail index.
 
     Raises
     ------
@@ -667,6 +675,7 @@ def counted(kind: str, runs: int | None, primary_runs: int | None, status: str |
     Returns
     -------
     counted : bool
+        True when the reading's kind counts and it has enough runs and a checkable status.
     why : str
         ``""`` when counted, else ``"underpowered"``, ``"cannot be checked"`` or the reading's kind.
 
@@ -712,6 +721,8 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     Returns
     -------
     status : str
+        ``primary``, or ``"reproduced under stated assumptions"`` when it reproduces but with assumptions or a counted
+        reading that does not.
     agree : int
         Counted readings that reproduce the claim.
     total : int

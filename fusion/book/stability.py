@@ -203,6 +203,8 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
     Returns
     -------
     list of Task
+        One task per reading and seed of ``seed_list``, by record; then, if ``runs_factor`` > 1, each primary at the
+        first seed with that many times the runs.
     """
     runs_factor = count(runs_factor, "runs_factor")
     seed_list = check_seeds(seed_list, "seed_list")

@@ -492,7 +492,9 @@ def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure
     Returns
     -------
     fig : matplotlib.figure.Figure
+        The new figure, in the book's style.
     ax : matplotlib.axes.Axes or ndarray of them
+        One Axes for a single panel, else the ``nrows`` × ``ncols`` array of Axes that ``subplots`` returns.
 
     Raises
     ------
@@ -665,6 +667,8 @@ def plain_math(text: str) -> str:
     Returns
     -------
     str
+        ``text`` without ``$``, font commands and braces: Greek names as letters, integer exponents as superscripts,
+        spaces collapsed.
     """
     import re
 
@@ -817,6 +821,7 @@ def figure_alt(fig: Figure) -> str:
     Returns
     -------
     str
+        The alt text set on ``fig``, else one generated from its title, panels, axis labels and legends.
     """
     instance_of(fig, Figure, "fig")
     return getattr(fig, _ALT_ATTR, None) or describe_figure(fig)

@@ -61,6 +61,7 @@ def rounded(value: float, decimals: int = 4) -> float:
     Returns
     -------
     float
+        ``value`` rounded to ``decimals`` decimals; ``0.0`` for any zero, never ``-0.0``.
 
     Raises
     ------
@@ -524,6 +525,8 @@ def cell_text(text: str) -> str:
     Returns
     -------
     str
+        ``text`` with a whole-cell NaN, None, infinity, True or False replaced by the book's mark, and e-notation as
+        powers of ten.
     """
     text_argument(text, "text")
     core = text.strip()
@@ -552,6 +555,7 @@ def tidy_table_html(html: str) -> str:
     Returns
     -------
     str
+        ``html`` with the text of every ``<td>`` and ``<th>`` cell passed through :func:`cell_text`; tags unchanged.
     """
     text_argument(html, "html")
 

@@ -358,6 +358,8 @@ def covariance_intersection(
     Returns
     -------
     FusedEstimate
+        The fused state ``x``, its covariance ``P`` (symmetrised) and the weight ``omega`` of estimate 1 (given, or
+        minimising ``criterion``).
 
     Raises
     ------
@@ -552,6 +554,8 @@ def split_covariance_intersection(
     Returns
     -------
     FusedEstimate
+        The fused state ``x``, its covariance ``P`` (symmetrised) and the weight ``omega`` of estimate 1 (given, or
+        minimising ``criterion``).
 
     Raises
     ------

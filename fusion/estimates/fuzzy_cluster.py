@@ -81,6 +81,8 @@ def fuzzy_cluster_fusion(xs: ArrayLike, Ps: ArrayLike, level: float = 0.01) -> C
     Returns
     -------
     ClusterFusion
+        The unweighted mean ``x`` of the retained cluster, which estimates form it (``members``) and the closed
+        similarity relation.
 
     Raises
     ------

@@ -279,6 +279,7 @@ def gm_sample(gm: GaussianMixture, rng: np.random.Generator, n: int) -> FloatArr
     Returns
     -------
     ndarray, shape (n, d)
+        ``n`` independent draws from ``gm``, one per row.
 
     Raises
     ------
@@ -420,6 +421,8 @@ def weighted_em_batch(
     Returns
     -------
     list of EmFit, length B
+        Entry b: the fit of sample set b (``x[b]`` with weights ``w[b]`` and ``rngs[b]``), as :func:`weighted_em`
+        returns it.
 
     Raises
     ------

@@ -233,6 +233,8 @@ def fusion_loop(
     Returns
     -------
     FusionLoop
+        The fused estimates ``est`` and covariances ``P`` at every step of every run, the weight ``omega`` per step and
+        the local covariances ``local_P``.
 
     Raises
     ------

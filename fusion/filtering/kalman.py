@@ -446,6 +446,7 @@ def error_moments(gains: GainSequence, truth: ArrayLike, R: ArrayLike, mean0: Ar
     Returns
     -------
     ErrorMoments
+        ``mean`` (K, n) and ``cov`` (K, n, n): the error's exact mean and covariance at each step.
 
     Raises
     ------
@@ -490,6 +491,7 @@ def rmse_per_step(estimates: ArrayLike, truth: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape (K, d)
+        Entry (k, j): the RMS over runs of the error of component j at step k.
 
     Raises
     ------
@@ -522,6 +524,7 @@ def nees(errors: ArrayLike, covariances: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape of ``errors`` without the last axis (after broadcasting)
+        eᵀP⁻¹e of each estimate: χ² with d degrees of freedom (mean d) for a consistent estimator.
 
     Raises
     ------

@@ -200,6 +200,8 @@ def fuse_tracks(
     Returns
     -------
     FusedTracks
+        The fused estimates ``est`` (runs, K, n), their covariances ``P`` (K, n, n; None for ``"fuzzy"``) and the weight
+        ``omega`` per step (NaN without one).
 
     Examples
     --------

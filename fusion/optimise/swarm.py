@@ -174,6 +174,7 @@ def particle_swarm_batch(
     Returns
     -------
     list of OptimumResult, one per problem
+        Entry b: the optimum found by the swarm of ``rngs[b]``, as :func:`particle_swarm` returns it.
 
     Raises
     ------

@@ -483,6 +483,7 @@ def lagrange_weights(H: ArrayLike, R: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape (d, Nm)
+        The weight matrix K of x̂ = K z: KH = I, with K R Kᵀ the smallest.
 
     Raises
     ------

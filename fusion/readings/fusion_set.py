@@ -239,6 +239,7 @@ def optimal_set_members(x: ArrayLike, threshold: Threshold = "mean") -> NDArray[
     Returns
     -------
     ndarray of bool, shape (n,)
+        True for the readings of the optimal fusion set, in the order of ``x``.
     """
     one_of(threshold, ("mean", "sum"), "threshold")
     return _members_rows(as_readings(x, pairs=2)[None, :], threshold)[0]
@@ -279,6 +280,7 @@ def consistency_degree(C: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape (m,)
+        Entry i: the mean of row i of the fusion-degree matrix ``C``.
     """
     C = _as_fusion_degree_matrix(C)
     return C.mean(axis=1)
@@ -540,6 +542,7 @@ def arithmetic_mean(x: ArrayLike) -> ReadingsFusion:
     Returns
     -------
     ReadingsFusion
+        The mean of the readings as ``value``, every weight 1/n, every reading a member, method ``"mean"``.
     """
     return _single(x, "mean")
 
@@ -634,6 +637,7 @@ def fusion_set_weights(
     Returns
     -------
     ReadingsFusion
+        The fused ``value`` and the ``weights`` of eqs. 6-12 over all readings, every reading a member.
     """
     return _single(x, "fusion_set_weights", scale=scale, include_self=include_self)
 
@@ -778,6 +782,7 @@ def belief_matrices(x: ArrayLike, scale: float = 1.0) -> FloatArray:
     Returns
     -------
     ndarray, shape (N, n, n)
+        Entry k: the fuzzy belief matrix of the snapshot ``x[k]``.
     """
     arr = _numeric(x, "x")
     if arr.ndim != 2:

@@ -57,34 +57,11 @@ from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude,
                                 std_scalar)
 from fusion._shown import shown
 
-__all__ = [
-    "LSLearning",
-    "optimal_weights",
-    "minimum_variance",
-    "inverse_variance_weights",
-    "running_variances",
-    "variance_estimates",
-    "running_means",
-    "AWFResult",
-    "awf",
-    "learned_variances",
-    "corrected_variances",
-    "ls_learning",
-    "wls",
-    "VARIANCE_FLOOR",
-    "GUARDS",
-    "lecture_variance_sd",
-    "lecture_samples_needed",
-    "learned_variance_limit",
-    "learned_fused_variance",
-    "MEMORIES",
-    "running_average",
-    "tracking_variances",
-    "fuse_current",
-    "difference_variances",
-    "TIME_WEIGHTS",
-    "cumulative_fusion",
-]
+__all__ = ["LSLearning", "optimal_weights", "minimum_variance", "inverse_variance_weights", "running_variances",
+           "variance_estimates", "running_means", "AWFResult", "awf", "learned_variances", "corrected_variances",
+           "ls_learning", "wls", "VARIANCE_FLOOR", "GUARDS", "lecture_variance_sd", "lecture_samples_needed",
+           "learned_variance_limit", "learned_fused_variance", "MEMORIES", "running_average", "tracking_variances",
+           "fuse_current", "difference_variances", "TIME_WEIGHTS", "cumulative_fusion"]
 
 Estimator = Literal["lecture", "centred"]
 Memory = Literal["growing", "forgetting", "window"]
@@ -159,6 +136,7 @@ def minimum_variance(variances: ArrayLike) -> FloatArray | float:
     Returns
     -------
     float or ndarray, shape (...)
+        (Σ_p σ_p⁻²)⁻¹ over the last axis: a float for one set of variances, else one per leading index.
     """
     v = _as_variances(variances)
     out = 1.0 / (1.0 / v).sum(axis=-1)
@@ -320,6 +298,7 @@ def learned_variance_limit(variances: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape (..., n)
+        Each sensor's limit (1 − 2/n)Rᵢ + ΣR/n², in the shape of ``variances``.
     """
     R = _as_variances(variances)
     n = R.shape[-1]
@@ -346,6 +325,7 @@ def learned_fused_variance(variances: ArrayLike) -> FloatArray | float:
     Returns
     -------
     float or ndarray, shape (...)
+        Σ wᵢ²Rᵢ with w the optimal weights of the limits: a float for one set, else one per leading index.
     """
     R = _as_variances(variances)
     w = optimal_weights(learned_variance_limit(R))
@@ -363,6 +343,7 @@ def running_means(X: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape (..., K, n)
+        Entry [..., k − 1, p]: the mean of sensor p's first k samples.
     """
     A = _as_sample_array(X, min_sensors=1)
     k = np.arange(1, A.shape[-2] + 1, dtype=float)[:, None]
@@ -536,6 +517,8 @@ def awf(X: ArrayLike, variance: Estimator = "lecture", guard: Guard = "floor") -
     Returns
     -------
     AWFResult
+        After each sample: the fused ``value``, the ``weights``, the raw ``variances`` estimates and the running
+        ``means``.
     """
     one_of(variance, ("lecture", "centred"), "variance")
     return _awf_result(running_variances(X, variance), running_means(X), guard)
@@ -567,6 +550,7 @@ def learned_variances(Y: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape (..., M, n)
+        Entry [..., m − 1, i]: sensor i's mean squared deviation from the epoch's average over epochs 1..m.
     """
     A = _as_sample_array(Y, name="Y")
     dev2 = (A - A.mean(axis=-1, keepdims=True)) ** 2
@@ -668,6 +652,7 @@ def wls(H: ArrayLike, W: ArrayLike, Y: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape (d,)
+        The estimate x̂ of the d unknowns.
 
     Raises
     ------

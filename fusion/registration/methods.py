@@ -187,6 +187,7 @@ def three_point(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, causal: bool = F
     Returns
     -------
     ndarray, shape (K,)
+        The interpolated values at the ``t_query`` instants.
 
     Examples
     --------
@@ -360,6 +361,7 @@ def ca_transition(dt: float) -> FloatArray:
     Returns
     -------
     ndarray, shape (3, 3)
+        [[1, dt, dt²/2], [0, 1, dt], [0, 0, 1]].
     """
     dt = scalar(dt, "dt")
     return np.array([[1.0, dt, 0.5 * dt * dt], [0.0, 1.0, dt], [0.0, 0.0, 1.0]])
@@ -406,6 +408,7 @@ def process_noise(dt: float, q_v: float, q_a: float, model: str = "per-step", pe
     Returns
     -------
     ndarray, shape (3, 3)
+        diag(0, q_v, q_a) for ``"per-step"``, else filterpy's white-noise-jerk or discrete white-noise matrix.
 
     Raises
     ------

@@ -261,6 +261,7 @@ def white_acceleration(T: float, sigma: float) -> FloatArray:
     Returns
     -------
     ndarray, shape (2, 2)
+        σ² [[T⁴/4, T³/2], [T³/2, T²]], filterpy's ``Q_discrete_white_noise``.
 
     Raises
     ------
@@ -719,6 +720,7 @@ def conversion_jacobian(sph: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape (..., 3, 3)
+        At each ``sph``: the matrix whose columns are the derivatives of (x, y, z) by r, α and ε.
 
     Raises
     ------
@@ -828,6 +830,8 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
     Returns
     -------
     CartesianTracks
+        The radar's and the infrared's Cartesian tracks (state [x, vx, y, vy, z, vz]), ``sigma_acc`` and the
+        covariance's change ``r_change``.
 
     Raises
     ------

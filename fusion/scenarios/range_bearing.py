@@ -87,6 +87,8 @@ def run_tracking(
     Returns
     -------
     TrackingRun
+        Per frame the truth, each method's estimates and covariances, exponents, ESS, objective and log-likelihoods,
+        with evaluations and timings.
     """
     instance_of(sc, RangeBearingScenario, "sc")
     if not isinstance(seed, np.random.SeedSequence):
@@ -133,6 +135,7 @@ def run_tracking_batch(
     Returns
     -------
     list of TrackingRun, one per seed
+        Entry i: the run with ``seeds[i]``, as :func:`run_tracking` records it.
     """
     instance_of(sc, RangeBearingScenario, "sc")
     seeds = sequence(seeds, "seeds")  # any sequence (a list, a tuple, a UserList)
@@ -206,6 +209,7 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     Returns
     -------
     list of TrackingRun, length ``runs``
+        Run r: :func:`run_tracking` with the r-th seed spawned from ``seed``.
     """
     runs = count(runs, "runs")  # >= 1 and at most MAX_COUNT
     instance_of(sc, RangeBearingScenario, "sc")
@@ -234,6 +238,7 @@ def position_sq_errors(runs: list[TrackingRun], key: str) -> FloatArray:
     Returns
     -------
     ndarray, shape (runs, K), m²
+        Entry (r, k): the method's squared position error in run r at frame k.
     """
     _check_runs(runs, nonempty=True)
     one_of(key, tuple(sorted(METHODS)), "key")
@@ -254,6 +259,7 @@ def nees_per_frame(runs: list[TrackingRun], key: str) -> FloatArray:
     Returns
     -------
     ndarray, shape (runs, K); 4 on average for a consistent estimator
+        Entry (r, k): the NEES of the method's 4-state estimate in run r at frame k.
     """
     _check_runs(runs, nonempty=True)
     one_of(key, tuple(sorted(k for k in METHODS if k != "mean_of_local_means")), "key")

@@ -152,6 +152,8 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
     Returns
     -------
     LinearisedErrors
+        Per frame: the naive product's expected NEES, the nodes' error correlations and the position RMSE of three
+        combinations.
 
     Raises
     ------

@@ -475,6 +475,8 @@ def paired_study(
     Returns
     -------
     PairedStudy
+        Each method's per-run absolute errors without (``clean``) and with the failure (``failed``), the set's size and
+        the failure window.
     """
     n_runs = count(n_runs, "n_runs")
     seed = check_seed(seed)

@@ -283,6 +283,8 @@ def config_label(cfg: dict[str, Any]) -> str:
     Returns
     -------
     str
+        ``"<wavelet>, <level> levels, <threshold> <mode>"``, with ``", translation-invariant"`` for the stationary
+        transform.
 
     Raises
     ------
@@ -327,6 +329,7 @@ def measurand(kind: Signal | str = Signal.TWO_TONES, length: int = 1024) -> np.n
     Returns
     -------
     ndarray, shape (length,)
+        S(0), ..., S(length − 1) of the signal ``kind``, all positive.
 
     Raises
     ------
@@ -372,6 +375,7 @@ def error_metrics(est: np.ndarray, truth: np.ndarray) -> dict[str, np.ndarray]:
     Returns
     -------
     dict of str to ndarray, each shape (runs, n)
+        ``"mse"``, ``"evar"`` and ``"tvar"`` → entry (r, j): that metric of run r's signal of sensor j.
 
     Raises
     ------

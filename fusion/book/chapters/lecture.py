@@ -157,6 +157,7 @@ def book_words(root: Path | None = None) -> frozenset[str]:
     Returns
     -------
     frozenset of str
+        The distinct identifier-like words (letters, digits and ``_``, not starting with a digit) of all those texts.
     """
     if root is not None:
         if not isinstance(root, (str, os.PathLike)):
@@ -204,6 +205,7 @@ def reading_key(settings: Mapping[str, Any] | None) -> str:
     Returns
     -------
     str
+        ``"primary"`` or the reading key the settings give.
 
     Raises
     ------
@@ -301,6 +303,7 @@ def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any]
     Returns
     -------
     callable
+        ``fn``, named ``ev_<rid>`` in ``module`` with a numpydoc docstring; it returns the reading's Evidence.
     """
     seed, runs = check_seed(seed), count(runs, "runs")
 

@@ -296,6 +296,7 @@ def is_objective(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape () or (E,)
+        The estimate of log Z(ε) at each row of ``eps`` (a 0-d array for a single ε).
     """
     Lm, lg = _L_logg(L, log_g)
     E = as_array(eps, "eps", ndim=(1, 2), subnormal=True)
@@ -631,6 +632,8 @@ def fuse_mixtures(
     Returns
     -------
     MixtureFusion
+        The fused mean ``x`` and covariance ``P`` at the optimised exponents ``eps``, the objective, the start and
+        first-order fusions, ESS and search diagnostics.
     """
     flag(redraw, "redraw")
     flag(reference, "reference")
@@ -699,6 +702,7 @@ def fuse_mixtures_batch(
     Returns
     -------
     list of MixtureFusion, one per problem
+        Entry b: what :func:`fuse_mixtures` returns for problem b (its weights, means and covariances and ``rngs[b]``).
 
     Raises
     ------

@@ -159,6 +159,8 @@ def belief_study(
     Returns
     -------
     BeliefStudy
+        The weights against the shift Δ, the unit checks, eigenvector against row-sum weights with their MSE, and the
+        Perron statistics.
     """
     n_sig = _sigmas(sigma, minimum=2).size
     x = scalar(x, "x")
@@ -353,6 +355,8 @@ def belief_parameter_study(
     Returns
     -------
     BeliefParameterStudy
+        The fused values of fuzzy and binary belief per parameter and snapshot, their squared errors and the spread over
+        ``grid``.
     """
     sig = _sigmas(sigma, minimum=2)
     x = scalar(x, "x")

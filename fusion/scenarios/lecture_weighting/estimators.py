@@ -341,6 +341,8 @@ def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k
     Returns
     -------
     AR1Study
+        The inflation c and bound, the MSE of the oracle, the centred and lecture AWF and the mean of means, and their
+        ratios.
     """
     sig = _sigmas(sigma, minimum=2)
     phi = scalar(phi, "phi")
@@ -488,6 +490,7 @@ def awf_study(
     Returns
     -------
     AwfStudy
+        Per level and estimator the rows and bands of the variance estimates, and per level each method's MSE against k.
     """
     n_sig = _sigmas(sigma, minimum=4).size
     lv = _values(levels, "levels")
@@ -664,6 +667,8 @@ def lumv_study(
     Returns
     -------
     LumvStudy
+        Per weighting the errors of the antithetic pairs, their means and squares, the odd residual and the variance
+        bound.
     """
     sig = _sigmas(sigma, minimum=2)
     x = scalar(x, "x")
@@ -779,6 +784,8 @@ def symmetry_study(
     Returns
     -------
     SymmetryStudy
+        Per method key the largest ``|e(V) + e(−V)|`` over the runs (``residual``), the largest ``|e(V)|`` and whether
+        the residual is round-off.
     """
     sig = _sigmas(sigma, minimum=3)
     x = scalar(x, "x")

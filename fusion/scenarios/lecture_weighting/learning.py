@@ -115,6 +115,8 @@ def learning_study(
     Returns
     -------
     LearningStudy
+        The table's rows per set of variances, the learned variances per set size and each run's mean error over the
+        last epochs.
     """
     if isinstance(r_sets, (str, bytes)):
         raise TypeError("r_sets must be a sequence of variance tuples, got a string")
@@ -223,6 +225,8 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
     Returns
     -------
     LearnedLimitCheck
+        Of ``sets`` random sets: how many fused variances at the limit exceed the mean's, and the best sensor's, and the
+        largest ratio to the mean's.
     """
     n_arr = _ints(ns, "ns", minimum=2)
     draws = count(draws, "draws")

@@ -271,6 +271,8 @@ def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]]
     Returns
     -------
     SeedStability
+        Per scenario each method's rank at every seed, how many scenarios keep one ranking, and how many pairs resolved
+        at the first seed reverse.
     """
     results = _benchmark_results(results)
     n_se = scalar(n_se, "n_se", lo=0.0, lo_open=True)

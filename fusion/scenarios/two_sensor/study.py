@@ -182,6 +182,7 @@ def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int,
     Returns
     -------
     ndarray, shape (runs,)
+        Entry r: the RMS over the selected steps of run r's error in ``component``, rounded to ``decimals``.
     """
     est_arr = as_array(est, "est", ndim=3)
     truth_arr = as_array(truth, "truth", ndim=(0, 1, 2, 3))
@@ -279,6 +280,7 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     Returns
     -------
     NeesStudy
+        Mean NEES of each rule over the steady-state steps (``mean_nees``) and the fused estimates (``est``).
     """
     R1 = diagonal_covariance(R1, 2, "R1")
     R2 = diagonal_covariance(R2, 2, "R2")

@@ -151,6 +151,7 @@ def james_stein_risk(d: int, ratio: float) -> float:
     Returns
     -------
     float
+        1 − (d − 2)²/d · E[1/(d − 2 + 2K)], K Poisson with mean ratio²/2: between 0 and 1 (exactly 1 for d = 2).
     """
     from scipy.stats import poisson
 

@@ -401,6 +401,8 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> Studies:
     Returns
     -------
     Studies
+        The ridge (``s25``), plug-in (``p25``, ``x25``), vector (``v25``, ``v25_well``), correlated (``s27``), coupling
+        (``cpl``, ``cpl_wide``) and estimated-covariance (``est``) studies.
     """
     seed = check_seed(seed)
     runs = None if runs is None else count(runs, "runs")
@@ -435,6 +437,8 @@ def claims_file() -> ClaimsFile:
     Returns
     -------
     fusion.book.claims.ClaimsFile
+        The whole file when it validates; else this chapter's records and the headline (its claim cut to 200
+        characters), read from a temporary copy.
     """
     import tempfile
     from pathlib import Path

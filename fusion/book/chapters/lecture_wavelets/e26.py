@@ -109,6 +109,8 @@ def figure_26(e: SignalStudy, sensor: int = 3, shown: int = 300) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        Left: raw, denoised, reconstructed and true signal of ``sensor`` over the first ``shown`` samples of run 0;
+        right: the mean MSE per sensor of each (log).
 
     Raises
     ------
@@ -385,6 +387,8 @@ def mean_only_status(a: np.ndarray, b: np.ndarray, relative_margin: float = R.DE
     Returns
     -------
     str
+        ``"reproduced"``, ``"contradicted"`` or ``"not distinguishable"``: where the t interval of the mean of a − b
+        lies against ``± relative_margin·|mean(b)|``.
     """
     a_arr, b_arr = as_array(a, "a", ndim=1), as_array(b, "b", ndim=1)
     same_length(a_arr, "a", b_arr, "b")

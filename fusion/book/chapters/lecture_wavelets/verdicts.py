@@ -45,7 +45,9 @@ def _paired_metrics(a: object, b: object, a_name: object, b_name: object) -> tup
 
 
 #: The Returns and Raises sections of :func:`sensor_conjunction` and :func:`sign_conjunction`, written once.
-_PER_SENSOR_DOC = with_sections(returns="fusion.book.ledger.Conjunction", raises="""\
+_PER_SENSOR_DOC = with_sections(returns="""\
+fusion.book.ledger.Conjunction
+    The parts ``("sensor j", Comparison)``, j = 1, 2, ..., one per column of ``a`` and ``b``, in order.""", raises="""\
 TypeError
     ``a`` or ``b`` is not numeric, ``a_name`` or ``b_name`` not a string, or ``seed`` not an integer.
 ValueError
@@ -95,6 +97,8 @@ def status_text(c: Conjunction) -> str:
     Returns
     -------
     str
+        ``"reproduced"``, else the conjunction's status and the numbers of the sensors that have it
+        (``"contradicted: sensors 2, 4"``).
 
     Raises
     ------

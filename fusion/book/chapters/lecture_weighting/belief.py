@@ -66,6 +66,8 @@ def figure_24(s: BeliefStudy) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        Left: each sensor's eigenvector weight against the shift Δ of sensor 1 (°C); right: the Perron eigenvector
+        weight against the row-sum weight of every snapshot and sensor.
     """
     instance_of(s, BeliefStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
@@ -510,6 +512,8 @@ def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float
     Returns
     -------
     ShiftWeightDraws
+        Per draw and shift Δ (201 values, 0 to 20) the shifted reading's weight ``W``, its mean over draws, each draw's
+        rebound and how many draws are not monotone.
     """
     seed = check_seed(seed)
     from fusion.readings.fusion_set import belief_degree

@@ -67,6 +67,8 @@ def figure_23(s: ConsistencyStudy) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        Left: the RMS error (°C, log) of five methods against sample k, the fault's samples shaded; right: P(sensor 3
+        rejected) against its bias / ε at one instant.
     """
     instance_of(s, ConsistencyStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
@@ -109,6 +111,8 @@ def cc_log_comparison(s: ConsistencyStudy, a: AwfMethod, b: AwfMethod, case: Fau
     Returns
     -------
     Comparison
+        ``a`` against ``b`` (claim "less"), run by run: ln of each run's MSE over the study's window (°C²) in ``case``,
+        at the study's seed.
     """
     instance_of(s, ConsistencyStudy, "s")
     case = FaultCase(one_of(case, tuple(FaultCase), "case"))

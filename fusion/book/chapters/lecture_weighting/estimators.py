@@ -76,6 +76,7 @@ def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd
     Returns
     -------
     pandas.DataFrame
+        Index (X, estimator, k) for each level; columns the mean and SD of the estimates of σ₁² and σ₄², and P(σ̂² < 0).
 
     Raises
     ------
@@ -107,6 +108,7 @@ def figure_21a(s: AwfStudy) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        Two panels, X = 0 and X = 100: each estimator's mean ± 1 SD estimate of σ₁² against k (log), with the true σ₁².
     """
     instance_of(s, AwfStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)
@@ -144,6 +146,7 @@ def figure_21b(s: AwfStudy) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        Two panels, X = 0 and X = 900: each method's fused MSE against k (log-log), with σ²min/k.
     """
     instance_of(s, AwfStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)

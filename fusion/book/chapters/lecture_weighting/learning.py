@@ -60,6 +60,8 @@ def table_22(s: LearningStudy) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
+        Index R (the true variances); columns min Rᵢ, optimal, learned (limit and MC), corrected (MC) and mean fused
+        variances, and the largest ``|R̂ − limit|/limit``.
     """
     instance_of(s, LearningStudy, "s")
     rows = [{col: getattr(r, f) for f, col in _COLUMNS_22.items()} for r in s.rows]
@@ -92,6 +94,8 @@ def figure_22a(s: LearningStudy, n: int = 3) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        Each sensor's learned variance R̂ against epoch m (log), with its true Rᵢ (dotted) and the derived limit
+        (dashed).
     """
     instance_of(s, LearningStudy, "s")
     R, Rh = s.learned[_key(n, s.learned, "n")]
@@ -122,6 +126,8 @@ def figure_22b(s: LearningStudy) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+        Bars per setting (n sensors, log): fused variance of the best sensor, optimal weights, corrected and learned
+        (MC), and the mean.
     """
     instance_of(s, LearningStudy, "s")
     tab = table_22(s)

@@ -157,6 +157,8 @@ def figure_regime(s: RegimeStudy, scenario: str = RegimeScenario.SINE_SWAP, smoo
     Returns
     -------
     matplotlib.figure.Figure
+        Left: each method's MSE against k (trailing ``smooth``-sample mean, log); right: its mean weight of sensor 1; a
+        line marks the change.
     """
     instance_of(s, RegimeStudy, "s")
     from fusion._validation import one_of
