@@ -342,8 +342,7 @@ def ledger_inputs(*bundles: object, **parts: Any) -> LedgerInputs:
     Returns
     -------
     LedgerInputs
-        Every field of the bundles and of ``parts`` by name: the studies, the weight search's and the straight leg's
-        claim inputs.
+        Every field of the bundles and of ``parts`` by name (studies, weight-search and straight-leg inputs).
 
     Raises
     ------
@@ -899,8 +898,7 @@ def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
     Returns
     -------
     Ledger
-        The ``wang2024covariance`` claim file's records with their evidence and statuses, ready to write to
-        ``book/ledger``.
+        The ``wang2024covariance`` claim file's records with evidence and statuses (for ``book/ledger``).
     """
     instance_of(r, LedgerInputs, "r")
     return build_ledger(BIBKEY, None, evidence(r), values=values, claims=claim_file())

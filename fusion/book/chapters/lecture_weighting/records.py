@@ -265,7 +265,7 @@ def ledger_values(st: Mapping[str, Any]) -> GlueValues:
     Returns
     -------
     GlueValues
-        Glue key → value.
+        ``lec_led_*`` key → the number a claim text quotes.
 
     Raises
     ------

@@ -133,7 +133,7 @@ def comparison_numbers(comparison: Comparison, key: str,
     Returns
     -------
     GlueValues
-        Glue key → value.
+        ``<key>_<suffix>`` → the comparison's rounded number (the suffixes kept by ``fields``).
 
     Raises
     ------
