@@ -12,7 +12,7 @@ import itertools
 import operator
 import os
 import re
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 
 import numpy as np
 
@@ -489,4 +489,35 @@ def sequence(value: object, name: str, length: int | None = None, *, minimum: in
         raise TypeError(f"{name} must be a sequence (a list, tuple or 1-D array), got {type(value).__name__}")
     if len(items) < minimum:
         raise ValueError(f"{name} must hold at least {minimum} {what}, got {len(items)}")
+    return items
+
+
+def iterable(value: object, name: str) -> list:
+    """An argument documented as an *iterable* (issue 35, class 6): its items, in iteration order.
+
+    Wider than :func:`sequence`, for an argument whose order does not matter (a collection of values to avoid):
+    any sequence :func:`sequence` takes, and a set, a frozenset, a mapping (its keys), a dict view, an iterator or a
+    generator. Text (``str``, ``bytes``) is refused as a whole, not read character by character; so is anything that
+    is not iterable. A one-pass iterable is read once, at most :data:`MAX_COUNT` + 1 items (an endless generator is
+    refused, not iterated for ever).
+
+    Raises
+    ------
+    TypeError
+        Text or not an iterable; or the iteration itself raised (its exception named and chained).
+    ValueError
+        More than :data:`MAX_COUNT` items.
+    """
+    if isinstance(value, (list, tuple, range, np.ndarray)) or hasattr(value, "__array__"):
+        return sequence(value, name)
+    if isinstance(value, (str, bytes, bytearray)) or not isinstance(value, Iterable):
+        raise TypeError(f"{name} must be an iterable (a list, set, tuple, generator, ...), got {type(value).__name__}")
+    try:
+        items = list(itertools.islice(iter(value), MAX_COUNT + 1))
+    except MemoryError:
+        raise
+    except Exception as exc:  # the argument's own exception: rule 15, named and chained
+        raise TypeError(f"{name} could not be iterated: it raised {type(exc).__name__}: {str(exc):.200}") from exc
+    if len(items) > MAX_COUNT:
+        raise ValueError(f"{name} has more than {MAX_COUNT} items (rule 9: the items of an iterable argument are a size)")
     return items

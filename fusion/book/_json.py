@@ -1,8 +1,12 @@
-"""The JSON types of the book's serialisers (``to_dict`` of the ledger's records and evidence, and of exact comparisons)."""
+"""The JSON types of the book's serialisers (``to_dict`` of the ledger's records and evidence, and of exact comparisons),
+and the one reader of its stored JSON files (``read_object``)."""
 
 from __future__ import annotations
 
-from typing import ForwardRef, TypeAlias, Union
+import json
+import math
+from pathlib import Path
+from typing import Any, ForwardRef, TypeAlias, Union
 
 __all__ = ["JSONValue", "JSONObject"]
 
@@ -14,3 +18,56 @@ _ITEM = ForwardRef("JSONValue", module=__name__)
 JSONValue: TypeAlias = Union[None, bool, int, float, str, list[_ITEM], dict[str, _ITEM]]
 #: A JSON object: what a ``to_dict`` serialiser returns (field name → JSON value).
 JSONObject: TypeAlias = dict[str, JSONValue]
+
+
+def _no_constant(name: str) -> None:
+    raise ValueError(f"{name} (not a JSON number: NaN and infinities are refused)")
+
+
+def _finite_float(literal: str) -> float:
+    v = float(literal)
+    if not math.isfinite(v):  # 1e999 overflows to an infinity
+        raise ValueError(f"{literal[:40]} overflows to an infinity (NaN and infinities are refused)")
+    return v
+
+
+def read_object(path: Path, what: str = "file") -> dict[str, Any]:
+    """The JSON object stored in ``path`` (a ledger or benchmark result file), any malformation named with the file.
+
+    One rule for the book's JSON files (issue 35, fuzz 21): a file that is not UTF-8, not JSON, nested beyond
+    Python's recursion limit, holding ``NaN``, ``Infinity`` or a number that overflows to one (which :func:`json.dumps` writes but JSON does not
+    define, and which the claim files refuse as ``.nan``), or whose top level is not an object, is refused with a
+    :class:`ValueError` naming the file, instead of a :class:`json.JSONDecodeError`, a :class:`TypeError` or a
+    :class:`RecursionError` of the first reader.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file (it exists: the caller found it).
+    what : str
+        What the file is, for the message (``"benchmark result"``, ``"ledger file"``).
+
+    Returns
+    -------
+    dict
+        The top-level object.
+
+    Raises
+    ------
+    ValueError
+        The file is not a JSON object as above, naming ``path``.
+    """
+    try:
+        record = json.loads(path.read_text(encoding="utf-8"), parse_constant=_no_constant,
+                            parse_float=_finite_float)
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{what} {path}: not UTF-8 text ({exc.reason} at byte {exc.start})") from exc
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{what} {path}: not JSON ({exc.msg} at line {exc.lineno}, column {exc.colno})") from exc
+    except RecursionError as exc:
+        raise ValueError(f"{what} {path}: nested too deep to read") from exc
+    except ValueError as exc:  # a NaN or an infinity (parse_constant, parse_float)
+        raise ValueError(f"{what} {path}: {exc}") from exc
+    if not isinstance(record, dict):
+        raise ValueError(f"{what} {path}: the top level must be a JSON object, got {type(record).__name__}")
+    return record
