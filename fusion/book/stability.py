@@ -39,9 +39,10 @@ from typing import Any
 
 import numpy as np
 
-from fusion.book._json import JSONObject
+from fusion.book._json import JSONObject, read_object
+from fusion._results import ResultSpec, flag, instance, integer, number, text, validated_post_init
 from fusion._validation import is_integer
-from fusion._validation import count, instance_of, seed as check_seed, seeds as check_seeds, sequence
+from fusion._validation import count, distinct, instance_of, iterable, seed as check_seed, seeds as check_seeds, sequence
 from fusion.book import claims as C
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
@@ -81,8 +82,15 @@ class Task:
     kind : str
         The reading's kind (:data:`fusion.book.rulebook.READING_KINDS`).
     seed, runs : int
+        A seed (>= 0) and a run count (>= 1).
     scaled : bool
         Whether this is the primary reading at :data:`RUNS_FACTOR` times the runs.
+
+    Raises
+    ------
+    TypeError, ValueError
+        A field of another type or out of range, naming ``Task.field`` (checked when built, as every record the sweep
+        consumes).
     """
 
     source: str
@@ -92,6 +100,21 @@ class Task:
     seed: int
     runs: int
     scaled: bool = False
+
+    __result_spec__ = ResultSpec({"source": text(), "record": text(), "reading": text(), "kind": text(*R.READING_KINDS),
+                                  "seed": integer(0), "runs": integer(1), "scaled": flag()})
+    __post_init__ = validated_post_init
+
+
+def _outcome(v: Mapping[str, Any], label: str) -> None:
+    """A :class:`TaskResult`'s status is one of the rulebook's, or None with the error that stands for it."""
+    if v["status"] is None:
+        if not v["error"]:
+            raise ValueError(f"{label}.error must say why the task failed (status is None)")
+    elif v["status"] not in R.STATUSES:
+        raise ValueError(f"{label}.status must be one of {R.STATUSES} or None, got {shown(v['status'])}")
+    elif v["error"]:
+        raise ValueError(f"{label}.error must be empty when the task gave a status, got {shown(v['error'])}")
 
 
 @dataclass(frozen=True)
@@ -106,13 +129,24 @@ class TaskResult:
     seconds : float
         Time the task took in its worker.
     error : str
-        The failure, when the task failed.
+        The failure, when the task failed (not empty then; empty when ``status`` is given).
+
+    Raises
+    ------
+    TypeError, ValueError
+        A field of another type, a status outside :data:`fusion.book.rulebook.STATUSES`, a negative or non-finite
+        ``seconds``, or a failure without its error (or an error with a status), naming ``TaskResult.field``.
     """
 
     task: Task
     status: str | None
     seconds: float
     error: str = ""
+
+    __result_spec__ = ResultSpec({"task": instance(Task), "status": instance(str, optional=True),
+                                  "seconds": number(), "error": text()},
+                                 relations=(_outcome,))
+    __post_init__ = validated_post_init
 
 
 def stochastic_readings(root: Path | None = None) -> dict[tuple[str, str], dict[str, tuple[str, int]]]:
@@ -124,32 +158,94 @@ def stochastic_readings(root: Path | None = None) -> dict[tuple[str, str], dict[
     Parameters
     ----------
     root : pathlib.Path, optional
-        The repository (default: found from the working directory).
+        The repository, or a folder inside it (default: found from the working directory).
 
     Returns
     -------
     dict
         ``{(source, record id): {reading key: (kind, runs)}}``.
+
+    Raises
+    ------
+    TypeError
+        ``root`` is not a path.
+    ValueError
+        ``root`` is not inside the book's repository (no ``_toc.yml`` in it or above it); or a ledger file is
+        malformed, naming the file and the field (see ``_ledger_records``).
+    FileNotFoundError
+        Without ``root``: the working directory is not inside the repository, nor is the imported package
+        (:func:`fusion.book.ledger.ledger_dir`).
     """
-    d = ledger_dir(root)
-    built: dict[str, dict] = {}
-    for f in sorted(d.glob("*.json")):
-        if f.name == STABILITY_FILE:
-            continue
-        for r in json.loads(f.read_text(encoding="utf-8"))["claims"]:
-            built[r["id"]] = r
+    d = _ledger_dir(root)
+    built = {r["id"]: r for r in _ledger_records(d)}
     out: dict[tuple[str, str], dict[str, tuple[str, int]]] = {}
     for key, cf in C.load_all(d.parent / "claims").items():
         for spec in cf.records:
             r = built.get(spec.id)
-            if r is None or not r.get("runs"):
+            if r is None or r.get("runs") is None:
                 continue
-            readings = {"primary": ("primary", int(r["runs"]))}
+            readings = {"primary": ("primary", r["runs"])}
             others = [x for x in spec.readings if x.key != "primary"]
             for x, a in zip(others, [a for a in r["alternatives"] if a["kind"] != "stand-in"]):
-                if a.get("runs"):
-                    readings[x.key] = (x.kind, int(a["runs"]))
+                if a.get("runs") is not None:
+                    readings[x.key] = (x.kind, a["runs"])
             out[(key, spec.id)] = readings
+    return out
+
+
+def _ledger_dir(root: object) -> Path:
+    """``book/ledger`` of the repository containing ``root``; a ``root`` outside any is refused by name."""
+    if root is None:
+        return ledger_dir()
+    if not isinstance(root, (str, Path)):
+        raise TypeError(f"root must be a pathlib.Path, got {type(root).__name__}")
+    try:
+        return ledger_dir(Path(root))
+    except FileNotFoundError as exc:
+        raise ValueError(f"root: {exc}") from exc
+
+
+def _runs_field(value: object, where: str) -> int | None:
+    """A stored run count: None (a deterministic record) or an integer >= 1, never truncated from a float."""
+    if value is None:
+        return None
+    if not is_integer(value) or isinstance(value, bool):
+        raise ValueError(f"{where} must be an integer run count or null, got {shown(value)}")
+    if value < 1:
+        raise ValueError(f"{where} must be at least 1, got {shown(value)}")
+    return int(value)
+
+
+def _ledger_records(d: Path) -> list[dict[str, Any]]:
+    """Every record of the chapter ledger files in ``d`` (not the sweep's own results), the fields the sweep reads
+    checked: a malformed file is refused by a ValueError naming the file and the field, not a KeyError or a
+    TypeError from deep inside, and a run count is an integer (``2.5`` is refused, not truncated to 2)."""
+    out = []
+    for f in sorted(d.glob("*.json")):
+        if f.name == STABILITY_FILE:
+            continue
+        doc = read_object(f, "ledger file")
+        claims = doc.get("claims")
+        if not isinstance(claims, list):
+            raise ValueError(f"ledger file {f}: claims must be a list of records, got {shown(claims)}")
+        for i, r in enumerate(claims):
+            where = f"ledger file {f}: claims[{i}]"
+            if not isinstance(r, dict):
+                raise ValueError(f"{where} must be an object, got {shown(r)}")
+            for k, kinds in (("id", str), ("status", str), ("alternatives", list)):
+                if not isinstance(r.get(k), kinds):
+                    raise ValueError(f"{where}.{k} must be a {kinds.__name__}, got {shown(r.get(k))}")
+            if r.get("evidence") is not None and not isinstance(r["evidence"], dict):
+                raise ValueError(f"{where}.evidence must be an object or null, got {shown(r['evidence'])}")
+            seed = r["evidence"].get("seed") if r.get("evidence") else None
+            if seed is not None and (not is_integer(seed) or isinstance(seed, bool)):
+                raise ValueError(f"{where}.evidence.seed must be an integer or null, got {shown(seed)}")
+            r = r | {"runs": _runs_field(r.get("runs"), f"{where}.runs"), "alternatives": []}
+            for j, a in enumerate(claims[i]["alternatives"]):
+                if not (isinstance(a, dict) and isinstance(a.get("kind"), str)):
+                    raise ValueError(f"{where}.alternatives[{j}] must be an object with a kind, got {shown(a)}")
+                r["alternatives"].append(a | {"runs": _runs_field(a.get("runs"), f"{where}.alternatives[{j}].runs")})
+            out.append(r)
     return out
 
 
@@ -162,6 +258,7 @@ def seeds(k: int = RESEEDS, root_seed: int = ROOT_SEED, avoid: Iterable[int] = (
         How many.
     root_seed : int
     avoid : iterable of int
+        Any iterable of integers (a list, a set, dict keys, a generator, ...); its order does not matter.
 
     Returns
     -------
@@ -170,7 +267,7 @@ def seeds(k: int = RESEEDS, root_seed: int = ROOT_SEED, avoid: Iterable[int] = (
     """
     k = count(k, "k", maximum=MAX_SEEDS)
     root_seed = check_seed(root_seed, "root_seed")
-    items = sequence(avoid, "avoid")
+    items = iterable(avoid, "avoid")
     for v in items:  # integers (a chapter without a seed is entered as -1): a float 3.0 would silently miss 3
         if not is_integer(v):
             raise TypeError(f"avoid must hold integer seeds, got {shown(v)}")
@@ -196,7 +293,7 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
     readings : mapping
         From :func:`stochastic_readings`.
     seed_list : sequence of int
-        From :func:`seeds`.
+        From :func:`seeds`: distinct seeds (a repeated seed would run the same tasks twice and count as two reseeds).
     runs_factor : int
         >= 1; 1 runs no scaled task.
 
@@ -207,7 +304,7 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
         first seed with that many times the runs.
     """
     runs_factor = count(runs_factor, "runs_factor")
-    seed_list = check_seeds(seed_list, "seed_list")
+    seed_list = distinct(check_seeds(seed_list, "seed_list"), "seed_list")
     _readings(readings, runs_factor)
     out = []
     for (src, rid), rs in sorted(readings.items()):
@@ -243,10 +340,20 @@ def run_task(task: Task, root: str | None = None) -> TaskResult:
     Returns
     -------
     TaskResult
-        Failures raise (Dask retries the task, then reports it).
+        Failures of the evidence function raise (Dask retries the task, then reports it).
+
+    Raises
+    ------
+    TypeError
+        ``task`` is not a :class:`Task`, ``root`` not a path.
+    ValueError
+        ``root`` is not inside the book's repository, or it has no claim file for ``task.source``.
     """
+    instance_of(task, Task, "task")
     t0 = time.perf_counter()
-    path = C.claims_dir(Path(root) if root else None) / f"{task.source}.yaml"
+    path = _ledger_dir(root).parent / "claims" / f"{task.source}.yaml"
+    if not path.is_file():
+        raise ValueError(f"task.source: no claim file {path} for the source {shown(task.source)}")
     cf = _claims_file(str(path), path.stat().st_mtime_ns)
     spec = cf.record(task.record)
     ev = _judged(C.evaluate(spec, task.reading, task.seed, task.runs), cf.margin(spec))
@@ -261,8 +368,9 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     ----------
     results : sequence of TaskResult
     seed_list : sequence of int
+        Distinct seeds, as given to :func:`tasks`.
     committed : mapping
-        Record id → the status committed in the ledger.
+        Record id → the status committed in the ledger: one of :data:`fusion.book.rulebook.STATUSES`, or None.
 
     Returns
     -------
@@ -277,11 +385,13 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     primary reading's own status at the scaled run count (no other reading is rerun there).
     """
     by: dict[str, list[TaskResult]] = {}
-    seed_list = check_seeds(seed_list, "seed_list")
+    seed_list = distinct(check_seeds(seed_list, "seed_list"), "seed_list")
     instance_of(committed, Mapping, "committed")
     for rid, status in committed.items():
         if status is not None and not isinstance(status, str):
             raise TypeError(f"committed[{shown(rid)}] must be a status (str), got {shown(status)}")
+        if status is not None and status not in R.STATUSES:
+            raise ValueError(f"committed[{shown(rid)}] must be one of {R.STATUSES} or None, got {shown(status)}")
     for r in _tasks(results, "results", TaskResult):
         by.setdefault(r.task.record, []).append(r)
     out: dict[str, dict[str, Any]] = {}
@@ -342,7 +452,18 @@ def run_batch(batch: Sequence[Task], root: str | None = None) -> list[TaskResult
     -------
     list of TaskResult
         In the order of ``batch``.
+
+    Raises
+    ------
+    TypeError
+        ``batch`` is not a sequence of :class:`Task`, ``root`` not a path (bad arguments are refused, never turned
+        into failed tasks).
+    ValueError
+        ``root`` is not inside the book's repository.
     """
+    batch = _tasks(batch, "batch")
+    if root is not None:
+        _ledger_dir(root)
     out = []
     for task in batch:
         error = ""
@@ -371,6 +492,8 @@ def _readings(readings: object, runs_factor: int) -> None:
         for name, v in rs.items():
             if not (isinstance(name, str) and isinstance(v, tuple) and len(v) == 2 and isinstance(v[0], str)):
                 raise TypeError(f"{where}[{shown(name)}] must be a (kind, runs) pair, got {shown(v)}")
+            if v[0] not in R.READING_KINDS:
+                raise ValueError(f"{where}[{shown(name)}] kind must be one of {R.READING_KINDS}, got {shown(v[0])}")
             count(v[1], f"{where}[{name!r}] runs")
 
 
@@ -475,9 +598,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     readings = stochastic_readings(root)
     if args.only:
         readings = {k: v for k, v in readings.items() if k[1] in set(args.only)}
-    chapter_seeds = {int(r["evidence"].get("seed") or -1) for f in ledger_dir(root).glob("*.json")
-                     if f.name != STABILITY_FILE for r in json.loads(f.read_text(encoding="utf-8"))["claims"]
-                     if isinstance(r.get("evidence"), dict)}
+    ledger = _ledger_records(ledger_dir(root))
+    chapter_seeds = {int(r["evidence"].get("seed") or -1) for r in ledger if isinstance(r.get("evidence"), dict)}
     seed_list = seeds(args.reseeds, args.root_seed, chapter_seeds)
     task_list = tasks(readings, seed_list, args.runs_factor)
     print(f"{len(readings)} stochastic records, {len(task_list)} tasks, seeds {seed_list}", file=sys.stderr)
@@ -495,10 +617,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         results = sweep(task_list, client, root)
         workers = len(client.scheduler_info()["workers"])
     wall = time.perf_counter() - t0
-    committed = {}
-    for f in ledger_dir(root).glob("*.json"):
-        if f.name != STABILITY_FILE:
-            committed |= {r["id"]: r["status"] for r in json.loads(f.read_text(encoding="utf-8"))["claims"]}
+    committed = {r["id"]: r["status"] for r in ledger}
     records = summarise(results, seed_list, committed)
     fresh = set(records)
     failed = [r for r in results if r.status is None]
@@ -543,4 +662,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    # ``python -m`` runs this file as ``__main__``: take main from the imported module, so that the functions sent
+    # to the workers (run_batch) are pickled by reference to fusion.book.stability, not by value with this
+    # module's globals (a process_cache wrapper cannot be pickled by value: "Could not serialize _MapExpr")
+    from fusion.book.stability import main as _main
+
+    raise SystemExit(_main())
