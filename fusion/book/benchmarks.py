@@ -14,15 +14,15 @@ notebook (``make notebooks``) only refreshes the numbers it shows.
 
 from __future__ import annotations
 
-import json
+import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from fusion._frozen import frozen_arrays
-from fusion._results import ReadOnlyMapping
+from fusion.book._json import read_object
+from fusion._results import ReadOnlyMapping, ResultSpec, instance, text as text_field, tuple_of, validated_post_init
 from fusion._validation import text
 from fusion._shown import shown
 
@@ -36,7 +36,6 @@ IGNORE_OUTPUT_TAG = "nbval-ignore-output"
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class BenchmarkResult:
     """One stored benchmark run.
 
@@ -52,6 +51,12 @@ class BenchmarkResult:
         The stored measurements, in file order.
     record : Mapping
         The whole JSON record (read-only), for fields particular to one benchmark.
+
+    Raises
+    ------
+    TypeError
+        A field of another type (checked when built, as :func:`load_benchmark` checks the file), naming
+        ``BenchmarkResult.field``.
     """
 
     name: str
@@ -60,10 +65,15 @@ class BenchmarkResult:
     measurements: tuple[Mapping[str, Any], ...]
     record: Mapping[str, Any]
 
+    __result_spec__ = ResultSpec({"name": text_field(), "date": text_field(), "machine": text_field(),
+                                  "measurements": tuple_of(instance(Mapping)), "record": instance(Mapping)})
+    __post_init__ = validated_post_init
+
     @property
     def values(self) -> dict[str, float]:
-        """``key -> value`` of the measurements that have a ``key``."""
-        return {m["key"]: float(m["value"]) for m in self.measurements if "key" in m}
+        """``key -> value`` of the measurements that have both a ``key`` and a ``value`` (a measurement of several
+        numbers, such as ``validation.json``'s ``validated_s`` and ``kernel_s``, is read from :attr:`measurements`)."""
+        return {m["key"]: float(m["value"]) for m in self.measurements if "key" in m and "value" in m}
 
     @property
     def caption(self) -> str:
@@ -73,6 +83,24 @@ class BenchmarkResult:
 
 #: A benchmark result's file stem: a short name without a path separator (``ci``, ``bench_validation``).
 _STEM = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]{0,99}")
+
+
+def _check_record(record: Mapping[str, Any], path: Path) -> None:
+    """The fields :class:`BenchmarkResult` reads, each refused by a ValueError naming the file and the field."""
+    for k in ("date", "machine"):
+        if not isinstance(record[k], str):
+            raise ValueError(f"benchmark result {path}: {k} must be a string, got {shown(record[k])}")
+    ms = record["measurements"]
+    if not isinstance(ms, list):
+        raise ValueError(f"benchmark result {path}: measurements must be a list, got {shown(ms)}")
+    for i, m in enumerate(ms):
+        if not isinstance(m, dict):
+            raise ValueError(f"benchmark result {path}: measurements[{i}] must be an object, got {shown(m)}")
+        if "key" in m and not isinstance(m["key"], str):
+            raise ValueError(f"benchmark result {path}: measurements[{i}].key must be a string, got {shown(m['key'])}")
+        v = m.get("value")
+        if "value" in m and (not isinstance(v, (int, float)) or isinstance(v, bool) or not math.isfinite(v)):
+            raise ValueError(f"benchmark result {path}: measurements[{i}].value must be a finite number, got {shown(v)}")
 
 
 def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
@@ -94,8 +122,10 @@ def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
     Raises
     ------
     ValueError
-        If ``name`` is not a plain file stem, no such result is stored, or the record lacks
-        ``date``, ``machine`` or ``measurements``.
+        If ``name`` is not a plain file stem or no such result is stored; naming the file, if it is not a JSON object
+        (not UTF-8, not JSON, nested beyond the recursion limit, holding ``NaN`` or ``Infinity``) or the record lacks
+        ``date``, ``machine`` or ``measurements``, or these are not two strings and a list of objects whose ``key``
+        (where given) is a string and whose ``value`` (where given) is a finite number.
     """
     text(name, "name")
     if not _STEM.fullmatch(name) or name.endswith(".json"):  # a short plain stem: no path, no NUL, no 10**6 characters
@@ -106,12 +136,13 @@ def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
     path = (RESULTS if results is None else Path(results)) / f"{name}.json"
     if not path.is_file():
         raise ValueError(f"{'name' if results is None else 'name and results'}: no stored benchmark result {path}")
-    record = json.loads(path.read_text(encoding="utf-8"))
+    record = read_object(path, "benchmark result")
     missing = [k for k in ("date", "machine", "measurements") if k not in record]
     if missing:
         raise ValueError(f"name: {path.name} lacks {missing}")
+    _check_record(record, path)
     return BenchmarkResult(
-        name=name, date=str(record["date"]), machine=str(record["machine"]),
+        name=name, date=record["date"], machine=record["machine"],
         measurements=tuple(ReadOnlyMapping(m) for m in record["measurements"]),
         record=ReadOnlyMapping(record),
     )
