@@ -354,7 +354,8 @@ def hill_tail_index(x: ArrayLike) -> float:
     Raises
     ------
     ValueError
-        ``x`` has 11 values or fewer, or a value that is not finite.
+        ``x`` has 10 values or fewer (the estimate needs n > 10: k = 10 top values above the (k+1)-th), or a value
+        that is not finite.
 
     References
     ----------
