@@ -6,7 +6,8 @@ ledger studies in the notebook and in its unit tests, and so on. :func:`study_ca
 the process (least recently used dropped first, keyed as on disk) and, when the environment variable :data:`ENV` names a
 directory, also on disk there: the first process to need a result computes it under a file lock and stores it
 (pickle, written atomically); a process that asks meanwhile waits for it instead of computing it a second time,
-and later ones load it.
+and later ones load it. A stored file that cannot be read back (empty, truncated, corrupt) or does not hold its own
+key's result is a miss: the result is computed again and the file rewritten.
 
 The key of a result is the SHA-256 of the package's sources (every ``fusion/**/*.py``), numpy's version, the
 function's qualified name and its arguments bound to its parameters (defaults applied): any edit of the package
@@ -90,7 +91,9 @@ def source_digest(package: Path | str = _PACKAGE) -> str:
     TypeError
         If ``package`` is not a path (a ``str`` or an ``os.PathLike``).
     ValueError
-        If ``package`` is not an existing folder (or the system cannot read it as a path: too long, a NUL byte).
+        If ``package`` is not an existing folder (or the system cannot read it as a path: too long, a NUL byte), or
+        not a Python package (no ``__init__.py``): a folder such as ``/`` or ``''`` (the working directory) would
+        be walked file by file, the whole file system in the worst case.
     """
     if not isinstance(package, (str, os.PathLike)):
         raise TypeError(f"package must be a path (str or os.PathLike), got {type(package).__name__} {shown(package, 40)}")
@@ -101,6 +104,8 @@ def source_digest(package: Path | str = _PACKAGE) -> str:
         raise ValueError(f"package must be a folder, got {shown(package, 60)} ({type(exc).__name__})") from None
     if not is_dir:
         raise ValueError(f"package must be an existing folder, got {shown(package, 60)}")
+    if not (folder / "__init__.py").is_file():
+        raise ValueError(f"package must be a Python package's folder (with an __init__.py), got {shown(package, 60)}")
     return _source_digest(folder)
 
 
@@ -283,6 +288,21 @@ def _log(qualname: str, arguments: dict[str, Any], event: str, cpu: float) -> No
         fh.write(line + "\n")
 
 
+def _stored(target: Path, key: str) -> tuple[Any] | None:
+    """``(value,)`` stored in ``target`` for ``key``, or None (a miss, recomputed and rewritten) when the file cannot be
+    read back (empty, truncated, corrupt: issue 35, fuzz 21 D14) or holds another key's result or something else."""
+    try:
+        with open(target, "rb") as fh:
+            loaded = pickle.load(fh)          # noqa: S301 - our own file, written in this invocation
+    except MemoryError:
+        raise
+    except Exception:                         # noqa: BLE001 - any unreadable file is a miss, never the study's error
+        return None
+    if isinstance(loaded, tuple) and len(loaded) == 2 and loaded[0] == key:
+        return (loaded[1],)
+    return None
+
+
 def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any], compute: Callable[[], Any]) -> Any:
     """The stored result of ``key`` under ``root``, or ``compute()`` stored there; one process computes, others wait."""
     root.mkdir(parents=True, exist_ok=True)
@@ -290,14 +310,13 @@ def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any]
     start = time.process_time()
     with open(root / f"{key}.lock", "w", encoding="utf-8") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)      # released when the file closes (also on an exception)
-        if target.exists():
-            with open(target, "rb") as fh:
-                value = pickle.load(fh)       # noqa: S301 - our own file, written in this invocation
+        stored = _stored(target, key) if target.exists() else None
+        if stored is not None:
             _log(qualname, arguments, "loaded", time.process_time() - start)
-            return value
+            return stored[0]
         value = compute()
         try:
-            data = _dumps(value)
+            data = _dumps((key, value))       # the key stored with the value: a file under another name is a miss
         except (pickle.PicklingError, TypeError, AttributeError):
             data = None                       # not picklable: every process computes it, as without the cache
         if data is not None:
