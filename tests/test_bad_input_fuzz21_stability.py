@@ -26,28 +26,10 @@ from fusion.book import benchmarks as B
 from fusion.book import rulebook as R
 from fusion.book import stability as S
 from fusion.book import study_cache as sc
+from test_stability import TOY_CLAIMS
 
 ROOT = Path(__file__).resolve().parents[1]
 
-TOY_CLAIMS = """
-    source: yang2012optimal
-    quantities: {e: {label: error, margin: {relative: 0.05}}}
-    records:
-      - id: yang-toy
-        chapter: notebooks/01_optimal_fusion_set
-        where: toy
-        claim: A beats B.
-        claimant: source
-        published: {value: qualitative}
-        test: paired
-        quantity: e
-        direction: less
-        headline: true
-        link: x
-        evidence: test_stability:toy_evidence
-        readings:
-          primary: {choice: shift, reading: one, settings: {shift: 1.0}}
-    """
 
 
 def _toy_record(**changes: Any) -> dict[str, Any]:
@@ -55,7 +37,8 @@ def _toy_record(**changes: Any) -> dict[str, Any]:
 
 
 def _toy_repo(tmp_path: Path, records: list | None = None, body: str | None = None) -> Path:
-    """A repository with the toy claim file of tests/test_stability.py and one chapter ledger file."""
+    """A repository with the toy claim file of tests/test_stability.py and one chapter ledger file (of its record that
+    reproduces: the failing one has no ledger entry, so the sweep does not run it)."""
     (tmp_path / "_toc.yml").write_text("root: x\n", encoding="utf-8")
     (tmp_path / "book" / "claims").mkdir(parents=True, exist_ok=True)
     (tmp_path / "book" / "ledger").mkdir(parents=True, exist_ok=True)

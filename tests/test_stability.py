@@ -31,6 +31,40 @@ def broken_evidence(settings: dict, *, seed: int, runs: int) -> L.Comparison:
     raise RuntimeError("this evidence function always fails")
 
 
+#: The toy claim file of the sweep's tests: a record that reproduces, and one whose evidence always fails.
+TOY_CLAIMS = """
+        source: yang2012optimal
+        quantities: {e: {label: error, margin: {relative: 0.05}}}
+        records:
+          - id: yang-toy
+            chapter: notebooks/01_optimal_fusion_set
+            where: toy
+            claim: A beats B.
+            claimant: source
+            published: {value: qualitative}
+            test: paired
+            quantity: e
+            direction: less
+            headline: true
+            link: x
+            evidence: test_stability:toy_evidence
+            readings:
+              primary: {choice: shift, reading: one, settings: {shift: 1.0}}
+              others: [{key: tiny, choice: shift, reading: a hundredth, settings: {shift: 0.01}}]
+          - id: yang-broken
+            chapter: notebooks/01_optimal_fusion_set
+            where: toy
+            claim: A beats B again.
+            claimant: source
+            published: {value: qualitative}
+            test: paired
+            quantity: e
+            direction: less
+            link: x
+            evidence: test_stability:broken_evidence
+    """
+
+
 def test_seeds_are_distinct_reproducible_and_avoid_the_chapters() -> None:
     s = S.seeds(5)
     assert len(set(s)) == 5 and s == S.seeds(5) and all(0 <= x < 2**31 for x in s)
@@ -73,37 +107,7 @@ def test_the_sweep_runs_on_dask_and_reports_failures(tmp_path: Path) -> None:
     distributed = pytest.importorskip("distributed")
     (tmp_path / "_toc.yml").write_text("root: x\n", encoding="utf-8")
     (tmp_path / "book" / "claims").mkdir(parents=True)
-    (tmp_path / "book" / "claims" / "yang2012optimal.yaml").write_text(textwrap.dedent("""
-        source: yang2012optimal
-        quantities: {e: {label: error, margin: {relative: 0.05}}}
-        records:
-          - id: yang-toy
-            chapter: notebooks/01_optimal_fusion_set
-            where: toy
-            claim: A beats B.
-            claimant: source
-            published: {value: qualitative}
-            test: paired
-            quantity: e
-            direction: less
-            headline: true
-            link: x
-            evidence: test_stability:toy_evidence
-            readings:
-              primary: {choice: shift, reading: one, settings: {shift: 1.0}}
-              others: [{key: tiny, choice: shift, reading: a hundredth, settings: {shift: 0.01}}]
-          - id: yang-broken
-            chapter: notebooks/01_optimal_fusion_set
-            where: toy
-            claim: A beats B again.
-            claimant: source
-            published: {value: qualitative}
-            test: paired
-            quantity: e
-            direction: less
-            link: x
-            evidence: test_stability:broken_evidence
-        """), encoding="utf-8")
+    (tmp_path / "book" / "claims" / "yang2012optimal.yaml").write_text(textwrap.dedent(TOY_CLAIMS), encoding="utf-8")
     readings = {("yang2012optimal", "yang-toy"): {"primary": ("primary", 100), "tiny": ("open-choice", 100)},
                 ("yang2012optimal", "yang-broken"): {"primary": ("primary", 100)}}
     task_list = S.tasks(readings, [11, 12], runs_factor=2)
