@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, dict_of, instance, integer, validated_post_init
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
@@ -139,7 +139,6 @@ def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, see
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class Cell:
     """One case of a signal study, with the run count and seed of the study it comes from (:func:`cell`).
 
@@ -155,6 +154,12 @@ class Cell:
     case: Mapping[str, Any]
     runs: int
     seed: int
+
+    __result_spec__ = ResultSpec({"case": dict_of(instance(Mapping, np.ndarray),
+                                                  required=("raw", "denoised", "reconstructed", "gain_err", "weights")),
+                                  "runs": integer(2), "seed": integer(0)})
+    __post_init__ = validated_post_init
+
 
 
 def _holds(cases: Mapping[Any, Any], key: object) -> bool:
