@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._results import ResultSpec, dict_of, instance, integer, validated_post_init
+from fusion._results import ResultSpec, dict_of, instance, integer, trusted, validated_post_init
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
@@ -192,7 +192,8 @@ def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[Signal, str, str])
     src = e26 if e26 is not None and _holds(e26.cases, key) else sg
     if not _holds(src.cases, key):
         raise ValueError(f"key must be a (signal, rule, normaliser) case of sg or e26, got {shown(key, 80)}")
-    return Cell(src.cases[key], int(src.runs), int(src.seed))
+    # the study's case, already frozen and read-only: built without re-checking it (a table reads many cells)
+    return trusted(Cell, case=src.cases[key], runs=int(src.runs), seed=int(src.seed))
 
 
 def _e26_case(e: SignalStudy, nm: str, name: str = "e") -> Mapping[str, Any]:
