@@ -24,8 +24,9 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
   finite floats or of arrays (their named dimensions bound as above); :func:`keyed`: a dict of whichever string
   keys the result holds (the methods a run computed), each a finite array (a covariance stack if asked);
 * :func:`integer`, :func:`flag`, :func:`text`, :func:`mask`: an int (not a bool) at least ``minimum`` (a count, a
-  seed, an index), a bool, a bool array of named dimensions, a string (one of given choices); :func:`table`: a :class:`pandas.DataFrame` with the columns its
-  consumers read (its rows a named dimension if asked); :func:`instance`: an object of given classes (a study
+  seed, an index), a bool, a string (one of given choices), a bool array of named dimensions (steps on a leg,
+  runs at a corner; kept bool); :func:`table`: a :class:`pandas.DataFrame` with the columns its consumers read
+  (its rows a named dimension if asked); :func:`instance`: an object of given classes (a study
   of its own, a scenario; optional allows ``None``);
 * :func:`tuple_of`, :func:`dict_of`: a tuple of given length or a dict (keys of given types, or exactly given
   keys) whose items each satisfy a spec of any kind above, checked recursively (the chapter layer's results
