@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike
 from matplotlib.figure import Figure
 from fusion._docstrings import with_sections
 from fusion._results import ResultSpec, array, dict_of, integer, mask, tuple_of, validated_post_init
+from fusion._shown import shown
 from fusion._validation import FloatArray, allocation, as_array, count, counts, distinct, instance_of, scalar
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
@@ -156,7 +157,6 @@ def _swarm_and_slsqp(w: FloatArray, m: FloatArray, c: FloatArray, seed: int, r: 
                                   swarm_options=swarm_options)
 
 
-@_on_problems
 def _swarm_relation(values: dict[str, Any], cls: str) -> None:
     """One entry per run; the same (N, variant) keys in gap and corner, plus (N, "SLSQP") for every N there in the
     evaluations and corners (the table and the glue read them)."""
@@ -164,14 +164,16 @@ def _swarm_relation(values: dict[str, Any], cls: str) -> None:
     for name in ("gap", "evaluations", "corner"):
         for key, arr in values[name].items():
             if arr.shape[0] != runs:
-                raise ValueError(f"{cls}.{name}[{key!r}] must have one entry per run ({runs}), got {arr.shape[0]}")
+                raise ValueError(f"{cls}.{name}[{shown(key)}] must have one entry per run ({runs}), got {arr.shape[0]}")
     keys = set(values["gap"]) | {(n, "SLSQP") for n, _ in values["gap"]}
     for name in ("evaluations", "corner"):
         if set(values[name]) != keys:
+            missing, extra = sorted(keys - set(values[name])), sorted(set(values[name]) - keys)
             raise ValueError(f"{cls}.{name} must have the keys of gap and (N, 'SLSQP') for each N, "
-                             f"misses {sorted(keys - set(values[name]))}, has extra {sorted(set(values[name]) - keys)}")
+                             f"misses {shown(missing, 200)}, has extra {shown(extra, 200)}")
 
 
+@_on_problems
 def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r: int = 1000) -> SwarmStudy:
     r"""Steps E-G on :func:`gaussian_problems` with N nodes: the swarm's :math:`\hat J` against SLSQP's, same samples.
 

@@ -493,7 +493,7 @@ def _defensive_relation(values: dict[str, Any], cls: str) -> None:
     for name in ("omega_err", "sq_err", "ess", "ess_vertex"):
         for key, arr in values[name].items():
             if arr.shape[0] != values["runs"]:
-                raise ValueError(f"{cls}.{name}[{key!r}] must have one entry per run ({values['runs']}), "
+                raise ValueError(f"{cls}.{name}[{shown(key)}] must have one entry per run ({values['runs']}), "
                                  f"got {arr.shape[0]}")
 
 
