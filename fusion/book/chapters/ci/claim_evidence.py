@@ -231,7 +231,8 @@ class LedgerStudies(IrInputs, PairedInputs, ArchInputs):
     """
 
     __result_spec__ = ResultSpec({**_ARCH_FIELDS, **_PAIRED_FIELDS, **_IR_FIELDS},
-                                 relations=(lambda v, cls: _runs_relation(v, cls), lambda v, cls: _ir_scaled_relation(v, cls)))
+                                 relations=(lambda v, cls: _runs_relation(v, cls),
+                                            lambda v, cls: _ir_scaled_relation(v, cls)))
     __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 

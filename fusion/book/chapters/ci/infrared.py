@@ -540,7 +540,7 @@ def _ir_relation(values: Mapping[str, Any], cls: str) -> None:
                              "readings; its consumers read them)")
         some = [k for k in scaled if k in keys]
         if some and len(some) != len(scaled):
-            raise ValueError(f"{cls}.run_rmse must hold all the scaled readings of axis {axis!r} or none, misses "
+            raise ValueError(f"{cls}.run_rmse must hold all the scaled readings of axis {shown(axis)} or none, misses "
                              f"{shown([k for k in scaled if k not in keys], 200)}")
     for key, errs in values["run_rmse"].items():
         for method, arr in errs.items():
