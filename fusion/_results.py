@@ -23,9 +23,10 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
 * :func:`number`, :func:`numbers`, :func:`arrays`: a finite float, or a dict with exactly the given keys of
   finite floats or of arrays (their named dimensions bound as above); :func:`keyed`: a dict of whichever string
   keys the result holds (the methods a run computed), each a finite array (a covariance stack if asked);
-* :func:`integer`, :func:`flag`, :func:`text`: an int (not a bool) at least ``minimum`` (a count, a seed, an
-  index), a bool, a string (one of given choices); :func:`table`: a :class:`pandas.DataFrame` with the columns its
-  consumers read (its rows a named dimension if asked); :func:`instance`: an object of given classes (a study
+* :func:`integer`, :func:`flag`, :func:`text`, :func:`mask`: an int (not a bool) at least ``minimum`` (a count, a
+  seed, an index), a bool, a string (one of given choices), a bool array of named dimensions (steps on a leg,
+  runs at a corner; kept bool); :func:`table`: a :class:`pandas.DataFrame` with the columns its consumers read
+  (its rows a named dimension if asked); :func:`instance`: an object of given classes (a study
   of its own, a scenario; optional allows ``None``);
 * :func:`tuple_of`, :func:`dict_of`: a tuple of given length or a dict (keys of given types, or exactly given
   keys) whose items each satisfy a spec of any kind above, checked recursively (the chapter layer's results
@@ -176,6 +177,12 @@ def number(positive: bool = False, nonnegative: bool = True, bounds: tuple[float
 def integer(minimum: int | None = 0) -> ValueSpec:
     """Spec of an int field (a Python or numpy integer, not a bool) at least ``minimum`` (none if None)."""
     return ValueSpec("integer", {"minimum": minimum})
+
+
+def mask(*dims: Dim) -> ValueSpec:
+    """Spec of a bool array field (steps on a leg, runs at a corner) of the named or fixed dimensions ``dims``:
+    a :class:`numpy.ndarray` of dtype bool, stored as a read-only bool copy."""
+    return ValueSpec("mask", {"dims": tuple(dims)})
 
 
 def flag() -> ValueSpec:
@@ -347,8 +354,9 @@ def _float_array(value: object, fs: ArraySpec, label: str, bound: dict[str, tupl
 
 
 def _own(arr: np.ndarray) -> np.ndarray:
-    """A read-only float64 copy (an array inside a container field: the object owns its data)."""
-    arr = np.array(arr, dtype=float)
+    """A read-only float64 copy, bool for a :func:`mask` (an array inside a container field: the object owns its
+    data)."""
+    arr = np.array(arr, dtype=bool if arr.dtype == bool else float)
     arr.setflags(write=False)
     return arr
 
@@ -421,6 +429,12 @@ def _value(fs: ValueSpec, value: Any, label: str, bound: dict[str, tuple[Any, st
         return v
     if fs.kind == "flag":
         return _validation.flag(value, label)
+    if fs.kind == "mask":
+        if not isinstance(value, np.ndarray) or value.dtype != bool:
+            raise TypeError(f"{label} must be a bool array, got "
+                            f"{value.dtype if isinstance(value, np.ndarray) else type(value).__name__}")
+        _bind(args["dims"], value.shape, label, bound)
+        return value
     if fs.kind == "text":
         if args["choices"]:
             return _validation.one_of(value, args["choices"], label)
@@ -482,7 +496,7 @@ def _store(obj: object, values: Mapping[str, Any], copy: bool) -> None:
     for name, v in values.items():
         if isinstance(v, np.ndarray):
             if copy:
-                v = np.array(v, dtype=float)
+                v = np.array(v, dtype=bool if v.dtype == bool else float)
             v.setflags(write=False)
         else:  # dicts become read-only mappings, lists tuples (check_fields already copied a dict's arrays)
             v = frozen_value(v)

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import dataclasses
+import functools
+import re
 import matplotlib
 
 matplotlib.use("Agg")
@@ -257,12 +259,17 @@ def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> chapter.IrReadings
     return _readings(run_rmse=out, bound=bound, seed=7, runs=100, t_min=2.0, sigma_rms=sigma_rms, sigma_band=(1.5, 3.0))
 
 
+@functools.cache
+def _small_readings() -> chapter.IrReadings:
+    """A real, small :class:`IrReadings` (3 runs of 3 s): the fields a synthetic stand-in does not set."""
+    return chapter.ir_readings(0.1, 1, 3, duration=3.0)
+
+
 def _readings(**fields) -> chapter.IrReadings:
-    """An :class:`IrReadings` of the given fields, the others empty (what a synthetic ledger input needs)."""
+    """A real small :class:`IrReadings` with the given fields replaced (what a synthetic ledger input needs): a
+    complete object, which its spec checks (every axis and unscaled reading, the bounds and simulations per axis)."""
     rows = [a.shape[0] for errs in fields.get("run_rmse", {}).values() for a in errs.values()]
-    empty = dict(run_rmse={}, bound={}, bound_scans={}, sims={}, r_change=0.0, sigma_rms={},
-                 sigma_band=(float("nan"), float("nan")), runs=rows[0] if rows else 1, seed=0, t_min=0.0)
-    return chapter.IrReadings(**{**empty, **fields})
+    return dataclasses.replace(_small_readings(), **{"runs": rows[0] if rows else 3, **fields})
 
 
 def _arch_study(seed: int, split_feedback: float = -1.0, lit_feedback: float = 50.0,
@@ -955,7 +962,7 @@ def test_paired_studies_are_paired_per_run_rmse(pairs: tuple[chapter.WeightPair,
     K = asym.sc.t.size
     w = np.full(K, 0.5)
     ps = chapter.paired_studies(R, R, Q, (w, w), asym, aniso, runs=3, seeds=(7, 8, 9), weight_seed=0,
-                                fig6_omegas=(0.5, 0.25), T=5.0)
+                                fig6_omegas=(0.5, chapter.W_PUB, chapter.W_GRID), T=5.0)
     sc_p = two_sensor.two_sensor_scenario(R, R, Q, np.random.default_rng(7), runs=3, T=5.0)
     st = two_sensor.fusion_study(sc_p, w, w)
     np.testing.assert_array_equal(ps.paired[two_sensor.StudyMethod.CI],
@@ -969,6 +976,9 @@ def test_paired_studies_are_paired_per_run_rmse(pairs: tuple[chapter.WeightPair,
     assert list(inputs.fuzzy_levels) == [0.05]
     with pytest.raises(ValueError, match="seeds"):
         chapter.paired_studies(R, R, Q, (w, w), asym, aniso, runs=3, seeds=(7, 8), weight_seed=0, fig6_omegas=(), T=5.0)
+    with pytest.raises(ValueError, match="fig6_omegas"):   # numbers() and the ledger read the published weights
+        chapter.paired_studies(R, R, Q, (w, w), asym, aniso, runs=3, seeds=(7, 8, 9), weight_seed=0,
+                               fig6_omegas=(0.5, 0.25), T=5.0)
 
 
 def test_slip_all_is_the_slip_reading_on_every_step(study: two_sensor.FusionStudy) -> None:
@@ -993,9 +1003,35 @@ def test_model_rmse_closed_form() -> None:
 
 def test_ir_paired_takes_the_azimuth_of_the_primary_reading() -> None:
     prim = list(chapter.IR_READINGS)[0]
-    rr = {"a": np.array([[1.0, 2.0, 0.0, 0.0], [3.0, 4.0, 0.0, 0.0]])}
-    got = chapter.ir_paired(_readings(run_rmse={("x", prim): rr}))
-    np.testing.assert_array_equal(got["a"], [1.0, 3.0])
+    readings = _ir_readings()
+    rr = readings.run_rmse[("x", prim)]
+    got = chapter.ir_paired(readings)
+    assert set(got) == set(rr)
+    for name, v in rr.items():
+        np.testing.assert_array_equal(got[name], v[:, 0])
+    y = readings.run_rmse[("y", prim)]   # another axis, other numbers: the primary reading of x is the one read
+    shifted = dataclasses.replace(readings, run_rmse={**readings.run_rmse, ("y", prim): {k: v + 1.0 for k, v in y.items()}})
+    np.testing.assert_array_equal(chapter.ir_paired(shifted)[name], v[:, 0])
+
+
+def test_ir_readings_refuse_a_partial_object_by_name() -> None:
+    """The readings every consumer indexes: a missing axis, unscaled reading, σa or half the scaled readings of an
+    axis is refused when the object is built, naming the field (not a KeyError in a later glue or ledger call)."""
+    full = _ir_readings()
+    prim, scaled = list(chapter.IR_READINGS)[0], list(chapter.IR_READINGS)[1]
+    drop = lambda d, k: {key: v for key, v in d.items() if key != k}   # noqa: E731
+    for change, label in (({"run_rmse": drop(full.run_rmse, ("y", prim))}, "IrReadings.run_rmse"),
+                          ({"run_rmse": drop(full.run_rmse, ("x", scaled))}, "IrReadings.run_rmse"),
+                          ({"bound": drop(full.bound, "y")}, "IrReadings.bound"),
+                          ({"bound_scans": drop(full.bound_scans, "x")}, "IrReadings.bound_scans"),
+                          ({"sims": drop(full.sims, "y")}, "IrReadings.sims"),
+                          ({"sigma_rms": drop(full.sigma_rms, chapter.IR_SIGMA_A[0])}, "IrReadings.sigma_rms")):
+        with pytest.raises(ValueError, match=re.escape(label)):
+            dataclasses.replace(full, **change)
+    no_scaled = {k: v for k, v in full.run_rmse.items() if chapter.IR_READINGS[k[1]][1] == 1.0}
+    partial = dataclasses.replace(full, run_rmse=no_scaled)   # ir_readings(scaled_axes=()): a valid object...
+    with pytest.raises(ValueError, match="ir_readings misses the scaled readings"):   # ...that the ledger refuses
+        chapter.IrInputs(ir_readings=partial, ir_seed=0, ir_paired={"a": np.ones(3)}, ir_means={"a": {"x": 1.0}})
 
 
 def test_baseline_slip_numbers_are_the_slip_of_the_raw_measurements(study: two_sensor.FusionStudy,

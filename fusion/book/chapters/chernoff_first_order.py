@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, instance, number, table, validated_post_init
 from fusion._validation import FloatArray, count, instance_of
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch
@@ -171,6 +171,12 @@ class SigmaProblem:
     tv_sp: float
     logz_sp: float
 
+    __result_spec__ = ResultSpec({**{f"omega_{k}": number(bounds=(0.0, 1.0)) for k in ("exact", "first_order", "sp")},
+                                  **{f"tv_{k}": number(bounds=(0.0, 1.0)) for k in ("first_order", "sp")},
+                                  **{f"logz_{k}": number(nonnegative=False) for k in ("first_order", "sp")}})
+    __post_init__ = validated_post_init
+
+
 
 def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: int = _SIGMA_GRID[1]) -> SigmaProblem:
     r"""Step D's first-order mixture and the sigma-point mixture against the exact answer, for two 2-D mixtures.
@@ -228,7 +234,6 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class SigmaFirstOrderStudy:
     """Step D's first-order mixture against the sigma-point mixture: the two-mixture example and random problems.
 
@@ -242,6 +247,11 @@ class SigmaFirstOrderStudy:
 
     toy: SigmaProblem
     runs: pd.DataFrame
+
+    __result_spec__ = ResultSpec({"toy": instance(SigmaProblem),
+                                  "runs": table(*(f.name for f in dataclasses.fields(SigmaProblem)))})
+    __post_init__ = validated_post_init
+
 
     def table(self) -> pd.DataFrame:
         """The example and the random problems' medians: exponent error, normaliser error, total variation."""

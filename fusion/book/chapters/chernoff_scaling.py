@@ -14,9 +14,9 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 from matplotlib.figure import Figure
-from fusion._frozen import frozen_arrays
 from fusion._docstrings import with_sections
-from fusion._results import ResultSpec, array, integer, validated_post_init
+from fusion._results import ResultSpec, array, dict_of, integer, mask, tuple_of, validated_post_init
+from fusion._shown import shown
 from fusion._validation import FloatArray, allocation, as_array, count, counts, distinct, instance_of, scalar
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
@@ -72,7 +72,6 @@ SWARM_VARIANTS: dict[str, SwarmOptions] = {"pso_defaults": SwarmOptions(),
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class SwarmStudy:
     r"""The swarm against SLSQP on the same samples as the number of nodes grows.
 
@@ -95,6 +94,13 @@ class SwarmStudy:
     corner: Mapping[tuple[int, str], np.ndarray]
     runs: int
     r: int
+
+    __result_spec__ = ResultSpec({"gap": dict_of(array("runs"), key=tuple),
+                                  "evaluations": dict_of(array("runs", bounds=(1.0, np.inf)), key=tuple),
+                                  "corner": dict_of(mask("runs"), key=tuple), "runs": integer(2), "r": integer(2)},
+                                 relations=(lambda v, cls: _swarm_relation(v, cls),))
+    __post_init__ = validated_post_init
+
 
     def table(self) -> pd.DataFrame:
         """Per N and variant: median and mean gap, share of runs the swarm is above SLSQP by > 1e-6, evaluations."""
@@ -149,6 +155,22 @@ def _swarm_and_slsqp(w: FloatArray, m: FloatArray, c: FloatArray, seed: int, r: 
     rngs = [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(w.shape[0])]
     return ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="pso", reference=True,
                                   swarm_options=swarm_options)
+
+
+def _swarm_relation(values: dict[str, Any], cls: str) -> None:
+    """One entry per run; the same (N, variant) keys in gap and corner, plus (N, "SLSQP") for every N there in the
+    evaluations and corners (the table and the glue read them)."""
+    runs = values["runs"]
+    for name in ("gap", "evaluations", "corner"):
+        for key, arr in values[name].items():
+            if arr.shape[0] != runs:
+                raise ValueError(f"{cls}.{name}[{shown(key)}] must have one entry per run ({runs}), got {arr.shape[0]}")
+    keys = set(values["gap"]) | {(n, "SLSQP") for n, _ in values["gap"]}
+    for name in ("evaluations", "corner"):
+        if set(values[name]) != keys:
+            missing, extra = sorted(keys - set(values[name])), sorted(set(values[name]) - keys)
+            raise ValueError(f"{cls}.{name} must have the keys of gap and (N, 'SLSQP') for each N, "
+                             f"misses {shown(missing, 200)}, has extra {shown(extra, 200)}")
 
 
 @_on_problems
@@ -303,7 +325,6 @@ def box_corner(eps: ArrayLike, tol: float = 1e-9) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class ScalingStudy:
     r"""Accuracy of steps E-G in R against the exact Chernoff exponents, and the cost of steps D-F in N, S, R.
 
@@ -325,6 +346,12 @@ class ScalingStudy:
     n: int
     runs: int
 
+    __result_spec__ = ResultSpec({"rs": tuple_of(integer(2)), "eps_err": array("R", "runs", bounds=(0.0, np.inf)),
+                                  "n": integer(2), "runs": integer(2)},
+                                 relations=(lambda v, cls: _scaling_relation(v, cls),))
+    __post_init__ = validated_post_init
+
+
     def slope(self) -> float:
         """Least-squares slope of log median error against log R (-1/2 for a Monte-Carlo error)."""
         x, y = np.log(np.array(self.rs, float)), np.log(np.median(self.eps_err, axis=1))
@@ -344,6 +371,13 @@ class ScalingStudy:
         return pd.DataFrame({"R": self.rs, "median ‖ε̂* − ε*‖₁": [rounded(x) for x in np.median(self.eps_err, 1)],
                              "90th percentile": [rounded(x) for x in np.quantile(self.eps_err, 0.9, axis=1)]}
                             ).set_index("R")
+
+
+def _scaling_relation(values: dict[str, Any], cls: str) -> None:
+    """One row of eps_err per R, one column per run."""
+    if values["eps_err"].shape != (len(values["rs"]), values["runs"]):
+        raise ValueError(f"{cls}.eps_err must have shape (len(rs), runs) = ({len(values['rs'])}, {values['runs']}), "
+                         f"got {values['eps_err'].shape}")
 
 
 def density_evaluations(n: int, s: int) -> int:

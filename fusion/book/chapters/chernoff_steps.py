@@ -33,7 +33,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 import dataclasses
 from dataclasses import dataclass
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, array, dict_of, instance, integer, nested, number, table, validated_post_init
 from fusion.book.study_cache import study_cache
 from typing import Any
 
@@ -79,7 +79,6 @@ CHAPTER_R = 2000
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class SnisDelta:
     r"""Delta-method terms of the self-normalised importance-sampling mean.
 
@@ -111,6 +110,11 @@ class SnisDelta:
     c: FloatArray
     V: FloatArray
     second_moment: float
+
+    __result_spec__ = ResultSpec({"mu": array("d"), "c": array("d"), "V": array("d", "d", covariance=True),
+                                  "second_moment": number(positive=True)})
+    __post_init__ = validated_post_init
+
 
 
 #: Columns that this module's bias tables write and their glue reads (issue 36: named once): the delta method's
@@ -165,7 +169,6 @@ def snis_delta_terms(points: ArrayLike, log_target: ArrayLike, log_proposal: Arr
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class ToyReference:
     """Exact references of the two-mixture example by quadrature.
 
@@ -194,6 +197,12 @@ class ToyReference:
     omega_star: float
     mean_star: FloatArray
     proposal: mx.GaussianMixture
+
+    __result_spec__ = ResultSpec({"gms": nested(mx.GaussianMixture, count=2), "points": array("n", 2),
+                                  "cell": number(positive=True), "L": array("n", 2), "omega_star": number(bounds=(0.0, 1.0)),
+                                  "mean_star": array(2), "proposal": instance(mx.GaussianMixture)})
+    __post_init__ = validated_post_init
+
 
     def fused_mean(self, omega: ArrayLike) -> FloatArray:
         """Exact mean (k, 2) of :math:`p_{(\\omega, 1-\\omega)}` for each ``omega`` (k,) in [0, 1]."""
@@ -296,7 +305,6 @@ def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4,
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class SnisBiasStudy:
     r"""Step H's self-normalised mean on the two-mixture example: delta method against simulation.
 
@@ -315,6 +323,12 @@ class SnisBiasStudy:
     table: pd.DataFrame
     delta: Mapping[float, SnisDelta]
     total: int
+
+    __result_spec__ = ResultSpec({"table": table("ω", "R", "blocks", C_NORM, ALONG, ALONG_LOW, ALONG_HIGH),
+                                  "delta": dict_of(instance(SnisDelta), key=(float, int, np.number)),
+                                  "total": integer(1)})
+    __post_init__ = validated_post_init
+
 
     def glue(self) -> GlueValues:
         """Glue ``chf_snis_*``: sizes, :math:`|c|` and the measurement at ω* and at the far ω, the ratio bias / SD at
@@ -470,8 +484,20 @@ def defensive_mixture(proposal: mx.GaussianMixture, local: list[mx.GaussianMixtu
                               np.concatenate([proposal.covs] + [gm.covs for gm in local]))
 
 
+#: The proposals of :func:`defensive_study`, the keys of :class:`DefensiveStudy`'s fields.
+DEFENSIVE_METHODS = ("patent", "redraw", "defensive")
+
+
+def _defensive_relation(values: dict[str, Any], cls: str) -> None:
+    """One value per run (``runs``) in every method's arrays."""
+    for name in ("omega_err", "sq_err", "ess", "ess_vertex"):
+        for key, arr in values[name].items():
+            if arr.shape[0] != values["runs"]:
+                raise ValueError(f"{cls}.{name}[{shown(key)}] must have one entry per run ({values['runs']}), "
+                                 f"got {arr.shape[0]}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class DefensiveStudy:
     """Step E's proposals on the two-mixture example, run by run (paired: run k of each method is the same replicate).
 
@@ -496,6 +522,15 @@ class DefensiveStudy:
     runs: int
     r: int
     alpha: float
+
+    __result_spec__ = ResultSpec({"omega_err": dict_of(array("runs", bounds=(0.0, 1.0)), keys=DEFENSIVE_METHODS),
+                                  "sq_err": dict_of(array("runs", bounds=(0.0, np.inf)), keys=DEFENSIVE_METHODS),
+                                  **{name: dict_of(array("runs", bounds=(0.0, 1.0)), keys=DEFENSIVE_METHODS)
+                                     for name in ("ess", "ess_vertex")},
+                                  "runs": integer(2), "r": integer(2), "alpha": number(positive=True, bounds=(0.0, 1.0))},
+                                 relations=(lambda v, cls: _defensive_relation(v, cls),))
+    __post_init__ = validated_post_init
+
 
     def table(self) -> pd.DataFrame:
         """Medians and means per method (4 significant digits)."""
@@ -769,7 +804,6 @@ def _block_minimum(L: FloatArray, lg: FloatArray, iterations: int = 60) -> Float
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class ChosenBiasStudy:
     r"""Step H's mean with the exponent fixed at :math:`\omega^*` and chosen on the same samples (steps F-G).
 
@@ -785,6 +819,11 @@ class ChosenBiasStudy:
 
     table: pd.DataFrame
     total: int
+
+    __result_spec__ = ResultSpec({"table": table("R", "blocks", "extra", EXTRA_LOW, EXTRA_HIGH, "mean |ω − ω*|"),
+                                  "total": integer(1)})
+    __post_init__ = validated_post_init
+
 
     def display_table(self) -> pd.DataFrame:
         """The table, rounded to 4 decimals (block counts as integers), indexed by R."""

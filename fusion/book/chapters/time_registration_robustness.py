@@ -15,7 +15,8 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, dict_of, instance, text, validated_post_init
+from fusion._shown import shown
 from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
@@ -26,8 +27,18 @@ if TYPE_CHECKING:  # the ledger's study type (its module imports the chapter mod
 __all__ = ["robustness_table", "delay_table", "delay_break_even", "RobustnessReading", "robustness_readings"]
 
 
+def _options_relation(values: Mapping[str, object], cls: str) -> None:
+    """The options are keyword arguments of :func:`fusion.scenarios.time_registration.monte_carlo`."""
+    import inspect
+
+    allowed = [p.name for p in inspect.signature(sc.monte_carlo).parameters.values() if p.kind is p.KEYWORD_ONLY]
+    unknown = [k for k in values["options"] if k not in allowed]
+    if unknown:
+        raise ValueError(f"{cls}.options must be keyword arguments of monte_carlo ({', '.join(allowed)}), "
+                         f"got {shown(unknown)}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class RobustnessReading:
     """One open choice or stress test of the §3-4 comparison (:func:`robustness_readings`).
 
@@ -47,6 +58,12 @@ class RobustnessReading:
     choice: str
     reading: str
     options: Mapping[str, object]
+
+    __result_spec__ = ResultSpec({"key": text(), "choice": text(), "reading": text(),
+                                  "options": dict_of(instance(Mapping, float, int, np.ndarray))},
+                                 relations=(lambda v, cls: _options_relation(v, cls),))
+    __post_init__ = validated_post_init
+
 
 TWO = RegMethod.TWO_POINT
 IMPROVED = RegMethod.IMPROVED

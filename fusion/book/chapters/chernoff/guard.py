@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, array, dict_of, integer, number, validated_post_init
 from fusion._validation import FloatArray
 from fusion.book.tables import rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, RangeBearingScenario, TrackingRun, min_local_ess,
@@ -179,8 +179,11 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     return v
 
 
+#: The designs of :func:`design_study`, the keys of :class:`DesignStudy`'s fields.
+DESIGNS = ("plain", "more particles", "guard")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class DesignStudy:
     """The first update of the local filters under three designs, on the same runs (:func:`design_study`).
 
@@ -201,6 +204,12 @@ class DesignStudy:
     weighted: Mapping[str, float]
     n_initial: int
     threshold: float
+
+    __result_spec__ = ResultSpec({"ess": dict_of(array("runs", "N", bounds=(0.0, np.inf)), keys=DESIGNS),
+                                  "weighted": dict_of(number(positive=True), keys=DESIGNS), "n_initial": integer(1),
+                                  "threshold": number()})
+    __post_init__ = validated_post_init
+
 
     def glue(self) -> GlueValues:
         """Glue values ``chf_design_*``: runs collapsed at the first update, smallest ESS and cost, per design."""

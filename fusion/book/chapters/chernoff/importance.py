@@ -5,7 +5,7 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, flag, integer, number, table, validated_post_init
 from fusion._counts import seed as check_seed
 from fusion.book.study_cache import study_cache
 from typing import Any
@@ -48,7 +48,6 @@ def _moment_region(covs: list[FloatArray], e0: FloatArray, k: int) -> Any:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class IsVarianceStudy:
     """Bias of the importance-sampled objective and the finite-moment regions, on the Gaussian pair of
     :func:`criteria_example` with the proposal at ω⁽⁰⁾ = 1/2.
@@ -86,6 +85,14 @@ class IsVarianceStudy:
     ok: bool
     power: float
 
+    __result_spec__ = ResultSpec(
+        {"table": table("rho", "3rd moment finite", BIAS_PREDICTED, BIAS_SAMPLED, BIAS_SE, "median"),
+         **{name: number(bounds=(0.0, 1.0)) for name in ("lo", "hi", "lo3", "hi3")}, "R": integer(1),
+         "replicates": integer(2), "ok": flag(), "power": number()},
+        relations=(lambda v, cls: _regions_relation(v, cls),))
+    __post_init__ = validated_post_init
+
+
     def glue(self) -> GlueValues:
         """Glue values ``chf_isv_*``: the intervals, R, replicates, rows of the table and the test's power."""
         t = self.table
@@ -101,6 +108,14 @@ class IsVarianceStudy:
         v["chf_isv_over_08"] = rounded(100 * float(t.loc[0.8, BIAS_PREDICTED] / t.loc[0.8, BIAS_SAMPLED] - 1), 0)
         v["chf_isv_median_ratio_08"] = rounded(float(t.loc[0.8, "median"] / t.loc[0.8, BIAS_SAMPLED]), 1)
         return v
+
+
+def _regions_relation(values: dict[str, Any], cls: str) -> None:
+    """The finite-third-moment interval lies inside the finite-variance interval: lo <= lo3 <= hi3 <= hi."""
+    lo, lo3, hi3, hi = (values[k] for k in ("lo", "lo3", "hi3", "hi"))
+    if not lo <= lo3 <= hi3 <= hi:
+        raise ValueError(f"{cls}.lo, lo3, hi3, hi must be ordered lo <= lo3 <= hi3 <= hi (the third moment's interval "
+                         f"inside the variance's), got {lo}, {lo3}, {hi3}, {hi}")
 
 
 def is_variance_study(rng: np.random.Generator, R: int = 100, replicates: int = 20_000) -> IsVarianceStudy:

@@ -19,9 +19,8 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion._docstrings import with_sections, reads_results
-from fusion._frozen import frozen_arrays
 from fusion._results import (ResultSpec, array, dict_of, instance, integer, number, shared_post_init, table, text,
-                             tuple_of)
+                             tuple_of, validated_post_init)
 from fusion._shown import shown
 from fusion._validation import FloatArray, instance_of
 from fusion.book.claims import build_ledger
@@ -44,10 +43,10 @@ from fusion.book.chapters.ci.fruit_fly_step import (GRID_FINE, CANDIDATES_ABOVE,
                                                     MEDIAN_ERROR, RUNS_WITHIN)
 from fusion.book.chapters.ci.infrared import IR_AXES, IR_READINGS, IrReadings, IR_SIGMA_A, ir_ratio, ir_ratio_band, ir_rms
 from fusion.book.chapters.ci.text import nees_band, paired_text, readable
-from fusion.book.chapters.ci.paired import PairedClaimInputs
+from fusion.book.chapters.ci.paired import _PAIRED_CLAIM_FIELDS, _REAL, _RUNS, PairedClaimInputs, _runs_relation
 from fusion.book.chapters.ci.printed import PrintedWeightFacts
-from fusion.book.chapters.ci.tracking import LegClaimInputs, _band_numbers, slip_pair_band
-from fusion.book.chapters.ci.weights import WeightClaimInputs, OMEGA_FOUND, TR_P
+from fusion.book.chapters.ci.tracking import _LEG_FIELDS, LegClaimInputs, _band_numbers, slip_pair_band
+from fusion.book.chapters.ci.weights import _WEIGHT_FIELDS, WeightClaimInputs, OMEGA_FOUND, TR_P
 
 __all__ = ["ArchInputs", "PeriodRuns", "PairedInputs", "IrInputs", "LedgerStudies", "LedgerInputs", "LEDGER_INPUTS", "ledger_inputs", "ev_headline", "ev_fig4_fig7", "ev_fig6", "ev_fig8", "ev_equations",
            "ev_fig5", "ev_times", "ev_misc", "ev_ir_values", "ev_ir_baselines", "ev_foa_step", "EVIDENCE_FUNCTIONS",
@@ -59,6 +58,10 @@ RecordEvidence: TypeAlias = "dict[str, dict[str, Evidence] | Evidence]"
 
 
 # --------------------------------------------------------------------------- claims
+#: Field specs of :class:`ArchInputs` (fusion._results), shared with the bundles that hold them.
+_ARCH_FIELDS = {"arch": tuple_of(instance(ArchitectureStudy), count=2), "arch_seeds": tuple_of(integer(0), count=2)}
+
+
 @dataclass(frozen=True)
 class ArchInputs:
     """The ledger's entries of the two architecture studies (:func:`ledger_studies`).
@@ -74,9 +77,11 @@ class ArchInputs:
     arch: tuple[ArchitectureStudy, ArchitectureStudy]
     arch_seeds: tuple[int, int]
 
+    __result_spec__ = ResultSpec(_ARCH_FIELDS)
+    __post_init__ = validated_post_init
+
 
 @dataclass(frozen=True)
-@frozen_arrays
 class PeriodRuns:
     """CI at Fig. 5's two published weights on the identical sensors at one period of :data:`FIG6_PERIODS`.
 
@@ -94,27 +99,28 @@ class PeriodRuns:
     fruit_fly: FloatArray
     grid: FloatArray
 
+    __result_spec__ = ResultSpec({"seed": integer(0), "fruit_fly": _RUNS, "grid": _RUNS})
+    __post_init__ = validated_post_init
 
-#: Key types of a dict keyed by a real number (a period, a weight, a significance level).
-_REAL = (float, int, np.number)
-#: A per-run RMSE (m, or mrad): one non-negative value per run.
-_RUNS = array("runs", bounds=(0.0, np.inf))
+
 #: Field specs of the ledger's inputs (fusion._results), by the class that declares the fields: every class that
 #: holds them (PairedInputs, IrInputs, LedgerStudies, LedgerInputs) checks them when built.
-_ARCH_FIELDS = {"arch": tuple_of(instance(ArchitectureStudy), count=2), "arch_seeds": tuple_of(integer(0), count=2)}
-_PAIRED_FIELDS = {
-    "paired": dict_of(_RUNS), "paired_runs": integer(1), "paired_seed": integer(0), "paired_unequal": dict_of(_RUNS),
-    "unequal_seed": integer(0), "paired_random": _RUNS, "random_seed": integer(0), "paired_aniso": dict_of(_RUNS),
-    "paired_fig6": dict_of(_RUNS, key=_REAL, required=(W_PUB, W_GRID)), "fuzzy_levels": dict_of(_RUNS, key=_REAL),
-    "aniso_seed": integer(0), "fig6_periods": dict_of(instance(PeriodRuns), key=_REAL), "flat_range": number(),
-    "flat_pub_grid": tuple_of(number(positive=True), count=2)}
+_PAIRED_FIELDS = {**_PAIRED_CLAIM_FIELDS,
+                  "aniso_seed": integer(0), "fig6_periods": dict_of(instance(PeriodRuns), key=_REAL),
+                  "flat_range": number(), "flat_pub_grid": tuple_of(number(positive=True), count=2)}
 _IR_FIELDS = {"ir_readings": instance(IrReadings), "ir_seed": integer(0),
               "ir_paired": dict_of(array("ir_runs", bounds=(0.0, np.inf))), "ir_means": dict_of(dict_of(number()))}
-_WEIGHT_FIELDS = {"fruit_fly_seeds": instance(FruitFlySeeds), "fruit_fly_step": integer(1), "foa_evaluations": integer(0),
-                  "ml_gap": number(), "fruit_fly_seeds_aniso": instance(FruitFlySeeds),
-                  "omega_aniso": number(bounds=(0.0, 1.0)), "flat_level": number(positive=True)}
-_LEG_FIELDS = {"leg_floor": number(), "leg_best": number(), "leg_floor_causal": number()}
 _PAIR = tuple_of(number(), count=2)
+
+
+def _ir_scaled_relation(values: Mapping[str, Any], cls: str) -> None:
+    """The ledger reads the scaled readings of the x axis (``ledger_values``): ``ir_readings`` must hold them
+    (:func:`ir_readings` with ``"x"`` in ``scaled_axes``, its default)."""
+    missing = [("x", label) for label, (_, factor) in IR_READINGS.items()
+               if factor != 1.0 and ("x", label) not in values["ir_readings"].run_rmse]
+    if missing:
+        raise ValueError(f"{cls}.ir_readings misses the scaled readings {shown(missing, 200)} of the x axis (the ledger "
+                         "reads them: ir_readings with 'x' in scaled_axes)")
 _LEDGER_FIELDS = {
     "study": instance(FusionStudy), "model_rmse": dict_of(number(), required=("x", "y")), "nees": dict_of(number()),
     "nees_runs": integer(1), "eq2_error": number(), "eq6_asym": number(), "bench": dict_of(number()),
@@ -124,13 +130,6 @@ _LEDGER_FIELDS = {
     "slip_all": dict_of(_PAIR), "slip_weights": dict_of(_PAIR, key=_REAL),
     "slip_band": dict_of(tuple_of(integer(0), count=2)), "printed": instance(PrintedWeightFacts), "exact_rmse": _PAIR,
     "fruit_fly_step_study": table(), "fruit_fly_step_targets": table()}
-
-
-def _runs_relation(values: Mapping[str, Any], cls: str) -> None:
-    """Every paired study's per-run RMSE holds ``paired_runs`` values (one per run)."""
-    if "paired_random" in values and values["paired_random"].shape[0] != values["paired_runs"]:
-        raise ValueError(f"{cls}.paired_runs must be the number of runs of the paired studies "
-                         f"({values['paired_random'].shape[0]}), got {shown(values['paired_runs'])}")
 
 
 @dataclass(frozen=True)
@@ -179,7 +178,7 @@ class IrInputs:
     ir_paired: Mapping[str, np.ndarray]
     ir_means: Mapping[str, Mapping[str, float]]
 
-    __result_spec__ = ResultSpec(_IR_FIELDS)
+    __result_spec__ = ResultSpec(_IR_FIELDS, relations=(lambda v, cls: _ir_scaled_relation(v, cls),))
     __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 
@@ -232,7 +231,8 @@ class LedgerStudies(IrInputs, PairedInputs, ArchInputs):
     """
 
     __result_spec__ = ResultSpec({**_ARCH_FIELDS, **_PAIRED_FIELDS, **_IR_FIELDS},
-                                 relations=(lambda v, cls: _runs_relation(v, cls),))
+                                 relations=(lambda v, cls: _runs_relation(v, cls),
+                                            lambda v, cls: _ir_scaled_relation(v, cls)))
     __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 
@@ -318,7 +318,8 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
     fruit_fly_step_targets: pd.DataFrame
 
     __result_spec__ = ResultSpec({**_ARCH_FIELDS, **_PAIRED_FIELDS, **_IR_FIELDS, **_WEIGHT_FIELDS, **_LEG_FIELDS,
-                                  **_LEDGER_FIELDS}, relations=(lambda v, cls: _runs_relation(v, cls),))
+                                  **_LEDGER_FIELDS}, relations=(lambda v, cls: _runs_relation(v, cls),
+                                                                lambda v, cls: _ir_scaled_relation(v, cls)))
     __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 

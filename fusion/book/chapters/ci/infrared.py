@@ -512,11 +512,11 @@ class IrReadings:
     t_min: float
 
     __result_spec__ = ResultSpec(
-        {"run_rmse": dict_of(dict_of(array("runs", 4, bounds=(0.0, np.inf))), key=tuple, nonempty=False),
-         "bound": dict_of(dict_of(array(4, bounds=(0.0, np.inf)), keys=("both", "radar")), nonempty=False),
-         "bound_scans": dict_of(array("K", 4, bounds=(0.0, np.inf), nan=True), nonempty=False),  # NaN at scan 0
-         "sims": dict_of(instance(ir.IrRadarRuns), nonempty=False), "r_change": number(),
-         "sigma_rms": dict_of(array(4, bounds=(0.0, np.inf)), key=(float, int, np.number), nonempty=False),
+        {"run_rmse": dict_of(dict_of(array("runs", 4, bounds=(0.0, np.inf))), key=tuple),
+         "bound": dict_of(dict_of(array(4, bounds=(0.0, np.inf)), keys=("both", "radar")), keys=tuple(IR_AXES)),
+         "bound_scans": dict_of(array("K", 4, bounds=(0.0, np.inf), nan=True), keys=tuple(IR_AXES)),  # NaN at scan 0
+         "sims": dict_of(instance(ir.IrRadarRuns), keys=tuple(IR_AXES)), "r_change": number(),
+         "sigma_rms": dict_of(array(4, bounds=(0.0, np.inf)), keys=IR_SIGMA_A),
          "sigma_band": tuple_of(instance(float, int, np.number), count=2), "runs": integer(1), "seed": integer(0),
          "t_min": number()},
         relations=(lambda v, cls: _ir_relation(v, cls),))
@@ -524,7 +524,24 @@ class IrReadings:
 
 
 def _ir_relation(values: Mapping[str, Any], cls: str) -> None:
-    """One RMSE per run; the σa band NaN (no σa rounds to the published angles) or positive and ordered."""
+    """The readings :func:`ir_readings` computes (its consumers index them): every (axis, reading) of
+    :data:`IR_AXES` × :data:`IR_READINGS` at the unscaled Q, and per axis the scaled readings all or none (those of
+    ``scaled_axes``); one RMSE per run; the σa band NaN (no σa rounds to the published angles) or positive and ordered."""
+    keys = set(values["run_rmse"])
+    unknown = [k for k in keys if not (isinstance(k, tuple) and len(k) == 2 and k[0] in IR_AXES and k[1] in IR_READINGS)]
+    if unknown:
+        raise ValueError(f"{cls}.run_rmse must be keyed by (axis of IR_AXES, reading of IR_READINGS), got {shown(unknown)}")
+    for axis in IR_AXES:
+        full = [(axis, label) for label, (_, factor) in IR_READINGS.items() if factor == 1.0]
+        scaled = [(axis, label) for label, (_, factor) in IR_READINGS.items() if factor != 1.0]
+        missing = [k for k in full if k not in keys]
+        if missing:
+            raise ValueError(f"{cls}.run_rmse misses the readings {shown(missing, 200)} (every axis has the unscaled "
+                             "readings; its consumers read them)")
+        some = [k for k in scaled if k in keys]
+        if some and len(some) != len(scaled):
+            raise ValueError(f"{cls}.run_rmse must hold all the scaled readings of axis {shown(axis)} or none, misses "
+                             f"{shown([k for k in scaled if k not in keys], 200)}")
     for key, errs in values["run_rmse"].items():
         for method, arr in errs.items():
             if arr.shape[0] != values["runs"]:

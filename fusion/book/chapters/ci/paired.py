@@ -9,7 +9,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import frozen_arrays
+from fusion._results import (ResultSpec, array, dict_of, instance, integer, number, shared_post_init, tuple_of,
+                             validated_post_init)
 from fusion import data
 from fusion._docstrings import reads_results
 from fusion._validation import as_array, count, instance_of
@@ -20,7 +21,7 @@ from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.checks import _entries
-from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S
+from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S, W_GRID, W_PUB
 from fusion.book.chapters.ci.text import _glue_doc, paired_text, readable
 from fusion.book.chapters.ci.tracking import fuzzy_levels
 from fusion.book.chapters.ci.weights import WeightPair
@@ -127,8 +128,26 @@ def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> GlueValue
             "ci_fig6_vs_half": rounded(float(np.mean(p6[w_grid]) - np.mean(half)), 1)}
 
 
+#: Key types of a dict keyed by a real number (a period, a weight, a significance level).
+_REAL = (float, int, np.number)
+#: A per-run RMSE (m, or mrad): one non-negative value per run.
+_RUNS = array("runs", bounds=(0.0, np.inf))
+#: Field specs of :class:`PairedClaimInputs` (``fusion._results``), shared with the ledger's bundles of
+#: ``fusion.book.chapters.ci.claim_evidence`` that hold them.
+_PAIRED_CLAIM_FIELDS = {
+    "paired": dict_of(_RUNS), "paired_runs": integer(1), "paired_seed": integer(0), "paired_unequal": dict_of(_RUNS),
+    "unequal_seed": integer(0), "paired_random": _RUNS, "random_seed": integer(0), "paired_aniso": dict_of(_RUNS),
+    "paired_fig6": dict_of(_RUNS, key=_REAL, required=(W_PUB, W_GRID)), "fuzzy_levels": dict_of(_RUNS, key=_REAL)}
+
+
+def _runs_relation(values: Mapping[str, Any], cls: str) -> None:
+    """Every paired study's per-run RMSE holds ``paired_runs`` values (one per run)."""
+    if "paired_random" in values and values["paired_random"].shape[0] != values["paired_runs"]:
+        raise ValueError(f"{cls}.paired_runs must be the number of runs of the paired studies "
+                         f"({values['paired_random'].shape[0]}), got {shown(values['paired_runs'])}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays(shared=True)  # the study's values, shared
 class PairedClaimInputs:
     """The ledger's entries of :class:`PairedStudies` (:meth:`PairedStudies.claim_inputs`).
 
@@ -167,9 +186,19 @@ class PairedClaimInputs:
     paired_fig6: Mapping[float, np.ndarray]
     fuzzy_levels: Mapping[float, np.ndarray]
 
+    __result_spec__ = ResultSpec(_PAIRED_CLAIM_FIELDS, relations=(lambda v, cls: _runs_relation(v, cls),))
+    __post_init__ = shared_post_init  # the study's values shared, not copied
+
+
+
+def _studies_relation(values: Mapping[str, Any], cls: str) -> None:
+    """``runs`` is the number of runs of the identical and the unequal sensors' per-run RMSEs."""
+    if values["paired_random"].shape[0] != values["runs"]:
+        raise ValueError(f"{cls}.runs must be the number of runs of the paired studies "
+                         f"({values['paired_random'].shape[0]}), got {shown(values['runs'])}")
+
 
 @dataclass(frozen=True)
-@frozen_arrays
 class PairedStudies:
     """The ledger's paired Monte-Carlo studies (:func:`paired_studies`): per-run RMSE on x (m) of every rule.
 
@@ -204,6 +233,15 @@ class PairedStudies:
     paired_u: Mapping[str, np.ndarray]
     omega_u: tuple[float, ...]
     paired_an: Mapping[str, np.ndarray]
+
+    __result_spec__ = ResultSpec(
+        {"runs": integer(1), "seeds": tuple_of(integer(0), count=3), "sc": instance(Scenario), "paired": dict_of(_RUNS),
+         "paired_fig6": dict_of(_RUNS, key=_REAL, required=(W_PUB, W_GRID)), "paired_random": _RUNS,
+         "paired_u": dict_of(_RUNS), "omega_u": tuple_of(number(bounds=(0.0, 1.0))),
+         "paired_an": dict_of(array("aniso_runs", bounds=(0.0, np.inf)))},
+        relations=(lambda v, cls: _studies_relation(v, cls),))
+    __post_init__ = validated_post_init
+
 
     def claim_inputs(self, levels: ArrayLike = (0.001, 0.05, 0.1)) -> PairedClaimInputs:
         """The ledger's entries of the paired studies (for ``claims``).
@@ -273,7 +311,8 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     weight_seed : int
         Seed of :func:`fusion.scenarios.two_sensor.per_step_weights` on ``unequal`` and ``aniso``.
     fig6_omegas : sequence of float
-        Fixed CI weights run on the identical sensors (the source's two published optima, Fig. 6).
+        Fixed CI weights run on the identical sensors: the source's two published optima of Fig. 6 (``W_PUB`` and
+        ``W_GRID``, which :meth:`PairedStudies.numbers` and the ledger read), and any others.
     T : float
         Sampling period (s).
 
@@ -286,7 +325,8 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     Raises
     ------
     ValueError
-        If ``seeds`` does not hold three seeds or ``runs`` is not a positive count.
+        If ``seeds`` does not hold three seeds, ``runs`` is not a positive count or ``fig6_omegas`` misses one of the
+        two published weights.
     """
     instance_of(unequal, WeightPair, "unequal")
     instance_of(aniso, WeightPair, "aniso")
@@ -294,6 +334,10 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     if len(seeds) != 3:
         raise ValueError(f"seeds must hold three seeds (identical, unequal, random weights), got {shown(seeds)}")
     runs = count(runs, "runs")
+    fig6_omegas = tuple(fig6_omegas)
+    if W_PUB not in fig6_omegas or W_GRID not in fig6_omegas:
+        raise ValueError(f"fig6_omegas must hold the source's two published weights {W_PUB} and {W_GRID} (Fig. 6), "
+                         f"got {shown(fig6_omegas)}")
     seed, unequal_seed, random_seed = seeds
     w_fruit_fly, w_grid = weights
     sc_p = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)

@@ -14,7 +14,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, array, dict_of, mask, number, validated_post_init
 from fusion import data
 from fusion._docstrings import reads_results
 from fusion._validation import count, record, scalar, std_scalar, instance_of
@@ -528,6 +528,10 @@ def published_numbers(period: float, runs: int) -> GlueValues:
             "ci_pub_grid": pub_fruit_fly["grid_optimum"][0]}
 
 
+#: Field specs of :class:`LegClaimInputs` (``fusion._results``), shared with the ledger's bundles that hold them.
+_LEG_FIELDS = {"leg_floor": number(), "leg_best": number(), "leg_floor_causal": number()}
+
+
 @dataclass(frozen=True)
 class LegClaimInputs:
     """The ledger's entries of :class:`StraightLeg` (:meth:`StraightLeg.claim_inputs`), m.
@@ -546,9 +550,23 @@ class LegClaimInputs:
     leg_best: float
     leg_floor_causal: float
 
+    __result_spec__ = ResultSpec(_LEG_FIELDS)
+    __post_init__ = validated_post_init
+
+
+
+def _leg_relation(values: Mapping[str, Any], cls: str) -> None:
+    """One floor per straight-leg step (``L`` = the steps of ``on_leg``), at least one steady step (the floors are
+    averaged over them)."""
+    n_leg = int(values["on_leg"].sum())
+    if values["floor"].shape[0] != n_leg:
+        raise ValueError(f"{cls}.floor must have one value per straight-leg step of on_leg ({n_leg}), "
+                         f"got {values['floor'].shape[0]}")
+    if not values["steady"].any():
+        raise ValueError(f"{cls}.steady must hold at least one steady straight-leg step (the floors' average)")
+
 
 @dataclass(frozen=True)
-@frozen_arrays
 class StraightLeg:
     """The straight-leg floors of :func:`fusion.scenarios.two_sensor.straight_leg_floor` set beside a fusion study.
 
@@ -570,6 +588,12 @@ class StraightLeg:
     causal: np.ndarray
     steady: np.ndarray
     rmse: Mapping[str, float]
+
+    __result_spec__ = ResultSpec({"on_leg": mask("K"), "floor": array("L", bounds=(0.0, np.inf)),
+                                  "causal": array("L", bounds=(0.0, np.inf)), "steady": mask("L"),
+                                  "rmse": dict_of(number())}, relations=(lambda v, cls: _leg_relation(v, cls),))
+    __post_init__ = validated_post_init
+
 
     def claim_inputs(self) -> LegClaimInputs:
         """The ledger's entries ``leg_floor``, ``leg_best`` and ``leg_floor_causal`` (m), for ``claims``.

@@ -611,6 +611,12 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
                       P2=P2, res=res, fruit_fly_seeds=two_sensor.fruit_fly_over_seeds(P1, P2, fruit_fly_seeds))
 
 
+#: Field specs of :class:`WeightClaimInputs` (``fusion._results``), shared with the ledger's bundles that hold them.
+_WEIGHT_FIELDS = {"fruit_fly_seeds": instance(FruitFlySeeds), "fruit_fly_step": integer(1), "foa_evaluations": integer(0),
+                  "ml_gap": number(), "fruit_fly_seeds_aniso": instance(FruitFlySeeds),
+                  "omega_aniso": number(bounds=(0.0, 1.0)), "flat_level": number(positive=True)}
+
+
 @dataclass(frozen=True)
 class WeightClaimInputs:
     """The ledger's entries on the weight search (:func:`weight_claim_inputs`).
@@ -640,6 +646,10 @@ class WeightClaimInputs:
     fruit_fly_seeds_aniso: FruitFlySeeds
     omega_aniso: float
     flat_level: float
+
+    __result_spec__ = ResultSpec(_WEIGHT_FIELDS)
+    __post_init__ = validated_post_init
+
 
 
 @reads_results("asym", "aniso")

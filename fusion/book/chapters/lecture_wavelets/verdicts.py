@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, dict_of, instance, integer, trusted, validated_post_init
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
@@ -139,7 +139,6 @@ def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, see
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class Cell:
     """One case of a signal study, with the run count and seed of the study it comes from (:func:`cell`).
 
@@ -155,6 +154,12 @@ class Cell:
     case: Mapping[str, Any]
     runs: int
     seed: int
+
+    __result_spec__ = ResultSpec({"case": dict_of(instance(Mapping, np.ndarray),
+                                                  required=("raw", "denoised", "reconstructed", "gain_err", "weights")),
+                                  "runs": integer(2), "seed": integer(0)})
+    __post_init__ = validated_post_init
+
 
 
 def _holds(cases: Mapping[Any, Any], key: object) -> bool:
@@ -187,7 +192,8 @@ def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[Signal, str, str])
     src = e26 if e26 is not None and _holds(e26.cases, key) else sg
     if not _holds(src.cases, key):
         raise ValueError(f"key must be a (signal, rule, normaliser) case of sg or e26, got {shown(key, 80)}")
-    return Cell(src.cases[key], int(src.runs), int(src.seed))
+    # the study's case, already frozen and read-only: built without re-checking it (a table reads many cells)
+    return trusted(Cell, case=src.cases[key], runs=int(src.runs), seed=int(src.seed))
 
 
 def _e26_case(e: SignalStudy, nm: str, name: str = "e") -> Mapping[str, Any]:

@@ -14,6 +14,7 @@ from matplotlib.figure import Figure
 from scipy import stats
 
 from fusion._docstrings import ParameterDocs
+from fusion._results import ResultSpec, flag, instance, text, validated_post_init
 from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, sci
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -471,6 +472,11 @@ class LumvReading:
     unbiased: bool | None
     minvar: bool | None
     text: str
+
+    __result_spec__ = ResultSpec({"linear": flag(), "unbiased": instance(bool, np.bool_, optional=True),
+                                  "minvar": instance(bool, np.bool_, optional=True), "text": text()})
+    __post_init__ = validated_post_init
+
 
 
 def lumv_readings(sl: LumvStudy) -> dict[AwfMethod, LumvReading]:

@@ -5,7 +5,6 @@ Each is cached per (seed, runs); the shares of the set's members are computed on
 
 from __future__ import annotations
 
-from fusion._frozen import frozen_arrays
 from fusion._validation import instance_of
 
 from collections.abc import Mapping
@@ -17,7 +16,7 @@ import numpy as np
 
 from fusion import data
 from fusion import readings as rd
-from fusion._results import ResultSpec, array, number, tuple_of, validated_post_init
+from fusion._results import ResultSpec, array, dict_of, number, tuple_of, validated_post_init
 from fusion._validation import FloatArray, flag, one_of, scalar
 from fusion._shown import shown
 from fusion.book.chapters import ofs_fair
@@ -113,7 +112,6 @@ def _alpha_study(seed: int, runs: int) -> PairedStudy:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class MembershipStudy:
     """The membership-function study on the primary draws: scales of eq. 6, families, equal weights.
 
@@ -134,6 +132,15 @@ class MembershipStudy:
     sweep: Mapping[FailureCase, FloatArray]
     family: Mapping[FailureCase, Mapping[str, FloatArray]]
     ablation: Mapping[FailureCase, Mapping[str, FloatArray]]
+
+    __result_spec__ = ResultSpec(
+        {"scales": array("k", increasing=True, bounds=(0.0, np.inf)),
+         "sweep": dict_of(array("k", "runs", bounds=(0.0, np.inf)), keys=tuple(FailureCase)),
+         "family": dict_of(dict_of(array("runs", bounds=(0.0, np.inf))), keys=tuple(FailureCase)),
+         "ablation": dict_of(dict_of(array("runs", bounds=(0.0, np.inf)), keys=("optimal_fusion_set", "uniform_set")),
+                             keys=tuple(FailureCase))})
+    __post_init__ = validated_post_init
+
 
 
 #: Scales of eq. 6 swept (°C).
