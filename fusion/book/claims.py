@@ -48,6 +48,7 @@ from __future__ import annotations
 import importlib
 import inspect
 import os
+import re
 import string
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -71,6 +72,8 @@ __all__ = ["SCHEMA", "ClaimsFileError", "ReadingSpec", "ClaimSpec", "ClaimsFile"
            "load_all", "build_ledger", "evaluate"]
 
 _TEXT = {"type": "string", "minLength": 1}
+#: What a record's ``evidence`` field may hold: ``module:function`` (the schema's pattern and ClaimSpec's check).
+_EVIDENCE = r"[A-Za-z_][\w.]*:[A-Za-z_]\w*"
 _READING = {
     "type": "object", "additionalProperties": False, "required": ["key", "choice", "reading"],
     "properties": {"key": {"type": "string", "pattern": "^[a-z0-9][a-z0-9-]*$"}, "choice": _TEXT, "reading": _TEXT,
@@ -111,7 +114,7 @@ SCHEMA: dict[str, Any] = {
                 "assumptions": {"type": "array", "items": _TEXT},
                 "bound": _TEXT,
                 "reason": _TEXT,
-                "evidence": {"type": "string", "pattern": r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$"},
+                "evidence": {"type": "string", "pattern": f"^{_EVIDENCE}$"},
                 "readings": {"type": "object", "additionalProperties": False,
                              "properties": {"primary": {"type": "object", "additionalProperties": False,
                                                         "required": ["choice", "reading"],
@@ -162,10 +165,12 @@ class ReadingSpec:
     Raises
     ------
     TypeError
-        A text field not a str, ``settings`` not a mapping, ``runs`` neither an integer nor None.
+        A text field not a str, ``settings`` not a mapping with str keys, ``runs`` neither an integer nor None
+        (``100.0`` is not a run count).
     ValueError
-        An empty ``key``; ``kind`` not a reading kind; ``runs`` below 1. (``choice`` and ``reading`` may be
-        empty: a record without readings has an implicit primary one.)
+        An empty ``key``; ``kind`` not a reading kind; ``runs`` below 1; ``choice`` or ``reading`` not a text
+        :func:`build_ledger` can fill (see :class:`ClaimSpec`). (``choice`` and ``reading`` may be empty: a
+        record without readings has an implicit primary one.)
     """
 
     key: str
@@ -177,9 +182,13 @@ class ReadingSpec:
 
     def __post_init__(self) -> None:
         _nonempty(self.key, "key")
-        text(self.choice, "choice"), text(self.reading, "reading")  # "" for a record's implicit primary reading
+        for name in ("choice", "reading"):  # "" for a record's implicit primary reading
+            _format_text(text(getattr(self, name), name), name)
         one_of(self.kind, R.READING_KINDS, "kind")
         instance_of(self.settings, Mapping, "settings")
+        for k in self.settings:
+            if not isinstance(k, str):  # a claim file's keys are texts (load refuses any other)
+                raise TypeError(f"settings keys must be str, got {shown(k)}")
         if self.runs is not None:
             count(self.runs, "runs")
         freeze_arrays(self)  # settings stored as a read-only mapping (fuzz 19: a frozen result cannot change)
@@ -219,7 +228,19 @@ class ClaimSpec:
         An empty ``id``, ``chapter``, ``where``, ``claim``, ``published`` or ``link``; ``claimant``, ``test``
         or ``direction`` outside its vocabulary; a margin not ``{"relative": r}`` or ``{"absolute": x}`` with
         a finite value in [0, 1e150]; a ``baseline`` without ``name`` and ``defined`` or with another key; a
-        repeated critique label; ``evidence`` not ``module:function``.
+        repeated critique label; ``evidence`` not ``module:function`` (the file's pattern); and
+        (:class:`ClaimsFileError`, naming the record and the field) every other rule :func:`load` applies to
+        one record, so a record rebuilt with :func:`dataclasses.replace` is held to them too: ``id`` not
+        lower-case words joined by ``-``; a ``claim`` over 200 characters; a paired or equivalence test without
+        ``quantity`` and ``direction``; ``direction`` not ``"equal"`` for an equivalence test and only for it;
+        ``quantity``, ``direction`` or ``margin`` on a test that compares nothing; ``reason`` missing on an
+        unverifiable test or given on another; a headline whose claimant is not the source (R8); an undefined
+        baseline without a reason; two readings with one key, or a primary reading that is not first; a text
+        :func:`build_ledger` fills (``claim``, ``bound``, ``reason``, ``assumptions``, the baseline's texts and
+        the readings') that is not a format text with plain ``{name}`` fields and short specs
+        (``{name:.2f}``, at most two digits of width and of precision): an unterminated ``{``, a nested,
+        positional or attribute field, a conversion, or a spec such as ``{x:>3000000000}`` (write a brace as
+        ``{{`` or ``}}``).
     """
 
     id: str
@@ -250,7 +271,7 @@ class ClaimSpec:
         for name in ("quantity", "bound", "reason", "evidence"):
             text(getattr(self, name), name)
         one_of(self.direction, ("", "less", "greater", "equal"), "direction")
-        flag(self.headline, "headline")
+        object.__setattr__(self, "headline", flag(self.headline, "headline"))  # a NumPy bool stored as a bool
         for name in ("margin", "baseline"):
             if getattr(self, name) is not None:
                 instance_of(getattr(self, name), Mapping, name)
@@ -262,7 +283,7 @@ class ClaimSpec:
             except ClaimsFileError as e:
                 raise ValueError(str(e)) from None
         if self.baseline is not None:
-            _check_baseline(self.baseline)
+            object.__setattr__(self, "baseline", _check_baseline(self.baseline))
         for name in ("margin", "baseline"):  # stored read-only: a frozen record's margin cannot be edited (fuzz 20)
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, frozen_value(getattr(self, name)))
@@ -274,10 +295,10 @@ class ClaimSpec:
             raise ValueError(f"critiques must not repeat a label, got {shown(self.critiques)}")
         if not (isinstance(self.readings, tuple) and all(isinstance(r, ReadingSpec) for r in self.readings)):
             raise TypeError(f"readings must be a tuple of ReadingSpec, got {shown(self.readings)}")
-        if self.evidence:
-            mod, sep, name = self.evidence.partition(":")
-            if not (sep and mod and name):
-                raise ValueError(f"evidence must be 'module:function', got {shown(self.evidence)}")
+        if self.evidence and not re.fullmatch(_EVIDENCE, self.evidence):
+            raise ValueError(f"evidence must be 'module:function' (the pattern {_EVIDENCE} of a claim file), "
+                             f"got {shown(self.evidence)}")
+        _record_rules(self, f"record {self.id}")
 
 
 @dataclass(frozen=True)
@@ -298,6 +319,13 @@ class ClaimsFile:
     TypeError
         ``path`` not a :class:`pathlib.Path`, ``source`` not a str, ``quantities`` not a mapping, ``records``
         not a sequence of :class:`ClaimSpec`.
+    ClaimsFileError
+        (a ValueError naming the file, the record and the field) a rule :func:`load` applies to the whole file,
+        so a file rebuilt with :func:`dataclasses.replace` is held to them too: ``source`` not a key of
+        :data:`fusion.book.ledger.SOURCES`; a quantity key not a non-empty str, or its entry not ``{"label",
+        "margin"[, "why"]}`` with a non-empty label and a margin as :class:`ClaimSpec` takes it; a repeated
+        record id; a record whose chapter is not one of the source's or whose quantity is not declared under
+        ``quantities``; not exactly one headline record, in the source's first chapter.
     """
 
     path: Path
@@ -311,6 +339,7 @@ class ClaimsFile:
         instance_of(self.quantities, Mapping, "quantities")
         if not (isinstance(self.records, (tuple, list)) and all(isinstance(r, ClaimSpec) for r in self.records)):
             raise TypeError(f"records must be a tuple of ClaimSpec, got {shown(self.records)}")
+        _file_rules(self)
         freeze_arrays(self)  # quantities a read-only mapping, records a tuple (fuzz 20: a rebuilt file is checked)
 
     __setstate__ = restore_frozen  # copies and unpickled objects keep it read-only
@@ -416,18 +445,57 @@ _UniqueKeyLoader.add_constructor("tag:yaml.org,2002:int", _bounded_int)
 _MAX_DEPTH = 32
 
 
+#: Most values (mappings, lists and scalars) a claim file may expand to, its aliases expanded (the book's largest
+#: expands to a few thousand; a 400-byte file of nested aliases expands to 10⁹, which every later step would walk).
+_MAX_VALUES = 1_000_000
+
+
 def _check_depth(doc: Any, name: str) -> None:
-    """ClaimsFileError naming the file and the field where ``doc`` nests deeper than ``_MAX_DEPTH``."""
-    stack: list[tuple[Any, tuple[Any, ...]]] = [(doc, ())]
+    """ClaimsFileError naming the file and the field where ``doc`` nests deeper than ``_MAX_DEPTH``, or expands (its
+    YAML aliases written out) to more than ``_MAX_VALUES`` values.
+
+    Each mapping or list is walked once (by identity): a YAML alias is the same object as its anchor, so a file of
+    aliases of aliases costs its own size here, not the size it expands to. A mapping or list that contains itself
+    (``&a [*a]``) is nested infinitely deep.
+    """
+    depth: dict[int, int] = {}  # id(container) -> how many levels below it its deepest value lies
+    size: dict[int, int] = {}   # id(container) -> values it expands to, itself included
+    on_path: set[int] = set()
+    stack: list[tuple[Any, tuple[Any, ...], bool]] = [(doc, (), False)]
+
+    def children(node: Any) -> list[tuple[Any, Any]]:
+        return list(node.items()) if isinstance(node, dict) else list(enumerate(node))
+
+    def too(where: tuple[Any, ...], what: str) -> ClaimsFileError:
+        field = ".".join(str(p) for p in where[:3]) or "(top level)"
+        return ClaimsFileError(f"{name}: field {field}: {what}")
+
     while stack:
-        node, where = stack.pop()
+        node, where, done = stack.pop()
+        if not isinstance(node, (dict, list)):
+            continue
+        key = id(node)
+        if done:
+            kids = [v for _, v in children(node) if isinstance(v, (dict, list))]
+            depth[key] = max((1 + depth[id(v)] for v in kids), default=1 if len(node) else 0)
+            size[key] = 1 + len(node) + sum(size[id(v)] - 1 for v in kids)
+            on_path.discard(key)
+            if len(where) + depth[key] > _MAX_DEPTH:
+                raise too(where, f"nested more than {_MAX_DEPTH} deep")
+            if size[key] > _MAX_VALUES:
+                raise too(where, f"expands (its aliases written out) to more than {_MAX_VALUES:,} values")
+            continue
+        if key in on_path:
+            raise too(where, f"contains itself (nested infinitely deep, more than {_MAX_DEPTH})")
+        if key in depth:
+            if len(where) + depth[key] > _MAX_DEPTH:
+                raise too(where, f"nested more than {_MAX_DEPTH} deep")
+            continue
         if len(where) > _MAX_DEPTH:
-            field = ".".join(str(p) for p in where[:3])
-            raise ClaimsFileError(f"{name}: field {field}: nested more than {_MAX_DEPTH} deep")
-        if isinstance(node, dict):
-            stack.extend((v, (*where, k)) for k, v in node.items())
-        elif isinstance(node, list):
-            stack.extend((v, (*where, i)) for i, v in enumerate(node))
+            raise too(where, f"nested more than {_MAX_DEPTH} deep")
+        on_path.add(key)
+        stack.append((node, where, True))
+        stack.extend((v, (*where, k), False) for k, v in children(node))
 
 #: Tests that compare methods on a quantity, the only ones that take ``quantity``, ``direction`` and ``margin``.
 _COMPARING_TESTS = ("paired", "equivalence", "exact")
@@ -443,9 +511,10 @@ def _check_margin(margin: Mapping[str, Any], where: str) -> None:
             raise ClaimsFileError(f"{where}.{k}: must be a finite number in [0, {MAX_MAGNITUDE:g}], got {shown(v)}")
 
 
-def _check_baseline(baseline: Mapping[str, Any]) -> None:
+def _check_baseline(baseline: Mapping[str, Any]) -> dict[str, Any]:
     """A record's baseline as the schema states it (ValueError or TypeError naming ``baseline``): a record built without
-    :func:`load` (``dataclasses.replace``) is held to the file's rules."""
+    :func:`load` (``dataclasses.replace``) is held to the file's rules. Returned as a dict, ``defined`` a bool (a NumPy
+    bool is one)."""
     keys = set(baseline)
     if not {"name", "defined"} <= keys <= {"name", "defined", "reason", "stand_in"}:
         raise ValueError(f"baseline must hold 'name' and 'defined' (and optionally 'reason', 'stand_in'), "
@@ -453,8 +522,129 @@ def _check_baseline(baseline: Mapping[str, Any]) -> None:
     for k in ("name", "reason", "stand_in"):
         if k in baseline and not isinstance(baseline[k], str):
             raise TypeError(f"baseline.{k} must be a str, got {shown(baseline[k])}")
-    if not isinstance(baseline["defined"], bool):
-        raise TypeError(f"baseline.defined must be a bool, got {shown(baseline['defined'])}")
+    return {**baseline, "defined": flag(baseline["defined"], "baseline.defined")}
+
+
+#: What a record's ``id`` may be (the schema's pattern): lower-case words joined by ``-``.
+_ID = r"[a-z0-9]+(?:-[a-z0-9]+)+"
+#: A short format spec of a text's ``{name:spec}`` field: align, sign, ``#``, ``0``, a width and a precision of at
+#: most two digits each, a grouping option and a type (``{x:.2f}``, ``{n:d}``, ``{p:.1%}``, ``{x:>8.3g}``).
+_SHORT_SPEC = r"[<>=^]?[-+ ]?#?0?\d{0,2}[,_]?(?:\.\d{1,2})?[bcdeEfFgGnosxX%]?"
+#: A field name of a text: a glue value's name (no attribute, index or position).
+_FIELD = r"[A-Za-z_][\w-]*"
+
+
+def _format_problem(value: str) -> str | None:
+    """What makes ``value`` a text :func:`build_ledger` cannot fill safely, or None: ``value.format_map(values)`` of a
+    text with an unterminated ``{`` raises, and a spec such as ``{x:>3000000000}`` builds a text of gigabytes."""
+    try:
+        fields = [(f, spec, conv) for _, f, spec, conv in string.Formatter().parse(value) if f is not None]
+    except ValueError as e:
+        return f"not a text with {{name}} fields ({e}; a literal brace is written {{{{ or }}}})"
+    for f, spec, conv in fields:
+        if not re.fullmatch(_FIELD, f):
+            return f"field {{{f}}} must name a value (a name, no attribute, index or position)"
+        if conv is not None:
+            return f"field {{{f}!{conv}...}}: no conversion (write {{{f}}} or {{{f}:spec}})"
+        if not re.fullmatch(_SHORT_SPEC, spec):
+            return (f"field {{{f}:{shown(spec, 40)}}}: the format spec must be a short one (as .2f, d, .1%, >8.3g: a "
+                    "width and a precision of at most two digits, no nested field)")
+    return None
+
+
+def _format_text(value: str, name: str) -> str:
+    """``value``, or ValueError naming ``name`` when :func:`build_ledger` could not fill it (:func:`_format_problem`)."""
+    problem = _format_problem(value)
+    if problem is not None:
+        raise ValueError(f"{name}: {problem}")
+    return value
+
+
+def _record_rules(spec: ClaimSpec, where: str) -> None:
+    """The rules :func:`load` applies to one record beyond the schema's types: one check, used by :class:`ClaimSpec`
+    (so by :func:`load` and by a record rebuilt with :func:`dataclasses.replace`). ClaimsFileError naming ``where``
+    (``record <id>``) and the field."""
+    def bad(field: str, what: str) -> ClaimsFileError:
+        return ClaimsFileError(f"{where}: field {field}: {what}")
+
+    if not re.fullmatch(_ID, spec.id):
+        raise bad("id", f"{shown(spec.id)} is not lower-case words joined by '-' (the pattern {_ID})")
+    if len(spec.claim) > 200:
+        raise bad("claim", f"{len(spec.claim)} characters, at most 200 (one sentence)")
+    if spec.test in ("paired", "equivalence"):
+        for f in ("quantity", "direction"):
+            if not getattr(spec, f):
+                raise bad(f, f"required for a {spec.test} test")
+        if (spec.test == "equivalence") != (spec.direction == "equal"):
+            raise bad("direction", "an equivalence test has direction 'equal', a paired test 'less' or 'greater'")
+    if spec.test == "unverifiable" and not spec.reason:
+        raise bad("reason", "required for an unverifiable test")
+    for f in ("quantity", "direction", "margin"):
+        if getattr(spec, f) and spec.test not in _COMPARING_TESTS:
+            raise bad(f, f"a {spec.test} test compares nothing (only {', '.join(_COMPARING_TESTS)} tests take it)")
+    if spec.reason and spec.test != "unverifiable":
+        raise bad("reason", "only an unverifiable test takes a reason (an undefined baseline's goes under "
+                            "baseline.reason)")
+    if spec.headline and spec.claimant != "source":
+        raise bad("headline", f"only a claim the source prints can be its main finding (rule R8), claimant is "
+                              f"{shown(spec.claimant)}")
+    b = spec.baseline
+    if b is not None and not b["defined"] and "reason" not in b:
+        raise bad("baseline.reason", "required when the baseline is undefined")
+    keys = [r.key for r in spec.readings]
+    for i, r in enumerate(spec.readings):
+        if r.key in keys[:i]:
+            raise bad("readings.others", f"duplicate key {shown(r.key)}")
+        if (r.key == "primary") != (r.kind == "primary") or (r.key == "primary" and i):
+            raise bad(f"readings.{r.key}", "the reading with key 'primary' comes first and it alone has kind 'primary'")
+    texts = [("claim", spec.claim), ("bound", spec.bound), ("reason", spec.reason)]
+    texts += [(f"assumptions.{i}", a) for i, a in enumerate(spec.assumptions)]
+    if b is not None:
+        texts += [(f"baseline.{k}", b[k]) for k in ("reason", "stand_in") if k in b]
+        if not b["defined"] and "stand_in" not in b:  # the default stand-in text quotes the name
+            texts.append(("baseline.name", b["name"]))
+    for field, value in texts:
+        problem = _format_problem(value)
+        if problem is not None:
+            raise bad(field, problem)
+
+
+def _file_rules(cf: ClaimsFile) -> None:
+    """The rules :func:`load` applies to a whole file: one check, used by :class:`ClaimsFile` (so by :func:`load` and
+    by a file rebuilt with :func:`dataclasses.replace`). ClaimsFileError naming the file, the record and the field."""
+    name = cf.path.name
+    if cf.source not in SOURCES:
+        raise ClaimsFileError(f"{name}: field source: {shown(cf.source)} is not one of {sorted(SOURCES)}")
+    src = SOURCES[cf.source]
+    for q, entry in cf.quantities.items():
+        where = f"{name}: quantity {q if isinstance(q, str) else shown(q)}"
+        if not isinstance(q, str) or not q.strip():
+            raise ClaimsFileError(f"{where}: a quantity key must be a non-empty text")
+        if not isinstance(entry, Mapping) or not {"label", "margin"} <= set(entry) <= {"label", "margin", "why"}:
+            raise ClaimsFileError(f"{where}: must be a mapping of 'label', 'margin' and optionally 'why', got "
+                                  f"{shown(entry)}")
+        for k in ("label", "why"):
+            if k in entry and not (isinstance(entry[k], str) and entry[k].strip()):
+                raise ClaimsFileError(f"{where}, field {k}: must be a non-empty text, got {shown(entry[k])}")
+        m = entry["margin"]
+        if not isinstance(m, Mapping) or set(m) not in ({"relative"}, {"absolute"}):
+            raise ClaimsFileError(f"{where}, field margin: must be {{'relative': r}} or {{'absolute': x}}, got "
+                                  f"{shown(m)}")
+        _check_margin(m, f"{where}, field margin")
+    seen: set[str] = set()
+    for r in cf.records:
+        where = f"{name}: record {r.id}"
+        if r.id in seen:
+            raise ClaimsFileError(f"{where}: field id: duplicate id")
+        seen.add(r.id)
+        if r.chapter not in src.chapters:
+            raise ClaimsFileError(f"{where}: field chapter: {shown(r.chapter)} is not a chapter of {src.key}")
+        if r.quantity and r.quantity not in cf.quantities:
+            raise ClaimsFileError(f"{where}: field quantity: {shown(r.quantity)} is not declared under quantities")
+    heads = [s for s in cf.records if s.headline]
+    if len(heads) != 1 or heads[0].chapter != src.chapter:
+        raise ClaimsFileError(f"{name}: field headline: exactly one record, in {src.chapter}, must be the "
+                              f"headline (found {[s.id for s in heads]})")
 
 
 def _evidence_function(evidence: str, where: str) -> Any:
@@ -465,8 +655,8 @@ def _evidence_function(evidence: str, where: str) -> Any:
         raise ClaimsFileError(f"{where}: {shown(evidence)} is not 'module:function'")
     try:
         module = importlib.import_module(mod)
-    except ImportError as e:
-        raise ClaimsFileError(f"{where}: module {shown(mod)} cannot be imported ({e})") from None
+    except Exception as e:  # ImportError, and importlib's TypeError for '.x', a module that fails while importing
+        raise ClaimsFileError(f"{where}: module {shown(mod)} cannot be imported ({type(e).__name__}: {e})") from None
     fn = getattr(module, name, None)
     if not callable(fn):
         raise ClaimsFileError(f"{where}: module {mod} has no function {shown(name)}")
@@ -519,75 +709,38 @@ def load(path: Path | str) -> ClaimsFile:
     if errors:
         e = errors[0]
         raise ClaimsFileError(f"{path.name}: {_where(e, doc)}: {e.message}")
-    src = SOURCES[doc["source"]]
     quantities = doc.get("quantities", {})
-    for q, spec in quantities.items():
-        _check_margin(spec["margin"], f"{path.name}: quantity {q}, field margin")
-    specs, seen = [], set()
-    for r in doc["records"]:
+    specs = []
+    for r in doc["records"]:  # the record rules are ClaimSpec's, the file rules ClaimsFile's: one check for both
         rid = r["id"]
         where = f"{path.name}: record {rid}"
-        if rid in seen:
-            raise ClaimsFileError(f"{where}: field id: duplicate id")
-        seen.add(rid)
-        if r["chapter"] not in src.chapters:
-            raise ClaimsFileError(f"{where}: field chapter: {shown(r['chapter'])} is not a chapter of {src.key}")
-        if r["test"] in ("paired", "equivalence"):
-            for f in ("quantity", "direction"):
-                if f not in r:
-                    raise ClaimsFileError(f"{where}: field {f}: required for a {r['test']} test")
-            if r["quantity"] not in quantities:
-                raise ClaimsFileError(f"{where}: field quantity: {shown(r['quantity'])} is not declared under quantities")
-            if (r["test"] == "equivalence") != (r["direction"] == "equal"):
-                raise ClaimsFileError(f"{where}: field direction: an equivalence test has direction 'equal', "
-                                      "a paired test 'less' or 'greater'")
-        if r["test"] == "unverifiable" and "reason" not in r:
-            raise ClaimsFileError(f"{where}: field reason: required for an unverifiable test")
-        for f in ("quantity", "direction", "margin"):
-            if f in r and r["test"] not in _COMPARING_TESTS:
-                raise ClaimsFileError(f"{where}: field {f}: a {r['test']} test compares nothing (only "
-                                      f"{', '.join(_COMPARING_TESTS)} tests take it)")
-        if "reason" in r and r["test"] != "unverifiable":
-            raise ClaimsFileError(f"{where}: field reason: only an unverifiable test takes a reason "
-                                  "(an undefined baseline's goes under baseline.reason)")
-        if "margin" in r:
-            _check_margin(r["margin"], f"{where}: field margin")
-        crit = r.get("critiques", [])
-        if len(set(crit)) != len(crit):
-            raise ClaimsFileError(f"{where}: field critiques: a label is repeated ({crit})")
-        if "evidence" in r:
-            _evidence_function(r["evidence"], f"{where}: field evidence")
-        if r.get("headline") and r["claimant"] != "source":
-            raise ClaimsFileError(f"{where}: field headline: only a claim the source prints can be its main "
-                                  f"finding (rule R8), claimant is {shown(r['claimant'])}")
-        b = r.get("baseline")
-        if b is not None and not b["defined"] and "reason" not in b:
-            raise ClaimsFileError(f"{where}: field baseline.reason: required when the baseline is undefined")
         rd = r.get("readings", {})
+        given = ([("primary", rd["primary"], "primary")] if "primary" in rd else []) + [
+            (o["key"], o, o.get("kind", "open-choice")) for o in rd.get("others", [])]
         readings = []
-        if "primary" in rd:
-            p = rd["primary"]
-            readings.append(ReadingSpec("primary", p["choice"], p["reading"], "primary", p.get("settings", {}),
-                                        p.get("runs")))
-        for o in rd.get("others", []):
-            if o["key"] == "primary" or any(x.key == o["key"] for x in readings):
-                raise ClaimsFileError(f"{where}: field readings.others: duplicate key {shown(o['key'])}")
-            readings.append(ReadingSpec(o["key"], o["choice"], o["reading"], o.get("kind", "open-choice"),
-                                        o.get("settings", {}), o.get("runs")))
+        for key, o, kind in given:
+            try:
+                readings.append(ReadingSpec(key, o["choice"], o["reading"], kind, o.get("settings", {}), o.get("runs")))
+            except (TypeError, ValueError) as e:  # runs: 100.0 (JSON Schema's integer), a text that cannot be filled
+                raise ClaimsFileError(f"{where}: field readings.{key}.{e}") from None
         pub = r["published"]
         published = " ".join(x for x in (pub["value"], pub.get("unit", "")) if x) + (
             f" ({pub['precision']})" if "precision" in pub else "")
-        specs.append(ClaimSpec(
-            id=rid, chapter=r["chapter"], where=r["where"], claim=r["claim"], claimant=r["claimant"],
-            published=published, test=r["test"], link=r["link"], quantity=r.get("quantity", ""),
-            direction=r.get("direction", ""), margin=r.get("margin"), baseline=b, headline=r.get("headline", False),
-            critiques=tuple(r.get("critiques", ())), assumptions=tuple(r.get("assumptions", ())),
-            bound=r.get("bound", ""), reason=r.get("reason", ""), evidence=r.get("evidence", ""),
-            readings=tuple(readings)))
-    heads = [s for s in specs if s.headline]
-    if len(heads) != 1 or heads[0].chapter != src.chapter:
-        raise ClaimsFileError(f"{path.name}: field headline: exactly one record, in {src.chapter}, must be the "
-                              f"headline (found {[s.id for s in heads]})")
+        try:
+            spec = ClaimSpec(
+                id=rid, chapter=r["chapter"], where=r["where"], claim=r["claim"], claimant=r["claimant"],
+                published=published, test=r["test"], link=r["link"], quantity=r.get("quantity", ""),
+                direction=r.get("direction", ""), margin=r.get("margin"), baseline=r.get("baseline"),
+                headline=r.get("headline", False), critiques=tuple(r.get("critiques", ())),
+                assumptions=tuple(r.get("assumptions", ())), bound=r.get("bound", ""), reason=r.get("reason", ""),
+                evidence=r.get("evidence", ""), readings=tuple(readings))
+        except ClaimsFileError as e:  # names the record and the field
+            raise ClaimsFileError(f"{path.name}: {e}") from None
+        except (TypeError, ValueError) as e:  # names the field
+            raise ClaimsFileError(f"{where}: field {e}") from None
+        if spec.evidence:
+            _evidence_function(spec.evidence, f"{where}: field evidence")
+        specs.append(spec)
     return ClaimsFile(path, doc["source"], quantities, tuple(specs))
 
 
@@ -627,14 +780,17 @@ def load_all(directory: Path | None = None) -> dict[str, ClaimsFile]:
 
 def _fill(text: str, values: Mapping[str, Any], where: str) -> str:
     """``text`` with its ``{name}`` / ``{name:spec}`` fields filled from the chapter's glue values."""
+    problem = _format_problem(text)  # the record's own check (ClaimSpec), here for a text built in build_ledger
+    if problem is not None:
+        raise ClaimsFileError(f"{where}: {problem}")
     fields = [f for _, f, _, _ in string.Formatter().parse(text) if f is not None]
     missing = [f for f in fields if f not in values]
     if missing:
         raise ClaimsFileError(f"{where}: names values {missing} that the chapter does not provide")
     try:
         return text.format_map(values)
-    except (ValueError, TypeError) as e:
-        raise ClaimsFileError(f"{where}: cannot format ({e})") from None
+    except (ValueError, TypeError, KeyError, IndexError, AttributeError) as e:  # a value its spec does not fit
+        raise ClaimsFileError(f"{where}: cannot format ({type(e).__name__}: {e})") from None
 
 
 def _check_direction(ev: Evidence, spec: ClaimSpec, where: str) -> None:

@@ -42,6 +42,14 @@ def _text(v: object, name: str) -> str:
     return v
 
 
+def _percent(share: float) -> str:
+    """``share`` as a signed percentage: ``{:+.1%}`` below 10⁸ %, else the ledger's number format (no 160 digits)."""
+    if abs(share) < 1e6:  # at most "+99999999.9%": the ledger holds +303610.1% of B (chapter 04)
+        return f"{share:+.1%}"
+    from fusion.book.ledger.statuses import fmt  # the ledger's formatter (imported here: the ledger imports this module)
+    return f"{'+' if share > 0 else ''}{fmt(100.0 * share)}%"
+
+
 @dataclass(frozen=True, init=False)
 class ExactComparison:
     """Two exactly computed values of one quantity, A against B, under rule R9 (R2 with a zero-width interval).
@@ -58,14 +66,17 @@ class ExactComparison:
     margin : float or None
         Practical margin in the metric's units (>= 0); ``None``: ``relative_margin`` times :math:`|B|`.
     relative_margin : float or None
-        Share of :math:`|B|` (default :data:`fusion.book.rulebook.DEFAULT_RELATIVE_MARGIN`).
+        Share of :math:`|B|` (default :data:`fusion.book.rulebook.DEFAULT_RELATIVE_MARGIN`). Given with ``margin``,
+        it must give the same margin (a copy passes both, as :func:`dataclasses.replace` does), else ValueError;
+        ``margin`` is stored (as for :class:`~fusion.book.ledger.Comparison`).
 
     Raises
     ------
     ValueError
         ``a`` or ``b`` not finite or beyond the representable range (magnitude above 1e150, checked here, not
         when the status is asked); an empty name or ``metric``; ``claim`` not one of its values; a negative or
-        non-finite margin.
+        non-finite margin; ``margin`` and ``relative_margin`` that disagree (also in :meth:`with_margin` and
+        :func:`dataclasses.replace`).
     TypeError
         ``a`` or ``b`` not a real number; a name, ``metric`` or ``claim`` not a str.
     """
@@ -87,11 +98,9 @@ class ExactComparison:
             _text(v, name)
         claim = text(claim, "claim")  # rule 19: matched and stored as its text (a 0-d array is not text)
         one_of(claim, ("less", "greater", "equal"), "claim")
-        if margin is None:
-            rel = R.DEFAULT_RELATIVE_MARGIN if relative_margin is None else scalar(relative_margin, "relative_margin", 0.0)
-            m = rel * abs(bv)
-        else:
-            m, relative_margin = scalar(margin, "margin", 0.0), None
+        margin = None if margin is None else scalar(margin, "margin", 0.0)
+        relative_margin = None if relative_margin is None else scalar(relative_margin, "relative_margin", 0.0)
+        m, relative_margin = R._practical_margin(margin, relative_margin, abs(bv), "B")  # as Comparison's
         for k, v in (("a", av), ("b", bv), ("a_name", a_name), ("b_name", b_name), ("claim", claim), ("metric", metric),
                      ("margin", float(m)), ("relative_margin", None if relative_margin is None else float(relative_margin)),
                      ("kind", "exact comparison")):
@@ -126,7 +135,8 @@ class ExactComparison:
         A difference of at most :math:`10^{-12}` of the larger value's magnitude
         (:data:`fusion.book.tables.ROUNDOFF_EXPONENT`), zero included, is round-off: its digits move with the BLAS
         kernel, so the text gives the bound, not the digits (``"difference less than 10⁻¹² relative
-        (round-off)"``); two zeros give ``"difference 0"``.
+        (round-off)"``); two zeros give ``"difference 0"``. The difference as a share of B reads ``+4.0%`` below
+        10⁸ %, and beyond that in the ledger's number format (``+1×10^162%`` for A = 1 against B = 1e-160).
         """
         d, scale = self.difference, max(abs(self.a), abs(self.b))
         if scale == 0.0:
@@ -134,7 +144,7 @@ class ExactComparison:
         elif abs(d) <= 10.0 ** ROUNDOFF_EXPONENT * scale:
             diff = f"difference {roundoff(d / scale)} relative (round-off)"
         else:
-            diff = f"difference {self._t(d)}" + (f" ({d / self.b:+.1%} of B)" if self.b != 0 else "")
+            diff = f"difference {self._t(d)}" + (f" ({_percent(d / self.b)} of B)" if self.b != 0 else "")
         return (f"{self.a_name} {self._t(self.a)} vs {self.b_name} {self._t(self.b)} ({self.metric}, exact); "
                 f"{diff}; margin ±{self._t(self.margin)}"
                 + ("; within the margin: no difference that matters" if self.region() == "equivalent" else ""))

@@ -47,7 +47,7 @@ class Evidence:
         # value of the right type a ValueError (issue 35)
         if not isinstance(self.claim, str):
             raise TypeError(f"claim must be a ledger record id (a string), got {type(self.claim).__name__}")
-        if not self.claim:
+        if not self.claim.strip():  # a blank id names no record, as a blank role says nothing
             raise ValueError("claim must be a ledger record id (a non-empty string)")
         text(self.role, "role")
         if not self.role.strip():
@@ -240,6 +240,15 @@ def check(records: Iterable[Mapping[str, object]],
     -------
     list of str
         One message per cited record that is missing or whose status is outside ``expect``.
+
+    Raises
+    ------
+    TypeError
+        ``records`` or ``recommendations`` not an iterable (a str is not), or ``recommendations`` holding
+        something other than :class:`Recommendation`.
+    ValueError
+        A record without ``id`` and ``status``, a status outside :data:`fusion.book.ledger.STATUSES`, or two
+        records with one id (naming ``records``).
     """
     if isinstance(records, (str, bytes)) or not isinstance(records, Iterable):
         raise TypeError("records must be an iterable of ledger records (mappings)")
@@ -251,6 +260,13 @@ def check(records: Iterable[Mapping[str, object]],
     recommendations = list(recommendations)
     if not all(isinstance(r, Recommendation) for r in recommendations):
         raise TypeError("recommendations must hold Recommendation objects")
+    ids = [str(r["id"]) for r in records]
+    repeated = sorted({i for i in ids if ids.count(i) > 1}) if len(set(ids)) != len(ids) else []
+    if repeated:  # one id, two statuses: the check would keep the last without a word
+        raise ValueError(f"records must not repeat an id, got {shown(repeated)} more than once")
+    odd = [r["status"] for r in records if not (isinstance(r["status"], str) and r["status"] in STATUSES)]
+    if odd:
+        raise ValueError(f"records: every status must be one of {STATUSES}, got {shown(odd[0])}")
     status = {str(r["id"]): str(r["status"]) for r in records}
     problems: list[str] = []
     for rec in recommendations:

@@ -551,6 +551,25 @@ def _paired_runs(a: ArrayLike, b: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     return av.astype(float), bv.astype(float)
 
 
+def _practical_margin(margin: float | None, relative_margin: float | None, ref: float,
+                      on: str) -> tuple[float, float | None]:
+    """The margin a comparison stores and the relative margin it keeps: one rule for :class:`Comparison` and
+    ``ExactComparison`` (their constructors, ``with_margin`` and :func:`dataclasses.replace`).
+
+    ``margin`` None: ``relative_margin`` (default :data:`DEFAULT_RELATIVE_MARGIN`) times ``ref`` (0 when ``ref`` is
+    not finite), ``relative_margin`` kept. Both given: they must agree (a copy passes both), else ValueError naming
+    both; ``margin`` stored, ``relative_margin`` dropped. The caller has checked each is a finite number >= 0 (or None).
+    """
+    rel = DEFAULT_RELATIVE_MARGIN if relative_margin is None else float(relative_margin)
+    derived = rel * ref if math.isfinite(ref) else 0.0
+    if margin is None:
+        return derived, relative_margin
+    if relative_margin is not None and not math.isclose(float(margin), derived, rel_tol=1e-12):
+        raise ValueError(f"margin = {shown(margin, 60)} and relative_margin = {shown(relative_margin, 60)} "
+                         f"disagree (relative_margin gives {derived:.6g} on {on}): give one of them")
+    return float(margin), None
+
+
 def _infinite_mean(value: object) -> tuple[str, ...]:
     """``infinite_mean`` as a tuple of ``"a"``/``"b"``: a sequence (a list or tuple; a str is refused, ``"ab"``
     is not read as two methods), TypeError naming ``infinite_mean`` otherwise."""
@@ -713,7 +732,7 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     primary : str
         The primary reading's status.
     readings : sequence of (kind, status, runs)
-        Every other reading.
+        Every other reading (a list triple, as JSON reads one back, is a triple).
     primary_runs : int or None
         Runs of the primary reading.
     assumptions : bool
@@ -735,7 +754,7 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
         ``primary`` or a reading's status is not one of :data:`STATUSES`; ``primary_runs`` is below 1 (checked
         even when there are no readings); a reading's kind or runs as :func:`counted` refuses them.
     TypeError
-        ``readings`` is not a sequence of 3-tuples; ``primary`` is not a str; ``assumptions`` is not a bool;
+        ``readings`` is not a sequence of triples (tuples or lists); ``primary`` is not a str; ``assumptions`` is not a bool;
         ``primary_runs`` is neither an integer nor None.
     """
     flag(assumptions, "assumptions")
@@ -743,9 +762,10 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     text(primary, "primary")
     if primary not in STATUSES:
         raise ValueError(f"primary must be one of {STATUSES}, got {shown(primary)}")
-    if isinstance(readings, (str, bytes)) or not all(isinstance(x, tuple) and len(x) == 3
+    if isinstance(readings, (str, bytes)) or not all(isinstance(x, (tuple, list)) and len(x) == 3
                                                      for x in sequence(readings, "readings")):
         raise TypeError(f"readings must be a sequence of (kind, status, runs) tuples, got {shown(readings)}")
+    readings = [tuple(x) for x in readings]  # a list triple is a triple (readings read back from JSON are lists)
     if any(st not in STATUSES for _, st, _ in readings):
         raise ValueError(f"readings: every status must be one of {STATUSES}")
     good = ("reproduced", "reproduced under stated assumptions")

@@ -108,7 +108,8 @@ class Claim:
     alternatives : tuple of Alternative
         The claim under other readings.
     headline : bool
-        The single most important finding of the source (only a claim the source prints: R8).
+        The single most important finding of the source (only a claim the source prints: R8); a NumPy bool is
+        stored as a bool.
     critiques : tuple of str
         Labels of the critique boxes this record summarises.
     claimant : {"source", "implied", "book"}
@@ -160,6 +161,7 @@ class Claim:
             raise TypeError(f"alternatives must be a tuple of Alternative, got {shown(self.alternatives)}")
         if not isinstance(self.headline, (bool, np.bool_)):
             raise TypeError(f"headline must be a bool, got {type(self.headline).__name__}")
+        object.__setattr__(self, "headline", bool(self.headline))  # numpy's bool stored as a bool (json writes it)
         if self.source not in SOURCES:
             raise ValueError(f"source must be one of {sorted(SOURCES)}, got {shown(self.source)}")
         for name in ("id", "where", "claim", "link"):

@@ -159,7 +159,10 @@ class Comparison:
 
     The status comes from :func:`fusion.book.rulebook.judge_paired` (rules R2 and R3): the paired 95 %
     interval (of the mean, or of the median when the differences are heavy-tailed) against zero and the
-    practical margin.
+    practical margin. The summary calls B "a constant" only when every run of B holds one finite value. Whenever
+    R3 decides (a mean infinite), :meth:`to_dict` gives ``heavy_tailed: True`` (an infinite mean is the heaviest
+    tail) and ``tail_index: None`` when fewer than 11 runs have a finite difference (none when every run is
+    infinite in both: the status is then "cannot be checked").
 
     Parameters
     ----------
@@ -244,16 +247,8 @@ class Comparison:
                 raise TypeError(f"{name} must be a finite number >= 0, got {type(v).__name__} {shown(v, 60)}")
             if v is not None and (not math.isfinite(_as_float(v)) or float(v) < 0):
                 raise ValueError(f"{name} must be a finite number >= 0, got {shown(v, 60)}")
-        rel = R.DEFAULT_RELATIVE_MARGIN if relative_margin is None else float(relative_margin)
         ref = abs(float(np.mean(bv))) if np.all(np.isfinite(bv)) else abs(float(np.median(bv)))
-        derived = rel * ref if math.isfinite(ref) else 0.0
-        if margin is None:
-            margin = derived
-        else:
-            if relative_margin is not None and not math.isclose(float(margin), derived, rel_tol=1e-12):
-                raise ValueError(f"margin = {shown(margin, 60)} and relative_margin = {shown(relative_margin, 60)} "
-                                 f"disagree (relative_margin gives {derived:.6g} on B's runs): give one of them")
-            relative_margin = None
+        margin, relative_margin = R._practical_margin(margin, relative_margin, ref, "B's runs")
         for k, v in (("a", tuple(float(x) for x in av)), ("b", tuple(float(x) for x in bv)), ("a_name", a_name),
                      ("b_name", b_name), ("claim", claim), ("metric", metric), ("seed", seed), ("reason", reason),
                      ("margin", float(margin)), ("relative_margin", None if relative_margin is None else float(relative_margin)),
@@ -402,7 +397,8 @@ class Comparison:
             tail = (f"; heavy-tailed differences (tail index {fmt(j.tail_index, 2)}; a few runs carry the mean): "
                     f"median difference {t(med)} [{t(lo)}, {t(hi)}], shown beside the mean, which decides (R3)")
         margin = f"; margin ±{fmt(self.margin, 3)}" if self.margin > 0 else ""
-        pairing = "runs against a constant" if len(set(self.b)) == 1 else "paired runs"   # one-sample yardstick
+        # one-sample yardstick: B one finite value in every run (an infinite B in every run is no constant)
+        pairing = "runs against a constant" if len(set(self.b)) == 1 and math.isfinite(self.b[0]) else "paired runs"
         return (head + f", {self.runs} {pairing}; {self.a_name} {side} in {wins} of {self.runs} runs"
                 + margin + tail + ("; the interval lies within the margin: no difference that matters"
                                    if j.region == "equivalent" else ""))

@@ -32,7 +32,16 @@ class Source:
         Position in the book.
     chapters : tuple of str, optional
         Docnames of every chapter on the source, in reading order, when it spans several; the
-        first must be ``chapter`` (which holds the source's headline). Default: ``(chapter,)``.
+        first must be ``chapter`` (which holds the source's headline). Default: ``(chapter,)``. When there
+        are several, each file name starts with its own number (``NN_``), which names its ledger file.
+
+    Raises
+    ------
+    TypeError
+        A text field not a str, ``order`` not an integer, ``chapters`` not a tuple of str.
+    ValueError
+        An empty text; ``order`` below 1; ``chapters`` not starting with ``chapter``, repeating one, or (several
+        chapters) one without a number ``NN_`` or two with the same number (their ledger files would collide).
     """
 
     key: str        # BibTeX key
@@ -54,6 +63,11 @@ class Source:
             _text(c, "chapters")
         if self.chapters[0] != self.chapter or len(set(self.chapters)) != len(self.chapters):
             raise ValueError(f"chapters must start with chapter {shown(self.chapter)} and not repeat, got {shown(self.chapters)}")
+        if len(self.chapters) > 1:  # each chapter's ledger file is <key>-<NN>.json: NN must exist and differ
+            numbers = [_number(c) for c in self.chapters]
+            if not all(n.isascii() and n.isdigit() for n in numbers) or len(set(numbers)) != len(numbers):
+                raise ValueError(f"chapters of a source that spans several must each have their own number (the "
+                                 f"prefix 'NN_' of the file name, which names the ledger file), got {shown(self.chapters)}")
 
     def ledger_file(self, chapter: str | None = None) -> str:
         """Name of the ledger file of one of the source's chapters (default: the first).
@@ -81,7 +95,13 @@ class Source:
             raise ValueError(f"chapter must be one of {list(self.chapters)}, got {shown(chapter)}")
         if len(self.chapters) == 1:
             return f"{self.key}.json"
-        return f"{self.key}-{chapter.rsplit('/', 1)[-1].split('_', 1)[0]}.json"
+        return f"{self.key}-{_number(chapter)}.json"
+
+
+def _number(chapter: str) -> str:
+    """A chapter's number: the prefix of its file name up to the first ``_`` (``"02"`` for ``notebooks/02_x``)."""
+    name = chapter.rsplit("/", 1)[-1]
+    return name.split("_", 1)[0] if "_" in name else ""
 
 
 #: The five sources in book order.
