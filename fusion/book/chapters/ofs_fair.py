@@ -34,7 +34,7 @@ from fusion.readings.robust import ROBUST_METHODS, robust_fuse
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
 from fusion._counts import distinct, sequence
-from fusion._structures import record
+from fusion._structures import record, records_of
 from fusion._shown import shown
 
 __all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair", "fair_numbers",
@@ -440,6 +440,42 @@ def fair_numbers(study: FairStudy) -> GlueValues:
     }
 
 
+def _ledger_comparisons(ledger: Mapping) -> list[tuple[object, str, object, Mapping]]:
+    """The paired comparisons a stored ledger's records hold, checked as they are read (fuzz 21b M): (record id,
+    reading, status, evidence) of each primary reading, counted alternative and part of a conjunction whose evidence
+    is a comparison. A nested record that is not a mapping, lacks a key read here or holds a value that is not a
+    finite number (``mean_b``, ``margin``, the interval's ends, which may both be ``None``: no interval) is refused
+    with an error naming ``ledger`` and the record's path."""
+    out = []
+    for i, r in enumerate(ledger["claims"]):
+        path = f"ledger['claims'][{i}]"
+        readings = [("primary", r["primary_status"], r["evidence"], f"{path}['evidence']")]
+        for j, a in enumerate(records_of(r.get("alternatives", []), f"{path}['alternatives']")):
+            if a.get("counted"):
+                where = f"{path}['alternatives'][{j}]"
+                record(a, where, ("reading", "status", "evidence"), extra=True)
+                if not isinstance(a["reading"], str):
+                    raise TypeError(f"{where}['reading'] must be a str, got {type(a['reading']).__name__}")
+                readings.append((a["reading"].split("; ")[0].split(" (")[0], a["status"], a["evidence"],
+                                 f"{where}['evidence']"))
+        for name, status, ev, where in readings:
+            record(ev, where, (), extra=True)
+            parts = [("", status, ev, where)]
+            if ev.get("kind") == "conjunction":
+                record(ev, where, ("parts",), extra=True)
+                parts = [(p["label"], p["status"], p["evidence"], f"{where}['parts'][{k}]['evidence']") for k, p in
+                         enumerate(records_of(ev["parts"], f"{where}['parts']", ("label", "status", "evidence")))]
+            for label, st, e, at in parts:
+                if record(e, at, (), extra=True).get("kind") != "comparison":
+                    continue
+                record(e, at, ("mean_b", "ci_low", "ci_high", "margin"), extra=True)
+                for key in ("mean_b", "margin") + (() if e["ci_low"] is None and e["ci_high"] is None
+                                                   else ("ci_low", "ci_high")):
+                    scalar(e[key], f"{at}[{key!r}]")
+                out.append((r["id"], label or name, st, e))
+    return out
+
+
 def margin_sensitivity(ledger: dict, low: float = 0.025, high: float = 0.10) -> pd.DataFrame:
     """Where a nearby practical margin would change a comparison's status: break-even margins from a stored ledger.
 
@@ -459,6 +495,17 @@ def margin_sensitivity(ledger: dict, low: float = 0.025, high: float = 0.10) -> 
     DataFrame
         One row per primary reading, counted reading or part of one, whose status would change at a relative
         margin in ``[low, high]``: record, reading, status, 95 % interval, margin used and the break-even margins.
+        A comparison without an interval (both ends ``None``: an infinite mean) or with a baseline of 0 has no
+        break-even margin and no row.
+
+    Raises
+    ------
+    TypeError
+        ``ledger`` is not a mapping, a nested record not a mapping, or a value read here not a number.
+    ValueError
+        ``low`` or ``high`` out of range; ``ledger`` lacks the list ``claims``, or a record (a claim, a counted
+        alternative, a part of a conjunction, a comparison) lacks a key read here or holds a number that is not
+        finite; the message names ``ledger`` and the record's path.
     """
     low = scalar(low, "low", lo=0.0)
     high = scalar(high, "high", lo=low)
@@ -471,23 +518,16 @@ def margin_sensitivity(ledger: dict, low: float = 0.025, high: float = 0.10) -> 
         if not isinstance(r, Mapping) or any(k not in r for k in need):
             raise ValueError(f"ledger['claims'][{i}] must be a record with the keys {need}")
     rows = []
-    for r in ledger["claims"]:
-        readings = [("primary", r["primary_status"], r["evidence"])]
-        readings += [(a["reading"].split("; ")[0].split(" (")[0], a["status"], a["evidence"])
-                     for a in r.get("alternatives", []) if a.get("counted")]
-        for name, status, ev in readings:
-            parts = ([(p["label"], p["status"], p["evidence"]) for p in ev["parts"]] if ev.get("kind") == "conjunction"
-                     else [("", status, ev)])
-            for label, st, e in parts:
-                if e.get("kind") != "comparison" or not e.get("mean_b"):
-                    continue
-                even = sorted({abs(e["ci_low"]) / abs(e["mean_b"]), abs(e["ci_high"]) / abs(e["mean_b"])})
-                near = [v for v in even if low <= v <= high]
-                if near:
-                    rows.append({"record": r["id"], "reading": label or name, "status": st,
-                                 "95 % interval": f"[{e['ci_low']:.4f}, {e['ci_high']:.4f}]",
-                                 "margin": f"±{e['margin']:.4f}", "status changes at a margin of":
-                                 " or ".join(f"{v:.1%}" for v in near)})
+    for rid, label, st, e in _ledger_comparisons(ledger):
+        if not e["mean_b"] or e["ci_low"] is None:   # no relative margin / no interval: nothing to cross
+            continue
+        even = sorted({abs(e["ci_low"]) / abs(e["mean_b"]), abs(e["ci_high"]) / abs(e["mean_b"])})
+        near = [v for v in even if low <= v <= high]
+        if near:
+            rows.append({"record": rid, "reading": label, "status": st,
+                         "95 % interval": f"[{e['ci_low']:.4f}, {e['ci_high']:.4f}]",
+                         "margin": f"±{e['margin']:.4f}", "status changes at a margin of":
+                         " or ".join(f"{v:.1%}" for v in near)})
     return pd.DataFrame(rows).set_index(["record", "reading"]) if rows else pd.DataFrame(rows)
 
 

@@ -7,6 +7,7 @@ The computations live in :mod:`fusion.scenarios.time_registration` and
 
 from __future__ import annotations
 
+import re
 import string
 from collections.abc import Mapping, Sequence
 from enum import StrEnum
@@ -179,15 +180,23 @@ def _label(key: object, template: str = "{}") -> object:
     return key
 
 
+# Widest format width a label template of :func:`labelled` may ask for (characters): a display label, not a buffer.
+_MAX_LABEL_WIDTH = 200
+
+
 def _label_template(template: object) -> str:
     """``template`` when it formats one method label: a str with exactly one replacement field, ``{}`` (or
     ``{0}``), whose conversion and format spec apply to a str; a ValueError naming ``template`` otherwise (a template
     without a field would give every method the same label, ``{1}`` or ``{x}`` an IndexError/KeyError)."""
     text(template, "template")
     try:
-        fields = [f for _, f, _, _ in string.Formatter().parse(template) if f is not None]
+        parsed = [(f, spec) for _, f, spec, _ in string.Formatter().parse(template) if f is not None]
+        fields = [f for f, _ in parsed]
         if fields not in ([""], ["0"]):
             raise ValueError(f"it must hold exactly one replacement field, {{}}, for the label; got the fields {fields}")
+        width = re.match(r"(?:.?[<>=^])?[-+ ]?z?#?0?(\d*)", parsed[0][1] or "").group(1)
+        if width and int(width) > _MAX_LABEL_WIDTH:   # checked before formatting: "{:>999999999}" is a 1 GB label
+            raise ValueError(f"its width {width} is beyond {_MAX_LABEL_WIDTH} characters (a display label)")
         template.format("label")
     except (ValueError, IndexError, KeyError) as exc:
         raise ValueError(f"template = {shown(template)} does not format a method label: {exc}") from None
@@ -216,7 +225,8 @@ def labelled(table: pd.DataFrame, template: str = "{}") -> pd.DataFrame:
         If ``table`` is not a DataFrame, or ``template`` not a str.
     ValueError
         If ``template`` does not hold exactly one replacement field ``{}`` (or ``{0}``) whose format applies to a
-        str label: ``"x"`` would give every method the same label.
+        str label (``"x"`` would give every method the same label), or its format asks for a width beyond
+        200 characters (``"{:>5000000}"``: 5 MB per label).
     """
     if not isinstance(table, pd.DataFrame):
         raise TypeError(f"table must be a pandas DataFrame, got {type(table).__name__}")
@@ -228,6 +238,47 @@ def labelled(table: pd.DataFrame, template: str = "{}") -> pd.DataFrame:
         if not pd.api.types.is_numeric_dtype(col) and col.isin(keys).any():
             out.iloc[:, i] = col.map(lambda k: _label(k, template))
     return out
+
+
+def _record_times(t1: ArrayLike, t2: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Sensor 1's sample times and the registration instants of one record, checked by name.
+
+    ``t1``: at least three strictly increasing samples (the three-point formula's nodes); ``t2``: strictly increasing
+    instants within the record, ``t1[0] <= t2 <= t1[-1]`` (an instant outside is an extrapolation, which neither
+    the cost count nor the noise gains of the record describe).
+
+    Parameters
+    ----------
+    t1, t2 : array_like
+        Sample times and registration instants (s).
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(t1, t2)`` as float arrays.
+
+    Raises
+    ------
+    ValueError
+        Too few samples, times not strictly increasing, or an instant outside ``[t1[0], t1[-1]]``, naming the argument.
+    """
+    t1, t2 = as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # strictly increasing times, named
+    if t2[0] < t1[0] or t2[-1] > t1[-1]:
+        raise ValueError(f"t2 must lie within the record of t1, [{t1[0]:g}, {t1[-1]:g}] s, got instants from "
+                         f"{t2[0]:g} to {t2[-1]:g} s (an extrapolation)")
+    return t1, t2
+
+
+def _least_squares_windows(t1: np.ndarray, t2: np.ndarray, name: str = "t2") -> None:
+    """Refuse, naming ``t2[i]``, an instant whose least-squares window (sensor 2's period before it, ``(t - 5, t]``
+    s in the source) holds fewer than two samples of ``t1``: the straight line through them is undefined there."""
+    w = float(sc.SCENARIO["period_2"])
+    held = np.searchsorted(t1, t2, side="right") - np.searchsorted(t1, t2 - w, side="right")
+    short = np.flatnonzero(held < 2)
+    if short.size:
+        i = int(short[0])
+        raise ValueError(f"{name}[{i}] = {t2[i]:g} s: least squares fits the samples of t1 in the {w:g} s before it, "
+                         f"({t2[i] - w:g}, {t2[i]:g}] s, which hold {int(held[i])} (at least 2 are needed)")
 
 
 def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
@@ -243,9 +294,19 @@ def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
     DataFrame
         Index the instants, one column per method (rounded to mm) and the derived two-point remainder
         :func:`fusion.scenarios.time_registration.two_point_remainder`.
+
+    Raises
+    ------
+    TypeError
+        ``t1`` or ``t2`` is not numeric.
+    ValueError
+        ``t1`` holds fewer than three samples, or the times are not finite and strictly increasing; an instant of
+        ``t2`` lies outside the record of ``t1`` (an extrapolation, refused as by
+        :func:`~fusion.book.chapters.time_registration_ledger.cost_count`) or has fewer
+        than two samples of ``t1`` in the least-squares window before it.
     """
-    as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # sample times, refused by name
-    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    t1, t2 = _record_times(t1, t2)    # sample times, the instants within the record: named
+    _least_squares_windows(t1, t2)
     x1, x2 = sc.truth(t1), sc.truth(t2)
     methods = (TWO, RegMethod.LEAST_SQUARES, RegMethod.THREE_POINT)
     table = pd.DataFrame({n: sc.register(n, t1, x1, t2, 1.0) - x2 for n in methods},
@@ -271,8 +332,17 @@ def axes_tables(t1: ArrayLike, t2: ArrayLike) -> tuple[pd.DataFrame, pd.DataFram
         sensor, as integers, in the shape :func:`fusion.book.tables.highlight_mismatches` reads.
     axes : DataFrame
         Published axis maximum (m) of each panel and the largest value it should show (m).
+
+    Raises
+    ------
+    TypeError
+        ``t1`` or ``t2`` is not numeric.
+    ValueError
+        ``t1`` holds fewer than three samples, the times are not finite and strictly increasing, or an instant of
+        ``t2`` lies outside the record of ``t1`` (an extrapolation, refused as by
+        :func:`~fusion.book.chapters.time_registration_ledger.cost_count`).
     """
-    as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # sample times, refused by name
+    _record_times(t1, t2)    # sample times, the instants within the record: named
     x1, x2 = sc.truth(np.asarray(t1, dtype=float)), sc.truth(np.asarray(t2, dtype=float))
     ax = data.SHI2023_AXES.columns
     counts = pd.DataFrame({"published": np.asarray(data.SHI2023_CLAIMED_SAMPLES.values).round().astype(int),
@@ -312,10 +382,21 @@ def registration_figure(t1: ArrayLike, t2: ArrayLike, method: str, label: str) -
     -------
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
+
+    Raises
+    ------
+    TypeError
+        ``t1`` or ``t2`` is not numeric, or ``label`` not a str.
+    ValueError
+        ``t1`` holds fewer than three samples, the times are not finite and strictly increasing, or an instant of
+        ``t2`` lies outside the record of ``t1`` (an extrapolation, refused as by
+        :func:`~fusion.book.chapters.time_registration_ledger.cost_count`), or (least
+        squares) has fewer than two samples of ``t1`` in the window before it; ``method`` is not a method.
     """
-    as_times(t1, "t1", min_len=3), as_times(t2, "t2")
+    t1, t2 = _record_times(t1, t2)
     one_of(method, tuple(sc.METHODS), "method"), text(label, "label")
-    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    if method == RegMethod.LEAST_SQUARES:
+        _least_squares_windows(t1, t2)
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.6))
     a1.plot(t1, sc.truth(t1), "o", ms=4, color=color("sensor 1"), label="sensor 1")
     a1.plot(t2, sc.truth(t2), "s", ms=5, color=color("sensor 2"), label="sensor 2")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -444,9 +445,18 @@ def ir_sigma_band(readings: IrReadings, scan: Sequence[float] = IR_SIGMA_SCAN) -
     -------
     tuple of float
         (smallest, largest) σa of ``scan`` that reproduces both published angle RMSEs at their printed
-        precision; (NaN, NaN) when none does.
+        precision; (NaN, NaN) when none does (an empty ``scan`` included).
+
+    Raises
+    ------
+    TypeError
+        ``readings`` is not an :class:`IrReadings`, ``scan`` not a sequence (a list, tuple or 1-D array: a
+        generator, a string or a number is refused) or an entry not a number.
+    ValueError
+        An entry of ``scan`` is not a finite positive number.
     """
     instance_of(readings, IrReadings, "readings")
+    scan = [scalar(sa, f"scan[{i}]", 0.0, None, lo_open=True) for i, sa in enumerate(sequence(scan, "scan"))]
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     pub = np.round([1e3 * irp["azimuth_rad"][0], 1e3 * irp["elevation_rad"][0]], 2)
     hits = [sa for sa in scan if np.array_equal(np.round(ir_sigma_rms(readings, sa)[:2], 2), pub)]
@@ -669,7 +679,18 @@ def ir_rms(run_rmse: np.ndarray) -> np.ndarray:
         ``run_rmse`` is not of shape (runs, 4) with at least one run, or holds NaN, infinite or negative entries.
     """
     run_rmse = as_array(run_rmse, "run_rmse", shape=(None, len(IR_COMPONENTS)), nonnegative=True, subnormal=True)
-    return np.sqrt(np.mean(run_rmse ** 2, axis=0))
+    scaled, scale = _binary_scaled(run_rmse)
+    return np.sqrt(np.mean(scaled ** 2, axis=0)) * scale
+
+
+def _binary_scaled(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``x`` with each column divided by a power of two that brings its largest entry into [0.5, 1), and those
+    powers: squares of the scaled entries neither underflow (``1e-200`` squared is 0) nor overflow, and the scaling
+    is exact, so that a root mean square computed on them and multiplied back equals the unscaled one bit for bit
+    wherever that one is representable (an all-zero column keeps the scale 1)."""
+    top = x.max(axis=0)
+    scale = np.ldexp(1.0, np.frexp(np.where(top > 0, top, 1.0))[1])
+    return x / scale, scale
 
 
 def ir_ratio(run_rmse: np.ndarray, seed: int) -> tuple[float, float, float]:
@@ -697,7 +718,8 @@ def ir_ratio(run_rmse: np.ndarray, seed: int) -> tuple[float, float, float]:
         ``run_rmse`` is not numeric, or ``seed`` not an integer.
     ValueError
         ``run_rmse`` is not of shape (runs, 4) with at least two runs, or holds NaN, infinite or negative entries,
-        or its x errors are all zero.
+        or its x errors are all zero; or the bootstrap interval is undefined: the resampled ratio does not vary (the
+        runs' x and y errors constant, or the y errors all zero) or a resample holds only zero x errors.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     run_rmse = as_array(run_rmse, "run_rmse", shape=(None, len(IR_COMPONENTS)), nonnegative=True, subnormal=True)
@@ -707,12 +729,20 @@ def ir_ratio(run_rmse: np.ndarray, seed: int) -> tuple[float, float, float]:
         raise ValueError("run_rmse: the x errors (column 2) are all zero, so the ratio y/x is undefined")
     from scipy import stats
 
-    ms = run_rmse[:, 2:] ** 2
-    ratio = float(np.sqrt(ms[:, 1].mean() / ms[:, 0].mean()))
-    res = stats.bootstrap((ms[:, 0], ms[:, 1]), lambda a, b, axis=-1: np.sqrt(b.mean(axis=axis) / a.mean(axis=axis)),
-                          paired=True, vectorized=True, n_resamples=2000, confidence_level=0.95,
-                          rng=np.random.default_rng(seed))
-    return ratio, float(res.confidence_interval.low), float(res.confidence_interval.high)
+    scaled, scale = _binary_scaled(run_rmse[:, 2:])   # exact powers of two: squares of 1e-200 m do not underflow
+    ms, factor = scaled ** 2, float(scale[1] / scale[0])
+    ratio = float(np.sqrt(ms[:, 1].mean() / ms[:, 0].mean())) * factor
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", stats.DegenerateDataWarning)   # a degenerate interval is refused below, by name
+        warnings.simplefilter("ignore", RuntimeWarning)               # (its BCa acceleration divides 0 by 0)
+        res = stats.bootstrap((ms[:, 0], ms[:, 1]), lambda a, b, axis=-1: np.sqrt(b.mean(axis=axis) / a.mean(axis=axis)),
+                              paired=True, vectorized=True, n_resamples=2000, confidence_level=0.95,
+                              rng=np.random.default_rng(seed))
+    low, high = float(res.confidence_interval.low) * factor, float(res.confidence_interval.high) * factor
+    if not (np.isfinite(low) and np.isfinite(high)):
+        raise ValueError(f"run_rmse: the bootstrap interval of the ratio is undefined (the ratio {ratio:.6g} is the same "
+                         "on every resample of runs, or some resample holds no non-zero x error): the runs must vary")
+    return ratio, low, high
 
 
 def ir_ratio_band() -> tuple[float, float]:

@@ -13,7 +13,7 @@ from fusion.data import as_printed
 from fusion._docstrings import reads_results
 from fusion._results import ResultSpec, dict_of, flag, instance, integer, number, validated_post_init
 from fusion._shown import shown
-from fusion._validation import as_covariance, count, instance_of, scalar
+from fusion._validation import as_array, as_covariance, count, instance_of, scalar
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.estimates.ci import convex_combination, split_covariance_intersection
@@ -247,14 +247,25 @@ def printed_equation_checks(P1: ArrayLike, P2: ArrayLike, Pi: ArrayLike, F: Arra
         ``eq6_asym``: largest asymmetry of eq. 6 as printed, :math:`F P_i + F^\top`; ``eq6_relerr``: its
         Frobenius distance to :math:`F P_i F^\top` relative to the latter (no Q: the process noise is common,
         it belongs to the shared part).
+
+    Raises
+    ------
+    TypeError
+        An argument is not numeric.
+    ValueError
+        ``Pi`` and ``F`` are not square matrices of one shape or hold NaN or infinite entries; ``x`` is not a finite
+        vector of their size; ``F`` and ``Pi`` give :math:`F P_i F^\top = 0` (``F = 0``, say), against which the
+        relative error of eq. 6 is undefined; ``P1`` or ``P2`` is refused by eq. 2 (named).
     """
-    x = np.asarray(x, dtype=float)
-    Pi, F = np.asarray(Pi, dtype=float), np.asarray(F, dtype=float)
-    if Pi.shape != F.shape or F.ndim != 2 or F.shape[0] != F.shape[1]:
+    Pi, F = as_array(Pi, "Pi", ndim=2, subnormal=True), as_array(F, "F", ndim=2, subnormal=True)
+    if Pi.shape != F.shape or F.shape[0] != F.shape[1]:
         raise ValueError(f"Pi and F must be square matrices of one shape, got {Pi.shape} and {F.shape}")
+    x = as_array(x, "x", shape=(F.shape[0],))
     eq2_error = float(np.max(np.abs(as_printed.wang2024_eqs_1_2(x, P1, x, P2, omega=0.5).x - x)))
     printed6 = F @ Pi + F.T
     correct6 = F @ Pi @ F.T
+    if not np.any(correct6):
+        raise ValueError("F and Pi give F Pi F^T = 0, against which the relative error of eq. 6 is undefined")
     return {"eq2_error": eq2_error, "eq6_asym": float(np.max(np.abs(printed6 - printed6.T))),
             "eq6_relerr": np.linalg.norm(printed6 - correct6) / np.linalg.norm(correct6)}
 

@@ -17,7 +17,8 @@ from numpy.typing import ArrayLike
 from fusion._results import ResultSpec, array, dict_of, mask, number, validated_post_init
 from fusion import data
 from fusion._docstrings import reads_results
-from fusion._validation import count, record, scalar, std_scalar, instance_of
+from fusion._counts import distinct, sequence
+from fusion._validation import as_array, count, record, scalar, std_scalar, instance_of
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -289,6 +290,14 @@ def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dic
     dict of float to ndarray, shape (runs,)
         Rounded per-run RMSE (m), as :func:`fusion.scenarios.two_sensor.run_rmse`.
 
+    Raises
+    ------
+    TypeError
+        ``sc`` is not a :class:`~fusion.scenarios.two_sensor.Scenario`, or ``levels`` or ``t_steady`` not numeric.
+    ValueError
+        ``levels`` is empty, not a number or 1-D, holds an entry outside (0, 1) (named by its position) or repeats one
+        (the result is keyed by level); ``t_steady`` is not finite or after the last step.
+
     References
     ----------
     :func:`fusion.estimates.fuzzy_cluster.fuzzy_cluster_fusion`.
@@ -299,11 +308,16 @@ def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dic
     a, b = sc.tracks
     Ps = np.stack([a.gains.P, b.gains.P], axis=1)
     X = np.stack([a.est, b.est], axis=2)
-    steady = sc.t >= t_steady
+    lams = distinct([scalar(lam, f"levels[{i}]", 0.0, 1.0, lo_open=True, hi_open=True)
+                     for i, lam in enumerate(np.atleast_1d(as_array(levels, "levels", ndim=(0, 1))))], "levels")
+    steady = sc.t >= scalar(t_steady, "t_steady")
+    if not steady.any():
+        raise ValueError(f"t_steady = {shown(t_steady)} s is after the last step ({float(sc.t[-1]):g} s): "
+                         "no step to average over")
     out = {}
-    for lam in np.atleast_1d(np.asarray(levels, dtype=float)):
-        est = np.stack([fuzzy_cluster_fusion(X[:, k], Ps[k], float(lam)).x for k in range(sc.t.size)], axis=1)
-        out[float(lam)] = run_rmse(est, sc.truth, steady, 0)
+    for lam in lams:
+        est = np.stack([fuzzy_cluster_fusion(X[:, k], Ps[k], lam).x for k in range(sc.t.size)], axis=1)
+        out[lam] = run_rmse(est, sc.truth, steady, 0)
     return out
 
 
@@ -325,19 +339,34 @@ def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = 
     -------
     dict
         Weight -> (x, y) slip (m), averaged over the runs.
+
+    Raises
+    ------
+    TypeError
+        ``sc`` or ``study`` of the wrong type, ``omegas`` not a sequence or an entry not a number.
+    ValueError
+        An entry of ``omegas`` outside [0, 1] or repeated (the result is keyed by weight).
     """
     instance_of(sc, Scenario, "sc")
     instance_of(study, FusionStudy, "study")
+    ws = distinct([scalar(w, f"omegas[{i}]", 0.0, 1.0) for i, w in enumerate(sequence(omegas, "omegas"))], "omegas")
     a, b = sc.tracks
     every = np.ones(study.t.size, dtype=bool)
     out = {}
-    for w in omegas:
-        w = float(w)
-        if not 0.0 <= w <= 1.0:
-            raise ValueError(f"omegas must lie in [0, 1], got {shown(w)}")
+    for w in ws:
         est = fuse_tracks(a, b, "ci", omega=w).est
         out[w] = tuple(float(v) for v in two_sensor.rmse_variants(est, study.truth, every)[two_sensor.SLIP_STEPS])
     return out
+
+
+def _slip_pair(value: object, name: str, key: str) -> tuple[float, float]:
+    """The (x, y) pair of slips ``value[key]`` (m), checked: a mapping holding ``key`` whose entry is two standard
+    deviations (finite, positive, squares representable: the band squares them); errors name ``name`` and the key."""
+    record(value, name, (key,), extra=True)
+    entry = value[key]
+    if isinstance(entry, (str, bytes)) or not hasattr(entry, "__len__") or len(entry) != 2:
+        raise ValueError(f"{name}[{shown(key)}] must be an (x, y) pair of slips, got {shown(entry, 80)}")
+    return std_scalar(entry[0], f"{name}[{key!r}][0]"), std_scalar(entry[1], f"{name}[{key!r}][1]")
 
 
 def slip_pair_band(slip_weights: Mapping[float, tuple[float, float]], slip_all: Mapping[str, tuple[float, float]],
@@ -364,19 +393,14 @@ def slip_pair_band(slip_weights: Mapping[float, tuple[float, float]], slip_all: 
         ``slip_weights`` or ``slip_all`` is not a mapping, or ``n_all`` not an integer.
     ValueError
         ``slip_weights`` lacks the grid optimum ``W_GRID`` or ``slip_all`` the improved CI, or their entries are not
-        pairs of finite non-negative numbers; ``n_all`` below 1.
+        pairs of slips (finite positive numbers whose squares are representable); ``n_all`` below 1.
     """
-    for name, value, key in (("slip_weights", slip_weights, W_GRID), ("slip_all", slip_all, IMP)):
-        record(value, name, (key,), extra=True)
-        entry = value[key]
-        if isinstance(entry, (str, bytes)) or not hasattr(entry, "__len__") or len(entry) != 2:
-            raise ValueError(f"{name}[{shown(key)}] must be an (x, y) pair of slips, got {shown(entry, 80)}")
-        for i, v in enumerate(entry):
-            scalar(v, f"{name}[{key!r}][{i}]", lo=0.0)
+    pairs = {name: _slip_pair(value, name, key)
+             for name, value, key in (("slip_weights", slip_weights, W_GRID), ("slip_all", slip_all, IMP))}
     n_all = count(n_all, "n_all")
     pub = data.WANG2024_RMSE.columns
     bands = [two_sensor.slip_steps_band(v * np.sqrt(n_all), float(p), 0)
-             for vals, p in ((slip_weights[W_GRID], pub["ci"][0]), (slip_all[IMP], pub["improved"][0]))
+             for vals, p in ((pairs["slip_weights"], pub["ci"][0]), (pairs["slip_all"], pub["improved"][0]))
              for v in vals]
     return max(b[0] for b in bands), min(b[1] for b in bands)
 
@@ -483,10 +507,18 @@ def slip_band(variants_all: Mapping[str, tuple[float, float]], n_all: int) -> di
     -------
     dict
         ``"x"`` and ``"y"``: (smallest n, largest n).
+
+    Raises
+    ------
+    TypeError
+        ``variants_all`` is not a mapping, or ``n_all`` not an integer.
+    ValueError
+        ``variants_all`` lacks the slip (``SLIP_STEPS``) or its entry is not an (x, y) pair of slips (finite positive
+        numbers whose squares are representable), as :func:`slip_pair_band` checks its mappings; ``n_all`` below 1.
     """
+    slip = _slip_pair(variants_all, "variants_all", two_sensor.SLIP_STEPS)
     n_all = count(n_all, "n_all")
     pub = float(data.WANG2024_RMSE.columns["improved"][0])
-    slip = variants_all[two_sensor.SLIP_STEPS]
     return {ax: two_sensor.slip_steps_band(v * np.sqrt(n_all), pub, 0) for ax, v in zip(("x", "y"), slip)}
 
 
@@ -721,10 +753,13 @@ def slip_all(study: FusionStudy, names: Sequence[StudyMethod] = (StudyMethod.CI,
 
     Raises
     ------
+    TypeError
+        ``study`` is not a :class:`~fusion.scenarios.two_sensor.FusionStudy`, or ``names`` not a sequence.
     ValueError
-        If a name is not a rule of ``study``.
+        If a name is not a rule of ``study``, or one is repeated (the result is keyed by rule).
     """
     instance_of(study, FusionStudy, "study")
+    names = distinct(sequence(names, "names"), "names")
     missing = [n for n in names if n not in study.est]
     if missing:
         raise ValueError(f"names: not rules of the study: {missing}")

@@ -13,6 +13,7 @@ from fusion.book.glue import GlueValues
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_ledger.studies import EXTRAP
+from fusion.book.chapters.time_registration import _record_times  # noqa: F401 (the ledger's modules import it from here)
 
 __all__ = [
     "structured_ops",
@@ -62,35 +63,6 @@ def structured_ops() -> dict[str, int]:
     stage1 = sum(int(gen[i].sum()) for i, _ in zip(*np.nonzero(need_a)))   # A_ik = Σ_l F_il P_lk
     update = 3 + 3 + int(upper.sum())
     return {"predict": state + stage1 + stage2, "update": update, "state": state}
-
-
-def _record_times(t1: ArrayLike, t2: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-    """Sensor 1's sample times and the registration instants of one record, checked by name.
-
-    ``t1``: at least three strictly increasing samples (the three-point formula's nodes); ``t2``: strictly increasing
-    instants within the record, ``t1[0] <= t2 <= t1[-1]`` (an instant outside is an extrapolation, which neither
-    the cost count nor the noise gains of the record describe).
-
-    Parameters
-    ----------
-    t1, t2 : array_like
-        Sample times and registration instants (s).
-
-    Returns
-    -------
-    tuple of ndarray
-        ``(t1, t2)`` as float arrays.
-
-    Raises
-    ------
-    ValueError
-        Too few samples, times not strictly increasing, or an instant outside ``[t1[0], t1[-1]]``, naming the argument.
-    """
-    t1, t2 = as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # strictly increasing times, named
-    if t2[0] < t1[0] or t2[-1] > t1[-1]:
-        raise ValueError(f"t2 must lie within the record of t1, [{t1[0]:g}, {t1[-1]:g}] s, got instants from "
-                         f"{t2[0]:g} to {t2[-1]:g} s (an extrapolation)")
-    return t1, t2
 
 
 def cost_count(t1: ArrayLike, t2: ArrayLike) -> dict[str, int]:
