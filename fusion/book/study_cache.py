@@ -60,6 +60,7 @@ import numpy as np
 from fusion._counts import count
 from fusion._frozen import ReadOnlyMapping
 from fusion._validation import text
+from fusion._paths import folder
 from fusion._shown import shown
 
 __all__ = ["ENV", "LOG_ENV", "process_cache", "study_cache", "study_key", "source_digest"]
@@ -92,16 +93,8 @@ def source_digest(package: Path | str = _PACKAGE) -> str:
     ValueError
         If ``package`` is not an existing folder (or the system cannot read it as a path: too long, a NUL byte).
     """
-    if not isinstance(package, (str, os.PathLike)):
-        raise TypeError(f"package must be a path (str or os.PathLike), got {type(package).__name__} {shown(package, 40)}")
-    try:
-        folder = Path(package)
-        is_dir = folder.is_dir()
-    except (OSError, ValueError) as exc:   # a name too long for the system, a NUL byte
-        raise ValueError(f"package must be a folder, got {shown(package, 60)} ({type(exc).__name__})") from None
-    if not is_dir:
-        raise ValueError(f"package must be an existing folder, got {shown(package, 60)}")
-    return _source_digest(folder)
+    # resolved before the cache: a relative name read from another working directory is another folder
+    return _source_digest(folder(package, "package").resolve())
 
 
 @functools.lru_cache(maxsize=1)
