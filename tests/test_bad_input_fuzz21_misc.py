@@ -6,14 +6,26 @@ shared: a folder argument goes through ``fusion._paths.folder`` (class L and ``s
 
 from __future__ import annotations
 
+import io
+import math
 import os
+import struct
+import time
+import zlib
+from decimal import Decimal
 from pathlib import Path
 
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
 import pytest
 from hypothesis import given, settings, strategies as st
 
 from fusion.book import claims as C
 from fusion.book import ledger as L
+from fusion.book.figures import glue_figure
+from fusion.book.glue import glue_all
+from fusion.book.style import new_figure, png_description
 from fusion.book.study_cache import source_digest
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -97,3 +109,97 @@ def test_s1_relative_name_is_resolved_before_the_cache(tmp_path, monkeypatch):
     assert first != second
     assert second == source_digest(tmp_path / "two" / "pkg")
     assert first == source_digest(os.fspath(tmp_path / "one" / "pkg"))
+
+
+# ---------------------------------------------------------------- class G / D6: glue_all's finiteness rule
+
+@pytest.mark.parametrize("bad", [Decimal("sNaN"), Decimal("NaN"), Decimal("-Infinity"), pd.NA, pd.NaT,
+                                 np.datetime64("NaT"), complex(math.nan, 0.0), complex(1.0, math.inf),
+                                 np.complex128(complex(0, math.nan)), np.array([1.0, math.nan]),
+                                 np.array(math.inf), np.array(["NaT"], dtype="datetime64[s]")])
+def test_g1_d6_non_finite_or_missing_values_are_refused_by_key(bad):
+    with pytest.raises(ValueError, match=r"^values\['a'\] must be finite"):
+        glue_all({"ok": 1.0, "a": bad})
+
+
+@pytest.mark.parametrize("good", [Decimal("1.5"), complex(1, 2), np.array([1.0, 2.0]), "NaN", 3, None, True,
+                                  np.datetime64("2024-01-01")])
+def test_g_finite_values_pass_the_check(good, monkeypatch):
+    import myst_nb
+    seen = {}
+    monkeypatch.setattr(myst_nb, "glue", lambda k, v, display: seen.__setitem__(k, v))
+    glue_all({"a": good})
+    assert "a" in seen
+
+
+# ---------------------------------------------------------------- class W: glue_figure's key type
+
+@pytest.mark.parametrize("key", [5, None, b"k", ["k"]])
+def test_w1_glue_figure_key_of_a_wrong_type(key):
+    fig, _ = new_figure()
+    try:
+        with pytest.raises(TypeError, match="^key must be a str"):
+            glue_figure(key, fig)
+    finally:
+        plt.close(fig)
+    fig, _ = new_figure()
+    try:
+        with pytest.raises(ValueError, match="^key must be a non-empty"):
+            glue_figure("", fig)
+    finally:
+        plt.close(fig)
+
+
+# ---------------------------------------------------------------- class N: png_description of malformed PNGs
+
+_SIG = b"\x89PNG\r\n\x1a\n"
+
+
+def _chunk(kind: bytes, body: bytes) -> bytes:
+    return struct.pack(">I4s", len(body), kind) + body + b"\0\0\0\0"
+
+
+@pytest.mark.parametrize("body", [
+    (b"iTXt", b"Description\0"), (b"iTXt", b"Description\0\0"), (b"zTXt", b"Description\0\0notzlib"),
+    (b"zTXt", b"Description\0"), (b"zTXt", b"Description\0\0" + zlib.compress(b"abc")[:-3]),
+    (b"iTXt", b"Description\0\0\0en\0\0\xff\xfe"), (b"iTXt", b"Description\0\1\0\0\0notzlib"),
+    (b"zTXt", b"Description\0\1" + zlib.compress(b"abc"))])
+def test_n1_n3_malformed_description_is_none(body):
+    assert png_description(_SIG + _chunk(*body)) is None
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.sampled_from([b"tEXt", b"zTXt", b"iTXt"]), st.binary(max_size=60))
+def test_n_any_description_chunk_gives_text_none_or_a_named_refusal(kind, rest):
+    try:
+        out = png_description(_SIG + _chunk(kind, b"Description\0" + rest))
+    except ValueError as exc:
+        assert str(exc).startswith("data")
+    else:
+        assert out is None or isinstance(out, str)
+
+
+def test_n4_inflation_is_bounded():
+    bomb = _SIG + _chunk(b"zTXt", b"Description\0\0" + zlib.compress(b"\0" * 50_000_000, 9))
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match="^data: the PNG's Description chunk inflates beyond"):
+        png_description(bomb)
+    assert time.process_time() - t0 < 1.0
+    itxt = _SIG + _chunk(b"iTXt", b"Description\0\1\0\0\0" + zlib.compress(b"a" * 200_000))
+    with pytest.raises(ValueError, match="^data"):
+        png_description(itxt)
+    with pytest.raises(ValueError, match="^data"):
+        png_description(_SIG + _chunk(b"tEXt", b"Description\0" + b"a" * 200_000))
+
+
+def test_n_valid_descriptions_still_read():
+    assert png_description(_SIG + _chunk(b"tEXt", b"Description\0caf\xe9")) == "café"
+    assert png_description(_SIG + _chunk(b"zTXt", b"Description\0\0" + zlib.compress(b"a plot"))) == "a plot"
+    itxt = b"Description\0\1\0en\0\0" + zlib.compress("θ rises".encode())
+    assert png_description(_SIG + _chunk(b"iTXt", itxt)) == "θ rises"
+    for alt in ("Error against the number of sensors: it falls.", "σ against n: it falls (θ = 0.5)."):
+        fig, _ = new_figure()
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", metadata={"Description": alt})   # as the notebooks' PNG formatter writes
+        plt.close(fig)
+        assert png_description(buf.getvalue()) == alt

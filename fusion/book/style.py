@@ -652,6 +652,8 @@ FIGURE_ALT: dict[str, str] = {}
 
 #: Longest alt text written into a PNG (characters); longer descriptions are cut at a word.
 MAX_ALT_CHARS = 700
+# Longest PNG description png_description reads (bytes), far above any alt text; bounds the inflation.
+_MAX_DESCRIPTION = 100_000
 
 _ALT_ATTR = "_fusion_alt"
 
@@ -855,12 +857,18 @@ def png_description(data: bytes) -> str | None:
     Returns
     -------
     str or None
-        None for bytes that are not a PNG or a PNG without a description.
+        None for bytes that are not a PNG, a PNG without a description, or one whose description chunk is
+        malformed (cut short, compressed data that is not zlib's, an iTXt text that is not UTF-8): the page then
+        takes its alt text from the caption, as for a figure without a description.
 
     Raises
     ------
     TypeError
         ``data`` not bytes (a ``str``, a path, None: read the file's bytes first).
+    ValueError
+        ``data`` holds a description longer than ``_MAX_DESCRIPTION`` (100,000) characters, or a compressed one
+        inflating beyond it (read in bounded steps: a small file cannot inflate to gigabytes). An alt text is a
+        sentence or two (:data:`MAX_ALT_CHARS` for the automatic ones).
     """
     import struct
     import zlib
@@ -869,6 +877,18 @@ def png_description(data: bytes) -> str | None:
         raise TypeError(f"data must be the bytes of a PNG file, got {type(data).__name__}")
     if not data.startswith(b"\x89PNG\r\n\x1a\n"):
         return None
+
+    def inflate(raw: bytes) -> bytes | None:
+        d = zlib.decompressobj()
+        try:
+            out = d.decompress(raw, _MAX_DESCRIPTION + 1)
+        except zlib.error:
+            return None
+        if len(out) > _MAX_DESCRIPTION:
+            raise ValueError(f"data: the PNG's Description chunk inflates beyond {_MAX_DESCRIPTION:,} bytes "
+                             "(not an alt text)")
+        return out if d.eof else None   # cut short: malformed
+
     pos = 8
     while pos + 8 <= len(data):
         length, kind = struct.unpack(">I4s", data[pos:pos + 8])
@@ -885,11 +905,23 @@ def png_description(data: bytes) -> str | None:
         if key != b"Description":
             continue
         if kind == b"tEXt":
-            return rest.decode("latin-1")
-        if kind == b"zTXt":
-            return zlib.decompress(rest[1:]).decode("latin-1")
-        compressed, rest = rest[0], rest[2:]
-        _lang, _, rest = rest.partition(b"\0")
-        _tkey, _, text = rest.partition(b"\0")
-        return (zlib.decompress(text) if compressed else text).decode("utf-8")
+            text = rest
+        elif kind == b"zTXt":
+            text = inflate(rest[1:]) if rest[:1] == b"\0" else None   # method 0 (zlib) is the only one
+        elif len(rest) < 2:
+            return None
+        else:
+            compressed, rest = rest[0], rest[2:]
+            _lang, _, rest = rest.partition(b"\0")
+            _tkey, _, text = rest.partition(b"\0")
+            text = inflate(text) if compressed else text
+        if text is None:
+            return None
+        if len(text) > _MAX_DESCRIPTION:
+            raise ValueError(f"data: the PNG's Description chunk holds {len(text):,} bytes, beyond "
+                             f"{_MAX_DESCRIPTION:,} (not an alt text)")
+        try:
+            return text.decode("latin-1" if kind != b"iTXt" else "utf-8")
+        except UnicodeDecodeError:
+            return None
     return None
