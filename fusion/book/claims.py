@@ -57,7 +57,7 @@ from typing import Any
 import numpy as np
 import yaml
 
-from fusion._frozen import freeze_arrays, frozen_value, restore_frozen
+from fusion._frozen import constant, freeze_arrays, frozen_value, restore_frozen
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger.evidence import _KIND_OF_TEST
@@ -82,7 +82,7 @@ _MARGIN = {"type": "object", "additionalProperties": False, "minProperties": 1, 
            "properties": {"relative": {"type": "number", "minimum": 0}, "absolute": {"type": "number", "minimum": 0}}}
 
 #: JSON schema of a claim file.
-SCHEMA: dict[str, Any] = {
+SCHEMA: dict[str, Any] = constant({
     "type": "object", "additionalProperties": False, "required": ["source", "records"],
     "properties": {
         "source": {"enum": sorted(SOURCES)},
@@ -123,7 +123,7 @@ SCHEMA: dict[str, Any] = {
                                             "others": {"type": "array", "items": _READING}}},
             }}},
     },
-}
+})
 
 
 def _nonempty(value: object, name: str) -> str:

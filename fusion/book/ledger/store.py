@@ -5,6 +5,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -76,7 +77,7 @@ def _clean(x: Any) -> Any:
     """
     if isinstance(x, float):
         return float(f"{x:.7g}") if math.isfinite(x) else None
-    if isinstance(x, dict):
+    if isinstance(x, Mapping):
         return {k: _clean(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
         return [_clean(v) for v in x]
