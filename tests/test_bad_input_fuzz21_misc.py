@@ -6,12 +6,16 @@ shared: a folder argument goes through ``fusion._paths.folder`` (class L and ``s
 
 from __future__ import annotations
 
+import importlib
+import inspect
 import io
 import math
 import os
+import pkgutil
 import struct
 import time
 import zlib
+from collections.abc import Mapping
 from decimal import Decimal
 from pathlib import Path
 
@@ -21,11 +25,13 @@ import pandas as pd
 import pytest
 from hypothesis import given, settings, strategies as st
 
+from fusion._frozen import ReadOnlyMapping, constant
 from fusion.book import claims as C
 from fusion.book import ledger as L
 from fusion.book.figures import glue_figure
 from fusion.book.glue import glue_all
 from fusion.book.style import new_figure, png_description
+from fusion.book.tables import side_by_side
 from fusion.book.study_cache import source_digest
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -203,3 +209,155 @@ def test_n_valid_descriptions_still_read():
         fig.savefig(buf, format="png", metadata={"Description": alt})   # as the notebooks' PNG formatter writes
         plt.close(fig)
         assert png_description(buf.getvalue()) == alt
+
+
+# ---------------------------------------------------------------- class K: public constants are read-only
+
+def _public_modules():
+    """Every module of the package that has an ``__all__`` (main package, book layer, chapter layer)."""
+    import fusion
+    names = [m.name for m in pkgutil.walk_packages(fusion.__path__, "fusion.")]
+    mods = [importlib.import_module("fusion")]
+    for name in names:
+        mod = importlib.import_module(name)
+        if hasattr(mod, "__all__"):
+            mods.append(mod)
+    return mods
+
+
+def _mutable(value, path, seen=frozenset()):
+    """The path of the first mutable part of ``value`` (dict, list, set, writable array, frame), or None."""
+    if id(value) in seen:
+        return None
+    seen = seen | {id(value)}
+    if isinstance(value, (dict, list, set, bytearray, pd.DataFrame, pd.Series, pd.Index)):
+        return f"{path} ({type(value).__name__})"
+    if isinstance(value, np.ndarray):
+        return f"{path} (writable array)" if value.flags.writeable or value.dtype == object else None
+    if isinstance(value, (tuple, frozenset)):
+        return next((m for i, x in enumerate(value) if (m := _mutable(x, f"{path}[{i}]", seen))), None)
+    if isinstance(value, Mapping):
+        return next((m for k, x in value.items() if (m := _mutable(x, f"{path}[{k!r}]", seen))), None)
+    return None
+
+
+def test_k_every_public_constant_is_read_only():
+    mutable, n = [], 0
+    for mod in _public_modules():
+        for name in mod.__all__:
+            value = getattr(mod, name)
+            if inspect.isclass(value) or inspect.ismodule(value) or callable(value):
+                continue
+            n += 1
+            if (m := _mutable(value, f"{mod.__name__}.{name}")):
+                mutable.append(m)
+    assert n > 150 and not mutable, mutable
+
+
+def test_k_the_check_sees_a_mutable_constant():
+    assert _mutable({"a": 1}, "x") and _mutable((ReadOnlyMapping({"a": [1]}),), "x") and _mutable(np.zeros(2), "x")
+    assert _mutable(constant({"a": [1], "b": {2}, "c": np.zeros(2), "d": ({"e": 1},)}), "x") is None
+
+
+def test_k1_k4_the_reported_constants_cannot_be_changed():
+    from fusion import data
+    from fusion.scenarios import thermocouples as TC, wavelet_sensors as W
+    with pytest.raises(ValueError, match="read-only"):
+        TC.DEFAULT_SIGMAS[:] = 50.0
+    with pytest.raises(TypeError):
+        data.YANG2012_FAILURE["biases"] = (400.0, 800.0)
+    with pytest.raises(TypeError):
+        W.CONFIGS[0]["level"] = 1
+    with pytest.raises(TypeError):
+        C.SCHEMA["required"] = []
+    with pytest.raises(AttributeError):
+        C.SCHEMA["required"].append("x")   # a tuple
+
+
+def test_k_read_only_constants_still_serve_their_callers():
+    import jsonschema
+    import yaml
+    doc = yaml.safe_load((ROOT / "book" / "claims" / "yang2012optimal.yaml").read_text(encoding="utf-8"))
+    assert not list(jsonschema.Draft202012Validator(C.SCHEMA).iter_errors(doc))
+    doc["records"][0]["test"] = "not-a-test"
+    assert list(jsonschema.Draft202012Validator(C.SCHEMA).iter_errors(doc))
+    from fusion import data
+    from fusion.scenarios import thermocouples as TC
+    z = TC.inject_failure(TC.simulate(np.random.default_rng(0), 80), **data.YANG2012_FAILURE)
+    assert z.shape == (80, 10)
+    merged = ReadOnlyMapping({"a": 1}) | {"b": 2}
+    assert merged == {"a": 1, "b": 2} and type(merged) is dict and ({"b": 2} | ReadOnlyMapping({"a": 1})) == merged
+    assert type(ReadOnlyMapping({"a": 1}).copy()) is dict
+
+
+# ---------------------------------------------------------------- class M: side_by_side row labels
+
+def test_m1_tuple_labels_index_the_table():
+    labels = [(1, "a"), (1, "b"), (2, "a")]
+    for index in (labels, pd.MultiIndex.from_tuples(labels)):
+        df = side_by_side([1.0, 2.0, 3.0], [1.0, 2.5, 3.0], index)
+        assert list(df.index) == labels and df.index.name == "observation" and df.index.nlevels == 1
+        assert df.loc[[(1, "b")], "difference"].iloc[0] == 0.5
+
+
+@pytest.mark.parametrize("nan", [math.nan, np.nan, np.float32("nan"), complex(math.nan, 0)])
+def test_m2_two_nan_labels_are_a_repeated_label(nan):
+    with pytest.raises(ValueError, match=r"^index must not repeat an entry: index\[0\] and index\[2\]"):
+        side_by_side([1.0, 2.0, 3.0], [1.0, 2.0, 3.0], [float("nan"), 2.0, nan])
+    assert side_by_side([1.0, 2.0], [1.0, 2.0], [nan, 2.0]).shape == (2, 3)   # one NaN label is a label
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.lists(st.one_of(st.integers(-3, 3), st.floats(allow_infinity=False), st.text(max_size=2),
+                          st.tuples(st.integers(0, 2), st.text(max_size=1))), min_size=1, max_size=6))
+def test_m_labels_are_refused_exactly_when_a_lookup_would_be_ambiguous(labels):
+    n = len(labels)
+    keys = [("NaN",) if isinstance(v, float) and v != v else v for v in labels]
+    try:
+        df = side_by_side(np.ones(n), np.ones(n), labels)
+    except ValueError as exc:
+        assert str(exc).startswith("index must not repeat") and len(set(keys)) < n
+    else:
+        assert len(set(keys)) == n and df.shape == (n, 3)
+
+
+# ---------------------------------------------------------------- D2-D4: study_cache / process_cache keys
+
+@pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")   # np.asmatrix
+def test_d2_keys_determine_longdouble_masked_and_matrix_arguments():
+    from fusion.book.study_cache import study_key
+
+    def key(v):
+        return study_key("m.f", {"x": v}, digest="0")
+    one = np.longdouble(1)
+    assert key(one + np.longdouble(1e-19)) != key(one) and key(one) == key(np.longdouble(1))
+    data = np.arange(3.0)
+    masked = np.ma.masked_array(data, mask=[False, True, False])
+    assert len({key(data), key(masked), key(np.ma.masked_array(data)), key(np.asmatrix(data))}) == 4
+    assert key(masked) == key(np.ma.masked_array(data.copy(), mask=[False, True, False]))
+    # a masked entry's hidden value does not matter
+    assert key(masked) == key(np.ma.masked_array([0.0, 99.0, 2.0], mask=[False, True, False]))
+
+
+def test_d3_a_cached_masked_result_keeps_its_mask():
+    from fusion.book.study_cache import study_cache
+
+    @study_cache(maxsize=2)
+    def f(n: int):
+        return np.ma.masked_array(np.arange(float(n)), mask=[False] * n)
+    first = f(3)
+    with pytest.raises(ValueError, match="read-only"):
+        first.mask[0] = True
+    with pytest.raises(ValueError, match="read-only"):
+        first[0] = np.ma.masked
+    assert not f(3).mask.any()
+
+
+def test_d4_process_cache_is_equality_keyed_as_documented():
+    from fusion.book.study_cache import process_cache
+
+    @process_cache(maxsize=4)
+    def sign(x):
+        return math.copysign(1.0, x[0] if isinstance(x, tuple) else x)
+    assert sign(0.0) == 1.0 and sign(-0.0) == 1.0   # documented: equal arguments share a result
+    assert sign.cache_info().hits == 1

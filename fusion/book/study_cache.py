@@ -119,6 +119,8 @@ def _canonical(value: Any, _open: frozenset[int] = frozenset()) -> Any:
         return ["enum", f"{type(value).__module__}.{type(value).__qualname__}", _canonical(value.value, _open)]
     if isinstance(value, (int, np.integer)):
         return [f"{type(value).__module__}.{type(value).__qualname__}", int(value)]
+    if isinstance(value, np.floating) and np.finfo(value.dtype).nmant > 52:   # longdouble: its own digits
+        return [f"{type(value).__module__}.{type(value).__qualname__}", np.format_float_scientific(value, unique=True)]
     if isinstance(value, (float, np.floating)):
         return [f"{type(value).__module__}.{type(value).__qualname__}", float(value).hex()]
     if isinstance(value, bytes):
@@ -135,9 +137,13 @@ def _canonical(value: Any, _open: frozenset[int] = frozenset()) -> Any:
         return ["frozenset", sorted(json.dumps(_canonical(v, _open)) for v in value)]
     if isinstance(value, (dict, ReadOnlyMapping)):   # a frozen result's mapping field (fusion._frozen)
         return [type(value).__name__, [[_canonical(k, _open), _canonical(v, _open)] for k, v in value.items()]]
+    if isinstance(value, np.ma.MaskedArray):   # its mask too: a masked array is not its data
+        return ["masked", _canonical(value.filled(0).view(np.ndarray), _open),
+                _canonical(np.ma.getmaskarray(value).view(np.ndarray), _open)]
     if isinstance(value, np.ndarray) and value.dtype.kind in "biufc":
         arr = np.ascontiguousarray(value)
-        return ["ndarray", arr.dtype.str, list(arr.shape), hashlib.sha256(arr.tobytes()).hexdigest()]
+        kind = "ndarray" if type(value) is np.ndarray else f"{type(value).__module__}.{type(value).__qualname__}"
+        return [kind, arr.dtype.str, list(arr.shape), hashlib.sha256(arr.tobytes()).hexdigest()]
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return ["dataclass", f"{type(value).__module__}.{type(value).__qualname__}",
                 [[f.name, _canonical(getattr(value, f.name), _open)] for f in dataclasses.fields(value)]]
@@ -208,6 +214,9 @@ def _frozen(value: Any, immutable: dict[int, Any], _open: frozenset[int] = froze
         if value.dtype.kind not in "biufcmMSUV":  # object arrays hold mutable objects
             return False
         value.setflags(write=False)
+        mask = np.ma.getmask(value)   # a masked array's mask: a second array a caller could change
+        if isinstance(mask, np.ndarray) and mask is not np.ma.nomask:
+            mask.setflags(write=False)
         immutable[id(value)] = value
         return True
     if id(value) in _open:
@@ -338,6 +347,11 @@ def process_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], A
     read-only in place; any other result (a list, dict, DataFrame, non-frozen dataclass in it) is deep-copied for
     each caller, its immutable parts shared. A caller's edit of a result never reaches another call.
 
+    Calls are keyed as ``functools.lru_cache(typed=True)`` keys them: by equality, the type checked for each top-level
+    argument only, so equal arguments share one result: ``f(-0.0)`` gets ``f(0.0)``'s and ``f((True,))`` gets
+    ``f((1,))``'s. Only a function whose result is the same for equal arguments may take it;
+    :func:`study_cache` (keyed by a canonical encoding, in which those are different calls) is for the others.
+
     Parameters
     ----------
     maxsize : int or None
@@ -385,7 +399,8 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
     maxsize : int or None
         Entries of the in-process cache, least recently used dropped first, keyed by the call's canonical
         encoding (:func:`study_key`, the disk's key: ``1``, ``1.0`` and ``True``, or ``0.0`` and ``-0.0``, are
-        different calls; arguments without one, such as a callable, by equality and type as ``functools.lru_cache``
+        different calls, as are a masked array and its data, an ``np.matrix`` and its array, and two
+        ``longdouble`` values that round to one float; arguments without one, such as a callable, by equality and type as ``functools.lru_cache``
         does): a count (an integer type, 0 or more; ``0`` caches nothing in the process) or ``None`` (unbounded).
 
     Returns

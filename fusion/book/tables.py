@@ -91,7 +91,8 @@ def side_by_side(
     ----------
     published, reproduced : array_like, shape (k,)
     index : sequence, length k
-        Row labels (e.g. observation numbers).
+        Row labels (e.g. observation numbers): hashable and distinct (two NaN labels are repeated). A tuple is one
+        label (the index is flat, not a MultiIndex, whatever the labels).
     name : str
         Quantity name appended to the column headers ("" for plain headers).
     decimals : int
@@ -135,7 +136,7 @@ def side_by_side(
             f"reproduced {name}".strip(): rep,
             "difference": rep - pub,
         },
-        index=pd.Index(list(index), name=index_name),
+        index=pd.Index(list(index), name=index_name, tupleize_cols=False),  # tuple labels: one label each
     )
     return df.round(decimals) + 0.0  # + 0.0 turns -0.0 into 0.0
 
