@@ -6,6 +6,7 @@ shared: a folder argument goes through ``fusion._paths.folder`` (class L and ``s
 
 from __future__ import annotations
 
+import dataclasses
 import importlib
 import inspect
 import io
@@ -238,6 +239,9 @@ def _mutable(value, path, seen=frozenset()):
         return next((m for i, x in enumerate(value) if (m := _mutable(x, f"{path}[{i}]", seen))), None)
     if isinstance(value, Mapping):
         return next((m for k, x in value.items() if (m := _mutable(x, f"{path}[{k!r}]", seen))), None)
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):   # a published table, a source record
+        return next((m for f in dataclasses.fields(value)
+                     if (m := _mutable(getattr(value, f.name), f"{path}.{f.name}", seen))), None)
     return None
 
 
@@ -361,3 +365,47 @@ def test_d4_process_cache_is_equality_keyed_as_documented():
         return math.copysign(1.0, x[0] if isinstance(x, tuple) else x)
     assert sign(0.0) == 1.0 and sign(-0.0) == 1.0   # documented: equal arguments share a result
     assert sign.cache_info().hits == 1
+
+
+# ---------------------------------------------------------------- D8: parameters_matching's option name
+
+@pytest.mark.parametrize("option", ["threshold", "include_self"])
+def test_d8_a_non_numeric_option_is_refused_as_name(option):
+    from fusion.book.audit import parameters_matching
+    with pytest.raises(ValueError, match=f"^name must be a numeric option of method 'optimal_fusion_set', "
+                                         f"one of \\('scale',\\), got '{option}'"):
+        parameters_matching(np.array([1.0, 2.0, 3.5]), 2.0, "optimal_fusion_set", option, 0.01, 100.0)
+
+
+def test_d8_degenerate_every_grid_point_is_a_root_hi_included():
+    from fusion.book.audit import parameters_matching
+    roots = parameters_matching(np.array([2.0]), 2.0, "support_degree", "alpha", 0.1, 10.0, n_grid=5)
+    assert np.allclose(roots, np.geomspace(0.1, 10.0, 5))
+    assert parameters_matching(np.array([2.0]), 3.0, "support_degree", "alpha", 0.1, 10.0, n_grid=5).size == 0
+
+
+# ---------------------------------------------------------------- D12: pd.NA in an object column is missing
+
+def test_d12_pd_na_is_missing_in_an_object_column_as_in_a_nullable_one():
+    from fusion.book.tables import mismatches
+    obj = pd.DataFrame({"published": pd.Series([1.0, pd.NA, 3.0], dtype=object),
+                        "reproduced": pd.Series([1.0, 2.0, pd.NA], dtype=object)})
+    nullable = obj.astype("Float64")
+    assert mismatches(obj).equals(mismatches(nullable))
+    assert list(mismatches(obj)["reproduced"]) == [False, False, True]
+    with pytest.raises(TypeError, match=r"^table\['published'\] must hold numbers"):
+        mismatches(obj.assign(published=pd.Series(["1.0", pd.NA, 3.0], dtype=object)))
+
+
+# ---------------------------------------------------------------- D13: result containers check nothing (documented)
+
+def test_d13_result_containers_are_documented_as_unchecked_and_their_producers_check():
+    from fusion.book.audit import SubsetMatch, matching_subsets
+    from fusion.book.benchmarks import BenchmarkResult
+    from fusion.data import Published
+    for cls in (SubsetMatch, BenchmarkResult, Published):
+        assert "the constructor checks nothing" in cls.__doc__
+    assert SubsetMatch("x", math.nan).value != SubsetMatch("x", math.nan).value   # kept as given
+    found = matching_subsets(np.array([1.0, 2.0, 4.0]), 1.5, 0.05, np.mean)
+    assert found and all(isinstance(m, SubsetMatch) and all(isinstance(i, int) for i in m.members)
+                         and math.isfinite(m.value) for m in found)

@@ -59,6 +59,9 @@ def in_convex_hull(x: ArrayLike, value: float, tol: float = 0.0) -> bool:
 class SubsetMatch:
     """A subset of readings whose fused value matches a target.
 
+    A result of :func:`matching_subsets`, which checks what it stores: the constructor checks nothing (a record
+    built by hand is the caller's; the package reads none back).
+
     Attributes
     ----------
     members : tuple of int
