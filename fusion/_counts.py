@@ -230,6 +230,11 @@ def seeds(values: object, name: str = "seeds") -> list[int]:
     return [seed(v, f"{name}[{i}]") for i, v in enumerate(items)]
 
 
+def _is_nan(v: object) -> bool:
+    """``v`` a real or complex float NaN (not equal to itself)."""
+    return isinstance(v, (float, complex, np.floating, np.complexfloating)) and v != v
+
+
 def distinct(items: list, name: str) -> list:
     """``items`` when no two are equal (rule 12): a sequence whose entries key a result (seeds of a dict of
     cases, sizes of a table's rows, sensors that each receive one bias) refuses a duplicate, which would
@@ -243,19 +248,21 @@ def distinct(items: list, name: str) -> list:
     Raises
     ------
     ValueError
-        If an entry occurs twice, naming it and its positions.
+        If an entry occurs twice, naming it and its positions. Two NaN entries are repeated: a NaN key of a
+        result cannot be looked up (``nan != nan``; pandas finds both rows of two NaN labels).
     """
     try:
-        if len(set(items)) == len(items):  # one pass in C: the usual case
+        unique = set(items)
+        if len(unique) == len(items) and not any(_is_nan(v) for v in unique):  # the usual case
             return items
     except TypeError:  # unhashable entries: compared one by one below
         pass
     first: dict = {}
     for i, v in enumerate(items):
-        key = int(v) if isinstance(v, (int, np.integer)) else v
+        key = int(v) if isinstance(v, (int, np.integer)) else ("NaN",) if _is_nan(v) else v
         if key in first:
             raise ValueError(f"{name} must not repeat an entry: {name}[{first[key]}] and {name}[{i}] are both "
-                             f"{shown(key)} (the results are keyed by its entries)")
+                             f"{shown(v if _is_nan(v) else key)} (the results are keyed by its entries)")
         first[key] = i
     return items
 

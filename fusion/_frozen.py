@@ -43,6 +43,16 @@ class ReadOnlyMapping(Mapping):
     def __reduce__(self) -> tuple[type, tuple[dict[Any, Any]]]:
         return (type(self), (self._items,))
 
+    def copy(self) -> dict[Any, Any]:
+        """A plain (mutable) dict of the items, as ``mappingproxy.copy`` gives."""
+        return dict(self._items)
+
+    def __or__(self, other: Any) -> Any:   # ``mapping | dict``: a plain dict, as for a mappingproxy
+        return dict(self._items) | other if isinstance(other, Mapping) else NotImplemented
+
+    def __ror__(self, other: Any) -> Any:
+        return dict(other) | self._items if isinstance(other, Mapping) else NotImplemented
+
 
 class FrameField:
     """Descriptor of a :class:`pandas.DataFrame` field of a frozen result (fuzz 19 G1-G3): stored as the object's
@@ -296,3 +306,31 @@ def frozen_arrays(cls: type[T] | None = None, *, shared: bool = False) -> Any:
     cls.__post_init__ = freeze_shared if shared else freeze_arrays  # type: ignore[attr-defined]
     cls.__setstate__ = restore_frozen  # type: ignore[attr-defined]
     return cls
+
+
+def constant(value: T) -> T:
+    """``value`` made read-only all the way down: the one rule for a public constant of the package (issue 35).
+
+    A module's public constant (a registry of labels, a published scenario, a default array) is shared by every
+    caller in the process, so that one caller must not change it for the next: a dict (any mapping) becomes a
+    :class:`ReadOnlyMapping`, a list a tuple, a set a frozenset, an array read-only (the same array: it may be
+    shared), each of their items made constant in turn; a tuple keeps its type (a named tuple stays one). Other
+    values (numbers, strings, enums, frozen dataclasses, functions) are returned as they are.
+    """
+    if isinstance(value, np.ndarray):
+        if value.dtype == object:
+            raise TypeError("an object array cannot be made a constant (its items stay mutable)")
+        value.flags.writeable = False
+        return value
+    if isinstance(value, Mapping):
+        return ReadOnlyMapping({k: constant(v) for k, v in value.items()})  # type: ignore[return-value]
+    if isinstance(value, (list, tuple)):
+        items = [constant(x) for x in value]
+        if isinstance(value, list):
+            return tuple(items)  # type: ignore[return-value]
+        if all(a is b for a, b in zip(items, value)):
+            return value
+        return type(value)(*items) if hasattr(value, "_fields") else type(value)(items)  # type: ignore[return-value]
+    if isinstance(value, (set, frozenset)):
+        return frozenset(constant(x) for x in value)  # type: ignore[return-value]
+    return value

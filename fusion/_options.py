@@ -7,6 +7,8 @@ checked against the keys their consumer takes.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 
 from fusion._shown import shown
@@ -39,7 +41,7 @@ def options(value: object, name: str, allowed: tuple[str, ...] | set[str] | froz
     """
     if value is None:
         return {}
-    if not isinstance(value, dict):
+    if not isinstance(value, Mapping):   # a dict, or a read-only one (a public constant, fusion._frozen.constant)
         raise TypeError(f"{name} must be a dict or None, got {type(value).__name__}")
     unknown = sorted(str(k) for k in value if k not in allowed)
     if unknown:

@@ -59,6 +59,9 @@ def in_convex_hull(x: ArrayLike, value: float, tol: float = 0.0) -> bool:
 class SubsetMatch:
     """A subset of readings whose fused value matches a target.
 
+    A result of :func:`matching_subsets`, which checks what it stores: the constructor checks nothing (a record
+    built by hand is the caller's; the package reads none back).
+
     Attributes
     ----------
     members : tuple of int
@@ -139,16 +142,20 @@ def implied_sum_change(x: ArrayLike, published_mean: float) -> float:
     return float(s.size * published_mean - s.sum())
 
 
+# Options of fuse_epochs that are not numbers (a text choice, a flag): never solved for.
+_NOT_NUMERIC = frozenset({"threshold", "include_self"})
+
+
 def _option_name(method: str, name: str) -> tuple[str, str]:
     """``name`` must be an option of ``method`` (see :data:`fusion.readings.fusion_set.METHODS`); both returned as
     plain strings (rule 19 of ``fusion._validation``)."""
     method = one_of(method, tuple(METHODS), "method")
-    allowed = METHODS[method][1]
+    allowed = tuple(o for o in METHODS[method][1] if o not in _NOT_NUMERIC)   # the options a root can be
     if not isinstance(name, str):   # a wrong type (a path, a number) is a TypeError (issue 35)
         raise TypeError(f"name must be an option name (a str), got {type(name).__name__}")
     name = text(name, "name")
     if name not in allowed:
-        raise ValueError(f"name must be an option of method {shown(method)}, one of {allowed}, got {shown(name)}")
+        raise ValueError(f"name must be a numeric option of method {shown(method)}, one of {allowed}, got {shown(name)}")
     return method, name
 
 
@@ -177,7 +184,8 @@ def parameters_matching(
     method : str
         A method of :func:`fusion.readings.fusion_set.fuse_epochs`.
     name : str
-        Option to solve for (e.g. ``"alpha"`` or ``"scale"``); must be positive.
+        Numeric option to solve for (e.g. ``"alpha"`` or ``"scale"``), taking positive values; not a text option
+        or a flag (``"threshold"``, ``"include_self"``).
     lo, hi : float
         Search range, ``0 < lo < hi``.
     n_grid : int
@@ -188,12 +196,15 @@ def parameters_matching(
     Returns
     -------
     ndarray
-        Sorted roots (possibly empty).
+        Sorted roots (possibly empty). Degenerate case: when the fused value does not depend on the option (one
+        reading, or all readings equal) and equals ``target``, every grid point is a root and all are returned.
 
     Raises
     ------
+    TypeError
+        ``name`` not a str.
     ValueError
-        ``lo`` or ``hi`` not positive, ``hi <= lo``, or bad readings; readings whose pairwise kernel over the
+        ``name`` not a numeric option of ``method``; ``lo`` or ``hi`` not positive, ``hi <= lo``, or bad readings; readings whose pairwise kernel over the
         ``n_grid`` points is beyond the work budget.
     """
     lo = positive_scalar(lo, "lo")
@@ -217,4 +228,6 @@ def parameters_matching(
             roots.append(float(np.exp(a)))
         elif fa * fb < 0.0:
             roots.append(float(np.exp(brentq(g, a, b, xtol=1e-12))))
+    if vals[-1] == 0.0:   # hi itself (each bracket checks its left end only)
+        roots.append(float(np.exp(grid[-1])))
     return np.array(sorted(roots))

@@ -39,6 +39,9 @@ IGNORE_OUTPUT_TAG = "nbval-ignore-output"
 class BenchmarkResult:
     """One stored benchmark run.
 
+    A result of :func:`load_benchmark`, which checks the file it reads: the constructor checks nothing (a record
+    built by hand is the caller's; the package reads none back).
+
     Attributes
     ----------
     name : str

@@ -58,13 +58,14 @@ from typing import Any
 import numpy as np
 import yaml
 
-from fusion._frozen import freeze_arrays, frozen_value, restore_frozen
+from fusion._frozen import constant, freeze_arrays, frozen_value, restore_frozen
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger.evidence import _KIND_OF_TEST
 from fusion.book.ledger import (SOURCES, Alternative, Claim, Comparison, Conjunction, Evidence, Ledger, Unverifiable,
                                 ledger_dir)
 from fusion._counts import COUNT_CEILINGS
+from fusion._paths import folder
 from fusion._shown import shown
 from fusion._validation import MAX_MAGNITUDE, count, flag, instance_of, one_of, text
 
@@ -84,7 +85,7 @@ _MARGIN = {"type": "object", "additionalProperties": False, "minProperties": 1, 
            "properties": {"relative": {"type": "number", "minimum": 0}, "absolute": {"type": "number", "minimum": 0}}}
 
 #: JSON schema of a claim file.
-SCHEMA: dict[str, Any] = {
+SCHEMA: dict[str, Any] = constant({
     "type": "object", "additionalProperties": False, "required": ["source", "records"],
     "properties": {
         "source": {"enum": sorted(SOURCES)},
@@ -125,7 +126,7 @@ SCHEMA: dict[str, Any] = {
                                             "others": {"type": "array", "items": _READING}}},
             }}},
     },
-}
+})
 
 
 def _nonempty(value: object, name: str) -> str:
@@ -382,18 +383,27 @@ class ClaimsFile:
         return {"relative": R.DEFAULT_RELATIVE_MARGIN}
 
 
-def claims_dir(start: Path | None = None) -> Path:
+def claims_dir(start: Path | str | None = None) -> Path:
     """``book/claims`` of the repository that contains ``start`` (default: the working directory's, else the package's).
 
     Parameters
     ----------
-    start : pathlib.Path, optional
+    start : str or os.PathLike, optional
         As in :func:`fusion.book.ledger.ledger_dir`, whose sibling this is.
 
     Returns
     -------
     pathlib.Path
         The ``claims`` folder beside the ledger folder found from ``start`` (``<repository>/book/claims``).
+
+    Raises
+    ------
+    TypeError
+        ``start`` is not a path (``str`` or ``os.PathLike``).
+    ValueError
+        ``start`` is not an existing folder.
+    FileNotFoundError
+        No ``_toc.yml`` in ``start`` or above it (see :func:`fusion.book.ledger.ledger_dir`).
     """
     return ledger_dir(start).parent / "claims"
 
@@ -764,11 +774,7 @@ def load_all(directory: Path | None = None) -> dict[str, ClaimsFile]:
     ValueError
         ``directory`` is not an existing directory; :class:`ClaimsFileError` for a malformed file.
     """
-    if directory is not None and not isinstance(directory, (str, os.PathLike)):
-        raise TypeError(f"directory must be a path (str or os.PathLike), got {type(directory).__name__}")
-    d = Path(directory) if directory is not None else claims_dir()
-    if not d.is_dir():
-        raise ValueError(f"directory {shown(str(d))} is not an existing directory")
+    d = folder(directory if directory is not None else claims_dir(), "directory")
     out = {}
     for p in sorted(d.glob("*.yaml")):
         f = load(p)

@@ -37,6 +37,7 @@ from matplotlib.patches import Patch
 from matplotlib.text import Text
 from matplotlib.transforms import Bbox
 
+from fusion._shown import shown
 from fusion.book import style
 
 __all__ = ["OKABE_ITO", "MIN_FONT_PT", "MAX_WIDTH_IN", "FigureStyleError", "allowed_colors",
@@ -277,10 +278,16 @@ def glue_figure(key: str, fig: Figure, alt: str | None = None) -> None:
 
     Raises
     ------
+    TypeError
+        ``key`` is not a str or ``fig`` not a Figure.
+    ValueError
+        ``key`` is empty.
     FigureStyleError
         If the figure breaks the book's rules (see :func:`audit_figure`).
     """
-    if not isinstance(key, str) or not key:
+    if not isinstance(key, str):
+        raise TypeError(f"key must be a str (a glue key), got {type(key).__name__} {shown(key, 40)}")
+    if not key:
         raise ValueError("key must be a non-empty string")
     if not isinstance(fig, Figure):
         raise TypeError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from decimal import Decimal
 
-import math
+import cmath
 from collections.abc import Mapping
 from typing import Any, TypeAlias, Union
 
@@ -50,6 +50,27 @@ def _checked_keep(store: object, values: object) -> None:
             scalar(v, f"values[{k!r}]", tiny=True)
 
 
+def _finite(value: object) -> bool:
+    """False for a number that is NaN or infinite, and for a missing-value marker (``pd.NA``, ``NaT``).
+
+    Numbers are floats, complex numbers, NumPy scalars, Decimals (a signalling NaN included) and numeric arrays
+    (every entry; a 0-d array is its number).
+    """
+    if value is pd.NA or value is pd.NaT:
+        return False
+    if isinstance(value, Decimal):
+        return value.is_finite()
+    if isinstance(value, (np.datetime64, np.timedelta64)):
+        return not np.isnat(value)
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind in "mM":
+            return not np.isnat(value).any()
+        return value.dtype.kind not in "fc" or bool(np.isfinite(value).all())
+    if isinstance(value, (float, complex, np.floating, np.complexfloating)):
+        return cmath.isfinite(value)
+    return True
+
+
 def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     """Glue every ``key: value`` pair with ``display=False``.
 
@@ -68,8 +89,9 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     TypeError
         ``values`` not a mapping, a key not a string, ``decimals`` not an integer.
     ValueError
-        A number (a float, a NumPy scalar, a 0-d array or a Decimal) NaN or infinite, naming ``values[key]``; checked for every
-        value before any is glued, whatever ``decimals``.
+        A number (a float, a complex number, a NumPy scalar, a Decimal, any entry of a numeric array) NaN or
+        infinite, or a missing value (``pd.NA``, ``pd.NaT``, a NumPy ``NaT``), naming ``values[key]``; checked for
+        every value before any is glued, whatever ``decimals``.
     """
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")
@@ -78,8 +100,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     for key, value in values.items():  # every value checked before any is glued
         if not isinstance(key, str):
             raise TypeError(f"values must have str glue keys, got the key {shown(key, 60)}")
-        number = value.item() if isinstance(value, np.ndarray) and value.ndim == 0 else value  # a 0-d array: its number
-        if isinstance(number, (float, np.floating, Decimal)) and not math.isfinite(number):
+        if not _finite(value):
             raise ValueError(f"values[{shown(key)}] must be finite, got {shown(value)} (a glued number is printed in the book)")
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 

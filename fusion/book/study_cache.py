@@ -61,6 +61,7 @@ import numpy as np
 from fusion._counts import count
 from fusion._frozen import ReadOnlyMapping
 from fusion._validation import text
+from fusion._paths import folder
 from fusion._shown import shown
 
 __all__ = ["ENV", "LOG_ENV", "process_cache", "study_cache", "study_key", "source_digest"]
@@ -95,18 +96,11 @@ def source_digest(package: Path | str = _PACKAGE) -> str:
         not a Python package (no ``__init__.py``): a folder such as ``/`` or ``''`` (the working directory) would
         be walked file by file, the whole file system in the worst case.
     """
-    if not isinstance(package, (str, os.PathLike)):
-        raise TypeError(f"package must be a path (str or os.PathLike), got {type(package).__name__} {shown(package, 40)}")
-    try:
-        folder = Path(package)
-        is_dir = folder.is_dir()
-    except (OSError, ValueError) as exc:   # a name too long for the system, a NUL byte
-        raise ValueError(f"package must be a folder, got {shown(package, 60)} ({type(exc).__name__})") from None
-    if not is_dir:
-        raise ValueError(f"package must be an existing folder, got {shown(package, 60)}")
-    if not (folder / "__init__.py").is_file():
+    path = folder(package, "package")
+    if not (path / "__init__.py").is_file():
         raise ValueError(f"package must be a Python package's folder (with an __init__.py), got {shown(package, 60)}")
-    return _source_digest(folder)
+    # resolved before the cache: a relative name read from another working directory is another folder
+    return _source_digest(path.resolve())
 
 
 @functools.lru_cache(maxsize=1)
@@ -131,6 +125,8 @@ def _canonical(value: Any, _open: frozenset[int] = frozenset()) -> Any:
         return ["enum", f"{type(value).__module__}.{type(value).__qualname__}", _canonical(value.value, _open)]
     if isinstance(value, (int, np.integer)):
         return [f"{type(value).__module__}.{type(value).__qualname__}", int(value)]
+    if isinstance(value, np.floating) and np.finfo(value.dtype).nmant > 52:   # longdouble: its own digits
+        return [f"{type(value).__module__}.{type(value).__qualname__}", np.format_float_scientific(value, unique=True)]
     if isinstance(value, (float, np.floating)):
         return [f"{type(value).__module__}.{type(value).__qualname__}", float(value).hex()]
     if isinstance(value, bytes):
@@ -147,9 +143,13 @@ def _canonical(value: Any, _open: frozenset[int] = frozenset()) -> Any:
         return ["frozenset", sorted(json.dumps(_canonical(v, _open)) for v in value)]
     if isinstance(value, (dict, ReadOnlyMapping)):   # a frozen result's mapping field (fusion._frozen)
         return [type(value).__name__, [[_canonical(k, _open), _canonical(v, _open)] for k, v in value.items()]]
+    if isinstance(value, np.ma.MaskedArray):   # its mask too: a masked array is not its data
+        return ["masked", _canonical(value.filled(0).view(np.ndarray), _open),
+                _canonical(np.ma.getmaskarray(value).view(np.ndarray), _open)]
     if isinstance(value, np.ndarray) and value.dtype.kind in "biufc":
         arr = np.ascontiguousarray(value)
-        return ["ndarray", arr.dtype.str, list(arr.shape), hashlib.sha256(arr.tobytes()).hexdigest()]
+        kind = "ndarray" if type(value) is np.ndarray else f"{type(value).__module__}.{type(value).__qualname__}"
+        return [kind, arr.dtype.str, list(arr.shape), hashlib.sha256(arr.tobytes()).hexdigest()]
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return ["dataclass", f"{type(value).__module__}.{type(value).__qualname__}",
                 [[f.name, _canonical(getattr(value, f.name), _open)] for f in dataclasses.fields(value)]]
@@ -220,6 +220,9 @@ def _frozen(value: Any, immutable: dict[int, Any], _open: frozenset[int] = froze
         if value.dtype.kind not in "biufcmMSUV":  # object arrays hold mutable objects
             return False
         value.setflags(write=False)
+        mask = np.ma.getmask(value)   # a masked array's mask: a second array a caller could change
+        if isinstance(mask, np.ndarray) and mask is not np.ma.nomask:
+            mask.setflags(write=False)
         immutable[id(value)] = value
         return True
     if id(value) in _open:
@@ -364,6 +367,11 @@ def process_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], A
     read-only in place; any other result (a list, dict, DataFrame, non-frozen dataclass in it) is deep-copied for
     each caller, its immutable parts shared. A caller's edit of a result never reaches another call.
 
+    Calls are keyed as ``functools.lru_cache(typed=True)`` keys them: by equality, the type checked for each top-level
+    argument only, so equal arguments share one result: ``f(-0.0)`` gets ``f(0.0)``'s and ``f((True,))`` gets
+    ``f((1,))``'s. Only a function whose result is the same for equal arguments may take it;
+    :func:`study_cache` (keyed by a canonical encoding, in which those are different calls) is for the others.
+
     Parameters
     ----------
     maxsize : int or None
@@ -411,7 +419,8 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
     maxsize : int or None
         Entries of the in-process cache, least recently used dropped first, keyed by the call's canonical
         encoding (:func:`study_key`, the disk's key: ``1``, ``1.0`` and ``True``, or ``0.0`` and ``-0.0``, are
-        different calls; arguments without one, such as a callable, by equality and type as ``functools.lru_cache``
+        different calls, as are a masked array and its data, an ``np.matrix`` and its array, and two
+        ``longdouble`` values that round to one float; arguments without one, such as a callable, by equality and type as ``functools.lru_cache``
         does): a count (an integer type, 0 or more; ``0`` caches nothing in the process) or ``None`` (unbounded).
 
     Returns

@@ -13,6 +13,7 @@ import matplotlib.pyplot as plt
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from fusion._frozen import constant
 from fusion._validation import count, instance_of, keywords
 from fusion._validation import flag
 from fusion._validation import shown
@@ -24,7 +25,7 @@ __all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARK
            "is_registered_label", "MAX_ALT_CHARS", "plain_math", "describe_figure", "set_figure_alt", "figure_alt", "png_description"]
 
 #: Colour of each method, used in every chapter.
-METHOD_COLORS: dict[str, str] = {
+METHOD_COLORS: dict[str, str] = constant({
     "optimal_fusion_set": "#0072B2",
     "mean": "#D55E00",
     "support_degree": "#009E73",
@@ -127,11 +128,11 @@ METHOD_COLORS: dict[str, str] = {
     "memory_growing": "#E69F00",
     "memory_forgetting": "#0072B2",
     "memory_window": "#56B4E9",
-}
+})
 
 #: Display label of each method (and of the few other keys a table shows: benchmark classes, scenarios, marked "not
 #: methods" below).
-METHOD_LABELS: dict[str, str] = {
+METHOD_LABELS: dict[str, str] = constant({
     "optimal_fusion_set": "optimal fusion set",
     "mean": "arithmetic mean",
     "support_degree": "support degree (ref. [11], rebuilt)",
@@ -366,11 +367,11 @@ METHOD_LABELS: dict[str, str] = {
     "sig_slow": "slow",
     "sig_constant": "constant",
     "sig_heavisine": "HeaviSine",
-}
+})
 
 #: Short label of a method in tables and ledger entries, where its :data:`METHOD_LABELS` entry is too long (key →
 #: label; a method without an entry is not shown in short form).
-METHOD_SHORT_LABELS: dict[str, str] = {
+METHOD_SHORT_LABELS: dict[str, str] = constant({
     # chapter 05 (Wang & Tang 2024): the rules of fusion.scenarios.two_sensor.StudyMethod in ledger entries
     "ci_closed_form": "CI",
     "split_ci": "improved CI",
@@ -393,7 +394,7 @@ METHOD_SHORT_LABELS: dict[str, str] = {
     "reconstructed": "reconstructed",
     "denoise-first": "reconstructed",
     "fuse-first": "fused first, then denoised",
-}
+})
 
 _STYLE = {
     "figure.dpi": 100,
@@ -516,20 +517,20 @@ def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure
 _LABEL_SET = frozenset(METHOD_LABELS.values()) | frozenset(k for k in METHOD_COLORS if k not in METHOD_LABELS)
 
 #: Marker of each method where one is drawn (methods without an entry are drawn without markers).
-METHOD_MARKERS: dict[str, str] = {
+METHOD_MARKERS: dict[str, str] = constant({
     "optimal_fusion_set": "o",
     "mean": "s",
     "support_degree": "^",
     "published": "x",
     "oracle": "D",
-}
+})
 
 #: Line style of each method (solid where absent): reference lines dashed or dotted.
-METHOD_LINESTYLES: dict[str, str] = {
+METHOD_LINESTYLES: dict[str, str] = constant({
     "published": ":",
     "truth": "--",
     "bound": "-.",
-}
+})
 
 
 #: Legend labels of series that are not methods (data, truth, bounds, published values, diagnostics),
@@ -648,10 +649,12 @@ def method_style(method: str, *, markers: bool = False) -> dict[str, str]:
 #: (:func:`describe_figure`: chart type, axes, series) is not enough. A text here replaces the
 #: automatic one; ``glue_figure(key, fig, alt=...)`` replaces both. Say what the figure shows
 #: (what is plotted against what, and the point it makes), not what it is called.
-FIGURE_ALT: dict[str, str] = {}
+FIGURE_ALT: dict[str, str] = constant({})
 
 #: Longest alt text written into a PNG (characters); longer descriptions are cut at a word.
 MAX_ALT_CHARS = 700
+# Longest PNG description png_description reads (bytes), far above any alt text; bounds the inflation.
+_MAX_DESCRIPTION = 100_000
 
 _ALT_ATTR = "_fusion_alt"
 
@@ -855,12 +858,18 @@ def png_description(data: bytes) -> str | None:
     Returns
     -------
     str or None
-        None for bytes that are not a PNG or a PNG without a description.
+        None for bytes that are not a PNG, a PNG without a description, or one whose description chunk is
+        malformed (cut short, compressed data that is not zlib's, an iTXt text that is not UTF-8): the page then
+        takes its alt text from the caption, as for a figure without a description.
 
     Raises
     ------
     TypeError
         ``data`` not bytes (a ``str``, a path, None: read the file's bytes first).
+    ValueError
+        ``data`` holds a description longer than ``_MAX_DESCRIPTION`` (100,000) characters, or a compressed one
+        inflating beyond it (read in bounded steps: a small file cannot inflate to gigabytes). An alt text is a
+        sentence or two (:data:`MAX_ALT_CHARS` for the automatic ones).
     """
     import struct
     import zlib
@@ -869,6 +878,18 @@ def png_description(data: bytes) -> str | None:
         raise TypeError(f"data must be the bytes of a PNG file, got {type(data).__name__}")
     if not data.startswith(b"\x89PNG\r\n\x1a\n"):
         return None
+
+    def inflate(raw: bytes) -> bytes | None:
+        d = zlib.decompressobj()
+        try:
+            out = d.decompress(raw, _MAX_DESCRIPTION + 1)
+        except zlib.error:
+            return None
+        if len(out) > _MAX_DESCRIPTION:
+            raise ValueError(f"data: the PNG's Description chunk inflates beyond {_MAX_DESCRIPTION:,} bytes "
+                             "(not an alt text)")
+        return out if d.eof else None   # cut short: malformed
+
     pos = 8
     while pos + 8 <= len(data):
         length, kind = struct.unpack(">I4s", data[pos:pos + 8])
@@ -885,11 +906,23 @@ def png_description(data: bytes) -> str | None:
         if key != b"Description":
             continue
         if kind == b"tEXt":
-            return rest.decode("latin-1")
-        if kind == b"zTXt":
-            return zlib.decompress(rest[1:]).decode("latin-1")
-        compressed, rest = rest[0], rest[2:]
-        _lang, _, rest = rest.partition(b"\0")
-        _tkey, _, text = rest.partition(b"\0")
-        return (zlib.decompress(text) if compressed else text).decode("utf-8")
+            text = rest
+        elif kind == b"zTXt":
+            text = inflate(rest[1:]) if rest[:1] == b"\0" else None   # method 0 (zlib) is the only one
+        elif len(rest) < 2:
+            return None
+        else:
+            compressed, rest = rest[0], rest[2:]
+            _lang, _, rest = rest.partition(b"\0")
+            _tkey, _, text = rest.partition(b"\0")
+            text = inflate(text) if compressed else text
+        if text is None:
+            return None
+        if len(text) > _MAX_DESCRIPTION:
+            raise ValueError(f"data: the PNG's Description chunk holds {len(text):,} bytes, beyond "
+                             f"{_MAX_DESCRIPTION:,} (not an alt text)")
+        try:
+            return text.decode("latin-1" if kind != b"iTXt" else "utf-8")
+        except UnicodeDecodeError:
+            return None
     return None

@@ -91,7 +91,8 @@ def side_by_side(
     ----------
     published, reproduced : array_like, shape (k,)
     index : sequence, length k
-        Row labels (e.g. observation numbers).
+        Row labels (e.g. observation numbers): hashable and distinct (two NaN labels are repeated). A tuple is one
+        label (the index is flat, not a MultiIndex, whatever the labels).
     name : str
         Quantity name appended to the column headers ("" for plain headers).
     decimals : int
@@ -135,7 +136,7 @@ def side_by_side(
             f"reproduced {name}".strip(): rep,
             "difference": rep - pub,
         },
-        index=pd.Index(list(index), name=index_name),
+        index=pd.Index(list(index), name=index_name, tupleize_cols=False),  # tuple labels: one label each
     )
     return df.round(decimals) + 0.0  # + 0.0 turns -0.0 into 0.0
 
@@ -160,18 +161,20 @@ def _pairs(columns: pd.Index) -> list[tuple[object, object, object | None]]:
 
 
 def _number_column(table: pd.DataFrame, column: object) -> np.ndarray:
-    """A compared column as floats: numbers, and ``None``/NaN for a missing value; a TypeError naming
+    """A compared column as floats: numbers, and ``None``/NaN/``pd.NA`` for a missing value (as a nullable column's
+    ``<NA>``); a TypeError naming
     ``table[column]`` for text, booleans, durations or dates (a text cell is not a mismatch: it is not a number)."""
     col = table[column]
     kind = col.dtype.kind
     if kind in "iuf":
         return col.to_numpy(dtype=float)
     if kind == "O":
-        bad = [v for v in col if not (v is None or (isinstance(v, (int, float, np.integer, np.floating))
-                                                    and not isinstance(v, (bool, np.bool_))))]
+        bad = [v for v in col if not (v is None or v is pd.NA or (isinstance(v, (int, float, np.integer, np.floating))
+                                                                  and not isinstance(v, (bool, np.bool_))))]
         if not bad:
-            return np.array([np.nan if v is None else float(v) for v in col], dtype=float)
-        raise TypeError(f"table[{shown(column)}] must hold numbers (None or NaN where missing), got {shown(bad[0])}")
+            return np.array([np.nan if v is None or v is pd.NA else float(v) for v in col], dtype=float)
+        raise TypeError(f"table[{shown(column)}] must hold numbers (None, NaN or pd.NA where missing), got "
+                        f"{shown(bad[0])}")
     raise TypeError(f"table[{shown(column)}] must hold numbers, got the dtype {col.dtype}")
 
 
@@ -192,7 +195,8 @@ def mismatches(table: pd.DataFrame, decimals: int = 4) -> pd.DataFrame:
     pandas.DataFrame of bool
         Same shape as ``table``; True on the reproduced and difference cells of a mismatch (a
         reproduced NaN beside a published value is a mismatch; a row without a published value is not
-        compared), False elsewhere.
+        compared), False elsewhere. A missing value is ``None``, NaN or ``pd.NA``, in an object column as in a
+        nullable one.
 
     Raises
     ------

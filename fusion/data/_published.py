@@ -18,6 +18,9 @@ __all__ = ["Published", "read_only"]
 class Published:
     """A published number or array with where it was printed.
 
+    The package's published tables are built once, in :mod:`fusion.data`, from numbers typed off the documents and
+    checked by its tests: the constructor checks nothing beyond making the arrays read-only.
+
     Attributes
     ----------
     values : ndarray

@@ -7,13 +7,14 @@ axis ranges of Figs. 2-4, read off the tick labels scattered through the extract
 
 from __future__ import annotations
 
+from fusion._frozen import constant
 from fusion.data._published import Published
 from fusion.data._published import read_only as _ro
 
 __all__ = ["SHI2023_SCENARIO", "SHI2023_AXES", "SHI2023_CLAIMED_SAMPLES"]
 
 #: §5 scenario, identical in simulations 1-3.
-SHI2023_SCENARIO = {
+SHI2023_SCENARIO = constant({
     "period_1": 2.0,  # s, sensor 1 (fast)
     "on_1": 1.0,  # s, "开机时长" of sensor 1
     "period_2": 5.0,  # s, sensor 2 (slow)
@@ -22,7 +23,7 @@ SHI2023_SCENARIO = {
     "a": 2.0,  # m/s^2, direction not stated
     "duration": 40.0,  # s, observation time
     "start": (0.0, 0.0),  # m
-}
+})
 
 #: "各自的20个量测值": the text says each sensor gives 20 measurements (simulations 1 and 2).
 SHI2023_CLAIMED_SAMPLES = Published(

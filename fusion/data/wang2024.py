@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 
+from fusion._frozen import constant
 from fusion.data._published import Published
 from fusion.data._published import read_only as _ro
 
@@ -15,7 +16,7 @@ __all__ = ["WANG2024_SCENARIO", "WANG2024_FOA", "WANG2024_RMSE", "WANG2024_TIMES
            "WANG2024_IR_RADAR", "WANG2024_IR_RADAR_RMSE"]
 
 #: §3.2 scenario as printed (Delta_0 = 10, Delta_1 = Delta_2 = 150; G = [T/2, 1, T/2, 1]).
-WANG2024_SCENARIO = {
+WANG2024_SCENARIO = constant({
     "delta0": 10.0,  # process noise standard deviation, Q = diag(delta0^2 * 4)
     "delta1": 150.0,  # m, sensor 1
     "delta2": 150.0,  # m, sensor 2
@@ -24,7 +25,7 @@ WANG2024_SCENARIO = {
     "foa_population": 30,
     "foa_iterations": 200,
     "foa_step": (30.0, -10.0),  # "30 × rand − 10"
-}
+})
 
 #: Fig. 5: optimum found and time taken, FOA vs exhaustive search.
 WANG2024_FOA = Published(
@@ -62,7 +63,7 @@ WANG2024_TIMES = Published(
 
 #: §3.5 3) infrared + radar application, as printed. "目标运动的距离为1 km" is read as the
 #: target's (initial) range; the sampling period and the duration are not given.
-WANG2024_IR_RADAR = {
+WANG2024_IR_RADAR = constant({
     "sigma_ir": 1e-4,  # rad, infrared angle error (红外测角误差 0.000 1 rad)
     "sigma_angle": 0.02,  # rad, radar angle error
     "sigma_range": 5.0,  # m, radar range error
@@ -70,7 +71,7 @@ WANG2024_IR_RADAR = {
     "azimuth": math.pi / 5,  # rad (π/5)
     "elevation": math.pi / 8,  # rad (π/8)
     "velocity": (300.0, 100.0, 0.0),  # m/s in x, y (z not given: 0)
-}
+})
 
 #: Figs. 9-10: RMSE of the improved CI quoted in the text (approximate: "约", "左右"). The
 #: baselines (multi-Bayesian, fuzzy clustering, maximum likelihood) are only said to be

@@ -6,6 +6,7 @@ to be inconsistent.
 
 from __future__ import annotations
 
+from fusion._frozen import constant
 from fusion.data._published import Published
 from fusion.data._published import read_only as _ro
 
@@ -90,4 +91,4 @@ YANG2012_TRUE_VALUE = 900.0
 
 #: Failure experiment of Figs. 3-4: sensors (1-based), first and last sample (1-based,
 #: inclusive) and bias added to each failing sensor (°C).
-YANG2012_FAILURE = {"sensors": (4, 10), "samples": (50, 80), "biases": (4.0, 8.0)}
+YANG2012_FAILURE = constant({"sensors": (4, 10), "samples": (50, 80), "biases": (4.0, 8.0)})

@@ -39,7 +39,7 @@ from typing import Callable, Literal, TypeAlias
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._frozen import fresh, frozen_arrays
+from fusion._frozen import constant, fresh, frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, flag, keywords,
                                 one_of, positive_scalar, scalar, shown, text)
 from fusion.readings._row_blocks import _BLOCK_ELEMENTS, CUBIC, PAIRS, _row_blocks  # noqa: F401 (the blocks of kernels)
@@ -907,7 +907,7 @@ def _belief_weights(
     return w, np.ones(s.shape, dtype=bool)
 
 
-METHODS["belief_degree"] = (_belief_weights, ("scale", "binary_eps", "limit"))
+METHODS = constant({**METHODS, "belief_degree": (_belief_weights, ("scale", "binary_eps", "limit"))})  # built once
 
 
 def belief_degree(x: ArrayLike, *, scale: float = 1.0, binary_eps: float | None = None,

@@ -37,13 +37,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy import stats
 
+from fusion._frozen import constant
 from fusion._validation import FloatArray, as_array, as_reading_rows, one_of, positive_scalar
 from fusion.readings.fusion_set import _members_rows
 
 __all__ = ["ROBUST_METHODS", "robust_fuse"]
 
 #: Methods of :func:`robust_fuse`, with the information each uses.
-ROBUST_METHODS: dict[str, str] = {
+ROBUST_METHODS: dict[str, str] = constant({
     "median": "readings only",
     "trimmed_mean": "readings only",
     "huber": "readings only",
@@ -52,7 +53,7 @@ ROBUST_METHODS: dict[str, str] = {
     "mad_reject": "readings only",
     "inverse_variance": "readings and known noise standard deviations",
     "uniform_set": "readings only",
-}
+})
 
 _MAD_TO_SIGMA = 1.0 / stats.norm.ppf(0.75)
 

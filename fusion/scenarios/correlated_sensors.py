@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import frozen_arrays
+from fusion._frozen import constant, frozen_arrays
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
@@ -147,13 +147,13 @@ class CouplingCase(StrEnum):
 
 
 #: Named cases: own noise SDs, coupling coefficients, SD of the common environmental noise.
-SCENARIOS: dict[CouplingCase, dict[str, tuple[float, ...] | float]] = {
+SCENARIOS: dict[CouplingCase, dict[str, tuple[float, ...] | float]] = constant({
     CouplingCase.EQUAL: {"own": (1.0, 2.0, 3.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5},
     CouplingCase.ONE_OUTSIDE: {"own": (1.0, 1.0, 1.0, 1.0), "coupling": (0.0, 1.0, 1.0, 1.0), "env": 2.0},
     CouplingCase.UNEQUAL: {"own": (0.5, 1.0, 1.5), "coupling": (1.0, 2.0, 3.0), "env": 1.0},
     CouplingCase.UNEQUAL_STRONG: {"own": (1.0, 1.0, 1.0), "coupling": (1.0, 2.0, 3.0), "env": 3.0},
     CouplingCase.TWO_SENSORS: {"own": (0.5, 0.5), "coupling": (1.0, 2.0), "env": 3.0},
-}
+})
 
 
 @finite_result("own, coupling and env")

@@ -31,6 +31,7 @@ import numpy as np
 from filterpy.common import Q_discrete_white_noise
 from numpy.typing import ArrayLike
 
+from fusion._frozen import constant
 from fusion._results import ResultSpec, array, nested, number, numbers, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
@@ -475,12 +476,12 @@ class IrMethod(StrEnum):
 
 
 #: The fusion rules compared in chapter 05: method key -> rule of :func:`fusion.filtering.tracks.fuse_tracks`.
-RULES: dict[IrMethod, str] = {
+RULES: dict[IrMethod, str] = constant({
     IrMethod.CI: "ci",
     IrMethod.SPLIT_CI: "split",
     IrMethod.CONVEX: "convex",
     IrMethod.FUZZY: "fuzzy",
-}
+})
 
 #: Key of the unfiltered reference in :func:`rule_errors`.
 PER_SCAN = IrMethod.PER_SCAN
@@ -880,7 +881,7 @@ def _errors(sim: IrRadarRuns, positions: FloatArray, angles: FloatArray) -> Floa
 
 
 #: Keys of the two Cartesian tracks in :func:`cartesian_errors`, by sensor.
-CARTESIAN_LOCAL = {"radar": IrMethod.CARTESIAN_RADAR, "ir": IrMethod.CARTESIAN_IR}
+CARTESIAN_LOCAL = constant({"radar": IrMethod.CARTESIAN_RADAR, "ir": IrMethod.CARTESIAN_IR})
 
 
 def cartesian_errors(sim: IrRadarRuns, tracks: CartesianTracks, rules: Sequence[str] | None = None) -> dict[IrMethod, FloatArray]:

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._frozen import frozen_arrays
+from fusion._frozen import constant, frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import distinct, loop_work, one_of
 from fusion._validation import allocation, record, seed as check_seed
@@ -39,7 +39,7 @@ __all__ = [
 
 #: Noise standard deviations (°C) of the ten simulated thermocouples used by default:
 #: evenly spaced from 0.5 to 2.0 °C (our choice; the source gives none).
-DEFAULT_SIGMAS: FloatArray = np.linspace(0.5, 2.0, 10)
+DEFAULT_SIGMAS: FloatArray = constant(np.linspace(0.5, 2.0, 10))
 
 
 def _sigmas(sigma: ArrayLike, n_sensors: int) -> FloatArray:
@@ -213,10 +213,10 @@ def random_failure(
 
 def _check_methods(methods: object) -> None:
     """``methods``: a dict label -> options dict with a string ``"method"`` key (issue 35, class 6)."""
-    if not isinstance(methods, dict):
+    if not isinstance(methods, Mapping):
         raise TypeError(f"methods must be a dict label -> options, got {type(methods).__name__}")
     for label, spec in methods.items():
-        if not isinstance(spec, dict):
+        if not isinstance(spec, Mapping):
             raise TypeError(f"methods[{shown(label)}] must be a dict of options, got {type(spec).__name__}")
         if not isinstance(spec.get("method"), str):
             raise ValueError(f"methods[{shown(label)}] must name its method as a string under the key 'method', got {shown(spec)}")
@@ -302,7 +302,7 @@ def _draws(seed: int, n_runs: int, methods: dict[str, dict[str, object]], sigma:
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
     if failure is not None:
-        if not isinstance(failure, dict):
+        if not isinstance(failure, Mapping):
             raise TypeError(f"failure must be a dict of inject_failure's arguments, got {type(failure).__name__}")
         bad = sorted(set(failure) - {"sensors", "samples", "biases"})
         if bad:

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import frozen_arrays
+from fusion._frozen import constant, frozen_arrays
 from fusion import registration as reg
 from fusion.registration import methods as _methods
 from fusion._validation import derived_inputs
@@ -142,7 +142,7 @@ SCENARIO = SHI2023_SCENARIO
 Q_V, Q_A = 1e-2, 1e-3
 
 #: Every registration method of the chapter and the information it uses at an instant t_k.
-METHODS: dict[RegMethod, Information] = {
+METHODS: dict[RegMethod, Information] = constant({
     RegMethod.TWO_POINT: Information.LOOK_AHEAD,
     RegMethod.LEAST_SQUARES: Information.CAUSAL,
     RegMethod.THREE_POINT: Information.LOOK_AHEAD,
@@ -158,7 +158,7 @@ METHODS: dict[RegMethod, Information] = {
     RegMethod.CUBIC_SPLINE: Information.WHOLE_RECORD,
     RegMethod.FIXED_LAG: Information.LOOK_AHEAD,
     RegMethod.LOCAL_QLS: Information.LOOK_AHEAD,
-}
+})
 
 #: Look-ahead methods that use exactly the improved method's information (every past sample and the next one).
 SAME_INFORMATION: tuple[RegMethod, ...] = (RegMethod.FIXED_LAG, RegMethod.QLS_NEXT, RegMethod.LOCAL_QLS)

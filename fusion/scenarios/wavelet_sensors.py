@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._frozen import frozen_arrays
+from fusion._frozen import constant, frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
@@ -53,7 +53,7 @@ __all__ = ["CONFIGS", "Signal", "SIGNALS", "SignalStudy", "SeedStudy", "Mechanis
 
 #: Wavelet settings of the sensitivity study; the first is the chapter's primary reading (db4, 4
 #: levels, universal threshold, hard: the lecture's "remove the coefficients below the threshold").
-CONFIGS: tuple[dict[str, Any], ...] = (
+CONFIGS: tuple[dict[str, Any], ...] = constant((
     {"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "hard"},
     {"wavelet": "haar", "level": 4, "threshold": "universal", "mode": "hard"},
     {"wavelet": "sym8", "level": 4, "threshold": "universal", "mode": "hard"},
@@ -64,7 +64,7 @@ CONFIGS: tuple[dict[str, Any], ...] = (
     {"wavelet": "db4", "level": 4, "threshold": "bayes", "mode": "soft"},
     {"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "hard", "transform": "swt"},
     {"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft", "transform": "swt"},
-)
+))
 
 class Signal(StrEnum):
     """Keys of the measured signals of :func:`measurand` (:data:`SIGNALS`; labels: :data:`fusion.book.style.METHOD_LABELS`).
@@ -88,12 +88,12 @@ class Signal(StrEnum):
 
 
 #: The measured signals S(n) of :func:`measurand` (key → formula); the first is the chapter's default.
-SIGNALS: dict[Signal, str] = {
+SIGNALS: dict[Signal, str] = constant({
     Signal.TWO_TONES: "2 + sin(2πn/256) + 0.5 sin(2πn/64)",
     Signal.SLOW: "2 + sin(2πn/256)",
     Signal.CONSTANT: "2 (a steady flow)",
     Signal.HEAVISINE: "2 + HeaviSine(n/I)/4, HeaviSine(t) = 4 sin 4πt − sgn(t − 0.3) − sgn(0.72 − t)",
-}
+})
 
 #: The keys of :data:`SIGNALS` as plain strings (what an error message lists).
 _SIGNAL_KEYS: tuple[str, ...] = tuple(str(k) for k in SIGNALS)

@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 from matplotlib.figure import Figure
+from fusion._frozen import constant, frozen_arrays
 from fusion._docstrings import with_sections
 from fusion._results import ResultSpec, array, dict_of, integer, mask, tuple_of, validated_post_init
 from fusion._shown import shown
@@ -66,9 +67,9 @@ def gaussian_problems(rng: np.random.Generator, runs: int, n: int, d: int = 2) -
 
 #: Swarm variants of :func:`swarm_study` at the largest N: key -> options of the swarm (the defaults first;
 #: display labels in :data:`fusion.book.style.METHOD_LABELS`).
-SWARM_VARIANTS: dict[str, SwarmOptions] = {"pso_defaults": SwarmOptions(),
+SWARM_VARIANTS: dict[str, SwarmOptions] = constant({"pso_defaults": SwarmOptions(),
                                            "pso_floor": SwarmOptions(lo=1e-12),
-                                           "pso_iterations": SwarmOptions(iterations=200, patience=40)}
+                                           "pso_iterations": SwarmOptions(iterations=200, patience=40)})
 
 
 @dataclass(frozen=True)

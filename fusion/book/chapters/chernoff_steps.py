@@ -34,6 +34,7 @@ from collections.abc import Mapping
 import dataclasses
 from dataclasses import dataclass
 from fusion._results import ResultSpec, array, dict_of, instance, integer, nested, number, table, validated_post_init
+from fusion._frozen import constant, frozen_arrays
 from fusion.book.study_cache import study_cache
 from typing import Any
 
@@ -560,8 +561,8 @@ class DefensiveStudy:
 
 
 #: Display label of each proposal of :func:`defensive_study`.
-DEFENSIVE_LABELS = {"patent": "first-order mixture at ω = 1/2 (patent)",
-                    "redraw": "redraw at ω̂* (R more samples)", "defensive": "defensive mixture"}
+DEFENSIVE_LABELS = constant({"patent": "first-order mixture at ω = 1/2 (patent)",
+                    "redraw": "redraw at ω̂* (R more samples)", "defensive": "defensive mixture"})
 
 
 def _logpdf(gm: mx.GaussianMixture, x: FloatArray) -> FloatArray:

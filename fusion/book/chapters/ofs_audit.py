@@ -35,6 +35,7 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike, NDArray
 
+from fusion._frozen import constant
 from fusion import data
 from fusion._counts import count
 from fusion._results import ResultSpec, instance, integer, table, text, trusted, validated_post_init
@@ -82,17 +83,17 @@ __all__ = [
 #: Readings of eqs. 3-5: name -> (distance denominator, threshold denominator, strict test).
 #: ``d_i = S_i / a`` with :math:`S_i = \sum_j |s_i - s_j|`, ``d_bar = (sum_i S_i) / b``; the
 #: denominators are written as functions of n; strict is ``d_i < d_bar``, else ``<=``.
-SET_RULES: dict[str, tuple[str, str, bool]] = {
+SET_RULES: dict[str, tuple[str, str, bool]] = constant({
     "averages, d_i < d̄ (the text)": ("n", "n*n", True),
     "averages, d_i ≤ d̄": ("n", "n*n", False),
     "d_i over n-1 (others only), d̄ their mean": ("n-1", "n*(n-1)", True),
     "d_i over n, d̄ over the n(n-1) pairs": ("n", "n*(n-1)", True),
     "sums as printed, d_i < d̄": ("1", "1", True),
     "sums as printed, d_i ≤ d̄": ("1", "1", False),
-}
+})
 
 #: Program models: name -> description.
-PROGRAMS: dict[str, str] = {
+PROGRAMS: dict[str, str] = constant({
     "correct": "a fresh set at every observation, eqs. 6-12 on its members",
     "buffer, clean start": "member readings written into a two-slot buffer that is never reset; both slots fused "
                            "(m = 2 in every denominator); the first observation starts with an empty buffer",
@@ -100,7 +101,7 @@ PROGRAMS: dict[str, str] = {
                              "the buffer carried over from a previous pass over the table",
     "three-slot buffer": "member readings written into an n-slot buffer that is never reset, all n slots fused",
     "set not reset": "the members of the previous observation stay members (by sensor)",
-}
+})
 
 _TRUTH = 900.0  # the true temperature of the audited experiment (°C): :func:`score`'s default
 #: Keys of :func:`published` (and of the printed and reconstructed columns of the chapter's table of them), read

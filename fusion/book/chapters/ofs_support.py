@@ -19,6 +19,7 @@ import pandas as pd
 from numpy.typing import ArrayLike
 from scipy import optimize
 
+from fusion._frozen import constant
 from fusion import data
 from fusion._validation import FloatArray, as_array, one_of
 
@@ -27,13 +28,13 @@ __all__ = ["SUPPORT_KERNELS", "SUPPORT_AGGREGATIONS", "support_values", "support
 _TOL = 5e-5  # half a unit of the printed 4th decimal (the audit of Table 2 reads it too)
 
 #: Support kernels of the support-degree literature: name -> support of a distance d at sharpness α.
-SUPPORT_KERNELS: dict[str, str] = {
+SUPPORT_KERNELS: dict[str, str] = constant({
     "Gaussian exp(-α d²)": "gauss",
     "Laplace exp(-α |d|)": "laplace",
     "Cauchy 1/(1 + α d²)": "cauchy",
     "arctan 1 - (2/π) arctan(α |d|)": "arctan",
     "linear max(0, 1 - α |d|)": "linear",
-}
+})
 
 #: How the support matrix becomes weights.
 SUPPORT_AGGREGATIONS: tuple[str, ...] = ("row sums", "principal eigenvector", "row sums, accumulated over time",

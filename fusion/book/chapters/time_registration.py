@@ -18,6 +18,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
+from fusion._frozen import constant
 from fusion._counts import seed as check_seed
 from fusion import data
 from fusion._validation import (as_array, as_times, distinct, instance_of, one_of, record, scalar, sequence,
@@ -677,7 +678,7 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
 
 
 #: The fair benchmark's two classes, by the information each method uses at an instant.
-CLASSES: dict[BenchClass, tuple[str, ...]] = {
+CLASSES: dict[BenchClass, tuple[str, ...]] = constant({
     BenchClass.REAL_TIME: (RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED,
                            RegMethod.LEAST_SQUARES, RegMethod.QLS_CAUSAL),
     BenchClass.OFFLINE: (TWO, RegMethod.THREE_POINT, IMPROVED, RegMethod.KALMAN_TWO_POINT,
@@ -685,7 +686,7 @@ CLASSES: dict[BenchClass, tuple[str, ...]] = {
                                               RegMethod.LOCAL_QLS,
                                               RegMethod.FIXED_LAG,
                                               RegMethod.RTS_SMOOTHER, RegMethod.CUBIC_SPLINE),
-}
+})
 
 
 
@@ -852,13 +853,13 @@ def fusion_table(fr: sc.FusionRuns) -> pd.DataFrame:
 
 
 #: Readings of the §3 Kalman filter alone, compared with two-point extrapolation: (key, choice, reading, ``kf``).
-S3_READINGS: tuple[tuple[str, str, str, dict[str, object]], ...] = (
+S3_READINGS: tuple[tuple[str, str, str, dict[str, object]], ...] = constant((
     ("per-step-period-changed", "driving noise and filter period", "per-step Q, period changed at the instants",
      {"period_change": True}),
     ("wnj-period-changed", "driving noise and filter period", "white-noise-jerk Q(T), period changed at the instants",
      {"q_model": "white-noise jerk", "period_change": True}),
     ("z1-once", "initialisation", "first measurement used once", {"init": "once"}),
-)
+))
 
 
 def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> GlueValues:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from fusion._frozen import constant
 from fusion._validation import count
 from fusion._validation import shown
 from fusion.book.ledger.statuses import _text
@@ -105,7 +106,7 @@ def _number(chapter: str) -> str:
 
 
 #: The five sources in book order.
-SOURCES: dict[str, Source] = {s.key: s for s in (
+SOURCES: dict[str, Source] = constant({s.key: s for s in (
     Source("yang2012optimal", "Yang, Feng & Fan (2012)", "Optimal fusion set",
            "notebooks/01_optimal_fusion_set", 1),
     Source("lecture003", "Lecture notes (sections 2.1-2.7)", "Classic fusion algorithms",
@@ -118,4 +119,4 @@ SOURCES: dict[str, Source] = {s.key: s for s in (
            "notebooks/06_chernoff_fusion", 6),
     Source("shi2023time", "Shi, Suo & Ma (2023)", "Time registration",
            "notebooks/07_time_registration", 7),
-)}
+)})

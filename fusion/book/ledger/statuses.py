@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from fusion._frozen import constant
 from fusion._validation import sequence, shown
 from fusion._validation import text as _text   # the shared rule (claim.py imports it from here)
 from fusion.book import rulebook as R
@@ -42,7 +43,7 @@ DOMINANCE_SHARE = R.DOMINANCE_SHARE
 
 #: One-sentence definition of each status (shown on the Verdicts page); the rules that decide them are
 #: :data:`fusion.book.rulebook.RULES`.
-STATUS_DEFINITIONS: dict[str, str] = {
+STATUS_DEFINITIONS: dict[str, str] = constant({
     "reproduced": "the published number equals ours at its printed precision (R1); or the claimed difference's "
                   f"paired {CONFIDENCE_LEVEL * 100:.0f} % interval lies on the claimed side of zero and not wholly "
                   "inside the practical margin, or a 'no effect' claim's interval lies wholly inside it (R2, R3); or the "
@@ -59,7 +60,7 @@ STATUS_DEFINITIONS: dict[str, str] = {
                            "inside the practical margin for a claimed difference (too small to matter) (R2, R3)",
     "cannot be checked": "the source gives too little to compute anything, or compares with a method it never "
                          "defines; the record says why (R7, R9)",
-}
+})
 
 
 def fmt(x: float, digits: int = 4) -> str:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -12,6 +13,7 @@ import pandas as pd
 
 from fusion.book._json import JSONObject
 from fusion.book.ledger.claim import Claim
+from fusion._paths import folder
 from fusion._validation import instance_of, shown, text
 from fusion.book.ledger.sources import SOURCES
 
@@ -25,7 +27,7 @@ __all__ = [
 _REPOSITORY = Path(__file__).resolve().parents[3]
 
 
-def ledger_dir(start: Path | None = None) -> Path:
+def ledger_dir(start: Path | str | None = None) -> Path:
     """``book/ledger`` of the repository that contains ``start`` (default: the working directory's, else the package's).
 
     Without ``start`` the search starts in the working directory (a worktree's tests and notebooks find their own
@@ -34,9 +36,9 @@ def ledger_dir(start: Path | None = None) -> Path:
 
     Parameters
     ----------
-    start : pathlib.Path, optional
-        Where to start looking upwards for ``_toc.yml`` (default: the working directory, then the package's
-        repository).
+    start : str or os.PathLike, optional
+        The existing folder where to start looking upwards for ``_toc.yml`` (default: the working directory, then
+        the package's repository).
 
     Returns
     -------
@@ -45,13 +47,15 @@ def ledger_dir(start: Path | None = None) -> Path:
 
     Raises
     ------
+    TypeError
+        ``start`` is not a path (``str`` or ``os.PathLike``).
+    ValueError
+        ``start`` is not an existing folder (a file, a missing folder, a name the system cannot use).
     FileNotFoundError
         No ``_toc.yml`` in ``start`` or above it; without ``start``, none above the working directory nor in the
         package's repository (an installed package has no book files).
     """
-    if start is not None and not isinstance(start, (str, Path)):
-        raise TypeError(f"start must be a pathlib.Path, got {type(start).__name__}")
-    here = Path(start or Path.cwd()).resolve()
+    here = (folder(start, "start") if start is not None else Path.cwd()).resolve()
     for p in (here, *here.parents):
         if (p / "_toc.yml").is_file():
             return p / "book" / "ledger"
@@ -73,7 +77,7 @@ def _clean(x: Any) -> Any:
     """
     if isinstance(x, float):
         return float(f"{x:.7g}") if math.isfinite(x) else None
-    if isinstance(x, dict):
+    if isinstance(x, Mapping):
         return {k: _clean(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
         return [_clean(v) for v in x]
@@ -172,20 +176,37 @@ class Ledger:
         """The ledger file's name: ``<source>.json``, or ``<source>-<NN>.json`` for a multi-chapter source."""
         return SOURCES[self.source].ledger_file(self.chapter)
 
-    def write(self, directory: Path | None = None) -> str:
+    def write(self, directory: Path | str | None = None) -> str:
         """Write :attr:`filename` and return the SHA-256 of its text (shown by the chapter).
 
         The digest is part of the chapter's stored output, so a change of any record makes the
         notebook test fail until the notebook is re-executed and the file committed. The source's
         first chapter must hold exactly one headline claim, its other chapters none.
+
+        Parameters
+        ----------
+        directory : str or os.PathLike, optional
+            The folder to write to, made if missing (default: :func:`ledger_dir`).
+
+        Returns
+        -------
+        str
+            The first 16 hex digits of the SHA-256 of the written text.
+
+        Raises
+        ------
+        TypeError
+            ``directory`` is not a path (``str`` or ``os.PathLike``).
+        ValueError
+            The ledger is empty or its headline claims break the rule above; ``directory`` is not a folder
+            (a file, a name the system cannot use) or cannot be made.
         """
         if not self.claims:
             raise ValueError("the ledger is empty")
         want = int(self.chapter == SOURCES[self.source].chapter)
         if sum(c.headline for c in self.claims) != want:
             raise ValueError("exactly one claim per source must be the headline, in the source's first chapter")
-        d = directory or ledger_dir()
-        d.mkdir(parents=True, exist_ok=True)
+        d = folder(directory if directory is not None else ledger_dir(), "directory", create=True)
         head = {"source": self.source}
         if len(SOURCES[self.source].chapters) > 1:
             head["chapter"] = self.chapter

@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 
 from fusion import readings as rd
 from fusion._results import ResultSpec, array, arrays, number, trusted, validated_post_init
-from fusion._frozen import frozen_arrays
+from fusion._frozen import constant, frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
 from fusion._validation import distinct, loop_work
@@ -246,15 +246,15 @@ class BeliefKind(StrEnum):
 
 
 #: Kinds of belief fusion of :func:`belief_parameter_study` and the analyst's parameter each varies.
-BELIEF_KINDS: dict[BeliefKind, str] = {BeliefKind.FUZZY: "scale s", BeliefKind.BINARY: "threshold ε",
+BELIEF_KINDS: dict[BeliefKind, str] = constant({BeliefKind.FUZZY: "scale s", BeliefKind.BINARY: "threshold ε",
                                        BeliefKind.DELETION: "threshold ε", BeliefKind.DELETION_THIRD: "threshold ε",
                                        BeliefKind.DELETION_ALL: "threshold ε",
-                                       BeliefKind.FUZZY_LIMIT: "fusion upper limit m (融合上限)"}
+                                       BeliefKind.FUZZY_LIMIT: "fusion upper limit m (融合上限)"})
 
 #: ``min_support`` of each deletion kind of :data:`BELIEF_KINDS` (:func:`fusion.readings.fusion_set.binary_deletion`):
 #: the share of the other readings that must trust a reading for it to be kept.
-DELETION_SUPPORT: dict[BeliefKind, float] = {BeliefKind.DELETION: 0.5, BeliefKind.DELETION_THIRD: 1.0 / 3.0,
-                                             BeliefKind.DELETION_ALL: 1.0}
+DELETION_SUPPORT: dict[BeliefKind, float] = constant({BeliefKind.DELETION: 0.5, BeliefKind.DELETION_THIRD: 1.0 / 3.0,
+                                             BeliefKind.DELETION_ALL: 1.0})
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import frozen_arrays
+from fusion._frozen import constant, frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
 from fusion._validation import LOOP_STEP, as_mask, distinct, loop_work
@@ -92,23 +92,23 @@ class AwfMethod(StrEnum):
 
 
 #: The lecture's AWF under each guard of :data:`fusion.readings.weighting.GUARDS` and under deletion: guard → key.
-LECTURE_GUARD_METHODS: dict[str, AwfMethod] = {
+LECTURE_GUARD_METHODS: dict[str, AwfMethod] = constant({
     "floor": AwfMethod.AWF_LECTURE_FLOOR,
     "abs": AwfMethod.AWF_LECTURE_ABS,
     "equal": AwfMethod.AWF_LECTURE_EQUAL,
     "none": AwfMethod.AWF_LECTURE_NONE,
     "delete": AwfMethod.AWF_LECTURE_DELETE,
-}
+})
 
 #: Each AWF of E2.3 → the same AWF after the §2.3 consistency check.
-CHECKED: dict[AwfMethod, AwfMethod] = {
+CHECKED: dict[AwfMethod, AwfMethod] = constant({
     AwfMethod.AWF_LECTURE_FLOOR: AwfMethod.CHECK_AWF_LECTURE_FLOOR,
     AwfMethod.AWF_LECTURE_ABS: AwfMethod.CHECK_AWF_LECTURE_ABS,
     AwfMethod.AWF_LECTURE_EQUAL: AwfMethod.CHECK_AWF_LECTURE_EQUAL,
     AwfMethod.AWF_LECTURE_NONE: AwfMethod.CHECK_AWF_LECTURE_NONE,
     AwfMethod.AWF_LECTURE_DELETE: AwfMethod.CHECK_AWF_LECTURE_DELETE,
     AwfMethod.AWF_CENTRED: AwfMethod.CHECK_AWF_CENTRED,
-}
+})
 
 #: Levels X of the sweep of :func:`awf_study` (the verdict of §2.1 against X/σ).
 SWEEP_LEVELS: tuple[float, ...] = (0.0, 1.0, 3.0, 10.0, 20.0, 30.0, 50.0, 100.0, 300.0, 900.0)

@@ -12,7 +12,7 @@ from enum import StrEnum
 
 import numpy as np
 
-from fusion._frozen import frozen_arrays
+from fusion._frozen import constant, frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, sequence
 from fusion.readings import weighting as wt
@@ -397,11 +397,11 @@ class VarianceChange(StrEnum):
 
 
 #: Changes of the noise SDs of :func:`variance_change_study`: (key, {sensor index: SD after the change}).
-VARIANCE_CHANGES: tuple[tuple[str, dict[int, float]], ...] = (
+VARIANCE_CHANGES: tuple[tuple[str, dict[int, float]], ...] = constant((
     (VarianceChange.SWAP, {0: 4.0, 3: 0.5}),
     (VarianceChange.DEGRADE, {0: 4.0}),
     (VarianceChange.IMPROVE, {3: 0.5}),
-)
+))
 
 #: Fusions of a constant X from every reading so far, run by :func:`variance_change_study`.
 CHANGE_METHODS: tuple[RegimeMethod, ...] = (_R.AWF_AS_WRITTEN, _R.RUNNING_MEANS_ORACLE, _R.PER_SAMPLE_FORGETTING,
@@ -487,12 +487,12 @@ def variance_change_study(
     forgetting, forgetting_alt = (_forgetting(v, name)
                                   for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))
     sequence(changes, "changes")
-    if isinstance(changes, (str, bytes, dict)) or len(changes) == 0:
+    if isinstance(changes, (str, bytes, Mapping)) or len(changes) == 0:
         raise ValueError(f"changes must be a non-empty sequence of (name, {{sensor: SD}}) pairs, got {shown(changes)}")
     n, K = sig.size, samples
     after_sd: dict[str, np.ndarray] = {}
     for item in changes:
-        if not (isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], str) and isinstance(item[1], dict)):
+        if not (isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], str) and isinstance(item[1], Mapping)):
             raise ValueError(f"changes must hold (name, {{sensor: SD}}) pairs, got {shown(item)}")
         new = sig.copy()
         for i, v in item[1].items():

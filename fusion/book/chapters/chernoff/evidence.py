@@ -5,7 +5,7 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 import inspect
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any, TypeVar
 
 import numpy as np
@@ -41,7 +41,7 @@ __all__ = ["ev_tracking", "ev_pso", "ev_formulas", "ev_common_once", "ev_gaussia
 
 def _settings(settings: Any, allowed: dict[str, tuple[Any, ...]], defaults: dict[str, Any]) -> dict[str, Any]:
     """Settings of a reading, checked against the allowed values (ValueError naming the setting)."""
-    if not isinstance(settings, dict):
+    if not isinstance(settings, Mapping):
         raise ValueError(f"settings must be a dict, got {type(settings).__name__}")
     extra = set(settings) - set(allowed)
     if extra:

@@ -14,6 +14,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
+from fusion._frozen import constant
 from fusion._docstrings import with_sections
 from fusion._validation import FloatArray, mapping_of, scalar, sequence
 from fusion.optimise._ties import first_minimum
@@ -45,11 +46,11 @@ PREMISE_NETWORKS: tuple[Network, ...] = (Network.UNEQUAL, Network.NON_GAUSSIAN, 
                                          Network.RELAY, Network.OVERCONFIDENT)
 
 #: The networks' labels in the chapter's table and figure, by key (in the order of :data:`PREMISE_NETWORKS`).
-PREMISE_LABELS: dict[Network, str] = {Network.UNEQUAL: "unequal sensors",
+PREMISE_LABELS: dict[Network, str] = constant({Network.UNEQUAL: "unequal sensors",
                                       Network.NON_GAUSSIAN: "range-only and bearings-only",
                                       Network.FEEDBACK: "feedback, 3 frames", Network.CHAIN: "chain, 2 rounds",
                                       Network.RELAY: "node 3 relays node 1",
-                                      Network.OVERCONFIDENT: "node 3 overconfident"}
+                                      Network.OVERCONFIDENT: "node 3 overconfident"})
 
 
 _PMSE = "per-run squared position error averaged over the nodes (m²)"
@@ -66,7 +67,7 @@ _POVER = "per-run share of nodes whose NEES (2-D) exceeds χ²₂'s 95 % point, 
 #: commit that added it, with no record that the count was fixed before its outcome was read (review 5, m3). Every
 #: network now runs the count every network had before any outcome was read; the reseeding sweep reruns every
 #: primary at more runs.
-PREMISE_MORE_RUNS: dict[str, int] = {}
+PREMISE_MORE_RUNS: dict[str, int] = constant({})
 
 
 def nested_gaussian_weight(k: ArrayLike) -> FloatArray:

@@ -4,6 +4,7 @@ weights, its claim file, and the seeds, runs and periods of its studies.
 
 from __future__ import annotations
 
+from fusion._frozen import constant
 from fusion import data
 from fusion.book.claims import ClaimsFile, claims_dir
 from fusion.book.claims import load as load_claims
@@ -81,9 +82,9 @@ SEARCH_STEP = 60
 IR_T, IR_DURATION = 0.1, 10.0
 
 #: Offsets from the chapter's seed of each study's seed.
-SEED_OFFSETS = {"unequal pair": 1, "paired identical": 20, "paired unequal": 21, "random weights": 22,
+SEED_OFFSETS = constant({"unequal pair": 1, "paired identical": 20, "paired unequal": 21, "random weights": 22,
                 "anisotropic pair": 23, "infrared + radar": 30, "architecture identical": 40,
-                "architecture anisotropic": 41, "fig6 periods": 50}
+                "architecture anisotropic": 41, "fig6 periods": 50})
 
 #: Sampling periods (s) besides :data:`SOURCE_T` at which Fig. 6's two published weights are compared (a reading).
 FIG6_PERIODS = (0.5, 0.2)

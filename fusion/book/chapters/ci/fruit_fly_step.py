@@ -7,6 +7,7 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
+from fusion._frozen import constant
 from fusion._counts import seed as check_seed
 from fusion._validation import count, scalar, sequence
 from fusion.book.tables import rounded
@@ -62,10 +63,10 @@ def fruit_fly_step_targets(seed: int = 0, targets: Sequence[float] = FRUIT_FLY_S
 
 
 #: Step rules of the FOA step study: label -> (a, b) of the step a·rand + b.
-FRUIT_FLY_STEP_RULES: dict[str, tuple[float, float]] = {
+FRUIT_FLY_STEP_RULES: dict[str, tuple[float, float]] = constant({
     "as printed, 30·rand − 10 (on [−10, 20])": (30.0, -10.0),
     "symmetric, 20·rand − 10 (on [−10, 10])": (20.0, -10.0),
-}
+})
 
 
 def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -> pd.DataFrame:

@@ -13,6 +13,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
+from fusion._frozen import constant
 from fusion._counts import seed as check_seed
 from fusion import data
 from fusion._results import ResultSpec, array, dict_of, instance, integer, number, trusted, tuple_of, validated_post_init
@@ -378,22 +379,22 @@ def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> GlueValu
 
 
 #: Azimuth conventions of the infrared + radar case: key of :func:`ir_study` -> description.
-IR_AXES: dict[str, str] = {
+IR_AXES: dict[str, str] = constant({
     "x": "azimuth from the x axis (counter-clockwise)",
     "y": "azimuth from the y axis (clockwise, as a bearing from north)",
-}
+})
 
 #: Readings of the trackers of source Figs. 9-10: label -> (tracker, factor on the process-noise variance).
 #: The angle-space filters' Q is the rule of thumb σa = the path's largest angular acceleration; the
 #: Cartesian filters' is white acceleration σa = 1 m/s² per axis. The first reading is the chapter's.
-IR_READINGS: dict[str, tuple[str, float]] = {
+IR_READINGS: dict[str, tuple[str, float]] = constant({
     "angle-space filters, Q by the rule of thumb": ("angle", 1.0),
     "angle-space filters, Q × 0.01": ("angle", 0.01),
     "angle-space filters, Q × 100": ("angle", 100.0),
     "Cartesian filters (converted measurements), σa = 1 m/s²": ("cartesian", 1.0),
     "Cartesian filters, Q × 0.01 (σa = 0.1 m/s²)": ("cartesian", 0.01),
     "Cartesian filters, Q × 100 (σa = 10 m/s²)": ("cartesian", 100.0),
-}
+})
 
 #: Intermediate white-acceleration levels σa (m/s²) of the Cartesian filters, readings of ``ci-fig9-angles`` only
 #: (between the 1 and 10 m/s² of :data:`IR_READINGS`, where the published 0.05 mrad lies).

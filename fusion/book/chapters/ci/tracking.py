@@ -15,6 +15,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion._results import ResultSpec, array, dict_of, mask, number, validated_post_init
+from fusion._frozen import constant, frozen_arrays
 from fusion import data
 from fusion._docstrings import reads_results
 from fusion._counts import distinct, sequence
@@ -454,7 +455,7 @@ IDENTICAL_LABEL = "identical sensors (printed)"
 
 #: Label and measurement covariances (m²) of the asymmetric anisotropic pair on which every rule separates.
 ANISO_LABEL = "anisotropic pair (R₁ = diag(150², 50²), R₂ = 80² I)"
-ANISO_R = (np.diag([150.0**2, 50.0**2]), 80.0**2 * np.eye(2))
+ANISO_R = constant((np.diag([150.0**2, 50.0**2]), 80.0**2 * np.eye(2)))
 
 
 def slip_numbers(variants: Mapping[str, tuple[float, float]], variants_all: Mapping[str, tuple[float, float]],

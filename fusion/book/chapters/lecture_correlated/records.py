@@ -10,6 +10,7 @@ from typing import Any, TypeAlias
 
 import numpy as np
 
+from fusion._frozen import constant
 from fusion._results import ResultSpec, instance, validated_post_init
 from fusion.book.study_cache import study_cache
 from fusion.book.chapters.lecture import SOURCE, sci
@@ -257,7 +258,7 @@ def _ev_lagrange(st: Studies) -> Readings:
 WIDE = CouplingCase.EQUAL_WIDE
 
 
-WIDE_CASE: dict[str, Any] = {"own": (0.5, 2.0, 4.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5}
+WIDE_CASE: dict[str, Any] = constant({"own": (0.5, 2.0, 4.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5})
 
 
 def _ev_correlation_matters(st: Studies) -> Readings:
@@ -306,7 +307,7 @@ def _ev_ldl_validated(st: Studies) -> Unverifiable:
 
 
 #: Record id -> evidence function, in the claim file's order.
-EVIDENCE = {"lec-ridge-reliable": _ev_ridge_reliable, "lec-ridge-plugin": _ev_ridge_plugin,
+EVIDENCE = constant({"lec-ridge-reliable": _ev_ridge_reliable, "lec-ridge-plugin": _ev_ridge_plugin,
             "lec-ridge-variance": _ev_ridge_variance, "lec-ridge-bias-known": _ev_ridge_bias_known,
             "lec-ls-special-cases": _ev_ls_special_cases, "lec-gauss-markov": _ev_gauss_markov,
             "lec-james-stein-linear": _ev_james_stein, "lec-reliability-measure": _ev_reliability_measure,
@@ -315,7 +316,7 @@ EVIDENCE = {"lec-ridge-reliable": _ev_ridge_reliable, "lec-ridge-plugin": _ev_ri
             "lec-ldl-unique": _ev_ldl_unique, "lec-ldl-equals-gls": _ev_ldl_equals_gls, "lec-ldl-cheaper": _ev_ldl_cheaper,
             "lec-lagrange-scalar-only": _ev_lagrange, "lec-correlation-matters": _ev_correlation_matters,
             "lec-eigen-finite": _ev_eigen_finite, "lec-eigen-impractical": _ev_eigen_impractical,
-            "lec-ldl-validated": _ev_ldl_validated}
+            "lec-ldl-validated": _ev_ldl_validated})
 
 
 def ledger_evidence(st: Studies) -> dict[str, Evidence | Readings]:

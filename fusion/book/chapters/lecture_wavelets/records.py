@@ -8,6 +8,7 @@ from typing import Any, TypeAlias
 
 import numpy as np
 
+from fusion._frozen import constant
 from fusion.book.study_cache import study_cache
 from fusion._validation import count, mapping_of, one_of
 from fusion.book import rulebook as R
@@ -29,19 +30,19 @@ __all__ = [
 
 
 #: Reading key of each wavelet setting of the mechanism study that the signal table does not already run.
-CONFIG_KEYS: dict[str, str] = {
+CONFIG_KEYS: dict[str, str] = constant({
     "haar, 4 levels, universal hard": "cfg-haar", "sym8, 4 levels, universal hard": "cfg-sym8",
     "coif3, 4 levels, universal hard": "cfg-coif3", "db4, 2 levels, universal hard": "cfg-level-2",
     "db4, 6 levels, universal hard": "cfg-level-6", "db4, 4 levels, bayes soft": "cfg-bayes-soft",
     "db4, 4 levels, universal hard, translation-invariant": "cfg-ti-hard",
     "db4, 4 levels, universal soft, translation-invariant": "cfg-ti-soft",
-}
+})
 
 
 #: Reading keys of the signal × rule cells (the primary cell excluded): ``sig_two_tones`` and ``soft`` give
 #: ``sig-two-tones-soft`` (the claim file's keys, from the signals' keys, not their labels).
-SIGNAL_KEYS: dict[tuple[Signal, str], str] = {(k, m): f"{k.value.replace('_', '-')}-{m}" for k in Signal
-                                              for m in ("hard", "soft") if (k, m) != PRIMARY[:2]}
+SIGNAL_KEYS: dict[tuple[Signal, str], str] = constant({(k, m): f"{k.value.replace('_', '-')}-{m}" for k in Signal
+                                              for m in ("hard", "soft") if (k, m) != PRIMARY[:2]})
 
 
 #: Readings of step 3 (the variance of the weights) run as readings.
@@ -78,7 +79,7 @@ SEED = 2601
 
 #: Run count of each study of the chapter (:func:`study`): every reading's 300, E2.6's 2000 (the ``more-runs``
 #: reading, whose claim-file entry states its runs).
-RUNS: dict[str, int] = {"sg": 300, "m26": 300, "v26": 300, "g1": 300, "e26": 2000, "v1": 300, "v1r": 300}
+RUNS: dict[str, int] = constant({"sg": 300, "m26": 300, "v26": 300, "g1": 300, "e26": 2000, "v1": 300, "v1r": 300})
 
 
 #: The records' run count (the ledger's ``runs``): the default of the evidence functions.
@@ -236,8 +237,8 @@ ev_wavelet_weighting = _reader(
 
 
 #: Record id → evidence function of chapter 03 (the ``evidence`` field of each record names the same function).
-EVIDENCE = {"lec-wavelet-better": ev_wavelet_better, "lec-wavelet-accurate": ev_wavelet_accurate,
-            "lec-wavelet-fusion-helps": ev_wavelet_fusion_helps, "lec-wavelet-weighting": ev_wavelet_weighting}
+EVIDENCE = constant({"lec-wavelet-better": ev_wavelet_better, "lec-wavelet-accurate": ev_wavelet_accurate,
+            "lec-wavelet-fusion-helps": ev_wavelet_fusion_helps, "lec-wavelet-weighting": ev_wavelet_weighting})
 
 
 def evidence(st: Mapping[str, ChapterStudy] | None = None, seed: int | None = None) -> dict[str, dict[str, Evidence]]:

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from fusion._results import ResultSpec, dict_of, instance, integer, trusted, validated_post_init
+from fusion._frozen import constant, frozen_arrays
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
@@ -28,9 +29,9 @@ PRIMARY: tuple[Signal, str, str] = (Signal.TWO_TONES, "hard", "max")
 
 
 #: Short descriptions of the signals of :data:`fusion.scenarios.wavelet_sensors.SIGNALS` (for the ledger).
-SIGNAL_TEXT: dict[Signal, str] = {Signal.TWO_TONES: "2 + sin(2πn/256) + 0.5 sin(2πn/64)", Signal.SLOW: "2 + sin(2πn/256)",
+SIGNAL_TEXT: dict[Signal, str] = constant({Signal.TWO_TONES: "2 + sin(2πn/256) + 0.5 sin(2πn/64)", Signal.SLOW: "2 + sin(2πn/256)",
                                   Signal.CONSTANT: "a steady measurand, 2",
-                                  Signal.HEAVISINE: "piecewise smooth, Donoho-Johnstone"}
+                                  Signal.HEAVISINE: "piecewise smooth, Donoho-Johnstone"})
 
 
 def _paired_metrics(a: object, b: object, a_name: object, b_name: object) -> tuple[np.ndarray, np.ndarray]:

@@ -7,6 +7,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from fusion._frozen import constant
 from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -136,9 +137,9 @@ def glue_benchmark(results: dict, stab: SeedStability) -> GlueValues:
 
 #: Methods of :func:`glue_offset` (keys of :class:`~fusion.scenarios.lecture_weighting.readings_benchmark.BenchMethod`)
 #: and their glue keys.
-OFFSET_METHODS: dict[B, str] = {B.ORACLE: "oracle", B.AWF_CENTRED: "cen", B.AWF_LECTURE_ABS: "abs", B.CHECK_AWF: "cc",
+OFFSET_METHODS: dict[B, str] = constant({B.ORACLE: "oracle", B.AWF_CENTRED: "cen", B.AWF_LECTURE_ABS: "abs", B.CHECK_AWF: "cc",
                                 B.BELIEF: "bel", B.OPTIMAL_FUSION_SET: "ofs", B.MEDIAN: "med", B.BIWEIGHT: "bw",
-                                B.MEAN: "mean"}
+                                B.MEAN: "mean"})
 
 
 def glue_offset(results: dict) -> GlueValues:

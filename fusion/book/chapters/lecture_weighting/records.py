@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion._frozen import constant
 from fusion._validation import records_of
 from fusion.book.study_cache import study_cache
 from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
@@ -164,10 +165,10 @@ def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Evidence
 
 
 #: The stochastic records of chapter 02 (their evidence runs Monte-Carlo studies) → their run count.
-STOCHASTIC: dict[str, int] = {
+STOCHASTIC: dict[str, int] = constant({
     "lec-awf-estimated": 300, "lec-awf-adapts": 100, "lec-awf-fault-tolerance": 100, "lec-awf-accuracy": 100,
     "lec-cc-beats-mean": 100, "lec-cc-accuracy": 100, "lec-belief-objective": 200, "lec-belief-accuracy": 500,
-}
+})
 
 def _reader(rid: str, summary: str, studies: str, returns: str = "Comparison") -> Callable[..., Evidence]:
     """The evidence function of the stochastic record ``rid``, ``fn(settings, *, seed=SEED, runs=STOCHASTIC[rid])``:
@@ -206,7 +207,7 @@ ev_belief_accuracy = _reader(
 
 #: Record id → evidence function of chapter 02 (the ``evidence`` field of each record names the same function):
 #: for a stochastic record (:data:`STOCHASTIC`) ``fn(settings, *, seed, runs)``, for the others ``fn(st)``.
-EVIDENCE = {
+EVIDENCE = constant({
     "lec-awf-optimal": ev_awf_optimal, "lec-awf-estimated": ev_awf_estimated, "lec-awf-unbiased": ev_awf_unbiased,
     "lec-awf-lumv-fixed": ev_awf_lumv_fixed, "lec-awf-lumv": ev_awf_lumv, "lec-awf-adapts": ev_awf_adapts,
     "lec-awf-fault-tolerance": ev_awf_fault_tolerance, "lec-awf-accuracy": ev_awf_accuracy,
@@ -216,7 +217,7 @@ EVIDENCE = {
     "lec-cc-beats-mean": ev_cc_beats_mean, "lec-cc-accuracy": ev_cc_accuracy,
     "lec-belief-objective": ev_belief_objective, "lec-belief-perron": ev_belief_perron,
     "lec-belief-accuracy": ev_belief_accuracy,
-}
+})
 
 #: Record id → its evidence from precomputed studies (every reading at once).
 _FROM_STUDIES: dict[str, Callable[..., Evidence | dict[str, Evidence]]] = EVIDENCE | {

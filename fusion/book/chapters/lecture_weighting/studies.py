@@ -8,6 +8,7 @@ from typing import Any, TypeAlias
 
 import numpy as np
 
+from fusion._frozen import constant
 from fusion._counts import seed as check_seed
 from fusion.book.study_cache import study_cache
 from fusion._validation import count
@@ -53,11 +54,11 @@ def _deletion_bench(seed: int, runs: int, eps: float, fault: bool, samples: int 
 SEED = 2100
 
 #: Seed offsets of each study of :func:`study` (the benchmark runs one setup per offset).
-SEED_OFFSETS: dict[str, tuple[int, ...]] = {"s21": (1,), "sreg": (5,), "schg": (5,), "s23": (201,), "s23x0": (201,), "s24b": (304,),
-                                            "bench": (6901, 6902, 6903)}
+SEED_OFFSETS: dict[str, tuple[int, ...]] = constant({"s21": (1,), "sreg": (5,), "schg": (5,), "s23": (201,), "s23x0": (201,), "s24b": (304,),
+                                            "bench": (6901, 6902, 6903)})
 
 #: Run count of each study of :func:`study` in the chapter (E2.4b's: its snapshots).
-RUNS: dict[str, int] = {"s21": 300, "sreg": 100, "schg": 100, "s23": 100, "s23x0": 100, "s24b": 200, "bench": 500}
+RUNS: dict[str, int] = constant({"s21": 300, "sreg": 100, "schg": 100, "s23": 100, "s23x0": 100, "s24b": 200, "bench": 500})
 
 #: Names of the benchmark's three setups in the reading keys (the chapter's seeds; under another base seed, the
 #: first, second and third setup).

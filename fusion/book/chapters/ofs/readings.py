@@ -10,6 +10,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import constant
 from fusion import readings as rd
 from fusion._counts import count, sequence
 from fusion._validation import FloatArray, as_array, instance_of, one_of, scalar, window as check_window
@@ -124,11 +125,11 @@ def eq9_readings(z: ArrayLike, weight_epochs: int | None = 200) -> dict[str, flo
 
 #: Fusion-degree (membership) functions of the distance ``d = abs(s_i - s_j)`` tried in place of
 #: eq. 6, each with the length scale ``h`` (°C): eq. 6 itself, a Gaussian and a Cauchy kernel.
-FAMILIES: dict[str, str] = {
+FAMILIES: dict[str, str] = constant({
     "eq. 6, exp(-|d|/h)": "laplace",
     "Gaussian, exp(-d²/(2h²))": "gauss",
     "Cauchy, 1/(1 + (d/h)²)": "cauchy",
-}
+})
 
 
 #: The family names of :data:`FAMILIES` (the values; its keys are labels).

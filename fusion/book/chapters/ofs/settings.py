@@ -7,6 +7,7 @@ from enum import StrEnum
 
 import numpy as np
 
+from fusion._frozen import constant
 from fusion.book.style import METHOD_LABELS
 from fusion.scenarios import thermocouples
 from fusion._shown import shown
@@ -29,11 +30,11 @@ SOURCE = "yang2012optimal"
 CHAPTER = "notebooks/01_optimal_fusion_set"
 
 #: The three methods of the source's comparison, as :func:`fusion.readings.fusion_set.fuse_epochs` specs.
-METHODS: dict[str, dict[str, object]] = {
+METHODS: dict[str, dict[str, object]] = constant({
     "optimal_fusion_set": {"method": "optimal_fusion_set"},
     "mean": {"method": "mean"},
     "support_degree": {"method": "support_degree"},
-}
+})
 
 
 class FailureCase(StrEnum):
@@ -57,8 +58,8 @@ SEED, N_RUNS = 2012, 500
 
 #: Readings of the noise levels the source does not give: the primary (unequal, evenly spaced), equal noise, and
 #: geometric spreads σ_max/σ_min = r from r^-1/2 to r^1/2 °C (the fair study's spread sweep; r = 4 is 0.5-2.0 °C).
-NOISE: dict[str, object] = {"unequal": thermocouples.DEFAULT_SIGMAS, "equal": 1.0,
-                            **{f"geometric-{r}": np.geomspace(r ** -0.5, r ** 0.5, 10) for r in (2, 4, 8, 16)}}
+NOISE: dict[str, object] = constant({"unequal": thermocouples.DEFAULT_SIGMAS, "equal": 1.0,
+                            **{f"geometric-{r}": np.geomspace(r ** -0.5, r ** 0.5, 10) for r in (2, 4, 8, 16)}})
 
 
 def _noise(settings: Mapping[str, object]) -> str:

@@ -9,6 +9,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from fusion._frozen import constant
 from fusion._counts import sequence
 from fusion._shown import shown
 from fusion._validation import instance_of, text
@@ -26,7 +27,7 @@ __all__ = [
 
 
 #: The ledger numbers the chapter's prose quotes: record id -> fields (see :func:`ledger_numbers`).
-LEDGER_GLUE: dict[str, tuple[str, ...]] = {
+LEDGER_GLUE: dict[str, tuple[str, ...]] = constant({
     "yang-totals-ranking-mean": ("status",),
     "yang-totals-ranking-support": ("status",),
     "yang-median-total": ("status",),
@@ -45,7 +46,7 @@ LEDGER_GLUE: dict[str, tuple[str, ...]] = {
     "yang-fig4-unaffected": ("a", "b", "hi", "lo", "margin", "robustness", "status"),
     "yang-weights-reasonable": ("robustness", "status", "runs"),
     "yang-weights-stability": ("a", "b", "robustness", "status"),
-}
+})
 
 
 def _chapter_ledger(ledger: object) -> Ledger:

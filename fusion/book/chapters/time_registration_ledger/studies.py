@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import constant
 from fusion._results import ResultSpec, array, dict_of, instance, number, validated_post_init
 from fusion._shown import shown
 from fusion.book.study_cache import study_cache
@@ -48,12 +49,12 @@ MSE = "registration MSE (m²)"
 PC: dict[str, object] = {"period_change": True}
 
 #: The unmodelled changes every compared method is run under (rule R6): key -> monte_carlo keywords.
-STRESS: dict[str, dict[str, object]] = {
+STRESS: dict[str, dict[str, object]] = constant({
     "manoeuvre-stop": {"a_after": 0.0},
     "manoeuvre-reverse": {"a_after": -2.0},
     "latency-10ms": {"delay": 0.01},
     "latency-minus-10ms": {"delay": -0.01},
-}
+})
 
 #: Noise levels of the readings (m), besides the primary σ.
 SIGMAS_ALT: tuple[float, ...] = (0.1, 0.3, 3.0, 10.0)

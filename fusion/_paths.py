@@ -1,0 +1,62 @@
+"""The rule for a folder argument (issue 35): a path by type, a folder by value, named and never echoed whole.
+
+A folder argument is a ``str`` or an :class:`os.PathLike` (anything else is a :class:`TypeError` naming it).
+A value the system cannot use as a path (a name too long, a NUL byte), a file where a folder is wanted, a
+missing folder where an existing one is wanted, or a folder that cannot be made are a :class:`ValueError`
+naming the argument and showing at most 60 characters of the value (a 5000-character name is not echoed).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from fusion._shown import shown
+
+
+def folder(value: object, name: str, *, create: bool = False) -> Path:
+    """``value`` as a :class:`~pathlib.Path` naming a folder, made (with its parents) if ``create``.
+
+    Parameters
+    ----------
+    value : str or os.PathLike
+        The folder.
+    name : str
+        The argument's name, for the messages.
+    create : bool, optional
+        Make the folder (and its parents) if it does not exist (default: it must exist).
+
+    Returns
+    -------
+    pathlib.Path
+        ``Path(value)``, unresolved.
+
+    Raises
+    ------
+    TypeError
+        ``value`` is not a ``str`` nor an ``os.PathLike``.
+    ValueError
+        ``value`` is not a usable path, names something other than a folder, or (without ``create``) no
+        existing folder; with ``create``, the folder cannot be made.
+    """
+    if not isinstance(value, (str, os.PathLike)):
+        raise TypeError(f"{name} must be a path (str or os.PathLike), got {type(value).__name__} {shown(value, 40)}")
+    try:
+        path = Path(value)
+        if "\x00" in str(path):   # is_dir() says False for it (Python 3.11), mkdir raises
+            raise ValueError("embedded null byte")
+        is_dir = path.is_dir()
+        exists = is_dir or path.exists()
+    except (OSError, ValueError, TypeError) as exc:   # a name too long for the system, a NUL byte, bytes
+        raise ValueError(f"{name} must be a folder, got {shown(value, 60)} ({type(exc).__name__})") from None
+    if exists and not is_dir:
+        raise ValueError(f"{name} must be a folder, got {shown(value, 60)}, which is not one")
+    if not is_dir and not create:
+        raise ValueError(f"{name} must be an existing folder, got {shown(value, 60)}")
+    if not is_dir:
+        try:
+            path.mkdir(parents=True, exist_ok=True)
+        except (OSError, ValueError) as exc:   # a parent that is a file, no permission, a name too long
+            raise ValueError(f"{name}: cannot make the folder {shown(value, 60)} "
+                             f"({exc.strerror or type(exc).__name__})") from None
+    return path
