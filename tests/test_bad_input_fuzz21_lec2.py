@@ -1,0 +1,74 @@
+"""Fuzz 21b's classes H and J and its debatable case d6 in the lecture chapters (issue 35).
+
+* H: :func:`fusion.book.chapters.lecture.reading_of`, through which chapters 04 and 07 pick a record's reading,
+  returned a non-Evidence ``ev`` (``5``, ``None``, ``{"primary": 5}``) as the evidence; it is now a TypeError
+  naming ``ev`` (and the reading key).
+* J: ``lecture_weighting.learning_settling``'s ``tol`` was unchecked (NaN read every epoch as settled, a negative
+  tolerance accepted, a str a numpy error); it is a finite number > 0, named. The answer ``epochs + 1`` when the
+  variances never settle within the study is documented and tested.
+* d6: ``lecture_wavelets.typical_run`` of a comparison whose runs all tie is "contradicted". Decided by the
+  rulebook's tie rule (R3's share of runs won: a tie is never a win): kept and documented; the sign tests
+  (``typical_run``, ``sign_conjunction``) now share the rulebook's own tie test (a round-off difference is a tie),
+  where they compared exactly.
+"""
+
+from __future__ import annotations
+
+import re
+import types
+from typing import Any
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from fusion.book.chapters.lecture import reading_of
+from fusion.book.ledger import Comparison, Conjunction, Proposition
+
+
+def _names(msg: str, arg: str) -> bool:
+    return re.search(rf"(?<![A-Za-z0-9_]){re.escape(arg)}(?![A-Za-z0-9_])", msg) is not None
+
+
+def _comparison(shift: float = 1.0) -> Comparison:
+    a = np.arange(100.0) + 1
+    return Comparison(a, a + shift, "A", "B", "less", "m")
+
+
+# --- H: reading_of refuses a non-Evidence ---------------------------------------------------------------------
+
+_NOT_EVIDENCE = [5, None, "text", 1.5, [_comparison()], (_comparison(),), np.ones(3), object()]
+
+
+@pytest.mark.parametrize("ev", _NOT_EVIDENCE + [{"primary": x} for x in _NOT_EVIDENCE]
+                         + [{"primary": _comparison(), "other": None}, {1: _comparison()}],
+                         ids=lambda ev: type(ev).__name__ if not isinstance(ev, dict) else f"dict-{list(ev.values())[-1]!r:.20}")
+def test_reading_of_refuses_non_evidence(ev: Any) -> None:
+    with pytest.raises(TypeError) as exc:
+        reading_of("lec-x", ev, None)
+    assert _names(str(exc.value), "ev"), str(exc.value)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.one_of(st.none(), st.integers(), st.floats(), st.text(), st.binary(), st.lists(st.integers()),
+                 st.dictionaries(st.text(max_size=5), st.integers(), max_size=3)),
+       st.sampled_from([None, {"reading": "primary"}]))
+def test_reading_of_refuses_any_non_evidence(ev: Any, settings_: Any) -> None:
+    """Whatever the object, a non-Evidence (or a mapping to one) is refused by type, naming ``ev``."""
+    with pytest.raises(TypeError) as exc:
+        reading_of("lec-x", ev if ev != {} else {"primary": 5}, settings_)
+    assert _names(str(exc.value), "ev"), str(exc.value)
+
+
+def test_reading_of_valid_evidence() -> None:
+    """Documented input keeps working: one Evidence for the primary, a mapping (any Mapping) of readings."""
+    c, d, p = _comparison(), _comparison(2.0), Proposition(True, "x")
+    assert reading_of("lec-x", c, None) is c
+    assert reading_of("lec-x", p, {"reading": "primary"}) is p
+    conj = Conjunction((("s1", c), ("s2", d)))
+    assert reading_of("lec-x", conj, None) is conj
+    readings = {"primary": c, "other": d, "exact": p}
+    assert reading_of("lec-x", readings, {"reading": "other"}) is d
+    assert reading_of("lec-x", types.MappingProxyType(readings), {"reading": "exact"}) is p
+    with pytest.raises(ValueError, match="settings"):  # a missing reading stays a refusal of the settings
+        reading_of("lec-x", readings, {"reading": "absent"})
