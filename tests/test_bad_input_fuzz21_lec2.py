@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import re
 import types
+from functools import cache
 from typing import Any
 
 import numpy as np
@@ -23,7 +24,9 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from fusion.book.chapters.lecture import reading_of
+from fusion.book.chapters.lecture_weighting import learning
 from fusion.book.ledger import Comparison, Conjunction, Proposition
+from fusion.scenarios.lecture_weighting.learning import learning_study
 
 
 def _names(msg: str, arg: str) -> bool:
@@ -72,3 +75,44 @@ def test_reading_of_valid_evidence() -> None:
     assert reading_of("lec-x", types.MappingProxyType(readings), {"reading": "exact"}) is p
     with pytest.raises(ValueError, match="settings"):  # a missing reading stays a refusal of the settings
         reading_of("lec-x", readings, {"reading": "absent"})
+
+
+# --- J: learning_settling's tol -------------------------------------------------------------------------------
+
+@cache
+def _s22() -> Any:
+    return learning_study(epochs=60, runs=3, last=10)
+
+
+@pytest.mark.parametrize("tol", [float("nan"), float("inf"), -float("inf"), -0.1, 0.0, -0.0, -1e300, 1e-320])
+def test_learning_settling_tol_value(tol: float) -> None:
+    with pytest.raises(ValueError) as exc:
+        learning.learning_settling(_s22(), tol)
+    assert _names(str(exc.value), "tol"), str(exc.value)
+
+
+@pytest.mark.parametrize("tol", ["0.05", None, True, 1j, [0.05], np.array([0.05, 0.1])])
+def test_learning_settling_tol_type(tol: Any) -> None:
+    with pytest.raises(TypeError) as exc:
+        learning.learning_settling(_s22(), tol)
+    assert _names(str(exc.value), "tol"), str(exc.value)
+
+
+def test_learning_settling_never_settled_is_epochs_plus_one() -> None:
+    """The documented degenerate answer: ``epochs + 1`` when the variances are still outside ``tol`` at the last
+    epoch; 1 when they are within it from the first."""
+    s = _s22()
+    epochs = {int(n): Rh.shape[0] for n, (_, Rh) in s.learned.items()}
+    assert learning.learning_settling(s, 1e-12) == {n: e + 1 for n, e in epochs.items()}
+    assert learning.learning_settling(s, 1e6) == {n: 1 for n in epochs}
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(1e-6, 10.0), st.floats(1e-6, 10.0))
+def test_learning_settling_valid_tol_monotone(t1: float, t2: float) -> None:
+    """Every finite tol > 0 is accepted (int and numpy scalars too), and a larger tolerance settles no later."""
+    lo, hi = sorted((t1, t2))
+    a, b = learning.learning_settling(_s22(), lo), learning.learning_settling(_s22(), np.float64(hi))
+    assert a.keys() == b.keys()
+    assert all(1 <= b[n] <= a[n] for n in a)
+    assert learning.learning_settling(_s22(), 1) == learning.learning_settling(_s22(), 1.0)
