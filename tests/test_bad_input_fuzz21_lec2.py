@@ -23,7 +23,9 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
+from fusion.book import rulebook
 from fusion.book.chapters.lecture import reading_of
+from fusion.book.chapters.lecture_wavelets import appendix as wa, verdicts
 from fusion.book.chapters.lecture_weighting import learning
 from fusion.book.ledger import Comparison, Conjunction, Proposition
 from fusion.scenarios.lecture_weighting.learning import learning_study
@@ -116,3 +118,43 @@ def test_learning_settling_valid_tol_monotone(t1: float, t2: float) -> None:
     assert a.keys() == b.keys()
     assert all(1 <= b[n] <= a[n] for n in a)
     assert learning.learning_settling(_s22(), 1) == learning.learning_settling(_s22(), 1.0)
+
+
+# --- d6: ties in the sign tests, by the rulebook's tie rule ---------------------------------------------------
+
+def test_typical_run_all_ties_contradicted() -> None:
+    """Decided (d6): a tie is never a win (the rulebook's share of runs won), so runs that all tie contradict
+    "A beats B in more than half of the runs", for either claim, while the mean reads them not distinguishable."""
+    a = np.random.default_rng(1).normal(1, 0.1, 200)
+    for claim in ("less", "greater"):
+        ev = Comparison(a, a.copy(), "A", "B", claim, "m", seed=1)
+        t = wa.typical_run(ev)
+        assert np.all(np.asarray(t.a) == 0.0)
+        assert t.status() == "contradicted"
+        assert ev.status() == "not distinguishable"
+
+
+def test_sign_tests_round_off_is_a_tie() -> None:
+    """A difference within round-off is a tie, as the rulebook counts it, not a win (they compared exactly)."""
+    a = np.random.default_rng(2).normal(1, 0.1, 200)
+    b = a * (1 + 1e-12)  # A below B by round-off in every run
+    t = wa.typical_run(Comparison(a, b, "A", "B", "less", "m", seed=1))
+    assert float(np.mean(t.a)) == 0.0
+    assert rulebook.judge_paired(a, b, "less", 0.0).share == 0.0
+    conj = verdicts.sign_conjunction(np.column_stack([a, a]), np.column_stack([b, b + 1.0]), "A", "B", 1)
+    shares = [float(np.mean(p.a)) for _, p in conj.parts]
+    assert shares == [0.0, 1.0]
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.floats(0.0, 1.0), st.sampled_from(["less", "greater"]))
+def test_typical_run_share_is_the_rulebook_share(seed: int, tie_share: float, claim: str) -> None:
+    """One tie rule: the sign test's fraction of runs won equals the rulebook's share of runs won, exact and
+    round-off ties included."""
+    rng = np.random.default_rng(seed)
+    a = rng.normal(1, 0.1, 120)
+    b = rng.normal(1, 0.1, 120)
+    tied = rng.random(120) < tie_share
+    b = np.where(tied, a * (1 + rng.choice([0.0, 1e-13, -1e-13], 120)), b)
+    t = wa.typical_run(Comparison(a, b, "A", "B", claim, "m", seed=1))
+    assert float(np.mean(t.a)) == pytest.approx(rulebook.judge_paired(a, b, claim, 0.0).share, abs=1e-15)
