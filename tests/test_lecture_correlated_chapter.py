@@ -158,8 +158,9 @@ def test_reading_of_picks_the_asked_reading() -> None:
     """:func:`fusion.book.chapters.lecture.reading_of`, the reading picker of chapters 04 and 07: one Evidence is
     the primary only; a mapping gives the asked key; anything else names ``settings``."""
     from fusion.book.chapters.lecture import reading_of
+    from fusion.book.ledger import Proposition
 
-    one, other = object(), object()
+    one, other = Proposition(True, "one"), Proposition(False, "other")  # Evidence: a non-Evidence names ev (fuzz 21b)
     assert reading_of("r", one, None) is one and reading_of("r", one, {"reading": "primary"}) is one
     both = {"primary": one, "alt": other}
     assert reading_of("r", both, {}) is one and reading_of("r", both, {"reading": "alt"}) is other

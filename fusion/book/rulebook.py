@@ -581,6 +581,26 @@ def _infinite_mean(value: object) -> tuple[str, ...]:
     return items
 
 
+def _differences(av: np.ndarray, bv: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The paired differences A − B (0 in a run where both are infinite: undefined, a tie) and each run's scale
+    (the larger finite magnitude of A and B), for the tie rule of :func:`_runs_won`."""
+    both = np.isinf(av) & np.isinf(bv)
+    with np.errstate(invalid="ignore"):
+        d = av - bv
+    scale = np.maximum(np.abs(np.where(np.isfinite(av), av, 0.0)), np.abs(np.where(np.isfinite(bv), bv, 0.0)))
+    return np.where(both, 0.0, d), scale
+
+
+def _runs_won(av: np.ndarray, bv: np.ndarray, direction: str) -> np.ndarray:
+    """Per run, whether A lies on the claimed side of B (above for ``"greater"``, else below): the numerator of the
+    share of runs won (R3). A tie is never a win: a run whose difference is within round-off of zero
+    (|A − B| <= 1e-9 max(|A|, |B|), finite values) or undefined (both infinite). The one tie rule of
+    :func:`judge_paired` and of the chapters' sign tests (``fusion.book.chapters.lecture_wavelets``)."""
+    d, scale = _differences(av, bv)
+    tie = np.isfinite(d) & (np.abs(d) <= 1e-9 * scale)
+    return ((d > 0) if direction == "greater" else (d < 0)) & ~tie
+
+
 def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float,
                  infinite_mean: Sequence[str] = ()) -> Judgement:
     """Judge paired per-run values of A and B by rules R2 and R3.
@@ -631,12 +651,8 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     inf_a = "a" in infinite_mean or bool(np.any(np.isinf(av)))
     inf_b = "b" in infinite_mean or bool(np.any(np.isinf(bv)))
     both = np.isinf(av) & np.isinf(bv)  # runs whose difference is undefined (inf - inf)
-    with np.errstate(invalid="ignore"):
-        d = av - bv
-    d = np.where(both, 0.0, d)  # counted as ties in the share of runs won (never a win)
-    scale = np.maximum(np.abs(np.where(np.isfinite(av), av, 0.0)), np.abs(np.where(np.isfinite(bv), bv, 0.0)))
-    tie = np.isfinite(d) & (np.abs(d) <= 1e-9 * scale)
-    wins = int(np.sum((d > 0) & ~tie)) if direction == "greater" else int(np.sum((d < 0) & ~tie))
+    d, scale = _differences(av, bv)
+    wins = int(np.sum(_runs_won(av, bv, direction)))
     share, s_lo, s_hi = share_interval(wins, n)
     finite = np.isfinite(d)
     tail = hill_tail_index(d[finite]) if finite.sum() > 10 else math.inf

@@ -22,8 +22,8 @@ from matplotlib.figure import Figure
 
 from fusion._docstrings import with_sections
 from fusion.book.glue import GlueValues
-from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,  # noqa: F401 (readings' return hints)
-                                ledger_dir)
+from fusion.book.ledger import (EVIDENCE_TYPES, Comparison, Conjunction, Evidence,  # noqa: F401 (readings' return hints)
+                                Unverifiable, ledger_dir)
 from fusion.book.tables import _SUPERSCRIPT, _frame, _nonfinite_word, rounded  # noqa: F401 (_frame: the chapters' table rule)
 from fusion._counts import count, seed as check_seed
 from fusion._validation import _real_number, mapping_of
@@ -245,14 +245,26 @@ def reading_of(rid: str, ev: Evidence | Mapping[str, Evidence], settings: Mappin
 
     Raises
     ------
+    TypeError
+        ``ev`` neither an Evidence (one of the ledger's evidence classes) nor a mapping, a key of the mapping
+        not a str, or a value of it not an Evidence (naming ``ev`` and the key): a record's evidence function that
+        returns anything else is refused here, not where the ledger reads it.
     ValueError
         If the record has no such reading (naming ``settings``).
     """
     key = reading_key(settings)
     if not isinstance(ev, Mapping):
+        if not isinstance(ev, EVIDENCE_TYPES):  # fuzz 21b, H: a non-Evidence was returned as the evidence
+            raise TypeError(f"ev must be an Evidence or a mapping of reading keys to Evidence (record {rid}), "
+                            f"got {type(ev).__name__}")
         if key != "primary":
             raise ValueError(f"settings: record {rid} has no reading {shown(key)}")
         return ev
+    for k, v in ev.items():
+        if not isinstance(k, str):
+            raise TypeError(f"ev: the reading keys of record {rid} must be strings, got {type(k).__name__} {shown(k, 60)}")
+        if not isinstance(v, EVIDENCE_TYPES):
+            raise TypeError(f"ev[{shown(k)}] must be an Evidence (record {rid}), got {type(v).__name__}")
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")
     return ev[key]

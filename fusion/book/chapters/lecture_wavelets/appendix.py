@@ -11,6 +11,7 @@ import pandas as pd
 
 from fusion._validation import count, instance_of, mapping_of
 from fusion.book.ledger import Comparison, Conjunction
+from fusion.book.rulebook import _runs_won
 from fusion.book.chapters.lecture_wavelets.records import N_RUNS, SEED, _ACCURACY
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _holds, _q, status_text
 from fusion.scenarios.wavelet_sensors import SignalStudy
@@ -36,6 +37,12 @@ def typical_run(ev: Comparison | Conjunction) -> Comparison | Conjunction:
     Each paired comparison (each sensor's, for a :class:`~fusion.book.ledger.Conjunction`) becomes the indicator
     of "A beats B" in each run against one half, judged by the rulebook like every comparison (as
     :func:`sign_conjunction`): the reading's claim by the *typical* run, where the ledger reads it by the mean.
+
+    A tie is never a win, by the rulebook's tie rule for the share of runs won (R3: ties are left out of its
+    numerator, and a run whose difference is within round-off of zero, |A − B| <= 1e-9 max(|A|, |B|), is a tie).
+    The claim read is "A beats B in more than half of the runs", so a comparison whose runs all tie (A is B) is
+    *contradicted*: A beats B in no run, though B does not beat A either (the mirrored claim is contradicted too),
+    where the ledger's mean reads it "not distinguishable" (R2: a zero difference).
 
     Parameters
     ----------
@@ -65,9 +72,8 @@ def _typical(ev: object, name: str) -> Comparison | Conjunction:
         return Conjunction(tuple((lab, _typical(p, f"{name}, member {shown(lab)},")) for lab, p in ev.parts))
     if ev.claim not in ("less", "greater"):
         raise ValueError(f"{name}: a sign test needs a claim 'less' or 'greater', got {shown(ev.claim)}")
-    a, b = np.asarray(ev.a, dtype=float), np.asarray(ev.b, dtype=float)
-    won = (a < b) if ev.claim == "less" else (a > b)
-    return Comparison(won.astype(float), np.full(a.size, 0.5), f"fraction of runs in which {ev.a_name} beats "
+    won = _runs_won(np.asarray(ev.a, dtype=float), np.asarray(ev.b, dtype=float), ev.claim)  # a tie never wins
+    return Comparison(won.astype(float), np.full(won.size, 0.5), f"fraction of runs in which {ev.a_name} beats "
                       f"{ev.b_name}", "one half", "greater", "fraction of runs won (sign test)", seed=ev.seed)
 
 

@@ -13,6 +13,7 @@ import numpy as np
 from fusion._results import ResultSpec, dict_of, instance, integer, trusted, validated_post_init
 from fusion._frozen import constant, frozen_arrays
 from fusion.book.ledger import Comparison, Conjunction
+from fusion.book.rulebook import _runs_won
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
 from fusion._counts import seed as check_seed
@@ -119,7 +120,8 @@ def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, see
     """Per sensor: is A better than B in more than half of the runs (the median paired difference below 0)?
 
     A sign test written as a paired comparison: the indicator of ``A < B`` in each run against one
-    half, so that the ledger's interval is the normal (Wald) interval of the fraction of runs won. It
+    half, so that the ledger's interval is the normal (Wald) interval of the fraction of runs won (a tie, a
+    difference within round-off of zero, is never a win: the rulebook's share of runs won, R3). It
     reads the claim by the *typical* run, where :func:`sensor_conjunction` reads it by the mean, which a
     few runs with a large loss can carry.
 
@@ -133,7 +135,8 @@ def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, see
         Seed of the runs.
     """
     return _per_sensor(a, b, a_name, b_name, check_seed(seed),
-                       lambda j, aj, bj, sd: Comparison((aj < bj).astype(float), np.full(aj.shape[0], 0.5),
+                       lambda j, aj, bj, sd: Comparison(_runs_won(aj, bj, "less").astype(float),
+                                                        np.full(aj.shape[0], 0.5),
                                                         f"fraction of runs in which {a_name} beats {b_name} "
                                                         f"(sensor {j})", "one half", "greater",
                                                         "fraction of runs won (sign test)", seed=sd))

@@ -202,15 +202,25 @@ def learning_settling(s22: LearningStudy, tol: float = 0.05) -> dict[int, int]:
     Parameters
     ----------
     tol : float
-        Relative tolerance.
+        Relative tolerance: a finite number > 0.
 
     Returns
     -------
     dict of int to int
-        Number of sensors n of each setting → the first epoch m from which
-        :math:`\\max_i |\\bar R_i(m)/L_i - 1| \\le` ``tol`` holds for every later epoch.
+        Number of sensors n of each setting → the first epoch m (1 to ``epochs``) from which
+        :math:`\\max_i |\\bar R_i(m)/L_i - 1| \\le` ``tol`` holds for every later epoch of the study;
+        ``epochs + 1`` (one past the study's last epoch) when it does not hold at the last epoch: the variances
+        have not settled within the study.
+
+    Raises
+    ------
+    TypeError
+        ``s22`` not a LearningStudy, ``tol`` not a real number.
+    ValueError
+        ``tol`` NaN, infinite or not > 0.
     """
     instance_of(s22, LearningStudy, "s22")
+    tol = scalar(tol, "tol", 0.0, lo_open=True)  # fuzz 21b, J: NaN read every epoch as settled
     out = {}
     for n, (R, Rh) in s22.learned.items():
         dev = np.max(np.abs(Rh / wt.learned_variance_limit(R) - 1), axis=1)
