@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 from matplotlib.figure import Figure
-from fusion._frozen import constant, frozen_arrays
+from fusion._frozen import constant
 from fusion._docstrings import with_sections
 from fusion._results import ResultSpec, array, dict_of, integer, mask, tuple_of, validated_post_init
 from fusion._shown import shown

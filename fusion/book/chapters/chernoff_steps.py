@@ -34,7 +34,7 @@ from collections.abc import Mapping
 import dataclasses
 from dataclasses import dataclass
 from fusion._results import ResultSpec, array, dict_of, instance, integer, nested, number, table, validated_post_init
-from fusion._frozen import constant, frozen_arrays
+from fusion._frozen import constant
 from fusion.book.study_cache import study_cache
 from typing import Any
 

@@ -15,7 +15,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion._results import ResultSpec, array, dict_of, mask, number, validated_post_init
-from fusion._frozen import constant, frozen_arrays
+from fusion._frozen import constant
 from fusion import data
 from fusion._docstrings import reads_results
 from fusion._counts import distinct, sequence

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from fusion._results import ResultSpec, dict_of, instance, integer, trusted, validated_post_init
-from fusion._frozen import constant, frozen_arrays
+from fusion._frozen import constant
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.rulebook import _runs_won
 from fusion.book.style import METHOD_SHORT_LABELS
