@@ -109,6 +109,7 @@ def test_s1_relative_name_is_resolved_before_the_cache(tmp_path, monkeypatch):
     for tree, body in (("one", "x = 1\n"), ("two", "x = 2\n")):
         (tmp_path / tree / "pkg").mkdir(parents=True)
         (tmp_path / tree / "pkg" / "a.py").write_text(body)
+        (tmp_path / tree / "pkg" / "__init__.py").write_text("")
     monkeypatch.chdir(tmp_path / "one")
     first = source_digest("pkg")
     monkeypatch.chdir(tmp_path / "two")

@@ -231,7 +231,7 @@ class ClaimSpec:
         a finite value in [0, 1e150]; a ``baseline`` without ``name`` and ``defined`` or with another key; a
         repeated critique label; ``evidence`` not ``module:function`` (the file's pattern); and
         (:class:`ClaimsFileError`, naming the record and the field) every other rule :func:`load` applies to
-        one record, so a record rebuilt with :func:`dataclasses.replace` is held to them too: ``id`` not
+        one record, so a record rebuilt with ``dataclasses.replace`` is held to them too: ``id`` not
         lower-case words joined by ``-``; a ``claim`` over 200 characters; a paired or equivalence test without
         ``quantity`` and ``direction``; ``direction`` not ``"equal"`` for an equivalence test and only for it;
         ``quantity``, ``direction`` or ``margin`` on a test that compares nothing; ``reason`` missing on an
@@ -322,7 +322,7 @@ class ClaimsFile:
         not a sequence of :class:`ClaimSpec`.
     ClaimsFileError
         (a ValueError naming the file, the record and the field) a rule :func:`load` applies to the whole file,
-        so a file rebuilt with :func:`dataclasses.replace` is held to them too: ``source`` not a key of
+        so a file rebuilt with ``dataclasses.replace`` is held to them too: ``source`` not a key of
         :data:`fusion.book.ledger.SOURCES`; a quantity key not a non-empty str, or its entry not ``{"label",
         "margin"[, "why"]}`` with a non-empty label and a margin as :class:`ClaimSpec` takes it; a repeated
         record id; a record whose chapter is not one of the source's or whose quantity is not declared under
@@ -572,7 +572,7 @@ def _format_text(value: str, name: str) -> str:
 
 def _record_rules(spec: ClaimSpec, where: str) -> None:
     """The rules :func:`load` applies to one record beyond the schema's types: one check, used by :class:`ClaimSpec`
-    (so by :func:`load` and by a record rebuilt with :func:`dataclasses.replace`). ClaimsFileError naming ``where``
+    (so by :func:`load` and by a record rebuilt with ``dataclasses.replace``). ClaimsFileError naming ``where``
     (``record <id>``) and the field."""
     def bad(field: str, what: str) -> ClaimsFileError:
         return ClaimsFileError(f"{where}: field {field}: {what}")
@@ -621,7 +621,7 @@ def _record_rules(spec: ClaimSpec, where: str) -> None:
 
 def _file_rules(cf: ClaimsFile) -> None:
     """The rules :func:`load` applies to a whole file: one check, used by :class:`ClaimsFile` (so by :func:`load` and
-    by a file rebuilt with :func:`dataclasses.replace`). ClaimsFileError naming the file, the record and the field."""
+    by a file rebuilt with ``dataclasses.replace``). ClaimsFileError naming the file, the record and the field."""
     name = cf.path.name
     if cf.source not in SOURCES:
         raise ClaimsFileError(f"{name}: field source: {shown(cf.source)} is not one of {sorted(SOURCES)}")

@@ -67,7 +67,7 @@ class ExactComparison:
         Practical margin in the metric's units (>= 0); ``None``: ``relative_margin`` times :math:`|B|`.
     relative_margin : float or None
         Share of :math:`|B|` (default :data:`fusion.book.rulebook.DEFAULT_RELATIVE_MARGIN`). Given with ``margin``,
-        it must give the same margin (a copy passes both, as :func:`dataclasses.replace` does), else ValueError;
+        it must give the same margin (a copy passes both, as ``dataclasses.replace`` does), else ValueError;
         ``margin`` is stored (as for :class:`~fusion.book.ledger.Comparison`).
 
     Raises
@@ -76,7 +76,7 @@ class ExactComparison:
         ``a`` or ``b`` not finite or beyond the representable range (magnitude above 1e150, checked here, not
         when the status is asked); an empty name or ``metric``; ``claim`` not one of its values; a negative or
         non-finite margin; ``margin`` and ``relative_margin`` that disagree (also in :meth:`with_margin` and
-        :func:`dataclasses.replace`).
+        ``dataclasses.replace``).
     TypeError
         ``a`` or ``b`` not a real number; a name, ``metric`` or ``claim`` not a str.
     """

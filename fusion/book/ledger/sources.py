@@ -100,7 +100,7 @@ class Source:
 
 
 def _number(chapter: str) -> str:
-    """A chapter's number: the prefix of its file name up to the first ``_`` (``"02"`` for ``notebooks/02_x``)."""
+    """A chapter's number: the prefix of its file name up to the first ``_`` (``"02"`` for a notebook ``02_name``)."""
     name = chapter.rsplit("/", 1)[-1]
     return name.split("_", 1)[0] if "_" in name else ""
 

@@ -114,8 +114,7 @@ _PAIR = tuple_of(number(), count=2)
 
 
 def _ir_scaled_relation(values: Mapping[str, Any], cls: str) -> None:
-    """The ledger reads the scaled readings of the x axis (``ledger_values``): ``ir_readings`` must hold them
-    (:func:`ir_readings` with ``"x"`` in ``scaled_axes``, its default)."""
+    """``ir_readings`` must hold the x axis's scaled readings (``ledger_values`` reads them; the default)."""
     missing = [("x", label) for label, (_, factor) in IR_READINGS.items()
                if factor != 1.0 and ("x", label) not in values["ir_readings"].run_rmse]
     if missing:
