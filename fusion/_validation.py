@@ -85,7 +85,10 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
     :class:`TypeError` naming it, never read as its truthiness (``'False'`` is truthy).
 19. *Text options are their text* (fuzz 17): :func:`one_of` matches a plain copy of the option (``str.__str__``)
     with ``str``'s own equality and returns that copy; a ``str`` subclass whose own ``==`` or ``hash`` raises or
-    disagrees with its text is refused with a :class:`TypeError` naming the argument.
+    disagrees with its text is refused with a :class:`TypeError` naming the argument. A template argument (a label
+    or metric with ``{}``/``{j}`` fields) is checked by :func:`template`: its fields name the values its caller
+    fills in, and hold a width of at most two digits (fuzz 21b: ``"{j:>999999999}"`` padded each label to a
+    gigabyte).
 20. *A number is what its conversion reads* (fuzz 17): the shared scalar reader reads a ``float`` subclass through
     ``float()``, that is its ``__float__``, the rule numpy follows for an array of them (``np.asarray([x])``); the
     read value, never the caller's object, is what the computation uses (a frozen dataclass stores it:
@@ -119,7 +122,7 @@ from fusion._limits import LOOP_STEP, MAX_INPUT_ELEMENTS, MAX_MAGNITUDE, MAX_WOR
 from fusion._limits import loop_work, work  # noqa: F401
 from fusion._shown import MAX_SHOWN, shown  # noqa: F401 (re-exported: the echo of a bad value)
 from fusion._options import (  # noqa: F401 (re-exported: rules 6, 18, 19)
-    _plain_text, _safe_repr, flag, keywords, one_of, options, text)
+    _plain_text, _safe_repr, flag, keywords, one_of, options, template, text)
 
 FloatArray = NDArray[np.float64]
 

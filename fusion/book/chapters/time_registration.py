@@ -21,6 +21,7 @@ from fusion._counts import seed as check_seed
 from fusion import data
 from fusion._validation import (as_array, as_times, distinct, instance_of, one_of, record, scalar, sequence,
                                 shown, std_scalar, text)
+from fusion._validation import template as format_template
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
 from fusion.book.tables import integral_index
@@ -180,17 +181,15 @@ def _label(key: object, template: str = "{}") -> object:
 
 
 def _label_template(template: object) -> str:
-    """``template`` when it formats one method label: a str with exactly one replacement field, ``{}`` (or
-    ``{0}``), whose conversion and format spec apply to a str; a ValueError naming ``template`` otherwise (a template
-    without a field would give every method the same label, ``{1}`` or ``{x}`` an IndexError/KeyError)."""
-    text(template, "template")
-    try:
-        fields = [f for _, f, _, _ in string.Formatter().parse(template) if f is not None]
-        if fields not in ([""], ["0"]):
-            raise ValueError(f"it must hold exactly one replacement field, {{}}, for the label; got the fields {fields}")
-        template.format("label")
-    except (ValueError, IndexError, KeyError) as exc:
-        raise ValueError(f"template = {shown(template)} does not format a method label: {exc}") from None
+    """``template`` when it formats one method label: a str of the shared template rule
+    (``fusion._validation.template``: a width of two digits at most, no other field) with exactly one replacement
+    field, ``{}`` (or ``{0}``); a ValueError naming ``template`` otherwise (a template without a field would give
+    every method the same label, ``{1}`` or ``{x}`` an IndexError/KeyError, ``{:>5000000}`` a 5 MB label)."""
+    template = format_template(template, "template", "label")
+    fields = [f for _, f, _, _ in string.Formatter().parse(template) if f is not None]
+    if fields not in ([""], ["0"]):
+        raise ValueError(f"template = {shown(template)} does not format a method label: it must hold exactly one "
+                         f"replacement field, {{}}, for the label; got the fields {fields}")
     return template
 
 
@@ -216,7 +215,8 @@ def labelled(table: pd.DataFrame, template: str = "{}") -> pd.DataFrame:
         If ``table`` is not a DataFrame, or ``template`` not a str.
     ValueError
         If ``template`` does not hold exactly one replacement field ``{}`` (or ``{0}``) whose format applies to a
-        str label: ``"x"`` would give every method the same label.
+        str label (``"x"`` would give every method the same label), or its field holds a width above 99
+        (``{:>5000000}`` made 5 MB labels).
     """
     if not isinstance(table, pd.DataFrame):
         raise TypeError(f"table must be a pandas DataFrame, got {type(table).__name__}")
