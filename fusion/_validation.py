@@ -645,6 +645,41 @@ def as_mask(value: object, name: str) -> NDArray[np.bool_]:
     return m
 
 
+def selection(value: object, name: str, n: int) -> slice | NDArray[np.bool_]:
+    """A selection of ``n`` paired entries (runs, snapshots): a :class:`slice` of integer (or ``None``) bounds and a
+    non-zero step, or a boolean mask of length ``n`` (:func:`as_mask`). An integer index array is refused: a
+    repeated index would count one entry as several paired runs (fuzz 21b: ``np.zeros(200, dtype=int)`` judged one
+    snapshot repeated 200 times as 200 runs).
+
+    Returns
+    -------
+    slice or ndarray of bool
+        The slice, or the mask as a boolean array of shape ``(n,)``.
+
+    Raises
+    ------
+    TypeError
+        ``value`` is neither a slice nor booleans (an integer array, a str, ``None``), or a bound is not an integer.
+    ValueError
+        A mask of another length or shape, or a zero step; naming ``name``.
+    """
+    if isinstance(value, slice):
+        for part in ("start", "stop", "step"):
+            b = getattr(value, part)
+            if b is not None and not is_integer(b):
+                raise TypeError(f"{name} must be a slice of integer bounds, got {part} = {shown(b)}")
+        if value.step is not None and int(value.step) == 0:
+            raise ValueError(f"{name} must be a slice of non-zero step, got {shown(value)}")
+        return value
+    if value is None or isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be a slice or a boolean mask, got {type(value).__name__}")
+    mask = as_mask(value, name)
+    if mask.shape != (n,):
+        raise ValueError(f"{name} must be a boolean mask of shape ({n},) (one entry per paired entry), got shape "
+                         f"{mask.shape}")
+    return mask
+
+
 def as_weights(w: ArrayLike, name: str, n: int | None = None) -> FloatArray:
     """Return ``w`` as a finite, non-negative 1-D float vector with a positive sum (length ``n``)."""
     arr = as_array(w, name, ndim=1, nonnegative=True, subnormal=True)
