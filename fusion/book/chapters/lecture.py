@@ -18,7 +18,7 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from matplotlib.figure import Figure
+from matplotlib.figure import Figure, SubFigure
 
 from fusion._docstrings import with_sections
 from fusion.book.glue import GlueValues
@@ -26,7 +26,7 @@ from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,
                                 ledger_dir)
 from fusion.book.tables import _SUPERSCRIPT, _frame, _nonfinite_word, rounded  # noqa: F401 (_frame: the chapters' table rule)
 from fusion._counts import count, seed as check_seed
-from fusion._validation import _real_number, mapping_of
+from fusion._validation import _real_number, instance_of, mapping_of
 from fusion._shown import shown
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "book_words", "referenced", "reading_key",
@@ -76,10 +76,21 @@ def legend_below(fig: Figure, ncol: int = 3) -> None:
     Parameters
     ----------
     fig : matplotlib Figure
-        The finished figure.
+        The finished figure (a :class:`~matplotlib.figure.Figure` or a :class:`~matplotlib.figure.SubFigure`).
     ncol : int
-        Number of legend columns.
+        Number of legend columns, >= 1. Columns beyond the number of legend entries would be empty and take no
+        room: the legend has ``min(ncol, entries)`` columns (so that ``ncol = 10**9`` does not lay out a billion
+        empty columns).
+
+    Raises
+    ------
+    TypeError
+        ``fig`` is not a Figure, or ``ncol`` not an integer.
+    ValueError
+        ``ncol`` is below 1 (or beyond the ceiling of a count).
     """
+    instance_of(fig, (Figure, SubFigure), "fig")
+    ncol = count(ncol, "ncol")
     handles, labels = [], []
     for ax in fig.axes:
         for h, lab in zip(*ax.get_legend_handles_labels()):
@@ -89,8 +100,8 @@ def legend_below(fig: Figure, ncol: int = 3) -> None:
         if ax.get_legend() is not None:
             ax.get_legend().remove()
     if handles:
-        fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=ncol, fontsize=9,
-                   frameon=False)
+        fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=min(ncol, len(handles)),
+                   fontsize=9, frameon=False)
 
 
 def sci(value: float, digits: int = 2) -> str:
