@@ -192,15 +192,31 @@ def referenced(values: Mapping[str, Any], words: frozenset[str] | None = None) -
     values : mapping
         Glue key → value (a ``glue_*`` function's output).
     words : frozenset of str, optional
-        Default: :func:`book_words` of the repository.
+        The words of the book's prose (a set or another collection of strings, matched whole). Default:
+        :func:`book_words` of the repository. A single ``str`` is refused: it would be read as its substrings
+        (``"ab" in "xaby"``).
 
     Returns
     -------
     GlueValues
         The referenced items, in their order.
+
+    Raises
+    ------
+    ValueError
+        ``values`` is not a mapping.
+    TypeError
+        ``words`` is a string, not a collection, or holds a non-string.
     """
     if not isinstance(values, Mapping):
         raise ValueError(f"values must be a mapping of glue keys, got {type(values).__name__}")
+    if words is not None:
+        if isinstance(words, (str, bytes)) or not isinstance(words, Collection):
+            raise TypeError(f"words must be a set of words (str), not a {type(words).__name__}: a string would be "
+                            "matched by its substrings")
+        bad = next((x for x in words if not isinstance(x, str)), None)
+        if bad is not None:
+            raise TypeError(f"words must hold strings only, got {shown(bad)}")
     w = book_words() if words is None else words
     return {k: v for k, v in values.items() if k in w}
 
