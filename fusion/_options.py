@@ -7,6 +7,8 @@ checked against the keys their consumer takes.
 
 from __future__ import annotations
 
+import re
+import string
 from collections.abc import Mapping
 
 import numpy as np
@@ -95,6 +97,62 @@ def text(value: object, name: str) -> str:
     if not isinstance(value, str):
         raise TypeError(f"{name} must be a string, got {type(value).__name__}")
     return _plain_text(value, name)
+
+
+#: A standard format spec, ``[[fill]align][sign][z][#][0][width][grouping][.precision][type]`` (width and precision
+#: captured): the one a template's replacement field may hold (rule 19, :func:`template`).
+_FORMAT_SPEC = re.compile(r"(?:.?[<>=^])?[-+ ]?z?#?0?(?P<width>[0-9]*)[_,]?(?:\.(?P<precision>[0-9]+))?[a-zA-Z%]?",
+                          re.DOTALL)
+
+#: The largest width and precision a template's field may ask for (characters of a padded label, digits of a
+#: number): two digits, a table cell's label and not a gigabyte of padding.
+MAX_TEMPLATE_WIDTH = 99
+
+
+def template(value: object, name: str, *args: object, **kwargs: object) -> str:
+    """``value`` as a plain ``str`` when it is a :meth:`str.format` template that formats ``args`` and ``kwargs``
+    (the values its caller fills in, or probes of their types): one rule for every template argument (rule 19).
+
+    Every field must name one of the values (``{}``, ``{0}``, ... for ``args``, ``{key}`` for ``kwargs``; no
+    attribute or index access), and its format spec must be a standard one without a nested field, its width and
+    precision at most :data:`MAX_TEMPLATE_WIDTH` (``{:>12}`` pads a label to 12 characters; a width of ``10**9``
+    padded one label to a gigabyte); a conversion (``!r``) is allowed. A template may hold no field at all (literal text); the caller checks how many it needs.
+
+    Returns
+    -------
+    str
+        Its text (rule 19's :func:`text`).
+
+    Raises
+    ------
+    TypeError
+        ``value`` is not a string (rule 19's :func:`text`).
+    ValueError
+        Its braces do not parse (a single ``{``), a field names no value, holds a nested field, a width or a
+        precision above :data:`MAX_TEMPLATE_WIDTH`, or formatting the values fails; naming ``name``.
+    """
+    value = text(value, name)
+    allowed = {"", *map(str, range(len(args))), *kwargs}
+    try:
+        parsed = [(f, spec) for _, f, spec, _ in string.Formatter().parse(value) if f is not None]
+    except ValueError as exc:
+        raise ValueError(f"{name} = {shown(value)} is not a format template: {exc}") from None
+    for f, spec in parsed:
+        where = f"{name} = {shown(value)}: the field {{{f}}}"
+        if f not in allowed:
+            fields = ", ".join("{" + a + "}" for a in sorted(allowed if args else allowed - {""})) or "no field"
+            raise ValueError(f"{where} names no value; it may hold only {fields}")
+        m = _FORMAT_SPEC.fullmatch(spec or "")
+        if m is None or "{" in (spec or ""):
+            raise ValueError(f"{where} has the format spec {shown(spec)}, not a plain one (no nested field)")
+        for part in ("width", "precision"):
+            if m[part] and int(m[part]) > MAX_TEMPLATE_WIDTH:
+                raise ValueError(f"{where} has the {part} {m[part]} > {MAX_TEMPLATE_WIDTH} (the bound of a label)")
+    try:
+        value.format(*args, **kwargs)
+    except (ValueError, IndexError, KeyError, TypeError, AttributeError) as exc:
+        raise ValueError(f"{name} = {shown(value)} does not format its values: {type(exc).__name__}: {exc}") from None
+    return value
 
 
 def _plain_text(value: str, name: str) -> str:

@@ -85,7 +85,10 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
     :class:`TypeError` naming it, never read as its truthiness (``'False'`` is truthy).
 19. *Text options are their text* (fuzz 17): :func:`one_of` matches a plain copy of the option (``str.__str__``)
     with ``str``'s own equality and returns that copy; a ``str`` subclass whose own ``==`` or ``hash`` raises or
-    disagrees with its text is refused with a :class:`TypeError` naming the argument.
+    disagrees with its text is refused with a :class:`TypeError` naming the argument. A template argument (a label
+    or metric with ``{}``/``{j}`` fields) is checked by :func:`template`: its fields name the values its caller
+    fills in, and hold a width of at most two digits (fuzz 21b: ``"{j:>999999999}"`` padded each label to a
+    gigabyte).
 20. *A number is what its conversion reads* (fuzz 17): the shared scalar reader reads a ``float`` subclass through
     ``float()``, that is its ``__float__``, the rule numpy follows for an array of them (``np.asarray([x])``); the
     read value, never the caller's object, is what the computation uses (a frozen dataclass stores it:
@@ -119,7 +122,7 @@ from fusion._limits import LOOP_STEP, MAX_INPUT_ELEMENTS, MAX_MAGNITUDE, MAX_WOR
 from fusion._limits import loop_work, work  # noqa: F401
 from fusion._shown import MAX_SHOWN, shown  # noqa: F401 (re-exported: the echo of a bad value)
 from fusion._options import (  # noqa: F401 (re-exported: rules 6, 18, 19)
-    _plain_text, _safe_repr, flag, keywords, one_of, options, text)
+    _plain_text, _safe_repr, flag, keywords, one_of, options, template, text)
 
 FloatArray = NDArray[np.float64]
 
@@ -640,6 +643,41 @@ def as_mask(value: object, name: str) -> NDArray[np.bool_]:
     if m.dtype != bool:
         raise TypeError(f"{name} must be an array of bools, got dtype {m.dtype}")
     return m
+
+
+def selection(value: object, name: str, n: int) -> slice | NDArray[np.bool_]:
+    """A selection of ``n`` paired entries (runs, snapshots): a :class:`slice` of integer (or ``None``) bounds and a
+    non-zero step, or a boolean mask of length ``n`` (:func:`as_mask`). An integer index array is refused: a
+    repeated index would count one entry as several paired runs (fuzz 21b: ``np.zeros(200, dtype=int)`` judged one
+    snapshot repeated 200 times as 200 runs).
+
+    Returns
+    -------
+    slice or ndarray of bool
+        The slice, or the mask as a boolean array of shape ``(n,)``.
+
+    Raises
+    ------
+    TypeError
+        ``value`` is neither a slice nor booleans (an integer array, a str, ``None``), or a bound is not an integer.
+    ValueError
+        A mask of another length or shape, or a zero step; naming ``name``.
+    """
+    if isinstance(value, slice):
+        for part in ("start", "stop", "step"):
+            b = getattr(value, part)
+            if b is not None and not is_integer(b):
+                raise TypeError(f"{name} must be a slice of integer bounds, got {part} = {shown(b)}")
+        if value.step is not None and int(value.step) == 0:
+            raise ValueError(f"{name} must be a slice of non-zero step, got {shown(value)}")
+        return value
+    if value is None or isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be a slice or a boolean mask, got {type(value).__name__}")
+    mask = as_mask(value, name)
+    if mask.shape != (n,):
+        raise ValueError(f"{name} must be a boolean mask of shape ({n},) (one entry per paired entry), got shape "
+                         f"{mask.shape}")
+    return mask
 
 
 def as_weights(w: ArrayLike, name: str, n: int | None = None) -> FloatArray:

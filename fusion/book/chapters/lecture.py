@@ -18,7 +18,7 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from matplotlib.figure import Figure
+from matplotlib.figure import Figure, SubFigure
 
 from fusion._docstrings import with_sections
 from fusion.book.glue import GlueValues
@@ -26,7 +26,7 @@ from fusion.book.ledger import (EVIDENCE_TYPES, Comparison, Conjunction, Evidenc
                                 Unverifiable, ledger_dir)
 from fusion.book.tables import _SUPERSCRIPT, _frame, _nonfinite_word, rounded  # noqa: F401 (_frame: the chapters' table rule)
 from fusion._counts import count, seed as check_seed
-from fusion._validation import _real_number, mapping_of
+from fusion._validation import _real_number, instance_of, mapping_of
 from fusion._shown import shown
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "book_words", "referenced", "reading_key",
@@ -76,10 +76,21 @@ def legend_below(fig: Figure, ncol: int = 3) -> None:
     Parameters
     ----------
     fig : matplotlib Figure
-        The finished figure.
+        The finished figure (a :class:`~matplotlib.figure.Figure` or a :class:`~matplotlib.figure.SubFigure`).
     ncol : int
-        Number of legend columns.
+        Number of legend columns, >= 1. Columns beyond the number of legend entries would be empty and take no
+        room: the legend has ``min(ncol, entries)`` columns (so that ``ncol = 10**9`` does not lay out a billion
+        empty columns).
+
+    Raises
+    ------
+    TypeError
+        ``fig`` is not a Figure, or ``ncol`` not an integer.
+    ValueError
+        ``ncol`` is below 1 (or beyond the ceiling of a count).
     """
+    instance_of(fig, (Figure, SubFigure), "fig")
+    ncol = count(ncol, "ncol")
     handles, labels = [], []
     for ax in fig.axes:
         for h, lab in zip(*ax.get_legend_handles_labels()):
@@ -89,8 +100,8 @@ def legend_below(fig: Figure, ncol: int = 3) -> None:
         if ax.get_legend() is not None:
             ax.get_legend().remove()
     if handles:
-        fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=ncol, fontsize=9,
-                   frameon=False)
+        fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=min(ncol, len(handles)),
+                   fontsize=9, frameon=False)
 
 
 def sci(value: float, digits: int = 2) -> str:
@@ -181,15 +192,31 @@ def referenced(values: Mapping[str, Any], words: frozenset[str] | None = None) -
     values : mapping
         Glue key → value (a ``glue_*`` function's output).
     words : frozenset of str, optional
-        Default: :func:`book_words` of the repository.
+        The words of the book's prose (a set or another collection of strings, matched whole). Default:
+        :func:`book_words` of the repository. A single ``str`` is refused: it would be read as its substrings
+        (``"ab" in "xaby"``).
 
     Returns
     -------
     GlueValues
         The referenced items, in their order.
+
+    Raises
+    ------
+    ValueError
+        ``values`` is not a mapping.
+    TypeError
+        ``words`` is a string, not a collection, or holds a non-string.
     """
     if not isinstance(values, Mapping):
         raise ValueError(f"values must be a mapping of glue keys, got {type(values).__name__}")
+    if words is not None:
+        if isinstance(words, (str, bytes)) or not isinstance(words, Collection):
+            raise TypeError(f"words must be a set of words (str), not a {type(words).__name__}: a string would be "
+                            "matched by its substrings")
+        bad = next((x for x in words if not isinstance(x, str)), None)
+        if bad is not None:
+            raise TypeError(f"words must hold strings only, got {shown(bad)}")
     w = book_words() if words is None else words
     return {k: v for k, v in values.items() if k in w}
 

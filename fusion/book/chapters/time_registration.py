@@ -7,7 +7,6 @@ The computations live in :mod:`fusion.scenarios.time_registration` and
 
 from __future__ import annotations
 
-import re
 import string
 from collections.abc import Mapping, Sequence
 from enum import StrEnum
@@ -23,6 +22,7 @@ from fusion._counts import seed as check_seed
 from fusion import data
 from fusion._validation import (as_array, as_times, distinct, instance_of, one_of, record, scalar, sequence,
                                 shown, std_scalar, text)
+from fusion._validation import template as format_template
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
 from fusion.book.tables import integral_index
@@ -181,26 +181,16 @@ def _label(key: object, template: str = "{}") -> object:
     return key
 
 
-# Widest format width a label template of :func:`labelled` may ask for (characters): a display label, not a buffer.
-_MAX_LABEL_WIDTH = 200
-
-
 def _label_template(template: object) -> str:
-    """``template`` when it formats one method label: a str with exactly one replacement field, ``{}`` (or
-    ``{0}``), whose conversion and format spec apply to a str; a ValueError naming ``template`` otherwise (a template
-    without a field would give every method the same label, ``{1}`` or ``{x}`` an IndexError/KeyError)."""
-    text(template, "template")
-    try:
-        parsed = [(f, spec) for _, f, spec, _ in string.Formatter().parse(template) if f is not None]
-        fields = [f for f, _ in parsed]
-        if fields not in ([""], ["0"]):
-            raise ValueError(f"it must hold exactly one replacement field, {{}}, for the label; got the fields {fields}")
-        width = re.match(r"(?:.?[<>=^])?[-+ ]?z?#?0?(\d*)", parsed[0][1] or "").group(1)
-        if width and int(width) > _MAX_LABEL_WIDTH:   # checked before formatting: "{:>999999999}" is a 1 GB label
-            raise ValueError(f"its width {width} is beyond {_MAX_LABEL_WIDTH} characters (a display label)")
-        template.format("label")
-    except (ValueError, IndexError, KeyError) as exc:
-        raise ValueError(f"template = {shown(template)} does not format a method label: {exc}") from None
+    """``template`` when it formats one method label: a str of the shared template rule
+    (``fusion._validation.template``: a width of two digits at most, no other field) with exactly one replacement
+    field, ``{}`` (or ``{0}``); a ValueError naming ``template`` otherwise (a template without a field would give
+    every method the same label, ``{1}`` or ``{x}`` an IndexError/KeyError, ``{:>5000000}`` a 5 MB label)."""
+    template = format_template(template, "template", "label")
+    fields = [f for _, f, _, _ in string.Formatter().parse(template) if f is not None]
+    if fields not in ([""], ["0"]):
+        raise ValueError(f"template = {shown(template)} does not format a method label: it must hold exactly one "
+                         f"replacement field, {{}}, for the label; got the fields {fields}")
     return template
 
 
@@ -226,8 +216,8 @@ def labelled(table: pd.DataFrame, template: str = "{}") -> pd.DataFrame:
         If ``table`` is not a DataFrame, or ``template`` not a str.
     ValueError
         If ``template`` does not hold exactly one replacement field ``{}`` (or ``{0}``) whose format applies to a
-        str label (``"x"`` would give every method the same label), or its format asks for a width beyond
-        200 characters (``"{:>5000000}"``: 5 MB per label).
+        str label (``"x"`` would give every method the same label), or its field holds a width above 99
+        (``{:>5000000}`` made 5 MB labels).
     """
     if not isinstance(table, pd.DataFrame):
         raise TypeError(f"table must be a pandas DataFrame, got {type(table).__name__}")

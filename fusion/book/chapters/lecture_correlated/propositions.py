@@ -5,7 +5,8 @@ the special cases of least squares, the James-Stein estimator's linearity.
 from __future__ import annotations
 
 from fusion._counts import distinct, sequence
-from fusion._validation import instance_of, one_of, scalar
+from fusion._limits import loop_work
+from fusion._validation import as_rng, count, instance_of, nonnegative_scalar, one_of, positive_scalar, scalar
 
 
 import numpy as np
@@ -116,7 +117,8 @@ def ls_special_cases(rng: np.random.Generator, m: int = 50) -> dict[str, float]:
     rng : numpy.random.Generator
         Draws the readings y (m) and their variances.
     m : int
-        Number of readings.
+        Number of readings, from 1 to about ``10**6`` (the work budget of the recursive filter's Python loop,
+        ``fusion._limits.loop_work``); ``m = 1`` is degenerate: every form is the one reading, every difference 0.
 
     Returns
     -------
@@ -124,17 +126,26 @@ def ls_special_cases(rng: np.random.Generator, m: int = 50) -> dict[str, float]:
         ``"mean"``: |(HᵀH)⁻¹Hᵀy − ȳ| with H = 1; ``"weighted mean"``: |(HᵀWH)⁻¹HᵀWy − Σ(yᵢ/Rᵢ)/Σ(1/Rᵢ)|
         with W = diag(1/Rᵢ); ``"recursive filter"``: |x̂ₘ − ȳ| for x̂ₖ = x̂ₖ₋₁ + (yₖ − x̂ₖ₋₁)/k.
 
+    Raises
+    ------
+    TypeError
+        ``rng`` is not a :class:`numpy.random.Generator`, or ``m`` not an integer.
+    ValueError
+        ``m`` is below 1 or beyond the work budget.
+
     References
     ----------
     * Kay, S. M. (1993). *Fundamentals of Statistical Signal Processing: Estimation Theory*, ch. 8 (least
       squares, sequential least squares). Prentice Hall.
     """
+    rng, m = as_rng(rng), count(m, "m")
+    loop_work((m,), 1, "m")  # the recursive filter below: m Python steps (fuzz 21b, L)
     R = rng.uniform(0.5, 4.0, size=m)
     y = 10.0 + rng.normal(size=m) * np.sqrt(R)
     H = np.ones((m, 1))
     ls = np.linalg.lstsq(H, y, rcond=None)[0][0]
-    W = np.diag(1.0 / R)
-    wls = np.linalg.solve(H.T @ W @ H, H.T @ W @ y)[0]
+    HtW = H.T / R  # Hᵀ W with W = diag(1/R), without the m x m matrix (m = 30000 asked for 7 GB)
+    wls = np.linalg.solve(HtW @ H, HtW @ y)[0]
     x = 0.0
     for k, yk in enumerate(y, start=1):
         x += (yk - x) / k
@@ -155,13 +166,23 @@ def james_stein_linearity(rng: np.random.Generator, d: int = 3, sigma: float = 1
     sigma : float
         Noise SD.
     k : float
-        Ridge parameter (fixed).
+        Ridge parameter (fixed), >= 0.
 
     Returns
     -------
     dict
         ``"james-stein"`` and ``"ridge"``: the relative departure from linearity (0 for a linear map).
+
+    Raises
+    ------
+    TypeError
+        ``rng`` is not a :class:`numpy.random.Generator`, ``d`` not an integer, ``sigma`` or ``k`` not a number.
+    ValueError
+        ``d`` is below 3 or beyond the ceiling of a dimension, ``sigma`` is not finite and > 0, or ``k`` not
+        finite and >= 0.
     """
+    rng, d = as_rng(rng), count(d, "d", minimum=3)
+    sigma, k = positive_scalar(sigma, "sigma"), nonnegative_scalar(k, "k")
     y = 1.0 + sigma * rng.normal(size=d)
     H = np.eye(d)
     out = {}

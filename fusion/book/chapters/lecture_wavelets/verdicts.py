@@ -18,7 +18,7 @@ from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
 from fusion._counts import seed as check_seed
 from fusion._docstrings import with_sections
-from fusion._validation import as_array, instance_of, text
+from fusion._validation import as_array, instance_of, template, text
 from fusion._shown import shown
 
 __all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_conjunction", "Cell", "cell"]
@@ -46,15 +46,17 @@ def _paired_metrics(a: object, b: object, a_name: object, b_name: object) -> tup
     return a, b
 
 
-#: The Returns and Raises sections of :func:`sensor_conjunction` and :func:`sign_conjunction`, written once.
-_PER_SENSOR_DOC = with_sections(returns="""\
+#: The Returns and Raises sections of :func:`sensor_conjunction` and :func:`sign_conjunction`, written once
+#: (``{metric}`` filled with what the first says of its ``metric``, nothing for the second).
+_PER_SENSOR_RETURNS = """\
 fusion.book.ledger.Conjunction
-    The parts ``("sensor j", Comparison)``, j = 1, 2, ..., one per column of ``a`` and ``b``, in order.""", raises="""\
+    The parts ``("sensor j", Comparison)``, j = 1, 2, ..., one per column of ``a`` and ``b``, in order."""
+_PER_SENSOR_RAISES = """\
 TypeError
-    ``a`` or ``b`` is not numeric, ``a_name`` or ``b_name`` not a string, or ``seed`` not an integer.
+    ``a`` or ``b`` is not numeric, ``a_name`` or ``b_name``{metric} not a string, or ``seed`` not an integer.
 ValueError
     ``a`` or ``b`` is not a non-empty 2-D array of finite values, their shapes differ, or they hold fewer than
-    two sensors (columns).""")
+    two sensors (columns){metric_value}."""
 
 
 def _per_sensor(a: object, b: object, a_name: object, b_name: object, seed: int,
@@ -66,7 +68,9 @@ def _per_sensor(a: object, b: object, a_name: object, b_name: object, seed: int,
     return Conjunction(tuple((f"sensor {j + 1}", part(j + 1, a[:, j], b[:, j], seed)) for j in range(a.shape[1])))
 
 
-@_PER_SENSOR_DOC
+@with_sections(returns=_PER_SENSOR_RETURNS, raises=_PER_SENSOR_RAISES.format(
+    metric=" (or ``metric``)", metric_value="; or ``metric`` holds a field other than ``{j}``, a width above 99 "
+    "(``{j:>1000}``) or unbalanced braces (the template rule of ``fusion._validation.template``)"))
 def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, seed: int,
                        claim: str = "less") -> Conjunction:
     """One paired comparison per sensor (columns of ``a`` and ``b``), joined: the claim is about every sensor.
@@ -78,13 +82,16 @@ def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, m
     a_name, b_name : str
         What A and B are (the sensor is appended).
     metric : str
-        What is compared ("{j}" is replaced by the sensor's number).
+        What is compared: a :meth:`str.format` template whose only field is ``{j}``, replaced by the sensor's
+        number (``"RMSE, sensor {j}"``; a text without a field is the same for every sensor).
     seed : int
         Seed of the runs.
     claim : {"less", "greater"}
         What the source claims of A against B.
     """
-    return _per_sensor(a, b, a_name, b_name, check_seed(seed),
+    sd = check_seed(seed)
+    metric = template(metric, "metric", j=1)  # before any part is formatted (fuzz 21b, W)
+    return _per_sensor(a, b, a_name, b_name, sd,
                        lambda j, aj, bj, sd: Comparison(aj, bj, f"{a_name} (sensor {j})", f"{b_name} (sensor {j})",
                                                         claim, metric.format(j=j), seed=sd))
 
@@ -115,7 +122,7 @@ def status_text(c: Conjunction) -> str:
     return f"{st}: sensor{'s' if len(bad) > 1 else ''} {', '.join(bad)}"
 
 
-@_PER_SENSOR_DOC
+@with_sections(returns=_PER_SENSOR_RETURNS, raises=_PER_SENSOR_RAISES.format(metric="", metric_value=""))
 def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, seed: int) -> Conjunction:
     """Per sensor: is A better than B in more than half of the runs (the median paired difference below 0)?
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from fusion._counts import sequence
 from fusion._limits import loop_work
-from fusion._validation import as_array, instance_of, scalar, std_scalar
+from fusion._validation import as_array, instance_of, scalar, selection, std_scalar
 
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -20,7 +20,7 @@ from fusion._validation import count
 from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, sci
 from fusion.book.tables import roundoff
 from fusion.book.glue import GlueValues
-from fusion.book.ledger import Comparison, Unverifiable
+from fusion.book.ledger import MIN_RUNS, Comparison, Unverifiable
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.scenarios.lecture_weighting.belief import BeliefKind, BeliefParameterStudy, BeliefStudy
@@ -144,16 +144,30 @@ def eig_row_comparison(s: BeliefStudy, select: slice | np.ndarray = slice(None))
     s : BeliefStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_study`.
     select : slice or boolean array
-        The snapshots compared (default all; ``s.shifted`` or its negation for one half).
+        The snapshots compared (default all; ``s.shifted`` or its negation for one half): a slice, or a boolean
+        mask with one entry per snapshot. An integer index array is refused: a repeated index would count one
+        snapshot as several paired runs.
 
     Returns
     -------
     Comparison
         Eigenvector against row sums, claim "less".
+
+    Raises
+    ------
+    TypeError
+        ``s`` is not a BeliefStudy, or ``select`` neither a slice of integer bounds nor a boolean mask.
+    ValueError
+        ``select`` is a mask of another length than the snapshots', a slice of zero step, or selects fewer than
+        the ledger's :data:`~fusion.book.ledger.MIN_RUNS` snapshots.
     """
     instance_of(s, BeliefStudy, "s")
-    return Comparison(s.sq_eig[select], s.sq_row[select], "Perron eigenvector", "row sums", "less",
-                      "squared error of the fused value (°C²)")
+    select = selection(select, "select", s.sq_eig.shape[0])
+    a, b = s.sq_eig[select], s.sq_row[select]
+    if a.shape[0] < MIN_RUNS:
+        raise ValueError(f"select selects {a.shape[0]} of the {s.sq_eig.shape[0]} snapshots, fewer than the "
+                         f"{MIN_RUNS} paired runs a comparison needs")
+    return Comparison(a, b, "Perron eigenvector", "row sums", "less", "squared error of the fused value (°C²)")
 
 
 #: Grids of E2.4b: (values of s, values of ε) per reading; the first is the chapter's primary grid. s is a

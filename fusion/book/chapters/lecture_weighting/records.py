@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import functools
 import json
+import os
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
@@ -13,7 +14,8 @@ from typing import Any
 import numpy as np
 
 from fusion._frozen import constant
-from fusion._validation import records_of
+from fusion._validation import count, one_of, records_of, text
+from fusion.book.rulebook import STATUSES
 from fusion.book.study_cache import study_cache
 from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
 from fusion.book.ledger import Comparison, Evidence, Unverifiable, ledger_dir
@@ -48,6 +50,37 @@ __all__ = [
 ]
 
 
+def _keyed_records(records: object, prefix: str, keys: tuple[str, ...]) -> list[tuple[str, Mapping[str, Any]]]:
+    """``records`` (ledger records holding ``keys``) each with its glue key, ``prefix`` + the id without ``lec-``,
+    dashes as underscores: one check of the fields the reseeding and robustness lines read (fuzz 21b, R).
+
+    An ``id`` is a non-empty string, and no two records give one glue key (a repeated id, or ``lec-a-b`` and
+    ``lec-a_b``: the second line would silently replace the first); a ``status`` is one of the rulebook's
+    :data:`~fusion.book.rulebook.STATUSES`, ``runs`` an integer >= 1 or ``None`` (a record without runs), a
+    ``robustness`` a string or ``None``. A TypeError (wrong type) or ValueError naming ``records[i]`` otherwise."""
+    records = records_of(records, "records", keys)
+    out: list[tuple[str, Mapping[str, Any]]] = []
+    first: dict[str, int] = {}
+    for i, r in enumerate(records):
+        rid = text(r["id"], f"records[{i}]['id']")
+        if not rid:
+            raise ValueError(f"records[{i}]['id'] must be a record id, got an empty string")
+        key = prefix + rid.removeprefix("lec-").replace("-", "_")
+        if key in first:
+            j = first[key]
+            raise ValueError(f"records[{i}] (id {shown(rid)}) gives the glue key {key} of records[{j}] (id "
+                             f"{shown(records[j]['id'])}): record ids must not repeat, nor differ only by '-' and '_'")
+        first[key] = i
+        if "status" in r:
+            one_of(r["status"], STATUSES, f"records[{i}]['status']")
+        if r.get("runs") is not None:
+            count(r["runs"], f"records[{i}]['runs']", maximum=None)
+        if r.get("robustness") is not None:
+            text(r["robustness"], f"records[{i}]['robustness']")
+        out.append((key, r))
+    return out
+
+
 def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = None) -> GlueValues:
     """Each stochastic record's status with what the reseeding sweep (``book/ledger/stability.json``) found.
 
@@ -62,7 +95,8 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
     records : sequence of mapping
         Ledger records (:meth:`fusion.book.ledger.Ledger.records`): ``id``, ``status`` and ``runs``.
     root : pathlib.Path, optional
-        Where to look for the book's ledger directory (default: the working directory).
+        Where to look for the book's ledger directory, a directory in the book's repository (default: the working
+        directory).
 
     Returns
     -------
@@ -72,18 +106,29 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
     Raises
     ------
     TypeError
-        ``records`` not a sequence, or a record not a mapping.
+        ``records`` not a sequence, a record not a mapping, its ``id`` or ``status`` not a string, its ``runs``
+        not an integer (or ``None``); ``root`` not a path.
     ValueError
-        A record without ``id`` or ``status``.
+        A record without ``id`` or ``status``, an empty ``id``, two records of one glue key (a repeated id, or ids
+        that differ only by ``-`` and ``_``), a ``status`` not one of the rulebook's
+        :data:`~fusion.book.rulebook.STATUSES`, ``runs`` below 1; ``root`` not inside the book's repository.
     """
-    records = records_of(records, "records", ("id", "status"))
-    path = ledger_dir(root) / "stability.json"
+    keyed = _keyed_records(records, "lec_rs_", ("id", "status"))
+    if root is not None and not isinstance(root, (str, os.PathLike)):
+        raise TypeError(f"root must be a pathlib.Path (or None), got {type(root).__name__}")
+    try:
+        path = ledger_dir(None if root is None else Path(root)) / "stability.json"
+    except FileNotFoundError as exc:
+        if root is None:
+            raise
+        raise ValueError(f"root = {shown(str(root))} is not inside the book's repository (no _toc.yml in it or "
+                         "above it)") from exc
     if not path.is_file():
         return {}
     data = json.loads(path.read_text(encoding="utf-8"))
     default, stab = data.get("runs_factor", 10), data.get("records", {})
     out: GlueValues = {}
-    for r in records:
+    for key, r in keyed:
         v = stab.get(r["id"])
         if v is None or not r.get("runs"):
             continue
@@ -95,13 +140,13 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
             parts.append(f"{v['scaled']} at {factor}× the runs, the primary reading rerun")
         head = f"{status} at the chapter's {int(r['runs']):,} runs"
         if v["flag"]:
-            text = f"{head}, a status that moves under reseeding ({'; '.join(parts)})"
+            line = f"{head}, a status that moves under reseeding ({'; '.join(parts)})"
         elif parts:
-            text = (f"{head}, stable in {k} of {n} reseeds up to rule R5's qualifier, which a reseed does not state "
+            line = (f"{head}, stable in {k} of {n} reseeds up to rule R5's qualifier, which a reseed does not state "
                     f"({'; '.join(parts)})")
         else:
-            text = f"{head}, stable in {k} of {n} reseeds and at {factor}× the runs"
-        out["lec_rs_" + r["id"].removeprefix("lec-").replace("-", "_")] = text
+            line = f"{head}, stable in {k} of {n} reseeds and at {factor}× the runs"
+        out[key] = line
     return out
 
 
@@ -121,13 +166,13 @@ def robustness_glue(records: Sequence[Mapping[str, Any]]) -> GlueValues:
     Raises
     ------
     TypeError
-        ``records`` not a sequence, or a record not a mapping.
+        ``records`` not a sequence, a record not a mapping, its ``id`` or ``robustness`` not a string (a
+        ``status`` it holds not a string, its ``runs`` not an integer).
     ValueError
-        A record without ``id``.
+        A record without ``id``, an empty ``id``, two records of one glue key (a repeated id, or ids that differ
+        only by ``-`` and ``_``), or a ``status`` it holds not one of the rulebook's.
     """
-    records = records_of(records, "records", ("id",))
-    return {"lec_rob_" + r["id"].removeprefix("lec-").replace("-", "_"): str(r["robustness"])
-            for r in records if r.get("robustness")}
+    return {key: r["robustness"] for key, r in _keyed_records(records, "lec_rob_", ("id",)) if r.get("robustness")}
 
 
 #: The part of a record's studies a reading needs, for the records whose readings use two studies.
