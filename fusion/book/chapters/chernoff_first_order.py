@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 from fusion._results import ResultSpec, instance, number, table, validated_post_init
-from fusion._validation import FloatArray, count, instance_of
+from fusion._validation import FloatArray, allocation, count, instance_of
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch
 from fusion.estimates.chernoff import mixture as chm
@@ -190,18 +190,26 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
     a, b : GaussianMixture
         Two 2-D mixtures.
     n : int
-        Quadrature nodes per axis on :math:`[-9, 9]^2`.
+        Quadrature nodes per axis on :math:`[-9, 9]^2` (>= 2; its n x n grid within the memory budget, 2 GiB).
 
     Returns
     -------
     SigmaProblem
         The exact minimiser ω*; per method its own minimiser, the total variation to the exact fusion at ω* and its
         log-normaliser error there (nats).
+
+    Raises
+    ------
+    TypeError
+        ``a`` or ``b`` not a mixture, ``n`` not an integer.
+    ValueError
+        ``n`` below 2, or an n x n grid beyond the memory budget (``fusion._validation.allocation``).
     """
     instance_of(a, mx.GaussianMixture, "a"), instance_of(b, mx.GaussianMixture, "b")
     from scipy.optimize import minimize_scalar
 
     n = count(n, "n", minimum=2)
+    allocation((n, n, 2), "n")  # the n x n grid's log-densities of the two mixtures, before they are computed
     axis = np.linspace(-_SIGMA_GRID[0], _SIGMA_GRID[0], n)
     X, Y = np.meshgrid(axis, axis)
     pts = np.column_stack([X.ravel(), Y.ravel()])
@@ -291,6 +299,7 @@ def sigma_first_order_study(rng: np.random.Generator, runs: int = 100) -> SigmaF
     rng : numpy.random.Generator
         Draws the random problems.
     runs : int
+        Random problems, at least 2 (the glued paired differences need two runs).
 
     Returns
     -------
@@ -298,7 +307,7 @@ def sigma_first_order_study(rng: np.random.Generator, runs: int = 100) -> SigmaF
         The two-mixture example's :class:`SigmaProblem` and a DataFrame of the random problems, one row each.
     """
     instance_of(rng, np.random.Generator, "rng")
-    runs = count(runs, "runs")
+    runs = count(runs, "runs", minimum=2)
     toy = two_mixtures.toy_mixtures()
     rows = [sigma_first_order_problem(*random_two_mixtures(rng), n=SIGMA_RANDOM_NODES) for _ in range(runs)]
     return SigmaFirstOrderStudy(toy=sigma_first_order_problem(toy.a, toy.b),

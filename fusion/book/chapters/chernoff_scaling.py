@@ -397,9 +397,34 @@ def density_evaluations(n: int, s: int) -> int:
     -------
     int
         S^N + N S, the component densities evaluated per importance sample.
+
+    Raises
+    ------
+    TypeError
+        ``n`` or ``s`` not an integer.
+    ValueError
+        ``n`` or ``s`` below 1, or S^N + N S beyond the float range (about 1.8e308, the book's bound on a
+        printed number), refused before the power is computed (``S^N`` of two counts at their ceiling would run
+        for minutes).
     """
-    n, s = count(n, "n"), count(s, "s")
-    return s**n + n * s
+    return _evaluations(count(n, "n"), count(s, "s"), "n and s")
+
+
+#: The largest count :func:`density_evaluations` returns: the float range (the book prints no larger number).
+_MAX_EVALUATIONS = int(np.finfo(float).max)
+
+
+def _evaluations(n: int, s: int, names: str) -> int:
+    """S^N + N S for checked counts, refused by ``names`` beyond :data:`_MAX_EVALUATIONS` before the power is
+    computed (``n log2 s`` bounds its bits)."""
+    if s > 1 and n * np.log2(s) > 1025:  # at least 2**1024 (> the float range): no exact power needed
+        raise ValueError(f"{names} give S^N = {s}^{n}, about 10^{n * np.log10(s):,.0f} density evaluations, beyond "
+                         f"the float range (at most about 1.8e308; the book prints no larger number)")
+    total = s**n + n * s
+    if total > _MAX_EVALUATIONS:
+        raise ValueError(f"{names} give S^N = {s}^{n}, about 10^{n * np.log10(s):.2f} density evaluations, beyond "
+                         f"the float range (at most about 1.8e308; the book prints no larger number)")
+    return total
 
 
 def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2, 3)) -> pd.DataFrame:
@@ -419,11 +444,12 @@ def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2,
     TypeError
         ``ns`` or ``ss`` is not a sequence of integers.
     ValueError
-        ``ns`` or ``ss`` is empty, holds an entry below 1, or repeats an entry (the rows and columns are keyed by them).
+        ``ns`` or ``ss`` is empty, holds an entry below 1, or repeats an entry (the rows and columns are keyed by them);
+        an entry of ``ns`` and one of ``ss`` whose S^N is beyond the float range (:func:`density_evaluations`).
     """
     ns, ss = distinct(counts(ns, "ns"), "ns"), distinct(counts(ss, "ss"), "ss")  # each entry named (ns[0])
-    return pd.DataFrame({f"S = {s}": [density_evaluations(n, s) for n in ns] for s in ss},
-                        index=pd.Index(list(ns), name="N"))
+    return pd.DataFrame({f"S = {s}": [_evaluations(n, s, f"ns[{i}] = {n} and ss[{j}] = {s}") for i, n in enumerate(ns)]
+                         for j, s in enumerate(ss)}, index=pd.Index(list(ns), name="N"))
 
 
 def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000), n: int = 3, runs: int = 100
@@ -439,6 +465,7 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
     ----------
     seed : int
     rs : tuple of int
+        Importance sample sizes R: at least two (the slope in R), distinct, each >= 2.
     n : int
     runs : int
 
@@ -451,13 +478,16 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
     Raises
     ------
     ValueError
-        ``rs`` empty or repeating an R (the study is keyed by R); ``runs``, ``n`` or an R below 2.
+        ``rs`` with fewer than two sizes (the study's slope in R needs two) or repeating an R (the study is keyed by
+        R); ``runs``, ``n`` or an R below 2.
     TypeError
         A count that is not an integer (``rs`` included, entry by entry).
     """
     seed = check_seed(seed)
     runs, n = count(runs, "runs", minimum=2), count(n, "n", minimum=2)
     rs = tuple(distinct(counts(rs, "rs", minimum=2), "rs"))
+    if len(rs) < 2:
+        raise ValueError(f"rs must hold at least two sample sizes (the slope of the error in R needs two), got {rs}")
     w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
     exact = np.stack([ch.gaussian_chernoff_weights(m[k, :, 0], c[k, :, 0]).eps for k in range(runs)])
     err = np.empty((len(rs), runs))

@@ -43,7 +43,8 @@ import pandas as pd
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
-from fusion._validation import FloatArray, as_array, count, instance_of, positive_scalar, unit_scalar
+from fusion._validation import FloatArray, as_array, count, instance_of, positive_scalar, text, unit_scalar
+from fusion._counts import counts, distinct, sequence
 from fusion.book.rulebook import judge_paired
 from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
@@ -141,7 +142,8 @@ def snis_delta_terms(points: ArrayLike, log_target: ArrayLike, log_proposal: Arr
     log_proposal : array_like, shape (n,)
         Log of the (normalised) proposal density :math:`\log g`.
     cell : float
-        Volume of one quadrature cell (> 0).
+        Volume of one quadrature cell (> 0): a real number (a numpy scalar or a 0-d array included, not a bool)
+        within the package's magnitudes [1e-150, 1e150].
 
     Returns
     -------
@@ -150,23 +152,36 @@ def snis_delta_terms(points: ArrayLike, log_target: ArrayLike, log_proposal: Arr
 
     Raises
     ------
+    TypeError
+        ``cell`` not a real number (a bool included).
     ValueError
-        Shapes inconsistent, non-finite values, or ``cell`` not positive.
+        Shapes inconsistent, non-finite values, ``cell`` not positive or outside [1e-150, 1e150], or a
+        ``log_proposal`` so far below ``log_target`` (or above it) that ∫p²/g is beyond the float range (its
+        terms are computed in logs: the proposal is then not a normalised density covering the target).
     """
     X = as_array(points, "points", ndim=2)
     lp = as_array(log_target, "log_target", ndim=1)
     lg = as_array(log_proposal, "log_proposal", ndim=1)
     if lp.shape != (X.shape[0],) or lg.shape != (X.shape[0],):
         raise ValueError(f"log_target and log_proposal must have shape ({X.shape[0]},), got {lp.shape}, {lg.shape}")
-    if not (isinstance(cell, (int, float, np.floating)) and np.isfinite(cell) and cell > 0):
-        raise ValueError(f"cell must be a finite number > 0, got {shown(cell)}")
+    cell = positive_scalar(cell, "cell")  # the shared scalar reader: numpy numbers, no bool, rule 2's magnitudes
     lp = lp - mx.logsumexp(lp) - np.log(cell)  # normalised on the grid
     p = np.exp(lp)
     mu = np.sum((p * cell)[:, None] * X, axis=0)  # elementwise sums: no BLAS, the same with any thread count
-    q = np.exp(2 * lp - lg) * cell  # p^2 / g times the cell
-    dx = X - mu
-    V = np.sum(q[:, None, None] * dx[:, :, None] * dx[:, None, :], axis=0)
-    return SnisDelta(mu=mu, c=-np.sum(q[:, None] * dx, axis=0), V=V, second_moment=float(q.sum()))
+    lq = 2 * lp - lg + np.log(cell)  # log of p^2 / g times the cell
+    log_m2 = float(mx.logsumexp(lq))
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):  # checked below
+        q = np.exp(2 * lp - lg) * cell  # p^2 / g times the cell
+        if not np.all(np.isfinite(q)):  # exp(2 lp - lg) alone overflowed: the product in logs
+            q = np.exp(lq)
+        dx = X - mu
+        c = -np.sum(q[:, None] * dx, axis=0)
+        V = np.sum(q[:, None, None] * dx[:, :, None] * dx[:, None, :], axis=0)
+    if not (np.isfinite(log_m2) and np.all(np.isfinite(q)) and np.all(np.isfinite(c)) and np.all(np.isfinite(V))
+            and float(q.sum()) > 0.0):
+        raise ValueError(f"log_proposal is too far from log_target: ∫p²/g is exp({log_m2:.4g}), outside the float "
+                         "range (log_proposal must be the log of a normalised proposal density covering the target)")
+    return SnisDelta(mu=mu, c=c, V=V, second_moment=float(q.sum()))
 
 
 @dataclass(frozen=True)
@@ -265,7 +280,7 @@ def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4,
     a, b : array_like, shape (runs,)
         Per-run values of the two methods on the same runs.
     prefix : str
-        Key prefix.
+        Key prefix: ``<prefix>_stat`` must be an identifier (a glue key).
     decimals : int
         Rounding of the values.
     relative_margin : float, optional
@@ -284,8 +299,13 @@ def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4,
     ValueError
         ``a`` or ``b`` as :func:`fusion.book.rulebook.judge_paired` refuses them, or holding an infinite run:
         the glued summary is finite numbers (an infinite run makes a mean or median difference infinite or
-        undefined, which no glued number can show).
+        undefined, which no glued number can show); ``prefix`` whose keys are not identifiers.
+    TypeError
+        ``prefix`` not a string.
     """
+    prefix = text(prefix, "prefix")
+    if not f"{prefix}_stat".isidentifier():
+        raise ValueError(f"prefix must make glue keys that are identifiers (<prefix>_stat), got {shown(prefix)}")
     j = judge_paired(a, b, "less", 0.0)  # the shared check of paired runs, naming a or b
     av, bv = np.asarray(a, float), np.asarray(b, float)
     for name, v in (("a", av), ("b", bv)):
@@ -369,19 +389,23 @@ class SnisBiasStudy:
 _on_pool = with_sections("""rng : numpy.random.Generator
     Draws the pool.
 rs : tuple of int
-    Block sizes R (each >= 2 and dividing ``total``).
+    Block sizes R: distinct (the table is keyed by R), each >= 2, dividing ``total`` and at most ``total / 2``
+    (at least two blocks, for the 95 % interval of the blocks' mean); taken in increasing order.
 total : int
     Pool size.""")
 
 
 def _pool_blocks(rng: np.random.Generator, rs: tuple[int, ...], total: int) -> tuple[int, tuple[int, ...]]:
-    """The checked pool size ``total`` and block sizes ``rs`` of a block study (each R >= 2, dividing ``total``);
-    ``rng`` checked to be a Generator."""
+    """The checked pool size ``total`` and block sizes ``rs`` of a block study (distinct, each R >= 2, dividing
+    ``total`` into at least two blocks), ``rs`` sorted; ``rng`` checked to be a Generator."""
     instance_of(rng, np.random.Generator, "rng")
     total = count(total, "total")
-    rs = tuple(count(r, "rs", minimum=2) for r in rs)
+    rs = tuple(sorted(distinct(counts(rs, "rs", minimum=2), "rs")))
     if any(total % r for r in rs):
         raise ValueError(f"rs must divide total = {total}, got {rs}")
+    if rs[-1] > total // 2:
+        raise ValueError(f"rs must leave at least two blocks of total = {total} (each R at most {total // 2}: the "
+                         f"blocks' 95 % interval needs two), got R = {rs[-1]}")
     return total, rs
 
 
@@ -467,13 +491,14 @@ def defensive_mixture(proposal: mx.GaussianMixture, local: list[mx.GaussianMixtu
     ------
     ValueError
         ``alpha`` outside (0, 1], no local mixture, or dimensions that differ.
+    TypeError
+        ``local`` not a sequence (a single mixture, a generator) or holding a non-mixture.
     """
     instance_of(proposal, mx.GaussianMixture, "proposal")
     alpha = unit_scalar(alpha, "alpha")
     if alpha <= 0:
         raise ValueError(f"alpha must lie in (0, 1], got {alpha}")
-    if len(local) == 0:
-        raise ValueError("local must hold at least one mixture")
+    local = sequence(local, "local", minimum=1, what="mixture")  # a sequence, named (not a generator or a mixture)
     d = proposal.means.shape[1]
     for i, gm in enumerate(local):
         instance_of(gm, mx.GaussianMixture, f"local[{i}]")

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, allocation, instance_of
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch, mixtures as mx
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
@@ -126,17 +126,27 @@ def is_variance_study(rng: np.random.Generator, R: int = 100, replicates: int = 
     rng : numpy.random.Generator
         Draws the samples from the proposal.
     R : int
-        Samples per estimate of Ĵ.
+        Samples per estimate of Ĵ (>= 1).
     replicates : int
-        Estimates per ω (the standard error of the sampled bias falls as 1/sqrt(replicates): 20,000 make the
-        predicted bias several standard errors from zero, so the test can fail).
+        Estimates per ω, at least 2 (the standard error of the sampled bias falls as 1/sqrt(replicates): 20,000 make
+        the predicted bias several standard errors from zero, so the test can fail; one gives no standard error).
 
     Returns
     -------
     IsVarianceStudy
         Predicted and sampled bias of Ĵ and ρ at nine values of ω, the finite-moment regions' ends and the check's
         verdict.
+
+    Raises
+    ------
+    TypeError
+        ``rng`` not a Generator, ``R`` or ``replicates`` not an integer.
+    ValueError
+        ``R`` below 1, ``replicates`` below 2, or replicates x R samples beyond the memory budget.
     """
+    instance_of(rng, np.random.Generator, "rng")
+    R, replicates = count(R, "R"), count(replicates, "replicates", minimum=2)
+    allocation((replicates, R, 2), "replicates and R")  # the samples, before they are drawn
     a, A = np.array([0.0, 0.0]), np.diag([4.0, 1.0])
     b, B = np.array([2.0, 1.0]), np.array([[1.0, 0.5], [0.5, 3.0]])
     means, covs, e0 = [a, b], [A, B], np.array([0.5, 0.5])

@@ -15,7 +15,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from fusion._results import ResultSpec, array, integer, nested, number, validated_post_init
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, instance_of
 from fusion.book.style import new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch, mixtures as mx
@@ -95,7 +95,14 @@ def toy_study(rng: np.random.Generator, r: int = 20_000, base: ToyStudy | None =
     ToyStudy
         log Z at 101 values of ω (exact on a grid, first-order, importance-sampled from g(0.5) with r samples) and the
         three minimisers ω*; with ``base``, its exact parts kept.
+
+    Raises
+    ------
+    TypeError
+        ``base`` neither None nor a :class:`ToyStudy`.
     """
+    if base is not None:
+        instance_of(base, ToyStudy, "base")
     toy = two_mixtures.toy_mixtures()
     gms = (toy.a, toy.b)
     omegas = np.linspace(0.0, 1.0, 101)
