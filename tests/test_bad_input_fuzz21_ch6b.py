@@ -94,14 +94,14 @@ def test_second_moment_beyond_the_float_range_refused_by_log_proposal(shift):
     _refused(ValueError, "log_proposal", cs.snis_delta_terms, _X, _LP, _LG + shift, _CELL)
 
 
-def test_second_moment_computed_in_logs_when_only_the_cell_brings_it_into_range():
-    # p = 1 / (2 cell) at both nodes; g = p e^-400: exp(2 lp - lg) = e^744.6 overflows, times the cell it does not
+def test_second_moment_beyond_the_magnitude_rule_is_refused():
+    # p = 1 / (2 cell) at both nodes; g = p e^-400: exp(2 lp - lg) overflows and, times a cell >= 1e-150 (the
+    # magnitude rule), the terms stay beyond 1e150: refused by SnisDelta's field spec, not returned as inf
     cell = 1e-150
     lp = np.zeros(2)
     lg = np.full(2, np.log(0.5 / cell) - 400.0)
-    d = cs.snis_delta_terms(np.array([[0.0], [1.0]]), lp, lg, cell)
-    assert np.isfinite(d.second_moment) and np.isfinite(d.c).all() and np.isfinite(d.V).all()
-    assert d.second_moment == pytest.approx(math.exp(400.0), rel=1e-9)  # ∫p²/g = e^400 (∑ of 2 × 0.5 e^400)
+    with pytest.raises(ValueError, match="beyond the representable range"):
+        cs.snis_delta_terms(np.array([[0.0], [1.0]]), lp, lg, cell)
 
 
 # ------------------------------------------------------------------------------------------------ D: S^N

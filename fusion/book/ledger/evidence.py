@@ -160,7 +160,7 @@ class Comparison:
     The status comes from :func:`fusion.book.rulebook.judge_paired` (rules R2 and R3): the paired 95 %
     interval (of the mean, or of the median when the differences are heavy-tailed) against zero and the
     practical margin. The summary calls B "a constant" only when every run of B holds one finite value. Whenever
-    R3 decides (a mean infinite), :meth:`~fusion.book.ledger.Comparison.to_dict` gives ``heavy_tailed: True`` (an infinite mean is the heaviest
+    R3 decides (a mean infinite), ``to_dict()`` gives ``heavy_tailed: True`` (an infinite mean is the heaviest
     tail) and ``tail_index: None`` when fewer than 11 runs have a finite difference (none when every run is
     infinite in both: the status is then "cannot be checked").
 

@@ -118,11 +118,11 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
         raise TypeError(f"root must be a pathlib.Path (or None), got {type(root).__name__}")
     try:
         path = ledger_dir(None if root is None else Path(root)) / "stability.json"
-    except FileNotFoundError as exc:
+    except (FileNotFoundError, ValueError) as exc:   # no _toc.yml above it; not an existing folder (ledger_dir)
         if root is None:
             raise
-        raise ValueError(f"root = {shown(str(root))} is not inside the book's repository (no _toc.yml in it or "
-                         "above it)") from exc
+        raise ValueError(f"root = {shown(str(root))} is not a folder inside the book's repository (no _toc.yml in it "
+                         "or above it)") from exc
     if not path.is_file():
         return {}
     data = json.loads(path.read_text(encoding="utf-8"))
