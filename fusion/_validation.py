@@ -906,5 +906,5 @@ def step_scalar(value: float, name: str, power: int, *, zero: bool = False) -> f
 
 # The covariance rules live in fusion._covariances, which uses the rules above: imported last.
 from fusion._covariances import (  # noqa: E402, F401 (re-exported)
-    _SMALL_PAIR, _TINY, _covariance_magnitude, _finite_symmetric, as_covariance, as_semidefinite, covariance_pair,
-    diagonal_covariance, gaussian_pair)
+    _SMALL_PAIR, _TINY, _covariance_magnitude, _finite_symmetric, as_covariance, as_covariances, as_semidefinite,
+    covariance_pair, diagonal_covariance, gaussian_pair)

@@ -45,7 +45,8 @@ import numpy as np
 import pandas as pd
 
 from fusion._docstrings import with_sections
-from fusion._validation import FloatArray, count, instance_of, mapping_of, one_of
+from fusion._validation import (FloatArray, _numeric, as_covariances, check_magnitude, count, instance_of, mapping_of,
+                                one_of)
 from fusion._validation import seed as check_seed
 from fusion.book.ledger import Comparison
 from fusion.book.tables import rounded, roundoff
@@ -112,17 +113,30 @@ def exponent_rule(rule: str, means: FloatArray, covs: FloatArray) -> FloatArray:
     rule : str
         A key of :data:`GAUSSIAN_RULES`.
     means : ndarray, shape (B, M, d)
+        Finite (B, M, d >= 1).
     covs : ndarray, shape (B, M, d, d)
-        Symmetric positive definite.
+        Symmetric positive definite (the package's covariance rule, ``fusion._covariances.as_covariances``).
 
     Returns
     -------
     ndarray, shape (B, M)
         On the simplex (all ones for ``naive_product``).
+
+    Raises
+    ------
+    TypeError
+        ``rule`` not a str, ``means`` or ``covs`` not real numbers.
+    ValueError
+        ``rule`` not a key of :data:`GAUSSIAN_RULES`; ``means`` not (B, M, d) with every size >= 1, NaN, infinite or
+        beyond the magnitude rule; ``covs`` not (B, M, d, d) or a matrix of it not a valid covariance (named by
+        its index).
     """
     one_of(rule, GAUSSIAN_RULES, "rule")
-    m, P = np.asarray(means, dtype=float), np.asarray(covs, dtype=float)
-    if m.ndim != 3 or P.shape != m.shape + (m.shape[-1],):
+    m = check_magnitude(_numeric(means, "means"), "means")
+    if m.ndim != 3 or 0 in m.shape:
+        raise ValueError(f"means must be (B, M, d) with B, M and d >= 1, got shape {m.shape}")
+    P = as_covariances(covs, dim=m.shape[-1], name="covs")
+    if P.shape != m.shape + (m.shape[-1],):
         raise ValueError(f"means must be (B, M, d) and covs (B, M, d, d), got {m.shape} and {P.shape}")
     return _rule_eps(rule, m, np.linalg.inv(P), np.linalg.slogdet(2 * np.pi * P)[1])
 
