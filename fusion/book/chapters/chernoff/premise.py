@@ -5,6 +5,7 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Callable
 from typing import Any, TypeVar
 
@@ -15,7 +16,8 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
-from fusion._validation import FloatArray, mapping_of, scalar, sequence
+from fusion._validation import (FloatArray, allocation, instance_of, loop_work, mapping_of, scalar, sequence,
+                               work)
 from fusion.optimise._ties import first_minimum
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
@@ -155,7 +157,8 @@ def oracle_exponents(st: NetworkStudy, step: float = 0.02) -> tuple[FloatArray, 
     st : NetworkStudy
         A network of :data:`ORACLE_NETWORKS` (one frame, one round, full connectivity).
     step : float
-        Grid step on the simplex.
+        Grid step on the simplex, in (0, 1], with ``1 / step`` an integer (to round-off): the grid's points are the
+        exponent vectors whose entries are multiples of ``step``.
 
     Returns
     -------
@@ -166,9 +169,15 @@ def oracle_exponents(st: NetworkStudy, step: float = 0.02) -> tuple[FloatArray, 
 
     Raises
     ------
+    TypeError
+        ``st`` not a NetworkStudy, ``step`` not a real number.
     ValueError
-        A network with several exchanges or partial connectivity.
+        A network with several exchanges or partial connectivity; ``step`` not in (0, 1], ``1 / step`` not an
+        integer (0.7 would silently give a grid of step 1), or a grid so fine that its points (about
+        ``(1 / step)**(N - 1)``) times the runs are beyond the work or memory budget (rules 9, 17).
     """
+    instance_of(st, NetworkStudy, "st")
+    step = scalar(step, "step", lo=0.0, hi=1.0, lo_open=True)
     hit = _ORACLE_CACHE.get((id(st), step))
     if hit is not None and hit[0] is st:  # the studies are read-only: computed once per study
         return hit[1]
@@ -176,7 +185,14 @@ def oracle_exponents(st: NetworkStudy, step: float = 0.02) -> tuple[FloatArray, 
     if sc.frames != 1 or sc.rounds != 1 or sc.edges is not None:
         raise ValueError("st must be a network with one exchange and full connectivity")
     N = len(sc.nodes)
-    n = int(round(1.0 / step))
+    n = round(1.0 / step)
+    if abs(n * step - 1.0) > 1e-9:
+        raise ValueError(f"step must divide 1 (1 / step an integer, such as 0.02 or 0.25), got {shown(step)}: "
+                         f"1 / step is {1.0 / step:.6g}")
+    loop_work(((n + 1) ** (N - 1),), 0, "step")  # the grid's candidates, one Python step each
+    G = math.comb(n + N - 1, N - 1)  # the grid's points
+    work((st.runs, G, 8), "st and step")  # the fused means of every run at every point
+    allocation((st.runs, G, N, 2, 2), "st and step")  # their terms, (B, G, N, 2, 2) in the einsum
     grid = np.array([c for c in np.ndindex(*(n + 1,) * (N - 1)) if sum(c) <= n], dtype=float)
     E = np.column_stack([grid, n - grid.sum(axis=1)]) / n  # (G, N)
     J = np.linalg.inv(st.local_cov + 1e-9 * sc.prior_std**2 * np.eye(2))  # (B, N, 2, 2); the study's floor
