@@ -287,16 +287,30 @@ def network_mse(study: NetworkStudy, estimates: FloatArray) -> FloatArray:
     ----------
     study : NetworkStudy
     estimates : ndarray, shape (runs, N, 2)
+        Finite positions (m) within the magnitude rule (:func:`channel_filter`'s NaN estimates are not:
+        :func:`baseline_table` leaves out their runs before it scores the rest).
 
     Returns
     -------
     ndarray, shape (runs,)
         Per run, the squared distance of the estimates from the truth averaged over the nodes (m², 6 decimals).
+
+    Raises
+    ------
+    TypeError
+        ``study`` not a NetworkStudy, ``estimates`` not real numbers.
+    ValueError
+        ``estimates`` not of the study's shape, NaN, infinite or beyond the magnitude rule.
     """
     instance_of(study, NetworkStudy, "study")
-    e = np.asarray(estimates, dtype=float)
+    e = check_magnitude(_numeric(estimates, "estimates"), "estimates", subnormal=False)
     if e.shape != study.estimates["exact_posterior"].shape:
         raise ValueError(f"estimates must have shape {study.estimates['exact_posterior'].shape}, got {e.shape}")
+    return _mse(study, e)
+
+
+def _mse(study: NetworkStudy, e: FloatArray) -> FloatArray:
+    """Kernel of :func:`network_mse` (a NaN estimate gives its run a NaN, which the callers leave out)."""
     return np.round(np.mean(np.sum((e - study.truth) ** 2, axis=-1), axis=-1), 6)
 
 
@@ -365,7 +379,7 @@ def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         est, _, not_pd = channel_filter(st)
         not_pd_total += int(not_pd.sum())
         ok = ~np.any(not_pd, axis=1)
-        a = network_mse(st, est)[ok]
+        a = _mse(st, est)[ok]  # the runs with a NaN estimate (not positive definite) left out
         runs.append(int(ok.sum()))
         col = {"runs": f"{int(ok.sum())}", RMSE_ROW.format("known common information removed"): f"{np.sqrt(a.mean()):.2f}",
                RMSE_ROW.format(METHOD_LABELS["exact_posterior"]): f"{np.sqrt(st.mse('exact_posterior')[ok].mean()):.2f}"}
