@@ -36,7 +36,6 @@ References
 
 from __future__ import annotations
 
-import json
 import re
 from pathlib import Path
 from typing import Any
@@ -55,6 +54,7 @@ from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_ch
 from fusion.book.style import METHOD_LABELS
 from fusion.book.chapters.chernoff.premise import RMSE_ROW
 from fusion.scenarios.fusion_networks import Network, NetworkScenario, NetworkStudy
+from fusion.book._json import read_argument
 from fusion.book.glue import GlueValues
 from fusion._shown import shown
 
@@ -486,11 +486,32 @@ def appendix_referenced(values: GlueValues, notebook: Path = APPENDIX) -> GlueVa
     -------
     dict
         The subset of ``values`` whose keys appear as ``{glue:...}`key``` roles without a notebook prefix.
+
+    Raises
+    ------
+    TypeError
+        ``values`` not a mapping, ``notebook`` not a path.
+    ValueError
+        ``notebook`` not an existing file holding a JSON object (``fusion.book._json.read_argument``), or not a
+        notebook: no list ``cells`` of objects, or a markdown cell whose ``source`` is not a str or a list of str.
     """
     from collections.abc import Mapping
 
     instance_of(values, Mapping, "values")
-    cells = json.loads(Path(notebook).read_text(encoding="utf-8"))["cells"]
-    text = "".join("".join(c["source"]) for c in cells if c["cell_type"] == "markdown")
+    cells = read_argument(notebook, "notebook", "notebook").get("cells")
+    if not isinstance(cells, list) or not all(isinstance(c, dict) for c in cells):
+        raise ValueError(f"notebook {notebook}: cells must be a list of objects, got {shown(cells, 80)}")
+    sources = []
+    for i, c in enumerate(cells):
+        if c.get("cell_type") != "markdown":
+            continue
+        src = c.get("source", "")
+        if isinstance(src, list) and all(isinstance(line, str) for line in src):
+            src = "".join(src)
+        if not isinstance(src, str):
+            raise ValueError(f"notebook {notebook}: cells[{i}].source must be a str or a list of str, got "
+                             f"{shown(src, 80)}")
+        sources.append(src)
+    text = "".join(sources)
     keys = set(re.findall(r"\{glue(?::\w+)?\}`([A-Za-z0-9_]+)[:`]", text))
     return {k: v for k, v in values.items() if k in keys}
