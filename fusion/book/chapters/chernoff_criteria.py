@@ -52,7 +52,7 @@ from fusion.book.tables import rounded, roundoff
 # the batched kernels of the package (private: array-level), as fusion.scenarios.fusion_networks uses them
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
 from fusion.book.style import METHOD_LABELS
-from fusion.book.chapters.chernoff.premise import RMSE_ROW
+from fusion.book.chapters.chernoff.premise import RMSE_ROW, _enough_runs
 from fusion.scenarios.fusion_networks import Network, NetworkScenario, NetworkStudy
 from fusion.book._json import read_argument
 from fusion.book.glue import GlueValues
@@ -319,22 +319,25 @@ def _cell(cmp: Comparison) -> str:
     return f"{d:.1f} [{lo:.1f}, {hi:.1f}] ({cmp.judgement().region})"
 
 
-def _networks(studies: object, labels: object) -> None:
+def _networks(studies: object, labels: object, reason: object) -> str:
     """The networks' studies and their column labels (fuzz 19, class D): the shared rule ``mapping_of`` for both,
-    every network of :data:`CRITERIA_NETWORKS` in each, before any work."""
+    every network of :data:`CRITERIA_NETWORKS` in each, and rule R4 on their runs (``_enough_runs``, fuzz 21b class
+    A), before any work; returns ``reason``."""
     mapping_of(studies, "studies", "NetworkStudy", values=NetworkStudy, maker="premise_study")
     mapping_of(labels, "labels", "column label", values=str)
     for key in CRITERIA_NETWORKS:
         _key(studies, key)  # type: ignore[arg-type]
         if key not in labels:  # type: ignore[operator]
             raise ValueError(f"labels must hold the network {shown(key)}, got {sorted(map(str, labels))}")  # type: ignore[call-overload]
+    return _enough_runs({k: studies[k] for k in CRITERIA_NETWORKS}, reason)  # type: ignore[index]
 
 
 #: The Raises section of the functions of the networks' studies and labels (:func:`_networks`), written once.
 _on_networks = with_sections(raises="""TypeError
-    ``studies`` or ``labels`` not a mapping, a study not a NetworkStudy or a label not a str.
+    ``studies`` or ``labels`` not a mapping, a study not a NetworkStudy, a label or ``reason`` not a str.
 ValueError
-    ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`.""")
+    ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`, or a network of fewer than
+    :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 
 
 def _key(studies: dict[str, NetworkStudy], key: str) -> NetworkStudy:
@@ -370,7 +373,7 @@ def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         ``chf_cf_runs`` (fewest runs of a network) and ``chf_cf_not_pd`` (node estimates without a positive definite
         fused information, over every network).
     """
-    _networks(studies, labels)
+    reason = _networks(studies, labels, reason)
     cols: dict[str, dict[str, str]] = {}
     v: dict[str, Any] = {}
     not_pd_total, runs = 0, []
@@ -422,7 +425,7 @@ def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         middle node, last round, 3 decimals) and ``chf_crit_parity`` (largest difference of this module's
         Chernoff-exponent pipeline from the study's, m).
     """
-    _networks(studies, labels)
+    reason = _networks(studies, labels, reason)
     cols: dict[str, dict[str, str]] = {}
     v: dict[str, Any] = {}
     parity = 0.0
@@ -450,12 +453,14 @@ def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
 
 
 @_on_networks
-def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) -> GlueValues:
+def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str], reason: str = "") -> GlueValues:
     """Both tables' glue values (:func:`baseline_table`, :func:`criteria_table`).
 
     Parameters
     ----------
     studies, labels : dict
+        As in :func:`baseline_table`.
+    reason : str
         As in :func:`baseline_table`.
 
     Returns
@@ -464,8 +469,8 @@ def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) ->
         The ``chf_cf_*`` values of :func:`baseline_table` and the ``chf_crit_*`` values of :func:`criteria_table`, by
         glue key.
     """
-    _networks(studies, labels)
-    return baseline_table(studies, labels)[1] | criteria_table(studies, labels)[1]
+    reason = _networks(studies, labels, reason)
+    return baseline_table(studies, labels, reason)[1] | criteria_table(studies, labels, reason)[1]
 
 
 #: The chapter's appendix, whose markdown reads this module's glue values.
