@@ -16,8 +16,8 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
-from fusion._validation import (FloatArray, allocation, instance_of, loop_work, mapping_of, scalar, sequence,
-                               text, work)
+from fusion._validation import (FloatArray, allocation, distinct, instance_of, loop_work, mapping_of, scalar,
+                               sequence, text, work)
 from fusion.optimise._ties import first_minimum
 from fusion.book.ledger import MIN_RUNS, Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
@@ -118,16 +118,19 @@ def nested_values(ks: tuple[float, ...] = (2.0, 10.0, 100.0, 1e4)) -> GlueValues
     TypeError
         ``ks`` is not a sequence of numbers.
     ValueError
-        ``ks`` is empty, or an entry is not a finite ratio > 1.
+        ``ks`` is empty, an entry is not a finite ratio > 1, or an entry is repeated (the values are keyed by the
+        entries' positions, and a repeated ratio would glue one result twice: the repeat rule of the chapter's
+        tables).
     """
     items = sequence(ks, "ks")
     if not items:
         raise ValueError("ks is empty (it must hold at least one variance ratio)")
     for j, k in enumerate(items):
         scalar(k, f"ks[{j}]", lo=1.0, lo_open=True)
+    distinct([float(k) for k in items], "ks")
     v: dict[str, Any] = {}
     err = 0.0
-    for j, k in enumerate(ks):
+    for j, k in enumerate(items):
         w = float(nested_gaussian_weight(k))
         num = ch.gaussian_chernoff_weights(np.zeros((2, 2)), np.stack([np.eye(2), k * np.eye(2)])).eps[0]
         err = max(err, abs(num - w))
