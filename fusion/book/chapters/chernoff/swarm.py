@@ -17,7 +17,7 @@ from matplotlib.figure import Figure
 from fusion._shown import shown
 from fusion._validation import is_integer
 from fusion.book._json import read_argument
-from fusion.book.benchmarks import _check_record
+from fusion.book.benchmarks import _check_measurements
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
@@ -193,13 +193,14 @@ _BENCH_KEYS = ("loop_seconds", "study_seconds", "study_seconds_workers", "identi
 
 def _current_measurements(bench: dict[str, Any], path: Path) -> list[dict[str, Any]]:
     """The measurements of a current benchmark record, each field :func:`benchmark_cost` reads checked, refused by a
-    ValueError naming ``path`` (the record rule of :func:`fusion.book.benchmarks.load_benchmark` first)."""
+    ValueError naming ``path`` (the measurements rule of :func:`fusion.book.benchmarks.load_benchmark` first; the
+    date is optional, read as ``"undated"``)."""
     where = f"path: benchmark result {path}"
-    missing = [k for k in ("date", "machine", "measurements", "runs") if k not in bench]
+    missing = [k for k in ("measurements", "runs") if k not in bench]
     if missing:
         raise ValueError(f"{where} lacks {missing}")
     try:
-        _check_record(bench, path)
+        _check_measurements(bench["measurements"], path)
     except ValueError as exc:
         raise ValueError(f"path: {exc}") from exc
     if not is_integer(bench["runs"]) or isinstance(bench["runs"], bool) or bench["runs"] < 1:
@@ -248,8 +249,8 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
         ``path`` not a path.
     ValueError
         ``path`` not an existing file holding a JSON object, or, when it has :data:`BENCH_SCHEMA`, without what is
-        read here (``date``, ``machine``, ``runs``, measurements of the stages of EM, the swarm and SLSQP, and the
-        keys of the study's timings), naming ``path`` and the file.
+        read here (``runs``, a list of measurements with finite values, those of the stages of EM, the swarm and
+        SLSQP, and the keys of the study's timings), naming ``path`` and the file.
     """
     bench = read_argument(path, "path", "benchmark result")
     date = str(bench.get("date", bench.get("timestamp", "undated")))[:10]
