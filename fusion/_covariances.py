@@ -90,6 +90,62 @@ def _covariance_magnitude(arr: FloatArray, name: str) -> None:
         raise ValueError(f"{name} has a variance below {MIN_VARIANCE:.3g}: products of its entries underflow")
 
 
+
+def as_covariances(P: ArrayLike, dim: int | None = None, name: str = "covs", rtol: float = 1e-9) -> FloatArray:
+    """A stack of covariances, shape (..., dim, dim), each checked by the rule of :func:`as_covariance`.
+
+    The batched form of that rule (finite, symmetric, positive definite, variances within the magnitude rule), for
+    the (B, M, d, d) inputs of the package's batched kernels: one stacked pass when every matrix is fine (exactly
+    symmetric, a batched Cholesky factorisation, the diagonals' magnitudes), else the matrices one by one, so that the
+    message names the first at fault by its index (``covs[1, 0] must be positive definite``).
+
+    Parameters
+    ----------
+    P : array_like, shape (..., n, n)
+        At least one matrix, of size ``n`` >= 1.
+    dim : int, optional
+        Required size ``n``.
+    name : str
+        The argument's name, used in the messages.
+    rtol : float
+        Relative asymmetry tolerance, as :func:`as_covariance`.
+
+    Returns
+    -------
+    ndarray, shape (..., n, n)
+        The covariances (their symmetric parts).
+
+    Raises
+    ------
+    TypeError
+        Not numeric, or complex.
+    ValueError
+        No matrix, a wrong shape, or a matrix refused by :func:`as_covariance`, naming it.
+    """
+    arr = _numeric(P, name)
+    if arr.ndim < 2 or arr.shape[-1] != arr.shape[-2] or arr.shape[-1] == 0 or 0 in arr.shape[:-2]:
+        raise ValueError(f"{name} must be a non-empty stack of square matrices (..., n, n) with n >= 1, got shape "
+                         f"{arr.shape}")
+    if dim is not None and arr.shape[-1] != dim:
+        raise ValueError(f"{name} must hold {dim}x{dim} matrices to match the state, got shape {arr.shape}")
+    with np.errstate(invalid="ignore"):  # NaN or inf: the one-by-one checks below say which
+        symmetric = not np.abs(arr - np.swapaxes(arr, -1, -2)).max() != 0.0
+    if symmetric:
+        try:
+            np.linalg.cholesky(arr)
+        except np.linalg.LinAlgError:
+            pass
+        else:
+            d = np.diagonal(arr, axis1=-2, axis2=-1)
+            if float(d.max()) <= MAX_MAGNITUDE and float(d.min()) >= MIN_VARIANCE:
+                return arr
+    out = np.empty_like(arr)
+    for idx in np.ndindex(*arr.shape[:-2]):
+        label = f"{name}[{', '.join(map(str, idx))}]" if idx else name
+        out[idx] = as_covariance(arr[idx], dim=arr.shape[-1], name=label, rtol=rtol)
+    return out
+
+
 _SMALL_PAIR = 8
 _F64 = np.dtype(np.float64)
 

@@ -901,6 +901,47 @@ def window(value: object, name: str, length: int, *, one_based: bool = False) ->
     return a, b
 
 
+def frame_slice(value: object, name: str, length: int) -> range:
+    """A slice of frames (or steps) to average over: a ``slice`` that selects at least one of ``length`` (rule 4).
+
+    A mean over no frame is NaN, and a slice of step 0 raises a ValueError naming nothing; both are refused here by
+    ``name``, as a window of samples is by :func:`window`.
+
+    Parameters
+    ----------
+    value : slice
+        The frames, 0-based, as Python slices them (negative bounds count from the end).
+    name : str
+        Argument name used in the messages.
+    length : int
+        Number of frames the slice selects from.
+
+    Returns
+    -------
+    range
+        The selected frames.
+
+    Raises
+    ------
+    TypeError
+        Not a slice, or bounds that are not integers.
+    ValueError
+        A step of 0, or no frame selected.
+    """
+    if not isinstance(value, slice):
+        raise TypeError(f"{name} must be a slice of frames, got {type(value).__name__} {shown(value, 60)}")
+    try:
+        frames = range(length)[value]
+    except TypeError:
+        raise TypeError(f"{name} must be a slice with integer bounds, got {shown(value, 60)}") from None
+    except ValueError as exc:  # "slice step cannot be zero"
+        raise ValueError(f"{name}: {exc} (got {shown(value, 60)})") from None
+    if not len(frames):
+        raise ValueError(f"{name} = {shown(value, 60)} selects no frame of {length} (a mean over no frame is "
+                         "undefined)")
+    return frames
+
+
 def step_scalar(value: float, name: str, power: int, *, zero: bool = False) -> float:
     """A step (a time step, a period) that the model raises to powers up to ``power`` (rule 2).
 
@@ -944,5 +985,5 @@ def step_scalar(value: float, name: str, power: int, *, zero: bool = False) -> f
 
 # The covariance rules live in fusion._covariances, which uses the rules above: imported last.
 from fusion._covariances import (  # noqa: E402, F401 (re-exported)
-    _SMALL_PAIR, _TINY, _covariance_magnitude, _finite_symmetric, as_covariance, as_semidefinite, covariance_pair,
-    diagonal_covariance, gaussian_pair)
+    _SMALL_PAIR, _TINY, _covariance_magnitude, _finite_symmetric, as_covariance, as_covariances, as_semidefinite,
+    covariance_pair, diagonal_covariance, gaussian_pair)

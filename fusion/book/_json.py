@@ -1,10 +1,11 @@
 """The JSON types of the book's serialisers (``to_dict`` of the ledger's records and evidence, and of exact comparisons),
-and the one reader of its stored JSON files (``read_object``)."""
+and the one reader of its stored JSON files (``read_object``; ``read_argument`` for a file a caller names)."""
 
 from __future__ import annotations
 
 import json
 import math
+import os
 from pathlib import Path
 from typing import Any, ForwardRef, TypeAlias, Union
 
@@ -71,3 +72,44 @@ def read_object(path: Path, what: str = "file") -> dict[str, Any]:
     if not isinstance(record, dict):
         raise ValueError(f"{what} {path}: the top level must be a JSON object, got {type(record).__name__}")
     return record
+
+
+def read_argument(value: object, name: str, what: str = "file") -> dict[str, Any]:
+    """The JSON object of a file given as the argument ``name`` of a public function, refused by that name (issue 35,
+    fuzz 21b class X).
+
+    :func:`read_object`'s rule for the file's content, after the argument's: a path (str or ``os.PathLike``) to an
+    existing regular file. Every refusal is a :class:`ValueError` (a :class:`TypeError` for a value that is no path)
+    that starts with ``name``, instead of a :class:`FileNotFoundError`, an :class:`IsADirectoryError` or an
+    unnamed :class:`json.JSONDecodeError`.
+
+    Parameters
+    ----------
+    value : str or os.PathLike
+        The argument.
+    name : str
+        Its name, for the messages.
+    what : str
+        What the file is (``"benchmark result"``, ``"notebook"``).
+
+    Returns
+    -------
+    dict
+        The file's top-level object.
+
+    Raises
+    ------
+    TypeError
+        ``value`` is not a str or an ``os.PathLike``.
+    ValueError
+        No such regular file, or its content refused by :func:`read_object`, naming ``name`` and the file.
+    """
+    if not isinstance(value, (str, os.PathLike)) or isinstance(os.fspath(value), bytes):
+        raise TypeError(f"{name} must be a pathlib.Path or a str, got {type(value).__name__}")
+    path = Path(value)
+    if not path.is_file():
+        raise ValueError(f"{name}: no {what} {path} ({'a directory' if path.is_dir() else 'no such file'})")
+    try:
+        return read_object(path, what)
+    except ValueError as exc:
+        raise ValueError(f"{name}: {exc}") from exc

@@ -93,7 +93,12 @@ def _check_record(record: Mapping[str, Any], path: Path) -> None:
     for k in ("date", "machine"):
         if not isinstance(record[k], str):
             raise ValueError(f"benchmark result {path}: {k} must be a string, got {shown(record[k])}")
-    ms = record["measurements"]
+    _check_measurements(record["measurements"], path)
+
+
+def _check_measurements(ms: object, path: Path) -> None:
+    """A record's ``measurements``: a list of objects, each ``key`` (where given) a string and each ``value`` (where
+    given) a finite number; refused by a ValueError naming the file and the field."""
     if not isinstance(ms, list):
         raise ValueError(f"benchmark result {path}: measurements must be a list, got {shown(ms)}")
     for i, m in enumerate(ms):

@@ -36,7 +36,6 @@ References
 
 from __future__ import annotations
 
-import json
 import re
 from pathlib import Path
 from typing import Any
@@ -45,15 +44,17 @@ import numpy as np
 import pandas as pd
 
 from fusion._docstrings import with_sections
-from fusion._validation import FloatArray, count, instance_of, mapping_of, one_of
+from fusion._validation import (FloatArray, _numeric, as_covariances, check_magnitude, count, instance_of, mapping_of,
+                                one_of)
 from fusion._validation import seed as check_seed
 from fusion.book.ledger import Comparison
 from fusion.book.tables import rounded, roundoff
 # the batched kernels of the package (private: array-level), as fusion.scenarios.fusion_networks uses them
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
 from fusion.book.style import METHOD_LABELS
-from fusion.book.chapters.chernoff.premise import RMSE_ROW
+from fusion.book.chapters.chernoff.premise import RMSE_ROW, _enough_runs
 from fusion.scenarios.fusion_networks import Network, NetworkScenario, NetworkStudy
+from fusion.book._json import read_argument
 from fusion.book.glue import GlueValues
 from fusion._shown import shown
 
@@ -112,17 +113,30 @@ def exponent_rule(rule: str, means: FloatArray, covs: FloatArray) -> FloatArray:
     rule : str
         A key of :data:`GAUSSIAN_RULES`.
     means : ndarray, shape (B, M, d)
+        Finite (B, M, d >= 1).
     covs : ndarray, shape (B, M, d, d)
-        Symmetric positive definite.
+        Symmetric positive definite (the package's covariance rule, ``fusion._covariances.as_covariances``).
 
     Returns
     -------
     ndarray, shape (B, M)
         On the simplex (all ones for ``naive_product``).
+
+    Raises
+    ------
+    TypeError
+        ``rule`` not a str, ``means`` or ``covs`` not real numbers.
+    ValueError
+        ``rule`` not a key of :data:`GAUSSIAN_RULES`; ``means`` not (B, M, d) with every size >= 1, NaN, infinite or
+        beyond the magnitude rule; ``covs`` not (B, M, d, d) or a matrix of it not a valid covariance (named by
+        its index).
     """
     one_of(rule, GAUSSIAN_RULES, "rule")
-    m, P = np.asarray(means, dtype=float), np.asarray(covs, dtype=float)
-    if m.ndim != 3 or P.shape != m.shape + (m.shape[-1],):
+    m = check_magnitude(_numeric(means, "means"), "means")
+    if m.ndim != 3 or 0 in m.shape:
+        raise ValueError(f"means must be (B, M, d) with B, M and d >= 1, got shape {m.shape}")
+    P = as_covariances(covs, dim=m.shape[-1], name="covs")
+    if P.shape != m.shape + (m.shape[-1],):
         raise ValueError(f"means must be (B, M, d) and covs (B, M, d, d), got {m.shape} and {P.shape}")
     return _rule_eps(rule, m, np.linalg.inv(P), np.linalg.slogdet(2 * np.pi * P)[1])
 
@@ -273,16 +287,30 @@ def network_mse(study: NetworkStudy, estimates: FloatArray) -> FloatArray:
     ----------
     study : NetworkStudy
     estimates : ndarray, shape (runs, N, 2)
+        Finite positions (m) within the magnitude rule (:func:`channel_filter`'s NaN estimates are not:
+        :func:`baseline_table` leaves out their runs before it scores the rest).
 
     Returns
     -------
     ndarray, shape (runs,)
         Per run, the squared distance of the estimates from the truth averaged over the nodes (m², 6 decimals).
+
+    Raises
+    ------
+    TypeError
+        ``study`` not a NetworkStudy, ``estimates`` not real numbers.
+    ValueError
+        ``estimates`` not of the study's shape, NaN, infinite or beyond the magnitude rule.
     """
     instance_of(study, NetworkStudy, "study")
-    e = np.asarray(estimates, dtype=float)
+    e = check_magnitude(_numeric(estimates, "estimates"), "estimates", subnormal=False)
     if e.shape != study.estimates["exact_posterior"].shape:
         raise ValueError(f"estimates must have shape {study.estimates['exact_posterior'].shape}, got {e.shape}")
+    return _mse(study, e)
+
+
+def _mse(study: NetworkStudy, e: FloatArray) -> FloatArray:
+    """Kernel of :func:`network_mse` (a NaN estimate gives its run a NaN, which the callers leave out)."""
     return np.round(np.mean(np.sum((e - study.truth) ** 2, axis=-1), axis=-1), 6)
 
 
@@ -291,22 +319,25 @@ def _cell(cmp: Comparison) -> str:
     return f"{d:.1f} [{lo:.1f}, {hi:.1f}] ({cmp.judgement().region})"
 
 
-def _networks(studies: object, labels: object) -> None:
+def _networks(studies: object, labels: object, reason: object) -> str:
     """The networks' studies and their column labels (fuzz 19, class D): the shared rule ``mapping_of`` for both,
-    every network of :data:`CRITERIA_NETWORKS` in each, before any work."""
+    every network of :data:`CRITERIA_NETWORKS` in each, and rule R4 on their runs (``_enough_runs``, fuzz 21b class
+    A), before any work; returns ``reason``."""
     mapping_of(studies, "studies", "NetworkStudy", values=NetworkStudy, maker="premise_study")
     mapping_of(labels, "labels", "column label", values=str)
     for key in CRITERIA_NETWORKS:
         _key(studies, key)  # type: ignore[arg-type]
         if key not in labels:  # type: ignore[operator]
             raise ValueError(f"labels must hold the network {shown(key)}, got {sorted(map(str, labels))}")  # type: ignore[call-overload]
+    return _enough_runs({k: studies[k] for k in CRITERIA_NETWORKS}, reason)  # type: ignore[index]
 
 
 #: The Raises section of the functions of the networks' studies and labels (:func:`_networks`), written once.
 _on_networks = with_sections(raises="""TypeError
-    ``studies`` or ``labels`` not a mapping, a study not a NetworkStudy or a label not a str.
+    ``studies`` or ``labels`` not a mapping, a study not a NetworkStudy, a label or ``reason`` not a str.
 ValueError
-    ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`.""")
+    ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`, or a network of fewer than
+    :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 
 
 def _key(studies: dict[str, NetworkStudy], key: str) -> NetworkStudy:
@@ -342,7 +373,7 @@ def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         ``chf_cf_runs`` (fewest runs of a network) and ``chf_cf_not_pd`` (node estimates without a positive definite
         fused information, over every network).
     """
-    _networks(studies, labels)
+    reason = _networks(studies, labels, reason)
     cols: dict[str, dict[str, str]] = {}
     v: dict[str, Any] = {}
     not_pd_total, runs = 0, []
@@ -351,7 +382,7 @@ def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         est, _, not_pd = channel_filter(st)
         not_pd_total += int(not_pd.sum())
         ok = ~np.any(not_pd, axis=1)
-        a = network_mse(st, est)[ok]
+        a = _mse(st, est)[ok]  # the runs with a NaN estimate (not positive definite) left out
         runs.append(int(ok.sum()))
         col = {"runs": f"{int(ok.sum())}", RMSE_ROW.format("known common information removed"): f"{np.sqrt(a.mean()):.2f}",
                RMSE_ROW.format(METHOD_LABELS["exact_posterior"]): f"{np.sqrt(st.mse('exact_posterior')[ok].mean()):.2f}"}
@@ -394,7 +425,7 @@ def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         middle node, last round, 3 decimals) and ``chf_crit_parity`` (largest difference of this module's
         Chernoff-exponent pipeline from the study's, m).
     """
-    _networks(studies, labels)
+    reason = _networks(studies, labels, reason)
     cols: dict[str, dict[str, str]] = {}
     v: dict[str, Any] = {}
     parity = 0.0
@@ -422,12 +453,14 @@ def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
 
 
 @_on_networks
-def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) -> GlueValues:
+def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str], reason: str = "") -> GlueValues:
     """Both tables' glue values (:func:`baseline_table`, :func:`criteria_table`).
 
     Parameters
     ----------
     studies, labels : dict
+        As in :func:`baseline_table`.
+    reason : str
         As in :func:`baseline_table`.
 
     Returns
@@ -436,8 +469,8 @@ def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) ->
         The ``chf_cf_*`` values of :func:`baseline_table` and the ``chf_crit_*`` values of :func:`criteria_table`, by
         glue key.
     """
-    _networks(studies, labels)
-    return baseline_table(studies, labels)[1] | criteria_table(studies, labels)[1]
+    reason = _networks(studies, labels, reason)
+    return baseline_table(studies, labels, reason)[1] | criteria_table(studies, labels, reason)[1]
 
 
 #: The chapter's appendix, whose markdown reads this module's glue values.
@@ -458,11 +491,32 @@ def appendix_referenced(values: GlueValues, notebook: Path = APPENDIX) -> GlueVa
     -------
     dict
         The subset of ``values`` whose keys appear as ``{glue:...}`key``` roles without a notebook prefix.
+
+    Raises
+    ------
+    TypeError
+        ``values`` not a mapping, ``notebook`` not a path.
+    ValueError
+        ``notebook`` not an existing file holding a JSON object (``fusion.book._json.read_argument``), or not a
+        notebook: no list ``cells`` of objects, or a markdown cell whose ``source`` is not a str or a list of str.
     """
     from collections.abc import Mapping
 
     instance_of(values, Mapping, "values")
-    cells = json.loads(Path(notebook).read_text(encoding="utf-8"))["cells"]
-    text = "".join("".join(c["source"]) for c in cells if c["cell_type"] == "markdown")
+    cells = read_argument(notebook, "notebook", "notebook").get("cells")
+    if not isinstance(cells, list) or not all(isinstance(c, dict) for c in cells):
+        raise ValueError(f"notebook {notebook}: cells must be a list of objects, got {shown(cells, 80)}")
+    sources = []
+    for i, c in enumerate(cells):
+        if c.get("cell_type") != "markdown":
+            continue
+        src = c.get("source", "")
+        if isinstance(src, list) and all(isinstance(line, str) for line in src):
+            src = "".join(src)
+        if not isinstance(src, str):
+            raise ValueError(f"notebook {notebook}: cells[{i}].source must be a str or a list of str, got "
+                             f"{shown(src, 80)}")
+        sources.append(src)
+    text = "".join(sources)
     keys = set(re.findall(r"\{glue(?::\w+)?\}`([A-Za-z0-9_]+)[:`]", text))
     return {k: v for k, v in values.items() if k in keys}

@@ -43,7 +43,8 @@ import pandas as pd
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
-from fusion._validation import FloatArray, as_array, count, instance_of, positive_scalar, text, unit_scalar
+from fusion._validation import (FloatArray, as_array, count, frame_slice, instance_of, positive_scalar, text,
+                                unit_scalar)
 from fusion._counts import counts, distinct, sequence
 from fusion.book.rulebook import judge_paired
 from fusion.book.tables import rounded, sci
@@ -769,9 +770,19 @@ def single_sensor_crb(sc: RangeBearingScenario, truths: ArrayLike, frames: slice
     -------
     dict
         ``"sensor<i>"`` (1-based) and ``"all"`` -> bound (m).
+
+    Raises
+    ------
+    TypeError
+        ``sc`` not a RangeBearingScenario, ``frames`` not a slice.
+    ValueError
+        ``truths`` not (runs, K, 4), or ``frames`` of step 0 or selecting none of the K frames.
     """
     instance_of(sc, RangeBearingScenario, "sc")
-    instance_of(frames, slice, "frames")
+    X = as_array(truths, "truths")
+    if X.ndim != 3 or X.shape[2] != 4:
+        raise ValueError(f"truths must be (runs, K, 4), got {X.shape}")
+    frame_slice(frames, "frames", X.shape[1])
 
     def rms(s: RangeBearingScenario) -> float:
         J = posterior_crb(s, truths)

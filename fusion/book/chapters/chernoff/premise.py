@@ -5,7 +5,8 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable
+import math
+from collections.abc import Callable, Mapping
 from typing import Any, TypeVar
 
 import matplotlib.pyplot as plt
@@ -16,9 +17,10 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import constant
 from fusion._docstrings import with_sections
-from fusion._validation import FloatArray, mapping_of, scalar, sequence
+from fusion._validation import (FloatArray, allocation, distinct, instance_of, loop_work, mapping_of, scalar,
+                               sequence, text, work)
 from fusion.optimise._ties import first_minimum
-from fusion.book.ledger import Comparison
+from fusion.book.ledger import MIN_RUNS, Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch
@@ -117,16 +119,19 @@ def nested_values(ks: tuple[float, ...] = (2.0, 10.0, 100.0, 1e4)) -> GlueValues
     TypeError
         ``ks`` is not a sequence of numbers.
     ValueError
-        ``ks`` is empty, or an entry is not a finite ratio > 1.
+        ``ks`` is empty, an entry is not a finite ratio > 1, or an entry is repeated (the values are keyed by the
+        entries' positions, and a repeated ratio would glue one result twice: the repeat rule of the chapter's
+        tables).
     """
     items = sequence(ks, "ks")
     if not items:
         raise ValueError("ks is empty (it must hold at least one variance ratio)")
     for j, k in enumerate(items):
         scalar(k, f"ks[{j}]", lo=1.0, lo_open=True)
+    distinct([float(k) for k in items], "ks")
     v: dict[str, Any] = {}
     err = 0.0
-    for j, k in enumerate(ks):
+    for j, k in enumerate(items):
         w = float(nested_gaussian_weight(k))
         num = ch.gaussian_chernoff_weights(np.zeros((2, 2)), np.stack([np.eye(2), k * np.eye(2)])).eps[0]
         err = max(err, abs(num - w))
@@ -156,7 +161,8 @@ def oracle_exponents(st: NetworkStudy, step: float = 0.02) -> tuple[FloatArray, 
     st : NetworkStudy
         A network of :data:`ORACLE_NETWORKS` (one frame, one round, full connectivity).
     step : float
-        Grid step on the simplex.
+        Grid step on the simplex, in (0, 1], with ``1 / step`` an integer (to round-off): the grid's points are the
+        exponent vectors whose entries are multiples of ``step``.
 
     Returns
     -------
@@ -167,9 +173,15 @@ def oracle_exponents(st: NetworkStudy, step: float = 0.02) -> tuple[FloatArray, 
 
     Raises
     ------
+    TypeError
+        ``st`` not a NetworkStudy, ``step`` not a real number.
     ValueError
-        A network with several exchanges or partial connectivity.
+        A network with several exchanges or partial connectivity; ``step`` not in (0, 1], ``1 / step`` not an
+        integer (0.7 would silently give a grid of step 1), or a grid so fine that its points (about
+        ``(1 / step)**(N - 1)``) times the runs are beyond the work or memory budget (rules 9, 17).
     """
+    instance_of(st, NetworkStudy, "st")
+    step = scalar(step, "step", lo=0.0, hi=1.0, lo_open=True)
     hit = _ORACLE_CACHE.get((id(st), step))
     if hit is not None and hit[0] is st:  # the studies are read-only: computed once per study
         return hit[1]
@@ -177,7 +189,14 @@ def oracle_exponents(st: NetworkStudy, step: float = 0.02) -> tuple[FloatArray, 
     if sc.frames != 1 or sc.rounds != 1 or sc.edges is not None:
         raise ValueError("st must be a network with one exchange and full connectivity")
     N = len(sc.nodes)
-    n = int(round(1.0 / step))
+    n = round(1.0 / step)
+    if abs(n * step - 1.0) > 1e-9:
+        raise ValueError(f"step must divide 1 (1 / step an integer, such as 0.02 or 0.25), got {shown(step)}: "
+                         f"1 / step is {1.0 / step:.6g}")
+    loop_work(((n + 1) ** (N - 1),), 0, "step")  # the grid's candidates, one Python step each
+    G = math.comb(n + N - 1, N - 1)  # the grid's points
+    work((st.runs, G, 8), "st and step")  # the fused means of every run at every point
+    allocation((st.runs, G, N, 2, 2), "st and step")  # their terms, (B, G, N, 2, 2) in the einsum
     grid = np.array([c for c in np.ndindex(*(n + 1,) * (N - 1)) if sum(c) <= n], dtype=float)
     E = np.column_stack([grid, n - grid.sum(axis=1)]) / n  # (G, N)
     J = np.linalg.inv(st.local_cov + 1e-9 * sc.prior_std**2 * np.eye(2))  # (B, N, 2, 2); the study's floor
@@ -229,34 +248,58 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
 
 #: Docstring entry of the functions of :func:`premise_studies`' result (:func:`fusion._docstrings.with_sections`).
 _studies_doc = with_sections("""studies : dict
-    :func:`premise_studies`.""", raises="""TypeError
-    ``studies`` not a mapping, or a value not a NetworkStudy.
+    :func:`premise_studies`.
+reason : str
+    Why fewer than :data:`~fusion.book.ledger.MIN_RUNS` runs of a network are enough, when they are (rule R4;
+    tests of small studies), as :func:`fusion.book.chapters.chernoff_criteria.baseline_table` takes it.""",
+                             raises="""TypeError
+    ``studies`` not a mapping, or a value not a NetworkStudy; ``reason`` not a str.
 ValueError
-    ``studies`` empty, or a key not a network of :data:`PREMISE_LABELS`.""")
+    ``studies`` empty, a key not a network of :data:`PREMISE_LABELS`, or a network of fewer than
+    :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 
 
-def _on_studies(fn: Callable[[dict[str, NetworkStudy]], _R]) -> Callable[[dict[str, NetworkStudy]], _R]:
+def _enough_runs(studies: Mapping[str, NetworkStudy], reason: object, name: str = "studies") -> str:
+    """Rule R4 on a mapping of network studies, before any work: every study of at least
+    :data:`~fusion.book.ledger.MIN_RUNS` runs, or a ``reason`` (fuzz 21b, class A: the paired comparisons refused a
+    short study naming their internal ``a and b`` and an argument ``reason`` the caller could not give).
+
+    Returns
+    -------
+    str
+        ``reason`` (a str).
+    """
+    reason = text(reason, "reason")
+    short = {str(k): st.runs for k, st in studies.items() if st.runs < MIN_RUNS}
+    if short and not reason:
+        raise ValueError(f"{name} holds networks of fewer than {MIN_RUNS} runs ({shown(short, 120)}): give more runs "
+                         "or a reason (the argument reason: why fewer runs are enough, rule R4)")
+    return reason
+
+
+def _on_studies(fn: Callable[[dict[str, NetworkStudy], str], _R]) -> Callable[..., _R]:
     """A function of :func:`premise_studies`'s mapping: checked by the shared rule ``mapping_of`` (fuzz 19,
-    D12-D14) and its keys by :data:`PREMISE_LABELS`, before any work; documented once."""
+    D12-D14), its keys by :data:`PREMISE_LABELS` and its run counts by rule R4 (``_enough_runs``), before any
+    work; documented once."""
     @functools.wraps(fn)
-    def checked(studies: dict[str, NetworkStudy]) -> _R:
+    def checked(studies: dict[str, NetworkStudy], reason: str = "") -> _R:
         mapping_of(studies, "studies", "network study", values=NetworkStudy, maker="premise_studies")
         unknown = [k for k in studies if k not in PREMISE_LABELS]
         if unknown:
             raise ValueError(f"studies holds keys that are not networks of PREMISE_LABELS: {shown(unknown, 120)}")
-        return fn(studies)
+        return fn(studies, _enough_runs(studies, reason))
     return _studies_doc(checked)
 
 
-def _wins(st: NetworkStudy, a: str, b: str) -> Comparison:
+def _wins(st: NetworkStudy, a: str, b: str, reason: str = "") -> Comparison:
     """Share of runs in which ``a`` has the lower MSE, against one half (a sign test read as a paired interval)."""
     win = (st.mse(a) < st.mse(b)).astype(float)
     return Comparison(win, np.full(win.size, 0.5), METHOD_LABELS[a], "a coin (half of the runs)", "greater",
-                      f"share of runs in which {METHOD_LABELS[a]} has the lower {_PMSE}", seed=st.seed)
+                      f"share of runs in which {METHOD_LABELS[a]} has the lower {_PMSE}", seed=st.seed, reason=reason)
 
 
 @_on_studies
-def premise_robust_values(studies: dict[str, NetworkStudy]) -> GlueValues:
+def premise_robust_values(studies: dict[str, NetworkStudy], reason: str = "") -> GlueValues:
     """The heavy tail of the mixture question, network by network: glue ``chf_pr_<k>_mix_*`` beyond the mean.
 
     Returns
@@ -278,7 +321,7 @@ def premise_robust_values(studies: dict[str, NetworkStudy]) -> GlueValues:
         order = np.argsort(-a)
         wins = int(np.sum(d < 0))
         ties = int(np.sum(d == 0))
-        _, lo, hi = _wins(st, "chernoff_pso", "ci_gaussian").interval()
+        _, lo, hi = _wins(st, "chernoff_pso", "ci_gaussian", reason).interval()
         p = float(_stats.binomtest(wins, d.size - ties, 0.5).pvalue) if d.size > ties else 1.0
         v.update({f"chf_pr_{key}_runs": st.runs, f"chf_pr_{key}_mix_median": rounded(float(np.median(d)), 2),
                   f"chf_pr_{key}_mix_win": rounded(wins / d.size, 3), f"chf_pr_{key}_mix_win_lo": rounded(0.5 + lo, 3),
@@ -289,12 +332,13 @@ def premise_robust_values(studies: dict[str, NetworkStudy]) -> GlueValues:
     return v
 
 
-def _pcmp(st: NetworkStudy, a: str, b: str) -> Comparison:
-    return Comparison(st.mse(a), st.mse(b), METHOD_LABELS[a], METHOD_LABELS[b], "less", _PMSE, seed=st.seed)
+def _pcmp(st: NetworkStudy, a: str, b: str, reason: str = "") -> Comparison:
+    return Comparison(st.mse(a), st.mse(b), METHOD_LABELS[a], METHOD_LABELS[b], "less", _PMSE, seed=st.seed,
+                      reason=reason)
 
 
 @_on_studies
-def premise_table(studies: dict[str, NetworkStudy]) -> pd.DataFrame:
+def premise_table(studies: dict[str, NetworkStudy], reason: str = "") -> pd.DataFrame:
     """The networks side by side: how non-Gaussian, each method's RMSE, the two paired questions, overconfidence.
 
     Returns
@@ -318,11 +362,11 @@ def premise_table(studies: dict[str, NetworkStudy]) -> pd.DataFrame:
             col[RMSE_ROW.format(METHOD_LABELS[m])] = f"{np.sqrt(st.mse(m).mean()):.2f}"
         for name, (a, b) in (("optimised − uniform exponents", ("chernoff_pso", "chernoff_uniform")),
                              ("mixture fusion − CI of Gaussians", ("chernoff_pso", "ci_gaussian"))):
-            d, lo, hi = _pcmp(st, a, b).interval()
+            d, lo, hi = _pcmp(st, a, b, reason).interval()
             col[f"{name} (m², 95 % interval)"] = f"{d:.1f} [{lo:.1f}, {hi:.1f}]"
         for m in ("naive_product", "chernoff_pso", "ci_gaussian"):
             col[f"NEES > 5.99 (share of nodes): {METHOD_LABELS[m]}"] = f"{st.overconfident(m).mean():.2f}"
-        col.update(_exponent_rows(key, st))
+        col.update(_exponent_rows(key, st, reason))
         cols[PREMISE_LABELS[key]] = col
     return pd.DataFrame(cols)
 
@@ -336,14 +380,15 @@ def _eps_star(st: NetworkStudy) -> str:
 _ORACLE_CV = "MSE oracle (cross-validated)"
 
 
-def _exponent_rows(key: str, st: NetworkStudy) -> dict[str, str]:
+def _exponent_rows(key: str, st: NetworkStudy, reason: str = "") -> dict[str, str]:
     """Rows of :func:`premise_table` on the exponents: the swarm's, the closed-form Chernoff, the MSE oracle's."""
     rows = {"mean ε* of the swarm (nodes 1, 2, 3; first exchange)": _eps_star(st),
             "MSE oracle ε (fixed, Gaussian summaries)": "—", RMSE_ROW.format(_ORACLE_CV): "—",
             "oracle − uniform exponents (m², 95 % interval)": "—"}
     if key in ORACLE_NETWORKS:
         e, mse = oracle_exponents(st)
-        d, lo, hi = Comparison(mse, st.mse("naive_product"), "oracle", "uniform", "less", _PMSE).interval()
+        d, lo, hi = Comparison(mse, st.mse("naive_product"), "oracle", "uniform", "less", _PMSE,
+                               reason=reason).interval()
         rows.update({"MSE oracle ε (fixed, Gaussian summaries)": ", ".join(f"{x:.2f}" for x in e),
                      RMSE_ROW.format(_ORACLE_CV): f"{np.sqrt(mse.mean()):.2f}",
                      "oracle − uniform exponents (m², 95 % interval)": f"{d:.1f} [{lo:.1f}, {hi:.1f}]"})
@@ -351,7 +396,7 @@ def _exponent_rows(key: str, st: NetworkStudy) -> dict[str, str]:
 
 
 @_on_studies
-def premise_figure(studies: dict[str, NetworkStudy]) -> Figure:
+def premise_figure(studies: dict[str, NetworkStudy], reason: str = "") -> Figure:
     """Figure ``fig-chf-premise``: the two paired questions per network, with their 95 % intervals.
 
     Returns
@@ -369,7 +414,7 @@ def premise_figure(studies: dict[str, NetworkStudy]) -> Figure:
                                                        "#0072B2"),
                                                       ("mixture fusion − CI of Gaussians", "chernoff_pso", "ci_gaussian",
                                                        "#009E73"))):
-        iv = np.array([_pcmp(studies[k], a, b).interval() for k in keys])
+        iv = np.array([_pcmp(studies[k], a, b, reason).interval() for k in keys])
         ax1.errorbar(iv[:, 0], y + off, xerr=[iv[:, 0] - iv[:, 1], iv[:, 2] - iv[:, 0]], fmt="o", color=c, capsize=3,
                      label=label)
     ax1.axvline(0.0, color="grey", lw=0.8)
@@ -391,7 +436,7 @@ _COLOR = {"naive_product": "#CC79A7", "ci_gaussian": "#009E73", "chernoff_pso": 
 
 
 @_on_studies
-def premise_values(studies: dict[str, NetworkStudy]) -> GlueValues:
+def premise_values(studies: dict[str, NetworkStudy], reason: str = "") -> GlueValues:
     """Glue values ``chf_pr_*`` of the networks (4 decimals unless stated).
 
     Returns
@@ -420,7 +465,7 @@ def premise_values(studies: dict[str, NetworkStudy]) -> GlueValues:
         v[f"chf_pr_{key}_gain"] = rounded(float(st.gm_gain[:, 0, j].mean()))
         for tag, (a, b) in (("eps", ("chernoff_pso", "chernoff_uniform")), ("mix", ("chernoff_pso", "ci_gaussian")),
                             ("cf", ("ci_gaussian", "naive_product"))):
-            c = _pcmp(st, a, b)
+            c = _pcmp(st, a, b, reason)
             d, lo, hi = c.interval()
             v.update({f"chf_pr_{key}_{tag}_d": rounded(d), f"chf_pr_{key}_{tag}_lo": rounded(lo),
                       f"chf_pr_{key}_{tag}_hi": rounded(hi), f"chf_pr_{key}_{tag}_word": _word(c)})
@@ -438,7 +483,7 @@ def premise_values(studies: dict[str, NetworkStudy]) -> GlueValues:
         v[f"chf_pr_{key}_runs"] = st.runs
         if key in ORACLE_NETWORKS:
             e, mse = oracle_exponents(st)
-            c = Comparison(mse, st.mse("naive_product"), "oracle", "uniform", "less", _PMSE)
+            c = Comparison(mse, st.mse("naive_product"), "oracle", "uniform", "less", _PMSE, reason=reason)
             d, lo, hi = c.interval()
             v.update({f"chf_pr_{key}_oracle_eps": ", ".join(f"{x:.2f}" for x in e),
                       f"chf_pr_{key}_oracle_d": rounded(d), f"chf_pr_{key}_oracle_lo": rounded(lo),

@@ -7,6 +7,7 @@ from __future__ import annotations
 import dataclasses
 import inspect
 
+from fusion._validation import instance_of
 from fusion.optimise.swarm import particle_swarm
 from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun
 from fusion.book.glue import GlueValues
@@ -78,7 +79,13 @@ def guarded_scenario(sc: RangeBearingScenario) -> RangeBearingScenario:
     -------
     RangeBearingScenario
         ``guard`` and ``central_guard`` set to :data:`COLLAPSE_FRACTION`.
+
+    Raises
+    ------
+    TypeError
+        ``sc`` not a RangeBearingScenario.
     """
+    instance_of(sc, RangeBearingScenario, "sc")
     return dataclasses.replace(sc, guard=COLLAPSE_FRACTION, central_guard=COLLAPSE_FRACTION)
 
 

@@ -5,7 +5,6 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 import inspect
-import json
 from enum import StrEnum
 from pathlib import Path
 from typing import Any
@@ -15,6 +14,10 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from fusion._shown import shown
+from fusion._validation import is_integer
+from fusion.book._json import read_argument
+from fusion.book.benchmarks import _check_measurements
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
@@ -184,6 +187,41 @@ PATENT_STAGES: tuple[BenchStage, ...] = (BenchStage.PARTICLE_FILTERS, BenchStage
                                          BenchStage.WEIGHTS)
 
 
+#: The study's timings that :func:`benchmark_cost` reads, by measurement ``key``.
+_BENCH_KEYS = ("loop_seconds", "study_seconds", "study_seconds_workers", "identical", "pso_over_slsqp")
+
+
+def _current_measurements(bench: dict[str, Any], path: Path) -> list[dict[str, Any]]:
+    """The measurements of a current benchmark record, each field :func:`benchmark_cost` reads checked, refused by a
+    ValueError naming ``path`` (the measurements rule of :func:`fusion.book.benchmarks.load_benchmark` first; the
+    date is optional, read as ``"undated"``)."""
+    where = f"path: benchmark result {path}"
+    missing = [k for k in ("measurements", "runs") if k not in bench]
+    if missing:
+        raise ValueError(f"{where} lacks {missing}")
+    try:
+        _check_measurements(bench["measurements"], path)
+    except ValueError as exc:
+        raise ValueError(f"path: {exc}") from exc
+    if not is_integer(bench["runs"]) or isinstance(bench["runs"], bool) or bench["runs"] < 1:
+        raise ValueError(f"{where}: runs must be a positive integer, got {shown(bench['runs'])}")
+    if "workers" in bench and (not is_integer(bench["workers"]) or isinstance(bench["workers"], bool)):
+        raise ValueError(f"{where}: workers must be an integer, got {shown(bench['workers'])}")
+    ms = bench["measurements"]
+    for i, m in enumerate(ms):
+        if "stage" in m and not (isinstance(m["stage"], str) and isinstance(m.get("what"), str) and ", " in m["what"]
+                                 and "value" in m):
+            raise ValueError(f"{where}: measurements[{i}] of a stage must hold a str stage, a value and a str what "
+                             f"('<study>, <label>: <unit>'), got {shown(m, 120)}")
+    stages = {m["stage"] for m in ms if "stage" in m}
+    keys = {m["key"] for m in ms if "key" in m and "value" in m}
+    lacks = [str(st) for st in (BenchStage.EM, BenchStage.OPTIMISER, BenchStage.REFERENCE) if st not in stages]
+    lacks += [k for k in _BENCH_KEYS if k not in keys]
+    if lacks:
+        raise ValueError(f"{where} lacks the measurements {lacks}")
+    return ms
+
+
 def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
     """Cost per frame by stage from ``benchmarks/results/chernoff.json``, and the study's measured cost.
 
@@ -204,8 +242,17 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
         their results are identical, and the verdict against 60 s for 100 runs on 2 cores), ``chf_bench_stage_text``
         (EM's share of the patent's own stages B-I and the runs measured) and ``chf_pso_ratio_text`` (time of the
         swarm / time of SLSQP on the same samples).
+
+    Raises
+    ------
+    TypeError
+        ``path`` not a path.
+    ValueError
+        ``path`` not an existing file holding a JSON object, or, when it has :data:`BENCH_SCHEMA`, without what is
+        read here (``runs``, a list of measurements with finite values, those of the stages of EM, the swarm and
+        SLSQP, and the keys of the study's timings), naming ``path`` and the file.
     """
-    bench = json.loads(Path(path).read_text(encoding="utf-8"))
+    bench = read_argument(path, "path", "benchmark result")
     date = str(bench.get("date", bench.get("timestamp", "undated")))[:10]
     current = bench.get("schema") == BENCH_SCHEMA
     pending = "not measured yet for the current pipeline (run benchmarks/bench_chernoff.py on an idle machine)"
@@ -213,7 +260,7 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
         empty = pd.DataFrame({"stage": [], "ms per frame": []}).set_index("stage")
         return empty, {"chf_bench_date": date, "chf_bench_current": False, "chf_bench_text": pending,
                        "chf_bench_stage_text": pending, "chf_pso_ratio_text": pending}
-    ms = bench["measurements"]
+    ms = _current_measurements(bench, Path(path))
     stages = [m for m in ms if "stage" in m]
     label = {m["stage"]: m["what"].split(", ", 1)[1].rsplit(":", 1)[0] for m in stages}
     cost = pd.DataFrame({"stage": [m["stage"] for m in stages],

@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, count, frame_slice, instance_of
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import _frame, rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, METHODS, RangeBearingScenario, TrackingRun, min_local_ess,
@@ -48,7 +48,13 @@ def scenario_values(sc: RangeBearingScenario, runs: int) -> GlueValues:
         (importance samples R), ``chf_central`` (particles of the centralised filter), ``chf_mf``
         (components of the first-order fused mixture, :math:`S^N`) and ``chf_mf_10``
         (:math:`3^{10}`, the count for ten nodes).
+
+    Raises
+    ------
+    TypeError
+        ``sc`` not a RangeBearingScenario.
     """
+    instance_of(sc, RangeBearingScenario, "sc")
     n = len(sc.sensors)
     return {"chf_runs": runs, "chf_frames": sc.frames, "chf_n": n, "chf_q_particles": sc.n_particles,
             "chf_s": sc.n_components, "chf_r": sc.n_samples, "chf_central": sc.n_central,
@@ -70,7 +76,16 @@ def message_sizes(sc: RangeBearingScenario, d: int = 4) -> GlueValues:
     dict
         ``chf_msg_gm`` (numbers of a mixture: S × (1 weight + d mean + d(d+1)/2 covariance)), ``chf_msg_pf`` (numbers
         of the weighted particles: Q × (d + 1)), ``chf_msg_d`` and ``chf_msg_s`` (int).
+
+    Raises
+    ------
+    TypeError
+        ``sc`` not a RangeBearingScenario, ``d`` not an integer.
+    ValueError
+        ``d`` below 1.
     """
+    instance_of(sc, RangeBearingScenario, "sc")
+    d = count(d, "d", minimum=1)
     return {"chf_msg_gm": sc.n_components * (1 + d + d * (d + 1) // 2), "chf_msg_pf": sc.n_particles * (d + 1),
             "chf_msg_d": d, "chf_msg_s": sc.n_components}
 
@@ -321,10 +336,14 @@ def per_run_nees(runs: list[TrackingRun], key: str, frames: slice = LATE) -> Flo
 
     Raises
     ------
+    TypeError
+        ``frames`` not a slice.
     ValueError
-        ``key`` is not a method with a covariance, or ``runs`` is empty.
+        ``key`` is not a method with a covariance, ``runs`` is empty, or ``frames`` of step 0 or selecting no frame.
     """
-    return np.round(nees_per_frame(runs, key)[:, frames].mean(axis=1), 4)  # see per_run_mse
+    nees = nees_per_frame(runs, key)
+    frame_slice(frames, "frames", nees.shape[1])
+    return np.round(nees[:, frames].mean(axis=1), 4)  # see per_run_mse
 
 
 def gain_values(runs: list[TrackingRun]) -> GlueValues:
