@@ -116,7 +116,8 @@ def test_oracle_exponents_refuses_a_non_study() -> None:
     _refused(lambda: chf.oracle_exponents("x"), TypeError, "st")
 
 
-@pytest.mark.parametrize("step", [1.0, 0.5, 0.25, 0.1, 0.05, 0.02, np.float64(0.02), 1 / 3])
+@pytest.mark.parametrize("step", [1.0, 0.5, 0.25, 0.1, 0.05, 0.02, np.float64(0.02), 1 / 3,
+                                  np.float32(0.1), np.float32(0.02), np.array(np.float32(0.1))])   # fuzz 22b R
 def test_oracle_exponents_keeps_every_step_that_divides_one(study, step) -> None:
     """Valid steps keep working, and the exponents lie on the grid of ``step`` (0.7 used to give the grid of 1)."""
     e, mse = chf.oracle_exponents(study, step)
