@@ -40,3 +40,56 @@ def test_k_load_reports_a_quantities_subschema_error(tmp_path, entry):
         C.load(p)
     # the schema load runs (not only load's own Python checks) reports it
     assert list(jsonschema.Draft202012Validator(C._PLAIN_SCHEMA).iter_errors(doc))
+
+
+# N: one bound on an alt text, in characters, shared by set_figure_alt and png_description
+def _png_of(fig):
+    import io
+    from fusion.book import style as S
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=10, metadata={"Description": S.figure_alt(fig)})
+    return buf.getvalue()
+
+
+@pytest.mark.parametrize("char", ["a", "é", "→"])   # tEXt (Latin-1) and iTXt (UTF-8, up to 3 bytes a character)
+def test_n_alt_bound_is_characters_and_shared(char):
+    import matplotlib.pyplot as plt
+    from fusion.book import style as S
+    fig, _ = S.new_figure()
+    try:
+        longest = char * S._MAX_DESCRIPTION
+        S.set_figure_alt(fig, longest)          # at the bound: accepted, and read back whole
+        assert S.png_description(_png_of(fig)) == longest
+        with pytest.raises(ValueError, match="^alt must be at most 100,000 characters"):
+            S.set_figure_alt(fig, longest + char)
+        assert S.figure_alt(fig) == longest      # the refused alt left the figure's alt as it was
+    finally:
+        plt.close(fig)
+
+
+def test_n_png_description_refuses_beyond_the_bound_in_characters():
+    import struct
+    import zlib
+    from fusion.book import style as S
+
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+    head = b"\x89PNG\r\n\x1a\n"
+    text = ("→" * (S._MAX_DESCRIPTION + 1)).encode("utf-8")
+    png = head + chunk(b"iTXt", b"Description\0\0\0\0\0" + text) + chunk(b"IEND", b"")
+    with pytest.raises(ValueError, match="100,001 characters, beyond 100,000"):
+        S.png_description(png)
+
+
+# M: describe_figure keeps to MAX_ALT_CHARS, " …" included
+@pytest.mark.parametrize("title", ["t" * 800, "word " * 200, "w" * 697 + " " + "x" * 50])
+def test_m_describe_figure_at_most_max_alt_chars(title):
+    import matplotlib.pyplot as plt
+    from fusion.book import style as S
+    fig, ax = S.new_figure()
+    try:
+        ax.set_title(title)
+        out = S.describe_figure(fig)
+        assert len(out) <= S.MAX_ALT_CHARS and out.endswith(" …")
+    finally:
+        plt.close(fig)

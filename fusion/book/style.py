@@ -653,8 +653,11 @@ FIGURE_ALT: dict[str, str] = constant({})
 
 #: Longest alt text written into a PNG (characters); longer descriptions are cut at a word.
 MAX_ALT_CHARS = 700
-# Longest PNG description png_description reads (bytes), far above any alt text; bounds the inflation.
+# Longest alt text (characters), far above any real one: set_figure_alt refuses a longer one, and png_description
+# refuses a longer PNG description, so that a figure the package accepts is one its PNG reader reads (fuzz 22a N).
 _MAX_DESCRIPTION = 100_000
+# Most bytes a description of _MAX_DESCRIPTION characters takes (UTF-8, in an iTXt chunk); bounds the inflation.
+_MAX_DESCRIPTION_BYTES = 4 * _MAX_DESCRIPTION
 
 _ALT_ATTR = "_fusion_alt"
 
@@ -781,7 +784,7 @@ def describe_figure(fig: Figure) -> str:
         parts.append("Legend: " + ", ".join(dict.fromkeys(fig_series)) + ".")
     out = " ".join(parts) if parts else "Figure."
     if len(out) > MAX_ALT_CHARS:
-        out = out[:MAX_ALT_CHARS].rsplit(" ", 1)[0].rstrip(",;:") + " …"
+        out = out[:MAX_ALT_CHARS - 2].rsplit(" ", 1)[0].rstrip(",;:") + " …"   # " …" counts in the bound
     return out
 
 
@@ -799,7 +802,8 @@ def set_figure_alt(fig: Figure, alt: str | None) -> None:
     TypeError
         If ``fig`` is not a Figure or ``alt`` not a string.
     ValueError
-        If ``alt`` is blank or looks like a file path.
+        If ``alt`` is blank, looks like a file path, or is longer than ``_MAX_DESCRIPTION`` (100,000) characters
+        once its runs of white space are made single spaces (the bound :func:`png_description` reads).
     """
     instance_of(fig, Figure, "fig")
     if alt is None:
@@ -811,7 +815,10 @@ def set_figure_alt(fig: Figure, alt: str | None) -> None:
 
     if not alt.strip() or re.search(r"\.(png|svg|jpe?g|pdf)\b|^[\w./-]+/[\w.-]+$", alt.strip()):
         raise ValueError(f"alt must say what the figure shows, got {shown(alt)}")
-    setattr(fig, _ALT_ATTR, " ".join(alt.split()))
+    alt = " ".join(alt.split())
+    if len(alt) > _MAX_DESCRIPTION:
+        raise ValueError(f"alt must be at most {_MAX_DESCRIPTION:,} characters (a sentence or two), got {len(alt):,}")
+    setattr(fig, _ALT_ATTR, alt)
 
 
 def figure_alt(fig: Figure) -> str:
@@ -867,8 +874,9 @@ def png_description(data: bytes) -> str | None:
     TypeError
         ``data`` not bytes (a ``str``, a path, None: read the file's bytes first).
     ValueError
-        ``data`` holds a description longer than ``_MAX_DESCRIPTION`` (100,000) characters, or a compressed one
-        inflating beyond it (read in bounded steps: a small file cannot inflate to gigabytes). An alt text is a
+        ``data`` holds a description longer than ``_MAX_DESCRIPTION`` (100,000) characters (the bound
+        :func:`set_figure_alt` puts on an alt text), or a compressed one inflating beyond the bytes that many
+        characters can take (read in bounded steps: a small file cannot inflate to gigabytes). An alt text is a
         sentence or two (:data:`MAX_ALT_CHARS` for the automatic ones).
     """
     import struct
@@ -882,12 +890,12 @@ def png_description(data: bytes) -> str | None:
     def inflate(raw: bytes) -> bytes | None:
         d = zlib.decompressobj()
         try:
-            out = d.decompress(raw, _MAX_DESCRIPTION + 1)
+            out = d.decompress(raw, _MAX_DESCRIPTION_BYTES + 1)
         except zlib.error:
             return None
-        if len(out) > _MAX_DESCRIPTION:
-            raise ValueError(f"data: the PNG's Description chunk inflates beyond {_MAX_DESCRIPTION:,} bytes "
-                             "(not an alt text)")
+        if len(out) > _MAX_DESCRIPTION_BYTES:
+            raise ValueError(f"data: the PNG's Description chunk inflates beyond {_MAX_DESCRIPTION_BYTES:,} bytes "
+                             f"(more than {_MAX_DESCRIPTION:,} characters: not an alt text)")
         return out if d.eof else None   # cut short: malformed
 
     pos = 8
@@ -918,11 +926,15 @@ def png_description(data: bytes) -> str | None:
             text = inflate(text) if compressed else text
         if text is None:
             return None
-        if len(text) > _MAX_DESCRIPTION:
-            raise ValueError(f"data: the PNG's Description chunk holds {len(text):,} bytes, beyond "
-                             f"{_MAX_DESCRIPTION:,} (not an alt text)")
+        if len(text) > _MAX_DESCRIPTION_BYTES:   # more bytes than the longest alt text takes: not decoded
+            raise ValueError(f"data: the PNG's Description chunk holds {len(text):,} bytes, more than "
+                             f"{_MAX_DESCRIPTION:,} characters can take (not an alt text)")
         try:
-            return text.decode("latin-1" if kind != b"iTXt" else "utf-8")
+            out = text.decode("latin-1" if kind != b"iTXt" else "utf-8")
         except UnicodeDecodeError:
             return None
+        if len(out) > _MAX_DESCRIPTION:   # counted in characters, as set_figure_alt counts them
+            raise ValueError(f"data: the PNG's Description chunk holds {len(out):,} characters, beyond "
+                             f"{_MAX_DESCRIPTION:,} (not an alt text)")
+        return out
     return None
