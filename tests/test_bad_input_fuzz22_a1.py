@@ -11,6 +11,7 @@ from pathlib import Path
 import jsonschema
 import pytest
 import yaml
+from hypothesis import given, settings, strategies as st
 
 from fusion.book import claims as C
 
@@ -93,3 +94,41 @@ def test_m_describe_figure_at_most_max_alt_chars(title):
         assert len(out) <= S.MAX_ALT_CHARS and out.endswith(" …")
     finally:
         plt.close(fig)
+
+
+# P: power_of_ten's mantissa is the digits of a finite number
+@pytest.mark.parametrize("m", ["", "nan", "abc", "1.5×10²", "inf", "1.", ".5", "1e3", " 1", "١"])
+def test_p_power_of_ten_refuses_a_mantissa_that_is_not_digits(m):
+    from fusion.book import tables as T
+    with pytest.raises(ValueError, match="^mantissa must be the digits of a finite number"):
+        T.power_of_ten(m, 3)
+
+
+@given(st.decimals(allow_nan=False, allow_infinity=False, places=3), st.integers(-400, 400))
+@settings(max_examples=100, deadline=None)
+def test_p_power_of_ten_takes_every_finite_number_s_digits(d, e):
+    from fusion.book import tables as T
+    m = f"{d:f}"
+    out = T.power_of_ten(m, e)
+    assert out.endswith(str(e).translate(T._SUPERSCRIPT))
+
+
+# H: highlight_mismatches' uuid is an HTML/CSS identifier
+def _table():
+    from fusion.book import tables as T
+    return T.side_by_side([1.0, 2.0], [1.0, 2.1], ["a", "b"], decimals=1)
+
+
+@pytest.mark.parametrize("uuid", ["", "a b", 'x"><img src=q>', "1abc", "-x", "a.b", "a#b", "é"])
+def test_h_highlight_mismatches_refuses_a_uuid_that_is_not_an_identifier(uuid):
+    from fusion.book import tables as T
+    with pytest.raises(ValueError, match="^uuid must be an HTML id prefix"):
+        T.highlight_mismatches(_table(), 1, uuid=uuid)
+
+
+@given(st.from_regex(r"[A-Za-z][A-Za-z0-9_-]{0,20}", fullmatch=True))
+@settings(max_examples=30, deadline=None)
+def test_h_highlight_mismatches_takes_an_identifier_and_the_highlight_reaches_its_cell(uuid):
+    from fusion.book import tables as T
+    html = T.highlight_mismatches(_table(), 1, uuid=uuid).to_html()
+    assert f"#T_{uuid}_row1_col1" in html and f'id="T_{uuid}_row1_col1"' in html
