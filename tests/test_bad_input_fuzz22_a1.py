@@ -132,3 +132,71 @@ def test_h_highlight_mismatches_takes_an_identifier_and_the_highlight_reaches_it
     from fusion.book import tables as T
     html = T.highlight_mismatches(_table(), 1, uuid=uuid).to_html()
     assert f"#T_{uuid}_row1_col1" in html and f'id="T_{uuid}_row1_col1"' in html
+
+
+# T: a wrong type is a TypeError naming the argument; the caller's argument is the one named
+@pytest.mark.parametrize("chapter", [2, Path("notebooks/02_b"), b"notebooks/02_b", 2.0])
+def test_t_ledger_file_refuses_a_chapter_that_is_not_a_str(chapter):
+    from fusion.book.ledger import Source
+    s = Source("k", "s", "t", "notebooks/01_a", 1, ("notebooks/01_a", "notebooks/02_b"))
+    with pytest.raises(TypeError, match="^chapter must be"):
+        s.ledger_file(chapter)
+    assert s.ledger_file("notebooks/02_b") == "k-02.json" and s.ledger_file() == "k-01.json"
+
+
+def test_t_stochastic_readings_names_root(tmp_path):
+    from fusion.book import stability as S
+    f = tmp_path / "README.md"
+    f.write_text("x")
+    for root in (f, tmp_path / "missing"):
+        with pytest.raises(ValueError, match="^root must be"):
+            S.stochastic_readings(root)
+    with pytest.raises(TypeError, match="^root must be"):
+        S.stochastic_readings(3)
+
+
+# W: a folder or a dangling symlink under a ledger file's name, in a valid folder
+def _make(p, kind):
+    import os
+    if kind == "dir":
+        p.mkdir()
+    else:
+        os.symlink(p.parent / "nonexistent-target", p)
+
+
+def _ledger():
+    from fusion.book.ledger import Claim, Ledger, Proposition
+    L = Ledger("lecture003", "notebooks/02_lecture_weighting")
+    L.add(Claim("lec-x-1", "lecture003", "§1", "a claim", "1.0", Proposition(True, "ok"), "https://example.org",
+                headline=True))
+    return L
+
+
+@pytest.mark.parametrize("kind", ["dir", "link"])
+def test_w_ledger_write_refuses_a_non_file_under_the_file_s_name(tmp_path, kind):
+    L = _ledger()
+    _make(tmp_path / L.filename, kind)
+    with pytest.raises(ValueError, match=rf"^directory holds {L.filename}, which is"):
+        L.write(tmp_path)
+
+
+def test_w_ledger_write_overwrites_a_file_and_follows_a_link_to_one(tmp_path):
+    L = _ledger()
+    target = tmp_path / "elsewhere.json"
+    target.write_text("not json")
+    (tmp_path / L.filename).symlink_to(target)
+    L.write(tmp_path)
+    assert json.loads(target.read_text(encoding="utf-8"))["source"] == "lecture003"
+
+
+@pytest.mark.parametrize("kind", ["dir", "link"])
+def test_w_stochastic_readings_refuses_a_non_file_ledger_entry_naming_it(tmp_path, kind):
+    import shutil
+    from fusion.book import stability as S
+    (tmp_path / "_toc.yml").write_text("format: jb-book\nroot: index\n")
+    shutil.copytree(ROOT / "book" / "claims", tmp_path / "book" / "claims")
+    shutil.copytree(ROOT / "book" / "ledger", tmp_path / "book" / "ledger")
+    assert S.stochastic_readings(tmp_path)          # the copy reads
+    _make(tmp_path / "book" / "ledger" / "zz.json", kind)
+    with pytest.raises(ValueError, match=r"^ledger file .*zz\.json: not a readable file"):
+        S.stochastic_readings(tmp_path)
