@@ -200,3 +200,49 @@ def test_w_stochastic_readings_refuses_a_non_file_ledger_entry_naming_it(tmp_pat
     _make(tmp_path / "book" / "ledger" / "zz.json", kind)
     with pytest.raises(ValueError, match=r"^ledger file .*zz\.json: not a readable file"):
         S.stochastic_readings(tmp_path)
+
+
+# A: new_figure's dpi and figsize checked by name before any figure is made; audit_figure checks the size first
+@pytest.mark.parametrize("kw,name,kind", [
+    (dict(dpi=1e4), "dpi", ValueError), (dict(dpi=float("nan")), "dpi", ValueError), (dict(dpi=0), "dpi", ValueError),
+    (dict(dpi=-5), "dpi", ValueError), (dict(dpi="100"), "dpi", TypeError),
+    (dict(figsize=(1e6, 1e6)), "figsize", ValueError), (dict(figsize=(7.5, 1e5)), "figsize", ValueError),
+    (dict(figsize=(float("nan"), 3)), "figsize", ValueError), (dict(figsize=(1e-6, 1e-6)), "figsize", ValueError),
+    (dict(figsize=7.5), "figsize", TypeError), (dict(figsize=(7.5, 3, 1)), "figsize", TypeError),
+])
+def test_a_new_figure_refuses_a_size_or_dpi_outside_the_book_s_range(kw, name, kind):
+    import matplotlib.pyplot as plt
+    from fusion.book import style as S
+    before = plt.get_fignums()
+    with pytest.raises(kind, match=f"^{name} must be"):
+        S.new_figure(1, 1, **kw)
+    assert plt.get_fignums() == before      # refused before any figure was made
+
+
+@given(st.floats(*__import__("fusion.book.style", fromlist=["x"]).FIGURE_SIDE_RANGE_IN),
+       st.floats(*__import__("fusion.book.style", fromlist=["x"]).FIGURE_SIDE_RANGE_IN),
+       st.sampled_from([72, 100, 150.0]))
+@settings(max_examples=15, deadline=None)
+def test_a_new_figure_takes_sizes_within_the_range(w, h, dpi):
+    import matplotlib.pyplot as plt
+    from fusion.book import style as S
+    fig, _ = S.new_figure(1, 1, figsize=(w, h), dpi=dpi)
+    plt.close(fig)
+
+
+@pytest.mark.parametrize("size,dpi,wide", [((1e6, 1e6), 100, True), ((7.5, 1e5), 100, False),
+                                           ((7.0, 3.0), 1e4, False), ((30.0, 3.0), 100, True)])
+def test_a_audit_figure_reports_the_size_before_drawing(monkeypatch, size, dpi, wide):
+    import matplotlib.pyplot as plt
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from fusion.book import figures as F
+    fig = plt.figure(figsize=(7.0, 3.0))
+    try:
+        fig.set_size_inches(*size)
+        fig.set_dpi(dpi)
+        monkeypatch.setattr(FigureCanvasAgg, "draw", lambda self: pytest.fail("drew the figure"))
+        with pytest.raises(F.FigureStyleError, match="figure not drawn: its (figsize|dpi) must be") as e:
+            F.audit_figure(fig)
+        assert ("in wide (> 7.5 in)" in str(e.value)) == wide
+    finally:
+        plt.close(fig)

@@ -22,7 +22,8 @@ from fusion.book.tables import _SUPERSCRIPT
 
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES",
            "FIGURE_LABELS", "LABEL_PATTERNS", "FIGURE_ALT", "use_book_style", "new_figure", "color", "method_style",
-           "is_registered_label", "MAX_ALT_CHARS", "plain_math", "describe_figure", "set_figure_alt", "figure_alt", "png_description"]
+           "is_registered_label", "MAX_ALT_CHARS", "plain_math", "describe_figure", "set_figure_alt", "figure_alt", "png_description",
+           "FIGURE_SIDE_RANGE_IN", "FIGURE_DPI_RANGE"]
 
 #: Colour of each method, used in every chapter.
 METHOD_COLORS: dict[str, str] = constant({
@@ -479,6 +480,27 @@ def _figure_keywords() -> frozenset[str]:
     return frozenset(names - {"nrows", "ncols"})
 
 
+#: Sides of a figure the book draws (inches) and its resolutions (dots per inch): the book's are 100 dpi and at most
+#: 7.5 in wide (:data:`fusion.book.figures.MAX_WIDTH_IN`); beyond these a figure is no page's and drawing it can
+#: ask for gigabytes (fuzz 22a A). :func:`new_figure` refuses a size or dpi outside them, ``audit_figure`` before
+#: it draws.
+FIGURE_SIDE_RANGE_IN = (0.5, 20.0)
+FIGURE_DPI_RANGE = (10.0, 300.0)
+
+
+def _figure_size(figsize: object, dpi: object) -> tuple[tuple[float, float], float]:
+    """``figsize`` and ``dpi`` checked against :data:`FIGURE_SIDE_RANGE_IN` and :data:`FIGURE_DPI_RANGE`:
+    TypeError naming the argument for a non-number (a figsize that is not a pair), ValueError for NaN, an infinity
+    or a value outside the range. The one check of :func:`new_figure` and ``audit_figure``."""
+    from fusion._validation import scalar
+
+    if isinstance(figsize, (str, bytes)) or not hasattr(figsize, "__len__") or len(figsize) != 2:  # type: ignore[arg-type]
+        raise TypeError(f"figsize must be a pair (width, height) in inches, got {shown(figsize)}")
+    lo, hi = FIGURE_SIDE_RANGE_IN
+    w, h = (scalar(v, "figsize", lo, hi) for v in figsize)  # type: ignore[union-attr]
+    return (w, h), scalar(dpi, "dpi", *FIGURE_DPI_RANGE)
+
+
 def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure, Axes]:
     """Create a figure in the book style; keyword arguments go to :func:`matplotlib.pyplot.subplots`.
 
@@ -503,11 +525,14 @@ def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure
         ``nrows`` or ``ncols`` not an integer, or a keyword that :func:`matplotlib.pyplot.subplots` does not take
         (checked before any figure is made).
     ValueError
-        ``nrows`` or ``ncols`` outside 1-16.
+        ``nrows`` or ``ncols`` outside 1-16; a ``figsize`` side outside :data:`FIGURE_SIDE_RANGE_IN` or a
+        ``dpi`` outside :data:`FIGURE_DPI_RANGE` (NaN included), named (a figure wider than the page's
+        7.5 in but within the range is made: ``audit_figure`` reports it).
     """
     nrows = count(nrows, "nrows", maximum=_MAX_PANELS)
     ncols = count(ncols, "ncols", maximum=_MAX_PANELS)
     keywords(kwargs, _figure_keywords(), "new_figure")
+    _figure_size(kwargs.get("figsize", (7.0, 3.6)), kwargs.get("dpi", 100))   # the book style's defaults
     use_book_style()
     fig, ax = plt.subplots(nrows, ncols, **kwargs)  # type: ignore[arg-type]
     return fig, ax
