@@ -246,3 +246,36 @@ def test_a_audit_figure_reports_the_size_before_drawing(monkeypatch, size, dpi, 
         assert ("in wide (> 7.5 in)" in str(e.value)) == wide
     finally:
         plt.close(fig)
+
+
+# D7 (decided: documented): plain_math drops every brace, balanced or not, and never raises on malformed TeX
+@given(st.text(alphabet="${}\\^_ abfrcsigma0123", max_size=40))
+@settings(max_examples=100, deadline=None)
+def test_d7_plain_math_gives_plain_text_for_any_formula(tex):
+    from fusion.book import style as S
+    out = S.plain_math(tex)
+    assert not set(out) & set("${}\\") and out == " ".join(out.split())
+
+
+def test_d7_plain_math_documented_examples():
+    from fusion.book import style as S
+    assert S.plain_math("$\\frac{a}{b}$") == "fracab" and S.plain_math("$\\frac{a}{") == "fraca"
+
+
+# D8 (decided: documented): side_by_side refuses a NaN or infinite value; a table built otherwise skips it
+@pytest.mark.parametrize("bad", [float("nan"), float("inf")])
+def test_d8_side_by_side_refuses_a_missing_value_naming_it(bad):
+    from fusion.book import tables as T
+    with pytest.raises(ValueError, match="^published"):
+        T.side_by_side([1.0, bad], [1.0, 2.0], ["a", "b"])
+    with pytest.raises(ValueError, match="^reproduced"):
+        T.side_by_side([1.0, 2.0], [1.0, bad], ["a", "b"])
+
+
+def test_d8_mismatches_skips_a_missing_published_value_in_a_table_built_otherwise():
+    import numpy as np
+    from fusion.book import tables as T
+    tab = T.side_by_side([1.0, 2.0], [1.0, 2.5], ["a", "b"], decimals=1)
+    tab.iloc[1, 0] = np.nan
+    assert not T.mismatches(tab, 1).to_numpy().any()
+    assert "—" in T.highlight_mismatches(tab, 1, uuid="d8").to_html()

@@ -699,7 +699,10 @@ def plain_math(text: str) -> str:
     -------
     str
         ``text`` without ``$``, font commands and braces: Greek names as letters, integer exponents as superscripts,
-        spaces collapsed.
+        spaces collapsed. Not a TeX parser: any other command keeps its name (``$\\frac{a}{b}$`` -> ``fracab``) and
+        every brace is dropped, balanced or not (``$\\frac{a}{`` -> ``fraca``). A malformed formula thus gives
+        plain, if garbled, text and no error: the function only writes alt text, and matplotlib refuses a
+        malformed label when it draws it.
     """
     import re
 

@@ -112,7 +112,9 @@ def side_by_side(
         ``name`` or ``index_name`` not a string, or a row label unhashable.
     ValueError
         ``published``, ``reproduced`` and ``index`` of different lengths, or not 1-D; a row label repeated (a row
-        must be found by its label).
+        must be found by its label); ``published`` or ``reproduced`` holding NaN or an infinity. A row without a
+        published value has no difference to show: leave it out of the table (:func:`mismatches` and
+        :func:`highlight_mismatches` skip a missing published value in a table built otherwise).
     """
     pub = as_array(published, "published", ndim=1)
     rep = as_array(reproduced, "reproduced", ndim=1)
