@@ -13,7 +13,7 @@ import pytest
 import yaml
 from hypothesis import given, settings, strategies as st
 
-from fusion.book import claims as C
+from fusion.book import claims as C, style
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -219,8 +219,7 @@ def test_a_new_figure_refuses_a_size_or_dpi_outside_the_book_s_range(kw, name, k
     assert plt.get_fignums() == before      # refused before any figure was made
 
 
-@given(st.floats(*__import__("fusion.book.style", fromlist=["x"]).FIGURE_SIDE_RANGE_IN),
-       st.floats(*__import__("fusion.book.style", fromlist=["x"]).FIGURE_SIDE_RANGE_IN),
+@given(st.floats(*style.FIGURE_SIDE_RANGE_IN), st.floats(*style.FIGURE_SIDE_RANGE_IN),
        st.sampled_from([72, 100, 150.0]))
 @settings(max_examples=15, deadline=None)
 def test_a_new_figure_takes_sizes_within_the_range(w, h, dpi):
