@@ -60,3 +60,34 @@ def folder(value: object, name: str, *, create: bool = False) -> Path:
             raise ValueError(f"{name}: cannot make the folder {shown(value, 60)} "
                              f"({exc.strerror or type(exc).__name__})") from None
     return path
+
+
+def file_in(directory: Path, filename: str, name: str) -> Path:
+    """``directory / filename``, a file to write in a folder :func:`folder` checked: anything but a file (or nothing)
+    under that name is refused naming ``name``, the folder's argument (fuzz 22a W).
+
+    Parameters
+    ----------
+    directory : pathlib.Path
+        The folder, already checked.
+    filename : str
+        The file's name in it.
+    name : str
+        The folder argument's name, for the message.
+
+    Returns
+    -------
+    pathlib.Path
+        The file's path (an existing file is overwritten by the caller; a symlink to one is followed).
+
+    Raises
+    ------
+    ValueError
+        ``directory`` holds something other than a file under ``filename``: a folder, a dangling symlink.
+    """
+    path = directory / filename
+    if path.is_symlink() and not path.exists():
+        raise ValueError(f"{name} holds {filename}, which is a dangling symlink, not a file")
+    if path.exists() and not path.is_file():
+        raise ValueError(f"{name} holds {filename}, which is not a file")
+    return path

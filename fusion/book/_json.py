@@ -44,7 +44,7 @@ def read_object(path: Path, what: str = "file") -> dict[str, Any]:
     Parameters
     ----------
     path : pathlib.Path
-        The file (it exists: the caller found it).
+        The file (the caller found its name: a folder or a dangling symlink of that name is refused).
     what : str
         What the file is, for the message (``"benchmark result"``, ``"ledger file"``).
 
@@ -56,11 +56,14 @@ def read_object(path: Path, what: str = "file") -> dict[str, Any]:
     Raises
     ------
     ValueError
-        The file is not a JSON object as above, naming ``path``.
+        The file is not a readable file (a folder, a dangling symlink, no permission) or not a JSON object as
+        above, naming ``path``.
     """
     try:
         record = json.loads(path.read_text(encoding="utf-8"), parse_constant=_no_constant,
                             parse_float=_finite_float)
+    except OSError as exc:   # a folder or a dangling symlink of a JSON file's name (fuzz 22a W), no permission
+        raise ValueError(f"{what} {path}: not a readable file ({exc.strerror or type(exc).__name__})") from None
     except UnicodeDecodeError as exc:
         raise ValueError(f"{what} {path}: not UTF-8 text ({exc.reason} at byte {exc.start})") from exc
     except json.JSONDecodeError as exc:

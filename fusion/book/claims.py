@@ -84,8 +84,9 @@ _READING = {
 _MARGIN = {"type": "object", "additionalProperties": False, "minProperties": 1, "maxProperties": 1,
            "properties": {"relative": {"type": "number", "minimum": 0}, "absolute": {"type": "number", "minimum": 0}}}
 
-#: JSON schema of a claim file.
-SCHEMA: dict[str, Any] = constant({
+# The schema as jsonschema and json take it (plain dicts and lists: jsonschema's type checker takes a dict for an
+# object, so a read-only mapping as a subschema is silently skipped, fuzz 22a K2); never handed out, load's only.
+_PLAIN_SCHEMA: dict[str, Any] = {
     "type": "object", "additionalProperties": False, "required": ["source", "records"],
     "properties": {
         "source": {"enum": sorted(SOURCES)},
@@ -126,7 +127,11 @@ SCHEMA: dict[str, Any] = constant({
                                             "others": {"type": "array", "items": _READING}}},
             }}},
     },
-})
+}
+#: JSON schema of a claim file, read-only (a read-only mapping of read-only mappings and tuples, shared by every
+#: caller). For jsonschema or :func:`json.dumps`, which take plain dicts and lists only, use
+#: ``json.loads(json.dumps(SCHEMA, default=dict))``.
+SCHEMA: Mapping[str, Any] = constant(_PLAIN_SCHEMA)
 
 
 def _nonempty(value: object, name: str) -> str:
@@ -715,7 +720,7 @@ def load(path: Path | str) -> ClaimsFile:
     except RecursionError:  # PyYAML composes and constructs recursively
         raise ClaimsFileError(f"{path.name}: not valid YAML (nested more than {_MAX_DEPTH} deep)") from None
     _check_depth(doc, path.name)
-    errors = sorted(jsonschema.Draft202012Validator(SCHEMA).iter_errors(doc), key=lambda e: list(e.absolute_path))
+    errors = sorted(jsonschema.Draft202012Validator(_PLAIN_SCHEMA).iter_errors(doc), key=lambda e: list(e.absolute_path))
     if errors:
         e = errors[0]
         raise ClaimsFileError(f"{path.name}: {_where(e, doc)}: {e.message}")

@@ -177,7 +177,8 @@ def audit_figure(fig: Figure) -> list[str]:
     FigureStyleError
         Listing every breach: colour outside the palette, registered method in another colour,
         internal key as a label, text below :data:`MIN_FONT_PT`, width above :data:`MAX_WIDTH_IN`,
-        legend covering data.
+        legend covering data; a size or dpi outside :data:`fusion.book.style.FIGURE_SIDE_RANGE_IN` or
+        :data:`fusion.book.style.FIGURE_DPI_RANGE` is reported before drawing (the figure is then not drawn).
 
     References
     ----------
@@ -185,6 +186,13 @@ def audit_figure(fig: Figure) -> list[str]:
     """
     if not isinstance(fig, Figure):
         raise TypeError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")
+    try:   # before drawing: a figure of 1e6 in or 1e4 dpi would ask for gigabytes (fuzz 22a A)
+        style._figure_size(fig.get_size_inches(), fig.get_dpi())
+    except ValueError as exc:
+        width = fig.get_figwidth()
+        wide = ([f"figure is {width:.2f} in wide (> {MAX_WIDTH_IN} in): it would be shrunk on the page"]
+                if width > MAX_WIDTH_IN + 1e-9 else [])
+        _raise_problems(wide + [f"figure not drawn: its {exc}"])
     _agg_canvas(fig)
     fig.canvas.draw()
     _raise_problems(_problems(fig, fig.get_figwidth()))

@@ -49,6 +49,7 @@ from fusion.book.exact import ExactComparison
 from fusion.book.study_cache import process_cache
 from fusion.book.ledger import Comparison, Conjunction, Evidence, ledger_dir
 from fusion._shown import shown
+from fusion._paths import folder
 
 __all__ = ["ROOT_SEED", "RESEEDS", "RUNS_FACTOR", "RETRIES", "Task", "TaskResult", "stochastic_readings", "seeds",
            "tasks", "run_task", "run_batch", "batches", "summarise", "sweep", "main", "STABILITY_FILE"]
@@ -170,8 +171,9 @@ def stochastic_readings(root: Path | None = None) -> dict[tuple[str, str], dict[
     TypeError
         ``root`` is not a path.
     ValueError
-        ``root`` is not inside the book's repository (no ``_toc.yml`` in it or above it); or a ledger file is
-        malformed, naming the file and the field (see ``_ledger_records``).
+        ``root`` is not an existing folder, or not inside the book's repository (no ``_toc.yml`` in it or above
+        it); or a ledger file is malformed or not a readable file, naming the file and the field (see
+        ``_ledger_records``).
     FileNotFoundError
         Without ``root``: the working directory is not inside the repository, nor is the imported package
         (:func:`fusion.book.ledger.ledger_dir`).
@@ -197,10 +199,9 @@ def _ledger_dir(root: object) -> Path:
     """``book/ledger`` of the repository containing ``root``; a ``root`` outside any is refused by name."""
     if root is None:
         return ledger_dir()
-    if not isinstance(root, (str, Path)):
-        raise TypeError(f"root must be a pathlib.Path, got {type(root).__name__}")
+    root = folder(root, "root")   # a file or a missing folder is refused naming root, not ledger_dir's start
     try:
-        return ledger_dir(Path(root))
+        return ledger_dir(root)
     except FileNotFoundError as exc:
         raise ValueError(f"root: {exc}") from exc
 

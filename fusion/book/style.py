@@ -22,7 +22,8 @@ from fusion.book.tables import _SUPERSCRIPT
 
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES",
            "FIGURE_LABELS", "LABEL_PATTERNS", "FIGURE_ALT", "use_book_style", "new_figure", "color", "method_style",
-           "is_registered_label", "MAX_ALT_CHARS", "plain_math", "describe_figure", "set_figure_alt", "figure_alt", "png_description"]
+           "is_registered_label", "MAX_ALT_CHARS", "plain_math", "describe_figure", "set_figure_alt", "figure_alt", "png_description",
+           "FIGURE_SIDE_RANGE_IN", "FIGURE_DPI_RANGE"]
 
 #: Colour of each method, used in every chapter.
 METHOD_COLORS: dict[str, str] = constant({
@@ -479,6 +480,27 @@ def _figure_keywords() -> frozenset[str]:
     return frozenset(names - {"nrows", "ncols"})
 
 
+#: Sides of a figure the book draws (inches) and its resolutions (dots per inch): the book's are 100 dpi and at most
+#: 7.5 in wide (:data:`fusion.book.figures.MAX_WIDTH_IN`); beyond these a figure is no page's and drawing it can
+#: ask for gigabytes (fuzz 22a A). :func:`new_figure` refuses a size or dpi outside them, ``audit_figure`` before
+#: it draws.
+FIGURE_SIDE_RANGE_IN = (0.5, 20.0)
+FIGURE_DPI_RANGE = (10.0, 300.0)
+
+
+def _figure_size(figsize: object, dpi: object) -> tuple[tuple[float, float], float]:
+    """``figsize`` and ``dpi`` checked against :data:`FIGURE_SIDE_RANGE_IN` and :data:`FIGURE_DPI_RANGE`:
+    TypeError naming the argument for a non-number (a figsize that is not a pair), ValueError for NaN, an infinity
+    or a value outside the range. The one check of :func:`new_figure` and ``audit_figure``."""
+    from fusion._validation import scalar
+
+    if isinstance(figsize, (str, bytes)) or not hasattr(figsize, "__len__") or len(figsize) != 2:  # type: ignore[arg-type]
+        raise TypeError(f"figsize must be a pair (width, height) in inches, got {shown(figsize)}")
+    lo, hi = FIGURE_SIDE_RANGE_IN
+    w, h = (scalar(v, "figsize", lo, hi) for v in figsize)  # type: ignore[union-attr]
+    return (w, h), scalar(dpi, "dpi", *FIGURE_DPI_RANGE)
+
+
 def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure, Axes]:
     """Create a figure in the book style; keyword arguments go to :func:`matplotlib.pyplot.subplots`.
 
@@ -503,11 +525,14 @@ def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure
         ``nrows`` or ``ncols`` not an integer, or a keyword that :func:`matplotlib.pyplot.subplots` does not take
         (checked before any figure is made).
     ValueError
-        ``nrows`` or ``ncols`` outside 1-16.
+        ``nrows`` or ``ncols`` outside 1-16; a ``figsize`` side outside :data:`FIGURE_SIDE_RANGE_IN` or a
+        ``dpi`` outside :data:`FIGURE_DPI_RANGE` (NaN included), named (a figure wider than the page's
+        7.5 in but within the range is made: ``audit_figure`` reports it).
     """
     nrows = count(nrows, "nrows", maximum=_MAX_PANELS)
     ncols = count(ncols, "ncols", maximum=_MAX_PANELS)
     keywords(kwargs, _figure_keywords(), "new_figure")
+    _figure_size(kwargs.get("figsize", (7.0, 3.6)), kwargs.get("dpi", 100))   # the book style's defaults
     use_book_style()
     fig, ax = plt.subplots(nrows, ncols, **kwargs)  # type: ignore[arg-type]
     return fig, ax
@@ -653,8 +678,11 @@ FIGURE_ALT: dict[str, str] = constant({})
 
 #: Longest alt text written into a PNG (characters); longer descriptions are cut at a word.
 MAX_ALT_CHARS = 700
-# Longest PNG description png_description reads (bytes), far above any alt text; bounds the inflation.
+# Longest alt text (characters), far above any real one: set_figure_alt refuses a longer one, and png_description
+# refuses a longer PNG description, so that a figure the package accepts is one its PNG reader reads (fuzz 22a N).
 _MAX_DESCRIPTION = 100_000
+# Most bytes a description of _MAX_DESCRIPTION characters takes (UTF-8, in an iTXt chunk); bounds the inflation.
+_MAX_DESCRIPTION_BYTES = 4 * _MAX_DESCRIPTION
 
 _ALT_ATTR = "_fusion_alt"
 
@@ -671,7 +699,10 @@ def plain_math(text: str) -> str:
     -------
     str
         ``text`` without ``$``, font commands and braces: Greek names as letters, integer exponents as superscripts,
-        spaces collapsed.
+        spaces collapsed. Not a TeX parser: any other command keeps its name (``$\\frac{a}{b}$`` -> ``fracab``) and
+        every brace is dropped, balanced or not (``$\\frac{a}{`` -> ``fraca``). A malformed formula thus gives
+        plain, if garbled, text and no error: the function only writes alt text, and matplotlib refuses a
+        malformed label when it draws it.
     """
     import re
 
@@ -781,7 +812,7 @@ def describe_figure(fig: Figure) -> str:
         parts.append("Legend: " + ", ".join(dict.fromkeys(fig_series)) + ".")
     out = " ".join(parts) if parts else "Figure."
     if len(out) > MAX_ALT_CHARS:
-        out = out[:MAX_ALT_CHARS].rsplit(" ", 1)[0].rstrip(",;:") + " …"
+        out = out[:MAX_ALT_CHARS - 2].rsplit(" ", 1)[0].rstrip(",;:") + " …"   # " …" counts in the bound
     return out
 
 
@@ -799,7 +830,8 @@ def set_figure_alt(fig: Figure, alt: str | None) -> None:
     TypeError
         If ``fig`` is not a Figure or ``alt`` not a string.
     ValueError
-        If ``alt`` is blank or looks like a file path.
+        If ``alt`` is blank, looks like a file path, or is longer than ``_MAX_DESCRIPTION`` (100,000) characters
+        once its runs of white space are made single spaces (the bound :func:`png_description` reads).
     """
     instance_of(fig, Figure, "fig")
     if alt is None:
@@ -811,7 +843,10 @@ def set_figure_alt(fig: Figure, alt: str | None) -> None:
 
     if not alt.strip() or re.search(r"\.(png|svg|jpe?g|pdf)\b|^[\w./-]+/[\w.-]+$", alt.strip()):
         raise ValueError(f"alt must say what the figure shows, got {shown(alt)}")
-    setattr(fig, _ALT_ATTR, " ".join(alt.split()))
+    alt = " ".join(alt.split())
+    if len(alt) > _MAX_DESCRIPTION:
+        raise ValueError(f"alt must be at most {_MAX_DESCRIPTION:,} characters (a sentence or two), got {len(alt):,}")
+    setattr(fig, _ALT_ATTR, alt)
 
 
 def figure_alt(fig: Figure) -> str:
@@ -867,8 +902,9 @@ def png_description(data: bytes) -> str | None:
     TypeError
         ``data`` not bytes (a ``str``, a path, None: read the file's bytes first).
     ValueError
-        ``data`` holds a description longer than ``_MAX_DESCRIPTION`` (100,000) characters, or a compressed one
-        inflating beyond it (read in bounded steps: a small file cannot inflate to gigabytes). An alt text is a
+        ``data`` holds a description longer than ``_MAX_DESCRIPTION`` (100,000) characters (the bound
+        :func:`set_figure_alt` puts on an alt text), or a compressed one inflating beyond the bytes that many
+        characters can take (read in bounded steps: a small file cannot inflate to gigabytes). An alt text is a
         sentence or two (:data:`MAX_ALT_CHARS` for the automatic ones).
     """
     import struct
@@ -882,12 +918,12 @@ def png_description(data: bytes) -> str | None:
     def inflate(raw: bytes) -> bytes | None:
         d = zlib.decompressobj()
         try:
-            out = d.decompress(raw, _MAX_DESCRIPTION + 1)
+            out = d.decompress(raw, _MAX_DESCRIPTION_BYTES + 1)
         except zlib.error:
             return None
-        if len(out) > _MAX_DESCRIPTION:
-            raise ValueError(f"data: the PNG's Description chunk inflates beyond {_MAX_DESCRIPTION:,} bytes "
-                             "(not an alt text)")
+        if len(out) > _MAX_DESCRIPTION_BYTES:
+            raise ValueError(f"data: the PNG's Description chunk inflates beyond {_MAX_DESCRIPTION_BYTES:,} bytes "
+                             f"(more than {_MAX_DESCRIPTION:,} characters: not an alt text)")
         return out if d.eof else None   # cut short: malformed
 
     pos = 8
@@ -918,11 +954,15 @@ def png_description(data: bytes) -> str | None:
             text = inflate(text) if compressed else text
         if text is None:
             return None
-        if len(text) > _MAX_DESCRIPTION:
-            raise ValueError(f"data: the PNG's Description chunk holds {len(text):,} bytes, beyond "
-                             f"{_MAX_DESCRIPTION:,} (not an alt text)")
+        if len(text) > _MAX_DESCRIPTION_BYTES:   # more bytes than the longest alt text takes: not decoded
+            raise ValueError(f"data: the PNG's Description chunk holds {len(text):,} bytes, more than "
+                             f"{_MAX_DESCRIPTION:,} characters can take (not an alt text)")
         try:
-            return text.decode("latin-1" if kind != b"iTXt" else "utf-8")
+            out = text.decode("latin-1" if kind != b"iTXt" else "utf-8")
         except UnicodeDecodeError:
             return None
+        if len(out) > _MAX_DESCRIPTION:   # counted in characters, as set_figure_alt counts them
+            raise ValueError(f"data: the PNG's Description chunk holds {len(out):,} characters, beyond "
+                             f"{_MAX_DESCRIPTION:,} (not an alt text)")
+        return out
     return None

@@ -112,7 +112,9 @@ def side_by_side(
         ``name`` or ``index_name`` not a string, or a row label unhashable.
     ValueError
         ``published``, ``reproduced`` and ``index`` of different lengths, or not 1-D; a row label repeated (a row
-        must be found by its label).
+        must be found by its label); ``published`` or ``reproduced`` holding NaN or an infinity. A row without a
+        published value has no difference to show: leave it out of the table (:func:`mismatches` and
+        :func:`highlight_mismatches` skip a missing published value in a table built otherwise).
     """
     pub = as_array(published, "published", ndim=1)
     rep = as_array(reproduced, "reproduced", ndim=1)
@@ -236,7 +238,8 @@ def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"
     decimals : int
         Printed decimals (also the displayed precision).
     uuid : str
-        Fixed HTML id prefix, so the stored output is identical run to run.
+        Fixed HTML id prefix, so the stored output is identical run to run: an HTML and CSS identifier (an ASCII
+        letter, then ASCII letters, digits, ``-`` or ``_``), e.g. ``"ofs-table3"``.
     precision : int, optional
         Displayed decimals of every number (default ``decimals``), e.g. 2 for measured values beside
         published values read off a figure to whole metres.
@@ -245,14 +248,23 @@ def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"
     -------
     pandas.io.formats.style.Styler
         Displays as HTML; a caption says what the highlight means.
+
+    Raises
+    ------
+    TypeError
+        ``uuid`` not a string.
+    ValueError
+        ``uuid`` not an identifier: it is written into the page's HTML ids and CSS selectors, where a space loses
+        the highlight and a quote or ``>`` writes markup (fuzz 22a H).
     """
     mask = mismatches(table, decimals)
     text_argument(uuid, "uuid")   # a wrong type is a TypeError (issue 35)
-    if not uuid:
-        raise ValueError("uuid must be a non-empty string")
+    if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_-]*", uuid):
+        raise ValueError(f"uuid must be an HTML id prefix (an ASCII letter, then letters, digits, '-' or '_'), "
+                         f"got {shown(uuid)}")
     css = "font-weight: bold; background-color: #F9D9C2"
-    shown = decimals if precision is None else count(precision, "precision", minimum=0)
-    styler = table.style.format(precision=shown, na_rep="—").set_uuid(uuid)
+    places = decimals if precision is None else count(precision, "precision", minimum=0)
+    styler = table.style.format(precision=places, na_rep="—").set_uuid(uuid)
     styler = styler.apply(lambda _: np.where(mask, css, ""), axis=None)
     pairs = _pairs(table.columns)
     n = int(mask[[rep for _, rep, _ in pairs]].to_numpy().sum())
@@ -339,7 +351,9 @@ def _nonfinite_word(x: float) -> str | None:
     return None
 
 
-_E_NUMBER = re.compile(r"(?<![\w.])(?P<m>[-+−]?\d+(?:\.\d+)?)[eE](?P<e>[-+]?\d+)(?![\w.])")
+# A mantissa as power_of_ten takes it (ASCII digits, a sign, a decimal point between digits), one rule for both.
+_MANTISSA = r"[-+−]?[0-9]+(?:\.[0-9]+)?"
+_E_NUMBER = re.compile(rf"(?<![\w.])(?P<m>{_MANTISSA})[eE](?P<e>[-+]?[0-9]+)(?![\w.])")
 
 
 #: Largest power of ten :func:`power_of_ten` writes (a float's decimal exponents lie within [-324, 308]).
@@ -366,7 +380,9 @@ def power_of_ten(mantissa: str, exponent: int) -> str:
     TypeError
         ``mantissa`` not a string, ``exponent`` not an integer.
     ValueError
-        ``exponent`` outside [-400, 400]: no number the book prints has it.
+        ``exponent`` outside [-400, 400]: no number the book prints has it; ``mantissa`` not the digits of a finite
+        number (an optional sign, ASCII digits, optionally a decimal point followed by digits), e.g. ``""``,
+        ``"nan"`` or ``"1.5×10²"``.
     """
     exponent = integer(exponent, "exponent")
     if abs(exponent) > _MAX_EXPONENT:
@@ -374,6 +390,8 @@ def power_of_ten(mantissa: str, exponent: int) -> str:
                          f"ten), got {shown(exponent)}")
     if not isinstance(mantissa, str):
         raise TypeError(f"mantissa must be a str of digits, got {type(mantissa).__name__}")
+    if not re.fullmatch(_MANTISSA, mantissa):
+        raise ValueError(f"mantissa must be the digits of a finite number (e.g. '1.5' or '-2.952'), got {shown(mantissa)}")
     sup = str(int(exponent)).translate(_SUPERSCRIPT)
     m = mantissa.replace("−", "-")
     if m in ("1", "+1"):

@@ -88,10 +88,12 @@ class Source:
 
         Raises
         ------
+        TypeError
+            ``chapter`` is not a str (a docname: not a number nor a path).
         ValueError
             ``chapter`` is not one of the source's chapters.
         """
-        chapter = self.chapter if chapter is None else chapter
+        chapter = self.chapter if chapter is None else _text(chapter, "chapter")
         if chapter not in self.chapters:
             raise ValueError(f"chapter must be one of {list(self.chapters)}, got {shown(chapter)}")
         if len(self.chapters) == 1:

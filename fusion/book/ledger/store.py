@@ -13,7 +13,7 @@ import pandas as pd
 
 from fusion.book._json import JSONObject
 from fusion.book.ledger.claim import Claim
-from fusion._paths import folder
+from fusion._paths import file_in, folder
 from fusion._validation import instance_of, shown, text
 from fusion.book.ledger.sources import SOURCES
 
@@ -199,7 +199,8 @@ class Ledger:
             ``directory`` is not a path (``str`` or ``os.PathLike``).
         ValueError
             The ledger is empty or its headline claims break the rule above; ``directory`` is not a folder
-            (a file, a name the system cannot use) or cannot be made.
+            (a file, a name the system cannot use) or cannot be made, or it holds something other than a file
+            under the ledger file's name (a folder, a dangling symlink), or the file cannot be written.
         """
         if not self.claims:
             raise ValueError("the ledger is empty")
@@ -211,5 +212,9 @@ class Ledger:
         if len(SOURCES[self.source].chapters) > 1:
             head["chapter"] = self.chapter
         text = json.dumps({**head, "claims": self.records()}, ensure_ascii=False, indent=1) + "\n"
-        (d / self.filename).write_text(text, encoding="utf-8")
+        path = file_in(d, self.filename, "directory")   # a folder or a dangling link of the file's name: refused
+        try:
+            path.write_text(text, encoding="utf-8")
+        except OSError as exc:   # no permission, a full disk
+            raise ValueError(f"directory: cannot write {self.filename} ({exc.strerror or type(exc).__name__})") from None
         return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
