@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import integer, is_integer
-from fusion._validation import _numeric, count, counts, seed as check_seed
+from fusion._validation import _numeric, _real_number, count, counts, seed as check_seed
 from fusion._validation import one_of, shown
 from fusion._validation import text
 from fusion.book import rulebook as R
@@ -359,13 +359,21 @@ class Comparison:
         Parameters
         ----------
         x : float
-            A value on this comparison's scale.
+            A value on this comparison's scale: a real number (NaN and the infinities are written as the book's
+            words, :data:`~fusion.book.tables.NONFINITE_RULE`).
 
         Returns
         -------
         str
+
+        Raises
+        ------
+        TypeError
+            ``x`` is text, bytes, a bool, complex, ``None`` or a container (naming ``x``).
+        ValueError
+            ``x`` is a finite number beyond the float range, or a non-zero one below it (naming ``x``).
         """
-        return self._text(float(x))
+        return self._text(_real_number(x, "x", "a real number"))
 
     def _mean(self, v: tuple[float, ...]) -> float:
         return float(np.mean(v)) if all(math.isfinite(x) for x in v) else math.inf
