@@ -99,7 +99,6 @@ from __future__ import annotations
 
 import dataclasses as _dataclasses
 import datetime as _dt
-from decimal import Decimal as _Decimal
 import functools as _functools
 import inspect as _inspect
 import re as _re
@@ -171,8 +170,13 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
                 raise _bool_error(name)
             if a.dtype.kind not in _NUMERIC_KINDS:
                 raise _dtype_error(name, a.dtype)
-            out = np.asarray(a, dtype=float)
-            if a.dtype.kind == "O" and ((out == 0) & (a != 0)).any():  # Fraction(1, 10**400) -> an exact 0.0
+            wide = a.dtype.kind == "O" or (a.dtype.kind == "f" and a.dtype.itemsize > 8)  # longdouble, float128
+            with np.errstate(over="ignore"):  # a longdouble beyond the float range: refused just below, by name
+                out = np.asarray(a, dtype=float)
+            if wide and _beyond_float_range(a, out):  # np.longdouble('1e4000') or Decimal('1e400') -> inf
+                raise ValueError(f"{name} must be within the float range: it holds a finite number beyond it (at "
+                                 f"most {MAX_MAGNITUDE:g} in magnitude)")
+            if wide and ((out == 0) & (a != 0)).any():  # Fraction(1, 10**400), np.longdouble('1e-4000') -> 0.0
                 raise ValueError(f"{name} must be within the float range: it holds a non-zero number "
                                  f"below it (at least {MIN_MAGNITUDE:g} in magnitude, or zero)")
             if out is a and not isinstance(x, (list, tuple)):  # a view of the caller's data (a Series, a buffer,
@@ -193,6 +197,14 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
         raise
     except Exception as exc:  # rule 15: the argument's own exception (its __array__ or __float__ raised)
         raise _conversion_error(name, exc) from exc
+
+
+def _beyond_float_range(a: np.ndarray, out: FloatArray) -> bool:
+    """Whether an entry of the wide or object array ``a`` is finite but became an infinity in its float copy ``out``."""
+    lost = np.isinf(out)
+    if not lost.any():
+        return False
+    return bool((a[lost] != out[lost]).any())  # an infinite entry equals its copy; np.longdouble('1e4000') does not
 
 
 def input_size(x: object, name: str) -> None:
@@ -321,6 +333,17 @@ def check_magnitude(arr: FloatArray, name: str, subnormal: bool = True) -> Float
     return arr
 
 
+def _lost_in_cast(value: object, v: float) -> bool:
+    """Whether the finite ``value`` became the infinity ``v`` on its conversion to a float (it lies beyond the float
+    range: a Decimal, a longdouble or float128); an infinite ``value`` compares equal to ``v``."""
+    if _isfinite(v) or v != v:
+        return False
+    try:
+        return not bool(value == v)
+    except Exception:  # an argument whose comparison fails: its conversion is all there is to judge
+        return False
+
+
 def _real_number(value: object, name: str, what: str = "a number") -> float:
     """``float(value)`` for a real number; TypeError naming ``name`` otherwise (bool and complex included)."""
     if isinstance(value, (str, bytes, bool, np.bool_)) or value is None:
@@ -335,10 +358,10 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
         raise TypeError(f"{name} must be {what}, got an array of dtype {value.dtype}")
     try:
         v = float(value)  # type: ignore[arg-type]
-        if not _isfinite(v) and isinstance(value, _Decimal) and value.is_finite():  # Decimal('1e400') -> inf
+        if _lost_in_cast(value, v):  # Decimal('1e400') or np.longdouble('1e4000') -> inf
             raise OverflowError
-        if v == 0.0 and not isinstance(value, (float, int, np.number, np.ndarray)) and value != 0:
-            # a Fraction or Decimal below the float range (Fraction(1, 10**400)) would become an exact zero
+        if v == 0.0 and not isinstance(value, (float, int)) and bool(value != 0):
+            # a Fraction, Decimal or longdouble below the float range (Fraction(1, 10**400)) would become an exact zero
             raise ValueError(f"{name} must be {what} of magnitude at least {MIN_MAGNITUDE:g} (or zero), got a non-zero "
                              f"value below the float range: {shown(value, 60)}")
         return v

@@ -74,11 +74,19 @@ class ExactComparison:
     ------
     ValueError
         ``a`` or ``b`` not finite or beyond the representable range (magnitude above 1e150, checked here, not
-        when the status is asked); an empty name or ``metric``; ``claim`` not one of its values; a negative or
+        when the status is asked); an empty name or ``metric``; ``b_name`` the same as ``a_name``; ``claim`` not one of its values; a negative or
         non-finite margin; ``margin`` and ``relative_margin`` that disagree (also in :meth:`with_margin` and
         ``dataclasses.replace``).
     TypeError
-        ``a`` or ``b`` not a real number; a name, ``metric`` or ``claim`` not a str.
+        ``a`` or ``b`` not a real number; a name, ``metric`` or ``claim`` not a str; ``margin`` or
+        ``relative_margin`` neither None, an int nor a float (a 0-d array or a Decimal included, as for
+        :class:`~fusion.book.ledger.Comparison`).
+
+    Notes
+    -----
+    ``margin`` and ``relative_margin`` given together agree when equal to 12 significant digits: a float32
+    ``relative_margin`` (``np.float32(0.05)`` is 0.0500000007) next to the float64 margin it stands for disagrees,
+    as in :class:`~fusion.book.ledger.Comparison`.
     """
 
     a: float
@@ -96,8 +104,10 @@ class ExactComparison:
         av, bv = _value(a, "a"), _value(b, "b")
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric)):
             _text(v, name)
+        R._two_methods(a_name, b_name)
         claim = text(claim, "claim")  # rule 19: matched and stored as its text (a 0-d array is not text)
         one_of(claim, ("less", "greater", "equal"), "claim")
+        R._margin_type(margin, "margin"), R._margin_type(relative_margin, "relative_margin")  # Comparison's rule
         margin = None if margin is None else scalar(margin, "margin", 0.0)
         relative_margin = None if relative_margin is None else scalar(relative_margin, "relative_margin", 0.0)
         m, relative_margin = R._practical_margin(margin, relative_margin, abs(bv), "B")  # as Comparison's

@@ -54,20 +54,44 @@ def _finite(value: object) -> bool:
     """False for a number that is NaN or infinite, and for a missing-value marker (``pd.NA``, ``NaT``).
 
     Numbers are floats, complex numbers, NumPy scalars, Decimals (a signalling NaN included) and numeric arrays
-    (every entry; a 0-d array is its number).
+    (every entry; a 0-d array is its number). Containers are looked into, as their text prints their entries:
+    lists, tuples, sets, a mapping's values, a Series or Index, an object or structured array (fuzz 22a D1). A
+    DataFrame or Styler is not: the book's tables print a missing cell as a word.
     """
-    if value is pd.NA or value is pd.NaT:
-        return False
-    if isinstance(value, Decimal):
-        return value.is_finite()
-    if isinstance(value, (np.datetime64, np.timedelta64)):
-        return not np.isnat(value)
-    if isinstance(value, np.ndarray):
-        if value.dtype.kind in "mM":
-            return not np.isnat(value).any()
-        return value.dtype.kind not in "fc" or bool(np.isfinite(value).all())
-    if isinstance(value, (float, complex, np.floating, np.complexfloating)):
-        return cmath.isfinite(value)
+    todo, seen = [value], set()
+    while todo:
+        v = todo.pop()
+        if isinstance(v, (list, tuple, set, frozenset, Mapping, pd.Series, pd.Index, np.ndarray)):
+            if id(v) in seen:  # a container that holds itself
+                continue
+            seen.add(id(v))
+        if v is pd.NA or v is pd.NaT:
+            return False
+        if isinstance(v, Decimal):
+            if not v.is_finite():
+                return False
+        elif isinstance(v, (np.datetime64, np.timedelta64)):
+            if np.isnat(v):
+                return False
+        elif isinstance(v, (pd.Series, pd.Index)):
+            todo.append(v.to_numpy())
+        elif isinstance(v, np.ndarray):
+            if v.dtype.names:
+                todo += [v[n] for n in v.dtype.names]
+            elif v.dtype.kind == "O":
+                todo += list(v.flat)
+            elif v.dtype.kind in "mM":
+                if np.isnat(v).any():
+                    return False
+            elif v.dtype.kind in "fc" and not np.isfinite(v).all():
+                return False
+        elif isinstance(v, (float, complex, np.floating, np.complexfloating)):
+            if not cmath.isfinite(v):
+                return False
+        elif isinstance(v, Mapping):
+            todo += list(v.values())
+        elif isinstance(v, (list, tuple, set, frozenset)):
+            todo += list(v)
     return True
 
 
@@ -90,8 +114,9 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         ``values`` not a mapping, a key not a string, ``decimals`` not an integer.
     ValueError
         A number (a float, a complex number, a NumPy scalar, a Decimal, any entry of a numeric array) NaN or
-        infinite, or a missing value (``pd.NA``, ``pd.NaT``, a NumPy ``NaT``), naming ``values[key]``; checked for
-        every value before any is glued, whatever ``decimals``.
+        infinite, or a missing value (``pd.NA``, ``pd.NaT``, a NumPy ``NaT``), also inside a list, tuple, set,
+        mapping, Series, Index, object or structured array (not a DataFrame or Styler, whose tables print a missing
+        cell as a word), naming ``values[key]``; checked for every value before any is glued, whatever ``decimals``.
     """
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")

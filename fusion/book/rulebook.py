@@ -551,6 +551,23 @@ def _paired_runs(a: ArrayLike, b: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     return av.astype(float), bv.astype(float)
 
 
+def _margin_type(value: object, name: str) -> None:
+    """One type rule for a comparison's ``margin`` and ``relative_margin`` (:class:`Comparison`, ``ExactComparison``,
+    their ``with_margin``; fuzz 22a D3): None, an int or a float (NumPy's included); a bool, a 0-d array, a Decimal
+    or text is a TypeError naming ``name``. Their values are checked by the caller."""
+    from fusion._validation import is_integer
+    if value is not None and not (is_integer(value) or isinstance(value, (float, np.floating))):
+        raise TypeError(f"{name} must be a finite number >= 0, got {type(value).__name__} {shown(value, 60)}")
+
+
+def _two_methods(a_name: str, b_name: str) -> None:
+    """A comparison's two names differ (:class:`Comparison`, ``ExactComparison``; fuzz 22a D4): its summary and
+    verdict name A and B by them, and "A 0.0153 vs A 0.2153" says nothing of which is which."""
+    if a_name.strip() == b_name.strip():
+        raise ValueError(f"b_name must differ from a_name (the summary tells A from B by their names), got "
+                         f"{shown(a_name)} for both")
+
+
 def _practical_margin(margin: float | None, relative_margin: float | None, ref: float,
                       on: str) -> tuple[float, float | None]:
     """The margin a comparison stores and the relative margin it keeps: one rule for :class:`Comparison` and

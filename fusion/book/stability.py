@@ -368,6 +368,7 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     Parameters
     ----------
     results : sequence of TaskResult
+        At most one result per task (record, reading, seed and whether scaled), each of a seed of ``seed_list``.
     seed_list : sequence of int
         Distinct seeds, as given to :func:`tasks`.
     committed : mapping
@@ -377,6 +378,14 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     -------
     dict
         Record id → {"committed", "reseeds": [status per seed], "scaled", "stable", "k", "flag", "failed"}.
+
+    Raises
+    ------
+    TypeError
+        ``results`` not of :class:`TaskResult`, ``committed`` not a mapping, a committed status not text.
+    ValueError
+        Two results of one task, a result of a seed not in ``seed_list``, a repeated seed, a committed status not
+        one of the rulebook's.
 
     Notes
     -----
@@ -393,8 +402,19 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
             raise TypeError(f"committed[{shown(rid)}] must be a status (str), got {shown(status)}")
         if status is not None and status not in R.STATUSES:
             raise ValueError(f"committed[{shown(rid)}] must be one of {R.STATUSES} or None, got {shown(status)}")
-    for r in _tasks(results, "results", TaskResult):
-        by.setdefault(r.task.record, []).append(r)
+    seen: dict[tuple[str, str, int, bool], int] = {}
+    known = set(seed_list)
+    for i, r in enumerate(_tasks(results, "results", TaskResult)):
+        t = r.task
+        if t.seed not in known:  # a result of another sweep would be dropped without a word
+            raise ValueError(f"results[{i}] is of seed {t.seed}, which is not in seed_list")
+        key = (t.record, t.reading, t.seed, t.scaled)
+        if key in seen:  # which of the two counted would depend on their order
+            raise ValueError(f"results[{i}] and results[{seen[key]}] are two results of one task (record "
+                             f"{shown(t.record)}, reading {shown(t.reading)}, seed {t.seed}"
+                             f"{', scaled' if t.scaled else ''})")
+        seen[key] = i
+        by.setdefault(t.record, []).append(r)
     out: dict[str, dict[str, Any]] = {}
     for rid, rs in sorted(by.items()):
         failed = [asdict(r.task) | {"error": r.error} for r in rs if r.status is None]

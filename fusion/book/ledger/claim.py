@@ -124,8 +124,8 @@ class Claim:
         A text field not a str; ``evidence`` not an evidence class; ``assumptions`` or ``critiques`` not a
         sequence of str; ``alternatives`` not of :class:`Alternative`; ``headline`` not a bool.
     ValueError
-        Unknown ``source``, ``claimant`` or ``test``; an empty ``id``, ``where``, ``claim`` or ``link``; a
-        repeated critique label; a headline whose claimant is not the source (R8); ``test`` and ``evidence``
+        Unknown ``source``, ``claimant`` or ``test``; an empty ``id``, ``where``, ``claim`` or ``link``; an empty
+        or repeated critique label or assumption; a headline whose claimant is not the source (R8); ``test`` and ``evidence``
         that disagree (``"published"`` with a :class:`Comparison`: the table the claim files use;
         :class:`Unverifiable` evidence fits every test, R7); ``alternatives`` repeating a reading (the same
         choice and reading, which R5 would count twice).
@@ -152,10 +152,14 @@ class Claim:
         if not isinstance(self.evidence, EVIDENCE_TYPES):
             raise TypeError("evidence must be PublishedValues, Comparison, ExactComparison, Proposition, Conjunction "
                             f"or Unverifiable, got {type(self.evidence).__name__}")
-        _texts(self.assumptions, "assumptions")
-        _texts(self.critiques, "critiques")
-        if len(set(self.critiques)) != len(tuple(self.critiques)):
-            raise ValueError(f"critiques must not repeat a label, got {shown(self.critiques)}")
+        for name, what in (("assumptions", "an assumption"), ("critiques", "a label")):
+            items = getattr(self, name)
+            _texts(items, name)
+            blank = [i for i, v in enumerate(items) if not v.strip()]  # a claim file's schema: minLength 1
+            if blank:
+                raise ValueError(f"{name}[{blank[0]}] must not be empty")
+            if len(set(items)) != len(tuple(items)):  # stated twice, or one box listed twice (fuzz 22a D9)
+                raise ValueError(f"{name} must not repeat {what}, got {shown(items)}")
         if isinstance(self.alternatives, str) or not all(isinstance(a, Alternative)
                                                          for a in sequence(self.alternatives, "alternatives")):
             raise TypeError(f"alternatives must be a tuple of Alternative, got {shown(self.alternatives)}")

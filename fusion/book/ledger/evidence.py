@@ -16,8 +16,8 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import integer, is_integer
-from fusion._validation import _numeric, count, counts, seed as check_seed
+from fusion._validation import integer
+from fusion._validation import _numeric, _real_number, count, counts, seed as check_seed
 from fusion._validation import one_of, shown
 from fusion._validation import text
 from fusion.book import rulebook as R
@@ -195,7 +195,8 @@ class Comparison:
     ------
     ValueError
         ``a`` or ``b`` is not 1-D, they differ in length or hold fewer than 2 runs, NaN or ``-inf``; fewer
-        than :data:`MIN_RUNS` runs without a ``reason``; an empty ``a_name``, ``b_name`` or ``metric``;
+        than :data:`MIN_RUNS` runs without a ``reason``; an empty ``a_name``, ``b_name`` or ``metric``; ``b_name``
+        the same as ``a_name``;
         ``claim`` is not one of its values; ``margin`` and ``relative_margin`` both given and disagreeing, or
         either negative or not finite; ``conditions`` differ (R6); an entry of ``infinite_mean`` is not ``"a"`` or ``"b"``.
     TypeError
@@ -227,6 +228,7 @@ class Comparison:
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric)):
             if not v.strip():
                 raise ValueError(f"{name} must not be empty")
+        R._two_methods(a_name, b_name)
         if seed is not None:
             seed = check_seed(seed, "seed")  # an integer (rule 11): 0.0 is not a seed; stored as a plain int
         claim = text(claim, "claim")  # rule 19: matched and stored as its text
@@ -243,8 +245,7 @@ class Comparison:
                              "applied to one method must be applied to every compared method (rule R6)")
         inf_m = R._infinite_mean(infinite_mean)
         for name, v in (("margin", margin), ("relative_margin", relative_margin)):
-            if v is not None and not (is_integer(v) or isinstance(v, (float, np.floating))):  # a type (rule 6)
-                raise TypeError(f"{name} must be a finite number >= 0, got {type(v).__name__} {shown(v, 60)}")
+            R._margin_type(v, name)  # a type (rule 6), one rule with ExactComparison's
             if v is not None and (not math.isfinite(_as_float(v)) or float(v) < 0):
                 raise ValueError(f"{name} must be a finite number >= 0, got {shown(v, 60)}")
         ref = abs(float(np.mean(bv))) if np.all(np.isfinite(bv)) else abs(float(np.median(bv)))
@@ -359,13 +360,21 @@ class Comparison:
         Parameters
         ----------
         x : float
-            A value on this comparison's scale.
+            A value on this comparison's scale: a real number (NaN and the infinities are written as the book's
+            words, :data:`~fusion.book.tables.NONFINITE_RULE`).
 
         Returns
         -------
         str
+
+        Raises
+        ------
+        TypeError
+            ``x`` is text, bytes, a bool, complex, ``None`` or a container (naming ``x``).
+        ValueError
+            ``x`` is a finite number beyond the float range, or a non-zero one below it (naming ``x``).
         """
-        return self._text(float(x))
+        return self._text(_real_number(x, "x", "a real number"))
 
     def _mean(self, v: tuple[float, ...]) -> float:
         return float(np.mean(v)) if all(math.isfinite(x) for x in v) else math.inf

@@ -197,8 +197,8 @@ def _benchmark_results(results: object) -> dict[tuple[int, float, bool], dict[st
     Keys ``(seed, level, fault)`` covering every (seed, scenario) pair; values dicts of one set of
     methods, each a non-empty 1-D array of finite squared errors.
     """
-    if not isinstance(results, dict):
-        raise TypeError(f"results must be a dict (from benchmark), got {type(results).__name__}")
+    if not isinstance(results, Mapping):  # any mapping, as the package's other checks (a read-only one included)
+        raise TypeError(f"results must be a mapping (a dict from benchmark), got {type(results).__name__}")
     if not results:
         raise ValueError("results is empty")
     out, methods = {}, None
@@ -209,8 +209,8 @@ def _benchmark_results(results: object) -> dict[tuple[int, float, bool], dict[st
         check_seed(key[0], f"{path}: the seed")
         scalar(key[1], f"{path}: the level")
         flag(key[2], f"{path}: the fault flag")
-        if not isinstance(entry, dict) or not entry:
-            raise TypeError(f"{path} must be a non-empty dict of method -> squared errors, got {type(entry).__name__}")
+        if not isinstance(entry, Mapping) or not entry:
+            raise TypeError(f"{path} must be a non-empty mapping of method -> squared errors, got {type(entry).__name__}")
         if methods is None:
             methods = list(entry)
         record(entry, path, tuple(methods))
@@ -264,8 +264,8 @@ def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]]
 
     Parameters
     ----------
-    results : dict
-        Output of :func:`benchmark`.
+    results : mapping
+        Output of :func:`benchmark` (a dict; any mapping of the same entries, a read-only one included).
     n_se : float
 
     Returns
