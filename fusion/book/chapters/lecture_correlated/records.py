@@ -12,6 +12,7 @@ import numpy as np
 
 from fusion._frozen import constant
 from fusion._results import ResultSpec, instance, validated_post_init
+from fusion.book._few_runs import runs_named
 from fusion.book.study_cache import study_cache
 from fusion.book.chapters.lecture import SOURCE, sci
 from fusion.book.tables import roundoff
@@ -325,7 +326,9 @@ def ledger_evidence(st: Studies) -> dict[str, Evidence | Readings]:
     Parameters
     ----------
     st : Studies
-        The studies the chapter computed (keys of :func:`cached_studies`).
+        The studies the chapter computed (keys of :func:`cached_studies`); their paired comparisons need at
+        least :data:`~fusion.book.ledger.MIN_RUNS` runs (rule R4; this function takes no ``reason``): fewer
+        (``cached_studies(runs=...)``) are refused naming ``st``.
 
     Returns
     -------
@@ -338,7 +341,8 @@ def ledger_evidence(st: Studies) -> dict[str, Evidence | Readings]:
         ``st`` not a :class:`Studies`.
     """
     instance_of(st, Studies, "st")
-    return {rid: fn(st) for rid, fn in EVIDENCE.items()}
+    with runs_named("st", "cached_studies' runs"):  # rule R4 named by the argument (fuzz 22b A2)
+        return {rid: fn(st) for rid, fn in EVIDENCE.items()}
 
 
 #: Base seed of the chapter's studies; each study adds its own offset (the chapter's seeds 2501-2712).

@@ -1,0 +1,51 @@
+"""Fuzz 22b (chapter layer), classes MM, A2, K2 (chapter 02 parts) and the debatables q1-q8: bad input refused by
+name, valid input kept (issue 35)."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+
+from fusion.book.chapters import lecture_correlated as lc
+from fusion.book.chapters import ofs_fair
+from fusion.book.ledger import MIN_RUNS, Comparison
+
+
+# --------------------------------------------------------------------------- A2: rule R4 named by the caller's argument
+def _names(e: pytest.ExceptionInfo, name: str) -> bool:
+    msg = str(e.value)
+    return msg.startswith(f"{name} ") and str(MIN_RUNS) in msg and "a and b" not in msg
+
+
+def test_a2_fair_study_too_short_is_refused_naming_study() -> None:
+    fs = ofs_fair.fair_study(1, 5, 20)
+    for fn in (ofs_fair.verdicts, ofs_fair.fair_numbers):
+        with pytest.raises(ValueError) as e:
+            fn(fs)
+        assert _names(e, "study"), str(e.value)
+    ofs_fair.figure_fair(fs)  # the figure compares nothing pairwise: any run count
+
+
+def test_a2_lecture_correlated_ledger_evidence_names_st() -> None:
+    with pytest.raises(ValueError) as e:
+        lc.ledger_evidence(lc.cached_studies(2500, 5))
+    assert _names(e, "st"), str(e.value)
+
+
+def test_a2_reading_functions_name_runs() -> None:
+    from fusion.book.chapters import lecture_weighting as lwt
+    import fusion.book.chapters.lecture_wavelets.records as lwr
+    for fn, runs in ((lwt.ev_cc_accuracy, 5), (lwr.ev_wavelet_weighting, 16)):
+        with pytest.raises(ValueError) as e:
+            fn({"reading": "primary"}, runs=runs)
+        assert _names(e, "runs"), str(e.value)
+
+
+def test_a2_the_ledger_keeps_its_own_message_and_reason() -> None:
+    """Comparison itself still names its a, b and reason (its caller has them), and a reason still admits."""
+    a, b = np.arange(5.0), np.arange(5.0) + 1
+    with pytest.raises(ValueError, match=re.escape("a and b hold 5 runs")):
+        Comparison(a, b, "A", "B", "less", "m")
+    assert Comparison(a, b, "A", "B", "less", "m", reason="a test").reason == "a test"
