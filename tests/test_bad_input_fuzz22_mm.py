@@ -49,3 +49,22 @@ def test_a2_the_ledger_keeps_its_own_message_and_reason() -> None:
     with pytest.raises(ValueError, match=re.escape("a and b hold 5 runs")):
         Comparison(a, b, "A", "B", "less", "m")
     assert Comparison(a, b, "A", "B", "less", "m", reason="a test").reason == "a test"
+
+
+# --------------------------------------------------------------------------- K2-5, K2-6: chapter 02 studies by type
+@pytest.mark.parametrize("fn, key", [("ev_awf_optimal", "s21"), ("ev_awf_unbiased", "s21"), ("ev_belief_perron", "s24"),
+                                     ("ev_ls_unbiased", "s22"), ("ev_ls_tracks", "s22")])
+@pytest.mark.parametrize("bad", [5, "s", object(), 2.5])
+def test_k2_study_evidence_names_the_study_of_the_wrong_type(fn, key, bad) -> None:
+    import fusion.book.chapters.lecture_weighting.study_evidence as se
+    st = {k: bad for k in se.STUDIES}
+    with pytest.raises(TypeError, match=re.escape(f"st[{key!r}]")):
+        getattr(se, fn)(st)
+
+
+@pytest.mark.parametrize("bad, exc", [("x", TypeError), ([1], TypeError), ({}, ValueError),
+                                      ({(1, 900.0, True): "x"}, TypeError)])
+def test_k2_glue_offset_names_results(bad, exc) -> None:
+    import fusion.book.chapters.lecture_weighting.readings_benchmark as rb
+    with pytest.raises(exc, match="results"):
+        rb.glue_offset(bad)
