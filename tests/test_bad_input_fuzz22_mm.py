@@ -68,3 +68,50 @@ def test_k2_glue_offset_names_results(bad, exc) -> None:
     import fusion.book.chapters.lecture_weighting.readings_benchmark as rb
     with pytest.raises(exc, match="results"):
         rb.glue_offset(bad)
+
+
+# --------------------------------------------------------------------------- MM: pairs compared by what identifies them
+@pytest.fixture(scope="module")
+def two_sensor_pair():
+    from fusion.book.chapters import ci
+    from fusion.scenarios import two_sensor
+    sc = two_sensor.two_sensor_scenario(np.eye(2), 4 * np.eye(2), np.eye(4), np.random.default_rng(3), runs=4)
+    w = np.full(sc.t.size, 0.5)
+    return ci, sc, two_sensor.fusion_study(sc, w, w)
+
+
+def test_mm_a_study_of_another_scenario_is_refused(two_sensor_pair) -> None:
+    from fusion.scenarios import two_sensor
+    ci, sc, study = two_sensor_pair
+    other = two_sensor.two_sensor_scenario(np.eye(2), 4 * np.eye(2), np.eye(4), np.random.default_rng(4), runs=4)  # another seed only
+    for call in (lambda s: ci.slip_at_weights(s, study), lambda s: ci.baseline_slip_numbers(s, study),
+                 lambda s: ci.rmse_table(study, s), lambda s: ci.slip_table(study, s)):
+        with pytest.raises(ValueError, match=r"study must be fusion_study of sc"):
+            call(other)
+        call(sc)  # its own scenario: accepted
+
+
+def test_mm_plugin_exact_of_another_study_is_refused() -> None:
+    from fusion.book.chapters.lecture_correlated import ridge
+    from fusion.scenarios import ridge_sensors as rs
+    p = rs.plugin_study(xs=(0.0, 0.5, 1.0), m=5, sigma=1.0, runs=50, seed=3)
+    ridge.table_plugin(p, ridge.plugin_exact(p))
+    for other in (rs.plugin_study(xs=(0.0, 0.5), m=5, sigma=1.0, runs=50, seed=3),      # other xs
+                  rs.plugin_study(xs=(0.0, 0.5, 1.0), m=3, sigma=2.0, runs=50, seed=3),  # other σ/√m
+                  rs.plugin_study(xs=(0.0, 0.5, 1.0), m=20, sigma=2.0, runs=50, seed=3)):  # same σ/√m, other m
+        with pytest.raises(ValueError, match="x25 must be plugin_exact"):
+            ridge.table_plugin(p, ridge.plugin_exact(other))
+
+
+def test_mm_ir_reading_numbers_checks_sim_and_rmse() -> None:
+    from fusion.book.chapters import ci
+    import fusion.scenarios.infrared_radar as ir
+    readings = ci.ir_readings(0.1, 1, 2)
+    sim, rmse = ci.ir_study(0.1, 1, 2)
+    assert ci.ir_reading_numbers(readings, sim, rmse) == ci.ir_reading_numbers(
+        readings, readings.sims["x"], ir.rmse_by_rule(readings.sims["x"]))
+    for other in (ci.ir_study(0.2, 1, 2), ci.ir_study(0.1, 2, 2), ci.ir_study(0.1, 1, 3)):
+        with pytest.raises(ValueError, match=r"^sim must be"):
+            ci.ir_reading_numbers(readings, other[0], other[1])
+        with pytest.raises(ValueError, match=r"^rmse\["):
+            ci.ir_reading_numbers(readings, sim, other[1])
