@@ -115,3 +115,59 @@ def test_mm_ir_reading_numbers_checks_sim_and_rmse() -> None:
             ci.ir_reading_numbers(readings, other[0], other[1])
         with pytest.raises(ValueError, match=r"^rmse\["):
             ci.ir_reading_numbers(readings, sim, other[1])
+
+
+# --------------------------------------------------------------------------- debatables q1-q8 (decided)
+def test_q1_correction_value_follows_its_consumers_rule() -> None:
+    """Decided: fixed. Correction.value is checked by the rule describe/explain apply (scalar), so no Correction
+    is built that they refuse; numpy scalars stay accepted."""
+    import dataclasses
+    from fusion.book.chapters import ofs_audit as oa
+    c = oa.Correction(1, 5, 889.9, "one-digit slip")
+    with pytest.raises(TypeError, match=r"Correction\.value"):
+        dataclasses.replace(c, value=True)
+    with pytest.raises(ValueError, match=r"Correction\.value"):
+        dataclasses.replace(c, value=1e308)
+    for ok in (np.float32(889.5), np.int64(900), 889):
+        assert oa.describe(dataclasses.replace(c, value=ok)).startswith("obs. 5, sensor 1")
+
+
+def test_q2_a_methods_subset_is_for_reading_mae_and_its_consumers_refuse_it_by_name() -> None:
+    """Decided: documented. fair_study runs a subset of the methods (its errors readable); the three consumers,
+    which read every method, refuse it naming study."""
+    fs = ofs_fair.fair_study(1, 100, 20, sizes=(0,), counts=(1,), spreads=(1,), opposite=(),
+                             methods=("mean", "median"))
+    assert all(set(e) == {"mean", "median"} for e in fs.mae.values())
+    for fn in (ofs_fair.verdicts, ofs_fair.fair_numbers, ofs_fair.figure_fair):
+        with pytest.raises(ValueError, match="study"):
+            fn(fs)
+
+
+@pytest.mark.parametrize("settings", ["x", 5, {"reading": 5}, {"reading": None}])
+def test_q3_claim_file_settings_of_the_wrong_type_are_value_errors(settings) -> None:
+    """Decided: kept and documented (reading_key): the settings are a claim file's content, not a Python
+    argument, so every refusal of them is a ValueError naming settings."""
+    from fusion.book.chapters import lecture_weighting as lwt
+    with pytest.raises(ValueError, match="settings"):
+        lwt.ev_cc_accuracy(settings)
+
+
+@pytest.mark.parametrize("key, exc", [(float("nan"), ValueError), ("1.0", TypeError), (-1.0, ValueError),
+                                      (float("inf"), ValueError)])
+def test_q6_latency_values_checks_the_noise_levels(key, exc) -> None:
+    """Decided: fixed. The keys of be (noise levels) are checked as its values are."""
+    from fusion.book.chapters import time_registration_ledger as tl
+    with pytest.raises(exc, match="be's noise level"):
+        tl.latency_values({key: 0.01, 3.0: 0.02}, 3.0)
+    assert tl.latency_values({np.float64(1.0): 0.01, 3.0: 0.02}, 3.0)["reg_be_lo_ms"] == pytest.approx(10.0)
+
+
+def test_q7_fruit_fly_step_study_uses_the_target_it_checked() -> None:
+    """Decided: fixed. A float subclass whose __float__ differs is computed with the float that was checked."""
+    from fusion.book.chapters import ci
+
+    class Lying(float):
+        def __float__(self) -> float:
+            return 0.3
+
+    assert ci.fruit_fly_step_study(2, Lying(0.8)).equals(ci.fruit_fly_step_study(2, 0.3))

@@ -193,7 +193,9 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
         ``OPPOSITE``; the first two sensors of each run's permutation): magnitudes, >= 0.
     methods : sequence of str
         The methods run at every point (default: all of :data:`FAIR_METHODS`): the draws, and so each method's
-        errors, do not depend on which methods or sweep points are run.
+        errors, do not depend on which methods or sweep points are run. A subset is for reading
+        :attr:`FairStudy.mae` directly (a cheaper look at some methods): :func:`verdicts`, :func:`fair_numbers`
+        and :func:`figure_fair` read every method of :data:`FAIR_METHODS` and refuse such a study by name.
 
     Returns
     -------
