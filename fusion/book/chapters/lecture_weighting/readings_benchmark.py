@@ -13,6 +13,7 @@ from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B, SeedStability, _benchmark_results
 from fusion._docstrings import reads_results
+from fusion._shown import shown
 from fusion._validation import instance_of
 
 __all__ = [
@@ -166,7 +167,7 @@ def glue_offset(results: dict) -> GlueValues:
     r = results[keys[0]]
     lacking = [name for name in OFFSET_METHODS if name not in r]
     if lacking:
-        raise ValueError(f"results[{keys[0]!r}] lacks the methods {[str(m) for m in lacking]} of OFFSET_METHODS")
+        raise ValueError(f"results[{shown(keys[0])}] lacks the methods {[str(m) for m in lacking]} of OFFSET_METHODS")
     out: GlueValues = {"lec_bo_runs": int(next(iter(r.values())).size), "lec_bo_seed": int(seed),
                            "lec_bo_level": f"{level:g}"}
     for name, key in OFFSET_METHODS.items():
