@@ -171,3 +171,33 @@ def test_q7_fruit_fly_step_study_uses_the_target_it_checked() -> None:
             return 0.3
 
     assert ci.fruit_fly_step_study(2, Lying(0.8)).equals(ci.fruit_fly_step_study(2, 0.3))
+
+
+@pytest.fixture(scope="module")
+def tiny_tracking():
+    from fusion.book.chapters import chernoff as chc
+    from fusion.scenarios import range_bearing as dist
+    sc = dist.RangeBearingScenario(frames=6, n_particles=300, n_samples=300, n_central=600, em_iterations=5)
+    runs = dist.monte_carlo(sc, 5, 3)
+    return chc, sc, runs, chc.crb_position(sc, runs)
+
+
+def test_q5_top_share_is_the_share_of_the_signed_sum(tiny_tracking) -> None:
+    """Decided: documented. chf_top_share is 100 * the largest paired difference / their signed sum, so it can
+    leave [0, 100] when the differences have mixed signs (few runs)."""
+    from fusion.book.chapters.chernoff.tracking import per_run_mse
+    chc, sc, runs, crb = tiny_tracking
+    d = per_run_mse(runs, "chernoff_pso") - per_run_mse(runs, "chernoff_uniform")
+    v = chc.review_values(runs, crb, sc, 1)
+    assert v["chf_top_run"] == int(np.argmax(d)) + 1
+    assert v["chf_top_share"] == pytest.approx(round(100 * d.max() / d.sum()), abs=0.5)
+
+
+def test_q8_guarded_runs_keeps_the_runs_it_does_not_redo_whatever_the_seed(tiny_tracking) -> None:
+    """Decided: documented. The runs do not record their seed: with another root seed the runs that are not
+    redone are the given ones, and only the redone ones follow the seed."""
+    chc, sc, runs, _ = tiny_tracking
+    bad = chc.any_collapsed(runs, sc)
+    for seed in (5, 6):
+        out = chc.guarded_runs(runs, sc, seed)
+        assert all(o is r for o, r, b in zip(out, runs, bad) if not b)
