@@ -201,3 +201,12 @@ def test_q8_guarded_runs_keeps_the_runs_it_does_not_redo_whatever_the_seed(tiny_
     for seed in (5, 6):
         out = chc.guarded_runs(runs, sc, seed)
         assert all(o is r for o, r, b in zip(out, runs, bad) if not b)
+
+
+@pytest.mark.parametrize("name", ["ev_fig2_fluctuation", "ev_membership_free", "ev_weights_stability",
+                                  "ev_fig4_robust"])
+def test_a2_chapter01_readers_name_runs(name) -> None:
+    from fusion.book.chapters import ofs as ch
+    with pytest.raises(ValueError) as e:
+        getattr(ch, name)({}, seed=4, runs=5)
+    assert _names(e, "runs"), str(e.value)

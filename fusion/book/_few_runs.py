@@ -9,7 +9,11 @@ or ``reason``); :func:`runs_named` turns it into one naming the caller's argumen
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Iterator
+import functools
+from collections.abc import Callable, Iterator
+from typing import Any, TypeVar
+
+_F = TypeVar("_F", bound=Callable[..., Any])
 
 
 class FewRunsError(ValueError):
@@ -45,3 +49,13 @@ def runs_named(name: str, how: str) -> Iterator[None]:
         raise ValueError(f"{name} gives paired comparisons of {e.runs} runs, fewer than the {e.minimum} rule R4 "
                          f"asks without a reason (this function takes none): give at least {e.minimum} runs "
                          f"({how})") from e
+
+
+def reader_runs_named(fn: _F) -> _F:
+    """An evidence function ``fn(settings, *, seed, runs)`` whose rule R4 refusal names its argument ``runs``
+    (:func:`runs_named`); signature and docstring kept."""
+    @functools.wraps(fn)
+    def named(*args: Any, **kwargs: Any) -> Any:
+        with runs_named("runs", "the argument runs"):
+            return fn(*args, **kwargs)
+    return named  # type: ignore[return-value]
