@@ -210,3 +210,15 @@ def test_a2_chapter01_readers_name_runs(name) -> None:
     with pytest.raises(ValueError) as e:
         getattr(ch, name)({}, seed=4, runs=5)
     assert _names(e, "runs"), str(e.value)
+
+
+@pytest.mark.parametrize("module, name", [("ci", "ev_fig7_improved_vs_ci"), ("ci", "ev_fig10_x_below_y"),
+                                          ("lecture_correlated", "ev_correlation_matters"),
+                                          ("time_registration_ledger", "ev_improved"),
+                                          ("time_registration_ledger", "ev_ls_info")])
+def test_a2_chapter04_05_07_readers_name_runs(module, name) -> None:
+    import importlib
+    fn = getattr(importlib.import_module(f"fusion.book.chapters.{module}"), name)
+    with pytest.raises(ValueError) as e:
+        fn({}, seed=7, runs=5)
+    assert _names(e, "runs"), str(e.value)

@@ -430,8 +430,10 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> Studies:
 
 
 def _reading(rid: str, settings: dict[str, Any] | None, seed: int, runs: int | None) -> Evidence:
-    """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``."""
-    return reading_of(rid, EVIDENCE[rid](cached_studies(seed, runs)), settings)
+    """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``; rule R4's refusal
+    names the caller's ``runs`` (fuzz 22b A2)."""
+    with runs_named("runs", "the argument runs"):
+        return reading_of(rid, EVIDENCE[rid](cached_studies(seed, runs)), settings)
 
 
 def claims_file() -> ClaimsFile:
