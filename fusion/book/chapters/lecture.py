@@ -21,6 +21,7 @@ import pandas as pd
 from matplotlib.figure import Figure, SubFigure
 
 from fusion._docstrings import with_sections
+from fusion.book._few_runs import runs_named
 from fusion.book.glue import GlueValues
 from fusion.book.ledger import (EVIDENCE_TYPES, Comparison, Conjunction, Evidence,  # noqa: F401 (readings' return hints)
                                 Unverifiable, ledger_dir)
@@ -304,7 +305,9 @@ Parameters
 settings : mapping
     ``{{"reading": key}}``: ``"primary"`` (the default) or a reading key of the claim file.
 seed, runs : int
-    {seed_runs}
+    {seed_runs} A reading that compares runs pairwise needs at least
+    :data:`~fusion.book.ledger.MIN_RUNS` of them (rule R4; the function takes no ``reason``): fewer are refused
+    naming ``runs``.
 
 Returns
 -------
@@ -347,7 +350,9 @@ def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any]
     seed, runs = check_seed(seed), count(runs, "runs")
 
     def fn(settings: Mapping[str, Any], *, seed: int = seed, runs: int = runs) -> Evidence:
-        return at(rid, settings, check_seed(seed), count(runs, "runs"))  # the record's entry: 1.5 is not seed 1
+        seed, n = check_seed(seed), count(runs, "runs")  # the record's entry: 1.5 is not seed 1
+        with runs_named("runs", f"runs={n}; the record's own run count is {runs}"):  # rule R4 named (fuzz 22b A2)
+            return at(rid, settings, seed, n)
 
     fn.__name__ = fn.__qualname__ = "ev_" + rid.removeprefix("lec-").replace("-", "_")
     fn.__module__ = module

@@ -423,9 +423,11 @@ class Correction:
     sensor, obs : int
         1-based sensor and observation (0 for "no correction").
     value : float
-        Corrected reading (°C).
+        Corrected reading (°C): a real number as :func:`describe` and :func:`explain` read it (not a bool, its
+        magnitude representable; a float or numpy scalar, not an array); NaN for "none".
     kind : str
-        "none", "one-digit slip", "adjacent digits swapped" or "other value".
+        "none", "one-digit slip", "adjacent digits swapped" or "other value": a label, not checked against
+        ``value`` (:func:`corrections` sets both; a replaced value keeps its label).
     """
 
     sensor: int
@@ -448,6 +450,8 @@ def _correction_relation(values: dict, cls: str) -> None:
         if (values[field] == 0) != none:
             raise ValueError(f"{cls}.{field} must be {'0' if none else '>= 1'} for the kind {shown(values['kind'])}, "
                              f"got {shown(values[field])}")
+    if not none:  # the consumers' own rule (_correction: scalar), so that a Correction they refuse is not built
+        scalar(values["value"], f"{cls}.value")  # (fuzz 22b q1: True and 1e308 were accepted, then refused)
     v = float(values["value"])
     if none != np.isnan(v) or np.isinf(v):
         raise ValueError(f"{cls}.value must be {'NaN' if none else 'finite'} for the kind {shown(values['kind'])}, "

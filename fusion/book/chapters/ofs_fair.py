@@ -27,6 +27,7 @@ from numpy.typing import ArrayLike
 from fusion import readings as rd
 from fusion._results import ResultSpec, array, dict_of, integer, validated_post_init
 from fusion._validation import FloatArray, as_array, count, instance_of, one_of, scalar
+from fusion.book._few_runs import runs_named
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
@@ -192,7 +193,9 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
         ``OPPOSITE``; the first two sensors of each run's permutation): magnitudes, >= 0.
     methods : sequence of str
         The methods run at every point (default: all of :data:`FAIR_METHODS`): the draws, and so each method's
-        errors, do not depend on which methods or sweep points are run.
+        errors, do not depend on which methods or sweep points are run. A subset is for reading
+        :attr:`FairStudy.mae` directly (a cheaper look at some methods): :func:`verdicts`, :func:`fair_numbers`
+        and :func:`figure_fair` read every method of :data:`FAIR_METHODS` and refuse such a study by name.
 
     Returns
     -------
@@ -296,6 +299,8 @@ def verdicts(study: FairStudy, reference: str = "optimal_fusion_set") -> pd.Data
     Parameters
     ----------
     study : FairStudy
+        Of at least :data:`~fusion.book.ledger.MIN_RUNS` runs (rule R4: the verdicts are paired comparisons and
+        this function takes no ``reason``); fewer are refused naming ``study`` (:func:`figure_fair` draws any).
     reference : str
         Method every other is compared with.
 
@@ -309,6 +314,12 @@ def verdicts(study: FairStudy, reference: str = "optimal_fusion_set") -> pd.Data
     """
     _fair_study(study)
     one_of(reference, FAIR_METHODS, "reference")
+    with runs_named("study", "fair_study's n_runs"):  # rule R4 named by the argument (fuzz 22b A2)
+        return _verdicts(study, reference)
+
+
+def _verdicts(study: FairStudy, reference: str) -> pd.DataFrame:
+    """:func:`verdicts` of a checked study."""
     cols = {}
     for key, errs in study.mae.items():
         col = {}
@@ -367,7 +378,8 @@ def fair_numbers(study: FairStudy) -> GlueValues:
     Parameters
     ----------
     study : FairStudy
-        The result of :func:`fair_study`.
+        The result of :func:`fair_study`, of at least :data:`~fusion.book.ledger.MIN_RUNS` runs (its
+        :func:`verdicts`; fewer are refused naming ``study``).
 
     Returns
     -------
@@ -387,7 +399,7 @@ def fair_numbers(study: FairStudy) -> GlueValues:
             raise ValueError(f"study must hold the sweep {shown(sweep)}" + (" with the point 0" if first else "")
                              + " (fair_numbers reads it), as fair_study's default sweeps do")
     F = {k: {m: float(v.mean()) for m, v in e.items()} for k, e in study.mae.items()}
-    V = verdicts(study)
+    V = verdicts(study)  # names study when its runs are fewer than rule R4's minimum
     others = [_row(m) for m in FAIR_METHODS if m not in ("optimal_fusion_set", "uniform_set")]
     size_keys = [k for k in study.mae if k[0] == SIZE]
     opp_keys = [k for k in study.mae if k[0] == OPPOSITE]
@@ -677,7 +689,8 @@ def fault_shapes_table(study: Mapping[str, Mapping[str, FloatArray]], seed: int 
     for shape, errs in study.items():
         row: dict[str, str] = {f"{label[m]} (°C)": f"{errs[m].mean():.3f}" for m in errs}
         for a, b in pairs:
-            cmp = Comparison(errs[a], errs[b], a, b, "less", "per-run MAE (°C)", seed=seed)
+            with runs_named("study", "fault_shapes_study's runs"):  # rule R4 named (fuzz 22b A2)
+                cmp = Comparison(errs[a], errs[b], a, b, "less", "per-run MAE (°C)", seed=seed)
             _, lo, hi = cmp.interval()
             row[f"{label[a]} vs {label[b]}"] = f"{_word(cmp)} [{lo:+.3f}, {hi:+.3f}]"
         rows[shape] = row

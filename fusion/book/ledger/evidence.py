@@ -21,6 +21,7 @@ from fusion._validation import _numeric, _real_number, count, counts, seed as ch
 from fusion._validation import one_of, shown
 from fusion._validation import text
 from fusion.book import rulebook as R
+from fusion.book._few_runs import FewRunsError
 from fusion.book._json import JSONObject
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger.statuses import MIN_RUNS, _text, fmt
@@ -234,8 +235,8 @@ class Comparison:
         claim = text(claim, "claim")  # rule 19: matched and stored as its text
         one_of(claim, ("less", "greater", "equal"), "claim")
         if av.size < MIN_RUNS and not reason:
-            raise ValueError(f"a and b hold {av.size} runs < {MIN_RUNS}: give more runs or a reason (the argument "
-                             "reason: why fewer runs are enough)")
+            raise FewRunsError(f"a and b hold {av.size} runs < {MIN_RUNS}: give more runs or a reason (the argument "
+                               "reason: why fewer runs are enough)", av.size, MIN_RUNS)
         if isinstance(conditions, list):  # a list pair is a pair (the chapter results store lists as tuples)
             conditions = tuple(conditions)
         if not (isinstance(conditions, tuple) and len(conditions) == 2 and all(isinstance(c, str) for c in conditions)):

@@ -42,7 +42,8 @@ def guarded_runs(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int,
     sc : RangeBearingScenario
         Its scenario (without guard).
     seed : int
-        Its root seed.
+        Its root seed. The runs do not record their seed, so another seed is not detected (fuzz 22b q8): the
+        redone runs then come from ``seed``'s streams and the kept ones stay the runs' own.
     workers : int
         Processes for the redone runs (results do not depend on it).
 

@@ -265,7 +265,8 @@ def review_values(runs: list[TrackingRun], crb_pos: FloatArray, sc: RangeBearing
         the exact condition fails for the nodes' moment-matched Gaussians: Λ = Σ(2ε*_i − ε⁽⁰⁾_i)P_i⁻¹ not positive
         definite); ``chf_prev_d``/``_lo``/``_hi`` (ε⁽⁰⁾ = previous ε* minus the patent's method, per-run MSE,
         m²); ``chf_top_run`` (1-based) and ``chf_top_share`` (%) (the run with the largest paired difference of
-        the patent's method and uniform exponents, and its share of the summed differences). 4 decimals.
+        the patent's method and uniform exponents, and its share of the summed signed differences: above 100 %
+        or negative when the runs' differences have mixed signs, as on a few runs; fuzz 22b q5). 4 decimals.
 
     References
     ----------

@@ -74,3 +74,25 @@ def _averaging_start(t_min: object, duration: object, name: str = "t_min") -> tu
         raise ValueError(f"{name} = {t_min:g} s is after the end of the track (duration = {duration:g} s): "
                          "the average would cover no scan")
     return t_min, duration
+
+
+def _study_of(sc: object, study: object, sc_name: str = "sc", study_name: str = "study") -> None:
+    """``study`` a :func:`fusion.scenarios.two_sensor.fusion_study` of the scenario ``sc`` (fuzz 22b MM): both of
+    their types, the same steps and truth, and the study's local-filter estimates of the two sensors those of
+    ``sc``'s tracks (what identifies the scenario's seed and runs: the truth is the same path at every seed).
+    A ValueError names ``study`` and ``sc`` when they differ, before another seed's tracks are set against the
+    study's truth (plausible wrong slips) or the study's runs against ``sc``'s."""
+    from fusion._validation import instance_of
+    from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
+
+    instance_of(sc, Scenario, sc_name)
+    instance_of(study, FusionStudy, study_name)
+    assert isinstance(sc, Scenario) and isinstance(study, FusionStudy)
+    if study.t.shape != sc.t.shape or not np.array_equal(study.t, sc.t) or not np.array_equal(study.truth, sc.truth):
+        raise ValueError(f"{study_name} must be fusion_study of {sc_name}: their steps or truth differ "
+                         f"({study.t.size} and {sc.t.size} steps)")
+    for method, track in zip((StudyMethod.SENSOR_1, StudyMethod.SENSOR_2), sc.tracks):
+        est = study.est.get(method)
+        if est is not None and (est.shape != track.est.shape or not np.array_equal(est, track.est)):
+            raise ValueError(f"{study_name} must be fusion_study of {sc_name}: its local tracks ({method.value}) "
+                             f"are not {sc_name}'s (another seed, runs or scenario)")

@@ -100,7 +100,7 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     count(seeds, "seeds")
-    scalar(target, "target", lo=0.0, hi=1.0, lo_open=True, hi_open=True)  # in (0, 1); used as given
+    target = scalar(target, "target", lo=0.0, hi=1.0, lo_open=True, hi_open=True)  # in (0, 1): the float checked is used (q7)
     grid = grid_search(lambda w: (np.asarray(w, dtype=float) - target) ** 2, 1001, vectorized=True)
     rows = {}
     for label, step in FRUIT_FLY_STEP_RULES.items():

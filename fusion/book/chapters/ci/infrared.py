@@ -837,15 +837,42 @@ def ir_bound_table(readings: IrReadings) -> pd.DataFrame:
 
 @_on_readings
 @reads_results("readings", "sim")
+def _ir_pair(readings: IrReadings, sim: ir.IrRadarRuns, rmse: object) -> None:
+    """``sim`` the primary simulation of ``readings`` (``readings.sims["x"]``: its scans and measurements) and
+    ``rmse`` its :func:`fusion.scenarios.infrared_radar.rmse_by_rule` (recomputed, 0.07 CPU-s at 200 runs), else a
+    ValueError naming ``sim`` or ``rmse`` (fuzz 22b MM6-MM7: another period gave an IndexError, another seed or
+    run count plausible numbers)."""
+    own = readings.sims["x"]
+    if sim is not own and (sim.t.shape != own.t.shape or not np.array_equal(sim.t, own.t)
+                           or sim.ir.z.shape != own.ir.z.shape or not np.array_equal(sim.ir.z, own.ir.z)
+                           or sim.radar.z.shape != own.radar.z.shape or not np.array_equal(sim.radar.z, own.radar.z)):
+        raise ValueError(f"sim must be the primary simulation of readings (readings.sims['x']: {own.t.size} scans, "
+                         f"{readings.runs} runs, seed {readings.seed}), got one of {sim.t.size} scans and "
+                         f"{sim.ir.z.shape[0]} runs or other draws")
+    _entries(rmse, "rmse", IR_SHOWN, "fusion.scenarios.infrared_radar.rmse_by_rule(sim)", numbers=False)
+    assert isinstance(rmse, Mapping)
+    expected = ir.rmse_by_rule(sim)
+    for name in IR_SHOWN:
+        got = np.asarray(rmse[name], dtype=float)
+        if got.shape != expected[name].shape or not np.allclose(got, expected[name], rtol=1e-9, atol=0.0):
+            raise ValueError(f"rmse[{shown(name)}] must be sim's RMSE per scan (rmse_by_rule(sim), shape "
+                             f"{expected[name].shape}), got another (shape {got.shape})")
+
+
 def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[str, np.ndarray]) -> GlueValues:
     """The numbers the prose quotes from :func:`ir_readings` (glue keys ``ci_irb_*``).
 
     Parameters
     ----------
+    readings : IrReadings
+        :func:`ir_readings`.
     sim : IrRadarRuns
-        The chapter's main infrared + radar simulation (for the binding check of the figure).
+        The chapter's main infrared + radar simulation (for the binding check of the figure): the primary
+        simulation of ``readings`` (``readings.sims["x"]``); another (other period, seed or runs) is refused naming
+        ``sim``.
     rmse : mapping of str to ndarray, shape (K, 4)
-        Its RMSE per scan by method (:func:`ir_study`).
+        Its RMSE per scan by method (:func:`fusion.scenarios.infrared_radar.rmse_by_rule` of ``sim``, as
+        :func:`ir_study` returns it); another simulation's is refused naming ``rmse``.
 
     Returns
     -------
@@ -854,6 +881,7 @@ def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[
     """
     instance_of(readings, IrReadings, "readings")
     instance_of(sim, ir.IrRadarRuns, "sim")
+    _ir_pair(readings, sim, rmse)
     prim, cart = list(IR_READINGS)[0], list(IR_READINGS)[3]
     q_lo, q_hi = list(IR_READINGS)[1], list(IR_READINGS)[2]
     c_lo, c_hi = list(IR_READINGS)[4], list(IR_READINGS)[5]

@@ -19,6 +19,7 @@ import numpy as np
 
 from fusion.book.study_cache import process_cache, study_cache
 from fusion._validation import count
+from fusion.book._few_runs import runs_named
 from fusion.book.ledger import Evidence
 from fusion.estimates.ci import ci_objective
 from fusion.filtering.tracks import fuse_tracks
@@ -389,7 +390,8 @@ def _reader(rid: str, extra: str = "") -> Callable[..., Evidence]:
     """The evidence function of the stochastic record ``rid``: :func:`record_evidence` of ``rid``, named
     ``ev_<id without "ci-", dashes as underscores>`` (the name the record's ``evidence`` field gives)."""
     def fn(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
-        return record_evidence(rid, settings, seed=seed, runs=runs)
+        with runs_named("runs", "the argument runs"):  # rule R4 named by the argument (fuzz 22b A2)
+            return record_evidence(rid, settings, seed=seed, runs=runs)
 
     fn.__name__ = fn.__qualname__ = "ev_" + rid.removeprefix("ci-").replace("-", "_")
     fn.__doc__ = _READER_DOC.format(rid=rid, extra=extra)

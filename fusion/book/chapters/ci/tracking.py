@@ -31,7 +31,7 @@ from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
 from fusion.scenarios.two_sensor.study import OVER_STEPS, RUN_AVERAGED
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 from fusion.book.chapters.ci.text import _glue_doc
-from fusion.book.chapters.ci.checks import _entries
+from fusion.book.chapters.ci.checks import _entries, _study_of
 from fusion._structures import same_keys
 from fusion._shown import shown
 
@@ -122,7 +122,8 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
         From :func:`fusion.scenarios.two_sensor.fusion_study` with every method run.
     sc : Scenario, optional
         The study's scenario: when given, Fig. 6 also gets CI at the two weights Fig. 5 publishes, fixed
-        (the ledger's primary reading of Fig. 6), on the same runs.
+        (the ledger's primary reading of Fig. 6), on the same runs. A study of another scenario (other steps, truth or
+        local tracks: another seed or runs) is refused, naming ``study`` and ``sc``.
 
     Returns
     -------
@@ -135,6 +136,8 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
         ``("reference", ...)``, is the centralised Kalman filter, which the source does not run.
     """
     instance_of(study, FusionStudy, "study")
+    if sc is not None:
+        _study_of(sc, study)
     rows = []
     pub = data.WANG2024_RMSE.columns
     for fig_name, entries in figure_rows().items():
@@ -182,7 +185,8 @@ def slip_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
         From :func:`fusion.scenarios.two_sensor.fusion_study` with every method run.
     sc : Scenario, optional
         The study's scenario: with it, two rows more (figure ``"Fig. 6, published ω"``), plain CI at the two weights
-        the source publishes (Fig. 5) and puts into CI (Fig. 6).
+        the source publishes (Fig. 5) and puts into CI (Fig. 6). A study of another scenario (other steps, truth or
+        local tracks: another seed or runs) is refused, naming ``study`` and ``sc``.
 
     Returns
     -------
@@ -192,6 +196,8 @@ def slip_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
         after 20 s and over the runs (m, x). Rounded to 2 decimals.
     """
     instance_of(study, FusionStudy, "study")
+    if sc is not None:
+        _study_of(sc, study)
     every = np.ones(study.t.size, dtype=bool)
     rows = []
     pub = data.WANG2024_RMSE.columns
@@ -346,10 +352,10 @@ def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = 
     TypeError
         ``sc`` or ``study`` of the wrong type, ``omegas`` not a sequence or an entry not a number.
     ValueError
-        An entry of ``omegas`` outside [0, 1] or repeated (the result is keyed by weight).
+        An entry of ``omegas`` outside [0, 1] or repeated (the result is keyed by weight); ``study`` not
+        ``fusion_study`` of ``sc`` (its steps, truth or local tracks differ: another seed, runs or scenario).
     """
-    instance_of(sc, Scenario, "sc")
-    instance_of(study, FusionStudy, "study")
+    _study_of(sc, study)
     ws = distinct([scalar(w, f"omegas[{i}]", 0.0, 1.0) for i, w in enumerate(sequence(omegas, "omegas"))], "omegas")
     a, b = sc.tracks
     every = np.ones(study.t.size, dtype=bool)
@@ -828,6 +834,7 @@ def baseline_slip_numbers(sc: Scenario, study: FusionStudy) -> GlueValues:
         The chapter's scenario (its measurements, ``LocalTrack.z``).
     study : FusionStudy
         :func:`fusion.scenarios.two_sensor.fusion_study` of ``sc``.
+        Another scenario's study (other steps, truth or local tracks) is refused, naming ``study`` and ``sc``.
 
     Returns
     -------
@@ -835,8 +842,7 @@ def baseline_slip_numbers(sc: Scenario, study: FusionStudy) -> GlueValues:
         ``ci_slip8_avg_x``, ``_avg_y``, ``_one_x``, ``_one_y`` (m, 2 decimals), ``ci_slip8_lo``, ``ci_slip8_hi``
         (``lo > hi`` when no n fits).
     """
-    instance_of(sc, Scenario, "sc")
-    instance_of(study, FusionStudy, "study")
+    _study_of(sc, study)
     pub = data.WANG2024_RMSE.columns
     every = np.ones(study.t.size, dtype=bool)
     n_all = int(study.t.size)

@@ -28,7 +28,7 @@ from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
 from fusion.book.chapters.ci.text import _glue_doc, _sig3, excess_text, readable
-from fusion.book.chapters.ci.checks import _entries, _frame, _results
+from fusion.book.chapters.ci.checks import _entries, _frame, _results, _study_of
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
@@ -479,10 +479,10 @@ def weight_numbers(sc: Scenario, study: FusionStudy, w_fruit_fly: ArrayLike, w_g
     Raises
     ------
     ValueError
-        If the weights do not have one entry per step, or a step is outside the scenario.
+        If the weights do not have one entry per step, a step is outside the scenario, or ``study`` is not
+        ``fusion_study`` of ``sc`` (its steps, truth or local tracks differ).
     """
-    instance_of(sc, Scenario, "sc")
-    instance_of(study, FusionStudy, "study")
+    _study_of(sc, study)
     w_fruit_fly, w_grid = np.asarray(w_fruit_fly, dtype=float), np.asarray(w_grid, dtype=float)
     for name, w in (("w_fruit_fly", w_fruit_fly), ("w_grid", w_grid)):
         if w.shape != study.steady.shape:

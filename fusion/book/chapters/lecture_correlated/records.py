@@ -12,6 +12,7 @@ import numpy as np
 
 from fusion._frozen import constant
 from fusion._results import ResultSpec, instance, validated_post_init
+from fusion.book._few_runs import runs_named
 from fusion.book.study_cache import study_cache
 from fusion.book.chapters.lecture import SOURCE, sci
 from fusion.book.tables import roundoff
@@ -325,7 +326,9 @@ def ledger_evidence(st: Studies) -> dict[str, Evidence | Readings]:
     Parameters
     ----------
     st : Studies
-        The studies the chapter computed (keys of :func:`cached_studies`).
+        The studies the chapter computed (keys of :func:`cached_studies`); their paired comparisons need at
+        least :data:`~fusion.book.ledger.MIN_RUNS` runs (rule R4; this function takes no ``reason``): fewer
+        (``cached_studies(runs=...)``) are refused naming ``st``.
 
     Returns
     -------
@@ -338,7 +341,8 @@ def ledger_evidence(st: Studies) -> dict[str, Evidence | Readings]:
         ``st`` not a :class:`Studies`.
     """
     instance_of(st, Studies, "st")
-    return {rid: fn(st) for rid, fn in EVIDENCE.items()}
+    with runs_named("st", "cached_studies' runs"):  # rule R4 named by the argument (fuzz 22b A2)
+        return {rid: fn(st) for rid, fn in EVIDENCE.items()}
 
 
 #: Base seed of the chapter's studies; each study adds its own offset (the chapter's seeds 2501-2712).
@@ -426,8 +430,10 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> Studies:
 
 
 def _reading(rid: str, settings: dict[str, Any] | None, seed: int, runs: int | None) -> Evidence:
-    """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``."""
-    return reading_of(rid, EVIDENCE[rid](cached_studies(seed, runs)), settings)
+    """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``; rule R4's refusal
+    names the caller's ``runs`` (fuzz 22b A2)."""
+    with runs_named("runs", "the argument runs"):
+        return reading_of(rid, EVIDENCE[rid](cached_studies(seed, runs)), settings)
 
 
 def claims_file() -> ClaimsFile:

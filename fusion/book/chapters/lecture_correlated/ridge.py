@@ -44,7 +44,8 @@ _PARAMS = ParameterDocs({
     "s": "RidgeStudy\n    Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.",
     "p": "PluginStudy\n    Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.",
     "v": "VectorStudy\n    Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.",
-    "x25": "PluginExact\n    Result of :func:`plugin_exact`.",
+    "x25": "PluginExact\n    Result of :func:`plugin_exact` of ``p``: exact risks of another study (other xs, σ/√m, m or\n"
+           "    tolerances) are refused naming ``x25``.",
 })
 
 
@@ -241,6 +242,23 @@ def _plugin_relation(values: Mapping[str, Any], cls: str) -> None:
                              f"got {shown(sorted(risks))}")
 
 
+def _exact_of(p: PluginStudy, x25: PluginExact) -> None:
+    """``x25`` :func:`plugin_exact` of ``p`` (recomputed, 0.06 CPU-s): the same true values, θ = x√m/σ, tolerances and
+    σ-estimated crossings (which depend on m), else a ValueError naming ``x25`` (fuzz 22b MM4-MM5: another study's
+    exact risks gave a KeyError or were glued as ``p``'s)."""
+    instance_of(p, PluginStudy, "p")
+    instance_of(x25, PluginExact, "x25")
+    own = plugin_exact(p)
+    same = (set(x25.theta_at) == set(own.theta_at) and set(x25.at) == set(own.at)
+            and all(np.isclose(x25.theta_at[x], own.theta_at[x], rtol=1e-12, atol=0.0) for x in own.theta_at)
+            and set(x25.estimated) == set(own.estimated)
+            and all(np.isclose(x25.estimated[k], own.estimated[k], rtol=1e-9, atol=0.0, equal_nan=True)
+                    for k in own.estimated))
+    if not same:
+        raise ValueError(f"x25 must be plugin_exact(p) (p: xs {shown(list(p.xs), 80)}, m = {p.m}, σ = {p.sigma:g}, "
+                         f"tolerances {shown(list(p.deltas))}), got the exact risks of another study")
+
+
 def plugin_exact(p: PluginStudy) -> PluginExact:
     """The exact risk of the scalar plug-in ridge against LS (:func:`fusion.readings.biased.plugin_risk`).
 
@@ -276,8 +294,7 @@ def table_plugin(p: PluginStudy, x25: PluginExact) -> pd.DataFrame:
         LS's and its exact reliability (quadrature), at 4 decimals; the last column is the largest absolute
         difference between these four exact values and their Monte-Carlo estimates (``p.runs`` runs).
     """
-    instance_of(p, PluginStudy, "p")
-    instance_of(x25, PluginExact, "x25")
+    _exact_of(p, x25)
     rows = {}
     for x in p.xs:
         r = {"LS reliability": x25.at[PLUGIN_KNOWN, 1.0][x].reliability_ls}
@@ -339,8 +356,7 @@ def figure_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> Figure:
         estimated); bars of the vector case's MSE per direction and size of x.
     """
     instance_of(v, VectorStudy, "v")
-    instance_of(p, PluginStudy, "p")
-    instance_of(x25, PluginExact, "x25")
+    _exact_of(p, x25)
     fig, axes = new_figure(1, 3, figsize=(7.5, 3.6))
     xs = p.curve * np.sqrt(p.m) / p.sigma
     axes[0].plot(xs, p.ratio_known, color=color("ridge_plugin_known"), label=METHOD_LABELS["ridge_plugin_known"])
@@ -379,8 +395,7 @@ def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> GlueValues:
         and the Monte-Carlo MSEs of the plug-ins.
     """
     instance_of(v, VectorStudy, "v")
-    instance_of(p, PluginStudy, "p")
-    instance_of(x25, PluginExact, "x25")
+    _exact_of(p, x25)
     d: dict[str, tuple[float, int]] = {}
     mse_ls = p.sigma ** 2 / p.m
     for x in p.xs:

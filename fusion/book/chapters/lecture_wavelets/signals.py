@@ -41,7 +41,9 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
         Result of :func:`fusion.scenarios.wavelet_sensors.signal_study` (normalisers ``("max", ...)``,
         and ``"median"`` among them; ``"max-raw"`` adds a column).
     e26 : SignalStudy, optional
-        E2.6, the primary signal and rule with more runs: its row is taken from it (:func:`cell`).
+        E2.6, the primary signal and rule with more runs: its row is taken from it (:func:`cell`). The two
+        studies are not compared beyond their types (fuzz 22b q4): given swapped, the row of the study passed as
+        ``e26`` is shown with its runs and the label "E2.6".
     part : {"all", "verdicts", "normalisers"}
         Every column, or one of the two halves that fit the page: the runs and the questions of
         :data:`QUESTIONS`, or the columns about the normaliser and the spread over time.

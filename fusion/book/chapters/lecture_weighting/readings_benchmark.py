@@ -11,8 +11,9 @@ from fusion._frozen import constant
 from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
-from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B, SeedStability
+from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B, SeedStability, _benchmark_results
 from fusion._docstrings import reads_results
+from fusion._shown import shown
 from fusion._validation import instance_of
 
 __all__ = [
@@ -148,7 +149,9 @@ def glue_offset(results: dict) -> GlueValues:
     Parameters
     ----------
     results : dict
-        :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark` with ``fault_from=0``: one seed, one level.
+        :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark` with ``fault_from=0``: one seed, one level
+        (checked as :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability` checks it: a TypeError
+        or ValueError naming ``results``).
 
     Returns
     -------
@@ -156,11 +159,15 @@ def glue_offset(results: dict) -> GlueValues:
         ``lec_bo_<key>`` (MSE, 2 decimals) and ``lec_bo_<key>_se`` (its standard error) for every method of
         :data:`OFFSET_METHODS`; ``lec_bo_runs``, ``lec_bo_seed``, ``lec_bo_level``.
     """
+    results = _benchmark_results(results)  # the benchmark's one check, entry by entry (fuzz 22b K2-6: "x" gave an IndexError)
     keys = [k for k in results if k[2]]
     if len(keys) != 1:
         raise ValueError(f"results must hold one faulty setup (one seed, one level), got {keys}")
     seed, level, _ = keys[0]
     r = results[keys[0]]
+    lacking = [name for name in OFFSET_METHODS if name not in r]
+    if lacking:
+        raise ValueError(f"results[{shown(keys[0])}] lacks the methods {[str(m) for m in lacking]} of OFFSET_METHODS")
     out: GlueValues = {"lec_bo_runs": int(next(iter(r.values())).size), "lec_bo_seed": int(seed),
                            "lec_bo_level": f"{level:g}"}
     for name, key in OFFSET_METHODS.items():

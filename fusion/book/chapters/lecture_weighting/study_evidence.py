@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 
 from fusion._docstrings import with_sections
-from fusion._validation import mapping_of
+from fusion._validation import instance_of, mapping_of
 from fusion.book.chapters.lecture import sci
 from fusion.book.tables import roundoff
 from fusion.book.ledger import Comparison, Proposition, Unverifiable
@@ -22,7 +22,10 @@ from fusion.readings import weighting as wt
 from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy, FaultCase
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, LECTURE_GUARD_METHODS, AwfMethod, AwfStudy
 from fusion.scenarios.lecture_weighting.belief import BeliefKind as K
-from fusion.scenarios.lecture_weighting.learning import LearningStudy
+from fusion.scenarios.lecture_weighting.learning import LearnedLimitCheck, LearningStudy
+from fusion.scenarios.lecture_weighting.belief import BeliefParameterStudy, BeliefStudy
+from fusion.scenarios.lecture_weighting.estimators import LumvStudy, SymmetryStudy
+from fusion.scenarios.lecture_weighting.regime import RegimeStudy, VarianceChangeStudy
 from fusion.scenarios.lecture_weighting.regime import RegimeMethod, VarianceChange
 from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B
 from fusion.book.chapters.lecture_weighting._common import _unbiased
@@ -63,13 +66,25 @@ STUDIES: tuple[str, ...] = ("s21", "s22", "s23", "s24", "sreg", "s24b", "bench",
 READING_GUARDS: tuple[str, ...] = ("floor", "abs", "equal", "delete")
 
 
+#: The type of each study of :data:`STUDIES` (the outputs of :mod:`fusion.scenarios.lecture_weighting`), which
+#: ``_need`` checks before an evidence function reads it (fuzz 22b K2-5: an int under ``"s21"`` gave an
+#: AttributeError).
+_STUDY_TYPES: dict[str, type | tuple[type, ...]] = {
+    "s21": AwfStudy, "s22": LearningStudy, "s23": ConsistencyStudy, "s24": BeliefStudy, "sreg": RegimeStudy,
+    "s24b": BeliefParameterStudy, "bench": Mapping, "llc": LearnedLimitCheck, "slumv": LumvStudy,
+    "schg": VarianceChangeStudy, "ssym": SymmetryStudy}
+
+
 def _need(st: Mapping[str, Any], *keys: str) -> None:
-    """``st`` a mapping (the shared rule ``mapping_of``: a TypeError naming ``st``) holding the studies ``keys``."""
+    """``st`` a mapping (the shared rule ``mapping_of``: a TypeError naming ``st``) holding the studies ``keys``, each
+    of its type (:data:`_STUDY_TYPES`: a TypeError naming ``st[key]``)."""
     if not isinstance(st, Mapping) or st:  # an empty mapping is reported below by the studies it lacks
         mapping_of(st, "st", "study", maker="study")
     missing = [k for k in keys if st.get(k) is None]
     if missing:
         raise ValueError(f"st must hold the studies {missing} (keys of STUDIES)")
+    for k in keys:
+        instance_of(st[k], _STUDY_TYPES[k], f"st[{k!r}]")
 
 
 def _mse(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, seed: int,

@@ -29,6 +29,7 @@ from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, Fai
 from fusion.book.chapters.ofs.studies import (alpha_study, fair_weights, faulty_member_share, membership_study,
                                              not_neighbourhood_share, study, weight_study)
 from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint, table1_totals, tables
+from fusion.book._few_runs import reader_runs_named
 from fusion.book.glue import GlueValues
 from fusion._counts import count
 
@@ -81,7 +82,7 @@ def _pair_record(name: str, base: str, case: str, metric: str) -> Callable[..., 
     fn.__name__ = fn.__qualname__ = name
     fn.__doc__ = (f"Fig. {2 if case == 'clean' else 4}: the optimal set's per-run {_METRIC_TEXT[metric]}, "
                   f"{_CASES[case][2]}, against {_BASE_TEXT[base]} (settings: {keys}).")
-    return fn
+    return reader_runs_named(fn)
 
 
 ev_fig2_vs_mean = _pair_record("ev_fig2_vs_mean", "mean", "clean", "mae")
@@ -96,6 +97,7 @@ ev_fig4_whole_vs_support = _pair_record("ev_fig4_whole_vs_support", "support_deg
 ev_fig4_fluctuation_support = _pair_record("ev_fig4_fluctuation_support", "support_degree", "window", "sd")
 
 
+@reader_runs_named
 def ev_fig4_unaffected(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: the optimal set's per-run MAE on samples 50-80 with the failure against without it ("equal")."""
     seed = check_seed(seed)
@@ -105,6 +107,7 @@ def ev_fig4_unaffected(settings: Mapping[str, object], *, seed: int = SEED, runs
                       "optimal set's per-run mean absolute error on samples 50-80 (°C)", seed=seed)
 
 
+@reader_runs_named
 def ev_fig4_robust(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: the rise of the per-run MAE on samples 50-80 due to the failure, optimal set against the mean."""
     seed = check_seed(seed)
@@ -115,6 +118,7 @@ def ev_fig4_robust(settings: Mapping[str, object], *, seed: int = SEED, runs: in
                       "per-run rise of the mean absolute error on samples 50-80 due to the failure (°C)", seed=seed)
 
 
+@reader_runs_named
 def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Weights of eqs. 6-11 against equal weights on the same set (settings: ``case``, or ``sweep`` and ``value``)."""
     seed = check_seed(seed)
@@ -130,6 +134,7 @@ def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, r
                       "less", f"per-run mean absolute error, {what} (°C)", seed=seed)
 
 
+@reader_runs_named
 def ev_membership_free(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
     """Each other membership function against eq. 6, "equal" (settings ``vary``: family, scale or table1)."""
     seed = check_seed(seed)
@@ -158,6 +163,7 @@ def ev_membership_free(settings: Mapping[str, object], *, seed: int = SEED, runs
     return Conjunction(parts)
 
 
+@reader_runs_named
 def ev_weights_stability(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Section 1.3: the weights of the more stable sensors against the less stable ones.
 
@@ -180,6 +186,7 @@ def ev_weights_stability(settings: Mapping[str, object], *, seed: int = SEED, ru
                       seed=seed)
 
 
+@reader_runs_named
 def ev_def3_keeps_valid(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Definition 3: without faults (every reading valid) the set keeps all ten readings."""
     seed = check_seed(seed)
@@ -192,6 +199,7 @@ def ev_def3_keeps_valid(settings: Mapping[str, object], *, seed: int = SEED, run
                        "neighbourhood of the true value, of any width, holds exactly the set", runs=st.n_runs)
 
 
+@reader_runs_named
 def ev_set_rejects_faulty(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Section 2: under the failure, sensors 4 and 10 are never members of the set at their faulty epochs 50-80.
 
@@ -218,6 +226,7 @@ def _explained() -> pd.DataFrame:
     return ofs_audit.explain(*fe)
 
 
+@reader_runs_named
 def ev_table2_ofs(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """Table 2's optimal-set column against Table 1 fused (settings ``explanation``: the joint audit's)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
@@ -227,6 +236,7 @@ def ev_table2_ofs(settings: Mapping[str, object], *, seed: int = SEED, runs: int
     return PublishedValues(pub, tables().ofs, 4, "°C")
 
 
+@reader_runs_named
 def ev_table2_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """Table 2's mean column against the means of Table 1 (settings ``data``: ``"corrected"``)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
@@ -238,6 +248,7 @@ def ev_table2_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: in
 _ALPHA_GRID = np.logspace(-6, 3, 600)
 
 
+@reader_runs_named
 def ev_table3_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """Table 3's support-degree column against a rebuilt rule on Table 1.
 
@@ -257,6 +268,7 @@ def ev_table3_support(settings: Mapping[str, object], *, seed: int = SEED, runs:
     return PublishedValues(pub, v[best], 4, "°C")
 
 
+@reader_runs_named
 def ev_totals(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """The printed totals of the mean and the optimal set (settings ``explanation``: the joint audit's)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
@@ -281,24 +293,28 @@ def _ranking(a: str, b: str, settings: Mapping[str, object]) -> ExactComparison:
     return ExactComparison(float(t[a]), float(t[b]), names[a], names[b], "less", "total absolute error over Table 1, °C")
 
 
+@reader_runs_named
 def ev_totals_ranking_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total absolute error below the mean's (settings ``guard``, ``data``)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     return _ranking("optimal_fusion_set", "mean", settings)
 
 
+@reader_runs_named
 def ev_totals_ranking_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total below the rebuilt support degree's (settings ``alpha``, ``data``, ``total``)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     return _ranking("optimal_fusion_set", "support_degree", settings)
 
 
+@reader_runs_named
 def ev_median_total(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the plain median's total absolute error below the optimal set's (settings ``data``, ``guard``)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     return _ranking("median", "optimal_fusion_set", settings)
 
 
+@reader_runs_named
 def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
     """At observations 1, 3, 4, 5, 6 the optimal set is closer to 900 °C (settings ``values``: printed or recomputed).
 
@@ -327,6 +343,7 @@ def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int
     return Conjunction(parts)
 
 
+@reader_runs_named
 def ev_eq3_5_rejects(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Eq. 5 drops exactly the readings farthest from the others (settings ``rule``: averages or sums)."""
     runs = count(runs, "runs")
@@ -347,6 +364,7 @@ def ev_eq3_5_rejects(settings: Mapping[str, object], *, seed: int = SEED, runs: 
                        runs=runs)
 
 
+@reader_runs_named
 def ev_eq9_defined(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Eqs. 9-11 give weights for every set: false when a row of C is constant (one-member sets)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here

@@ -14,6 +14,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from fusion import data
+from fusion.book._few_runs import runs_named
 from fusion.book.chapters.time_registration import (CAUSAL_IMPROVED, FUSION_ALONE, FUSION_UNREGISTERED, IMPROVED, TWO,
                                                      robustness_readings)
 from fusion.registration import affine_decomposition
@@ -434,8 +435,10 @@ def ledger_evidence(seed: int, runs: int) -> dict[str, Evidence | dict[str, Evid
 
 
 def _reading(rid: str, settings: Mapping[str, object] | None, seed: int, runs: int) -> Evidence:
-    """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``."""
-    return reading_of(rid, _RECORDS[rid](cached_study(seed, runs)), settings)
+    """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``; rule R4's refusal
+    names the caller's ``runs`` (fuzz 22b A2)."""
+    with runs_named("runs", "the argument runs"):
+        return reading_of(rid, _RECORDS[rid](cached_study(seed, runs)), settings)
 
 
 def ev_samples(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:

@@ -246,7 +246,7 @@ def latency_values(be: Mapping[float, float], sigma: float) -> GlueValues:
     Parameters
     ----------
     be : mapping
-        Noise level (m) → break-even latency (s).
+        Noise level (m, a finite number >= 0) → break-even latency (s).
     sigma : float
         The chapter's noise level (a key of ``be``).
 
@@ -258,14 +258,16 @@ def latency_values(be: Mapping[float, float], sigma: float) -> GlueValues:
     Raises
     ------
     TypeError
-        ``be`` is not a mapping, or ``sigma`` not a number.
+        ``be`` is not a mapping, a noise level (key) or ``sigma`` not a number.
     ValueError
-        ``be`` is empty or holds a latency that is not finite, or ``sigma`` is not one of its keys.
+        ``be`` is empty or holds a latency or noise level that is not finite (a level < 0), or ``sigma`` is not
+        one of its keys.
     """
     instance_of(be, Mapping, "be")
     if not be:
         raise ValueError("be is empty (it must map noise levels to break-even latencies)")
     for k, v in be.items():
+        scalar(k, f"be's noise level {k!r}", 0.0)  # a key, too: a NaN or text level is no noise level (fuzz 22b q6)
         scalar(v, f"be[{k!r}]")
     scalar(sigma, "sigma")
     if sigma not in be:

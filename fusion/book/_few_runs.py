@@ -1,0 +1,61 @@
+"""Rule R4's refusal of a short paired comparison, named by the caller's argument (fuzz 22b, class A2).
+
+:class:`fusion.book.ledger.Comparison` refuses fewer than :data:`fusion.book.rulebook.MIN_RUNS` runs without a
+``reason``, naming its own ``a and b`` and its argument ``reason``. A chapter function that builds comparisons
+from its caller's study and takes no ``reason`` passes that message on unactionable (the caller has no ``a``, ``b``
+or ``reason``); :func:`runs_named` turns it into one naming the caller's argument and the minimum.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+from collections.abc import Callable, Iterator
+from typing import Any, TypeVar
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+class FewRunsError(ValueError):
+    """Rule R4: a paired comparison of fewer than ``MIN_RUNS`` runs without a reason (a ValueError).
+
+    Parameters
+    ----------
+    message : str
+    runs, minimum : int
+        The comparison's run count and the rule's minimum.
+    """
+
+    def __init__(self, message: str, runs: int, minimum: int) -> None:
+        super().__init__(message)
+        self.runs = runs
+        self.minimum = minimum
+
+
+@contextlib.contextmanager
+def runs_named(name: str, how: str) -> Iterator[None]:
+    """Re-raise rule R4's refusal inside the block as a ValueError naming ``name`` and the minimum.
+
+    Parameters
+    ----------
+    name : str
+        The caller's argument that sets the run count (``"runs"``, ``"study"``).
+    how : str
+        How the caller gives more runs (e.g. ``"fair_study(n_runs=...)"``), ended into the message.
+    """
+    try:
+        yield
+    except FewRunsError as e:
+        raise ValueError(f"{name} gives paired comparisons of {e.runs} runs, fewer than the {e.minimum} rule R4 "
+                         f"asks without a reason (this function takes none): give at least {e.minimum} runs "
+                         f"({how})") from e
+
+
+def reader_runs_named(fn: _F) -> _F:
+    """An evidence function ``fn(settings, *, seed, runs)`` whose rule R4 refusal names its argument ``runs``
+    (:func:`runs_named`); signature and docstring kept."""
+    @functools.wraps(fn)
+    def named(*args: Any, **kwargs: Any) -> Any:
+        with runs_named("runs", "the argument runs"):
+            return fn(*args, **kwargs)
+    return named  # type: ignore[return-value]
