@@ -210,6 +210,9 @@ def test_pso_and_eps_figure_check_frame_and_show(runs):
     _refused(ValueError, "frame", chc.pso_figure, runs, frame=0)
     _refused(ValueError, "show", chc.pso_figure, runs, frame=2, show=3)
     _refused(ValueError, "show", chc.eps_figure, runs, TINY, show=3)
+    _refused(TypeError, "frame", chc.pso_figure, runs, frame=2.0)
+    _refused(TypeError, "frame", chc.pso_figure, runs, frame=True)
+    _refused(TypeError, "show", chc.eps_figure, runs, TINY, show=True)
     chc.pso_figure(runs, frame=TINY.frames, show=2)
 
 
@@ -218,6 +221,12 @@ def test_pso_and_eps_figure_check_frame_and_show(runs):
                                               (1e-3, TypeError, "xtols")])
 def test_stopping_values_checks_xtols(xtols, exc, name, runs_r):
     _refused(exc, name, chc.stopping_values, runs_r, READ, xtols)
+
+
+def test_stopping_values_keys_tolerances_by_position(runs_r):
+    """TR13's repeated tolerance: kept (documented), each under its own position's keys."""
+    v = chc.stopping_values(runs_r, READ, (1e-3, 1e-3))
+    assert v["chf_stop_x0"] == v["chf_stop_x1"] == 1e-3 and v["chf_stop_evals_0"] == v["chf_stop_evals_1"]
 
 
 @pytest.mark.parametrize("thr, exc, name", [((np.nan,), ValueError, "thresholds[0]"), ((0.0,), ValueError, "thresholds[0]"),

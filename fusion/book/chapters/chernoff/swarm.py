@@ -321,7 +321,9 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
         The study's runs (with ``swarm_trace``, ``objective["slsqp"]`` and ``ess["pso"]``).
     sc : RangeBearingScenario
     xtols : tuple of float
-        Position tolerances (the first is the one of ``sc.literal_xtol``, recorded as ``chernoff_literal``).
+        Position tolerances, at least one, each finite and positive (the first is the one of ``sc.literal_xtol``,
+        recorded as ``chernoff_literal``); the glue is keyed by position, so a repeated tolerance gives the same
+        values under two positions.
 
     Returns
     -------
