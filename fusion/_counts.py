@@ -278,13 +278,34 @@ def allocation(shape: tuple[int, ...], names: str) -> None:
     ValueError
         If the array would have more than :data:`MAX_ELEMENTS` elements.
     """
+    _beyond(shape, names, MAX_ELEMENTS, f"the memory budget (at most {MAX_ELEMENTS:,} float64, 2 GiB)")
+
+
+def _beyond(shape: tuple[int, ...], names: str, limit: int, budget: str) -> None:
+    """Refuse an array of ``shape`` of more than ``limit`` elements, naming ``names`` and the ``budget``."""
     n = 1
     for s in shape:
         n *= int(s)
-    if n > MAX_ELEMENTS:
+    if n > limit:
         dims = " x ".join(f"{int(d):.3g}" if int(d) > 10**6 else str(int(d)) for d in shape)
-        raise ValueError(f"{names} ask for an array of {n:.3g} elements ({dims}), "
-                         f"beyond the memory budget (at most {MAX_ELEMENTS:,} float64, 2 GiB)")
+        raise ValueError(f"{names} ask for an array of {n:.3g} elements ({dims}), beyond {budget}")
+
+
+def input_allocation(shape: tuple[int, ...], names: str) -> None:
+    """Refuse an array of ``shape`` that a validating callee would refuse as its input (fuzz 22b, class SW), naming
+    the arguments setting its size: a function that builds such an array (samples of ``runs × r`` rows) and passes
+    it to a function that checks its input against ``fusion._limits.MAX_INPUT_ELEMENTS`` calls this at its entry,
+    as :func:`allocation` for the memory budget, so that the refusal names the caller's arguments, before any work.
+
+    Raises
+    ------
+    ValueError
+        If the array would have more than ``MAX_INPUT_ELEMENTS`` elements.
+    """
+    from fusion._limits import MAX_INPUT_ELEMENTS
+
+    _beyond(shape, names, MAX_INPUT_ELEMENTS, "the input budget of the functions it is passed to (at most "
+            f"{MAX_INPUT_ELEMENTS:,}, fusion._limits.MAX_INPUT_ELEMENTS)")
 
 
 #: Units of work (rule 17) of one pair of readings in a pairwise kernel (:func:`pairwise`): its n x n terms pass

@@ -18,6 +18,7 @@ References
 from __future__ import annotations
 
 from collections.abc import Mapping
+import dataclasses
 import multiprocessing
 import os
 from concurrent.futures import ProcessPoolExecutor
@@ -168,14 +169,86 @@ def run_tracking_batch(
     return [r for part in parts for r in part]
 
 # --------------------------------------------------------------------------- Monte-Carlo study
-def _check_runs(runs: object, nonempty: bool) -> None:
-    """Check that ``runs`` is a sequence (``fusion._validation.sequence``) of :class:`TrackingRun` (non-empty if
-    asked)."""
-    runs = sequence(runs, "runs")
-    if nonempty and not runs:
-        raise ValueError("runs is empty: at least one TrackingRun is needed")
-    for i, r in enumerate(runs):  # type: ignore[arg-type]
-        instance_of(r, TrackingRun, f"runs[{i}]")
+#: The fields of a scenario that the collapse guard sets (:func:`fusion.book.chapters.chernoff.guarded_runs` mixes
+#: runs with and without it in one study): a run list and a scenario are compared without them.
+_GUARD_FIELDS = ("guard", "central_guard")
+
+#: What a run of a scenario with ``readings=True`` holds, and where (the readings' helpers read these).
+_READINGS = (("eps", "equal_kl_g"), ("eps", "first_order"), ("swarm_trace", "fitness"))
+
+
+def _unguarded(sc: RangeBearingScenario) -> RangeBearingScenario:
+    return dataclasses.replace(sc, **{f: 0.0 for f in _GUARD_FIELDS})
+
+
+def _differences(a: RangeBearingScenario, b: RangeBearingScenario) -> list[str]:
+    """The fields (other than the guard's) in which two scenarios differ."""
+    return [f.name for f in dataclasses.fields(a) if f.name not in _GUARD_FIELDS
+            and getattr(a, f.name) != getattr(b, f.name)]
+
+
+#: The default of ``_check_runs``'s ``sc``: no scenario to compare (None is a wrong scenario, refused by type).
+_NO_SCENARIO = object()
+
+
+def _check_runs(runs: object, nonempty: bool, sc: object = _NO_SCENARIO, *, name: str = "runs",
+                readings: bool = False) -> list[TrackingRun]:
+    """The shared check of a run list (issue 35, fuzz 22b class TR): ``runs`` a sequence
+    (``fusion._validation.sequence``) of :class:`TrackingRun` (non-empty if asked) of one scenario, and ``sc``
+    (when given) that scenario.
+
+    One scenario: the runs' recorded ``scenario`` (where set) equal but for the collapse guard's fields, and the
+    same frames K (rows of ``truth``) and nodes N (columns of ``gm_loglik``) in every run. ``sc``: a
+    :class:`RangeBearingScenario` equal to the runs' recorded scenario but for the guard's fields (for runs built by
+    hand, without a record, as far as they show it: its frames and sensors). ``readings``: every run holds the
+    readings of ``RangeBearingScenario.readings``. TypeError for a wrong type, ValueError naming ``name`` or ``sc``
+    otherwise. Returns the runs as a list."""
+    seq = sequence(runs, name)
+    if nonempty and not seq:
+        raise ValueError(f"{name} is empty: at least one TrackingRun is needed")
+    for i, r in enumerate(seq):  # type: ignore[arg-type]
+        instance_of(r, TrackingRun, f"{name}[{i}]")
+    out: list[TrackingRun] = list(seq)  # type: ignore[arg-type]
+    own = next((r.scenario for r in out if r.scenario is not None), None)
+    for i, r in enumerate(out):
+        if r.scenario is not None and not isinstance(r.scenario, RangeBearingScenario):
+            raise TypeError(f"{name}[{i}].scenario must be a RangeBearingScenario or None, "
+                            f"got {type(r.scenario).__name__}")
+        if r.scenario is not None and own is not None and _unguarded(r.scenario) != _unguarded(own):
+            raise ValueError(f"{name}[{i}] was computed with another scenario than the runs before it (they differ "
+                             f"in {_differences(r.scenario, own)}): the runs must be of one scenario")
+        shape = (np.shape(r.truth)[0], np.shape(r.gm_loglik)[-1])
+        first = (np.shape(out[0].truth)[0], np.shape(out[0].gm_loglik)[-1])
+        if shape != first:
+            raise ValueError(f"{name}[{i}] has {shape[0]} frames and {shape[1]} nodes, {name}[0] {first[0]} and "
+                             f"{first[1]}: the runs must be of one scenario")
+        if readings:
+            for where, key in _READINGS:
+                if key not in getattr(r, where):
+                    raise ValueError(f"{name}[{i}] holds no readings ({where} lacks {shown(key)}): the runs must be "
+                                     "computed with RangeBearingScenario.readings=True")
+    if sc is not _NO_SCENARIO:
+        instance_of(sc, RangeBearingScenario, "sc")
+        if own is not None:
+            diff = _differences(sc, own)  # type: ignore[arg-type]
+            if diff:
+                raise ValueError(f"sc is not the scenario of {name} (it differs from the runs' in {diff})")
+        elif out:
+            k, n = np.shape(out[0].truth)[0], np.shape(out[0].gm_loglik)[-1]
+            if (k, n) != (sc.frames, len(sc.sensors)):  # type: ignore[attr-defined]
+                raise ValueError(f"sc is not the scenario of {name}: {sc.frames} frames and {len(sc.sensors)} "  # type: ignore[attr-defined]
+                                 f"sensors, the runs {k} frames and {n} nodes")
+    return out
+
+
+def _check_size(runs: list[TrackingRun], value: object, field_name: str, name: str) -> int:
+    """``value`` (argument ``name``) a count equal to the runs' recorded ``scenario.<field_name>`` where recorded."""
+    value = count(value, name)
+    own = next((r.scenario for r in runs if r.scenario is not None), None)
+    if own is not None and getattr(own, field_name) != value:
+        raise ValueError(f"{name} = {value} is not the runs' RangeBearingScenario.{field_name} "
+                         f"({getattr(own, field_name)})")
+    return value
 
 
 def _computed(runs: list[TrackingRun], key: str, field: str) -> None:

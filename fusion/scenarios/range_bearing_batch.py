@@ -335,7 +335,7 @@ class _Batch:
                             n_fused_components=self.n_fused[b].copy(),
                             node_estimates=self.nodes[b].copy() if self.flags[b] else None,
                             timings=_tracking_timings(self.timings, B), guarded=tuple(self.guarded[b]),
-                            swarm_trace={k: v[b].copy() for k, v in self.trace.items()})
+                            swarm_trace={k: v[b].copy() for k, v in self.trace.items()}, scenario=self.sc)
                 for b in range(B)]
 
     def frame(self, k: int) -> None:

@@ -267,6 +267,9 @@ class TrackingRun:
         With ``readings``: the main swarm followed to its iteration limit, best fitness and spread of its
         positions (largest coordinate difference from the best point) after every iteration
         (:class:`fusion.optimise.result.SwarmTrace`)
+    scenario : RangeBearingScenario or None
+        The scenario the run was computed with (set by the package's runs; None for a run built by hand): the
+        chapter helpers compare it with the scenario they are given (``fusion.scenarios.range_bearing._check_runs``).
     """
 
     truth: FloatArray
@@ -284,6 +287,7 @@ class TrackingRun:
     timings: TrackingTimings = field(default_factory=lambda: TrackingTimings())
     guarded: tuple[tuple[int, int], ...] = ()
     swarm_trace: Mapping[str, FloatArray] = field(default_factory=dict)
+    scenario: RangeBearingScenario | None = None
 
     __result_spec__ = ResultSpec(
         {"truth": array("K", 4), "estimates": keyed("K", 4), "covariances": keyed("K", 4, 4, covariance=True),

@@ -149,6 +149,18 @@ ns : tuple of int
 runs : int""")
 
 
+def _problem_budget(n: int, runs: int, r: int, names: tuple[str, str, str], square: int) -> None:
+    """The memory budget of steps D-G on ``runs`` problems of :func:`gaussian_problems` with ``n`` nodes and ``r``
+    samples (fuzz 22b, class SW), checked before anything is drawn and named by the caller's arguments
+    (``names``: those of n, runs and r): ``square`` float64 arrays of n × n per problem at once (measured peaks:
+    SLSQP's work array, about 10.5 n², for the swarm's reference; the Newton steps' n × n matrices, about 6.5 n² per
+    problem, for the scaling study) and the samples' log densities, r × n per problem, with their temporaries
+    (measured: about 8)."""
+    n_name, runs_name, r_name = names
+    allocation((square, n, n), n_name)
+    allocation((runs, r, n, 8), f"{runs_name}, {r_name} and {n_name}")
+
+
 def _swarm_and_slsqp(w: FloatArray, m: FloatArray, c: FloatArray, seed: int, r: int,
                      swarm_options: SwarmOptions | None = None) -> list[ch.MixtureFusion]:
     """Steps E-G on the problems (w, m, c) of :func:`gaussian_problems`, the swarm and the SLSQP reference on the same
@@ -199,11 +211,13 @@ def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r:
     TypeError
         An argument not an integer, or ``ns`` not a sequence of integers.
     ValueError
-        ``runs`` or ``r`` below 2, ``ns`` empty, an entry below 2, or an entry repeated (the study is keyed by N).
+        ``runs`` or ``r`` below 2, ``ns`` empty, an entry below 2, or an entry repeated (the study is keyed by N);
+        the largest N, ``runs`` and ``r`` beyond the memory budget (the SLSQP reference needs about 10.5 N² numbers).
     """
     seed = check_seed(seed)
     runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
     ns = tuple(distinct(counts(ns, "ns", minimum=2), "ns"))
+    _problem_budget(max(ns), runs, r, ("ns", "runs", "r"), square=11)
     gap: dict[tuple[int, str], FloatArray] = {}
     evals: dict[tuple[int, str], FloatArray] = {}
     corner: dict[tuple[int, str], np.ndarray] = {}
@@ -237,10 +251,19 @@ def swarm_within_se(seed: int, n: int, runs: int = 100, r: int = 1000) -> tuple[
     -------
     gap, se : ndarray, shape (runs,)
         Nats.
+
+    Raises
+    ------
+    TypeError
+        An argument not an integer.
+    ValueError
+        ``n``, ``runs`` or ``r`` below 2, or beyond the memory budget (the SLSQP reference needs about 10.5 n²
+        numbers, the samples' densities about 8 runs × r × n).
     """
     seed = check_seed(seed)
     seed = count(seed, "seed", minimum=0, maximum=None)
     n, runs, r = count(n, "n", minimum=2), count(runs, "runs", minimum=2), count(r, "r", minimum=2)
+    _problem_budget(n, runs, r, ("n", "runs", "r"), square=11)
     res = _swarm_and_slsqp(*gaussian_problems(np.random.default_rng([seed, n]), runs, n), seed, r)
     gap = np.array([x.objective - x.objective_reference for x in res])
     se = np.sqrt(np.maximum(1.0 / np.array([x.ess for x in res]) - 1.0 / r, 0.0))
@@ -479,7 +502,8 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
     ------
     ValueError
         ``rs`` with fewer than two sizes (the study's slope in R needs two) or repeating an R (the study is keyed by
-        R); ``runs``, ``n`` or an R below 2.
+        R); ``runs``, ``n`` or an R below 2; ``n``, ``runs`` and the largest R beyond the memory budget (the Newton
+        steps need about 6.5 runs × n² numbers).
     TypeError
         A count that is not an integer (``rs`` included, entry by entry).
     """
@@ -488,6 +512,7 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
     rs = tuple(distinct(counts(rs, "rs", minimum=2), "rs"))
     if len(rs) < 2:
         raise ValueError(f"rs must hold at least two sample sizes (the slope of the error in R needs two), got {rs}")
+    _problem_budget(n, runs, max(rs), ("n", "runs", "rs"), square=7 * runs)
     w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
     exact = np.stack([ch.gaussian_chernoff_weights(m[k, :, 0], c[k, :, 0]).eps for k in range(runs)])
     err = np.empty((len(rs), runs))

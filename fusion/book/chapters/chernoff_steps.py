@@ -45,7 +45,7 @@ from numpy.typing import ArrayLike
 from fusion._docstrings import with_sections
 from fusion._validation import (FloatArray, as_array, count, frame_slice, instance_of, positive_scalar, text,
                                 unit_scalar)
-from fusion._counts import counts, distinct, sequence
+from fusion._counts import count_ceiling, counts, distinct, input_allocation, sequence
 from fusion.book.rulebook import judge_paired
 from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
@@ -684,9 +684,21 @@ def defensive_study(rng: np.random.Generator, runs: int = 100, r: int = CHAPTER_
     DefensiveStudy
         Per proposal (patent, redraw, defensive) and replicate: the absolute error of ω̂, the squared error of the
         mean, the ESS and the ESS at the simplex's vertices.
+
+    Raises
+    ------
+    TypeError
+        ``rng`` not a Generator, ``runs`` or ``r`` not an integer.
+    ValueError
+        ``runs`` or ``r`` below 2, or ``runs`` × ``r`` samples (drawn at once) beyond the sample count's ceiling or
+        the input budget.
     """
     instance_of(rng, np.random.Generator, "rng")
     runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
+    if runs * r > count_ceiling("n"):  # the samples of every replicate are drawn at once
+        raise ValueError(f"runs and r ask for {runs * r:.3g} samples at once, beyond the ceiling of a sample count "
+                         f"({count_ceiling('n'):,}; fusion._validation.COUNT_CEILINGS)")
+    input_allocation((runs * r, 2), "runs and r")
     ref = toy_reference()
     gms = list(ref.gms)
     gdef = defensive_mixture(ref.proposal, gms, alpha)

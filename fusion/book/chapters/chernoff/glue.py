@@ -183,7 +183,13 @@ def ledger_values(led: Ledger) -> GlueValues:
         of the patent's purpose that are contradicted), ``chf_source_contradicted`` (int, claims the patent prints
         that are contradicted), ``chf_source_unchecked`` (int, claims the patent prints that cannot be checked) and
         ``<id>_alt_nd`` (int, counted readings that are not distinguishable).
+
+    Raises
+    ------
+    TypeError
+        ``led`` not a Ledger.
     """
+    instance_of(led, Ledger, "led")
     v: dict[str, Any] = {}
 
     def put(prefix: str, ev: Any) -> None:

@@ -12,7 +12,8 @@ from typing import Any
 import numpy as np
 
 from fusion._results import ResultSpec, array, dict_of, integer, number, validated_post_init
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, scalar
+from fusion._counts import sequence
 from fusion.book.tables import rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, RangeBearingScenario, TrackingRun, min_local_ess,
                                             run_tracking_batch)
@@ -51,9 +52,16 @@ def guarded_runs(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int,
     -------
     list of TrackingRun
         What ``monte_carlo(guarded_scenario(sc), seed, len(runs))`` gives.
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
+    ValueError
+        ``runs`` empty or of several scenarios, or ``sc`` not the runs' scenario (but for the guard).
     """
     seed = check_seed(seed)
-    _check_study(runs)
+    runs = _check_study(runs, sc)
     bad = any_collapsed(runs, sc)
     seeds = np.random.SeedSequence(seed).spawn(len(runs))
     idx = np.flatnonzero(bad)
@@ -84,8 +92,16 @@ def guard_values(guarded: list[TrackingRun], sc: RangeBearingScenario) -> GlueVa
         centralised filter), ``chf_guard_ess_min`` (smallest ESS of any node and frame in those runs, after the
         last tempering step, 1 decimal), ``chf_guard_central_min`` (the centralised filter's, 0 decimals),
         ``chf_n_collapsed_guard`` (int, runs still collapsed, node or centralised).
+
+    Raises
+    ------
+    TypeError
+        ``sc`` not a RangeBearingScenario or ``guarded`` not a sequence of TrackingRun.
+    ValueError
+        ``guarded`` holds no run, runs of several scenarios, or runs of a scenario other than ``sc`` (the guard's
+        fields aside).
     """
-    _check_study(guarded)
+    guarded = _check_study(guarded, sc, name="guarded")
     hit = [r for r in guarded if r.guarded]
     return {"chf_guard_stages": GUARD_STAGES, "chf_n_guarded": len(hit),
             "chf_guard_updates": sum(1 for r in hit for _, i in r.guarded if i >= 0),
@@ -134,11 +150,17 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
 
     Raises
     ------
+    TypeError
+        ``guarded`` or ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``thresholds``
+        not a sequence of numbers.
     ValueError
-        Fewer than two runs in which the guard did not act.
+        ``guarded`` empty or of several scenarios, ``plain`` not as many runs of the same scenario, ``sc`` not
+        their scenario, a threshold not in (0, 1), or fewer than two runs in which the guard did not act.
     """
-    _check_study(guarded)
-    _check_study(plain)
+    thresholds = tuple(scalar(t, f"thresholds[{j}]", 0.0, 1.0, lo_open=True, hi_open=True)
+                       for j, t in enumerate(sequence(thresholds, "thresholds")))
+    guarded = _check_study(guarded, sc, name="guarded")
+    plain = _check_study(plain, sc, name="plain", like=guarded, like_name="guarded")
     hit = np.array([bool(r.guarded) for r in guarded])
     if (~hit).sum() < 2:
         raise ValueError("guarded: fewer than two runs without the guard's action, nothing to compare with")

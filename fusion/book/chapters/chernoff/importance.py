@@ -19,7 +19,7 @@ from fusion.estimates import chernoff as ch, mixtures as mx
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
 from fusion.book.chapters.chernoff.mixture import toy
 from fusion.book.glue import GlueValues
-from fusion._counts import count, count_ceiling
+from fusion._counts import count, count_ceiling, input_allocation
 
 __all__ = ["IsVarianceStudy", "is_variance_study", "is_replicates", "is_replicate_values"]
 
@@ -142,11 +142,12 @@ def is_variance_study(rng: np.random.Generator, R: int = 100, replicates: int = 
     TypeError
         ``rng`` not a Generator, ``R`` or ``replicates`` not an integer.
     ValueError
-        ``R`` below 1, ``replicates`` below 2, or replicates x R samples beyond the memory budget.
+        ``R`` below 1, ``replicates`` below 2, or replicates x R samples beyond the memory or input budget.
     """
     instance_of(rng, np.random.Generator, "rng")
     R, replicates = count(R, "R"), count(replicates, "replicates", minimum=2)
     allocation((replicates, R, 2), "replicates and R")  # the samples, before they are drawn
+    input_allocation((replicates * R, 2), "replicates and R")  # and as the densities' input
     a, A = np.array([0.0, 0.0]), np.diag([4.0, 1.0])
     b, B = np.array([2.0, 1.0]), np.array([[1.0, 0.5], [0.5, 3.0]])
     means, covs, e0 = [a, b], [A, B], np.array([0.5, 0.5])

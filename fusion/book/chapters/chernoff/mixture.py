@@ -7,7 +7,7 @@ from __future__ import annotations
 import dataclasses
 import inspect
 from dataclasses import dataclass
-from fusion._counts import count, seed as check_seed
+from fusion._counts import allocation, count, seed as check_seed
 from fusion.book.study_cache import study_cache
 
 import matplotlib.pyplot as plt
@@ -15,7 +15,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from fusion._results import ResultSpec, array, integer, nested, number, validated_post_init
-from fusion._validation import FloatArray, instance_of
+from fusion._validation import FloatArray, as_rng, instance_of
 from fusion.book.style import new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch, mixtures as mx
@@ -86,6 +86,7 @@ def toy_study(rng: np.random.Generator, r: int = 20_000, base: ToyStudy | None =
     rng : numpy.random.Generator
         Draws the ``r`` importance samples from the first-order mixture at ω = 0.5 (eq. ``eq-chf-is``).
     r : int
+        Importance samples (>= 1; the samples' densities at the 101 exponents, r × 101, must fit the memory budget).
     base : ToyStudy, optional
         A study of the same mixtures whose exact and first-order curves and minimisers are reused (they do not
         depend on the samples): only the importance sampling is redone.
@@ -99,8 +100,13 @@ def toy_study(rng: np.random.Generator, r: int = 20_000, base: ToyStudy | None =
     Raises
     ------
     TypeError
-        ``base`` neither None nor a :class:`ToyStudy`.
+        ``rng`` not a Generator, ``r`` not an integer, ``base`` neither None nor a :class:`ToyStudy`.
+    ValueError
+        ``r`` below 1 or beyond the memory budget.
     """
+    rng = as_rng(rng)
+    r = count(r, "r")
+    allocation((r, 101), "r")
     if base is not None:
         instance_of(base, ToyStudy, "base")
     toy = two_mixtures.toy_mixtures()
@@ -153,7 +159,13 @@ def objective_figure(toy: ToyStudy) -> Figure:
     Figure
         One panel, ω (exponent of mixture A) on the x axis, :math:`\log Z` (nats) on the y axis; a
         vertical line marks each minimiser. The figure is closed (not shown by pyplot).
+
+    Raises
+    ------
+    TypeError
+        ``toy`` not a ToyStudy.
     """
+    instance_of(toy, ToyStudy, "toy")
     fig, ax = new_figure(figsize=(7.0, 4.4))
     ax.plot(toy.omegas, toy.exact, color="black", label="exact (grid)")
     ax.plot(toy.omegas, toy.first_order, color="#D55E00", ls="--", label=r"first-order $\log Z_{\rm FO}$")
@@ -177,6 +189,7 @@ def contour_figure(toy: ToyStudy, rng: np.random.Generator, n_particles: int = 2
     rng : numpy.random.Generator
         Draws the importance-sampled particles shown in the fifth panel.
     n_particles : int
+        Particles drawn (>= 1).
 
     Returns
     -------
@@ -186,7 +199,18 @@ def contour_figure(toy: ToyStudy, rng: np.random.Generator, n_particles: int = 2
     values : dict
         ``chf_l1_full`` and ``chf_l1_simple``: :math:`\int|g(\omega^*) - p_{\omega^*}|` with the full
         weights (eq. ``eq-chf-foa``) and with the simplified weights :math:`\prod_i\pi_{i,s_i}^{\varepsilon_i}`.
+
+    Raises
+    ------
+    TypeError
+        ``toy`` not a ToyStudy, ``rng`` not a Generator, ``n_particles`` not an integer.
+    ValueError
+        ``n_particles`` below 1 or beyond the memory budget.
     """
+    instance_of(toy, ToyStudy, "toy")
+    rng = as_rng(rng)
+    n_particles = count(n_particles, "n_particles")
+    allocation((n_particles, 2, 4), "n_particles")
     gA, gB = toy.gms
     ws = toy.w_exact
     logf = two_mixtures.grid_log_normaliser([gA, gB], [ws, 1 - ws], return_density=True).log_fused

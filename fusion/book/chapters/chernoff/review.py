@@ -11,13 +11,14 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, as_rng
+from fusion._counts import allocation, count
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import mixtures as mx
 from fusion.scenarios.range_bearing import (RangeBearingScenario, TrackingRun, linearised_errors,
                                             nees_per_frame, run_tracking_batch)
-from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE, STUDY_WORKERS
+from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE, STUDY_WORKERS, _check_crb, _check_study
 from fusion.book.chapters.chernoff.tracking import _STYLE, per_run_mse
 from fusion.book.chapters.chernoff.compare import _mse_comparison
 from fusion.book.glue import GlueValues
@@ -56,9 +57,20 @@ def gm_yardstick(rng: np.random.Generator, runs: list[TrackingRun], sc: RangeBea
         ``chf_gm_ess_late`` (mean ESS / Q of the nodes at frame 1 and over frames 5-K), ``chf_gm_yard_1`` and
         ``chf_gm_yard_late`` (the yardstick's mean gain at those ESS) with ``_hi`` (its 95th percentile over
         the sets); 4 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``rng`` not a Generator, ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``sets`` not an integer.
+    ValueError
+        ``runs`` empty or of several scenarios, ``sc`` not the runs' scenario, ``sets`` below 1 or beyond the memory budget.
     """
     from scipy.optimize import brentq
 
+    rng = as_rng(rng)
+    runs = _check_study(runs, sc)
+    sets = count(sets, "sets")
+    allocation((sets, sc.n_particles, 4), "sets and sc.n_particles")
     gain = np.stack([r.gm_loglik - r.gm1_loglik for r in runs])  # (runs, K, N)
     ess = np.stack([r.ess["local"] for r in runs]) / sc.n_particles
     d, Q = 4, sc.n_particles
@@ -105,9 +117,18 @@ def consistency_figure(runs: list[TrackingRun], plain: list[TrackingRun], sc: Ra
         (:func:`~fusion.scenarios.range_bearing.linearised_errors`, dotted), with 4 and the 95 % band of a mean of as many χ²₄ values as runs. Bottom: effective particles of each
         node after weighting (log scale), the smallest over the runs without the guard (dotted) and with it
         (solid), and the median with it (thick, faded, unlabelled); the collapse threshold dashed. Closed.
+
+    Raises
+    ------
+    TypeError
+        ``runs`` or ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
+    ValueError
+        ``runs`` empty or of several scenarios, ``plain`` not as many runs of the same scenario, ``sc`` not their scenario.
     """
     from scipy import stats as _stats
 
+    runs = _check_study(runs, sc)
+    plain = _check_study(plain, sc, name="plain", like=runs)
     frames = np.arange(1, sc.frames + 1)
     from matplotlib.ticker import NullFormatter, ScalarFormatter
 
@@ -171,7 +192,15 @@ def double_count_values(runs: list[TrackingRun], sc: RangeBearingScenario) -> Gl
         from the particle study, ``chf_pf_naive_mid``/``_end`` (the naive product's mean NEES over the runs at
         the middle and the last frame) and ``chf_pf_ratio_early``/``_late`` (its mean NEES over the local
         filters', frames 1-4 and 5 on). 2 decimals (correlations 2, percentages 1).
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
+    ValueError
+        ``runs`` empty or of several scenarios, or ``sc`` not the runs' scenario.
     """
+    runs = _check_study(runs, sc)
     lin = linearised_errors(sc)
     noq = linearised_errors(sc, common_process=False)
     nop = linearised_errors(sc, common_prior=False)
@@ -212,7 +241,15 @@ def diagnostics(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int) ->
         ``chf_node_spread`` / ``_mean`` (m, frames 5-K, run 1), ``chf_node_run_ess`` (smallest ESS of a node in
         run 1, effective particles), ``chf_ess1_note`` (mean ESS after frame 1 with P0^½ = diag(100, 10, 100,
         10)), ``chf_ess1_ours``, ``chf_mf_used``, ``chf_prev_eps_diff``.
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
+    ValueError
+        ``runs`` empty or of several scenarios, ``sc`` not the runs' scenario, or ``runs[0]`` without ``node_estimates``.
     """
+    runs = _check_study(runs, sc)
     seed = check_seed(seed)
     node = runs[0].node_estimates
     if node is None:
@@ -272,7 +309,19 @@ def review_values(runs: list[TrackingRun], crb_pos: FloatArray, sc: RangeBearing
     ----------
     * Tichavský, P., Muravchik, C. H., & Nehorai, A. (1998). Posterior Cramér-Rao bounds for discrete-time
       nonlinear filtering. IEEE Trans. Signal Processing, 46(5), 1386-1396.
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
+    ValueError
+        ``runs`` of fewer than 2 runs or of several scenarios, ``sc`` not the runs' scenario, or ``crb_pos`` not
+        finite and non-negative with one entry per frame.
     """
+    runs = _check_study(runs, sc)
+    if len(runs) < 2:
+        raise ValueError(f"runs holds {len(runs)} run: the intervals need at least 2")
+    crb_pos = _check_crb(crb_pos, runs)
     seed = check_seed(seed)
     from scipy import stats as _stats
 

@@ -7,9 +7,11 @@ from __future__ import annotations
 import dataclasses
 import inspect
 
-from fusion._validation import instance_of
+import numpy as np
+
+from fusion._validation import FloatArray, as_array, instance_of
 from fusion.optimise.swarm import particle_swarm
-from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun
+from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun, _NO_SCENARIO, _check_runs
 from fusion.book.glue import GlueValues
 
 __all__ = ["BIBKEY", "LATE", "COLLAPSE_FRACTION", "pso_defaults", "STUDY_RUNS", "STUDY_WORKERS", "STUDY_REASON",
@@ -108,6 +110,21 @@ def pso_defaults() -> GlueValues:
     return {f"chf_pso_{k}": p[v].default for k, v in names.items()}
 
 
-def _check_study(runs: object) -> None:
-    if not isinstance(runs, list) or not runs or not all(isinstance(r, TrackingRun) for r in runs):
-        raise ValueError("runs must be a non-empty list of TrackingRun")
+def _check_study(runs: object, sc: object = _NO_SCENARIO, *, name: str = "runs", readings: bool = False,
+                 like: list[TrackingRun] | None = None, like_name: str = "runs") -> list[TrackingRun]:
+    """The chapter's one check of a run list (issue 35, fuzz 22b class TR), applied by every helper over runs:
+    ``fusion.scenarios.range_bearing._check_runs`` (a non-empty sequence of TrackingRun of one scenario, ``sc``
+    that scenario, the readings where asked), and with ``like`` (another list of the same study: the runs with and
+    without the guard) the same number of runs of the same scenario (but for the guard). Returns the runs as a
+    list."""
+    out = _check_runs(runs, True, sc, name=name, readings=readings)
+    if like is not None:
+        if len(out) != len(like):
+            raise ValueError(f"{name} holds {len(out)} runs, {like_name} {len(like)}: the same study's runs are needed")
+        _check_runs(list(like) + out, True, name=f"{like_name} + {name}")
+    return out
+
+
+def _check_crb(crb_pos: object, runs: list[TrackingRun]) -> FloatArray:
+    """``crb_pos`` (:func:`crb_position` of the runs): finite, non-negative, one entry per frame of ``runs``."""
+    return as_array(crb_pos, "crb_pos", shape=(int(np.shape(runs[0].truth)[0]),), nonnegative=True)

@@ -15,7 +15,8 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._shown import shown
-from fusion._validation import is_integer
+from fusion._validation import is_integer, scalar
+from fusion._counts import sequence
 from fusion.book._json import read_argument
 from fusion.book.benchmarks import _check_measurements
 from fusion.book.ledger import Comparison
@@ -23,7 +24,8 @@ from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.optimise.swarm import particle_swarm
 from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun
-from fusion.book.chapters.chernoff.settings import LATE, STUDY_WORKERS, _MSE
+from fusion.book.chapters.chernoff.settings import LATE, STUDY_WORKERS, _MSE, _check_study
+from fusion._counts import count, index
 from fusion.book.chapters.chernoff.compare import _reason, _word
 from fusion.book.chapters.chernoff.tracking import per_run_mse
 from fusion.book.glue import GlueValues
@@ -61,9 +63,13 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0)
 
     Raises
     ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``show`` not an integer.
     ValueError
-        ``runs`` is empty (nothing to stack).
+        ``runs`` is empty or of several scenarios, ``sc`` is not the runs' scenario, or ``show`` not a run's index.
     """
+    runs = _check_study(runs, sc)
+    show = index(show, "show", len(runs))
     n = len(sc.sensors)
     frames = np.arange(1, sc.frames + 1)
     eps_all = np.stack([r.eps["pso"] for r in runs])  # (runs, K, N)
@@ -122,7 +128,19 @@ def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple
         ``chf_gap_obj`` and ``chf_gap_eps`` (largest absolute difference PSO - SLSQP in objective and exponents over all
         frames and runs), ``chf_evals_pso``/``chf_evals_slsqp`` (mean evaluations per frame),
         ``chf_better_pso`` (fraction of frames where the swarm's value is below SLSQP's by > 1e-9).
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun, ``frame`` or ``show`` not an integer.
+    ValueError
+        ``runs`` is empty or of several scenarios, ``frame`` not in 1..K, or ``show`` not a run's index.
     """
+    runs = _check_study(runs)
+    frame = count(frame, "frame")
+    if frame > runs[0].truth.shape[0]:
+        raise ValueError(f"frame = {frame} is beyond the runs' {runs[0].truth.shape[0]} frames")
+    show = index(show, "show", len(runs))
     r0, k = runs[show], frame - 1
     n_part = inspect.signature(particle_swarm).parameters["n_particles"].default
     stop = int(r0.evaluations["pso"][k]) // n_part - 1  # the stagnation rule stopped after this iteration
@@ -303,7 +321,9 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
         The study's runs (with ``swarm_trace``, ``objective["slsqp"]`` and ``ess["pso"]``).
     sc : RangeBearingScenario
     xtols : tuple of float
-        Position tolerances (the first is the one of ``sc.literal_xtol``, recorded as ``chernoff_literal``).
+        Position tolerances, at least one, each finite and positive (the first is the one of ``sc.literal_xtol``,
+        recorded as ``chernoff_literal``); the glue is keyed by position, so a repeated tolerance gives the same
+        values under two positions.
 
     Returns
     -------
@@ -319,7 +339,17 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
         with ``sc.readings``
         ``chf_stop_mse_d``/``_lo``/``_hi``/``_word``: the patent's method with the literal rule minus with the
         stagnation rule, per-run MSE from frame 5 on (m², paired 95 % interval; the same samples).
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
+    ValueError
+        ``runs`` is empty, of several scenarios, or without the readings (``readings=False``), or ``sc`` is not
+        the runs' scenario, or ``xtols`` empty or holding a value that is not finite and positive.
     """
+    runs = _check_study(runs, sc, readings=True)
+    xtols = tuple(scalar(x, f"xtols[{j}]", 0.0, lo_open=True) for j, x in enumerate(sequence(xtols, "xtols", minimum=1)))
     fit = np.stack([r.swarm_trace["fitness"] for r in runs])  # (runs, K, T + 1)
     spread = np.stack([r.swarm_trace["spread"] for r in runs])
     ref = np.stack([r.objective["slsqp"] for r in runs])

@@ -16,7 +16,8 @@ from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import _frame, rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, METHODS, RangeBearingScenario, TrackingRun, min_local_ess,
                                             nees_per_frame, position_sq_errors, posterior_crb)
-from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE
+from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE, _check_crb, _check_study
+from fusion.scenarios.range_bearing import _check_runs, _check_size
 from fusion.book.glue import GlueValues
 
 __all__ = ["central_collapsed", "scenario_values", "scenario_table", "crb_position", "method_table", "rmse_figure",
@@ -104,7 +105,13 @@ def scenario_table(sc: RangeBearingScenario) -> pd.DataFrame:
         Ten rows indexed by ``item`` (sensors, measurement, motion, truth, shared prior, local
         filters, mixtures, fusion, centralised PF, feedback and topology) with one text column
         ``choice``; units in the text (m, m/s, °, s, m²/s³).
+
+    Raises
+    ------
+    TypeError
+        ``sc`` not a RangeBearingScenario.
     """
+    instance_of(sc, RangeBearingScenario, "sc")
     return pd.DataFrame(
         [
             ("sensors (m)", "; ".join(f"({x:.0f}, {y:.0f})" for x, y in sc.sensors)),
@@ -146,9 +153,13 @@ def crb_position(sc: RangeBearingScenario, runs: list[TrackingRun]) -> FloatArra
 
     Raises
     ------
+    TypeError
+        ``sc`` not a RangeBearingScenario, or ``runs`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty (nothing to stack), or the truths are not of shape (K, 4).
+        ``runs`` holds no run or runs of several scenarios, or ``sc`` is another scenario than theirs (the bound
+        would be of other frames, sensors or noise).
     """
+    runs = _check_study(runs, sc)
     crb = posterior_crb(sc, np.stack([r.truth for r in runs]))
     return np.sqrt(crb[:, 0, 0] + crb[:, 2, 2])
 
@@ -176,9 +187,16 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
 
     Raises
     ------
+    TypeError
+        ``runs`` or ``plain`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty (nothing to stack).
+        ``runs`` is empty or of several scenarios, ``plain`` not as many runs of the same scenario, or ``crb_pos``
+        not finite and non-negative with one entry per frame.
     """
+    runs = _check_study(runs)
+    if plain is not None:
+        plain = _check_study(plain, name="plain", like=runs)
+    crb_pos = _check_crb(crb_pos, runs)
     rows = {}
     for key in METHODS:
         label = METHOD_LABELS[key]
@@ -273,9 +291,14 @@ def rmse_figure(runs: list[TrackingRun], crb_pos: FloatArray) -> Figure:
 
     Raises
     ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty (nothing to stack).
+        ``runs`` is empty or of several scenarios, or ``crb_pos`` not finite and non-negative with one entry per
+        frame.
     """
+    runs = _check_study(runs)
+    crb_pos = _check_crb(crb_pos, runs)
     frames = np.arange(1, crb_pos.size + 1)
     fig, ax = new_figure(figsize=(7.5, 4.8))
     for key, (c, ls) in _STYLE.items():
@@ -368,9 +391,12 @@ def gain_values(runs: list[TrackingRun]) -> GlueValues:
 
     Raises
     ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty (nothing to stack).
+        ``runs`` is empty or of several scenarios.
     """
+    runs = _check_study(runs)
     mse = {k: per_run_mse(runs, k) for k in ("chernoff_pso", "chernoff_uniform", "ci_gaussian", "chernoff_prev")}
     diffs = {"uni": mse["chernoff_pso"] - mse["chernoff_uniform"], "ci": mse["chernoff_pso"] - mse["ci_gaussian"],
              "prev": mse["chernoff_prev"] - mse["chernoff_pso"]}
@@ -399,7 +425,16 @@ def collapsed(runs: list[TrackingRun], n_particles: int) -> np.ndarray:
     -------
     ndarray of bool, shape (runs,)
         True for a collapsed run; empty for no runs.
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun, ``n_particles`` not an integer.
+    ValueError
+        ``runs`` of several scenarios, ``n_particles`` below 1 or not the runs' ``RangeBearingScenario.n_particles``.
     """
+    runs = _check_runs(runs, False)
+    n_particles = _check_size(runs, n_particles, "n_particles", "n_particles")
     return min_local_ess(runs) < COLLAPSE_FRACTION * n_particles
 
 
@@ -417,8 +452,19 @@ def central_collapsed(runs: list[TrackingRun], n_central: int) -> np.ndarray:
     Returns
     -------
     ndarray of bool, shape (runs,)
-        True for a run whose centralised filter's effective sample size falls below the threshold at some frame.
+        True for a run whose centralised filter's effective sample size falls below the threshold at some frame;
+        empty for no runs.
+
+    Raises
+    ------
+    TypeError
+        ``n_central`` not an integer, or ``runs`` not a sequence of TrackingRun.
+    ValueError
+        ``n_central`` below 1 or other than the ``n_central`` of the runs' recorded scenario, or ``runs`` of
+        several scenarios.
     """
+    runs = _check_runs(runs, False)
+    n_central = _check_size(runs, n_central, "n_central", "n_central")
     return np.array([float(np.min(r.ess["centralised_pf"])) < COLLAPSE_FRACTION * n_central for r in runs], dtype=bool)
 
 
@@ -435,7 +481,15 @@ def any_collapsed(runs: list[TrackingRun], sc: RangeBearingScenario) -> np.ndarr
     -------
     ndarray of bool, shape (runs,)
         True for a run in which a node's filter or the centralised filter collapses at some frame.
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
+    ValueError
+        ``runs`` is empty or of several scenarios, or ``sc`` is not the runs' scenario.
     """
+    runs = _check_study(runs, sc)
     return collapsed(runs, sc.n_particles) | central_collapsed(runs, sc.n_central)
 
 
@@ -454,7 +508,15 @@ def typical_run(runs: list[TrackingRun], n_particles: int, n_central: int | None
     -------
     int
         0-based index; 0 when every run collapses.
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun, ``n_particles`` or ``n_central`` not an integer.
+    ValueError
+        ``runs`` is empty or of several scenarios, ``n_particles`` or ``n_central`` not the runs' own.
     """
+    runs = _check_study(runs)
     bad = collapsed(runs, n_particles)
     if n_central is not None:
         bad = bad | central_collapsed(runs, n_central)
@@ -489,9 +551,12 @@ def collapse_values(plain: list[TrackingRun], sc: RangeBearingScenario) -> GlueV
 
     Raises
     ------
+    TypeError
+        ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        No run is kept.
+        ``plain`` is empty or of several scenarios, ``sc`` is not its scenario, or no run is kept.
     """
+    plain = _check_study(plain, sc, name="plain")
     bad, cbad = collapsed(plain, sc.n_particles), central_collapsed(plain, sc.n_central)
     anyb = bad | cbad
     keep = [r for r, b in zip(plain, anyb) if not b]
@@ -543,7 +608,15 @@ def readings_values(runs: list[TrackingRun]) -> GlueValues:
         ``chf_rd_frames`` (int, all frames), ``chf_rd_kl_gap`` (largest absolute difference of its exponents
         from SLSQP's minimum of Ĵ on the same samples, where it has one), ``chf_rd_boundary`` (int, frames where
         SLSQP's minimum has an exponent below 1e-6).
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not a sequence of TrackingRun.
+    ValueError
+        ``runs`` is empty, of several scenarios, or without the readings (``readings=False``).
     """
+    runs = _check_study(runs, readings=True)
     first_order = np.stack([r.eps["first_order"] for r in runs])
     kl = np.stack([r.eps["equal_kl"] for r in runs])
     sl = np.stack([r.eps["slsqp"] for r in runs])
@@ -569,8 +642,18 @@ def equal_kl_g_values(runs: list[TrackingRun]) -> GlueValues:
         all frames), ``chf_klg_equal`` (int, of those, frames within ``chf_klg_tol`` of SLSQP's minimum of Ĵ in
         every exponent; ``chf_klg_tol`` is the primary's agreement, ``chf_rd_kl_gap`` of :func:`readings_values`:
         how closely SLSQP reproduces an exact solution), ``chf_klg_gap_max``, ``chf_klg_gap_median`` (largest and median over those frames of
-        the largest absolute exponent difference from SLSQP's minimum; 4 decimals).
+        the largest absolute exponent difference from SLSQP's minimum; 4 decimals; NaN when no frame has a
+        solution).
+
+    Raises
+    ------
+    TypeError
+        A run that is not a TrackingRun, or ``runs`` not a sequence.
+    ValueError
+        ``runs`` holds no run, runs of several scenarios, or runs of a scenario without ``readings`` (their
+        ``eps`` has no ``equal_kl_g``).
     """
+    runs = _check_study(runs, readings=True)
     klg = np.stack([r.eps["equal_kl_g"] for r in runs])
     sl = np.stack([r.eps["slsqp"] for r in runs])
     ok = np.all(np.isfinite(klg), axis=2)
