@@ -634,7 +634,8 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
     ValueError
         ``mcs`` is empty, a key is not a valid standard deviation, an entry lacks the runs of a Fig. 4 method or
         holds runs at another σ than its key;
-        ``axis_max`` is not finite and positive, or ``block`` not a positive count.
+        ``axis_max`` is not finite and positive, or ``block`` not a positive count or more than an entry's runs
+        (no block of ``block`` runs: its probability would be 0/0).
     """
     instance_of(mcs, Mapping, "mcs")
     if not mcs:
@@ -645,7 +646,11 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
         if float(v.sigma) != float(k):  # the runs carry their σ: a row must not be labelled by another (fuzz 19, E1)
             raise ValueError(f"mcs[{shown(k)}] holds runs at σ = {float(v.sigma):g} m, not at the σ = {float(k):g} m it is "
                              "keyed by")
-    scalar(axis_max, "axis_max", lo=0.0, lo_open=True), count(block, "block")
+    axis_max, block = scalar(axis_max, "axis_max", lo=0.0, lo_open=True), count(block, "block")
+    fewest = min(mc.runs for mc in mcs.values())
+    if block > fewest:  # no disjoint block of `block` runs: an all-NaN column (fuzz 22b, NB1)
+        raise ValueError(f"block = {block} is more than the {fewest} runs of an entry of mcs (a block is {block} of "
+                         "its runs)")
     rows = {}
     for s, mc in sorted(mcs.items()):
         a, b = mc.per_run[IMPROVED], mc.per_run[TWO]
@@ -655,8 +660,7 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
             "runs": mc.runs,
             "both inside the axis": float(np.mean((a <= axis_max) & (b <= axis_max))),
             "P(improved wins a run)": float(np.mean(wins)),
-            f"P(all {block} runs ordered)": float(np.mean(wins[: nb * block].reshape(nb, block).all(axis=1)))
-            if nb else float("nan"),
+            f"P(all {block} runs ordered)": float(np.mean(wins[: nb * block].reshape(nb, block).all(axis=1))),
         }
     out = pd.DataFrame(rows).T
     out.index.name = "σ (m)"

@@ -19,7 +19,7 @@ from fusion._frozen import constant
 from fusion import data
 from fusion._docstrings import reads_results
 from fusion._counts import distinct, sequence
-from fusion._validation import as_array, count, record, scalar, std_scalar, instance_of
+from fusion._validation import as_array, count, given_number, record, scalar, std_scalar, instance_of
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -547,10 +547,12 @@ def published_numbers(period: float, runs: int) -> GlueValues:
     ValueError
         ``period`` is not finite and positive, or ``runs`` below 1.
     """
-    scalar(period, "period", lo=0.0, lo_open=True)  # checked; glued as given (a numpy scalar or 0-d array as its
-    count(runs, "runs")                            # Python number: the glue holds plain numbers)
+    # checked; glued as the plain number given (an int stays an int; a Fraction, a Decimal, a numpy scalar or a
+    # 0-d array as the float read: the glue holds plain numbers, fuzz 22b FR)
+    T = given_number(period, "period", lo=0.0, lo_open=True)
+    count(runs, "runs")
     SC = data.WANG2024_SCENARIO
-    T, RUNS = (period.item() if isinstance(period, (np.ndarray, np.generic)) else period), int(runs)
+    RUNS = int(runs)
     pub_rmse, pub_fruit_fly, pub_times = data.WANG2024_RMSE.columns, data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     return {"ci_T": T, "ci_runs": RUNS, "ci_delta": SC["delta1"], "ci_pub_rmse": pub_rmse["improved"][0],
             "ci_pub_ci": pub_rmse["ci"][0], "ci_pub_mb": pub_rmse["multi_bayes"][0], "ci_pub_fuzzy": pub_rmse["fuzzy"][0],
