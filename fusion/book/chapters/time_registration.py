@@ -428,7 +428,7 @@ def fig4_figure(mc: sc.MonteCarlo, exact: Mapping[str, float], axis_max: float) 
         >= 0, or ``axis_max`` is not finite and positive.
     """
     _runs_of(mc, "mc", FIG4), _exact_mses(exact, "exact", FIG4)
-    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
+    axis_max = scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.3), sharey=True)
     runs = np.arange(1, mc.runs + 1)
     for name, style in zip(FIG4, ("o-", "s-")):
@@ -563,12 +563,11 @@ def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) ->
     items = sequence(periods, "periods")
     if not items:
         raise ValueError("periods is empty (it must hold at least one period of sensor 2)")
-    for i, p in enumerate(items):
-        scalar(p, f"periods[{i}]", lo=0.0, lo_open=True)
-    distinct([float(p) for p in items], "periods")
-    std_scalar(sigma, "sigma"), _method_names(names, "names")
+    items = [scalar(p, f"periods[{i}]", lo=0.0, lo_open=True) for i, p in enumerate(items)]  # floats (fuzz 22b, FR)
+    distinct(items, "periods")
+    sigma, names = std_scalar(sigma, "sigma"), _method_names(names, "names")
     rows = {}
-    for p2 in periods:
+    for p2 in items:
         t1, t2 = sc.instants(p2)
         rows[float(p2)] = {n: sc.expected(n, sigma, t1, t2, window=max(float(p2), 5.0)) for n in names}
     out = pd.DataFrame(rows).T
@@ -888,8 +887,8 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> Gl
     _needed = (TWO, IMPROVED, RegMethod.LEAST_SQUARES, RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED,
                RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.QLS_NEXT, RegMethod.QLS_CAUSAL)
     _exact_mses(exact, "exact", _needed)
-    std_scalar(sigma, "sigma"), as_times(t2, "t2", min_len=2)
-    SIGMA = float(sigma)
+    sigma, _ = std_scalar(sigma, "sigma"), as_times(t2, "t2", min_len=2)
+    SIGMA = sigma
     T2 = np.asarray(t2, dtype=float)
     return {"reg_exact_two": exact[TWO], "reg_exact_impr": exact[IMPROVED],
 "reg_exact_ls": exact[RegMethod.LEAST_SQUARES],

@@ -44,7 +44,7 @@ def _levels(sigmas: Sequence[float], runs: int, seed: int, axis_max: float):  # 
 
     seed = check_seed(seed)   # also where it meets default_rng (the AST test of rule 11)
     sigmas = _noise_levels(sigmas, "sigmas")
-    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
+    axis_max = scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     t1, t2 = sc.instants()
     x1, x2 = sc.truth(t1), sc.truth(t2)
     for i, s in enumerate(sigmas):

@@ -97,7 +97,7 @@ def stress_table(sigma: float, names: Sequence[str] = STUDY_METHODS) -> pd.DataF
     ValueError
         ``sigma`` is not a valid standard deviation, or ``names`` is empty or holds an unknown method.
     """
-    std_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")  # the float read (fuzz 22b, FR)
     names = _method_names(names, "names")
     rows = {}
     for n in names:
@@ -197,7 +197,7 @@ def blue_whole_record(sigma: float) -> float:
     ValueError
         ``sigma`` is not a valid standard deviation (finite, positive, its square a representable variance).
     """
-    std_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")  # the float read (fuzz 22b, FR)
     from functools import partial
 
     from fusion import registration as reg
