@@ -244,3 +244,14 @@ def test_given_number_plain(v):
 def test_period_glued_as_plain_number(period, kind):
     T = ci.published_numbers(period, 100)["ci_T"]
     assert type(T) is kind and T == float(period)
+
+
+def test_chapter_05_mapping_entries_read_as_floats():
+    """``ci.checks._entries`` returns the floats it read: a Decimal or Fraction entry computes (and glues) as its
+    float, the same numbers as the float mapping."""
+    from fusion.scenarios.two_sensor import NeesRule
+    rules = (NeesRule.CONVEX, NeesRule.CI_HALF, NeesRule.PRINTED, NeesRule.SPLIT, NeesRule.LOCAL)
+    dec = {r: Decimal("4.125") for r in rules}
+    assert ci.nees_numbers(dec, 100) == ci.nees_numbers({r: 4.125 for r in rules}, 100)
+    checks = {"eq2_error": Fraction(1, 8), "eq6_asym": Decimal("2.5"), "eq6_relerr": np.array(0.25)}
+    assert ci.printed_equation_numbers(checks) == ci.printed_equation_numbers({k: float(v) for k, v in checks.items()})

@@ -115,7 +115,7 @@ def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], d
     distance = scalar(distance, "distance", lo=0.0, lo_open=True)
     duration = distance / float(np.linalg.norm(data.WANG2024_IR_RADAR["velocity"]))
     t_min, _ = _averaging_start(t_min, duration)
-    _entries(chapter_means, "chapter_means", (ir.AZIMUTH_MRAD, ir.ELEVATION_MRAD, ir.X_M, ir.Y_M),
+    chapter_means = _entries(chapter_means, "chapter_means", (ir.AZIMUTH_MRAD, ir.ELEVATION_MRAD, ir.X_M, ir.Y_M),
              "infrared_radar.late_means (the improved CI's entry)")
     sim, rmse = ir_study(IR_T, seed, count(runs, "runs"), duration=duration)
     flown = ir.late_means(dict(rmse), sim.t, t_min)[IR_IMP]

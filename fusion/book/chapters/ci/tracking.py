@@ -701,10 +701,10 @@ def variants_table(variants: Mapping[str, tuple[float, float]],
     """
     if isinstance(variants, Mapping) and not variants:
         raise ValueError("variants is empty (it must map each reading of two_sensor.rmse_variants to (x, y))")
-    _entries(variants, "variants", list(variants) if isinstance(variants, Mapping) else (),
+    variants = _entries(variants, "variants", list(variants) if isinstance(variants, Mapping) else (),
              "two_sensor.rmse_variants", width=2)
     same_keys(variants_all, "variants_all", variants, "variants")
-    _entries(variants_all, "variants_all", list(variants), "two_sensor.rmse_variants", width=2)
+    variants_all = _entries(variants_all, "variants_all", list(variants), "two_sensor.rmse_variants", width=2)
     return pd.concat({"t ≥ 20 s": pd.DataFrame(variants, index=["x (m)", "y (m)"]).T,
                       "all steps": pd.DataFrame(variants_all, index=["x (m)", "y (m)"]).T}, axis=1).round(2)
 
@@ -730,7 +730,7 @@ def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> GlueValues:
     ValueError
         ``variants`` lacks a reading read here, or one is not two finite numbers (x, y).
     """
-    _entries(variants, "variants", (RUN_AVERAGED, OVER_STEPS), "two_sensor.rmse_variants", width=2)
+    variants = _entries(variants, "variants", (RUN_AVERAGED, OVER_STEPS), "two_sensor.rmse_variants", width=2)
     return {"ci_var_avg_x": rounded(variants[RUN_AVERAGED][0], 1),
             "ci_var_avg_y": rounded(variants[RUN_AVERAGED][1], 1),
             "ci_var_run_x": rounded(variants[OVER_STEPS][0], 1)}

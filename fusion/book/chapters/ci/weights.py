@@ -163,7 +163,7 @@ def timing_table(m: Mapping[str, float]) -> pd.DataFrame:
     ValueError
         ``m`` lacks a measurement read here, or one is not finite.
     """
-    _entries(m, "m", _TIMING_KEYS, "timing_benchmark (its measurements)")
+    m = _entries(m, "m", _TIMING_KEYS, "timing_benchmark (its measurements)")
     pub, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     timing = pd.DataFrame([
         ("Fig. 5", "ω by FOA (30 × 200)", pub["foa_time_s"][0], m["foa_vectorised"]),
