@@ -255,3 +255,11 @@ def test_chapter_05_mapping_entries_read_as_floats():
     assert ci.nees_numbers(dec, 100) == ci.nees_numbers({r: 4.125 for r in rules}, 100)
     checks = {"eq2_error": Fraction(1, 8), "eq6_asym": Decimal("2.5"), "eq6_relerr": np.array(0.25)}
     assert ci.printed_equation_numbers(checks) == ci.printed_equation_numbers({k: float(v) for k, v in checks.items()})
+
+
+def test_chapter_07_exact_mses_read_as_floats():
+    """``time_registration._exact_mses`` returns the floats it read: ``mc_table`` computes with them."""
+    mc = trsc.monte_carlo(tr.FIG4, 3.0, 20, 1)
+    exact = {n: trsc.expected(n, 3.0) for n in tr.FIG4}
+    dec = {n: Decimal(repr(v)) for n, v in exact.items()}
+    assert tr.mc_table(mc, dec).equals(tr.mc_table(mc, exact))

@@ -133,13 +133,14 @@ class BenchClass(StrEnum):
 
 
 def _exact_mses(exact: object, name: str, methods: Sequence[str]) -> Mapping[str, float]:
-    """``exact`` when it maps each of ``methods`` to an exact expected MSE, a finite number >= 0 (m²): a mapping
-    lacking one is a ValueError naming ``name`` (not a KeyError), a NaN or negative MSE is refused by
-    ``name[method]`` (it would fill a table or a line with NaN)."""
+    """A copy of ``exact``, its MSEs the floats read, when it maps each of ``methods`` to an exact expected MSE, a
+    finite number >= 0 (m²): a mapping lacking one is a ValueError naming ``name`` (not a KeyError), a NaN or
+    negative MSE is refused by ``name[method]`` (it would fill a table or a line with NaN)."""
     record(exact, name, tuple(str(n) for n in methods), extra=True)
-    for n in methods:
-        scalar(exact[n], f"{name}[{str(n)!r}]", lo=0.0)
-    return exact
+    out = dict(exact)  # type: ignore[call-overload]
+    for n in methods:  # the floats read, which the caller computes with (fuzz 22b, FR)
+        out[n] = scalar(exact[n], f"{name}[{str(n)!r}]", lo=0.0)  # type: ignore[index]
+    return out
 
 
 def _runs_of(mc: object, name: str, methods: Sequence[str]) -> sc.MonteCarlo:
@@ -427,7 +428,8 @@ def fig4_figure(mc: sc.MonteCarlo, exact: Mapping[str, float], axis_max: float) 
         ``mc`` lacks the runs of a Fig. 4 method, ``exact`` lacks one or holds an MSE that is not a finite number
         >= 0, or ``axis_max`` is not finite and positive.
     """
-    _runs_of(mc, "mc", FIG4), _exact_mses(exact, "exact", FIG4)
+    _runs_of(mc, "mc", FIG4)
+    exact = _exact_mses(exact, "exact", FIG4)
     axis_max = scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.3), sharey=True)
     runs = np.arange(1, mc.runs + 1)
@@ -468,7 +470,8 @@ def mc_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFrame:
     ValueError
         ``exact`` lacks a method of ``mc`` or holds an MSE that is not a finite number >= 0.
     """
-    instance_of(mc, sc.MonteCarlo, "mc"), _exact_mses(exact, "exact", list(mc.per_run))
+    instance_of(mc, sc.MonteCarlo, "mc")
+    exact = _exact_mses(exact, "exact", list(mc.per_run))
     rows = {}
     for name, v in mc.per_run.items():
         se = v.std(ddof=1) / np.sqrt(v.size)
@@ -774,7 +777,8 @@ def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFra
         finite number >= 0.
     """
     _needed = sorted({n for names in CLASSES.values() for n in names} | {RegMethod.KALMAN_PREDICT, IMPROVED})
-    _runs_of(mc, "mc", _needed), _exact_mses(exact, "exact", _needed)
+    _runs_of(mc, "mc", _needed)
+    exact = _exact_mses(exact, "exact", _needed)
     rows = {}
     for cls, names in CLASSES.items():
         ref = RegMethod.KALMAN_PREDICT if cls == BenchClass.REAL_TIME else IMPROVED
@@ -886,7 +890,7 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> Gl
     """
     _needed = (TWO, IMPROVED, RegMethod.LEAST_SQUARES, RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED,
                RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.QLS_NEXT, RegMethod.QLS_CAUSAL)
-    _exact_mses(exact, "exact", _needed)
+    exact = _exact_mses(exact, "exact", _needed)
     sigma, _ = std_scalar(sigma, "sigma"), as_times(t2, "t2", min_len=2)
     SIGMA = sigma
     T2 = np.asarray(t2, dtype=float)
