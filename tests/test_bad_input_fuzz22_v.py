@@ -263,3 +263,11 @@ def test_chapter_07_exact_mses_read_as_floats():
     exact = {n: trsc.expected(n, 3.0) for n in tr.FIG4}
     dec = {n: Decimal(repr(v)) for n, v in exact.items()}
     assert tr.mc_table(mc, dec).equals(tr.mc_table(mc, exact))
+
+
+@pytest.mark.parametrize("sigma", [Decimal("1"), Fraction(1), np.array(1.0)])
+def test_time_registration_scenario_reads_floats(sigma):
+    """The scenario's shared check (``_check_args``) returns the floats read: ``expected`` and ``monte_carlo``
+    compute with them (a Decimal sigma was used raw: TypeError inside)."""
+    assert trsc.expected(IMPROVED, sigma) == trsc.expected(IMPROVED, 1.0)
+    assert trsc.mse_coefficients(IMPROVED, sigma) == trsc.mse_coefficients(IMPROVED, 1.0)
