@@ -31,9 +31,8 @@ def _noise_levels(sigmas: object, name: str) -> list:
     items = sequence(sigmas, name)
     if not items:
         raise ValueError(f"{name} is empty (it must hold at least one noise level)")
-    for i, s in enumerate(items):
-        std_scalar(s, f"{name}[{i}]")
-    distinct([float(s) for s in items], name)
+    items = [std_scalar(s, f"{name}[{i}]") for i, s in enumerate(items)]  # the floats read (fuzz 22b, FR)
+    distinct(items, name)
     return items
 
 
