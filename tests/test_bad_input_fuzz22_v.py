@@ -271,3 +271,20 @@ def test_time_registration_scenario_reads_floats(sigma):
     compute with them (a Decimal sigma was used raw: TypeError inside)."""
     assert trsc.expected(IMPROVED, sigma) == trsc.expected(IMPROVED, 1.0)
     assert trsc.mse_coefficients(IMPROVED, sigma) == trsc.mse_coefficients(IMPROVED, 1.0)
+
+
+@pytest.mark.parametrize("be, exc", [({NAN: 0.01, 3.0: 0.02}, ValueError), ({"1.0": 0.01, 3.0: 0.02}, TypeError),
+                                     ({-1.0: 0.01, 3.0: 0.02}, ValueError),
+                                     ({0.1: 0.01, Decimal("0.1"): 0.02, 3.0: 0.03}, ValueError)])
+def test_latency_values_noise_levels(be, exc):
+    """Debatable q6, decided: the noise levels (keys) of ``be`` are standard deviations, read as such."""
+    _refused(exc, "be", tl.latency_values, be, 3.0)
+
+
+def test_fruit_fly_step_study_float_subclass_computed_as_read():
+    """Debatable q7, decided by FR: a float subclass is computed with the value its check read."""
+    class Lying(float):
+        def __float__(self) -> float:
+            return 0.3
+
+    assert ci.fruit_fly_step_study(2, Lying(0.8)).equals(ci.fruit_fly_step_study(2, 0.3))

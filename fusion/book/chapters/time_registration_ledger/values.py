@@ -265,13 +265,16 @@ def latency_values(be: Mapping[float, float], sigma: float) -> GlueValues:
     TypeError
         ``be`` is not a mapping, or ``sigma`` not a number.
     ValueError
-        ``be`` is empty or holds a latency that is not finite, or ``sigma`` is not one of its keys.
+        ``be`` is empty, holds a noise level (a key) that is not a valid standard deviation or a latency that is
+        not finite, or ``sigma`` is not one of its keys.
     """
     instance_of(be, Mapping, "be")
     if not be:
         raise ValueError("be is empty (it must map noise levels to break-even latencies)")
     # the floats the reader returns, not the caller's objects (fuzz 22b, FR4-5: a Decimal, a 0-d array)
-    lat = {k: scalar(v, f"be[{k!r}]") for k, v in be.items()}
+    lat = {std_scalar(k, f"the noise level {shown(k)} of be"): scalar(v, f"be[{k!r}]") for k, v in be.items()}
+    if len(lat) < len(be):  # keys equal as floats (1 and 1.0 are one key of a dict already)
+        raise ValueError("be holds a noise level twice (as two keys of equal value)")
     sigma = scalar(sigma, "sigma")
     if sigma not in lat:
         raise ValueError(f"sigma = {shown(sigma)} is not a noise level of be (its keys: {list(be)[:10]})")
