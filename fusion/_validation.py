@@ -540,6 +540,17 @@ def scalar(
     return v + 0.0 if lo is not None or hi is not None else v
 
 
+def given_number(value: object, name: str, lo: float | None = None, hi: float | None = None, **kw: bool) -> int | float:
+    """``value`` checked by :func:`scalar` (same bounds and keywords), as the plain number a glued value shows:
+    an ``int`` for an integer type (a Python or NumPy integer, a 0-d integer array: printed without a decimal
+    point, as given), else the float :func:`scalar` returns, never the caller's object (fuzz 22b, FR: a
+    :class:`~fractions.Fraction`, a :class:`~decimal.Decimal` or a 0-d array checked, then used or glued raw)."""
+    v = scalar(value, name, lo, hi, **kw)  # type: ignore[arg-type]
+    if is_integer(value) or (isinstance(value, np.ndarray) and value.dtype.kind in "iu"):
+        return int(value)  # type: ignore[call-overload]
+    return v
+
+
 def store_read(obj: object, name: str, read: object) -> None:
     """Store in the frozen dataclass ``obj``'s field ``name`` the value its validation ``read`` (rule 20), unless
     the caller gave a plain ``int``, ``float`` or ``str``, which are what they read as: a ``float`` subclass whose

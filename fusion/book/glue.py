@@ -46,8 +46,32 @@ def _checked_keep(store: object, values: object) -> None:
             raise TypeError(f"values must have str glue keys, got the key {shown(k, 60)}")
         if not k.isidentifier():
             raise ValueError(f"values must have glue keys that are identifiers (a claim text's {{name}}), got {shown(k)}")
+        _check_finite(k, v)  # glue_all's rule, the same function (fuzz 22b, KP)
         if isinstance(v, (float, np.floating, Decimal)) or (isinstance(v, np.ndarray) and v.ndim == 0):
             scalar(v, f"values[{k!r}]", tiny=True)
+
+
+def _check_finite(key: str, value: object) -> None:
+    """The book's finiteness rule of a glued value (:func:`glue_all` and the chapters' ``keep``): ValueError naming
+    ``values[key]`` for a value :func:`_finite` refuses."""
+    if not _finite(value):
+        raise ValueError(f"values[{shown(key)}] must be finite, got {shown(value)} (a glued number is printed in the book)")
+
+
+def _glued_cell(table: object, row: object, column: object, name: str, lo: float | None = None,
+                hi: float | None = None) -> float:
+    """The cell ``table.loc[row, column]`` that a chapter glues, as a float by the glue rule (fuzz 22b, V): the row
+    and the column present once each (read by label, never by position), the cell a finite number (TypeError for
+    text or another non-number) within [``lo``, ``hi``] when given (an MSE, a share); errors name ``name``."""
+    from fusion._validation import instance_of, scalar
+
+    instance_of(table, pd.DataFrame, name)
+    for what, labels, label in (("row", table.index, row), ("column", table.columns, column)):  # type: ignore[attr-defined]
+        hits = int(np.sum(labels == label)) if label in labels else 0
+        if hits != 1:
+            raise ValueError(f"{name} must hold the {what} {shown(label)} once, got it {hits} times")
+    return scalar(table.loc[row, column], f"{name}.loc[{shown(row)}, {shown(column)}]", lo, hi,  # type: ignore[attr-defined]
+                  tiny=True)
 
 
 def _finite(value: object) -> bool:
@@ -125,8 +149,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     for key, value in values.items():  # every value checked before any is glued
         if not isinstance(key, str):
             raise TypeError(f"values must have str glue keys, got the key {shown(key, 60)}")
-        if not _finite(value):
-            raise ValueError(f"values[{shown(key)}] must be finite, got {shown(value)} (a glued number is printed in the book)")
+        _check_finite(key, value)
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 
     from fusion.book.figures import glue_figure

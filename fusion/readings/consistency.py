@@ -243,7 +243,7 @@ def rejection_probability(snapshots: ArrayLike, sensor: int, biases: ArrayLike, 
     if b.ndim != 1 or b.size == 0 or not np.all(np.isfinite(b)):
         raise ValueError("biases must be a non-empty 1-D array of finite numbers")
     check_magnitude(b, "biases")
-    scalar(eps, "eps", lo=0.0)
+    eps = scalar(eps, "eps", lo=0.0)  # the float read (fuzz 22b, FR)
     # rule 17: one consistency mask per bias (~10 loop steps of numpy calls over N x n x n)
     loop_work((b.size,), S.size * S.shape[1], "biases and snapshots", step=10 * LOOP_STEP)
     shift = np.zeros(S.shape[1])

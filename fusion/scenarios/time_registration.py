@@ -307,13 +307,12 @@ def _times_named(fn: Callable[..., Any]) -> Callable[..., Any]:
     return call
 
 
-def _check_args(t_src: ArrayLike, t_dst: ArrayLike, sigma: float, q_v: float, q_a: float) -> None:
-    """Validate the times and the Kalman tuning shared by :func:`register` and :func:`registrar`."""
+def _check_args(t_src: ArrayLike, t_dst: ArrayLike, sigma: float, q_v: float, q_a: float) -> tuple[float, float, float]:
+    """Validate the times and the Kalman tuning shared by :func:`register` and :func:`registrar`; return ``sigma``,
+    ``q_v`` and ``q_a`` as the floats read, which the callers compute with (fuzz 22b, FR: never a Decimal)."""
     as_times(t_src, "t_src")
     as_times(t_dst, "t_dst")
-    std_scalar(sigma, "sigma")
-    nonnegative_scalar(q_v, "q_v")
-    nonnegative_scalar(q_a, "q_a")
+    return std_scalar(sigma, "sigma"), nonnegative_scalar(q_v, "q_v"), nonnegative_scalar(q_a, "q_a")
 
 
 def _delay_bounds(t1: FloatArray, t2: FloatArray) -> tuple[float, float]:
@@ -415,7 +414,7 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
         Registered positions (m).
     """
     _check_name(name)
-    _check_args(t_src, t_dst, sigma, q_v, q_a)
+    sigma, q_v, q_a = _check_args(t_src, t_dst, sigma, q_v, q_a)
     same_length(as_array(t_src, "t_src", ndim=1), "t_src", as_array(z, "z", ndim=1), "z")
     if name in _DIRECT:
         return _direct(name, t_src, z, t_dst, window)
@@ -458,7 +457,7 @@ def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
         Unknown ``name``.
     """
     _check_name(name)
-    _check_args(t_src, t_dst, sigma, q_v, q_a)
+    sigma, q_v, q_a = _check_args(t_src, t_dst, sigma, q_v, q_a)
     _kf_kwargs(kf, np.asarray(t_dst, dtype=float))
     return partial(_registrar_call, name, np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float),
                    sigma, q_v, q_a, kf, window)
@@ -516,7 +515,7 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     sf = sigma if sigma_filter is None else std_scalar(sigma_filter, "sigma_filter")
     delay = scalar(delay, "delay")
     d1, d2 = instants()
-    _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
+    sigma, q_v, q_a = _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     if delay != 0.0:
@@ -554,7 +553,7 @@ def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike |
     d1, d2 = instants()
     t1 = d1 if t_src is None else as_times(t_src, "t_src")
     t2 = d2 if t_dst is None else as_times(t_dst, "t_dst")
-    _check_args(t1, t2, sigma, q_v, q_a)
+    sigma, q_v, q_a = _check_args(t1, t2, sigma, q_v, q_a)
     est = register(name, t1, truth(t1), t2, sigma, q_v, q_a)
     return float(np.mean((est - truth(t2)) ** 2))
 
@@ -739,7 +738,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     runs = count(runs, "runs", minimum=2)
     seed = check_seed(seed)
     d1, d2 = instants()
-    _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
+    sigma, q_v, q_a = _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     rng = np.random.default_rng(seed)
@@ -791,7 +790,7 @@ def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | No
     d1, d2 = instants()
     t1 = d1 if t_src is None else as_times(t_src, "t_src")
     t2 = d2 if t_dst is None else as_times(t_dst, "t_dst")
-    _check_args(t1, t2, sf, q_v, q_a)
+    sf, q_v, q_a = _check_args(t1, t2, sf, q_v, q_a)
     dec = reg.affine_decomposition(registrar(name, t1, t2, sf, q_v, q_a, kf=kf), truth(t1))
     return float(np.mean((dec.f0 - truth(t2)) ** 2)), float(np.mean(np.sum(dec.A**2, axis=1)))
 

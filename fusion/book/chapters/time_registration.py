@@ -133,13 +133,14 @@ class BenchClass(StrEnum):
 
 
 def _exact_mses(exact: object, name: str, methods: Sequence[str]) -> Mapping[str, float]:
-    """``exact`` when it maps each of ``methods`` to an exact expected MSE, a finite number >= 0 (m²): a mapping
-    lacking one is a ValueError naming ``name`` (not a KeyError), a NaN or negative MSE is refused by
-    ``name[method]`` (it would fill a table or a line with NaN)."""
+    """A copy of ``exact``, its MSEs the floats read, when it maps each of ``methods`` to an exact expected MSE, a
+    finite number >= 0 (m²): a mapping lacking one is a ValueError naming ``name`` (not a KeyError), a NaN or
+    negative MSE is refused by ``name[method]`` (it would fill a table or a line with NaN)."""
     record(exact, name, tuple(str(n) for n in methods), extra=True)
-    for n in methods:
-        scalar(exact[n], f"{name}[{str(n)!r}]", lo=0.0)
-    return exact
+    out = dict(exact)  # type: ignore[call-overload]
+    for n in methods:  # the floats read, which the caller computes with (fuzz 22b, FR)
+        out[n] = scalar(exact[n], f"{name}[{str(n)!r}]", lo=0.0)  # type: ignore[index]
+    return out
 
 
 def _runs_of(mc: object, name: str, methods: Sequence[str]) -> sc.MonteCarlo:
@@ -427,8 +428,9 @@ def fig4_figure(mc: sc.MonteCarlo, exact: Mapping[str, float], axis_max: float) 
         ``mc`` lacks the runs of a Fig. 4 method, ``exact`` lacks one or holds an MSE that is not a finite number
         >= 0, or ``axis_max`` is not finite and positive.
     """
-    _runs_of(mc, "mc", FIG4), _exact_mses(exact, "exact", FIG4)
-    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
+    _runs_of(mc, "mc", FIG4)
+    exact = _exact_mses(exact, "exact", FIG4)
+    axis_max = scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.3), sharey=True)
     runs = np.arange(1, mc.runs + 1)
     for name, style in zip(FIG4, ("o-", "s-")):
@@ -468,7 +470,8 @@ def mc_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFrame:
     ValueError
         ``exact`` lacks a method of ``mc`` or holds an MSE that is not a finite number >= 0.
     """
-    instance_of(mc, sc.MonteCarlo, "mc"), _exact_mses(exact, "exact", list(mc.per_run))
+    instance_of(mc, sc.MonteCarlo, "mc")
+    exact = _exact_mses(exact, "exact", list(mc.per_run))
     rows = {}
     for name, v in mc.per_run.items():
         se = v.std(ddof=1) / np.sqrt(v.size)
@@ -563,12 +566,11 @@ def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) ->
     items = sequence(periods, "periods")
     if not items:
         raise ValueError("periods is empty (it must hold at least one period of sensor 2)")
-    for i, p in enumerate(items):
-        scalar(p, f"periods[{i}]", lo=0.0, lo_open=True)
-    distinct([float(p) for p in items], "periods")
-    std_scalar(sigma, "sigma"), _method_names(names, "names")
+    items = [scalar(p, f"periods[{i}]", lo=0.0, lo_open=True) for i, p in enumerate(items)]  # floats (fuzz 22b, FR)
+    distinct(items, "periods")
+    sigma, names = std_scalar(sigma, "sigma"), _method_names(names, "names")
     rows = {}
-    for p2 in periods:
+    for p2 in items:
         t1, t2 = sc.instants(p2)
         rows[float(p2)] = {n: sc.expected(n, sigma, t1, t2, window=max(float(p2), 5.0)) for n in names}
     out = pd.DataFrame(rows).T
@@ -634,7 +636,8 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
     ValueError
         ``mcs`` is empty, a key is not a valid standard deviation, an entry lacks the runs of a Fig. 4 method or
         holds runs at another σ than its key;
-        ``axis_max`` is not finite and positive, or ``block`` not a positive count.
+        ``axis_max`` is not finite and positive, or ``block`` not a positive count or more than an entry's runs
+        (no block of ``block`` runs: its probability would be 0/0).
     """
     instance_of(mcs, Mapping, "mcs")
     if not mcs:
@@ -645,7 +648,11 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
         if float(v.sigma) != float(k):  # the runs carry their σ: a row must not be labelled by another (fuzz 19, E1)
             raise ValueError(f"mcs[{shown(k)}] holds runs at σ = {float(v.sigma):g} m, not at the σ = {float(k):g} m it is "
                              "keyed by")
-    scalar(axis_max, "axis_max", lo=0.0, lo_open=True), count(block, "block")
+    axis_max, block = scalar(axis_max, "axis_max", lo=0.0, lo_open=True), count(block, "block")
+    fewest = min(mc.runs for mc in mcs.values())
+    if block > fewest:  # no disjoint block of `block` runs: an all-NaN column (fuzz 22b, NB1)
+        raise ValueError(f"block = {block} is more than the {fewest} runs of an entry of mcs (a block is {block} of "
+                         "its runs)")
     rows = {}
     for s, mc in sorted(mcs.items()):
         a, b = mc.per_run[IMPROVED], mc.per_run[TWO]
@@ -655,8 +662,7 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
             "runs": mc.runs,
             "both inside the axis": float(np.mean((a <= axis_max) & (b <= axis_max))),
             "P(improved wins a run)": float(np.mean(wins)),
-            f"P(all {block} runs ordered)": float(np.mean(wins[: nb * block].reshape(nb, block).all(axis=1)))
-            if nb else float("nan"),
+            f"P(all {block} runs ordered)": float(np.mean(wins[: nb * block].reshape(nb, block).all(axis=1))),
         }
     out = pd.DataFrame(rows).T
     out.index.name = "σ (m)"
@@ -771,7 +777,8 @@ def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFra
         finite number >= 0.
     """
     _needed = sorted({n for names in CLASSES.values() for n in names} | {RegMethod.KALMAN_PREDICT, IMPROVED})
-    _runs_of(mc, "mc", _needed), _exact_mses(exact, "exact", _needed)
+    _runs_of(mc, "mc", _needed)
+    exact = _exact_mses(exact, "exact", _needed)
     rows = {}
     for cls, names in CLASSES.items():
         ref = RegMethod.KALMAN_PREDICT if cls == BenchClass.REAL_TIME else IMPROVED
@@ -883,9 +890,9 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> Gl
     """
     _needed = (TWO, IMPROVED, RegMethod.LEAST_SQUARES, RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED,
                RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.QLS_NEXT, RegMethod.QLS_CAUSAL)
-    _exact_mses(exact, "exact", _needed)
-    std_scalar(sigma, "sigma"), as_times(t2, "t2", min_len=2)
-    SIGMA = float(sigma)
+    exact = _exact_mses(exact, "exact", _needed)
+    sigma, _ = std_scalar(sigma, "sigma"), as_times(t2, "t2", min_len=2)
+    SIGMA = sigma
     T2 = np.asarray(t2, dtype=float)
     return {"reg_exact_two": exact[TWO], "reg_exact_impr": exact[IMPROVED],
 "reg_exact_ls": exact[RegMethod.LEAST_SQUARES],

@@ -65,8 +65,8 @@ def closed_form_table(sigma_filter: float, sigma: float) -> pd.DataFrame:
     ValueError
         ``sigma_filter`` or ``sigma`` is not a finite positive standard deviation (its square a valid variance).
     """
-    std_scalar(sigma_filter, "sigma_filter")
-    std_scalar(sigma, "sigma")  # checked; the column header shows it as given
+    # the floats read (fuzz 22b, FR); the column header shows sigma by :g, as given
+    sigma_filter, sigma = std_scalar(sigma_filter, "sigma_filter"), std_scalar(sigma, "sigma")
     rows = {}
     for n in sc.METHODS:
         b, g = sc.mse_coefficients(n, sigma_filter)
@@ -208,7 +208,7 @@ def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_
         methods); ``sigma`` not a valid standard deviation; ``names`` empty or holding an unknown method.
     """
     horizon = scalar(horizon, "horizon", lo=5.0)
-    std_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")  # the float read (fuzz 22b, FR)
     names = _method_names(names, "names")
     # the decomposition runs each method once per sensor-1 sample over the whole run: (samples)**2 steps per
     # method (measured: 0.19 CPU-s at 100 s, 2.8 CPU-s at 400 s, three methods), refused before the time grids

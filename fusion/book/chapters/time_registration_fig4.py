@@ -31,9 +31,8 @@ def _noise_levels(sigmas: object, name: str) -> list:
     items = sequence(sigmas, name)
     if not items:
         raise ValueError(f"{name} is empty (it must hold at least one noise level)")
-    for i, s in enumerate(items):
-        std_scalar(s, f"{name}[{i}]")
-    distinct([float(s) for s in items], name)
+    items = [std_scalar(s, f"{name}[{i}]") for i, s in enumerate(items)]  # the floats read (fuzz 22b, FR)
+    distinct(items, name)
     return items
 
 
@@ -44,7 +43,7 @@ def _levels(sigmas: Sequence[float], runs: int, seed: int, axis_max: float):  # 
 
     seed = check_seed(seed)   # also where it meets default_rng (the AST test of rule 11)
     sigmas = _noise_levels(sigmas, "sigmas")
-    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
+    axis_max = scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     t1, t2 = sc.instants()
     x1, x2 = sc.truth(t1), sc.truth(t2)
     for i, s in enumerate(sigmas):

@@ -185,7 +185,7 @@ def delay_break_even(sigma: float, upper: float = 0.05) -> float:
     from fusion._validation import scalar, std_scalar
 
     first = float(sc.instants()[0][0])  # sensor 1's first sample time: the latency that takes it at t = 0
-    std_scalar(sigma, "sigma"), scalar(upper, "upper", lo=0.0, hi=first, lo_open=True)
+    sigma, upper = std_scalar(sigma, "sigma"), scalar(upper, "upper", lo=0.0, hi=first, lo_open=True)
 
     def diff(d: float) -> float:
         return sc.expected(IMPROVED, sigma, delay=d) - sc.expected(TWO, sigma, delay=d)
@@ -220,8 +220,8 @@ def robustness_readings(sigma: float, t2: ArrayLike) -> list[RobustnessReading]:
     """
     from fusion._validation import as_times, std_scalar
 
-    std_scalar(sigma, "sigma"), as_times(t2, "t2")
-    SIGMA = float(sigma)
+    sigma, _ = std_scalar(sigma, "sigma"), as_times(t2, "t2")
+    SIGMA = sigma
     T2 = np.asarray(t2, dtype=float)
     T2_6 = sc.instants(6.0)[1]                   # integer ratio 3: instants coincide with sensor-1 samples
     return [RobustnessReading(*r) for r in (  # (key, choice, reading, options)

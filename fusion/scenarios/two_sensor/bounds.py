@@ -266,9 +266,9 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
         Periods not positive, unknown reading, ``t_steady`` beyond the path.
     """
     sigma = std_scalar(sigma, "sigma")
-    positive_scalar(delta0, "delta0")
+    delta0 = positive_scalar(delta0, "delta0")  # the floats read (fuzz 22b, FR)
     s2 = std_scalar(velocity_sigma, "velocity_sigma") ** 2
-    nonnegative_scalar(t_steady, "t_steady")
+    t_steady = nonnegative_scalar(t_steady, "t_steady")
     Ts = np.atleast_1d(as_array(periods, "periods", ndim=(0, 1)))
     if np.any(Ts <= 0):
         raise ValueError("periods must be positive")

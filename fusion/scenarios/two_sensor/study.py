@@ -140,8 +140,8 @@ def fusion_study(sc: Scenario, w_fruit_fly: ArrayLike | None = None, w_grid: Arr
             if np.any(w_arr < 0) or np.any(w_arr > 1):
                 raise ValueError(f"{w_name} must lie in [0, 1]")
     if published_omega is not None:
-        scalar(published_omega, "published_omega", 0.0, 1.0)
-    nonnegative_scalar(t_steady, "t_steady")
+        published_omega = scalar(published_omega, "published_omega", 0.0, 1.0)  # the floats read (fuzz 22b, FR)
+    t_steady = nonnegative_scalar(t_steady, "t_steady")
     a, b = sc.tracks
     M = StudyMethod
     est: dict[StudyMethod, FloatArray] = {M.SENSOR_1: a.est, M.SENSOR_2: b.est, M.CI: fuse_tracks(a, b, "ci").est}

@@ -126,9 +126,9 @@ def nested_values(ks: tuple[float, ...] = (2.0, 10.0, 100.0, 1e4)) -> GlueValues
     items = sequence(ks, "ks")
     if not items:
         raise ValueError("ks is empty (it must hold at least one variance ratio)")
-    for j, k in enumerate(items):
-        scalar(k, f"ks[{j}]", lo=1.0, lo_open=True)
-    distinct([float(k) for k in items], "ks")
+    # the floats the reader returns, computed with and glued (fuzz 22b, FR3: a Decimal or a Fraction was used raw)
+    items = [scalar(k, f"ks[{j}]", lo=1.0, lo_open=True) for j, k in enumerate(items)]
+    distinct(items, "ks")
     v: dict[str, Any] = {}
     err = 0.0
     for j, k in enumerate(items):

@@ -25,18 +25,21 @@ def _entries(value: object, name: str, keys: Collection[object], maker: str, *, 
              numbers: bool = True) -> Mapping:
     """``value`` when it is a mapping holding ``keys`` (the entries read), each a finite number (``width`` finite
     numbers when given; not checked when not ``numbers``); TypeError/ValueError naming ``name`` and ``maker``, the
-    function whose result it must be."""
+    function whose result it must be. Returned as a new dict whose checked entries are the floats (float arrays)
+    read, so that a caller computes with those, never with the caller's Decimal, Fraction or 0-d array (fuzz 22b,
+    FR); not checked entries as given."""
     if not isinstance(value, Mapping):
         raise TypeError(f"{name} must be a mapping (the result of {maker}), got {type(value).__name__}")
     missing = [k for k in keys if k not in value]
     if missing:
         raise ValueError(f"{name} lacks the keys {shown(missing, 200)} (a result of {maker} holds them)")
+    out = dict(value)
     for k in keys if numbers else ():
         if width is None:
-            scalar(value[k], f"{name}[{shown(k)}]", tiny=True)
+            out[k] = scalar(value[k], f"{name}[{shown(k)}]", tiny=True)
         else:
-            as_array(value[k], f"{name}[{shown(k)}]", shape=(width,), subnormal=True)
-    return value
+            out[k] = as_array(value[k], f"{name}[{shown(k)}]", shape=(width,), subnormal=True)
+    return out
 
 
 def _results(value: object, name: str, cls: type, maker: str) -> Mapping:

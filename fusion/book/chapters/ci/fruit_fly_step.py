@@ -11,7 +11,7 @@ from fusion._frozen import constant
 from fusion._counts import seed as check_seed
 from fusion._validation import count, scalar, sequence
 from fusion.book.tables import rounded
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glued_cell
 from fusion.optimise.scalar import fruit_fly_batch, grid_search
 from fusion.book.chapters.ci.checks import _frame
 from fusion._shown import shown
@@ -56,10 +56,14 @@ def fruit_fly_step_targets(seed: int = 0, targets: Sequence[float] = FRUIT_FLY_S
     items = sequence(targets, "targets")
     if not items:
         raise ValueError("targets is empty (it must hold at least one test minimum)")
-    for i, t in enumerate(items):
-        scalar(t, f"targets[{i}]", lo=0.0, hi=1.0, lo_open=True, hi_open=True)
-    return pd.DataFrame({float(t): fruit_fly_step_study(seeds, float(t), seed).iloc[0] for t in items}).T.rename_axis(
+    # the floats the reader returns (fuzz 22b, FR), not the caller's objects
+    items = [scalar(t, f"targets[{i}]", lo=0.0, hi=1.0, lo_open=True, hi_open=True) for i, t in enumerate(items)]
+    return pd.DataFrame({t: fruit_fly_step_study(seeds, t, seed).iloc[0] for t in items}).T.rename_axis(
         "test minimum")
+
+
+#: Row label of the exhaustive search in :func:`fruit_fly_step_study` (its glue reads the rows by label).
+EXHAUSTIVE = "exhaustive search, 1001 points (6 times fewer evaluations)"
 
 
 #: Step rules of the FOA step study: label -> (a, b) of the step a·rand + b.
@@ -100,7 +104,8 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     count(seeds, "seeds")
-    target = scalar(target, "target", lo=0.0, hi=1.0, lo_open=True, hi_open=True)  # in (0, 1): the float checked is used (q7)
+    # in (0, 1); computed with the float the reader returns (fuzz 22b, FR1-2: a Fraction or a Decimal was used raw)
+    target = scalar(target, "target", lo=0.0, hi=1.0, lo_open=True, hi_open=True)
     grid = grid_search(lambda w: (np.asarray(w, dtype=float) - target) ** 2, 1001, vectorized=True)
     rows = {}
     for label, step in FRUIT_FLY_STEP_RULES.items():
@@ -121,7 +126,7 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
                        LARGEST_ERROR: round(float(np.max(err)), 5),
                        RUNS_WITHIN: int(np.sum(err < 0.05)),
                        "runs": seeds}
-    rows["exhaustive search, 1001 points (6 times fewer evaluations)"] = {
+    rows[EXHAUSTIVE] = {
         CANDIDATES_BELOW: round(float(np.mean(np.linspace(0, 1, 1001) < 0.1)), 3),
         CANDIDATES_ABOVE: round(float(np.mean(np.linspace(0, 1, 1001) > 0.5)), 3),
         MEDIAN_ERROR: round(abs(float(grid.x) - target), 5),
@@ -152,23 +157,43 @@ def fruit_fly_step_values(table: pd.DataFrame) -> GlueValues:
     TypeError
         ``table`` is not a DataFrame.
     ValueError
-        ``table`` lacks a column read here or holds fewer than three rows (the printed rule, the symmetric rule,
-        the exhaustive search).
+        ``table`` lacks a column read here or one of the rows of :func:`fruit_fly_step_study` (the printed rule,
+        the symmetric rule, the exhaustive search; read by their labels, never by position) or holds one twice;
+        or a cell read there is not a finite number (TypeError for a non-number), a share outside [0, 1], an
+        error negative (the exhaustive search's largest error zero: the ratio divides by it), or a run count not
+        a whole number with the runs within 0.05 at most the runs.
     """
     _frame(table, "table", (CANDIDATES_BELOW, CANDIDATES_ABOVE, MEDIAN_ERROR, LARGEST_ERROR, RUNS_WITHIN, "runs"),
            maker="fruit_fly_step_study")
-    if len(table) < 3:
-        raise ValueError(f"table must hold the three rows of fruit_fly_step_study (printed rule, symmetric rule, "
-                         f"exhaustive search), got {len(table)}")
-    printed, sym, grid = table.index[0], table.index[1], table.index[2]
-    return {"ci_step_below": float(table.loc[printed, CANDIDATES_BELOW]),
-            "ci_step_above": float(table.loc[printed, CANDIDATES_ABOVE]),
-            "ci_step_sym_below": float(table.loc[sym, CANDIDATES_BELOW]),
-            "ci_step_sym_above": float(table.loc[sym, CANDIDATES_ABOVE]),
-            "ci_step_found": int(table.loc[printed, RUNS_WITHIN]),
-            "ci_step_runs": int(table.loc[printed, "runs"]),
-            "ci_step_med_err": float(table.loc[printed, MEDIAN_ERROR]),
-            "ci_step_max_err": float(table.loc[printed, LARGEST_ERROR]),
-            "ci_step_grid_err": float(table.loc[grid, LARGEST_ERROR]),
-            "ci_step_err_ratio": rounded(float(table.loc[printed, MEDIAN_ERROR])
-                                         / float(table.loc[grid, LARGEST_ERROR]), 1)}
+    printed, sym = FRUIT_FLY_STEP_RULES   # the rows by label (fuzz 22b, V7: by position a reordered table swapped them)
+    for row in (printed, sym, EXHAUSTIVE):
+        if row not in table.index:
+            raise ValueError(f"table must hold the rows of fruit_fly_step_study (printed rule, symmetric rule, "
+                             f"exhaustive search), lacks {shown(row)}")
+
+    def cell(row: str, column: str, hi: float | None = None) -> float:   # the glue rule (fuzz 22b, V6-V10)
+        return _glued_cell(table, row, column, "table", lo=0.0, hi=hi)
+
+    def runs(column: str) -> int:
+        v = cell(printed, column)
+        if v != int(v):
+            raise ValueError(f"table.loc[{shown(printed)}, {shown(column)}] must be a whole count of runs, got {v:g}")
+        return int(v)
+
+    found, n_runs = runs(RUNS_WITHIN), runs("runs")
+    if found > n_runs:
+        raise ValueError(f"table's printed rule has {found} runs within 0.05 of the minimum of {n_runs} runs")
+    grid_err = cell(EXHAUSTIVE, LARGEST_ERROR)
+    if grid_err == 0.0:
+        raise ValueError("table's exhaustive search has largest error 0 (the glued ratio divides by it; "
+                         "fruit_fly_step_study gives half the grid's spacing)")
+    return {"ci_step_below": cell(printed, CANDIDATES_BELOW, 1.0),
+            "ci_step_above": cell(printed, CANDIDATES_ABOVE, 1.0),
+            "ci_step_sym_below": cell(sym, CANDIDATES_BELOW, 1.0),
+            "ci_step_sym_above": cell(sym, CANDIDATES_ABOVE, 1.0),
+            "ci_step_found": found,
+            "ci_step_runs": n_runs,
+            "ci_step_med_err": cell(printed, MEDIAN_ERROR),
+            "ci_step_max_err": cell(printed, LARGEST_ERROR),
+            "ci_step_grid_err": grid_err,
+            "ci_step_err_ratio": rounded(cell(printed, MEDIAN_ERROR) / grid_err, 1)}

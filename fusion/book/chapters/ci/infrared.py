@@ -19,7 +19,7 @@ from fusion import data
 from fusion._results import ResultSpec, array, dict_of, instance, integer, number, trusted, tuple_of, validated_post_init
 from fusion._shown import shown
 from fusion._counts import sequence
-from fusion._validation import as_array, count, instance_of, scalar
+from fusion._validation import as_array, count, given_number, instance_of, scalar
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -115,7 +115,7 @@ def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], d
     distance = scalar(distance, "distance", lo=0.0, lo_open=True)
     duration = distance / float(np.linalg.norm(data.WANG2024_IR_RADAR["velocity"]))
     t_min, _ = _averaging_start(t_min, duration)
-    _entries(chapter_means, "chapter_means", (ir.AZIMUTH_MRAD, ir.ELEVATION_MRAD, ir.X_M, ir.Y_M),
+    chapter_means = _entries(chapter_means, "chapter_means", (ir.AZIMUTH_MRAD, ir.ELEVATION_MRAD, ir.X_M, ir.Y_M),
              "infrared_radar.late_means (the improved CI's entry)")
     sim, rmse = ir_study(IR_T, seed, count(runs, "runs"), duration=duration)
     flown = ir.late_means(dict(rmse), sim.t, t_min)[IR_IMP]
@@ -363,8 +363,9 @@ def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> GlueValu
     missing = [r for r in rows if r not in ir_table.index] + [c for c in cols if c not in ir_table.columns]
     if missing:
         raise ValueError(f"ir_table lacks the rows or columns {missing} (it must be the ir_table of the study)")
-    scalar(t_ir, "t_ir", lo=0.0, lo_open=True)
-    scalar(duration, "duration", lo=0.0, lo_open=True)
+    # glued as the plain numbers given (fuzz 22b, FR: never the caller's Fraction, Decimal or 0-d array)
+    t_ir, duration = given_number(t_ir, "t_ir", lo=0.0, lo_open=True), given_number(duration, "duration", lo=0.0,
+                                                                                     lo_open=True)
     P_IR = data.WANG2024_IR_RADAR
     ir_pub = data.WANG2024_IR_RADAR_RMSE.columns
     imp, raw_row = ir_table.loc[METHOD_LABELS[IR_IMP]], ir_table.loc[METHOD_LABELS[ir.PER_SCAN]]

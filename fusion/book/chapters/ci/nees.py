@@ -58,7 +58,7 @@ def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> GlueValues:
     ----------
     * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
-    _entries(nees, "nees", _NEES_READ, "two_sensor.nees_study (its mean_nees)")
+    nees = _entries(nees, "nees", _NEES_READ, "two_sensor.nees_study (its mean_nees)")
     NEES_RUNS = count(nees_runs, "nees_runs")
     return {"ci_nees_convex": rounded(nees[NeesRule.CONVEX], 2), "ci_nees_ci": rounded(nees[NeesRule.CI_HALF], 2),
             "ci_nees_printed": rounded(nees[NeesRule.PRINTED], 2),
@@ -275,7 +275,7 @@ def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mappi
     missing = [r for r in _START_READ if r not in true_start]
     if missing:
         raise ValueError(f"true_start lacks the rules {missing} (a result of nees_per_step holds them)")
-    _entries(exact, "exact", ("rel_diff_random", "nees_random_min", "nees_random_max", "nees_true_first",
+    exact = _entries(exact, "exact", ("rel_diff_random", "nees_random_min", "nees_random_max", "nees_true_first",
                               "nees_true_transient", "nees_true_steady", "nees_true_steady_min"), "split_ci_exactness")
     lo, hi = nees_step_band(runs)
     split, loc = NeesRule.SPLIT, NeesRule.LOCAL
@@ -323,11 +323,12 @@ def nees_table(nees: Mapping[str, float]) -> pd.DataFrame:
         raise TypeError(f"nees must be a mapping of rule -> mean NEES, got {type(nees).__name__}")
     if not nees:
         raise ValueError("nees is empty (it must map each rule to its mean NEES)")
+    read = {}
     for rule, v in nees.items():
         if not isinstance(rule, str) or rule not in METHOD_LABELS:
             raise ValueError(f"nees holds a key that is not a rule: {shown(rule)}")
-        scalar(v, f"nees[{rule!r}]", lo=0.0)
-    return pd.Series({METHOD_LABELS[rule]: v for rule, v in nees.items()},
+        read[rule] = scalar(v, f"nees[{rule!r}]", lo=0.0)   # the float read (fuzz 22b, FR)
+    return pd.Series({METHOD_LABELS[rule]: v for rule, v in read.items()},
                      name="mean NEES (consistent: ≈ 4 or less)").round(2).to_frame()
 
 

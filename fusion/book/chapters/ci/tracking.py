@@ -19,7 +19,7 @@ from fusion._frozen import constant
 from fusion import data
 from fusion._docstrings import reads_results
 from fusion._counts import distinct, sequence
-from fusion._validation import as_array, count, record, scalar, std_scalar, instance_of
+from fusion._validation import as_array, count, given_number, record, scalar, std_scalar, instance_of
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -553,10 +553,12 @@ def published_numbers(period: float, runs: int) -> GlueValues:
     ValueError
         ``period`` is not finite and positive, or ``runs`` below 1.
     """
-    scalar(period, "period", lo=0.0, lo_open=True)  # checked; glued as given (a numpy scalar or 0-d array as its
-    count(runs, "runs")                            # Python number: the glue holds plain numbers)
+    # checked; glued as the plain number given (an int stays an int; a Fraction, a Decimal, a numpy scalar or a
+    # 0-d array as the float read: the glue holds plain numbers, fuzz 22b FR)
+    T = given_number(period, "period", lo=0.0, lo_open=True)
+    count(runs, "runs")
     SC = data.WANG2024_SCENARIO
-    T, RUNS = (period.item() if isinstance(period, (np.ndarray, np.generic)) else period), int(runs)
+    RUNS = int(runs)
     pub_rmse, pub_fruit_fly, pub_times = data.WANG2024_RMSE.columns, data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     return {"ci_T": T, "ci_runs": RUNS, "ci_delta": SC["delta1"], "ci_pub_rmse": pub_rmse["improved"][0],
             "ci_pub_ci": pub_rmse["ci"][0], "ci_pub_mb": pub_rmse["multi_bayes"][0], "ci_pub_fuzzy": pub_rmse["fuzzy"][0],
@@ -705,10 +707,10 @@ def variants_table(variants: Mapping[str, tuple[float, float]],
     """
     if isinstance(variants, Mapping) and not variants:
         raise ValueError("variants is empty (it must map each reading of two_sensor.rmse_variants to (x, y))")
-    _entries(variants, "variants", list(variants) if isinstance(variants, Mapping) else (),
+    variants = _entries(variants, "variants", list(variants) if isinstance(variants, Mapping) else (),
              "two_sensor.rmse_variants", width=2)
     same_keys(variants_all, "variants_all", variants, "variants")
-    _entries(variants_all, "variants_all", list(variants), "two_sensor.rmse_variants", width=2)
+    variants_all = _entries(variants_all, "variants_all", list(variants), "two_sensor.rmse_variants", width=2)
     return pd.concat({"t ≥ 20 s": pd.DataFrame(variants, index=["x (m)", "y (m)"]).T,
                       "all steps": pd.DataFrame(variants_all, index=["x (m)", "y (m)"]).T}, axis=1).round(2)
 
@@ -734,7 +736,7 @@ def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> GlueValues:
     ValueError
         ``variants`` lacks a reading read here, or one is not two finite numbers (x, y).
     """
-    _entries(variants, "variants", (RUN_AVERAGED, OVER_STEPS), "two_sensor.rmse_variants", width=2)
+    variants = _entries(variants, "variants", (RUN_AVERAGED, OVER_STEPS), "two_sensor.rmse_variants", width=2)
     return {"ci_var_avg_x": rounded(variants[RUN_AVERAGED][0], 1),
             "ci_var_avg_y": rounded(variants[RUN_AVERAGED][1], 1),
             "ci_var_run_x": rounded(variants[OVER_STEPS][0], 1)}

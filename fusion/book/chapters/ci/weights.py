@@ -19,7 +19,7 @@ from fusion._shown import shown
 from fusion._validation import as_covariance, count, instance_of
 from fusion.book.style import color, new_figure
 from fusion.book.tables import rounded, roundoff
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glued_cell
 from fusion.estimates.ci import ci_objective, ci_weight, split_ci_objective, split_covariance_intersection
 from fusion.estimates.ci import _split_ci_covariance, _split_parts
 from fusion.optimise.result import OptimumResult
@@ -163,7 +163,7 @@ def timing_table(m: Mapping[str, float]) -> pd.DataFrame:
     ValueError
         ``m`` lacks a measurement read here, or one is not finite.
     """
-    _entries(m, "m", _TIMING_KEYS, "timing_benchmark (its measurements)")
+    m = _entries(m, "m", _TIMING_KEYS, "timing_benchmark (its measurements)")
     pub, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     timing = pd.DataFrame([
         ("Fig. 5", "ω by FOA (30 × 200)", pub["foa_time_s"][0], m["foa_vectorised"]),
@@ -758,7 +758,9 @@ def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) ->
     TypeError
         ``table`` is not a DataFrame.
     ValueError
-        ``table`` lacks the column ``"ω found"`` or holds fewer than five rows.
+        ``table`` lacks the column ``"ω found"`` (or holds it twice) or holds fewer than five rows, or an ω read
+        there (rows 2-5, by position: the hypotheses' labels carry their settings) is not a finite number in
+        [0, 1] (TypeError for a non-number), named ``table``.
     """
     evaluations = count(evaluations, "evaluations")
     _frame(table, "table", (OMEGA_FOUND,), maker="fig5_hypotheses")
@@ -766,7 +768,8 @@ def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) ->
         raise ValueError("table must be fig5_hypotheses' table (five rows or more, column 'ω found')")
     pub = data.WANG2024_FOA.columns
     per_eval = float(pub["foa_time_s"][0]) / evaluations
-    w = table[OMEGA_FOUND]
-    return {"ci_h_open": rounded(w.iloc[1], 4), "ci_h_foa200": rounded(w.iloc[2], 5), "ci_h_foa23": rounded(w.iloc[3], 5),
-            "ci_h_flat": rounded(w.iloc[4], 4), "ci_h_per_eval_us": rounded(1e6 * per_eval, 1),
+    # each ω read by the glue rule (fuzz 22b, V11): a weight, a finite number in [0, 1], named
+    w = [_glued_cell(table, table.index[i], OMEGA_FOUND, "table", lo=0.0, hi=1.0) for i in range(1, 5)]
+    return {"ci_h_open": rounded(w[0], 4), "ci_h_foa200": rounded(w[1], 5), "ci_h_foa23": rounded(w[2], 5),
+            "ci_h_flat": rounded(w[3], 4), "ci_h_per_eval_us": rounded(1e6 * per_eval, 1),
             "ci_h_grid_evals": int(round(float(pub["grid_time_s"][0]) / per_eval, -2))}

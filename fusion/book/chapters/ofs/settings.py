@@ -10,6 +10,7 @@ import numpy as np
 from fusion._frozen import constant
 from fusion.book.style import METHOD_LABELS
 from fusion.scenarios import thermocouples
+from fusion._options import one_of
 from fusion._shown import shown
 
 __all__ = [
@@ -62,17 +63,22 @@ NOISE: dict[str, object] = constant({"unequal": thermocouples.DEFAULT_SIGMAS, "e
                             **{f"geometric-{r}": np.geomspace(r ** -0.5, r ** 0.5, 10) for r in (2, 4, 8, 16)}})
 
 
+def _noise_key(noise: object, name: str = "noise") -> str:
+    """A key of :data:`NOISE` given as text (a ``str``, ``numpy.str_`` or a :class:`~enum.StrEnum` member, matched by
+    its text), as a plain ``str``; TypeError naming ``name`` for anything else (never ``str()`` of an object: fuzz
+    22b, NS), ValueError for another text."""
+    return one_of(noise, tuple(sorted(NOISE)), name)
+
+
 def _noise(settings: Mapping[str, object]) -> str:
-    noise = str(settings.get("noise", "unequal"))
-    if noise not in NOISE:
-        raise ValueError(f"settings['noise'] must be one of {sorted(NOISE)}, got {shown(noise)}")
-    return noise
+    """The noise reading of a record's settings (``settings['noise']``, default ``"unequal"``), by :func:`_noise_key`."""
+    return _noise_key(settings.get("noise", "unequal"), "settings['noise']")
 
 
 def _case(settings: Mapping[str, object]) -> FailureCase:
     """The case a reading names by its label (``settings['case']``, default no failure): the claim files keep the text."""
     by_label = {METHOD_LABELS[c]: c for c in FailureCase}
-    case = str(settings.get("case", METHOD_LABELS[FailureCase.NONE]))
+    case = one_of(settings.get("case", METHOD_LABELS[FailureCase.NONE]), tuple(sorted(by_label)), "settings['case']")
     if case not in by_label:
         raise ValueError(f"settings['case'] must be one of {sorted(by_label)}, got {shown(case)}")
     return by_label[case]

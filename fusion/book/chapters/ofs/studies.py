@@ -25,7 +25,7 @@ from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
 from fusion.book.chapters.ofs.readings import alpha_methods, family_mae, weight_ablation
-from fusion.book.chapters.ofs.settings import METHODS, NOISE, FailureCase, _noise
+from fusion.book.chapters.ofs.settings import METHODS, NOISE, FailureCase, _noise_key
 from fusion.book.glue import GlueValues
 from fusion._docstrings import ParameterDocs
 from fusion._counts import count
@@ -50,7 +50,8 @@ __all__ = [
 
 #: The parameters of this module's studies, documented once.
 _PARAMS = ParameterDocs({"seed, runs": "int\n    As in :func:`study` (the same seed gives the same draws).",
-                         "noise": "str\n    A key of :data:`NOISE`."})
+                         "noise": "str\n    A key of :data:`NOISE`, given as text (a TypeError naming ``noise`` "
+                                  "otherwise, a ValueError for another text)."})
 #: The parameters of the fair study's two entries, :func:`fair` and :func:`fair_weights`.
 _FAIR_PARAMS = ParameterDocs({"seed": "int\n    The seed of the fair study's draws.",
                               "runs": "int\n    Runs of 100 samples per sweep point."})
@@ -63,8 +64,8 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", 
     ----------
     seed, runs : int
         The seed of the draws and the number of runs.
-    noise : {"unequal", "equal"}
-        A key of :data:`NOISE`.
+    noise : str
+        A key of :data:`NOISE`, given as text (a TypeError naming ``noise`` otherwise, a ValueError for another text).
     failure : str
         One of :data:`fusion.scenarios.thermocouples.FAILURE_MODES` (the readings of "randomly").
     include_self : bool
@@ -79,7 +80,7 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", 
     seed = check_seed(seed)
     runs = count(runs, "runs")
     failure = one_of(failure, thermocouples.FAILURE_MODES, "failure")
-    return _study(seed, runs, _noise({"noise": noise}), str(failure), flag(include_self, "include_self"))
+    return _study(seed, runs, _noise_key(noise), str(failure), flag(include_self, "include_self"))
 
 
 @study_cache(maxsize=16)
@@ -289,7 +290,7 @@ def not_neighbourhood_share(seed: int, runs: int, noise: str = "unequal") -> flo
     seed = check_seed(seed)
     runs = count(runs, "runs")
     rng = np.random.default_rng(seed)
-    z = thermocouples.simulate(rng, sigma=NOISE[_noise({"noise": noise})], n_runs=runs).reshape(-1, 10)
+    z = thermocouples.simulate(rng, sigma=NOISE[_noise_key(noise)], n_runs=runs).reshape(-1, 10)
     m = rd.fuse_epochs(z, "optimal_fusion_set").members
     dist = np.abs(z - 900.0)
     kept_far = np.where(m, dist, -np.inf).max(axis=1)
@@ -342,9 +343,9 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
     seed = check_seed(seed)
     runs = count(runs, "runs")
     failure = one_of(failure, thermocouples.FAILURE_MODES, "failure")
-    sig = np.broadcast_to(np.asarray(NOISE[_noise({"noise": noise})], float), (10,))
+    sig = np.broadcast_to(np.asarray(NOISE[_noise_key(noise)], float), (10,))
     rng = np.random.default_rng(seed)
-    z = thermocouples.simulate(rng, sigma=NOISE[_noise({"noise": noise})], n_runs=runs)
+    z = thermocouples.simulate(rng, sigma=NOISE[_noise_key(noise)], n_runs=runs)
     zf = thermocouples.random_failure(z, rng, str(failure))
     cols = np.array([3, 9])
     win = zf[:, 49:80]
@@ -443,7 +444,7 @@ def healthy_dropped_share(seed: int, runs: int, noise: str = "unequal") -> dict[
     seed = check_seed(seed)
     runs = count(runs, "runs")
     rng = np.random.default_rng(seed)
-    z = thermocouples.simulate(rng, sigma=NOISE[_noise({"noise": noise})], n_runs=runs)
+    z = thermocouples.simulate(rng, sigma=NOISE[_noise_key(noise)], n_runs=runs)
     zf = thermocouples.random_failure(z, rng, "fixed")
     healthy = np.setdiff1d(np.arange(10), [3, 9])
     out: dict[str, float] = {}

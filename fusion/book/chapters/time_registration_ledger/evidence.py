@@ -116,7 +116,8 @@ def figs23_fits(a: float, end: float, direction: str = "fast onto slow") -> dict
     from fusion._validation import as_array, grid_points, one_of, scalar
 
     one_of(direction, tuple(_FIGS23_MIN_END), "direction")
-    scalar(a, "a"), scalar(end, "end", lo=_FIGS23_MIN_END[direction], lo_open=True)
+    # the floats the reader returns (fuzz 22b, FR6-7: a Decimal was used raw)
+    a, end = scalar(a, "a"), scalar(end, "end", lo=_FIGS23_MIN_END[direction], lo_open=True)
     grid_points(end - 1.0, 2.0, "end")  # sensor 1's samples, counted before they are allocated
     t1, t2 = np.arange(1.0, end, 2.0), np.arange(3.0, end - 1.0, 5.0)
     x1, x2 = t1 + a * t1**2 / 2, t2 + a * t2**2 / 2

@@ -16,7 +16,7 @@ from fusion._counts import seed as check_seed
 from fusion.book.chapters.time_registration import IMPROVED, TWO
 from fusion.book.chapters.time_registration_closed import B_OFFSET
 from fusion.book.exact import ExactComparison
-from fusion.book.glue import GlueValues, _checked_keep
+from fusion.book.glue import GlueValues, _checked_keep, _glued_cell
 from fusion.book.style import METHOD_LABELS
 from fusion.book.ledger import ledger_dir
 from fusion.scenarios import time_registration as sc
@@ -97,7 +97,7 @@ def stress_table(sigma: float, names: Sequence[str] = STUDY_METHODS) -> pd.DataF
     ValueError
         ``sigma`` is not a valid standard deviation, or ``names`` is empty or holds an unknown method.
     """
-    std_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")  # the float read (fuzz 22b, FR)
     names = _method_names(names, "names")
     rows = {}
     for n in names:
@@ -197,7 +197,7 @@ def blue_whole_record(sigma: float) -> float:
     ValueError
         ``sigma`` is not a valid standard deviation (finite, positive, its square a representable variance).
     """
-    std_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")  # the float read (fuzz 22b, FR)
     from functools import partial
 
     from fusion import registration as reg
@@ -228,15 +228,20 @@ def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: floa
     TypeError
         ``manoeuvre`` is not a mapping of mappings, or ``sigma`` not a number.
     ValueError
-        ``manoeuvre`` lacks the accelerations 0 and -2 m/s² or a method read here, or ``sigma`` is not a valid
-        standard deviation.
+        ``manoeuvre`` lacks the accelerations 0 and -2 m/s² or a method read here, or an MSE read here is not a
+        finite non-negative number (named ``manoeuvre[a][method]``; TypeError for a non-number), or ``sigma`` is not
+        a valid standard deviation.
     """
     record(manoeuvre, "manoeuvre", (0.0, -2.0), extra=True)
     record(manoeuvre[0.0], "manoeuvre[0.0]", (IMPROVED, TWO, RegMethod.THREE_POINT), extra=True)
     record(manoeuvre[-2.0], "manoeuvre[-2.0]", (IMPROVED,), extra=True)
-    std_scalar(sigma, "sigma")
-    return {"reg_man_impr": manoeuvre[0.0][IMPROVED], "reg_man_two": manoeuvre[0.0][TWO],
-            "reg_man_three": manoeuvre[0.0][RegMethod.THREE_POINT], "reg_man_impr_neg": manoeuvre[-2.0][IMPROVED],
+    sigma = std_scalar(sigma, "sigma")
+
+    def mse(a: float, method: str) -> float:  # a glued MSE (fuzz 22b, V1): a finite number >= 0, as a float
+        return scalar(manoeuvre[a][method], f"manoeuvre[{a!r}][{shown(getattr(method, 'value', method))}]", lo=0.0)
+
+    return {"reg_man_impr": mse(0.0, IMPROVED), "reg_man_two": mse(0.0, TWO),
+            "reg_man_three": mse(0.0, RegMethod.THREE_POINT), "reg_man_impr_neg": mse(-2.0, IMPROVED),
             "reg_man_impr_q": sc.expected(IMPROVED, sigma, a_after=0.0, q_v=1.0, q_a=0.1)}
 
 
@@ -260,19 +265,20 @@ def latency_values(be: Mapping[float, float], sigma: float) -> GlueValues:
     TypeError
         ``be`` is not a mapping, a noise level (key) or ``sigma`` not a number.
     ValueError
-        ``be`` is empty or holds a latency or noise level that is not finite (a level < 0), or ``sigma`` is not
-        one of its keys.
+        ``be`` is empty, holds a noise level (a key) that is not a valid standard deviation or a latency that is
+        not finite, or ``sigma`` is not one of its keys.
     """
     instance_of(be, Mapping, "be")
     if not be:
         raise ValueError("be is empty (it must map noise levels to break-even latencies)")
-    for k, v in be.items():
-        scalar(k, f"be's noise level {k!r}", 0.0)  # a key, too: a NaN or text level is no noise level (fuzz 22b q6)
-        scalar(v, f"be[{k!r}]")
-    scalar(sigma, "sigma")
-    if sigma not in be:
+    # the floats the reader returns, not the caller's objects (fuzz 22b, FR4-5: a Decimal, a 0-d array)
+    lat = {std_scalar(k, f"the noise level {shown(k)} of be"): scalar(v, f"be[{k!r}]") for k, v in be.items()}
+    if len(lat) < len(be):  # keys equal as floats (1 and 1.0 are one key of a dict already)
+        raise ValueError("be holds a noise level twice (as two keys of equal value)")
+    sigma = scalar(sigma, "sigma")
+    if sigma not in lat:
         raise ValueError(f"sigma = {shown(sigma)} is not a noise level of be (its keys: {list(be)[:10]})")
-    return {"reg_be_ms": 1e3 * be[sigma], "reg_be_lo_ms": 1e3 * min(be.values()), "reg_be_hi_ms": 1e3 * max(be.values())}
+    return {"reg_be_ms": 1e3 * lat[sigma], "reg_be_lo_ms": 1e3 * min(lat.values()), "reg_be_hi_ms": 1e3 * max(lat.values())}
 
 
 def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues:
@@ -298,21 +304,23 @@ def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues
         ``values`` is not a mapping or ``closed`` not a DataFrame.
     ValueError
         ``values`` lacks ``reg_gain_three`` or ``reg_gain_two`` (or the latter is zero), or ``closed`` lacks the
-        extrapolation row or the columns ``b (m²)`` and ``g``.
+        extrapolation row or the columns ``b (m²)`` and ``g`` or holds one twice, or a cell read there is not a
+        finite non-negative number (TypeError for a non-number), named ``closed``.
     """
     record(values, "values", ("reg_gain_three", "reg_gain_two"), extra=True)
-    scalar(values["reg_gain_three"], "values['reg_gain_three']", lo=0.0)
-    scalar(values["reg_gain_two"], "values['reg_gain_two']", lo=0.0, lo_open=True)
+    three = scalar(values["reg_gain_three"], "values['reg_gain_three']", lo=0.0)
+    two = scalar(values["reg_gain_two"], "values['reg_gain_two']", lo=0.0, lo_open=True)
     instance_of(closed, pd.DataFrame, "closed")
     if EXTRAP not in closed.index or B_OFFSET not in closed.columns or "g" not in closed.columns:
         raise ValueError(f"closed must be the closed-form table (row {shown(str(EXTRAP))}, columns {shown(B_OFFSET)} and 'g')")
+    b, g = (_glued_cell(closed, EXTRAP, c, "closed", lo=0.0) for c in (B_OFFSET, "g"))  # fuzz 22b, V2-V5
     t1, t2 = sc.instants()
     between = t2[~np.isin(t2, t1)]
     gi = {n: sc.mse_coefficients(n, 1.0, t_dst=between)[1] for n in (RegMethod.THREE_POINT, TWO)}
-    return {"reg_gain_excess_pct": 100 * (values["reg_gain_three"] / values["reg_gain_two"] - 1),
+    return {"reg_gain_excess_pct": 100 * (three / two - 1),
             "reg_gain_three_between": gi[RegMethod.THREE_POINT], "reg_gain_two_between": gi[TWO],
             "reg_gain_between_pct": 100 * (gi[RegMethod.THREE_POINT] / gi[TWO] - 1), "reg_n_between": int(between.size),
-            "reg_cf_extrap_b": closed.loc[EXTRAP, B_OFFSET], "reg_cf_extrap_g": closed.loc[EXTRAP, "g"]}
+            "reg_cf_extrap_b": b, "reg_cf_extrap_g": g}
 
 
 def noise_gain_by_instant(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
