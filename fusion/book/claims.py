@@ -129,7 +129,7 @@ _PLAIN_SCHEMA: dict[str, Any] = {
     },
 }
 #: JSON schema of a claim file, read-only (a read-only mapping of read-only mappings and tuples, shared by every
-#: caller). For jsonschema or :func:`json.dumps`, which take plain dicts and lists only, use
+#: caller). For jsonschema or ``json.dumps``, which take plain dicts and lists only, use
 #: ``json.loads(json.dumps(SCHEMA, default=dict))``.
 SCHEMA: Mapping[str, Any] = constant(_PLAIN_SCHEMA)
 

@@ -485,6 +485,7 @@ def _figure_keywords() -> frozenset[str]:
 #: ask for gigabytes (fuzz 22a A). :func:`new_figure` refuses a size or dpi outside them, ``audit_figure`` before
 #: it draws.
 FIGURE_SIDE_RANGE_IN = (0.5, 20.0)
+#: Resolutions (dots per inch) :func:`new_figure` and ``audit_figure`` accept (the book draws at 100 dpi).
 FIGURE_DPI_RANGE = (10.0, 300.0)
 
 
