@@ -279,7 +279,7 @@ def monte_carlo(
         As in :func:`absolute_errors`.
     sigma, n_samples, truth
         As in :func:`simulate`.
-    failure : dict, optional
+    failure : mapping, optional
         Keyword arguments of :func:`inject_failure` (``{}`` for the source's failure).
     n_sensors : int
         Number of thermocouples (10 in Yang, Feng & Fan (2012), Figs. 1-4).
@@ -465,7 +465,7 @@ def paired_study(
         only if :attr:`PairedStudy.set_size` is to be meaningful (else it is NaN).
     sigma, n_samples, truth, n_sensors
         As in :func:`simulate`.
-    failure : dict, optional
+    failure : mapping, optional
         Keyword arguments of :func:`inject_failure`; default the source's failure
         (sensors 4 and 10, samples 50-80, biases 4 and 8 °C).
     failure_mode : {"fixed", "random size", "random samples", "opposite signs"}
@@ -481,7 +481,7 @@ def paired_study(
     n_runs = count(n_runs, "n_runs")
     seed = check_seed(seed)
     _check_methods(methods)
-    instance_of(failure, (dict, type(None)), "failure")
+    instance_of(failure, (Mapping, type(None)), "failure")
     if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name
         record(failure, "failure", (), ("sensors", "samples", "biases"))
     one_of(failure_mode, FAILURE_MODES, "failure_mode")   # TypeError for a non-str (issue 35)
@@ -532,7 +532,7 @@ def scale_sweep(
     scales : array_like, shape (k,)
         Length scale of the fusion-degree function :math:`\exp(-|s_i - s_j|/\text{scale})`, °C
         (the source's factor 1/2 is scale 2).
-    failure : dict, optional
+    failure : mapping, optional
         Keyword arguments of :func:`inject_failure`, or None for no failure.
     sigma : array_like
         As in :func:`simulate`.
@@ -545,7 +545,7 @@ def scale_sweep(
         Mean absolute error over the samples (all, or ``window``) of each run, °C.
     """
     as_array(scales, "scales", finite=False, nonempty=False)  # a TypeError naming scales for non-numbers
-    instance_of(failure, (dict, type(None)), "failure")
+    instance_of(failure, (Mapping, type(None)), "failure")
     if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name
         record(failure, "failure", (), ("sensors", "samples", "biases"))
     grid = np.asarray(scales, dtype=float).ravel()
