@@ -51,3 +51,22 @@ def test_f1_another_simulations_rmse_is_refused(readings) -> None:
     other = {k: np.asarray(v) * 1.001 for k, v in ir.rmse_by_rule(sim).items()}
     with pytest.raises(ValueError, match=r"rmse\[.*\] must be sim's RMSE per scan .*got other values"):
         ci.ir_reading_numbers(readings, sim, other)
+
+
+# Judgement call of fuzz 23: a print resolution (600 dpi) is valid; the memory guard is a pixel budget
+@pytest.mark.parametrize("figsize, dpi", [((7.5, 3.6), 600), ((7.5, 3.6), 1200), ((20.0, 20.0), 300)])
+def test_print_resolutions_within_the_pixel_budget_are_taken(figsize, dpi) -> None:
+    import matplotlib.pyplot as plt
+    from fusion.book import style
+    fig, _ = style.new_figure(1, 1, figsize=figsize, dpi=dpi)
+    plt.close(fig)
+
+
+@pytest.mark.parametrize("figsize, dpi", [((20.0, 20.0), 1200), ((10.0, 10.0), 700)])
+def test_a_figure_beyond_the_pixel_budget_is_refused_naming_dpi(figsize, dpi) -> None:
+    import matplotlib.pyplot as plt
+    from fusion.book import style
+    before = plt.get_fignums()
+    with pytest.raises(ValueError, match=r"^dpi must be at most \d+ for a figsize of"):
+        style.new_figure(1, 1, figsize=figsize, dpi=dpi)
+    assert plt.get_fignums() == before

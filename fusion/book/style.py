@@ -23,7 +23,7 @@ from fusion.book.tables import _SUPERSCRIPT
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES",
            "FIGURE_LABELS", "LABEL_PATTERNS", "FIGURE_ALT", "use_book_style", "new_figure", "color", "method_style",
            "is_registered_label", "MAX_ALT_CHARS", "plain_math", "describe_figure", "set_figure_alt", "figure_alt", "png_description",
-           "FIGURE_SIDE_RANGE_IN", "FIGURE_DPI_RANGE"]
+           "FIGURE_SIDE_RANGE_IN", "FIGURE_DPI_RANGE", "FIGURE_MAX_PIXELS"]
 
 #: Colour of each method, used in every chapter.
 METHOD_COLORS: dict[str, str] = constant({
@@ -485,12 +485,17 @@ def _figure_keywords() -> frozenset[str]:
 #: ask for gigabytes (fuzz 22a A). :func:`new_figure` refuses a size or dpi outside them, ``audit_figure`` before
 #: it draws.
 FIGURE_SIDE_RANGE_IN = (0.5, 20.0)
-#: Resolutions (dots per inch) :func:`new_figure` and ``audit_figure`` accept (the book draws at 100 dpi).
-FIGURE_DPI_RANGE = (10.0, 300.0)
+#: Resolutions (dots per inch) :func:`new_figure` and ``audit_figure`` accept (the book draws at 100 dpi; 600 and
+#: 1200 are print resolutions), within :data:`FIGURE_MAX_PIXELS`.
+FIGURE_DPI_RANGE = (10.0, 1200.0)
+#: Pixels a figure may have (width × height × dpi²): 40 million, about 160 MB as RGBA (a 20 in square at 316 dpi, a
+#: 7.5 × 3.6 in page figure at 1200 dpi is 39 million). The memory guard, instead of a lower dpi limit (fuzz 23).
+FIGURE_MAX_PIXELS = 40_000_000
 
 
 def _figure_size(figsize: object, dpi: object) -> tuple[tuple[float, float], float]:
-    """``figsize`` and ``dpi`` checked against :data:`FIGURE_SIDE_RANGE_IN` and :data:`FIGURE_DPI_RANGE`:
+    """``figsize`` and ``dpi`` checked against :data:`FIGURE_SIDE_RANGE_IN`, :data:`FIGURE_DPI_RANGE` and
+    :data:`FIGURE_MAX_PIXELS`:
     TypeError naming the argument for a non-number (a figsize that is not a pair), ValueError for NaN, an infinity
     or a value outside the range. The one check of :func:`new_figure` and ``audit_figure``."""
     from fusion._validation import scalar
@@ -499,7 +504,12 @@ def _figure_size(figsize: object, dpi: object) -> tuple[tuple[float, float], flo
         raise TypeError(f"figsize must be a pair (width, height) in inches, got {shown(figsize)}")
     lo, hi = FIGURE_SIDE_RANGE_IN
     w, h = (scalar(v, "figsize", lo, hi) for v in figsize)  # type: ignore[union-attr]
-    return (w, h), scalar(dpi, "dpi", *FIGURE_DPI_RANGE)
+    d = scalar(dpi, "dpi", *FIGURE_DPI_RANGE)
+    if w * h * d * d > FIGURE_MAX_PIXELS:
+        top = (FIGURE_MAX_PIXELS / (w * h)) ** 0.5
+        raise ValueError(f"dpi must be at most {top:.0f} for a figsize of {w:g} x {h:g} in (FIGURE_MAX_PIXELS = "
+                         f"{FIGURE_MAX_PIXELS:,} pixels), got {d:g}")
+    return (w, h), d
 
 
 def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure, Axes]:
@@ -527,7 +537,8 @@ def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure
         (checked before any figure is made).
     ValueError
         ``nrows`` or ``ncols`` outside 1-16; a ``figsize`` side outside :data:`FIGURE_SIDE_RANGE_IN` or a
-        ``dpi`` outside :data:`FIGURE_DPI_RANGE` (NaN included), named (a figure wider than the page's
+        ``dpi`` outside :data:`FIGURE_DPI_RANGE` (NaN included) or giving more than :data:`FIGURE_MAX_PIXELS`
+        pixels, named (a figure wider than the page's
         7.5 in but within the range is made: ``audit_figure`` reports it).
     """
     nrows = count(nrows, "nrows", maximum=_MAX_PANELS)
