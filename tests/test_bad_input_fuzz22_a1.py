@@ -226,7 +226,10 @@ def test_a_new_figure_takes_sizes_within_the_range(w, h, dpi):
     import matplotlib.pyplot as plt
     from fusion.book import style as S
     fig, _ = S.new_figure(1, 1, figsize=(w, h), dpi=dpi)
-    plt.close(fig)
+    try:
+        assert tuple(fig.get_size_inches()) == pytest.approx((w, h)) and fig.get_dpi() == pytest.approx(dpi)
+    finally:
+        plt.close(fig)
 
 
 @pytest.mark.parametrize("size,dpi,wide", [((1e6, 1e6), 100, True), ((7.5, 1e5), 100, False),

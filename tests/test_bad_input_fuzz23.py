@@ -27,7 +27,9 @@ def test_f2_paired_study_takes_the_source_failure_constant() -> None:
 
 
 def test_f2_scale_sweep_takes_the_source_failure_constant() -> None:
-    tc.scale_sweep(3, 3, [1.0, 2.0], failure=data.YANG2012_FAILURE)
+    a = tc.scale_sweep(3, 3, [1.0, 2.0], failure=data.YANG2012_FAILURE)
+    b = tc.scale_sweep(3, 3, [1.0, 2.0], failure=dict(data.YANG2012_FAILURE))
+    np.testing.assert_equal(a, b)   # the constant and a plain copy give the same sweep
 
 
 def test_f2_failure_of_a_wrong_type_is_still_refused_by_name() -> None:
@@ -59,7 +61,10 @@ def test_print_resolutions_within_the_pixel_budget_are_taken(figsize, dpi) -> No
     import matplotlib.pyplot as plt
     from fusion.book import style
     fig, _ = style.new_figure(1, 1, figsize=figsize, dpi=dpi)
-    plt.close(fig)
+    try:
+        assert tuple(fig.get_size_inches()) == pytest.approx(figsize) and fig.get_dpi() == pytest.approx(dpi)
+    finally:
+        plt.close(fig)
 
 
 @pytest.mark.parametrize("figsize, dpi", [((20.0, 20.0), 1200), ((10.0, 10.0), 700)])
