@@ -76,10 +76,14 @@ OBJ = ("str",)
 
 @dataclasses.dataclass
 class A:
-    """One argument of a valid call: its value and the mutations that must be refused."""
+    """One argument of a valid call: its value and the mutations that must be refused.
+
+    A mutation is a kind named in this module (``"nan"``, ``"str"``, ...) or an explicit ``(label, bad value)`` pair
+    for what no kind describes (another scenario's study, a table without a column, ...).
+    """
 
     value: Any
-    mutations: tuple[str, ...] = ()
+    mutations: tuple[str | tuple[str, Any], ...] = ()
 
 
 def _arr(x: Any) -> np.ndarray:
@@ -1088,33 +1092,45 @@ def test_registry_covers_every_public_callable() -> None:
     assert not stale, f"registry entries that are not public callables: {stale}"
 
 
-def _call(fn: Callable[..., Any], kwargs: dict[str, Any]) -> Any:
-    return fn(**kwargs)
-
-
 #: Callables whose registry entry still finds unrefused bad input (validation not yet added):
 #: a strict xfail, so that the entry fails loudly as soon as the function is fixed and must leave this set.
 PENDING_VALIDATION: set[str] = set()
 
 
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="validation pending"))
-                                  if n in PENDING_VALIDATION else n for n in sorted(REG)])
-def test_bad_input_is_refused(name: str) -> None:
-    fn = CALLABLES[name]
-    spec = REG[name]
+def _fresh(kwargs: dict[str, Any]) -> dict[str, Any]:
+    """The arguments with every generator replaced by a fresh seeded one (each call draws the same numbers)."""
+    return {k: (np.random.default_rng(0) if isinstance(v, np.random.Generator) else v) for k, v in kwargs.items()}
+
+
+def _bad_values(a: A) -> list[tuple[str, Any]]:
+    """The mutated values of one argument: a named mutation kind, or an explicit ``(label, value)`` pair."""
+    out = []
+    for how in a.mutations:
+        if isinstance(how, tuple):
+            out.append(how)
+            continue
+        bad = _extra_mutation(a.value, how)
+        if bad is not None:
+            out.append((how, bad))
+    return out
+
+
+def refusal_problems(name: str, fn: Callable[..., Any], spec: dict[str, A]) -> list[str]:
+    """Run the valid call of ``spec``, then each mutated call; return what was not refused by name.
+
+    The valid call must give a finite result. Each mutated call must raise ``ValueError`` or ``TypeError`` whose
+    message names the mutated argument (either argument of a pair for the ``len*`` mutations); any other exception,
+    an accepted call, or a message naming neither is a problem. Shared by every registry of valid calls (the main
+    package here, the chapter layer in ``tests/chapter_calls/``).
+    """
     valid = {k: a.value for k, a in spec.items()}
-    result = _call(fn, {k: (np.random.default_rng(0) if isinstance(v, np.random.Generator) else v)
-                        for k, v in valid.items()})
-    assert _finite(result), f"{name}: the valid call gave a non-finite result"
+    result = fn(**_fresh(valid))
+    if not _finite(result):
+        return [f"{name}: the valid call gave a non-finite result"]
     problems = []
     for arg, a in spec.items():
-        for how in a.mutations:
-            bad = _extra_mutation(a.value, how)
-            if bad is None:
-                continue
-            kwargs = dict(valid)
-            kwargs = {k: (np.random.default_rng(0) if isinstance(v, np.random.Generator) else v)
-                      for k, v in kwargs.items()}
+        for how, bad in _bad_values(a):
+            kwargs = _fresh(valid)
             kwargs[arg] = bad
             try:
                 out = fn(**kwargs)
@@ -1129,6 +1145,13 @@ def test_bad_input_is_refused(name: str) -> None:
                 continue
             finite = "finite" if _finite(out) else "NON-FINITE"
             problems.append(f"{arg}/{how}: accepted ({finite} result)")
+    return problems
+
+
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="validation pending"))
+                                  if n in PENDING_VALIDATION else n for n in sorted(REG)])
+def test_bad_input_is_refused(name: str) -> None:
+    problems = refusal_problems(name, CALLABLES[name], REG[name])
     assert not problems, f"{name}:\n  " + "\n  ".join(problems)
 
 
