@@ -1125,6 +1125,7 @@ def refusal_problems(name: str, fn: Callable[..., Any], spec: dict[str, A]) -> l
     """
     valid = {k: a.value for k, a in spec.items()}
     result = fn(**_fresh(valid))
+    _close_figures(result)
     if not _finite(result):
         return [f"{name}: the valid call gave a non-finite result"]
     problems = []
@@ -1143,9 +1144,20 @@ def refusal_problems(name: str, fn: Callable[..., Any], spec: dict[str, A]) -> l
             except Exception as exc:  # noqa: BLE001 - any other exception is a failure
                 problems.append(f"{arg}/{how}: {type(exc).__name__}: {exc}")
                 continue
+            _close_figures(out)
             finite = "finite" if _finite(out) else "NON-FINITE"
             problems.append(f"{arg}/{how}: accepted ({finite} result)")
     return problems
+
+
+def _close_figures(result: Any) -> None:
+    """Close the matplotlib figures a call returned (alone or in a tuple), so a sweep keeps no figure open."""
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    for r in result if isinstance(result, tuple) else (result,):
+        if isinstance(r, Figure):
+            plt.close(r)
 
 
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="validation pending"))
