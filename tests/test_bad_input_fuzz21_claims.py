@@ -411,3 +411,11 @@ def test_d15_runs_infinite_in_both_are_not_a_constant():
     assert d["heavy_tailed"] is True and d["tail_index"] is None  # documented: R3 decided, no finite difference
     assert "runs against a constant" in L.Comparison(np.linspace(0, 1, 200), np.full(200, 2.0), "A", "B", "less",
                                                      "mse").summary()
+
+
+@pytest.mark.parametrize("name", ["assumptions", "critiques"])
+def test_a_record_spec_refuses_a_repeated_assumption_or_critique_as_the_claim_does(cfs, name):
+    """One rule for a record's spec and its built claim: an assumption or critique label stated twice is refused."""
+    spec = next(r for c in cfs.values() for r in c.records if getattr(r, name))
+    with pytest.raises(ValueError, match=f"{name} must not repeat"):
+        dataclasses.replace(spec, **{name: getattr(spec, name) + getattr(spec, name)[:1]})

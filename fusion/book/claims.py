@@ -297,8 +297,9 @@ class ClaimSpec:
             v = getattr(self, name)
             if not (isinstance(v, tuple) and all(isinstance(x, str) for x in v)):
                 raise TypeError(f"{name} must be a tuple of str, got {shown(v)}")
-        if len(set(self.critiques)) != len(self.critiques):
-            raise ValueError(f"critiques must not repeat a label, got {shown(self.critiques)}")
+        for name, what in (("critiques", "a label"), ("assumptions", "an assumption")):  # as Claim's own check
+            if len(set(getattr(self, name))) != len(getattr(self, name)):
+                raise ValueError(f"{name} must not repeat {what}, got {shown(getattr(self, name))}")
         if not (isinstance(self.readings, tuple) and all(isinstance(r, ReadingSpec) for r in self.readings)):
             raise TypeError(f"readings must be a tuple of ReadingSpec, got {shown(self.readings)}")
         if self.evidence and not re.fullmatch(_EVIDENCE, self.evidence):
