@@ -54,3 +54,12 @@ def test_recommendation_needs_words_and_evidence():
     with pytest.raises(ValueError, match="evidence"):
         Recommendation("t", "u", "w", "a", "aw", (), ())
 
+
+
+@pytest.mark.parametrize("rid", [5, 5.0, None, ("a",)])
+def test_check_refuses_a_record_id_that_is_not_text(rid):
+    """A ledger id is a string: ``str()`` made the records 5 and '5' one id (one refused as a repeat, or one status
+    read for the other)."""
+    records = [{"id": rid, "status": STATUSES[0]}, {"id": "5", "status": STATUSES[0]}]
+    with pytest.raises(TypeError, match="records: every id must be a string"):
+        check(records, [])

@@ -245,8 +245,8 @@ def check(records: Iterable[Mapping[str, object]],
     Raises
     ------
     TypeError
-        ``records`` or ``recommendations`` not an iterable (a str is not), or ``recommendations`` holding
-        something other than :class:`Recommendation`.
+        ``records`` or ``recommendations`` not an iterable (a str is not), a record whose ``id`` is not a string, or
+        ``recommendations`` holding something other than :class:`Recommendation`.
     ValueError
         A record without ``id`` and ``status``, a status outside :data:`fusion.book.ledger.STATUSES`, or two
         records with one id (naming ``records``).
@@ -261,14 +261,17 @@ def check(records: Iterable[Mapping[str, object]],
     recommendations = list(recommendations)
     if not all(isinstance(r, Recommendation) for r in recommendations):
         raise TypeError("recommendations must hold Recommendation objects")
-    ids = [str(r["id"]) for r in records]
+    odd_id = [r["id"] for r in records if not isinstance(r["id"], str)]
+    if odd_id:  # a ledger id is text: str() would make 5 and '5' one record
+        raise TypeError(f"records: every id must be a string (as in book/ledger/*.json), got {shown(odd_id[0])}")
+    ids = [r["id"] for r in records]
     repeated = sorted(i for i, n in Counter(ids).items() if n > 1)  # linear: a count per id was quadratic (fuzz 22a Q1)
     if repeated:  # one id, two statuses: the check would keep the last without a word
         raise ValueError(f"records must not repeat an id, got {shown(repeated)} more than once")
     odd = [r["status"] for r in records if not (isinstance(r["status"], str) and r["status"] in STATUSES)]
     if odd:
         raise ValueError(f"records: every status must be one of {STATUSES}, got {shown(odd[0])}")
-    status = {str(r["id"]): str(r["status"]) for r in records}
+    status = {r["id"]: str(r["status"]) for r in records}
     problems: list[str] = []
     for rec in recommendations:
         for ev in rec.evidence:
