@@ -18,6 +18,7 @@ References
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -27,6 +28,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import (singular_system, _numeric, FloatArray, as_covariance, check_magnitude, gaussian_pair,
                                 one_of, unit_scalar)
 from fusion._validation import flag
+from fusion._docstrings import with_sections
 from fusion.estimates.mixtures import _dot, _matvec
 from fusion.optimise.simplex import _simplex_newton, check_simplex
 
@@ -290,7 +292,18 @@ def is_second_moment(means: ArrayLike, covs: ArrayLike, eps: ArrayLike, eps0: Ar
         return float(np.exp(log_rho))  # inf beyond the float range (documented)
 
 
+def _two_gaussians(means: str, covariances: str) -> Callable[[Callable[..., float]], Callable[..., float]]:
+    """:func:`fusion._docstrings.with_sections` with the Parameters entries of two Gaussians' ``means`` and
+    ``covariances`` (their names, ``"m0, m1"``), first in the section."""
+    return with_sections(parameters=f"""\
+{means} : array_like, shape (d,)
+    Means of the two Gaussians.
+{covariances} : array_like, shape (d, d)
+    Their covariances; symmetric positive definite.""")
+
+
 @singular_system('A and B')
+@_two_gaussians("a, b", "A, B")
 def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: ArrayLike, omega: float) -> float:
     r"""Closed-form :math:`\log Z(\omega)` for :math:`\mathcal N(a, A)^{\omega}\mathcal N(b, B)^{1-\omega}`.
 
@@ -303,10 +316,6 @@ def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: Ar
 
     Parameters
     ----------
-    a, b : array_like, shape (d,)
-        Means of the two Gaussians.
-    A, B : array_like, shape (d, d)
-        Their covariances; symmetric positive definite.
     omega : float in [0, 1]
         Exponent of the first Gaussian.
 
@@ -330,18 +339,12 @@ def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: Ar
 
 
 @singular_system('P0 and P1', finite=True)
+@_two_gaussians("m0, m1", "P0, P1")
 def gaussian_kl(m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike) -> float:
     r""":math:`\mathrm{KL}(\mathcal N(m_0, P_0)\,\|\,\mathcal N(m_1, P_1))` in nats.
 
     .. math:: \tfrac12\bigl[\operatorname{tr}(P_1^{-1}P_0) + (m_1-m_0)^\top P_1^{-1}(m_1-m_0) - d
               + \log\det P_1 - \log\det P_0\bigr]
-
-    Parameters
-    ----------
-    m0, m1 : array_like, shape (d,)
-        Means of the two Gaussians.
-    P0, P1 : array_like, shape (d, d)
-        Their covariances; symmetric positive definite.
 
     Returns
     -------
