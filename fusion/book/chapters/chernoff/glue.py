@@ -188,8 +188,13 @@ def ledger_values(led: Ledger) -> GlueValues:
     ------
     TypeError
         ``led`` not a Ledger.
+    ValueError
+        ``led`` the ledger of another source than the chapter's (:data:`BIBKEY`): its glue keys would be this
+        chapter's.
     """
     instance_of(led, Ledger, "led")
+    if led.source != BIBKEY:
+        raise ValueError(f"led is the ledger of {led.source!r}, not of this chapter's source {BIBKEY!r}")
     v: dict[str, Any] = {}
 
     def put(prefix: str, ev: Any) -> None:
