@@ -670,5 +670,6 @@ def _cell_number(tab: pd.DataFrame, row: object, column: object, name: str) -> f
     x = tab.loc[row, column]
     ok = isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_))
     if not ok or not np.isfinite(x):
-        raise ValueError(f"{name}[{shown(column, 60)}] at row {shown(row, 60)} must be a finite number, got {shown(x, 60)}")
+        raise ValueError(f"{name}[{shown(column, 60)}] at row {shown(row, 60)} must be a finite number, "
+                         f"got {shown(x, 60)}")
     return float(x)

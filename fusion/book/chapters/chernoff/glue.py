@@ -12,6 +12,7 @@ from pathlib import Path
 from collections.abc import Mapping
 from typing import Any
 
+from fusion._shown import shown
 from fusion._validation import instance_of
 
 from fusion.book.ledger import Comparison, Evidence, Ledger
@@ -194,7 +195,7 @@ def ledger_values(led: Ledger) -> GlueValues:
     """
     instance_of(led, Ledger, "led")
     if led.source != BIBKEY:
-        raise ValueError(f"led is the ledger of {led.source!r}, not of this chapter's source {BIBKEY!r}")
+        raise ValueError(f"led is the ledger of {shown(led.source)}, not of this chapter's source {shown(BIBKEY)}")
     v: dict[str, Any] = {}
 
     def put(prefix: str, ev: Any) -> None:

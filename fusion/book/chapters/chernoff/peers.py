@@ -87,7 +87,8 @@ def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame,
     for i, r in enumerate(rec["rows"]):
         at = f"record['rows'][{i}]"
         scalar(r["omega"], f"{at}['omega']", 0.0, 1.0, lo_open=True, hi_open=True)
-        for key, shape in (("innovation_covariance", (d, d)), ("posterior_mean", (d,)), ("posterior_covariance", (d, d))):
+        for key, shape in (("innovation_covariance", (d, d)), ("posterior_mean", (d,)),
+                           ("posterior_covariance", (d, d))):
             as_array(r[key], f"{at}[{key!r}]", shape=shape)
     rel = lambda x, y: float(np.linalg.norm(np.asarray(x) - np.asarray(y)) / np.linalg.norm(y))  # noqa: E731
     rows = {}
