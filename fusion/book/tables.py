@@ -661,3 +661,15 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     if tab.empty:
         raise ValueError(f"{name} is empty")
     return tab
+
+
+def _cell_number(tab: pd.DataFrame, row: object, column: object, name: str) -> float:
+    """The number in cell (``row``, ``column``) of a table another function made (issue 35): a finite real number,
+    else a ValueError naming ``name`` and the cell, never a message naming an inner argument (``value``) or a
+    TypeError from ``float``. Call after :func:`_frame` (the column is there) and a check of the rows read."""
+    x = tab.loc[row, column]
+    ok = isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_))
+    if not ok or not np.isfinite(x):
+        raise ValueError(f"{name}[{shown(column, 60)}] at row {shown(row, 60)} must be a finite number, "
+                         f"got {shown(x, 60)}")
+    return float(x)

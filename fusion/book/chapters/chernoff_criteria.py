@@ -52,7 +52,7 @@ from fusion.book.tables import rounded, roundoff
 # the batched kernels of the package (private: array-level), as fusion.scenarios.fusion_networks uses them
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
 from fusion.book.style import METHOD_LABELS
-from fusion.book.chapters.chernoff.premise import RMSE_ROW, _enough_runs
+from fusion.book.chapters.chernoff.premise import RMSE_ROW, _enough_runs, _known_networks
 from fusion.scenarios.fusion_networks import Network, NetworkScenario, NetworkStudy
 from fusion.book._json import read_argument
 from fusion.book.glue import GlueValues
@@ -324,6 +324,7 @@ def _networks(studies: object, labels: object, reason: object) -> str:
     every network of :data:`CRITERIA_NETWORKS` in each, and rule R4 on their runs (``_enough_runs``, fuzz 21b class
     A), before any work; returns ``reason``."""
     mapping_of(studies, "studies", "NetworkStudy", values=NetworkStudy, maker="premise_study")
+    _known_networks(studies)  # type: ignore[arg-type]  # issue 35: a study under an unknown key was left out silently
     mapping_of(labels, "labels", "column label", values=str)
     for key in CRITERIA_NETWORKS:
         _key(studies, key)  # type: ignore[arg-type]
@@ -336,7 +337,8 @@ def _networks(studies: object, labels: object, reason: object) -> str:
 _on_networks = with_sections(raises="""TypeError
     ``studies`` or ``labels`` not a mapping, a study not a NetworkStudy, a label or ``reason`` not a str.
 ValueError
-    ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`, or a network of fewer than
+    ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`, ``studies`` with a key that is not a
+    network of :data:`~fusion.book.chapters.chernoff.PREMISE_LABELS`, or a network of fewer than
     :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 
 

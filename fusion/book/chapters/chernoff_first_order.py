@@ -203,9 +203,14 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
     TypeError
         ``a`` or ``b`` not a mixture, ``n`` not an integer.
     ValueError
-        ``n`` below 2, or an n x n grid beyond the memory budget (``fusion._validation.allocation``).
+        ``a`` or ``b`` not 2-D, ``n`` below 2, or an n x n grid beyond the memory budget
+        (``fusion._validation.allocation``).
     """
-    instance_of(a, mx.GaussianMixture, "a"), instance_of(b, mx.GaussianMixture, "b")
+    for name, gm in (("a", a), ("b", b)):
+        instance_of(gm, mx.GaussianMixture, name)
+        if gm.means.shape[1] != 2:  # the quadrature grid is 2-D (issue 35: refused naming the inner gms)
+            raise ValueError(f"{name} must be a 2-D mixture (the grid is on [-9, 9]^2), got dimension "
+                             f"{gm.means.shape[1]}")
     from scipy.optimize import minimize_scalar
 
     n = count(n, "n", minimum=2)

@@ -247,9 +247,10 @@ def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
     seed = check_seed(seed)
     runs = count(runs, "runs")
     s = _settings(settings, {"r": ()}, {"r": 2_000})
+    r = count(s["r"], "settings['r']")  # named as the reading's setting, not as is_replicates' own r
     t = toy(seed)
-    err = is_replicates(seed, int(s["r"]), runs)
-    return Comparison(err, np.full(err.size, abs(t.w_first_order - t.w_exact)), f"importance sampling, R = {int(s['r'])}",
+    err = is_replicates(seed, r, runs)
+    return Comparison(err, np.full(err.size, abs(t.w_first_order - t.w_exact)), f"importance sampling, R = {r}",
                       "the first-order approximation", "less", _MINERR, seed=seed, reason=_reason(err.size))
 
 

@@ -12,6 +12,7 @@ from pathlib import Path
 from collections.abc import Mapping
 from typing import Any
 
+from fusion._shown import shown
 from fusion._validation import instance_of
 
 from fusion.book.ledger import Comparison, Evidence, Ledger
@@ -188,8 +189,13 @@ def ledger_values(led: Ledger) -> GlueValues:
     ------
     TypeError
         ``led`` not a Ledger.
+    ValueError
+        ``led`` the ledger of another source than the chapter's (:data:`BIBKEY`): its glue keys would be this
+        chapter's.
     """
     instance_of(led, Ledger, "led")
+    if led.source != BIBKEY:
+        raise ValueError(f"led is the ledger of {shown(led.source)}, not of this chapter's source {shown(BIBKEY)}")
     v: dict[str, Any] = {}
 
     def put(prefix: str, ev: Any) -> None:

@@ -21,7 +21,8 @@ from fusion.book.chapters.chernoff.settings import (ALL_FRAMES, COLLAPSE_FRACTIO
                                                     _check_study, guarded_scenario)
 from fusion.book.chapters.chernoff.tracking import any_collapsed, per_run_mse, per_run_nees
 from fusion.book.glue import GlueValues
-from fusion._counts import seed as check_seed
+from fusion._counts import count, seed as check_seed, workers as check_workers
+from fusion._validation import instance_of
 
 __all__ = ["guard_usability", "DesignStudy", "design_study", "guarded_runs", "guard_values"]
 
@@ -56,12 +57,14 @@ def guarded_runs(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int,
     Raises
     ------
     TypeError
-        ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
+        ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``workers`` not an integer.
     ValueError
-        ``runs`` empty or of several scenarios, or ``sc`` not the runs' scenario (but for the guard).
+        ``runs`` empty or of several scenarios, or ``sc`` not the runs' scenario (but for the guard); ``workers``
+        below 1 (checked whether or not a run is redone).
     """
     seed = check_seed(seed)
     runs = _check_study(runs, sc)
+    workers = check_workers(workers)  # checked whether or not a run is redone (issue 35: refused on every path)
     bad = any_collapsed(runs, sc)
     seeds = np.random.SeedSequence(seed).spawn(len(runs))
     idx = np.flatnonzero(bad)
@@ -131,7 +134,7 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     sc : RangeBearingScenario
         Particles per node (thresholds are fractions of them).
     thresholds : tuple of float
-        Other collapse thresholds (fractions of the particles) whose trigger counts are reported.
+        Other collapse thresholds (fractions of the particles) whose trigger counts are reported (empty: none).
 
     Returns
     -------
@@ -273,8 +276,19 @@ def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_
     DesignStudy
         Per design (plain, more particles, guard) the nodes' effective sample sizes at the first update, shape (runs,
         nodes), and particle-likelihoods per node.
+
+    Raises
+    ------
+    TypeError
+        ``sc`` not a RangeBearingScenario; ``seed``, ``runs``, ``n_initial`` or ``workers`` not an integer.
+    ValueError
+        ``seed`` negative; ``runs``, ``n_initial`` or ``workers`` below 1.
     """
+    instance_of(sc, RangeBearingScenario, "sc")
     seed = check_seed(seed)
+    runs = count(runs, "runs")
+    n_initial = count(n_initial, "n_initial")
+    workers = check_workers(workers)
     # the nodes' first update is all that is read: the fusion and the centralised filter run small (they draw from
     # their own streams, after the nodes' weights are computed, so the effective sample sizes do not change)
     one = dataclasses.replace(sc, frames=1, variants=False, readings=False, n_samples=50, n_central=50, em_iterations=1)

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
+from fusion._validation import as_array, scalar
 from fusion._validation import record as _record
 from fusion.book.glue import GlueValues
 
@@ -51,6 +52,14 @@ def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame,
         curvature with the detection's own covariance, A2/ω + B/(1−ω)) and ``chf_ss_det_post`` (its posterior
         against our fusion with A2).
 
+    Raises
+    ------
+    TypeError
+        ``record`` or a part of it not a mapping, a recorded number not a real number.
+    ValueError
+        ``record`` lacking a key read here, no rows, a recorded number NaN or infinite, an array of another shape
+        than the measurement's dimension gives, or an ω outside (0, 1) (each named by its place in the record).
+
     References
     ----------
     * Hurley, M. B. (2002). An information theoretic justification for covariance intersection and its
@@ -68,14 +77,24 @@ def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame,
     for i, r in enumerate(rec["rows"]):
         _record(r, f"record['rows'][{i}]", ("omega", "innovation_covariance", "posterior_mean", "posterior_covariance"),
                 extra=True)
-    a, A = np.array(rec["measurement"]["mean"], float), np.array(rec["measurement"]["covariance"], float)
-    b, B = np.array(rec["prediction"]["mean"], float), np.array(rec["prediction"]["covariance"], float)
+    # every recorded number checked by its place in the record (issue 35: a NaN or a wrong shape was refused, if at
+    # all, by an inner function naming its own argument)
+    a = as_array(rec["measurement"]["mean"], "record['measurement']['mean']", ndim=1)
+    d = a.size
+    A = as_array(rec["measurement"]["covariance"], "record['measurement']['covariance']", shape=(d, d))
+    b = as_array(rec["prediction"]["mean"], "record['prediction']['mean']", shape=(d,))
+    B = as_array(rec["prediction"]["covariance"], "record['prediction']['covariance']", shape=(d, d))
+    for i, r in enumerate(rec["rows"]):
+        at = f"record['rows'][{i}]"
+        scalar(r["omega"], f"{at}['omega']", 0.0, 1.0, lo_open=True, hi_open=True)
+        for key, shape in (("innovation_covariance", (d, d)), ("posterior_mean", (d,)),
+                           ("posterior_covariance", (d, d))):
+            as_array(r[key], f"{at}[{key!r}]", shape=shape)
     rel = lambda x, y: float(np.linalg.norm(np.asarray(x) - np.asarray(y)) / np.linalg.norm(y))  # noqa: E731
     rows = {}
     h = 1e-3
     for r in rec["rows"]:
         w = float(r["omega"])
-        d = a.size
         H = np.empty((d, d))
         f = lambda x: -log_normaliser_two_gaussians(x, A, b, B, w)  # noqa: E731
         for i in range(d):
@@ -102,8 +121,13 @@ def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame,
                                  else f"up to a relative difference of {values[key]:.3g}")
     case = rec.get("detection_case")
     if case is not None:
-        w, A2 = float(case["omega"]), np.array(case["detection_covariance"], float)
-        Vd = np.array(case["innovation_covariance"], float)
+        _record(case, "record['detection_case']", ("omega", "detection_covariance", "innovation_covariance",
+                                                   "posterior_mean", "posterior_covariance"), extra=True)
+        w = scalar(case["omega"], "record['detection_case']['omega']", 0.0, 1.0, lo_open=True, hi_open=True)
+        A2 = as_array(case["detection_covariance"], "record['detection_case']['detection_covariance']", shape=(d, d))
+        Vd = as_array(case["innovation_covariance"], "record['detection_case']['innovation_covariance']", shape=(d, d))
+        for key, shape in (("posterior_mean", (d,)), ("posterior_covariance", (d, d))):
+            as_array(case[key], f"record['detection_case'][{key!r}]", shape=shape)
         ours = chernoff_fuse_gaussians(np.stack([a, b]), np.stack([A2, B]), [w, 1 - w])
         g3 = lambda x: float(f"{x:.3g}") if x > 1e-6 else 0.0  # noqa: E731
         values.update(chf_ss_det_model=g3(rel(Vd, A / (1 - w) + B / w)), chf_ss_det_v=g3(rel(Vd, A2 / w + B / (1 - w))),

@@ -17,19 +17,19 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import constant
 from fusion._docstrings import with_sections
-from fusion._validation import (FloatArray, allocation, distinct, instance_of, loop_work, mapping_of, scalar,
-                               sequence, text, work)
+from fusion._validation import (FloatArray, allocation, as_array, distinct, instance_of, loop_work, mapping_of,
+                               scalar, sequence, text, work)
 from fusion.optimise._ties import first_minimum
 from fusion.book.ledger import MIN_RUNS, Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch
-from fusion.scenarios.fusion_networks import (NETWORK_METHODS, Network, NetworkStudy, premise_scenarios,
-                                              redundancy_scenarios, run_network_study)
+from fusion.scenarios.fusion_networks import (NETWORK_METHODS, Network, NetworkScenario, NetworkStudy,
+                                              premise_scenarios, redundancy_scenarios, run_network_study)
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
 from fusion.book.chapters.chernoff.compare import _word
 from fusion.book.glue import GlueValues
-from fusion._counts import seed as check_seed
+from fusion._counts import count, seed as check_seed
 from fusion._shown import shown
 
 __all__ = ["premise_robust_values", "PREMISE_MORE_RUNS", "PREMISE_NETWORKS", "PREMISE_LABELS", "premise_studies", "premise_table",
@@ -91,11 +91,13 @@ def nested_gaussian_weight(k: ArrayLike) -> FloatArray:
 
     Raises
     ------
+    TypeError
+        ``k`` not real numbers.
     ValueError
-        A ratio not above 1.
+        ``k`` empty, a ratio not finite or not above 1 (or beyond the package's magnitudes).
     """
-    k = np.asarray(k, dtype=float)
-    if not np.all(np.isfinite(k)) or np.any(k <= 1.0):
+    k = as_array(k, "k")  # the shared rule: numbers (a string or complex refused by name), non-empty, finite
+    if np.any(k <= 1.0):
         raise ValueError(f"k must hold finite ratios > 1, got {shown(k)}")
     return 1.0 / np.log(k) - 1.0 / (k - 1.0)
 
@@ -239,11 +241,41 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
     -------
     dict
         Network key -> :class:`~fusion.scenarios.fusion_networks.NetworkStudy`.
+
+    Raises
+    ------
+    TypeError
+        ``seed`` or ``runs`` not an integer; ``scenarios`` not a mapping of NetworkScenario; ``more`` not a mapping,
+        or a run count in it not an integer.
+    ValueError
+        ``seed`` negative, ``runs`` below 1; ``scenarios`` without one of :data:`PREMISE_NETWORKS`; ``more`` naming
+        another network or a run count below 1.
     """
     seed = check_seed(seed)
-    scs = premise_scenarios() | redundancy_scenarios() if scenarios is None else scenarios
-    more = {} if more is None else more
+    runs = count(runs, "runs")
+    scs = premise_scenarios() | redundancy_scenarios() if scenarios is None else _check_scenarios(scenarios)
+    more = {} if more is None else _check_more(more)
     return {k: run_network_study(scs[k], seed + j, more.get(k, runs)) for j, k in enumerate(PREMISE_NETWORKS)}
+
+
+def _check_scenarios(scenarios: object, name: str = "scenarios") -> Mapping[str, NetworkScenario]:
+    """``scenarios`` of :func:`premise_studies`: a mapping of NetworkScenario holding every network of
+    :data:`PREMISE_NETWORKS` (issue 35: another object failed with an AttributeError or a KeyError)."""
+    mapping_of(scenarios, name, "network scenario", values=NetworkScenario, maker="premise_scenarios")
+    missing = [str(k) for k in PREMISE_NETWORKS if k not in scenarios]  # type: ignore[operator]
+    if missing:
+        raise ValueError(f"{name} lacks the networks {missing} (every one of PREMISE_NETWORKS is run)")
+    return scenarios  # type: ignore[return-value]
+
+
+def _check_more(more: object) -> dict[str, int]:
+    """``more`` of :func:`premise_studies`: network key (of :data:`PREMISE_NETWORKS`) -> a run count."""
+    if not isinstance(more, Mapping):
+        raise TypeError(f"more must be a mapping of network key to runs, got {type(more).__name__}")
+    unknown = [k for k in more if k not in PREMISE_NETWORKS]
+    if unknown:
+        raise ValueError(f"more names networks that are not of PREMISE_NETWORKS: {shown(unknown, 120)}")
+    return {k: count(v, f"more[{shown(k)}]") for k, v in more.items()}
 
 
 #: Docstring entry of the functions of :func:`premise_studies`' result (:func:`fusion._docstrings.with_sections`).
@@ -277,6 +309,14 @@ def _enough_runs(studies: Mapping[str, NetworkStudy], reason: object, name: str 
     return reason
 
 
+def _known_networks(studies: Mapping[str, Any], name: str = "studies") -> None:
+    """Every key of ``studies`` a network of :data:`PREMISE_LABELS` (a study under an unknown key is refused, not
+    silently left out)."""
+    unknown = [k for k in studies if k not in PREMISE_LABELS]
+    if unknown:
+        raise ValueError(f"{name} holds keys that are not networks of PREMISE_LABELS: {shown(unknown, 120)}")
+
+
 def _on_studies(fn: Callable[[dict[str, NetworkStudy], str], _R]) -> Callable[..., _R]:
     """A function of :func:`premise_studies`'s mapping: checked by the shared rule ``mapping_of`` (fuzz 19,
     D12-D14), its keys by :data:`PREMISE_LABELS` and its run counts by rule R4 (``_enough_runs``), before any
@@ -284,9 +324,7 @@ def _on_studies(fn: Callable[[dict[str, NetworkStudy], str], _R]) -> Callable[..
     @functools.wraps(fn)
     def checked(studies: dict[str, NetworkStudy], reason: str = "") -> _R:
         mapping_of(studies, "studies", "network study", values=NetworkStudy, maker="premise_studies")
-        unknown = [k for k in studies if k not in PREMISE_LABELS]
-        if unknown:
-            raise ValueError(f"studies holds keys that are not networks of PREMISE_LABELS: {shown(unknown, 120)}")
+        _known_networks(studies)
         return fn(studies, _enough_runs(studies, reason))
     return _studies_doc(checked)
 

@@ -126,5 +126,11 @@ def _check_study(runs: object, sc: object = _NO_SCENARIO, *, name: str = "runs",
 
 
 def _check_crb(crb_pos: object, runs: list[TrackingRun]) -> FloatArray:
-    """``crb_pos`` (:func:`crb_position` of the runs): finite, non-negative, one entry per frame of ``runs``."""
-    return as_array(crb_pos, "crb_pos", shape=(int(np.shape(runs[0].truth)[0]),), nonnegative=True)
+    """``crb_pos`` (:func:`crb_position` of the runs): finite, non-negative, one entry per frame of ``runs``; a
+    mismatch names both (the bound of another scenario, or runs of another one)."""
+    out = as_array(crb_pos, "crb_pos", ndim=1, nonnegative=True)
+    k = int(np.shape(runs[0].truth)[0])
+    if out.shape != (k,):
+        raise ValueError(f"crb_pos must hold one bound per frame of runs ({k} frames), got shape {out.shape}: "
+                         "crb_position of these runs' scenario gives it")
+    return out

@@ -16,7 +16,8 @@ from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun, mo
 from fusion.book.chapters.chernoff.guard import DesignStudy, design_study, guarded_runs
 from fusion.book.chapters.chernoff.gaussian import GaussianChecks, common_information_check, gaussian_checks
 from fusion.book.chapters.chernoff.importance import IsVarianceStudy, is_variance_study
-from fusion.book.chapters.chernoff.premise import PREMISE_MORE_RUNS, PREMISE_NETWORKS, _pcmp, premise_studies
+from fusion.book.chapters.chernoff.premise import (PREMISE_MORE_RUNS, PREMISE_NETWORKS, _check_scenarios, _pcmp,
+                                                   premise_studies)
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS, STUDY_WORKERS, study_scenario
 from fusion.book.glue import GlueValues
 from fusion._counts import count
@@ -160,10 +161,17 @@ def premise_study(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any] |
     -------
     dict
         Network key -> NetworkStudy (do not modify: cached).
+
+    Raises
+    ------
+    TypeError
+        ``seed`` or ``runs`` not an integer, ``scenarios`` not a mapping of NetworkScenario.
+    ValueError
+        ``seed`` negative, ``runs`` below 1, ``scenarios`` without one of :data:`PREMISE_NETWORKS`.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
-    return _premise(seed, runs, None if scenarios is None else tuple(scenarios.items()))
+    return _premise(seed, runs, None if scenarios is None else tuple(_check_scenarios(scenarios).items()))
 
 
 @study_cache(maxsize=2)

@@ -13,7 +13,7 @@ from matplotlib.figure import Figure
 
 from fusion._validation import FloatArray, count, frame_slice, instance_of
 from fusion.book.style import METHOD_LABELS, new_figure
-from fusion.book.tables import _frame, rounded
+from fusion.book.tables import _cell_number, _frame, rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, METHODS, RangeBearingScenario, TrackingRun, min_local_ess,
                                             nees_per_frame, position_sq_errors, posterior_crb)
 from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE, _check_crb, _check_study
@@ -39,7 +39,7 @@ def scenario_values(sc: RangeBearingScenario, runs: int) -> GlueValues:
     sc : RangeBearingScenario
         The tracking scenario.
     runs : int
-        Number of Monte-Carlo runs of the study (stored as given, not checked).
+        Number of Monte-Carlo runs of the study (a count, >= 1).
 
     Returns
     -------
@@ -53,9 +53,12 @@ def scenario_values(sc: RangeBearingScenario, runs: int) -> GlueValues:
     Raises
     ------
     TypeError
-        ``sc`` not a RangeBearingScenario.
+        ``sc`` not a RangeBearingScenario, ``runs`` not an integer.
+    ValueError
+        ``runs`` below 1.
     """
     instance_of(sc, RangeBearingScenario, "sc")
+    runs = count(runs, "runs")  # issue 35: a glued run count is a count, not whatever was given
     n = len(sc.sensors)
     return {"chf_runs": runs, "chf_frames": sc.frames, "chf_n": n, "chf_q_particles": sc.n_particles,
             "chf_s": sc.n_components, "chf_r": sc.n_samples, "chf_central": sc.n_central,
@@ -241,7 +244,7 @@ def table_values(table: pd.DataFrame) -> GlueValues:
     TypeError
         ``table`` not a DataFrame.
     ValueError
-        ``table`` lacks a row or column of :func:`method_table` that it reads.
+        ``table`` lacks a row or column of :func:`method_table` that it reads, or a cell read is not a finite number.
     """
     _frame(table, "table", (RMSE_LATE, _NEES_LATE), maker="method_table")
     rows = [CRB_ROW, *(METHOD_LABELS[k] for k in ("chernoff_pso", "centralised_pf", "local1", *_NEES_KEYS))]
@@ -250,9 +253,9 @@ def table_values(table: pd.DataFrame) -> GlueValues:
         raise ValueError(f"table lacks the rows {missing} (a result of method_table holds them)")
 
     def t(key: str, col: str = RMSE_LATE) -> float:
-        return float(table.loc[METHOD_LABELS[key], col])
+        return _cell_number(table, METHOD_LABELS[key], col, "table")
     v: dict[str, float] = {f"chf_rmse_{k}": rounded(t(k)) for k in METHODS if METHOD_LABELS[k] in table.index}
-    v["chf_rmse_crb"] = rounded(table.loc[CRB_ROW, RMSE_LATE])
+    v["chf_rmse_crb"] = rounded(_cell_number(table, CRB_ROW, RMSE_LATE, "table"))
     v["chf_ratio_local"] = rounded(t("local1") / t("chernoff_pso"))
     v["chf_ratio_local_min"] = rounded(min(t(k) for k in METHODS if k.startswith("local") and METHOD_LABELS[k] in table.index)
                                        / t("chernoff_pso"))
