@@ -12,7 +12,8 @@ from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import reads_results
-from fusion._validation import count, shown, text, instance_of
+from fusion._validation import count, shown, text, instance_of, scalar
+from fusion._counts import seeds as check_seeds, sequence
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -442,10 +443,17 @@ def architecture_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, seeds: Sequ
 
     Raises
     ------
+    TypeError
+        A seed not an integer, a weight not a number.
     ValueError
-        If ``seeds`` does not hold two seeds.
+        If ``seeds`` does not hold two seeds (integers >= 0), ``w_pub`` or an entry of ``fixed_omegas`` is not in
+        (0, 1].
     """
+    check_seeds(seeds, "seeds")
     seeds = tuple(seeds)
+    scalar(w_pub, "w_pub", 0.0, 1.0, lo_open=True)
+    for i, w in enumerate(sequence(fixed_omegas, "fixed_omegas")):
+        scalar(w, f"fixed_omegas[{i}]", 0.0, 1.0, lo_open=True)
     if len(seeds) != 2:
         raise ValueError(f"seeds must hold two seeds (identical sensors, anisotropic pair), got {shown(seeds)}")
     return {IDENTICAL_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[0]), R1, R2, Q, runs=runs,

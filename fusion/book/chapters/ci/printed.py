@@ -94,7 +94,7 @@ def ml_vs_product(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) ->
     ValueError
         Shapes that do not match, covariances not symmetric positive definite.
     """
-    x1, x2 = np.atleast_2d(np.asarray(x1, dtype=float)), np.atleast_2d(np.asarray(x2, dtype=float))
+    x1, x2 = np.atleast_2d(as_array(x1, "x1", ndim=(1, 2))), np.atleast_2d(as_array(x2, "x2", ndim=(1, 2)))
     if x1.shape != x2.shape or x1.ndim != 2:
         raise ValueError(f"x1 and x2 must have the same shape (n,) or (runs, n), got {x1.shape} and {x2.shape}")
     n = x1.shape[1]
