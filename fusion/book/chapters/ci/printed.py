@@ -159,7 +159,8 @@ def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, veloc
     R = as_covariance(R, 2, "R")
     steady = np.arange(n_steps) * T >= t_steady
     if not steady.any() or steady.all():
-        raise ValueError(f"t_steady = {t_steady} must leave steps on both sides among the {n_steps} steps")
+        raise ValueError(f"t_steady = {t_steady} must leave steps on both sides among the n_steps = {n_steps} steps "
+                         f"(T = {T:g} s)")
     model = cv_model(T)
     P0d = np.diag([0.0, velocity_sigma**2, 0.0, velocity_sigma**2])
     P0i = np.diag([R[0, 0], 0.0, R[1, 1], 0.0])
