@@ -227,7 +227,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "fruit_fly_table"] = dict(res=A(wp.res, MAP_M))   # every entry read: a key less is a valid table
     R[c + "weight_search_numbers"] = dict(res=A(wp.res, MAP_M), flat=A(o["flat"], ARR), fruit_fly_seeds=A(wp.fruit_fly_seeds, OBJ + (wrong_type,)),
                                           suffix=A("", (("int", 5),)), omit=A((), (("unknown", ("no-such-key",)), ("int", 5))))
-    R[c + "weight_claim_inputs"] = dict(asym=A(wp, OBJ + (wrong_type,)), aniso=A(o["wp_an"], OBJ + (wrong_type, ("the unequal pair", wp))),
+    R[c + "weight_claim_inputs"] = dict(asym=A(wp, OBJ + (wrong_type,)), aniso=A(o["wp_an"], OBJ + (wrong_type,)),
                                         flat=A(o["flat"], ARR))
     m = o["bench"].measurements
     R[c + "fig5"] = dict(P1=A(wp.P1, ARR + ("indef", "lensq")), P2=A(wp.P2, ARR + ("indef",)), res=A(wp.res, MAP_M),

@@ -720,15 +720,10 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
     TypeError
         ``asym`` or ``aniso`` not a WeightPair, ``flat`` not numeric.
     ValueError
-        ``aniso``'s closed-form weight not inside (0, 1) (not the anisotropic pair), ``flat`` not a 1-D array of
-        finite numbers.
+        ``flat`` not a 1-D array of finite numbers.
     """
     instance_of(asym, WeightPair, "asym")
     instance_of(aniso, WeightPair, "aniso")
-    w_an = float(aniso.res["closed form"].x)
-    if not 0.0 < w_an < 1.0:   # the pair the prose reads an interior optimum from (issue 35: a swapped pair)
-        raise ValueError(f"aniso must be the anisotropic pair, whose trace-optimal weight lies inside (0, 1); got a "
-                         f"pair with its optimum at the end ω = {w_an:g} (the unequal pair?)")
     flat = as_array(flat, "flat", ndim=1)
     return WeightClaimInputs(fruit_fly_seeds=asym.fruit_fly_seeds, fruit_fly_step=asym.k,
                              foa_evaluations=asym.res["FOA (30 × 200)"].n_evaluations, ml_gap=asym.ml_gap(),
