@@ -164,6 +164,7 @@ def registry() -> dict[str, dict[str, A]]:
     study_x = ("another scenario's study", o["study_o"])
     wrong_type = ("another type", o["leg"])
     r, wp, leg = o["r"], o["wp"], o["leg"]
+    p = o["parts"]   # the synthetic ledger entries (tests/test_ci_book_chapter.py)
 
     # ---------------------------------------------------------------- seeded studies
     R[c + "source_scenario"] = dict(seed=A(2024, SEED_M))
@@ -247,10 +248,10 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "printed_numbers"] = dict(printed=A(printed, OBJ + (wrong_type, ("none", None))))
     R[c + "split_fruit_fly_gap"] = dict(sc=A(sc, OBJ + (wrong_type,)), k=A(2, ("neg", "frac", "str", ("big", 10**6))),
                                         rng=A(np.random.default_rng(0), OBJ))
-    R[c + "fruit_fly_step_study"] = dict(seeds=A(3, COUNT_M), target=A(0.8, UNIT), seed=A(0, SEED_M))
-    R[c + "fruit_fly_step_targets"] = dict(seed=A(0, SEED_M), targets=A((0.2, 0.5), (("above", (1.5,)), ("nan", (np.nan,)), "str", ("empty", ()))),
-                                           seeds=A(3, COUNT_M))
-    ffs = ci.fruit_fly_step_study(seeds=3)
+    R[c + "fruit_fly_step_study"] = dict(seeds=A(2, COUNT_M), target=A(0.8, UNIT), seed=A(0, SEED_M))
+    R[c + "fruit_fly_step_targets"] = dict(seed=A(0, SEED_M), targets=A((0.5,), (("above", (1.5,)), ("nan", (np.nan,)), "str", ("empty", ()))),
+                                           seeds=A(2, COUNT_M))
+    ffs = p["fruit_fly_step_study"]   # fruit_fly_step_study(seeds=3) of the synthetic ledger entries
     R[c + "fruit_fly_step_values"] = dict(table=A(ffs, FRAME_M + (("a column less", _without(ffs)), ("nan cell", _nan_cell(ffs)))))
     R[c + "timing_table"] = dict(m=A(m, MAP_M + (("a key less", _drop_key(m)),)))
     R[c + "timing_numbers"] = dict(bench=A(o["bench"], OBJ + (wrong_type, ("none", None))))
@@ -323,7 +324,6 @@ def registry() -> dict[str, dict[str, A]]:
                                          fixed_omegas=A((0.5,), (("above", (1.5,)), "str", ("nan", (np.nan,)))))
 
     # ---------------------------------------------------------------- paired studies
-    p = o["parts"]
     R[c + "paired_numbers"] = dict(paired=A(p["paired"], MAP_M + (("a key less", _drop_key(p["paired"])),)),
                                    paired_u=A(p["paired_unequal"], MAP_M), paired_random=A(p["paired_random"], ARR + ("len",)),
                                    ai=A(ai, OBJ + (wrong_type,)), ml_gap=A(1e-13, NONNEG), rmse_avg=A(50.0, POS),
@@ -382,8 +382,9 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "ev_ir_baselines"] = dict(r=A(o["ir_in"], OBJ + (("another type", leg), ("none", None), ("paired inputs", o["paired_in"]))))
     values = ci.ledger_values(r)
     R[c + "ledger"] = dict(r=A(r, OBJ + ledger_x), values=A(values, MAP_M + (("a key less", _drop_key(values)),)))
-    # every entry refuses None and a string (bench_date is text: a string is valid there)
-    R[c + "ledger_inputs"] = {k: A(v, (("none", None),) + (() if k == "bench_date" else OBJ)) for k, v in p.items()}
+    # every entry refuses None (a string too where a study, mapping or count is read; bench_date is text)
+    R[c + "ledger_inputs"] = {k: A(v, (("none", None),) + (OBJ if k in ("study", "arch", "paired", "ir_readings", "bench")
+                                                         else ())) for k, v in p.items()}
     R[c + "ledger_inputs"]["nees_runs"] = A(p["nees_runs"], COUNT_M + (("none", None),))
     return R
 
