@@ -91,8 +91,10 @@ def ml_vs_product(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) ->
 
     Raises
     ------
+    TypeError
+        An estimate or a covariance not numeric.
     ValueError
-        Shapes that do not match, covariances not symmetric positive definite.
+        Shapes that do not match, estimates not finite, covariances not symmetric positive definite.
     """
     x1, x2 = np.atleast_2d(as_array(x1, "x1", ndim=(1, 2))), np.atleast_2d(as_array(x2, "x2", ndim=(1, 2)))
     if x1.shape != x2.shape or x1.ndim != 2:

@@ -59,6 +59,13 @@ def fig3(sc: Scenario, run: int = 0) -> Figure:
     -------
     matplotlib.figure.Figure
         One panel, y against x (m): the true path as a line and sensor 1's measurements of run ``run`` as dots.
+
+    Raises
+    ------
+    TypeError
+        ``sc`` not a Scenario, ``run`` not an integer.
+    ValueError
+        ``run`` not a run of ``sc``.
     """
     instance_of(sc, Scenario, "sc")
     run = index(run, "run", sc.tracks[0].z.shape[0])
@@ -251,6 +258,13 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
     matplotlib.figure.Figure
         Four rows (source Figs. 4, 6, 7, 8), columns x and y: each method's RMSE per step (m, log scale), the published
         values, the causal floor.
+
+    Raises
+    ------
+    TypeError
+        ``study`` not a FusionStudy, ``on_leg`` not bools, ``floor`` not numeric.
+    ValueError
+        ``on_leg`` not one bool per step of ``study``, ``floor`` not one finite number per step it selects.
     """
     instance_of(study, FusionStudy, "study")
     on_leg = _steps(on_leg, "on_leg", study.t.size)

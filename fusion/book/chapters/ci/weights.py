@@ -101,6 +101,13 @@ def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dic
     dict of str to OptimumResult
         FOA, exhaustive search on 1001 points, scipy's bounded Brent and the closed form
         (:func:`fusion.estimates.ci.ci_weight`, zero evaluations).
+
+    Raises
+    ------
+    TypeError
+        ``P1`` or ``P2`` not numeric.
+    ValueError
+        ``P1`` or ``P2`` not a symmetric positive-definite matrix, or of different sizes.
     """
     _covariance_pair(P1, P2)
     P1, P2 = np.asarray(P1, dtype=float), np.asarray(P2, dtype=float)   # as given: the searches' numbers unchanged
