@@ -12,7 +12,8 @@ from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import reads_results
-from fusion._validation import count, shown, text, instance_of
+from fusion._validation import count, shown, text, instance_of, scalar
+from fusion._counts import seeds as check_seeds, sequence
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -120,11 +121,8 @@ def q_scaling_table(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> pd.DataFr
         part); columns: mean per-run RMSE on x on the path (m), its paired 95 % difference from CI with the
         filters' :math:`Q` (m), the same on targets that follow the model, and the mean NEES there.
     """
-    instance_of(qs, two_sensor.QScaling, "qs")
-    instance_of(ai, ArchitectureStudy, "ai")
+    _same_runs(qs, ai, (1.0,))
     base, base_m = qs.run_rmse[1.0], qs.model_rmse[1.0]
-    if not np.array_equal(base, ai.run_rmse[_ARCH_BASE]):
-        raise ValueError("qs and ai must share their runs (the same seed): CI with Q differs between them")
 
     def d(v: np.ndarray, b: np.ndarray) -> str:
         m, h = _mean_ci(v - b)
@@ -145,6 +143,19 @@ def q_scaling_table(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> pd.DataFr
 
 # --------------------------------------------------------------------------- architectures
 _ARCH_BASE = (IND, CI_N)
+
+
+def _same_runs(qs: object, ai: object, scales: tuple[float, ...]) -> None:
+    """``qs`` a Q-scaling study with the ``scales`` read, drawn on the runs of ``ai`` (issue 35: paired arguments
+    agree): CI with the filters' own Q (scale 1) is the same in both, else a ValueError names them."""
+    instance_of(qs, two_sensor.QScaling, "qs")
+    instance_of(ai, ArchitectureStudy, "ai")
+    assert isinstance(qs, two_sensor.QScaling) and isinstance(ai, ArchitectureStudy)
+    missing = [c for c in scales if c not in qs.run_rmse]
+    if missing:
+        raise ValueError(f"qs lacks the scales {missing} (it must hold {list(scales)})")
+    if _ARCH_BASE not in ai.run_rmse or not np.array_equal(qs.run_rmse[1.0], ai.run_rmse[_ARCH_BASE]):
+        raise ValueError("qs and ai must share their runs (the same seed): CI with Q differs between them")
 
 
 def _mean_ci(x: np.ndarray) -> tuple[float, float]:
@@ -402,9 +413,15 @@ def q_numbers(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> GlueValues:
     -------
     dict
         Glue key -> value.
+
+    Raises
+    ------
+    TypeError
+        ``qs`` not a QScaling, ``ai`` not an ArchitectureStudy.
+    ValueError
+        ``qs`` without the scales 1 and 0.5, or not on the runs of ``ai`` (another seed or pair).
     """
-    instance_of(qs, two_sensor.QScaling, "qs")
-    instance_of(ai, ArchitectureStudy, "ai")
+    _same_runs(qs, ai, (1.0, 0.5))
     key = (FB, SPLIT_S)
     return {"ci_q_half_d": paired_text(qs.run_rmse[0.5], qs.run_rmse[1.0], 3),
             "ci_q_half_vs_split": paired_text(qs.run_rmse[0.5], ai.run_rmse[key], 2),
@@ -442,10 +459,17 @@ def architecture_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, seeds: Sequ
 
     Raises
     ------
+    TypeError
+        A seed not an integer, a weight not a number.
     ValueError
-        If ``seeds`` does not hold two seeds.
+        If ``seeds`` does not hold two seeds (integers >= 0), ``w_pub`` or an entry of ``fixed_omegas`` is not in
+        (0, 1].
     """
+    check_seeds(seeds, "seeds")
     seeds = tuple(seeds)
+    scalar(w_pub, "w_pub", 0.0, 1.0, lo_open=True)
+    for i, w in enumerate(sequence(fixed_omegas, "fixed_omegas")):
+        scalar(w, f"fixed_omegas[{i}]", 0.0, 1.0, lo_open=True)
     if len(seeds) != 2:
         raise ValueError(f"seeds must hold two seeds (identical sensors, anisotropic pair), got {shown(seeds)}")
     return {IDENTICAL_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[0]), R1, R2, Q, runs=runs,

@@ -56,6 +56,56 @@ def _results(value: object, name: str, cls: type, maker: str) -> Mapping:
     return value
 
 
+def _steps(value: object, name: str, n: int, what: str = "step") -> np.ndarray:
+    """A selection of steps (issue 35, the chapter's registry sweep): an array of bools, one per ``what`` of ``n``;
+    TypeError (not bools) / ValueError (another length or shape) naming ``name``, before it indexes anything."""
+    from fusion._selections import as_mask
+
+    m = as_mask(value, name)
+    if m.shape != (n,):
+        raise ValueError(f"{name} must hold one bool per {what} ({n},), got shape {m.shape}")
+    return m
+
+
+def _per_step(value: object, name: str, n: int, what: str = "selected step", *, nonnegative: bool = False,
+              unit: bool = False) -> FloatArray:
+    """A number per step (a floor, a weight): a finite float array of shape ``(n,)`` (entries in [0, 1] when
+    ``unit``); TypeError/ValueError naming ``name``, never numpy's broadcasting or indexing error."""
+    arr = as_array(value, name, ndim=1, nonnegative=nonnegative or unit)
+    if arr.shape != (n,):
+        raise ValueError(f"{name} must hold one number per {what} ({n},), got shape {arr.shape}")
+    if unit and (arr > 1.0).any():
+        raise ValueError(f"{name} must hold weights in [0, 1], got {shown(float(arr.max()))} at index "
+                         f"{int(np.argmax(arr))}")
+    return arr
+
+
+def _step_index(value: object, name: str, length: int) -> int:
+    """A step (run) index: an integer (not a bool or a float) in ``0 .. length - 1``, named; never an IndexError or
+    a comparison's TypeError from inside."""
+    from fusion._counts import index
+
+    return index(value, name, length)
+
+
+def _indices(value: object, name: str, length: int) -> list[int]:
+    """Step or run indices (a non-empty sequence), each an integer in ``0 .. length - 1``, named by position."""
+    from fusion._counts import index, sequence
+
+    items = sequence(value, name, minimum=1)
+    return [index(v, f"{name}[{i}]", length) for i, v in enumerate(items)]
+
+
+def _sensor_noises(R1: object, R2: object, names: tuple[str, str] = ("R1", "R2")) -> None:
+    """The two sensors' measurement covariances as :func:`fusion.scenarios.two_sensor.two_sensor_scenario` reads
+    them (diagonal 2 × 2, positive definite), checked under the chapter function's own names before they are
+    passed on (where the scenario would name its ``R_a`` and ``R_b``)."""
+    from fusion._covariances import diagonal_covariance
+
+    for R, name in zip((R1, R2), names):
+        diagonal_covariance(R, 2, name)
+
+
 def _periods(periods: object, name: str = "periods") -> FloatArray:
     """Sampling periods, one table row each (fuzz 19's debatable empties): a non-empty 1-d array of distinct,
     finite, positive numbers (a scalar is one period); TypeError/ValueError naming ``name``."""
@@ -77,6 +127,16 @@ def _averaging_start(t_min: object, duration: object, name: str = "t_min") -> tu
         raise ValueError(f"{name} = {t_min:g} s is after the end of the track (duration = {duration:g} s): "
                          "the average would cover no scan")
     return t_min, duration
+
+
+def _start_on(t_min: object, t: np.ndarray, name: str = "t_min") -> float:
+    """The start of a time average over the scans ``t`` (the rule of :func:`_averaging_start` for given scans):
+    ``0 <= t_min <= max(t)``; TypeError/ValueError naming ``name``."""
+    t_min = scalar(t_min, name, lo=0.0, tiny=True)
+    if t_min > float(np.max(t)):
+        raise ValueError(f"{name} = {t_min:g} s is after the last scan ({float(np.max(t)):g} s): the average would "
+                         "cover no scan")
+    return t_min
 
 
 def _study_of(sc: object, study: object, sc_name: str = "sc", study_name: str = "study") -> None:

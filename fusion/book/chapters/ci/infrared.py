@@ -28,7 +28,8 @@ from fusion.scenarios import infrared_radar as ir
 from fusion.book.chapters.ci.constants import IR_CVX, IR_DURATION, IR_FZ, IR_IMP, IR_T
 from fusion._docstrings import with_sections, reads_results
 from fusion.book.chapters.ci.text import _glue_doc, paired_text
-from fusion.book.chapters.ci.checks import _averaging_start, _entries, _frame, _periods
+from fusion.book.chapters.ci.checks import _averaging_start, _entries, _frame, _periods, _start_on, _step_index
+from fusion.book.glue import _glued_cell
 
 __all__ = ["ir_flown_numbers", "ir_numbers", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table",
            "IR_AXES", "IrReadings", "IR_READINGS", "IR_ALWAYS", "IR_COMPONENTS", "IR_RATIO_METHODS", "ir_readings", "ir_rms",
@@ -142,6 +143,18 @@ def _ir_methods(rmse: object, name: str, read: tuple[str, ...]) -> None:
         raise ValueError(f"{name} holds keys that are not methods: {shown(unknown, 120)}")
 
 
+def _scan_times(t: object, rmse: Mapping, name: str, read: Sequence[str] | None = None) -> np.ndarray:
+    """Scan times ``t`` (finite, 1-D) and the arrays of ``rmse`` read (all when ``read`` is None), each one finite
+    row of four per scan; TypeError/ValueError naming ``t`` or ``name[method]``, never numpy's or matplotlib's."""
+    t = as_array(t, "t", ndim=1)
+    for k in (rmse if read is None else read):
+        arr = as_array(rmse[k], f"{name}[{shown(k)}]", ndim=2)
+        if arr.shape != (t.size, 4):
+            raise ValueError(f"{name}[{shown(k)}] must hold one row of four per scan of t ({t.size}, 4), got "
+                             f"{arr.shape}")
+    return t
+
+
 def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -> pd.DataFrame:
     """Time-averaged RMSE (``t >= t_min``) of every method and the published improved CI (Figs. 9-10), 3 significant digits.
 
@@ -164,10 +177,11 @@ def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -
     TypeError
         ``rmse`` not a mapping.
     ValueError
-        ``rmse`` empty or holding a key that is not a method; as
-        :func:`fusion.scenarios.infrared_radar.late_means` for the arrays, ``t`` and ``t_min``.
+        ``rmse`` empty or holding a key that is not a method; ``t_min`` negative or after the last scan; as
+        :func:`fusion.scenarios.infrared_radar.late_means` for the arrays and ``t``.
     """
     _ir_methods(rmse, "rmse", ())
+    _start_on(t_min, _scan_times(t, rmse, "rmse"))
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     table = pd.DataFrame(ir.late_means(dict(rmse), t, t_min)).T
     table.index = [METHOD_LABELS[m] for m in table.index]
@@ -187,7 +201,8 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray], bound: ArrayLike | N
         RMSE per scan by method (:func:`ir_study`).
     bound : array_like, shape (K, 4), optional
         The many-scan bound of the simulated flight, both sensors
-        (:func:`fusion.scenarios.infrared_radar.many_scan_bound`), drawn dash-dotted from ``t_min``.
+        (:func:`fusion.scenarios.infrared_radar.many_scan_bound`), drawn dash-dotted from ``t_min``: finite there
+        (before ``t_min`` it is not read, and it is undefined, NaN, at the first scan).
     t_min : float
         Start of the drawn bound (s): after the start-up, where the filters' prior on the rates,
         which the bound does not count, and the sampling noise of the RMSE could put a curve below it.
@@ -203,9 +218,18 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray], bound: ArrayLike | N
     TypeError
         ``rmse`` not a mapping.
     ValueError
-        ``rmse`` lacks a method drawn (:data:`IR_SHOWN`) or holds a key that is not a method.
+        ``rmse`` lacks a method drawn (:data:`IR_SHOWN`) or holds a key that is not a method, an array of it or
+        ``bound`` is not one finite row of four per scan of ``t``, ``t`` not finite, ``t_min`` negative or after the
+        last scan.
     """
     _ir_methods(rmse, "rmse", IR_SHOWN)
+    t = _scan_times(t, rmse, "rmse", IR_SHOWN)
+    t_min = _start_on(t_min, t)
+    if bound is not None:   # undefined (NaN) at the first scan, t = 0: only the scans drawn must be finite
+        bound = as_array(bound, "bound", ndim=2, finite=False)
+        if bound.shape != (t.size, 4):
+            raise ValueError(f"bound must hold one row of four per scan of t ({t.size}, 4), got {bound.shape}")
+        as_array(bound[t >= t_min], "bound (its scans from t_min)")
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     shown = IR_SHOWN
     styles = ["-", "-", "--", "-", ":", "-"]
@@ -259,8 +283,17 @@ def fig11(sim: ir.IrRadarRuns, run: int = 0, t_min: float = 2.0) -> tuple[Figure
         the ±2σ band.
     inside : float
         Smallest, over the three panels, share of scans with ``t >= t_min`` whose error lies inside ±2σ.
+
+    Raises
+    ------
+    TypeError
+        ``sim`` not an IrRadarRuns, ``run`` not an integer, ``t_min`` not a number.
+    ValueError
+        ``run`` not a run of ``sim``, ``t_min`` negative or after the last scan.
     """
     instance_of(sim, ir.IrRadarRuns, "sim")
+    run = _step_index(run, "run", sim.radar_range.est.shape[0])
+    t_min = _start_on(t_min, sim.t)
     late = sim.t >= t_min
     f_imp = fuse_tracks(sim.ir, sim.radar, "split")
     p_imp = ir.position(sim.radar_range.est[run], f_imp.est[run])
@@ -355,7 +388,8 @@ def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> GlueValu
     TypeError
         ``ir_table`` is not a DataFrame, or ``t_ir`` or ``duration`` not a number.
     ValueError
-        ``ir_table`` lacks a row or a column read here, or ``t_ir`` or ``duration`` is not finite and positive.
+        ``ir_table`` lacks a row or a column read here or a cell read is not finite, or ``t_ir`` or ``duration`` is
+        not finite and positive.
     """
     instance_of(ir_table, pd.DataFrame, "ir_table")
     rows = [METHOD_LABELS[k] for k in (IR_IMP, ir.PER_SCAN, IR_FZ, ir.IrMethod.IR_ALONE)]
@@ -363,6 +397,9 @@ def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> GlueValu
     missing = [r for r in rows if r not in ir_table.index] + [c for c in cols if c not in ir_table.columns]
     if missing:
         raise ValueError(f"ir_table lacks the rows or columns {missing} (it must be the ir_table of the study)")
+    for r in rows:   # every cell glued: a finite number (the glue rule), named; the values glued as they are
+        for c in cols:
+            _glued_cell(ir_table, r, c, "ir_table")
     # glued as the plain numbers given (fuzz 22b, FR: never the caller's Fraction, Decimal or 0-d array)
     t_ir, duration = given_number(t_ir, "t_ir", lo=0.0, lo_open=True), given_number(duration, "duration", lo=0.0,
                                                                                      lo_open=True)
@@ -591,7 +628,7 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
     t_min : float
         Start of the averaged scans (s).
     scaled_axes : tuple of str
-        Azimuth axes (keys of :data:`IR_AXES`) that also get the scaled-Q readings.
+        Azimuth axes (keys of :data:`IR_AXES`) that also get the scaled-Q readings (``()``: none).
 
     Returns
     -------
@@ -958,9 +995,9 @@ def sensitivity_numbers(sens_table: pd.DataFrame) -> GlueValues:
     TypeError
         ``sens_table`` is not a DataFrame.
     ValueError
-        ``sens_table`` lacks the column ``"azimuth (mrad)"`` or is empty.
+        ``sens_table`` lacks the column ``"azimuth (mrad)"``, is empty or holds a value there that is not finite.
     """
-    _frame(sens_table, "sens_table", (ir.AZIMUTH_MRAD,), maker="sensitivity_table")
+    _frame(sens_table, "sens_table", (ir.AZIMUTH_MRAD,), maker="sensitivity_table", finite=(ir.AZIMUTH_MRAD,))
     ir_data = data.WANG2024_IR_RADAR
     ratio = float(data.WANG2024_IR_RADAR_RMSE.columns["azimuth_rad"][0]) / ir_data["sigma_ir"]
     return {"ci_ir_az_best": sens_table[ir.AZIMUTH_MRAD].min(), "ci_ir_pub_ratio": ratio,

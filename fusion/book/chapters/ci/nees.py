@@ -11,7 +11,7 @@ from scipy.stats import chi2
 from numpy.typing import ArrayLike
 
 from fusion._structures import same_keys
-from fusion._validation import as_array, as_covariance, as_mask, as_rng, count, scalar, shown
+from fusion._validation import as_array, as_covariance, as_mask, as_rng, count, flag, scalar, shown
 from fusion.book.tables import rounded, roundoff
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS
@@ -107,9 +107,8 @@ def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: Arr
     rng = as_rng(rng)
     R1, R2 = as_covariance(R1, 2, "R1"), as_covariance(R2, 2, "R2")
     Q = as_covariance(Q, 4, "Q")
-    x_start = np.asarray(x_start, dtype=float)
-    if x_start.shape != (4,) or not np.isfinite(x_start).all():
-        raise ValueError(f"x_start must be a finite (4,) state, got shape {x_start.shape}")
+    x_start = as_array(x_start, "x_start", shape=(4,))
+    random_velocity = flag(random_velocity, "random_velocity")
     n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
     T = scalar(T, "T", lo=0.0, lo_open=True)
     velocity_sigma = scalar(velocity_sigma, "velocity_sigma", lo=0.0, lo_open=True)

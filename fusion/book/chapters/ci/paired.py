@@ -13,14 +13,15 @@ from fusion._results import (ResultSpec, array, dict_of, instance, integer, numb
                              validated_post_init)
 from fusion import data
 from fusion._docstrings import reads_results
-from fusion._validation import as_array, count, instance_of
+from fusion._validation import as_array, count, instance_of, scalar
+from fusion._counts import seed as check_seed, seeds as check_seeds, sequence
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.estimates.ci import ci_weight
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, FusionStudy, Scenario, StudyMethod
-from fusion.book.chapters.ci.checks import _entries
+from fusion.book.chapters.ci.checks import _entries, _sensor_noises
 from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S, W_GRID, W_PUB
 from fusion.book.chapters.ci.text import _glue_doc, paired_text, readable
 from fusion.book.chapters.ci.tracking import fuzzy_levels
@@ -78,8 +79,9 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
     TypeError
         ``paired``, ``paired_u`` or ``paired_a`` not a mapping; ``paired_runs`` not an integer.
     ValueError
-        A mapping lacks a method read here, or an array of per-run RMSE does not hold ``paired_runs`` finite
-        values (the run count of another study).
+        A mapping lacks a method (``paired_fig6`` a published weight) read here, or an array of per-run RMSE does
+        not hold ``paired_runs`` finite values (the run count of another study); ``ml_gap`` negative, ``rmse_avg``
+        not positive, ``omega_u`` not weights in [0, 1] (each not finite).
     """
     instance_of(ai, ArchitectureStudy, "ai")
     M = StudyMethod
@@ -93,8 +95,16 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
         for k in read:
             _per_run(runs_by[k], f"{name}[{shown(k)}]", paired_runs)
     _per_run(paired_random, "paired_random", paired_runs)
+    scalar(ml_gap, "ml_gap", 0.0, tiny=True)
+    scalar(rmse_avg, "rmse_avg", 0.0, lo_open=True)
+    w = as_array(omega_u, "omega_u", ndim=1, nonnegative=True)
+    if (w > 1.0).any():
+        raise ValueError(f"omega_u must hold CI weights in [0, 1], got {shown(float(w.max()))}")
+    if paired_fig6 is not None:
+        p6 = _entries(paired_fig6, "paired_fig6", _FIG6_WEIGHTS, "paired_studies", numbers=False)
+        for k in _FIG6_WEIGHTS:
+            _per_run(p6[k], f"paired_fig6[{shown(k)}]", paired_runs)
     cvx_fb = float(np.mean(ai.run_rmse[(FB, CVX_N)]))   # one architecture (R6)
-    w = np.asarray(omega_u, dtype=float)
     return {"ci_paired_runs": paired_runs, "ci_ml_gap": readable(ml_gap),
             "ci_u_imp_ci": paired_text(paired_u[M.CI], paired_u[M.SPLIT_CI], 3),
             "ci_u_imp_cvx": paired_text(paired_u[M.SPLIT_CI], paired_u[M.CONVEX], 3),
@@ -118,9 +128,13 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
             **(_fig6_numbers(paired_fig6, paired[M.CI]) if paired_fig6 is not None else {})}
 
 
+#: The two published weights of source Fig. 5 (FOA's, the grid's): the keys of ``paired_fig6``.
+_FIG6_WEIGHTS = tuple(float(data.WANG2024_FOA.columns[k][0]) for k in ("foa_optimum", "grid_optimum"))
+
+
 def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> GlueValues:
     """Glue values of source Fig. 6 read as the two published weights put into CI (``ci_fig6_*``)."""
-    w_fruit_fly, w_grid = (float(data.WANG2024_FOA.columns[k][0]) for k in ("foa_optimum", "grid_optimum"))
+    w_fruit_fly, w_grid = _FIG6_WEIGHTS
     d = np.asarray(p6[w_fruit_fly]) - np.asarray(p6[w_grid])
     return {"ci_fig6_foa": rounded(float(np.mean(p6[w_fruit_fly])), 2), "ci_fig6_grid": rounded(float(np.mean(p6[w_grid])), 2),
             "ci_fig6_d": paired_text(p6[w_fruit_fly], p6[w_grid], 3), "ci_fig6_foa_lower": int(np.sum(d < 0)),
@@ -330,7 +344,11 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     """
     instance_of(unequal, WeightPair, "unequal")
     instance_of(aniso, WeightPair, "aniso")
+    _sensor_noises(R1, R2)
+    check_seeds(seeds, "seeds")
     seeds = tuple(seeds)
+    weight_seed = check_seed(weight_seed, "weight_seed")
+    weights = sequence(weights, "weights", 2)
     if len(seeds) != 3:
         raise ValueError(f"seeds must hold three seeds (identical, unequal, random weights), got {shown(seeds)}")
     runs = count(runs, "runs")
@@ -341,6 +359,10 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     seed, unequal_seed, random_seed = seeds
     w_fruit_fly, w_grid = weights
     sc_p = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)
+    for i, w in enumerate(weights):   # a weight for every step, or one (fusion_study's rule), named here
+        w = as_array(w, f"weights[{i}]", ndim=(0, 1))
+        if w.ndim == 1 and w.size != sc_p.t.size:
+            raise ValueError(f"weights[{i}] must be a weight or one per step ({sc_p.t.size}), got {w.size}")
     study_p = two_sensor.fusion_study(sc_p, w_fruit_fly, w_grid)
 
     def per_run(est: np.ndarray, sc: Scenario, study: FusionStudy) -> np.ndarray:

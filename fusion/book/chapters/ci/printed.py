@@ -91,10 +91,12 @@ def ml_vs_product(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) ->
 
     Raises
     ------
+    TypeError
+        An estimate or a covariance not numeric.
     ValueError
-        Shapes that do not match, covariances not symmetric positive definite.
+        Shapes that do not match, estimates not finite, covariances not symmetric positive definite.
     """
-    x1, x2 = np.atleast_2d(np.asarray(x1, dtype=float)), np.atleast_2d(np.asarray(x2, dtype=float))
+    x1, x2 = np.atleast_2d(as_array(x1, "x1", ndim=(1, 2))), np.atleast_2d(as_array(x2, "x2", ndim=(1, 2)))
     if x1.shape != x2.shape or x1.ndim != 2:
         raise ValueError(f"x1 and x2 must have the same shape (n,) or (runs, n), got {x1.shape} and {x2.shape}")
     n = x1.shape[1]
@@ -159,7 +161,8 @@ def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, veloc
     R = as_covariance(R, 2, "R")
     steady = np.arange(n_steps) * T >= t_steady
     if not steady.any() or steady.all():
-        raise ValueError(f"t_steady = {t_steady} must leave steps on both sides among the {n_steps} steps")
+        raise ValueError(f"t_steady = {t_steady} must leave steps on both sides among the n_steps = {n_steps} steps "
+                         f"(T = {T:g} s)")
     model = cv_model(T)
     P0d = np.diag([0.0, velocity_sigma**2, 0.0, velocity_sigma**2])
     P0i = np.diag([R[0, 0], 0.0, R[1, 1], 0.0])

@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
 from fusion._shown import shown
-from fusion._validation import count
+from fusion._validation import as_array, count
 from fusion.book.ledger import Comparison, fmt
 from fusion.book.tables import _SUPERSCRIPT, ROUNDOFF_EXPONENT, _printed_number
 
@@ -73,10 +73,21 @@ def paired_text(a: ArrayLike, b: ArrayLike, digits: int = 2) -> str:
         The mean of ``a - b`` and the ends of its 95 % interval, each with ``digits`` significant digits
         (:func:`readable`).
 
+    Raises
+    ------
+    TypeError
+        ``a`` or ``b`` not numeric.
+    ValueError
+        ``a`` or ``b`` not a 1-D array of finite numbers, or of different lengths.
+
     References
     ----------
     :meth:`fusion.book.ledger.Comparison.interval` (paired t interval, scipy.stats.ttest_rel).
     """
+    a = as_array(a, "a", ndim=1)
+    b = as_array(b, "b", ndim=1)
+    if a.shape != b.shape:
+        raise ValueError(f"a and b must hold the same runs (paired), got {a.size} and {b.size}")
     mean, lo, hi = Comparison(a, b, "A", "B", "less", "metric", reason="prose only").interval()
     return f"{readable(mean, digits)} (95 % CI {readable(lo, digits)} to {readable(hi, digits)})"
 

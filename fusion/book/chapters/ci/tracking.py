@@ -31,7 +31,9 @@ from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
 from fusion.scenarios.two_sensor.study import OVER_STEPS, RUN_AVERAGED
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 from fusion.book.chapters.ci.text import _glue_doc
-from fusion.book.chapters.ci.checks import _entries, _study_of
+from fusion.book.chapters.ci.checks import _entries, _frame, _per_step, _steps, _study_of
+from fusion._counts import index
+from fusion._structures import mapping_of
 from fusion._structures import same_keys
 from fusion._shown import shown
 
@@ -57,8 +59,16 @@ def fig3(sc: Scenario, run: int = 0) -> Figure:
     -------
     matplotlib.figure.Figure
         One panel, y against x (m): the true path as a line and sensor 1's measurements of run ``run`` as dots.
+
+    Raises
+    ------
+    TypeError
+        ``sc`` not a Scenario, ``run`` not an integer.
+    ValueError
+        ``run`` not a run of ``sc``.
     """
     instance_of(sc, Scenario, "sc")
+    run = index(run, "run", sc.tracks[0].z.shape[0])
     fig, ax = new_figure(figsize=(6.0, 5.0))
     ax.plot(sc.truth[:, 0], sc.truth[:, 2], "-", color=color("truth"), lw=1.5, label="true path")
     z = sc.tracks[0].z
@@ -248,10 +258,19 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
     matplotlib.figure.Figure
         Four rows (source Figs. 4, 6, 7, 8), columns x and y: each method's RMSE per step (m, log scale), the published
         values, the causal floor.
+
+    Raises
+    ------
+    TypeError
+        ``study`` not a FusionStudy, ``on_leg`` not bools, ``floor`` not numeric.
+    ValueError
+        ``on_leg`` not one bool per step of ``study``, ``floor`` not one finite number per step it selects.
     """
     instance_of(study, FusionStudy, "study")
+    on_leg = _steps(on_leg, "on_leg", study.t.size)
+    floor = _per_step(floor, "floor", int(on_leg.sum()), "straight-leg step of on_leg")
     full = np.full(study.t.size, np.nan)   # gaps in the turns, for the plot only
-    full[np.asarray(on_leg, dtype=bool)] = np.asarray(floor, dtype=float)
+    full[on_leg] = floor
     fig, _ = new_figure(figsize=(7.5, 13.0))
     fig.delaxes(_)
     rows = fig.subfigures(4, 1, height_ratios=[1.0, 1.0, 1.15, 1.0])
@@ -303,7 +322,7 @@ def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dic
         ``sc`` is not a :class:`~fusion.scenarios.two_sensor.Scenario`, or ``levels`` or ``t_steady`` not numeric.
     ValueError
         ``levels`` is empty, not a number or 1-D, holds an entry outside (0, 1) (named by its position) or repeats one
-        (the result is keyed by level); ``t_steady`` is not finite or after the last step.
+        (the result is keyed by level); ``t_steady`` is not finite, negative or after the last step.
 
     References
     ----------
@@ -317,7 +336,7 @@ def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dic
     X = np.stack([a.est, b.est], axis=2)
     lams = distinct([scalar(lam, f"levels[{i}]", 0.0, 1.0, lo_open=True, hi_open=True)
                      for i, lam in enumerate(np.atleast_1d(as_array(levels, "levels", ndim=(0, 1))))], "levels")
-    steady = sc.t >= scalar(t_steady, "t_steady")
+    steady = sc.t >= scalar(t_steady, "t_steady", 0.0)
     if not steady.any():
         raise ValueError(f"t_steady = {shown(t_steady)} s is after the last step ({float(sc.t[-1]):g} s): "
                          "no step to average over")
@@ -352,11 +371,12 @@ def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = 
     TypeError
         ``sc`` or ``study`` of the wrong type, ``omegas`` not a sequence or an entry not a number.
     ValueError
-        An entry of ``omegas`` outside [0, 1] or repeated (the result is keyed by weight); ``study`` not
+        ``omegas`` empty, an entry outside [0, 1] or repeated (the result is keyed by weight); ``study`` not
         ``fusion_study`` of ``sc`` (its steps, truth or local tracks differ: another seed, runs or scenario).
     """
     _study_of(sc, study)
-    ws = distinct([scalar(w, f"omegas[{i}]", 0.0, 1.0) for i, w in enumerate(sequence(omegas, "omegas"))], "omegas")
+    ws = distinct([scalar(w, f"omegas[{i}]", 0.0, 1.0) for i, w in enumerate(sequence(omegas, "omegas", minimum=1,
+                                                                                        what="weight"))], "omegas")
     a, b = sc.tracks
     every = np.ones(study.t.size, dtype=bool)
     out = {}
@@ -430,14 +450,28 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
         Method -> RMSE on those steps (m).
     leg_causal : array_like, optional
         The causal straight-leg floor on the same steps (``straight_leg_floor(..., causal=True)``).
+
+    Raises
+    ------
+    TypeError
+        ``study`` not a FusionStudy, ``legs_steady`` not bools, ``leg_rmse`` not a mapping, a floor not numeric.
+    ValueError
+        ``leg_floor`` (``leg_causal``) not one finite number per straight-leg step, ``legs_steady`` not one bool per
+        straight-leg step or selecting none, ``leg_rmse`` empty or not of finite numbers.
     """
     instance_of(study, FusionStudy, "study")
-    import inspect
+    leg_floor = as_array(leg_floor, "leg_floor", ndim=1)
+    legs_steady = _steps(legs_steady, "legs_steady", leg_floor.size, "straight-leg step of leg_floor")
+    if not legs_steady.any():
+        raise ValueError("legs_steady selects no straight-leg step: the floors' mean would be of nothing")
+    mapping_of(leg_rmse, "leg_rmse", "RMSE (m)", maker="straight_leg")
+    leg_rmse = _entries(leg_rmse, "leg_rmse", list(leg_rmse), "straight_leg")
+    if leg_causal is not None:
+        leg_causal = _per_step(leg_causal, "leg_causal", leg_floor.size, "straight-leg step of leg_floor")
 
     from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion as _fcf
 
     level = inspect.signature(_fcf).parameters["level"].default
-    leg_floor = np.asarray(leg_floor, dtype=float)
     return {"ci_fuzzy_level": level, "ci_fuzzy_gate": 100 * (1 - level),
             "ci_rmse_local": rounded(study.steady_rmse(StudyMethod.SENSOR_1, 0), 1),
             "ci_rmse_ci": rounded(study.steady_rmse(StudyMethod.CI, 0), 1),
@@ -482,9 +516,24 @@ def slip_numbers(variants: Mapping[str, tuple[float, float]], variants_all: Mapp
     -------
     dict
         Glue key -> value (m, 2 decimals; step counts).
+
+    Raises
+    ------
+    TypeError
+        ``variants`` or ``variants_all`` not a mapping, ``slip`` not a DataFrame.
+    ValueError
+        ``variants`` or ``variants_all`` lacking a reading read here or one not two finite numbers; ``slip`` without
+        the slip over all steps or with a non-finite value there.
     """
     S, SR = two_sensor.SLIP_STEPS, two_sensor.SLIP_RUNS
-    col_all = next(c for c in slip.columns if c.startswith("√Σe²/n, n = all"))
+    variants = _entries(variants, "variants", (S, SR), "two_sensor.rmse_variants", width=2)
+    variants_all = _entries(variants_all, "variants_all", (S,), "two_sensor.rmse_variants", width=2)
+    _frame(slip, "slip", (), maker="slip_table")
+    col_all = next((c for c in slip.columns if isinstance(c, str) and c.startswith("√Σe²/n, n = all")), None)
+    if col_all is None:
+        raise ValueError("slip lacks the column of the slip over all steps ('√Σe²/n, n = all ... steps (m)', a "
+                         "result of slip_table holds it)")
+    _frame(slip, "slip", (col_all,), finite=(col_all,), maker="slip_table")
     in_fig6 = slip.index.get_level_values(0).str.startswith("Fig. 6")
     avg, fig6 = slip[~in_fig6], slip[in_fig6]
     return {"ci_slip_all_x": rounded(variants_all[S][0], 2), "ci_slip_all_y": rounded(variants_all[S][1], 2),
@@ -765,10 +814,10 @@ def slip_all(study: FusionStudy, names: Sequence[StudyMethod] = (StudyMethod.CI,
     TypeError
         ``study`` is not a :class:`~fusion.scenarios.two_sensor.FusionStudy`, or ``names`` not a sequence.
     ValueError
-        If a name is not a rule of ``study``, or one is repeated (the result is keyed by rule).
+        ``names`` empty, a name not a rule of ``study``, or one repeated (the result is keyed by rule).
     """
     instance_of(study, FusionStudy, "study")
-    names = distinct(sequence(names, "names"), "names")
+    names = distinct(sequence(names, "names", minimum=1, what="rule"), "names")
     missing = [n for n in names if n not in study.est]
     if missing:
         raise ValueError(f"names: not rules of the study: {missing}")

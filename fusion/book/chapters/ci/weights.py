@@ -11,7 +11,8 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
-from fusion._counts import seed as check_seed
+from fusion._counts import seed as check_seed, seeds as check_seeds, sequence
+from fusion._validation import as_array, as_rng, text as text_argument
 from fusion import data
 from fusion._docstrings import reads_results
 from fusion._results import ResultSpec, array, dict_of, instance, integer, number, text, tuple_of, validated_post_init
@@ -28,7 +29,8 @@ from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
 from fusion.book.chapters.ci.text import _glue_doc, _sig3, excess_text, readable
-from fusion.book.chapters.ci.checks import _entries, _frame, _results, _study_of
+from fusion.book.chapters.ci.checks import (_entries, _frame, _indices, _per_step, _results, _sensor_noises,
+                                            _step_index, _study_of)
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
@@ -64,8 +66,7 @@ def split_fruit_fly_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float
     """
     instance_of(sc, Scenario, "sc")
     a, b = sc.tracks
-    if not 0 <= k < a.Pd.shape[0]:
-        raise ValueError(f"k must be a step index in [0, {a.Pd.shape[0]}), got {k}")
+    k = _step_index(k, "k", a.Pd.shape[0])
     n = a.Pd.shape[1]
     zero = np.zeros(n)
     parts = _split_parts(a.Pd[k], a.Pi[k], b.Pd[k], b.Pi[k], n)   # validated once, not at each of FOA's 6,000 points
@@ -77,6 +78,12 @@ def split_fruit_fly_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float
     fly = fruit_fly(objective, rng)
     best = float(np.trace(split_covariance_intersection(zero, a.Pd[k], a.Pi[k], zero, b.Pd[k], b.Pi[k]).P))
     return (fly.fun - best) / best
+
+
+def _covariance_pair(P1: object, P2: object, names: tuple[str, str] = ("P1", "P2")) -> None:
+    """Two covariances of one size (symmetric positive definite), checked under the caller's names."""
+    first = as_covariance(P1, name=names[0])
+    as_covariance(P2, first.shape[0], name=names[1])
 
 
 def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dict[str, OptimumResult]:
@@ -94,8 +101,16 @@ def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dic
     dict of str to OptimumResult
         FOA, exhaustive search on 1001 points, scipy's bounded Brent and the closed form
         (:func:`fusion.estimates.ci.ci_weight`, zero evaluations).
+
+    Raises
+    ------
+    TypeError
+        ``P1`` or ``P2`` not numeric.
+    ValueError
+        ``P1`` or ``P2`` not a symmetric positive-definite matrix, or of different sizes.
     """
-    P1, P2 = np.asarray(P1, dtype=float), np.asarray(P2, dtype=float)
+    _covariance_pair(P1, P2)
+    P1, P2 = np.asarray(P1, dtype=float), np.asarray(P2, dtype=float)   # as given: the searches' numbers unchanged
 
     def objective(w: ArrayLike) -> Any:
         return ci_objective(w, P1, P2)
@@ -208,7 +223,28 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
     matplotlib.figure.Figure
         Top: tr P(ω) with each method's landing point (and the anisotropic pair's zoom); bottom: seconds per choice of
         ω, published and ours.
+
+    Raises
+    ------
+    TypeError
+        ``res`` not a mapping of OptimumResult, ``m`` not a mapping, ``seeds`` (``aniso``'s last entry) not a
+        FruitFlySeeds.
+    ValueError
+        ``P1`` or ``P2`` not covariances of one size, ``res`` empty, ``m`` without a measurement drawn, ``aniso`` not
+        four entries or its ``res`` without the closed form.
     """
+    _covariance_pair(P1, P2)
+    _results(res, "res", OptimumResult, "weight_search")
+    m = _entries(m, "m", ("foa_vectorised", "grid_vectorised", "closed_form"), "timing_benchmark().measurements")
+    if seeds is not None:
+        instance_of(seeds, FruitFlySeeds, "seeds")
+    if aniso is not None:
+        if not isinstance(aniso, tuple) or len(aniso) != 4:
+            raise ValueError("aniso must be the tuple (P1, P2, res, FruitFlySeeds) of the anisotropic pair")
+        _covariance_pair(aniso[0], aniso[1], ("aniso[0]", "aniso[1]"))
+        _entries(_results(aniso[2], "aniso[2]", OptimumResult, "weight_search"), "aniso[2]", ("closed form",),
+                 "weight_search", numbers=False)
+        instance_of(aniso[3], FruitFlySeeds, "aniso[3]")
     pub = data.WANG2024_FOA.columns
     fig, _ax = new_figure(figsize=(7.5, 8.4))
     fig.delaxes(_ax)
@@ -296,6 +332,9 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
     instance_of(fruit_fly_seeds, FruitFlySeeds, "fruit_fly_seeds")
     seed = check_seed(seed)   # an integer seed (rule 11), named
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
+    short_budget, n_open = count(short_budget, "short_budget"), count(n_open, "n_open")
+    if flat_pair is not None and (not isinstance(flat_pair, tuple) or len(flat_pair) != 2):
+        raise TypeError(f"flat_pair must be a pair (P, P) of covariances, got {shown(flat_pair, 80)}")
     pub = data.WANG2024_FOA.columns
 
     def objective(w: ArrayLike) -> Any:
@@ -351,9 +390,11 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
     PrintedWeightFacts
         FOA run at step ``k`` of the first scenario; the trace ratio and traces at that step.
     """
-    scs = list(scenarios)
-    if not scs:
-        raise ValueError("scenarios must hold at least one Scenario")
+    scs = sequence(scenarios, "scenarios", minimum=1, what="Scenario")
+    for i, sc in enumerate(scs):
+        instance_of(sc, Scenario, f"scenarios[{i}]")
+    k = _step_index(k, "k", scs[0].tracks[0].Pd.shape[0])
+    check_seeds(seeds, "seeds")
     n_grid = count(n_grid, "n_grid", minimum=2)
     w = (np.arange(1, n_grid + 1) / n_grid)[None, :, None, None]
     ones = steps = 0
@@ -365,8 +406,6 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
         ones += int(np.sum(np.all(np.diff(trace, axis=1) < 0, axis=1)))
         steps += int(trace.shape[0])
     a, b = scs[0].tracks
-    if not 0 <= k < a.Pd.shape[0]:
-        raise ValueError(f"k must be a step index in [0, {a.Pd.shape[0]}), got {k}")
     parts = (a.Pd[k], a.Pi[k], b.Pd[k], b.Pi[k])
     w_pub = float(data.WANG2024_FOA.columns["foa_optimum"][0])
     shown = (w_pub, float(data.WANG2024_FOA.columns["grid_optimum"][0]), 0.01, 0.1, 0.5, 1.0)
@@ -433,6 +472,11 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fru
         Keys (without the suffix) left out: those the prose does not quote for this pair.
     """
     instance_of(fruit_fly_seeds, FruitFlySeeds, "fruit_fly_seeds")
+    res = _entries(_results(res, "res", OptimumResult, "weight_search"), "res", _SEARCH_METHODS, "weight_search",
+                   numbers=False)
+    flat = as_array(flat, "flat", ndim=1)
+    suffix = text_argument(suffix, "suffix")
+    omit = [text_argument(o, f"omit[{i}]") for i, o in enumerate(sequence(omit, "omit"))]
     best = res["closed form"].fun
     out = {"ci_flat_range": f"{roundoff(np.ptp(flat) / abs(float(np.mean(flat))))} of its value", "ci_flat_level": readable(float(np.mean(flat)), 3), "ci_foa_evals": int(res["FOA (30 × 200)"].n_evaluations),
             "ci_scipy_evals": int(res["scipy bounded Brent"].n_evaluations),
@@ -478,19 +522,20 @@ def weight_numbers(sc: Scenario, study: FusionStudy, w_fruit_fly: ArrayLike, w_g
 
     Raises
     ------
+    TypeError
+        A step not an integer, a weight not a number, ``rng`` not a Generator.
     ValueError
-        If the weights do not have one entry per step, a step is outside the scenario, or ``study`` is not
-        ``fusion_study`` of ``sc`` (its steps, truth or local tracks differ).
+        If the weights do not have one finite entry in [0, 1] per step, ``steps`` is empty, a step is outside the
+        scenario, or ``study`` is not ``fusion_study`` of ``sc`` (its steps, truth or local tracks differ).
     """
     _study_of(sc, study)
-    w_fruit_fly, w_grid = np.asarray(w_fruit_fly, dtype=float), np.asarray(w_grid, dtype=float)
-    for name, w in (("w_fruit_fly", w_fruit_fly), ("w_grid", w_grid)):
-        if w.shape != study.steady.shape:
-            raise ValueError(f"{name} must have shape {study.steady.shape} (one weight per step), got {w.shape}")
+    w_fruit_fly = _per_step(w_fruit_fly, "w_fruit_fly", study.t.size, "step", unit=True)
+    w_grid = _per_step(w_grid, "w_grid", study.t.size, "step", unit=True)
     a, b = sc.tracks
     K = a.gains.P.shape[0]
-    if any(not 0 <= k < K for k in steps):
-        raise ValueError(f"steps must be step indices in [0, {K}), got {tuple(steps)}")
+    steps = _indices(steps, "steps", K)
+    split_step = _step_index(split_step, "split_step", K)
+    as_rng(rng, "rng")
     omegas = [ci_weight(a.gains.P[k], b.gains.P[k]) for k in steps]
     same = np.max(np.abs(study.est[StudyMethod.CI] - study.est[StudyMethod.CONVEX]))
     steady = study.steady
@@ -596,15 +641,19 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
 
     Raises
     ------
+    TypeError
+        A seed, ``k`` or ``runs`` not an integer, a covariance not numeric.
     ValueError
-        If ``k`` is not a step of the scenario.
+        If ``k`` is not a step of the scenario, ``R1`` or ``R2`` not a diagonal 2 × 2 covariance, a seed negative or
+        ``fruit_fly_seeds`` empty.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    search_seed = check_seed(search_seed, "search_seed")
+    check_seeds(fruit_fly_seeds, "fruit_fly_seeds")
+    _sensor_noises(R1, R2)
     sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)
     a, b = sc.tracks
-    K = a.gains.P.shape[0]
-    if not 0 <= k < K:
-        raise ValueError(f"k must be a step index in [0, {K}), got {k}")
+    k = _step_index(k, "k", a.gains.P.shape[0])
     P1, P2 = a.gains.P[k], b.gains.P[k]
     res = weight_search(P1, P2, np.random.default_rng(search_seed))
     return WeightPair(R1=np.asarray(R1, dtype=float), R2=np.asarray(R2, dtype=float), seed=seed, k=k, sc=sc, P1=P1,
@@ -672,10 +721,17 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
     WeightClaimInputs
         FOA's optima per seed on both pairs, its step and evaluations, the ML gap, the anisotropic closed-form ω and
         the flat objective's mean.
+
+    Raises
+    ------
+    TypeError
+        ``asym`` or ``aniso`` not a WeightPair, ``flat`` not numeric.
+    ValueError
+        ``flat`` not a 1-D array of finite numbers.
     """
     instance_of(asym, WeightPair, "asym")
     instance_of(aniso, WeightPair, "aniso")
-    flat = np.asarray(flat, dtype=float)
+    flat = as_array(flat, "flat", ndim=1)
     return WeightClaimInputs(fruit_fly_seeds=asym.fruit_fly_seeds, fruit_fly_step=asym.k,
                              foa_evaluations=asym.res["FOA (30 × 200)"].n_evaluations, ml_gap=asym.ml_gap(),
                              fruit_fly_seeds_aniso=aniso.fruit_fly_seeds, omega_aniso=aniso.res["closed form"].x,
