@@ -648,10 +648,13 @@ def use_book_tables(shell: object | None = None) -> None:
         fmt.for_type(kind, html)
 
 
-def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "") -> Any:
+def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "",
+           texts: Collection[str] = ()) -> Any:
     """The rule of every chapter function that reads a table another function made (fuzz 18/19, class D): ``tab``
-    when it is a DataFrame holding ``columns`` (and the index levels ``index``), not empty; TypeError/ValueError
-    naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside."""
+    when it is a DataFrame holding ``columns`` (and the index levels ``index``), not empty, and every cell of the
+    columns ``texts`` (statuses, labels the caller parses) a str, not a missing value; TypeError/ValueError
+    naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside,
+    nor a missing cell read as no status."""
     if not isinstance(tab, pd.DataFrame):
         raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
                         f"{type(tab).__name__}")
@@ -660,4 +663,9 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
         raise ValueError(f"{name} lacks the columns or index levels {missing}{f' (a result of {maker} holds them)' if maker else ''}")
     if tab.empty:
         raise ValueError(f"{name} is empty")
+    for c in texts:
+        bad = [i for i, v in zip(tab.index, tab[c]) if not isinstance(v, str)]
+        if bad:
+            raise ValueError(f"{name}[{c!r}] must hold a text in every row{f' (as {maker} gives it)' if maker else ''}, "
+                             f"got {shown(tab.loc[bad[0], c])} in row {shown(bad[0])}")
     return tab

@@ -24,7 +24,7 @@ from fusion.book.chapters.lecture_wavelets.verdicts import (
     sign_conjunction,
     status_text,
 )
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glue_prefix
 from fusion._shown import shown
 
 __all__ = [
@@ -424,14 +424,13 @@ def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValu
     Raises
     ------
     TypeError
-        ``e26`` not a SignalStudy or ``block`` not an integer.
+        ``e26`` not a SignalStudy, ``block`` not an integer or ``key`` not a str.
     ValueError
         ``e26`` without the normaliser ``"max"``, ``block`` below :data:`~fusion.book.rulebook.MIN_RUNS` or larger
         than E2.6's runs, ``key`` not an identifier.
     """
     instance_of(e26, SignalStudy, "e26")
-    if not isinstance(key, str) or not key.isidentifier():
-        raise ValueError(f"key must be a glue key prefix (letters, digits and underscores), got {shown(key, 60)}")
+    key = _glue_prefix(key, "key")
     rows = _seed_rows(e26, block)[:-1]
     st = [c.status() for _, c in rows]
     mx = _e26_case(e26, "max", "e26")

@@ -13,7 +13,7 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.book.chapters.lecture_wavelets.verdicts import _metric_label, sensor_conjunction
 from fusion.scenarios.wavelet_sensors import VarianceStudy
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glue_prefix
 from fusion._docstrings import ParameterDocs
 
 __all__ = ["table_variance", "glue_variance", "glue_weighting"]
@@ -128,8 +128,16 @@ def glue_weighting(v: VarianceStudy, key: str = "wwt") -> GlueValues:
         interval (×10⁴, 3 decimals); per sensor, the reconstruction's paired difference (×10⁴, 2 decimals),
         its interval, its median (×10⁴), the share of runs in which the credibility weights win and the tail
         index (R3); the number of sensors whose reconstruction is better with the credibility weights.
+
+    Raises
+    ------
+    TypeError
+        ``v`` not a VarianceStudy, ``key`` not a str.
+    ValueError
+        ``key`` not a glue key prefix (letters, digits and underscores).
     """
     instance_of(v, VarianceStudy, "v")
+    key = _glue_prefix(key, "key")
     c = _weighting(v)
     mean, lo, hi = c.interval()
     d: dict[str, tuple[float, int]] = {"fused_batch": (1e4 * float(np.mean(v.fused_mse["batch"])), 3),
