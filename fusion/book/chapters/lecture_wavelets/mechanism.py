@@ -86,7 +86,10 @@ _E26_NAMES = {"denoise-first": "reconstructed", "fuse-first": "fuse-first", "den
 
 
 def _is_primary(m: MechanismStudy, lab: str, e26: SignalStudy | None) -> bool:
-    """Whether setting ``lab`` of the mechanism study is the primary reading, which E2.6 decides."""
+    """Whether setting ``lab`` of the mechanism study is the primary reading, which E2.6 decides (the first read of
+    ``e26`` by every function of this module: TypeError naming it if it is neither None nor a SignalStudy)."""
+    if e26 is not None:
+        instance_of(e26, SignalStudy, "e26")
     if e26 is None or m.kind != PRIMARY[0]:
         return False
     cfg = m.configs[m.labels.index(lab)]
