@@ -24,6 +24,7 @@ from fusion.book.chapters.lecture_wavelets.verdicts import (
 )
 from fusion.scenarios.wavelet_sensors import MechanismStudy, SignalStudy
 from fusion.book.glue import GlueValues
+from fusion.book._few_runs import studies_runs_named
 from fusion._docstrings import ParameterDocs
 
 __all__ = ["table_mechanism", "table_sensitivity", "table_sensitivity_display", "figure_mechanism", "glue_mechanism"]
@@ -135,6 +136,7 @@ def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:
 
 
 @_PARAMS("m")
+@studies_runs_named("m", "e26")  # rule R4 named by the study argument
 def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None, part: str = "all") -> pd.DataFrame:
     """:func:`table_sensitivity` at 2 decimals (text), with the verdicts for every sensor under each setting.
 
@@ -153,6 +155,13 @@ def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None,
         The columns of :func:`table_sensitivity`, the runs behind the verdicts and, for all four sensors at
         once (paired 95 % intervals): reconstructed MSE < raw, reconstructed MSE < own denoised, lecture's
         order < fuse first.
+
+    Raises
+    ------
+    TypeError
+        ``m`` not a MechanismStudy, ``e26`` neither None nor a SignalStudy.
+    ValueError
+        ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare runs), named.
     """
     instance_of(m, MechanismStudy, "m")
     tab = table_sensitivity(m).map(lambda v: f"{v:.2f}")
@@ -221,6 +230,7 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
 
 @_PARAMS("m")
 @_lec_glue
+@studies_runs_named("m", "e26")  # rule R4 named by the study argument
 def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueValues:
     """Glue values of the mechanism study (keys ``lec_wm_*``).
 
@@ -228,6 +238,13 @@ def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueVal
     ----------
     e26 : SignalStudy, optional
         E2.6: the primary setting's verdicts and its fuse-first interval come from it.
+
+    Raises
+    ------
+    TypeError
+        ``m`` not a MechanismStudy, ``e26`` neither None nor a SignalStudy.
+    ValueError
+        ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare runs), named.
     """
     instance_of(m, MechanismStudy, "m")
     d: dict[str, tuple[float, int]] = {}
