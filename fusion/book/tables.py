@@ -666,6 +666,7 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     for c in texts:
         bad = [i for i, v in zip(tab.index, tab[c]) if not isinstance(v, str)]
         if bad:
-            raise ValueError(f"{name}[{c!r}] must hold a text in every row{f' (as {maker} gives it)' if maker else ''}, "
-                             f"got {shown(tab.loc[bad[0], c])} in row {shown(bad[0])}")
+            made = f" (as {maker} gives it)" if maker else ""
+            raise ValueError(f"{name}[{c!r}] must hold a text in every row{made}, got {shown(tab.loc[bad[0], c])} in "
+                             f"row {shown(bad[0])}")
     return tab

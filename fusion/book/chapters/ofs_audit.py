@@ -226,8 +226,8 @@ def _order(order: object, shape: tuple[int, int]) -> NDArray[np.intp]:
         raise TypeError(f"order must hold integers (0-based observation indices), got dtype {o.dtype}")
     H, n_obs = shape
     if o.shape not in ((n_obs,), (1, n_obs), (H, n_obs)):
-        raise ValueError(f"order must have shape ({n_obs},) or ({H}, {n_obs}) (the observations of t1 and its H variants), "
-                         f"got {o.shape}")
+        raise ValueError(f"order must have shape ({n_obs},) or ({H}, {n_obs}) (the observations of t1 and its H "
+                         f"variants), got {o.shape}")
     o = np.broadcast_to(o.astype(np.intp), (H, n_obs))
     if not np.all(np.sort(o, axis=1) == np.arange(n_obs)):
         raise ValueError("order must be a permutation of the observations")

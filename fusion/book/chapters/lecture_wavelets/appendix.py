@@ -254,7 +254,8 @@ def glue_lengths(tab: pd.DataFrame) -> GlueValues:
         ``tab`` empty, without the columns of :func:`table_lengths`, with no row at I = 1024, a status cell that is
         not a text or a gain error that is not a finite number >= 0 (TypeError for a non-number).
     """
-    _frame(tab, "tab", (*_ACCURACY, GAIN_ERROR_4, HELPS_TYPICAL), maker="table_lengths", texts=(*_ACCURACY, HELPS_TYPICAL))
+    _frame(tab, "tab", (*_ACCURACY, GAIN_ERROR_4, HELPS_TYPICAL), maker="table_lengths",
+           texts=(*_ACCURACY, HELPS_TYPICAL))
     if 1024 not in tab.index:
         raise ValueError("tab must hold the chapter's I = 1024")
     recs = list(_ACCURACY)

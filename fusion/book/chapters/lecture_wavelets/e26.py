@@ -180,8 +180,8 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> Gl
     TypeError
         ``e`` not a SignalStudy, ``spike`` not a number or ``first`` not an integer.
     ValueError
-        ``e`` without the normaliser ``"max"`` or of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4), ``spike`` negative or not finite, ``first``
-        below :data:`~fusion.book.rulebook.MIN_RUNS`.
+        ``e`` without the normaliser ``"max"`` or of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4),
+        ``spike`` negative or not finite, ``first`` below :data:`~fusion.book.rulebook.MIN_RUNS`.
     """
     instance_of(e, SignalStudy, "e")
     spike = scalar(spike, "spike", lo=0.0)  # NaN would count no run and a negative spike every run (fuzz 18, E15)
@@ -266,7 +266,8 @@ def glue_equal_gains(e1: SignalStudy) -> GlueValues:
     TypeError
         ``e1`` not a SignalStudy.
     ValueError
-        ``e1`` without the normalisers ``"max"`` and ``"max-raw"`` (another study's cases), or of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4).
+        ``e1`` without the normalisers ``"max"`` and ``"max-raw"`` (another study's cases), or of fewer than
+        :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4).
     """
     instance_of(e1, SignalStudy, "e1")
     c, _ = _e26_case(e1, "max", "e1"), _e26_case(e1, "max-raw", "e1")  # both read: checked before any work

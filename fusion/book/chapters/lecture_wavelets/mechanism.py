@@ -161,7 +161,8 @@ def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None,
     TypeError
         ``m`` not a MechanismStudy, ``e26`` neither None nor a SignalStudy.
     ValueError
-        ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare runs), named.
+        ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare runs),
+        named.
     """
     instance_of(m, MechanismStudy, "m")
     tab = table_sensitivity(m).map(lambda v: f"{v:.2f}")
@@ -244,7 +245,8 @@ def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueVal
     TypeError
         ``m`` not a MechanismStudy, ``e26`` neither None nor a SignalStudy.
     ValueError
-        ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare runs), named.
+        ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare runs),
+        named.
     """
     instance_of(m, MechanismStudy, "m")
     d: dict[str, tuple[float, int]] = {}

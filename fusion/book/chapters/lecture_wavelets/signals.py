@@ -63,7 +63,8 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
     TypeError
         ``sg`` not a SignalStudy, ``e26`` neither None nor a SignalStudy.
     ValueError
-        ``sg`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare runs), named.
+        ``sg`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare
+        runs), named.
     """
     instance_of(sg, SignalStudy, "sg")
     rows = {}
@@ -114,7 +115,8 @@ def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
     TypeError
         ``sg`` not a SignalStudy, ``e26`` neither None nor a SignalStudy.
     ValueError
-        ``sg`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare runs), named.
+        ``sg`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare
+        runs), named.
     """
     instance_of(sg, SignalStudy, "sg")
     d: dict[str, tuple[float, int]] = {}
