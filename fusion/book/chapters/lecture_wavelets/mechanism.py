@@ -5,6 +5,7 @@ correlation, the wavelet settings and the order of the steps.
 from __future__ import annotations
 
 from fusion._counts import count, distinct, index, sequence
+from fusion._docstrings import with_sections
 from fusion._validation import instance_of
 
 import numpy as np
@@ -38,6 +39,13 @@ FUSE_FIRST_E4 = "fuse first ×10⁴"
 
 #: The parameter of this module's functions, documented once.
 _PARAMS = ParameterDocs({"m": "MechanismStudy\n    Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`."})
+
+#: The Raises section of the functions that judge the runs of ``m`` and ``e26`` (written once).
+_RAISES = with_sections(raises="""TypeError
+    ``m`` not a MechanismStudy, ``e26`` neither None nor a SignalStudy.
+ValueError
+    ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare
+    runs), named.""")
 
 
 @_PARAMS("m")
@@ -136,6 +144,7 @@ def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:
 
 
 @_PARAMS("m")
+@_RAISES
 @studies_runs_named("m", "e26")  # rule R4 named by the study argument
 def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None, part: str = "all") -> pd.DataFrame:
     """:func:`table_sensitivity` at 2 decimals (text), with the verdicts for every sensor under each setting.
@@ -155,14 +164,6 @@ def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None,
         The columns of :func:`table_sensitivity`, the runs behind the verdicts and, for all four sensors at
         once (paired 95 % intervals): reconstructed MSE < raw, reconstructed MSE < own denoised, lecture's
         order < fuse first.
-
-    Raises
-    ------
-    TypeError
-        ``m`` not a MechanismStudy, ``e26`` neither None nor a SignalStudy.
-    ValueError
-        ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare runs),
-        named.
     """
     instance_of(m, MechanismStudy, "m")
     tab = table_sensitivity(m).map(lambda v: f"{v:.2f}")
@@ -231,6 +232,7 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
 
 @_PARAMS("m")
 @_lec_glue
+@_RAISES
 @studies_runs_named("m", "e26")  # rule R4 named by the study argument
 def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueValues:
     """Glue values of the mechanism study (keys ``lec_wm_*``).
@@ -239,14 +241,6 @@ def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueVal
     ----------
     e26 : SignalStudy, optional
         E2.6: the primary setting's verdicts and its fuse-first interval come from it.
-
-    Raises
-    ------
-    TypeError
-        ``m`` not a MechanismStudy, ``e26`` neither None nor a SignalStudy.
-    ValueError
-        ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare runs),
-        named.
     """
     instance_of(m, MechanismStudy, "m")
     d: dict[str, tuple[float, int]] = {}

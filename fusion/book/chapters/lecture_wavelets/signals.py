@@ -3,6 +3,7 @@ r"""The signal × threshold-rule verdicts of chapter 03 and the normalisers' num
 
 from __future__ import annotations
 
+from fusion._docstrings import with_sections
 from fusion._validation import instance_of
 
 import numpy as np
@@ -17,6 +18,13 @@ from fusion.book.glue import GlueValues
 from fusion.book._few_runs import studies_runs_named
 
 __all__ = ["QUESTIONS", "table_signals", "glue_signals"]
+
+#: The Raises section of the functions that judge the runs of ``sg`` and ``e26`` (written once).
+_RAISES = with_sections(raises="""TypeError
+    ``sg`` not a SignalStudy, ``e26`` neither None nor a SignalStudy.
+ValueError
+    ``sg`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare
+    runs), named.""")
 
 
 #: The four questions of the signal table, one per record: (short id, column, A, B, metric).
@@ -33,6 +41,7 @@ _NORM_COLUMNS = ("RMS gain error of max, sensor 3", "median normaliser: MSE < ow
                  "max of the raw data: MSE < own denoised", "data variance over time < raw and < own denoised")
 
 
+@_RAISES
 @studies_runs_named("sg", "e26")  # rule R4 named by the study argument
 def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "all") -> pd.DataFrame:
     """Verdict of each question for every sensor at once, under each signal and threshold rule (max normaliser).
@@ -57,14 +66,6 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
         that decide it), the temporal variance of the data against the raw and the denoised data for the
         constant measurand, the RMS gain error of the maximum for sensor 3, and the question "MSE <
         own denoised" with the median normaliser and with the maximum of the raw data instead.
-
-    Raises
-    ------
-    TypeError
-        ``sg`` not a SignalStudy, ``e26`` neither None nor a SignalStudy.
-    ValueError
-        ``sg`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare
-        runs), named.
     """
     instance_of(sg, SignalStudy, "sg")
     rows = {}
@@ -93,6 +94,7 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
     return tab[norm] if part == "normalisers" else tab.drop(columns=norm)
 
 
+@_RAISES
 @studies_runs_named("sg", "e26")  # rule R4 named by the study argument
 def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
     """Glue values of the signal × rule study (keys ``lec_ws_*``).
@@ -109,14 +111,6 @@ def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
         every sensor raw / denoised / reconstructed, their error and temporal variances ×10⁴, the RMS
         gain errors of the maximum (and of the median and the raw maximum) and the reconstruction's MSE with
         those normalisers; counts of (signal, rule) cells in which each question holds.
-
-    Raises
-    ------
-    TypeError
-        ``sg`` not a SignalStudy, ``e26`` neither None nor a SignalStudy.
-    ValueError
-        ``sg`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare
-        runs), named.
     """
     instance_of(sg, SignalStudy, "sg")
     d: dict[str, tuple[float, int]] = {}
