@@ -667,6 +667,6 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
         bad = [i for i, v in zip(tab.index, tab[c]) if not isinstance(v, str)]
         if bad:
             made = f" (as {maker} gives it)" if maker else ""
-            raise ValueError(f"{name}[{c!r}] must hold a text in every row{made}, got {shown(tab.loc[bad[0], c])} in "
-                             f"row {shown(bad[0])}")
+            raise ValueError(f"{name}[{shown(c)}] must hold a text in every row{made}, got "
+                             f"{shown(tab.loc[bad[0], c])} in row {shown(bad[0])}")
     return tab

@@ -33,6 +33,7 @@ from fusion.book._few_runs import reader_runs_named
 from fusion.book.glue import GlueValues
 from fusion._counts import count
 from fusion._validation import instance_of
+from fusion._shown import shown
 
 __all__ = [
     "evidence",
@@ -404,7 +405,7 @@ def evidence(seed: int = SEED, runs: int = N_RUNS, claims: ClaimsFile | None = N
     if claims is not None:
         instance_of(claims, ClaimsFile, "claims")
         if claims.source != SOURCE:
-            raise ValueError(f"claims must be the claim file of {SOURCE!r}, got that of {claims.source!r}")
+            raise ValueError(f"claims must be the claim file of {shown(SOURCE)}, got that of {shown(claims.source)}")
     cf = claims or load_claims(claims_dir() / f"{SOURCE}.yaml")
     out: dict[str, dict[str, Evidence]] = {}
     for spec in cf.records:
