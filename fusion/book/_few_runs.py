@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import inspect
+import numbers
 from collections.abc import Callable, Iterator
 from typing import Any, TypeVar
 
@@ -59,3 +61,25 @@ def reader_runs_named(fn: _F) -> _F:
         with runs_named("runs", "the argument runs"):
             return fn(*args, **kwargs)
     return named  # type: ignore[return-value]
+
+
+def studies_runs_named(*names: str) -> Callable[[_F], _F]:
+    """A function that builds comparisons from the studies it is given as the arguments ``names`` (each with a
+    ``runs``) and takes no ``reason``: its rule R4 refusal names the study arguments with fewer runs than the
+    minimum (every one of ``names`` if none has a ``runs`` below it); signature and docstring kept."""
+    def decorate(fn: _F) -> _F:
+        signature = inspect.signature(fn)
+
+        @functools.wraps(fn)
+        def named(*args: Any, **kwargs: Any) -> Any:
+            try:
+                return fn(*args, **kwargs)
+            except FewRunsError as e:
+                given = signature.bind(*args, **kwargs).arguments
+                short = [n for n in names if isinstance(getattr(given.get(n), "runs", None), numbers.Integral)
+                         and given[n].runs < e.minimum] or list(names)
+                raise ValueError(f"{' and '.join(short)} gives paired comparisons of {e.runs} runs, fewer than the "
+                                 f"{e.minimum} rule R4 asks without a reason (this function takes none): give a study "
+                                 f"of at least {e.minimum} runs") from e
+        return named  # type: ignore[return-value]
+    return decorate

@@ -58,6 +58,17 @@ def _check_finite(key: str, value: object) -> None:
         raise ValueError(f"values[{shown(key)}] must be finite, got {shown(value)} (a glued number is printed in the book)")
 
 
+def _glue_prefix(prefix: object, name: str) -> str:
+    """A glue-key prefix argument (the rule of every chapter function that names its glue keys after a caller's
+    prefix, fuzz 18 F/E): a str (TypeError naming ``name`` otherwise) that keeps the keys identifiers (a claim text's
+    ``{name}``; ValueError naming ``name`` otherwise); returned unchanged."""
+    if not isinstance(prefix, str):
+        raise TypeError(f"{name} must be a glue key prefix (a str), got {type(prefix).__name__} {shown(prefix, 60)}")
+    if not f"{prefix}_x".isidentifier():
+        raise ValueError(f"{name} must be a glue key prefix (letters, digits and underscores), got {shown(prefix, 60)}")
+    return prefix
+
+
 def _glued_cell(table: object, row: object, column: object, name: str, lo: float | None = None,
                 hi: float | None = None) -> float:
     """The cell ``table.loc[row, column]`` that a chapter glues, as a float by the glue rule (fuzz 22b, V): the row

@@ -226,7 +226,8 @@ def _order(order: object, shape: tuple[int, int]) -> NDArray[np.intp]:
         raise TypeError(f"order must hold integers (0-based observation indices), got dtype {o.dtype}")
     H, n_obs = shape
     if o.shape not in ((n_obs,), (1, n_obs), (H, n_obs)):
-        raise ValueError(f"order must have shape ({n_obs},) or ({H}, {n_obs}), got {o.shape}")
+        raise ValueError(f"order must have shape ({n_obs},) or ({H}, {n_obs}) (the observations of t1 and its H "
+                         f"variants), got {o.shape}")
     o = np.broadcast_to(o.astype(np.intp), (H, n_obs))
     if not np.all(np.sort(o, axis=1) == np.arange(n_obs)):
         raise ValueError("order must be a permutation of the observations")
@@ -367,7 +368,7 @@ def score(mean: ArrayLike, ofs: ArrayLike, truth: float = _TRUTH) -> dict[str, N
     Parameters
     ----------
     mean, ofs : array_like, shape (H, n_obs)
-        Arithmetic means and optimal-set values of each hypothesis (°C).
+        Arithmetic means and optimal-set values of each hypothesis (°C); shape (n_obs,) is one hypothesis.
     truth : float
         True temperature (°C).
 

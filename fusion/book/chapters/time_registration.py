@@ -24,7 +24,7 @@ from fusion._validation import (as_array, as_times, distinct, instance_of, one_o
                                 shown, std_scalar, text)
 from fusion._validation import template as format_template
 from fusion.book.style import METHOD_LABELS, color, new_figure
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glued_cell
 from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
@@ -928,7 +928,8 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
     TypeError
         ``bench`` is not a DataFrame.
     ValueError
-        ``bench`` lacks a row (class, method) or a column read here.
+        ``bench`` lacks a row (class, method) or a column read here, or a cell read here is not a finite number
+        (an exact MSE not >= 0; TypeError for a non-number).
     """
     instance_of(bench, pd.DataFrame, "bench")
     rows = [(BenchClass.OFFLINE, m) for m in (RegMethod.QLS_NEXT, RegMethod.RTS_SMOOTHER, RegMethod.CUBIC_SPLINE)]
@@ -939,10 +940,14 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
         raise ValueError(f"bench lacks the rows or columns {missing} (it must be the output of benchmark_table)")
     off = bench.loc[BenchClass.OFFLINE]
     rt_ = bench.loc[BenchClass.REAL_TIME]
-    return {"reg_b_qls": off.loc[RegMethod.QLS_NEXT, EXACT_MSE],
-            "reg_b_rts": off.loc[RegMethod.RTS_SMOOTHER, EXACT_MSE],
-            "reg_b_spline": off.loc[RegMethod.CUBIC_SPLINE, EXACT_MSE],
-            "reg_b_qls_lo": off.loc[RegMethod.QLS_NEXT, CI_LOW],
-            "reg_b_qls_hi": off.loc[RegMethod.QLS_NEXT, CI_HIGH],
-            "reg_b_causal_lo": rt_.loc[CAUSAL_IMPROVED, CI_LOW],
-            "reg_b_causal_hi": rt_.loc[CAUSAL_IMPROVED, CI_HIGH]}
+
+    def cell(part: pd.DataFrame, method: str, column: str) -> float:  # a glued cell: a finite number (the glue rule)
+        return _glued_cell(part, method, column, "bench", lo=0.0 if column == EXACT_MSE else None)
+
+    return {"reg_b_qls": cell(off, RegMethod.QLS_NEXT, EXACT_MSE),
+            "reg_b_rts": cell(off, RegMethod.RTS_SMOOTHER, EXACT_MSE),
+            "reg_b_spline": cell(off, RegMethod.CUBIC_SPLINE, EXACT_MSE),
+            "reg_b_qls_lo": cell(off, RegMethod.QLS_NEXT, CI_LOW),
+            "reg_b_qls_hi": cell(off, RegMethod.QLS_NEXT, CI_HIGH),
+            "reg_b_causal_lo": cell(rt_, CAUSAL_IMPROVED, CI_LOW),
+            "reg_b_causal_hi": cell(rt_, CAUSAL_IMPROVED, CI_HIGH)}

@@ -153,13 +153,16 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
     TypeError
         ``crossings`` is not a DataFrame, or ``pairs`` not a sequence of pairs.
     ValueError
-        ``crossings`` lacks the columns of :func:`crossing_table`, or a pair of ``pairs`` does not cross at a
-        positive noise level (or is named in the other order).
+        ``crossings`` lacks the columns of :func:`crossing_table` or holds a σ* that is not a finite number >= 0
+        (TypeError for a non-number), or a pair of ``pairs`` does not cross at a positive noise level (or is named
+        in the other order).
     """
     instance_of(crossings, pd.DataFrame, "crossings")
-    lacking = [c for c in (BETTER_BELOW, BETTER_ABOVE) if c not in crossings.columns]
+    lacking = [c for c in (BETTER_BELOW, BETTER_ABOVE, SIGMA_STAR) if c not in crossings.columns]
     if lacking:
         raise ValueError(f"crossings lacks the columns {lacking} (it must be the output of crossing_table)")
+    if len(crossings):  # the σ* returned: finite and >= 0, as crossing_table gives them (an empty table has none)
+        as_array(crossings[SIGMA_STAR].to_numpy(), f"crossings[{SIGMA_STAR!r}]", nonnegative=True, subnormal=True)
     items = sequence(pairs, "pairs")
     for i, p in enumerate(items):
         if isinstance(p, (str, bytes)) or not isinstance(p, Sequence) or len(p) != 2:
@@ -167,7 +170,7 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
     key = list(zip(crossings[BETTER_BELOW], crossings[BETTER_ABOVE]))
     missing = [p for p in items if tuple(p) not in key]
     if missing:
-        raise ValueError(f"pairs: no crossing for {missing}")
+        raise ValueError(f"pairs: crossings holds no crossing for {missing}")
     return crossings.iloc[[key.index(tuple(p)) for p in pairs]].reset_index(drop=True)
 
 

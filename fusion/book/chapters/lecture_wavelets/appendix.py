@@ -15,7 +15,7 @@ from fusion.book.rulebook import _runs_won
 from fusion.book.chapters.lecture_wavelets.records import N_RUNS, SEED, _ACCURACY
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _holds, _q, status_text
 from fusion.scenarios.wavelet_sensors import SignalStudy
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glued_cell
 from fusion._counts import seed as check_seed
 from fusion._shown import shown
 from fusion.book.tables import _frame
@@ -145,9 +145,9 @@ def glue_typical(tab: pd.DataFrame) -> GlueValues:
     TypeError
         ``tab`` not a DataFrame.
     ValueError
-        ``tab`` empty or without the columns of :func:`table_typical`.
+        ``tab`` empty, without the columns of :func:`table_typical`, or a status cell that is not a text.
     """
-    _frame(tab, "tab", (BY_MEAN, TYPICAL_RUN), maker="table_typical")
+    _frame(tab, "tab", (BY_MEAN, TYPICAL_RUN), maker="table_typical", texts=(BY_MEAN, TYPICAL_RUN))
     mean = tab[BY_MEAN].str.split(":").str[0]
     typ = tab[TYPICAL_RUN].str.split(":").str[0]
     rep_m, rep_t = mean == "reproduced", typ == "reproduced"
@@ -251,9 +251,11 @@ def glue_lengths(tab: pd.DataFrame) -> GlueValues:
     TypeError
         ``tab`` not a DataFrame.
     ValueError
-        ``tab`` empty, without the columns of :func:`table_lengths`, or with no row at I = 1024.
+        ``tab`` empty, without the columns of :func:`table_lengths`, with no row at I = 1024, a status cell that is
+        not a text or a gain error that is not a finite number >= 0 (TypeError for a non-number).
     """
-    _frame(tab, "tab", (*_ACCURACY, GAIN_ERROR_4, HELPS_TYPICAL), maker="table_lengths")
+    _frame(tab, "tab", (*_ACCURACY, GAIN_ERROR_4, HELPS_TYPICAL), maker="table_lengths",
+           texts=(*_ACCURACY, HELPS_TYPICAL))
     if 1024 not in tab.index:
         raise ValueError("tab must hold the chapter's I = 1024")
     recs = list(_ACCURACY)
@@ -265,7 +267,7 @@ def glue_lengths(tab: pd.DataFrame) -> GlueValues:
                            "lec_wlen_other_r": int(((head[recs[0]] == "reproduced")
                                                     & (head[recs[1]] == "reproduced")).sum())}
     for i in tab.index:
-        out[f"lec_wlen_gain_{int(i)}"] = float(tab.loc[i, GAIN_ERROR_4])
+        out[f"lec_wlen_gain_{int(i)}"] = _glued_cell(tab, i, GAIN_ERROR_4, "tab", lo=0.0)  # a glued number: finite
         out[f"lec_wlen_helps_{int(i)}"] = str(tab.loc[i, "lec-wavelet-fusion-helps"])
         out[f"lec_wlen_helps_typ_{int(i)}"] = str(tab.loc[i, HELPS_TYPICAL])
     return out

@@ -24,7 +24,8 @@ from fusion.book.chapters.lecture_wavelets.verdicts import (
     sign_conjunction,
     status_text,
 )
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glue_prefix
+from fusion.book._few_runs import studies_runs_named
 from fusion._shown import shown
 
 __all__ = [
@@ -146,6 +147,7 @@ def figure_26(e: SignalStudy, sensor: int = 3, shown: int = 300) -> Figure:
     return fig
 
 
+@studies_runs_named("e")  # rule R4 named by the study argument
 def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> GlueValues:
     """Glue values of E2.6 (keys ``lec_wv_*``): MSEs, intervals, and how rare runs carry the mean.
 
@@ -178,8 +180,8 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> Gl
     TypeError
         ``e`` not a SignalStudy, ``spike`` not a number or ``first`` not an integer.
     ValueError
-        ``e`` without the normaliser ``"max"``, ``spike`` negative or not finite, ``first`` below
-        :data:`~fusion.book.rulebook.MIN_RUNS`.
+        ``e`` without the normaliser ``"max"`` or of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4),
+        ``spike`` negative or not finite, ``first`` below :data:`~fusion.book.rulebook.MIN_RUNS`.
     """
     instance_of(e, SignalStudy, "e")
     spike = scalar(spike, "spike", lo=0.0)  # NaN would count no run and a negative spike every run (fuzz 18, E15)
@@ -243,6 +245,7 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> Gl
     return out
 
 
+@studies_runs_named("e1")  # rule R4 named by the study argument
 def glue_equal_gains(e1: SignalStudy) -> GlueValues:
     """Glue values of the lecture's own model, equal gains (keys ``lec_wg1_*``).
 
@@ -263,7 +266,8 @@ def glue_equal_gains(e1: SignalStudy) -> GlueValues:
     TypeError
         ``e1`` not a SignalStudy.
     ValueError
-        ``e1`` without the normalisers ``"max"`` and ``"max-raw"`` (another study's cases).
+        ``e1`` without the normalisers ``"max"`` and ``"max-raw"`` (another study's cases), or of fewer than
+        :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4).
     """
     instance_of(e1, SignalStudy, "e1")
     c, _ = _e26_case(e1, "max", "e1"), _e26_case(e1, "max-raw", "e1")  # both read: checked before any work
@@ -424,14 +428,13 @@ def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValu
     Raises
     ------
     TypeError
-        ``e26`` not a SignalStudy or ``block`` not an integer.
+        ``e26`` not a SignalStudy, ``block`` not an integer or ``key`` not a str.
     ValueError
         ``e26`` without the normaliser ``"max"``, ``block`` below :data:`~fusion.book.rulebook.MIN_RUNS` or larger
         than E2.6's runs, ``key`` not an identifier.
     """
     instance_of(e26, SignalStudy, "e26")
-    if not isinstance(key, str) or not key.isidentifier():
-        raise ValueError(f"key must be a glue key prefix (letters, digits and underscores), got {shown(key, 60)}")
+    key = _glue_prefix(key, "key")
     rows = _seed_rows(e26, block)[:-1]
     st = [c.status() for _, c in rows]
     mx = _e26_case(e26, "max", "e26")

@@ -5,6 +5,7 @@ correlation, the wavelet settings and the order of the steps.
 from __future__ import annotations
 
 from fusion._counts import count, distinct, index, sequence
+from fusion._docstrings import with_sections
 from fusion._validation import instance_of
 
 import numpy as np
@@ -24,6 +25,7 @@ from fusion.book.chapters.lecture_wavelets.verdicts import (
 )
 from fusion.scenarios.wavelet_sensors import MechanismStudy, SignalStudy
 from fusion.book.glue import GlueValues
+from fusion.book._few_runs import studies_runs_named
 from fusion._docstrings import ParameterDocs
 
 __all__ = ["table_mechanism", "table_sensitivity", "table_sensitivity_display", "figure_mechanism", "glue_mechanism"]
@@ -37,6 +39,13 @@ FUSE_FIRST_E4 = "fuse first ×10⁴"
 
 #: The parameter of this module's functions, documented once.
 _PARAMS = ParameterDocs({"m": "MechanismStudy\n    Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`."})
+
+#: The Raises section of the functions that judge the runs of ``m`` and ``e26`` (written once).
+_RAISES = with_sections(raises="""TypeError
+    ``m`` not a MechanismStudy, ``e26`` neither None nor a SignalStudy.
+ValueError
+    ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare
+    runs), named.""")
 
 
 @_PARAMS("m")
@@ -86,7 +95,10 @@ _E26_NAMES = {"denoise-first": "reconstructed", "fuse-first": "fuse-first", "den
 
 
 def _is_primary(m: MechanismStudy, lab: str, e26: SignalStudy | None) -> bool:
-    """Whether setting ``lab`` of the mechanism study is the primary reading, which E2.6 decides."""
+    """Whether setting ``lab`` of the mechanism study is the primary reading, which E2.6 decides (the first read of
+    ``e26`` by every function of this module: TypeError naming it if it is neither None nor a SignalStudy)."""
+    if e26 is not None:
+        instance_of(e26, SignalStudy, "e26")
     if e26 is None or m.kind != PRIMARY[0]:
         return False
     cfg = m.configs[m.labels.index(lab)]
@@ -132,6 +144,8 @@ def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:
 
 
 @_PARAMS("m")
+@_RAISES
+@studies_runs_named("m", "e26")  # rule R4 named by the study argument
 def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None, part: str = "all") -> pd.DataFrame:
     """:func:`table_sensitivity` at 2 decimals (text), with the verdicts for every sensor under each setting.
 
@@ -218,6 +232,8 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
 
 @_PARAMS("m")
 @_lec_glue
+@_RAISES
+@studies_runs_named("m", "e26")  # rule R4 named by the study argument
 def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueValues:
     """Glue values of the mechanism study (keys ``lec_wm_*``).
 

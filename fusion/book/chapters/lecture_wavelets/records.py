@@ -10,7 +10,7 @@ import numpy as np
 
 from fusion._frozen import constant
 from fusion.book.study_cache import study_cache
-from fusion._validation import count, mapping_of, one_of
+from fusion._validation import count, instance_of, mapping_of, one_of
 from fusion.book import rulebook as R
 from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
 from fusion.book.ledger import Comparison, Conjunction, Evidence
@@ -58,14 +58,21 @@ STUDIES: tuple[str, ...] = ("sg", "m26", "v26", "g1", "e26", "v1", "v1r")
 ChapterStudy: TypeAlias = "SignalStudy | MechanismStudy | VarianceStudy"
 
 
+#: The type of each study of :data:`STUDIES` (what :func:`study` returns for the key).
+_STUDY_TYPES: dict[str, type] = {"sg": SignalStudy, "m26": MechanismStudy, "v26": VarianceStudy, "g1": SignalStudy,
+                                 "e26": SignalStudy, "v1": VarianceStudy, "v1r": VarianceStudy}
+
+
 def _need(st: Mapping[str, ChapterStudy]) -> int:
     """The common run count of the readings (that of the signal table); ValueError if a study is missing or has fewer,
-    TypeError (the shared rule ``mapping_of``) if ``st`` is not a mapping."""
+    TypeError (the shared rule ``mapping_of``) if ``st`` is not a mapping or a study not of its key's type."""
     if not isinstance(st, Mapping) or st:  # an empty mapping is reported below by the studies it lacks
         mapping_of(st, "st", "study", maker="study")
     missing = [k for k in STUDIES if st.get(k) is None]
     if missing:
         raise ValueError(f"st must hold the studies {missing}")
+    for k in STUDIES:  # each key's study of its own type (another study's runs would be read silently)
+        instance_of(st[k], _STUDY_TYPES[k], f"st[{k!r}]")
     runs = int(st["sg"].runs)
     short = [k for k in ("m26", "v26", "g1", "v1", "v1r") if int(st[k].runs) < runs]
     if short:
@@ -284,7 +291,8 @@ def ledger_values(st: Mapping[str, ChapterStudy]) -> GlueValues:
     Raises
     ------
     TypeError
-        ``st`` not a mapping.
+        ``st`` not a mapping, or a study not of its key's type (``sg``, ``g1`` and ``e26`` SignalStudy, ``m26``
+        MechanismStudy, ``v26``, ``v1`` and ``v1r`` VarianceStudy).
     ValueError
         ``st`` without one of :data:`STUDIES`, or a study with fewer runs than ``sg``.
     """

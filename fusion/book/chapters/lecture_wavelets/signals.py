@@ -3,6 +3,7 @@ r"""The signal × threshold-rule verdicts of chapter 03 and the normalisers' num
 
 from __future__ import annotations
 
+from fusion._docstrings import with_sections
 from fusion._validation import instance_of
 
 import numpy as np
@@ -14,8 +15,16 @@ from fusion.book.chapters.lecture_wavelets.verdicts import _q, cell, status_text
 from fusion.book.style import METHOD_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy
 from fusion.book.glue import GlueValues
+from fusion.book._few_runs import studies_runs_named
 
 __all__ = ["QUESTIONS", "table_signals", "glue_signals"]
+
+#: The Raises section of the functions that judge the runs of ``sg`` and ``e26`` (written once).
+_RAISES = with_sections(raises="""TypeError
+    ``sg`` not a SignalStudy, ``e26`` neither None nor a SignalStudy.
+ValueError
+    ``sg`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare
+    runs), named.""")
 
 
 #: The four questions of the signal table, one per record: (short id, column, A, B, metric).
@@ -32,6 +41,8 @@ _NORM_COLUMNS = ("RMS gain error of max, sensor 3", "median normaliser: MSE < ow
                  "max of the raw data: MSE < own denoised", "data variance over time < raw and < own denoised")
 
 
+@_RAISES
+@studies_runs_named("sg", "e26")  # rule R4 named by the study argument
 def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "all") -> pd.DataFrame:
     """Verdict of each question for every sensor at once, under each signal and threshold rule (max normaliser).
 
@@ -83,6 +94,8 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
     return tab[norm] if part == "normalisers" else tab.drop(columns=norm)
 
 
+@_RAISES
+@studies_runs_named("sg", "e26")  # rule R4 named by the study argument
 def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
     """Glue values of the signal × rule study (keys ``lec_ws_*``).
 

@@ -13,7 +13,8 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.book.chapters.lecture_wavelets.verdicts import _metric_label, sensor_conjunction
 from fusion.scenarios.wavelet_sensors import VarianceStudy
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glue_prefix
+from fusion.book._few_runs import studies_runs_named
 from fusion._docstrings import ParameterDocs
 
 __all__ = ["table_variance", "glue_variance", "glue_weighting"]
@@ -64,6 +65,7 @@ def _vconj(v: VarianceStudy, r: str, ref: str, metric: str = "mse") -> Conjuncti
 
 
 @_PARAMS("v")
+@studies_runs_named("v")  # rule R4 named by the study argument
 def glue_variance(v: VarianceStudy) -> GlueValues:
     """Glue values of the step-3 study (keys ``lec_wvar_*``).
 
@@ -74,6 +76,13 @@ def glue_variance(v: VarianceStudy) -> GlueValues:
         of the recursive readings against the batch variance with their 95 % intervals, the oracle
         weights' difference from the sensor's own denoised signal, and the statuses (every sensor) of
         the records under each reading as counts.
+
+    Raises
+    ------
+    TypeError
+        ``v`` not a VarianceStudy.
+    ValueError
+        ``v`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the statuses compare runs).
     """
     instance_of(v, VarianceStudy, "v")
     d: dict[str, tuple[float, int]] = {"wvar_den_1": (1e4 * v.denoised[:, 0].mean(), 2),
@@ -110,6 +119,7 @@ def _weighting(v: VarianceStudy, r: str = "batch") -> Comparison:
                       "MSE of Ŷ against S/max S, ×10⁻⁴", seed=v.seed)
 
 
+@studies_runs_named("v")  # rule R4 named by the study argument
 def glue_weighting(v: VarianceStudy, key: str = "wwt") -> GlueValues:
     """Glue values of the weighting claim (keys ``lec_<key>_*``): credibility weights against equal weights.
 
@@ -128,8 +138,17 @@ def glue_weighting(v: VarianceStudy, key: str = "wwt") -> GlueValues:
         interval (×10⁴, 3 decimals); per sensor, the reconstruction's paired difference (×10⁴, 2 decimals),
         its interval, its median (×10⁴), the share of runs in which the credibility weights win and the tail
         index (R3); the number of sensors whose reconstruction is better with the credibility weights.
+
+    Raises
+    ------
+    TypeError
+        ``v`` not a VarianceStudy, ``key`` not a str.
+    ValueError
+        ``key`` not a glue key prefix (letters, digits and underscores), ``v`` of fewer than
+        :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4).
     """
     instance_of(v, VarianceStudy, "v")
+    key = _glue_prefix(key, "key")
     c = _weighting(v)
     mean, lo, hi = c.interval()
     d: dict[str, tuple[float, int]] = {"fused_batch": (1e4 * float(np.mean(v.fused_mse["batch"])), 3),

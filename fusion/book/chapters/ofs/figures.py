@@ -210,7 +210,8 @@ def figure_mc(table: pd.DataFrame) -> Figure:
     TypeError
         ``table`` not a DataFrame.
     ValueError
-        ``table`` empty, or lacking a column or a (setting, case) row of :func:`mc_table` of the three methods.
+        ``table`` empty, lacking a column or a (setting, case) row of :func:`mc_table` of the three methods, or a
+        cell drawn (a method's MAE, the bound without failure) that is not a finite number >= 0.
     """
     instance_of(table, pd.DataFrame, "table")
     if table.empty:
@@ -225,6 +226,12 @@ def figure_mc(table: pd.DataFrame) -> Figure:
         raise ValueError(f"table lacks the rows {missing} (mc_table gives both cases of every noise setting)")
     settings = list(dict.fromkeys(table.index.get_level_values(0)))
     cases = [METHOD_LABELS[c] for c in FailureCase]               # the table's rows are labelled by them
+    # the bars and the bound drawn: finite MAEs >= 0 (a missing one would be drawn as no bar); the bound is NaN
+    # under failure by design and read only without it
+    as_array(table.loc[rows, [METHOD_LABELS[m] for m in METHODS]].to_numpy(), "table's method columns",
+             nonnegative=True, subnormal=True)
+    as_array(table.loc[[(s, cases[0]) for s in settings], BOUND_CLEAN].to_numpy(), f"table[{BOUND_CLEAN!r}]",
+             nonnegative=True, subnormal=True)
     fig, axes = new_figure(1, len(settings), figsize=(7.5, 4.0), sharey=True)
     axes = np.atleast_1d(axes)
     for ax, s_label in zip(axes, settings):

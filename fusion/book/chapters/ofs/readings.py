@@ -157,7 +157,7 @@ def family_values(z: ArrayLike, family: str = "laplace", scale: float = 2.0) -> 
     Parameters
     ----------
     z : array_like, shape (n_epochs, n_sensors)
-        Readings, °C.
+        Readings, °C; shape (n_sensors,) is one epoch.
     family : {"laplace", "gauss", "cauchy"}
         :math:`\exp(-|d|/h)` (eq. 6), :math:`\exp(-d^2/2h^2)` or :math:`1/(1 + (d/h)^2)`.
     scale : float

@@ -32,6 +32,8 @@ from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint,
 from fusion.book._few_runs import reader_runs_named
 from fusion.book.glue import GlueValues
 from fusion._counts import count
+from fusion._validation import instance_of
+from fusion._shown import shown
 
 __all__ = [
     "evidence",
@@ -389,8 +391,21 @@ def evidence(seed: int = SEED, runs: int = N_RUNS, claims: ClaimsFile | None = N
     -------
     dict
         Record id -> reading key -> evidence, for :func:`fusion.book.claims.build_ledger`.
+
+    Raises
+    ------
+    TypeError
+        ``seed`` or ``runs`` not an integer, ``claims`` neither None nor a ClaimsFile.
+    ValueError
+        ``seed`` negative, ``runs`` below 1 (or below the 100 runs rule R4 asks of a comparison), ``claims`` the
+        file of another source than :data:`SOURCE` (its records would give no evidence of this chapter).
     """
     seed = check_seed(seed)
+    runs = count(runs, "runs")
+    if claims is not None:
+        instance_of(claims, ClaimsFile, "claims")
+        if claims.source != SOURCE:
+            raise ValueError(f"claims must be the claim file of {shown(SOURCE)}, got that of {shown(claims.source)}")
     cf = claims or load_claims(claims_dir() / f"{SOURCE}.yaml")
     out: dict[str, dict[str, Evidence]] = {}
     for spec in cf.records:

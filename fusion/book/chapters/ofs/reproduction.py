@@ -170,7 +170,7 @@ def table1_by_scale(scales: ArrayLike) -> FloatArray:
     Parameters
     ----------
     scales : array_like, shape (k,)
-        Scales of eq. 6, °C (the source's factor 1/2 is scale 2).
+        Scales of eq. 6, °C (the source's factor 1/2 is scale 2); a scalar is one scale (k = 1).
 
     Returns
     -------

@@ -148,6 +148,8 @@ def _robust_relation(values: Mapping[str, Any], cls: str) -> None:
 # imports theirs): named there once it exists, so that typing.get_type_hints resolves their annotations
 from fusion.book.chapters import time_registration_robustness as _robustness  # noqa: E402
 from fusion._counts import seed as check_seed
+from fusion._counts import count
+from fusion._validation import as_times, std_scalar
 
 _robustness.RegistrationStudy = RegistrationStudy  # type: ignore[attr-defined]
 
@@ -213,9 +215,19 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
     -------
     RegistrationStudy
         The primary runs of every method of ``STUDY_METHODS`` and every reading's runs (without ``fusion``).
+
+    Raises
+    ------
+    TypeError
+        ``t1`` or ``t2`` not numeric, ``sigma`` not a number, ``runs`` or ``seed`` not an integer.
+    ValueError
+        ``t1`` or ``t2`` not finite strictly increasing 1-D times, ``sigma`` not a valid standard deviation,
+        ``runs`` below 1, ``seed`` negative.
     """
     seed = check_seed(seed)
-    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    # the arguments read before any run (an unchecked one escaped as numpy's error, or was stored as given)
+    t1, t2 = as_times(t1, "t1"), as_times(t2, "t2")
+    sigma, runs = std_scalar(sigma, "sigma"), count(runs, "runs")
     names = list(STUDY_METHODS)
     fig4 = list(FIG4) + [RegMethod.LEAST_SQUARES]
     return RegistrationStudy(

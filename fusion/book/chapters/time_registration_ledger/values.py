@@ -146,7 +146,16 @@ def nees_table(sigma: float, runs: int, seed: int) -> pd.DataFrame:
     DataFrame
         Index (truth, tuning); columns: mean NEES over runs and samples, largest mean over runs at a sample,
         share of samples whose mean lies inside the 95 % interval (3 decimals).
+
+    Raises
+    ------
+    TypeError
+        ``sigma`` not a number, ``runs`` or ``seed`` not an integer.
+    ValueError
+        ``sigma`` not a valid standard deviation (finite, positive, its square a representable variance), ``runs``
+        below 1, ``seed`` negative.
     """
+    sigma = std_scalar(sigma, "sigma")  # read before the draws (an unchecked sigma escaped as numpy's error)
     runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
     from scipy import stats
