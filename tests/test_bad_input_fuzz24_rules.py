@@ -85,3 +85,19 @@ def test_d1_every_committed_id_fits_the_pattern():
     for path in sorted((ROOT / "book" / "ledger").glob("*.json")):
         for r in json.loads(path.read_text(encoding="utf-8")).get("claims", []):
             assert _claim(r["id"]).id == r["id"]
+
+
+# --- D5: a published value has at most its printed decimals -------------------------------------------------------
+
+@pytest.mark.parametrize("published,decimals", [([1.25], 1), ([1.25, 2.0], [1, 1]), ([0.1 + 0.2], 1), ([7.5], 0)])
+def test_d5_published_value_longer_than_its_decimals_is_refused(published, decimals):
+    with pytest.raises(ValueError, match=r"published\[0\].*decimals"):
+        L.PublishedValues(published, [1.0] * len(published), decimals)
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.integers(-10**9, 10**9), st.integers(0, 6), st.integers(0, 4))
+def test_d5_a_printed_value_is_accepted_at_its_decimals_and_more(m, d, extra):
+    p = float(f"{m}e-{d}")   # the number a source prints with d decimals
+    assert L.PublishedValues([p], [p], d + extra).status() == "reproduced"
+    assert math.isfinite(L.PublishedValues([p], [p], d).published[0])
