@@ -27,6 +27,67 @@ from fusion.book import rulebook as R
 ROOT = Path(__file__).resolve().parents[1]
 
 
+# --- J: judging does not depend on the units of the runs ------------------------------------------------------------
+
+def _noise(scale: float):
+    rng = np.random.default_rng(1)
+    d, b = rng.normal(0, 1, 200), np.abs(rng.normal(5, 1, 200))
+    return (b + d) * scale, b * scale
+
+
+@pytest.mark.parametrize("scale", [1.0, 1e-6, 1e-12, 1e-13, 1e-14, 1e-20, 1e6])
+def test_j_noise_is_not_distinguishable_in_any_unit(scale):
+    a, b = _noise(scale)
+    j = R.judge_paired(a, b, "greater", 0.0)
+    assert j.status == "not distinguishable" and j.low < j.estimate < j.high
+    assert R.judge_paired(np.array([1.0, 3.0] * 100) * scale, np.full(200, 2.0) * scale, "less", 0.0).status \
+        == "not distinguishable"
+
+
+def test_j_comparison_of_small_units_prints_an_interval():
+    a, b = _noise(1e-13)
+    c = L.Comparison(a, b, "A", "B", "greater", "mse", seed=1)
+    j = c.judgement()
+    assert j.low < j.high and c.status() == "not distinguishable"
+    assert j.low / 1e-13 == pytest.approx(R.judge_paired(*_noise(1.0), "greater", 0.0).low, rel=1e-9)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(2, 40), st.integers(0, 2**32 - 1), st.sampled_from(["noise", "constant", "tie", "two-valued"]),
+       st.integers(-60, 60), st.sampled_from(["less", "greater", "equal"]), st.sampled_from([0.0, 0.05, 1.0]))
+@example(2, 0, "two-valued", -43, "less", 0.0)
+def test_j_status_is_invariant_under_a_change_of_units(half, seed, shape, k, direction, margin):
+    rng = np.random.default_rng(seed)
+    n = 2 * half
+    b = rng.uniform(1.0, 10.0, n)
+    d = {"noise": rng.normal(0.3, 1.0, n), "constant": np.full(n, 0.25), "tie": np.zeros(n),
+         "two-valued": np.array([-1.0, 1.0] * half)}[shape]
+    a = b + d
+    s = 2.0 ** k  # exact: every test of the rulebook must give the same answer
+    j1, j2 = R.judge_paired(a, b, direction, margin), R.judge_paired(a * s, b * s, direction, margin * s)
+    assert (j2.status, j2.region, j2.statistic) == (j1.status, j1.region, j1.statistic)
+    for x1, x2 in ((j1.estimate, j2.estimate), (j1.low, j2.low), (j1.high, j2.high)):
+        assert x2 == pytest.approx(x1 * s, rel=1e-12, abs=0.0)
+
+
+@pytest.mark.parametrize("scale", [1.0, 2.0**-45, 2.0**-70, 2.0**40])
+def test_j_deterministic_differences_keep_their_zero_width_interval(scale):
+    b = np.arange(1.0, 201.0) * scale
+    j = R.judge_paired(b + 0.5 * scale, b, "greater", 0.0)   # the same difference in every run (exact)
+    assert (j.status, j.estimate, j.low, j.high) == ("reproduced", 0.5 * scale, 0.5 * scale, 0.5 * scale)
+    t = R.judge_paired(b, b.copy(), "greater", 0.0)          # every run a tie
+    assert (t.status, t.estimate, t.low, t.high, t.region) == ("not distinguishable", 0.0, 0.0, 0.0, "undecided")
+
+
+def test_j_differences_all_within_round_off_are_a_tie_not_a_sign():
+    # every |A - B| below the tie rule's 1e-9 of the runs' magnitude, of both signs: a tie, never a decided sign
+    b = np.full(200, 1.0)
+    a = b + np.array([5e-10, -3e-10] * 100)
+    j = R.judge_paired(a, b, "greater", 0.0)
+    assert (j.status, j.estimate, j.low, j.high) == ("not distinguishable", 0.0, 0.0, 0.0)
+    assert not R._runs_won(a, b, "greater").any()   # the same rule as a single run's tie
+
+
 # --- K: the claim schema's identifiers match the whole text -------------------------------------------------------
 
 def _lecture003() -> dict:
