@@ -61,6 +61,7 @@ import yaml
 from fusion._frozen import constant, freeze_arrays, frozen_value, restore_frozen
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
+from fusion.book.ledger.claim import _ID  # a record's id: the schema's pattern, ClaimSpec's and Claim's check
 from fusion.book.ledger.evidence import _KIND_OF_TEST
 from fusion.book.ledger import (SOURCES, Alternative, Claim, Comparison, Conjunction, Evidence, Ledger, Unverifiable,
                                 ledger_dir)
@@ -75,9 +76,22 @@ __all__ = ["SCHEMA", "ClaimsFileError", "ReadingSpec", "ClaimSpec", "ClaimsFile"
 _TEXT = {"type": "string", "minLength": 1}
 #: What a record's ``evidence`` field may hold: ``module:function`` (the schema's pattern and ClaimSpec's check).
 _EVIDENCE = r"[A-Za-z_][\w.]*:[A-Za-z_]\w*"
+#: What a reading's ``key`` may be (the schema's pattern and ReadingSpec's check): lower-case letters, digits and
+#: ``-``, not starting with ``-``.
+_KEY = r"[a-z0-9][a-z0-9-]*"
+
+
+def _whole(pattern: str) -> str:
+    """The schema's pattern of an identifier: ``pattern`` matching the whole text. jsonschema applies a pattern
+    with :func:`re.search`, where ``$`` also matches before a final newline (``"typical-run\\n"`` would pass,
+    fuzz 24a K1): the end is ``\\Z``. One rule for every identifier of the schema (``id``, ``evidence``, a
+    reading's ``key``), checked again with :func:`re.fullmatch` by the dataclasses."""
+    return rf"^(?:{pattern})\Z"
+
+
 _READING = {
     "type": "object", "additionalProperties": False, "required": ["key", "choice", "reading"],
-    "properties": {"key": {"type": "string", "pattern": "^[a-z0-9][a-z0-9-]*$"}, "choice": _TEXT, "reading": _TEXT,
+    "properties": {"key": {"type": "string", "pattern": _whole(_KEY)}, "choice": _TEXT, "reading": _TEXT,
                    "kind": {"enum": list(R.READING_KINDS[1:])}, "settings": {"type": "object"},
                    "runs": {"type": "integer", "minimum": 1, "maximum": COUNT_CEILINGS["runs"]}},
 }
@@ -97,7 +111,7 @@ _PLAIN_SCHEMA: dict[str, Any] = {
             "type": "object", "additionalProperties": False,
             "required": ["id", "chapter", "where", "claim", "claimant", "published", "test", "link"],
             "properties": {
-                "id": {"type": "string", "pattern": "^[a-z0-9]+(-[a-z0-9]+)+$"},
+                "id": {"type": "string", "pattern": _whole(_ID)},
                 "chapter": _TEXT, "where": _TEXT,
                 "claim": {"type": "string", "minLength": 1, "maxLength": 200},
                 "claimant": {"enum": list(R.CLAIMANTS)},
@@ -116,7 +130,7 @@ _PLAIN_SCHEMA: dict[str, Any] = {
                 "assumptions": {"type": "array", "items": _TEXT},
                 "bound": _TEXT,
                 "reason": _TEXT,
-                "evidence": {"type": "string", "pattern": f"^{_EVIDENCE}$"},
+                "evidence": {"type": "string", "pattern": _whole(_EVIDENCE)},
                 "readings": {"type": "object", "additionalProperties": False,
                              "properties": {"primary": {"type": "object", "additionalProperties": False,
                                                         "required": ["choice", "reading"],
@@ -174,8 +188,9 @@ class ReadingSpec:
         A text field not a str, ``settings`` not a mapping with str keys, ``runs`` neither an integer nor None
         (``100.0`` is not a run count).
     ValueError
-        An empty ``key``; ``kind`` not a reading kind; ``runs`` below 1; ``choice`` or ``reading`` not a text
-        :func:`build_ledger` can fill (see :class:`ClaimSpec`). (``choice`` and ``reading`` may be empty: a
+        An empty ``key`` or one not of lower-case letters, digits and ``-`` (a claim file's pattern, matching the
+        whole key: ``"typical-run\\n"`` is refused); ``kind`` not a reading kind; ``runs`` below 1; ``choice`` or
+        ``reading`` not a text :func:`build_ledger` can fill (see :class:`ClaimSpec`). (``choice`` and ``reading`` may be empty: a
         record without readings has an implicit primary one.)
     """
 
@@ -187,7 +202,9 @@ class ReadingSpec:
     runs: int | None = None
 
     def __post_init__(self) -> None:
-        _nonempty(self.key, "key")
+        if not re.fullmatch(_KEY, _nonempty(self.key, "key")):
+            raise ValueError(f"key must be lower-case letters, digits and '-' (the pattern {_KEY} of a claim file), "
+                             f"got {shown(self.key)}")
         for name in ("choice", "reading"):  # "" for a record's implicit primary reading
             _format_text(text(getattr(self, name), name), name)
         one_of(self.kind, R.READING_KINDS, "kind")
@@ -541,8 +558,6 @@ def _check_baseline(baseline: Mapping[str, Any]) -> dict[str, Any]:
     return {**baseline, "defined": flag(baseline["defined"], "baseline.defined")}
 
 
-#: What a record's ``id`` may be (the schema's pattern): lower-case words joined by ``-``.
-_ID = r"[a-z0-9]+(?:-[a-z0-9]+)+"
 #: A short format spec of a text's ``{name:spec}`` field: align, sign, ``#``, ``0``, a width and a precision of at
 #: most two digits each, a grouping option and a type (``{x:.2f}``, ``{n:d}``, ``{p:.1%}``, ``{x:>8.3g}``).
 _SHORT_SPEC = r"[<>=^]?[-+ ]?#?0?\d{0,2}[,_]?(?:\.\d{1,2})?[bcdeEfFgGnosxX%]?"

@@ -608,13 +608,27 @@ def _differences(av: np.ndarray, bv: np.ndarray) -> tuple[np.ndarray, np.ndarray
     return np.where(both, 0.0, d), scale
 
 
+#: Relative size of round-off: a difference within this share of the values' magnitude is a tie (the one tie rule).
+_TIE = 1e-9
+
+
+def _round_off(x: np.ndarray | float, scale: np.ndarray | float) -> np.ndarray | bool:
+    """Whether ``x`` is within round-off of zero for values of magnitude ``scale``: |x| <= 1e-9 scale (finite ``x``).
+
+    The one tie rule of the rulebook, relative so that no judgement depends on the data's units: a run's tie
+    (:func:`_runs_won`, its own scale), and in :func:`judge_paired` every run a tie and constant differences
+    (the comparison's scale, the largest finite magnitude of its runs)."""
+    x = np.asarray(x)
+    return np.isfinite(x) & (np.abs(x) <= _TIE * np.asarray(scale))
+
+
 def _runs_won(av: np.ndarray, bv: np.ndarray, direction: str) -> np.ndarray:
     """Per run, whether A lies on the claimed side of B (above for ``"greater"``, else below): the numerator of the
     share of runs won (R3). A tie is never a win: a run whose difference is within round-off of zero
-    (|A − B| <= 1e-9 max(|A|, |B|), finite values) or undefined (both infinite). The one tie rule of
-    :func:`judge_paired` and of the chapters' sign tests (``fusion.book.chapters.lecture_wavelets``)."""
+    (|A − B| <= 1e-9 max(|A|, |B|), finite values, :func:`_round_off`) or undefined (both infinite). The one tie
+    rule of :func:`judge_paired` and of the chapters' sign tests (``fusion.book.chapters.lecture_wavelets``)."""
     d, scale = _differences(av, bv)
-    tie = np.isfinite(d) & (np.abs(d) <= 1e-9 * scale)
+    tie = _round_off(d, scale)
     return ((d > 0) if direction == "greater" else (d < 0)) & ~tie
 
 
@@ -630,6 +644,13 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     the claim by its sign when its interval lies on one side of zero (region "higher" or "lower"); when its
     interval does not, and whenever the interval is [-inf, inf], the status is "cannot be checked" (region
     "undecided", the estimate and interval as computed).
+
+    Round-off never decides (R2), whatever the units of ``a`` and ``b``: with S the largest finite magnitude
+    of their runs, differences all within round-off of zero (|A − B| <= 1e-9 S, the tie rule of a single run)
+    are a tie, estimate and interval 0; differences equal to each other within round-off (their range
+    <= 1e-9 S) are deterministic, and the interval is the zero-width [mean, mean]. Both tests are relative to
+    S, so scaling ``a``, ``b`` and ``margin`` by one factor scales the estimate and interval and leaves the
+    status and region unchanged (exactly for a power of two).
 
     Parameters
     ----------
@@ -692,13 +713,13 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
             return out("cannot be checked", "R3", "median", med, lo, hi, "undecided", True)
         return out(status_from_region(where, direction), "R3", "median", med, lo, hi, where, True)
     scale_all = float(np.max(scale)) if scale.size else 0.0
-    if np.all(np.abs(d) <= 1e-10 * scale_all):  # identical to round-off: a tie
+    if np.all(_round_off(d, scale_all)):  # identical to round-off: a tie
         where = region(0.0, 0.0, margin) if margin > 0 else "undecided"
         return out(status_from_region(where, direction), "R2", "mean", 0.0, 0.0, 0.0, where, False)
     # R3: a heavy tail is reported (with the median and the share of runs won), never a switch of statistic
     heavy = n >= HEAVY_TAIL_MIN_RUNS and ((tail < HEAVY_TAIL_INDEX) or _dominated(d))
     mean = float(np.mean(d))
-    if np.ptp(d) <= 1e-12 * max(1.0, abs(mean)):
+    if _round_off(np.ptp(d), scale_all):  # differences equal to round-off: deterministic, a zero-width interval
         lo = hi = mean
     else:
         ci = stats.ttest_1samp(d, 0.0).confidence_interval(CONFIDENCE_LEVEL)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -20,6 +21,10 @@ __all__ = [
     "Alternative",
     "Claim",
 ]
+
+#: What a record's ``id`` may be: lower-case words joined by ``-`` (one rule for a :class:`Claim` and a claim
+#: file's record, ``fusion.book.claims``; matched whole, fuzz 24a D1).
+_ID = r"[a-z0-9]+(?:-[a-z0-9]+)+"
 
 
 @dataclass(frozen=True)
@@ -88,7 +93,8 @@ class Claim:
     Parameters
     ----------
     id : str
-        Unique, ``<source-prefix>-<slug>``.
+        Unique, ``<source-prefix>-<slug>``: lower-case words (letters and digits) joined by ``-``, as in a claim
+        file (the ledger file and the book's links name the record by it).
     source : str
         BibTeX key, one of :data:`SOURCES`.
     where : str
@@ -124,7 +130,8 @@ class Claim:
         A text field not a str; ``evidence`` not an evidence class; ``assumptions`` or ``critiques`` not a
         sequence of str; ``alternatives`` not of :class:`Alternative`; ``headline`` not a bool.
     ValueError
-        Unknown ``source``, ``claimant`` or ``test``; an empty ``id``, ``where``, ``claim`` or ``link``; an empty
+        Unknown ``source``, ``claimant`` or ``test``; an ``id`` not of lower-case words joined by ``-`` (``"Yang X"``,
+        ``"yang-x\\n"``); an empty ``where``, ``claim`` or ``link``; an empty
         or repeated critique label or assumption; a headline whose claimant is not the source (R8); ``test`` and ``evidence``
         that disagree (``"published"`` with a :class:`Comparison`: the table the claim files use;
         :class:`Unverifiable` evidence fits every test, R7); ``alternatives`` repeating a reading (the same
@@ -168,7 +175,10 @@ class Claim:
         object.__setattr__(self, "headline", bool(self.headline))  # numpy's bool stored as a bool (json writes it)
         if self.source not in SOURCES:
             raise ValueError(f"source must be one of {sorted(SOURCES)}, got {shown(self.source)}")
-        for name in ("id", "where", "claim", "link"):
+        if not re.fullmatch(_ID, self.id):
+            raise ValueError(f"id must be lower-case words joined by '-' (the pattern {_ID} of a claim file), "
+                             f"got {shown(self.id)}")
+        for name in ("where", "claim", "link"):
             if not getattr(self, name).strip():
                 raise ValueError(f"{name} must not be empty")
         if self.claimant not in R.CLAIMANTS:

@@ -86,11 +86,22 @@ class PublishedValues:
         halfway between two printed values matches either (R1's tie rule).
     decimals : int or sequence of int
         Printed number of decimals of each published value: integers from 0 to 17 (the ceiling of a
-        number of decimals, ``fusion._validation.COUNT_CEILINGS``), one or one per value.
+        number of decimals, ``fusion._validation.COUNT_CEILINGS``), one or one per value. A published value
+        has at most its printed decimals (``round(p, decimals) == p``): ``1.25`` with 1 decimal is refused, since
+        R1 would then compare ours with a rounding of the published value (1.2) and a slip in ``decimals``
+        would decide the status.
     unit : str
     runs : int or None
         Monte-Carlo runs our values were computed from (keyword; ``None``, the default, for an exact
         computation). Values with a run count are stochastic: R4 applies and the reseeding sweep covers them.
+
+    Raises
+    ------
+    ValueError
+        ``published`` empty, not 1-D or not finite; ``ours`` of another shape or infinite; ``decimals`` neither
+        one count nor one per value, or fewer than a published value's decimals; ``runs`` below 1.
+    TypeError
+        ``published`` or ``ours`` not numbers; ``decimals`` not integers; ``unit`` not a str.
     """
 
     published: tuple[float, ...]
@@ -117,6 +128,11 @@ class PublishedValues:
             raise ValueError(f"decimals must hold one number or one per published value ({pub.size}), got {len(dec_l)}")
         _text(unit, "unit")
         dec = np.broadcast_to(np.array(dec_l, dtype=int), pub.shape)
+        longer = [i for i, (p, d) in enumerate(zip(pub.tolist(), dec.tolist())) if round(p, d) != p]
+        if longer:  # R1 would compare ours with the published value rounded (fuzz 24a D5)
+            i = longer[0]
+            raise ValueError(f"published[{i}] = {shown(float(pub[i]))} has more decimals than decimals[{i}] = "
+                             f"{int(dec[i])} (a published value has at most its printed decimals)")
         object.__setattr__(self, "published", tuple(float(v) for v in pub))
         object.__setattr__(self, "ours", tuple(float(v) for v in our))
         object.__setattr__(self, "decimals", tuple(int(d) for d in dec))
