@@ -648,10 +648,15 @@ def use_book_tables(shell: object | None = None) -> None:
         fmt.for_type(kind, html)
 
 
-def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "") -> Any:
+def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "",
+           numbers: Collection[str] = (), texts: Collection[str] = ()) -> Any:
     """The rule of every chapter function that reads a table another function made (fuzz 18/19, class D): ``tab``
     when it is a DataFrame holding ``columns`` (and the index levels ``index``), not empty; TypeError/ValueError
-    naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside."""
+    naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside.
+
+    The columns ``numbers`` the caller computes with hold finite real numbers (not bools, not text), the columns
+    ``texts`` it reads as text hold strings (issue 35: a NaN cell gave a NaN glue value or an unnamed error): a
+    TypeError (wrong type) or ValueError (NaN, inf) naming ``name[column]``."""
     if not isinstance(tab, pd.DataFrame):
         raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
                         f"{type(tab).__name__}")
@@ -660,4 +665,17 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
         raise ValueError(f"{name} lacks the columns or index levels {missing}{f' (a result of {maker} holds them)' if maker else ''}")
     if tab.empty:
         raise ValueError(f"{name} is empty")
+    for c in numbers:
+        vals = tab[c].to_numpy()
+        if vals.dtype.kind not in "iuf":
+            bad = next((v for v in vals if isinstance(v, (bool, np.bool_))
+                        or not isinstance(v, (int, float, np.integer, np.floating))), None)
+            if bad is not None or vals.dtype.kind == "b":
+                raise TypeError(f"{name}[{shown(c)}] must hold numbers, got {shown(vals[0] if bad is None else bad)}")
+        if not np.all(np.isfinite(vals.astype(float))):
+            raise ValueError(f"{name}[{shown(c)}] must hold finite numbers, got a NaN or an infinity")
+    for c in texts:
+        bad = next((v for v in tab[c] if not isinstance(v, str)), None)
+        if bad is not None:
+            raise TypeError(f"{name}[{shown(c)}] must hold text, got {shown(bad)}")
     return tab
