@@ -311,9 +311,21 @@ def band_agreement_k(s: AwfStudy, X: float = 0.0, tol: float = 0.1) -> int:
 @_lec_glue
 @_PARAMS("s")
 def glue_21(s: AwfStudy) -> GlueValues:
-    """Glue values of E2.1."""
+    """Glue values of E2.1.
+
+    Raises
+    ------
+    ValueError
+        ``s`` without the rows the values read: the levels X = 0 and 900, k = 100 and 1000 among its ``ks``
+        (the chapter's ``awf_study(k_max=1000, ...)``).
+    """
     instance_of(s, AwfStudy, "s")
     tab = _estimates_table(s)
+    lacking = [r for r in ((X, e, k) for X in (0.0, 900.0) for e in ("lecture", "centred") for k in (100, 1000))
+               if r not in tab.index]
+    if lacking:
+        raise ValueError(f"s lacks the rows (X, estimator, k) {lacking} that glue_21 reads: E2.1's study has the "
+                         "levels 0 and 900 and k = 100 and 1000 among its ks")
     i = s.i_compare
     V = s.variances
     bound = wt.minimum_variance(V) / s.ks[i]
