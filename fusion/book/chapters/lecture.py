@@ -8,6 +8,7 @@ the source's claims ledger; this module holds the source key and the glue helper
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import re
@@ -372,6 +373,27 @@ def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any]
     return fn
 
 
+@functools.lru_cache(maxsize=4)
+def _load_claims(path: Path, mtime_ns: int, size: int) -> Any:
+    from fusion.book import claims as cl
+
+    return cl.load(path)
+
+
+def _source_claims() -> Any:
+    """``book/claims/lecture003.yaml`` (:func:`fusion.book.claims.load`), read once per version of the file: the
+    YAML parse costs about 0.3 CPU-s, and each stochastic record's evidence function and :func:`evidence_at` read
+    the file (keyed by path, modification time and size, so an edited file is read again)."""
+    from fusion.book import claims as cl
+
+    path = cl.claims_dir() / f"{SOURCE}.yaml"
+    try:
+        st = path.stat()
+    except OSError:
+        return cl.load(path)  # its own refusal of a missing file
+    return _load_claims(path, st.st_mtime_ns, st.st_size)
+
+
 def evidence_at(records: Mapping[str, int], seed: int) -> dict[str, dict[str, Evidence]]:
     """Every reading's evidence of ``records`` through their evidence functions (:func:`fusion.book.claims.evaluate`).
 
@@ -410,7 +432,7 @@ def evidence_at(records: Mapping[str, int], seed: int) -> dict[str, dict[str, Ev
         return {}
     from fusion.book import claims as cl
 
-    cf = cl.load(cl.claims_dir() / f"{SOURCE}.yaml")
+    cf = _source_claims()
     out: dict[str, dict[str, Evidence]] = {}
     for rid, runs in checked.items():
         path = f"records[{shown(rid)}]"
