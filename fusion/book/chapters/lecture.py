@@ -8,7 +8,6 @@ the source's claims ledger; this module holds the source key and the glue helper
 
 from __future__ import annotations
 
-import functools
 import json
 import os
 import re
@@ -24,6 +23,7 @@ from matplotlib.figure import Figure, SubFigure
 from fusion._docstrings import with_sections
 from fusion.book._few_runs import runs_named
 from fusion.book.glue import GlueValues
+from fusion.book.study_cache import process_cache
 from fusion.book.ledger import (EVIDENCE_TYPES, Comparison, Conjunction, Evidence,  # noqa: F401 (readings' return hints)
                                 Unverifiable, ledger_dir)
 from fusion.book.tables import _SUPERSCRIPT, _frame, _nonfinite_word, rounded  # noqa: F401 (_frame: the chapters' table rule)
@@ -373,7 +373,7 @@ def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any]
     return fn
 
 
-@functools.lru_cache(maxsize=4)
+@process_cache(maxsize=4)
 def _load_claims(path: Path, mtime_ns: int, size: int) -> Any:
     from fusion.book import claims as cl
 
