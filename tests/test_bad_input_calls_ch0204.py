@@ -197,17 +197,17 @@ def registry() -> dict[str, dict[str, A]]:
     lw = "fusion.book.chapters.lecture_weighting."
     es = lw + "estimators."
     R[es + "awf_log_comparison"] = dict(s21=_study_arg(s21, s23), X=A(900.0, REAL + (("not a level", 5.0),)),
-                                        method=A(AwfMethod.AWF_LECTURE_NONE, ("unknown", ("int", 5))))
+                                        method=A(AwfMethod.AWF_LECTURE_NONE, ("unknown", ("int", 5), ("not in the study", AwfMethod.CHECK_AWF_CENTRED))))
     R[es + "band_agreement_k"] = dict(s=_study_arg(s21, s23), X=A(0.0, REAL + (("not a level", 5.0),)),
                                       tol=A(0.1, NONNEG))  # tol = 0: exact agreement
     for f in ("figure_21a", "figure_21b", "table_guards", "table_sweep", "sweep_comparisons"):
         R[es + f] = dict(s=_study_arg(s21, s23))
     R[es + "glue_21"] = dict(s=_study_arg(s21, s23, o["s21b"]))
-    R[es + "table_21"] = dict(s=_study_arg(s21, s23), levels=A((0.0, 100.0, 900.0), FLOATS + (("not a level", (5.0,)),)))
+    R[es + "table_21"] = dict(s=_study_arg(s21, s23), levels=A((0.0, 100.0, 900.0), FLOATS + (("not a level", (5.0,)), ("repeated", (0.0, 0.0)))))
     R[es + "glue_ar1"] = dict(a=_study_arg(o["sar"], slumv))
     R[es + "glue_lumv"] = dict(sl=_study_arg(slumv, o["sar"]))
     R[es + "glue_tail"] = dict(tl=_study_arg(o["stail"], slumv))
-    R[es + "lumv_bias"] = dict(sl=_study_arg(slumv, o["sar"]), name=A(next(iter(slumv.pair_mean)), ("unknown", ("int", 5))))
+    R[es + "lumv_bias"] = dict(sl=_study_arg(slumv, o["sar"]), name=A(next(iter(slumv.pair_mean)), ("unknown", ("int", 5), ("not a reading", AwfMethod.BEST_SENSOR))))
     R[es + "lumv_readings"] = dict(sl=_study_arg(slumv, o["sar"]))
     R[es + "table_symmetry"] = dict(s=_study_arg(o["ssym"], slumv))
 
@@ -233,8 +233,9 @@ def registry() -> dict[str, dict[str, A]]:
 
     # ---- consistency (§2.3)
     cn = lw + "consistency."
-    R[cn + "cc_log_comparison"] = dict(s=_study_arg(s23, s21), a=A(AwfMethod.CHECK_AWF_LECTURE_ABS, ("unknown", ("int", 5))),
-                                       b=A(AwfMethod.MEAN_OF_MEANS, ("unknown", ("int", 5))),
+    not_in = ("not in the study", AwfMethod.ORACLE)
+    R[cn + "cc_log_comparison"] = dict(s=_study_arg(s23, s21), a=A(AwfMethod.CHECK_AWF_LECTURE_ABS, ("unknown", ("int", 5), not_in)),
+                                       b=A(AwfMethod.MEAN_OF_MEANS, ("unknown", ("int", 5), not_in)),
                                        case=A(FaultCase.FAULT, ("unknown", ("int", 5))))
     R[cn + "check_grid"] = dict(eps_factors=A((1.0,), FLOATS + ("nested_neg_flat",)),
                                 biases=A((10.0,), FLOATS), runs=A(2, INT), seed=A(2305, SEED),

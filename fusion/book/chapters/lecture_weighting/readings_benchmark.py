@@ -111,11 +111,9 @@ def figure_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> 
     Raises
     ------
     ValueError
-        ``results`` not a benchmark's output (checked entry by entry, naming the entry), ``stab`` not
-        ``seed_stability(results)`` (another benchmark's); ``samples`` below 1.
+        As :func:`table_benchmark`: bad ``results``, a ``stab`` of another benchmark, ``samples`` below 1.
     """
-    results = _paired(results, stab)
-    samples = count(samples, "samples")
+    results, samples = _paired(results, stab), count(samples, "samples")
     fig, ax = new_figure(figsize=(7.5, 3.8))
     methods, s0 = stab.methods, stab.seeds[0]
     pos = np.arange(len(methods))
