@@ -4,6 +4,7 @@ r"""Chapter 04's appendix: sequential fusion, the James-Stein risk and the shrun
 from __future__ import annotations
 
 from fusion._validation import instance_of
+from fusion._shown import shown
 
 
 import numpy as np
@@ -257,7 +258,7 @@ def glue_james_stein(tab: pd.DataFrame, runs: int | None = None) -> GlueValues:
         raise ValueError(f"runs = {runs} is not the {made} Monte-Carlo draws that tab was made with")
     three = tab[tab.index.get_level_values("d") >= 3]
     if not np.all(np.isfinite(three[MONTE_CARLO].to_numpy(dtype=float))):  # NaN only at d = 2 (no estimate there)
-        raise ValueError(f"tab[{MONTE_CARLO!r}] must hold finite numbers for d >= 3, got a NaN or an infinity")
+        raise ValueError(f"tab[{shown(MONTE_CARLO)}] must hold finite numbers for d >= 3, got a NaN or an infinity")
     out: GlueValues = {"lec_js_runs": runs, "lec_js_max": float(three["exact"].max()),
                            "lec_js_mc_dev": round(float((three[MONTE_CARLO] - three["exact"]).abs().max()), 4)}
     for d in sorted(set(three.index.get_level_values("d"))):
