@@ -3,6 +3,7 @@ comparisons, tables, figure and glue."""
 
 from __future__ import annotations
 
+from fusion.book._few_runs import study_runs_named
 from fusion._counts import sequence
 from fusion._structures import within
 from fusion._limits import loop_work
@@ -207,6 +208,7 @@ def _grid_text(v: tuple[float, ...] | np.ndarray) -> str:
 
 
 @_PARAMS("s")
+@study_runs_named("s")
 def belief_accuracy(s: BeliefParameterStudy, kind: BeliefKind, values: tuple[float, ...]) -> Comparison:
     """E2.4b: is a belief rule, over a grid of its parameter, more accurate than the arithmetic mean?
 
@@ -239,6 +241,7 @@ def belief_accuracy(s: BeliefParameterStudy, kind: BeliefKind, values: tuple[flo
 
 
 @_PARAMS("s", "grid")
+@study_runs_named("s")
 def belief_parameter_comparison(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
                                 grid: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
                                 kind: BeliefKind = K.FUZZY) -> Comparison:
@@ -276,6 +279,7 @@ def _rmse_text(c: Comparison) -> str:
 
 
 @_PARAMS("s", "grid")
+@study_runs_named("s")
 def belief_objectivity(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
                        grid: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
                        kind: BeliefKind = K.FUZZY) -> Comparison | Unverifiable:
@@ -313,6 +317,7 @@ def belief_objectivity(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
     return Comparison(c.a, c.b, c.a_name, c.b_name, c.claim, c.metric + acc, seed=c.seed)
 
 
+@study_runs_named("s")
 def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
     """RMSE of each belief fusion of E2.4b against its parameter, and the mean spread over the primary grid.
 
@@ -346,6 +351,7 @@ def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
 
 @_lec_glue
 @_PARAMS("s")
+@study_runs_named("s")
 def glue_24b(s: BeliefParameterStudy) -> GlueValues:
     """Glue values of E2.4b (keys ``lec_bp_*``)."""
     instance_of(s, BeliefParameterStudy, "s")
@@ -408,6 +414,7 @@ def _cell(ev: Comparison | Unverifiable, c: Comparison) -> str:
     return f"{m:+.3f} [{lo:+.3f}, {hi:+.3f}], {word}"
 
 
+@study_runs_named("s")
 def table_belief_grids(s: BeliefParameterStudy) -> pd.DataFrame:
     """E2.4b's readings under every grid of :data:`BELIEF_GRIDS` and every deletion rule: fuzzy spread minus the binary one.
 
@@ -439,6 +446,7 @@ def table_belief_grids(s: BeliefParameterStudy) -> pd.DataFrame:
     return tab
 
 
+@study_runs_named("s")
 def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
     """The truncated fuzzy belief (a reading of the lecture's belief: its fusion upper limit m varied) over every grid of :data:`LIMIT_GRIDS`.
 

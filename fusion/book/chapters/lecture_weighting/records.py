@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion.book._few_runs import study_runs_named
 from fusion._frozen import constant
 from fusion._validation import count, one_of, records_of, text
 from fusion.book.rulebook import STATUSES
@@ -271,6 +272,7 @@ _FROM_STUDIES: dict[str, Callable[..., Evidence | dict[str, Evidence]]] = EVIDEN
 }
 
 
+@study_runs_named("st")
 def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Evidence | dict[str, Evidence]]:
     """Every record's evidence of chapter 02, by record id (for :func:`fusion.book.claims.build_ledger`).
 
