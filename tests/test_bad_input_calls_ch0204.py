@@ -40,10 +40,12 @@ INT = COUNT + (("bool", True), ("None", None))
 FLOATS = ("str", ("empty", ()), ("nan entry", (float("nan"),)), ("None", None))
 
 
-def _study_arg(value: Any, *others: Any) -> A:
+def _study_arg(value: Any, *others: Any, few: Any = None) -> A:
     """A study argument: refused as a str, None, and as each of ``others`` (a result of another type, or of the same
-    type from another scenario where the function pairs two arguments)."""
-    return A(value, ("str", NONE) + tuple((f"other {type(o).__name__}", o) for o in others))
+    type from another scenario where the function pairs two arguments); with ``few``, the same study of fewer runs
+    than the paired comparisons the function builds need (rule R4, named by the argument)."""
+    muts = ("str", NONE) + tuple((f"other {type(o).__name__}", o) for o in others)
+    return A(value, muts + ((("few runs", few),) if few is not None else ()))
 
 
 def _frame_arg(tab: pd.DataFrame, *cols: str) -> A:
@@ -63,12 +65,15 @@ def _without(st: dict[str, Any], key: str) -> dict[str, Any]:
     return {k: v for k, v in st.items() if k != key}
 
 
-def _st_arg(st: dict[str, Any], *keys: str, other: Any = None) -> A:
-    """A mapping of studies: refused without each key it reads, with a study of another type under it, None, a str."""
+def _st_arg(st: dict[str, Any], *keys: str, other: Any = None, few: dict[str, Any] | None = None) -> A:
+    """A mapping of studies: refused without each key it reads, with a study of another type under it, None, a str;
+    with ``few``, each of its studies of too few runs (rule R4) in turn."""
     muts: list[Any] = ["str", NONE, ("not a mapping", [1, 2])]
     for k in keys:
         muts.append((f"without {k}", _without(st, k)))
         muts.append((f"other type at {k}", dict(st, **{k: other})))
+    for k, v in (few or {}).items():
+        muts.append((f"few runs at {k}", dict(st, **{k: v})))
     return A(st, tuple(muts))
 
 
@@ -94,12 +99,17 @@ def _ch02() -> dict[str, Any]:
     slumv = sc.lumv_study(runs=400)
     ssym = sc.symmetry_study(runs=20)
     stail = sc.tail_study(runs=2000, chunk=1000, thresholds=(1.0, 10.0, 100.0))
+    # fewer runs than rule R4's 100 (the functions that build paired comparisons refuse them by their argument)
+    few = dict(s21=sc.awf_study(runs=5), s23=sc.consistency_study(runs=5, curve_draws=200),
+               s24b=sc.belief_parameter_study(snapshots=10),
+               sreg=sc.regime_study(samples=60, runs=5, change_at=30, period=40.0, window=10),
+               schg=sc.variance_change_study(samples=60, runs=5, change_at=30))
     sar = sc.ar1_study(runs=100)
     sw = ch.shift_weight_draws(draws=5)
     st = {"s21": s21, "s22": s22, "s23": s23, "s23x0": s23x0, "s24": s24, "sreg": sreg, "s24b": s24b,
           "bench": bench, "llc": llc, "slumv": slumv, "schg": schg, "ssym": ssym}
     return dict(s21=s21, s21b=s21b, s22=s22, s23=s23, s23x0=s23x0, s24=s24, s24b=s24b, sreg=sreg,
-                schg=schg, bench=bench, bench2=bench2, offset=offset, stab=sc.seed_stability(bench), stab2=sc.seed_stability(bench2),
+                schg=schg, bench=bench, bench2=bench2, offset=offset, few=few, stab=sc.seed_stability(bench), stab2=sc.seed_stability(bench2),
                 llc=llc, slumv=slumv, ssym=ssym, stail=stail, sar=sar, sw=sw, st=st)
 
 
@@ -161,7 +171,7 @@ def registry() -> dict[str, dict[str, A]]:
     o, c = _ch02(), _ch04()
     s21, s22, s23, s24, s24b = o["s21"], o["s22"], o["s23"], o["s24"], o["s24b"]
     sreg, schg, slumv, llc = o["sreg"], o["schg"], o["slumv"], o["llc"]
-    st = o["st"]
+    st, few = o["st"], o["few"]
     R: dict[str, dict[str, A]] = {}
 
     # ---- fusion.book.chapters.lecture
@@ -196,13 +206,15 @@ def registry() -> dict[str, dict[str, A]]:
     # ---- chapter 02: estimators (E2.1)
     lw = "fusion.book.chapters.lecture_weighting."
     es = lw + "estimators."
-    R[es + "awf_log_comparison"] = dict(s21=_study_arg(s21, s23), X=A(900.0, REAL + (("not a level", 5.0),)),
+    R[es + "awf_log_comparison"] = dict(s21=_study_arg(s21, s23, few=few["s21"]), X=A(900.0, REAL + (("not a level", 5.0),)),
                                         method=A(AwfMethod.AWF_LECTURE_NONE, ("unknown", ("int", 5), ("not in the study", AwfMethod.CHECK_AWF_CENTRED))))
     R[es + "band_agreement_k"] = dict(s=_study_arg(s21, s23), X=A(0.0, REAL + (("not a level", 5.0),)),
                                       tol=A(0.1, NONNEG))  # tol = 0: exact agreement
-    for f in ("figure_21a", "figure_21b", "table_guards", "table_sweep", "sweep_comparisons"):
+    for f in ("figure_21a", "figure_21b", "table_guards"):
         R[es + f] = dict(s=_study_arg(s21, s23))
-    R[es + "glue_21"] = dict(s=_study_arg(s21, s23, o["s21b"]))
+    for f in ("table_sweep", "sweep_comparisons"):
+        R[es + f] = dict(s=_study_arg(s21, s23, few=few["s21"]))
+    R[es + "glue_21"] = dict(s=_study_arg(s21, s23, o["s21b"], few=few["s21"]))
     R[es + "table_21"] = dict(s=_study_arg(s21, s23), levels=A((0.0, 100.0, 900.0), FLOATS + (("not a level", (5.0,)), ("repeated", (0.0, 0.0)))))
     R[es + "glue_ar1"] = dict(a=_study_arg(o["sar"], slumv))
     R[es + "glue_lumv"] = dict(sl=_study_arg(slumv, o["sar"]))
@@ -214,9 +226,9 @@ def registry() -> dict[str, dict[str, A]]:
     # ---- regime (E2.1b)
     rg = lw + "regime."
     for f in ("glue_regime", "regime_comparisons", "table_estimators", "table_regime"):
-        R[rg + f] = dict(s=_study_arg(sreg, schg))
+        R[rg + f] = dict(s=_study_arg(sreg, schg, few=few["sreg"] if "table" not in f else None))
     for f in ("change_comparisons", "glue_changes", "table_changes"):
-        R[rg + f] = dict(s=_study_arg(schg, sreg))
+        R[rg + f] = dict(s=_study_arg(schg, sreg, few=few["schg"]))
     R[rg + "figure_regime"] = dict(s=_study_arg(sreg, schg), scenario=A(RegimeScenario.SINE_SWAP, ("unknown", ("int", 5))),
                                    smooth=A(25, INT + (("huge", 10**6),)))
 
@@ -234,7 +246,7 @@ def registry() -> dict[str, dict[str, A]]:
     # ---- consistency (§2.3)
     cn = lw + "consistency."
     not_in = ("not in the study", AwfMethod.ORACLE)
-    R[cn + "cc_log_comparison"] = dict(s=_study_arg(s23, s21), a=A(AwfMethod.CHECK_AWF_LECTURE_ABS, ("unknown", ("int", 5), not_in)),
+    R[cn + "cc_log_comparison"] = dict(s=_study_arg(s23, s21, few=few["s23"]), a=A(AwfMethod.CHECK_AWF_LECTURE_ABS, ("unknown", ("int", 5), not_in)),
                                        b=A(AwfMethod.MEAN_OF_MEANS, ("unknown", ("int", 5), not_in)),
                                        case=A(FaultCase.FAULT, ("unknown", ("int", 5))))
     R[cn + "check_grid"] = dict(eps_factors=A((1.0,), FLOATS + ("nested_neg_flat",)),
@@ -244,14 +256,14 @@ def registry() -> dict[str, dict[str, A]]:
                                                                     ("past the end", (10, 200)), ("floats", (1.5, 2.5)))),
                                 samples=A(30, INT))
     for f in ("figure_23", "glue_23", "table_23"):
-        R[cn + f] = dict(s=_study_arg(s23, s21))
+        R[cn + f] = dict(s=_study_arg(s23, s21, few=few["s23"] if f == "glue_23" else None))
 
     # ---- belief (§2.4)
     bl = lw + "belief."
-    R[bl + "belief_accuracy"] = dict(s=_study_arg(s24b, s24), kind=A(BeliefKind.FUZZY, ("unknown", ("int", 5))),
+    R[bl + "belief_accuracy"] = dict(s=_study_arg(s24b, s24, few=few["s24b"]), kind=A(BeliefKind.FUZZY, ("unknown", ("int", 5))),
                                      values=A((1.0, 2.0), FLOATS + (("not a parameter", (3.0,)),)))
     for f in ("belief_objectivity", "belief_parameter_comparison"):
-        R[bl + f] = dict(s=_study_arg(s24b, s24), other=A(BeliefKind.DELETION, ("unknown", ("int", 5))),
+        R[bl + f] = dict(s=_study_arg(s24b, s24, few=few["s24b"]), other=A(BeliefKind.DELETION, ("unknown", ("int", 5))),
                          grid=A(((1.0, 2.0), (1.0, 2.0)), ("str", ("one grid", ((1.0, 2.0),)),
                                                            ("not a parameter", ((3.0,), (1.0,))),
                                                            ("empty grid", ((), (1.0,))))),
@@ -260,7 +272,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[bl + "figure_24"] = dict(s=_study_arg(s24, s24b))
     R[bl + "glue_24"] = dict(s=_study_arg(s24, s24b))
     for f in ("glue_24b", "table_belief_grid", "table_belief_grids", "table_belief_limit"):
-        R[bl + f] = dict(s=_study_arg(s24b, s24))
+        R[bl + f] = dict(s=_study_arg(s24b, s24, few=few["s24b"]))
     R[bl + "shift_weight_draws"] = dict(draws=A(5, INT), seed=A(2405, SEED),
                                         sigma=A((0.5, 1.0, 2.0, 4.0), FLOATS + ("nested_neg_flat",)), x=A(900.0, REAL))
     R[bl + "table_shift_weight"] = dict(s=_study_arg(o["sw"], s24), at=A((0.0, 1.0), FLOATS + (("off the grid", (0.05,)),)))
@@ -288,7 +300,7 @@ def registry() -> dict[str, dict[str, A]]:
         R[rc + f] = dict(settings=A({"reading": reading}, ("str", ("unknown reading", {"reading": "no-such"}),
                                                             ("unknown key", {"readin": "primary"}))),
                          seed=A(2100, SEED), runs=A(100, INT + (("few runs", 10),)))
-    R[rc + "evidence"] = dict(st=_st_arg(st, "s21", "s23", other=s24), seed=A(None, SEED))
+    R[rc + "evidence"] = dict(st=_st_arg(st, "s21", "s23", other=s24, few=few), seed=A(None, SEED))
     R[rc + "ledger_values"] = dict(st=_st_arg(st, "s21", "s23", "sreg", other=s24))
     recs = [{"id": "lec-awf-optimal", "status": "reproduced", "runs": 100, "robustness": "holds"}]
     rec_bad = ("str", NONE, ("no id", [{"status": "reproduced"}]), ("id int", [{"id": 5, "status": "reproduced"}]),
@@ -307,7 +319,7 @@ def registry() -> dict[str, dict[str, A]]:
                     ("ev_ls_beats_mean", ("s22", "llc")), ("ev_ls_below_every_sensor", ("s22", "llc")),
                     ("ev_ls_diminishing", ()), ("ev_ls_learning", ("s22", "llc")), ("ev_ls_normal", ()),
                     ("ev_ls_tracks", ("s22", "sreg")), ("ev_ls_unbiased", ("s22", "ssym"))):
-        R[se + f] = dict(st=_st_arg(st, *keys, other=o["sar"]))
+        R[se + f] = dict(st=_st_arg(st, *keys, other=o["sar"], few={"sreg": few["sreg"]} if f == "ev_ls_tracks" else None))
 
     # ---- chapter 04
     lc = "fusion.book.chapters.lecture_correlated."
