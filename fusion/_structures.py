@@ -185,14 +185,16 @@ def within(name: str) -> Iterator[None]:
 
     ``with within("scenarios['a']"): covariance(case["own"], ...)`` turns ``own must be ...`` into
     ``scenarios['a']: own must be ...``, so that the message names the argument the caller passed.
-    Only :class:`ValueError` and :class:`TypeError` are rewritten (same type, same traceback cause).
+    Only :class:`ValueError` and :class:`TypeError` are rewritten (same type and attributes, same traceback cause).
     """
     try:
         yield
     except (ValueError, TypeError) as exc:
         if isinstance(exc, np.linalg.LinAlgError):
             raise ValueError(f"{name}: {exc}") from None
-        raise type(exc)(f"{name}: {exc}") from None
+        new = type(exc)(f"{name}: {exc}")
+        new.__dict__.update(exc.__dict__)  # e.g. a FewRunsError's runs and minimum, which a caller may rename
+        raise new from None
 
 
 @contextmanager

@@ -24,11 +24,12 @@ class FewRunsError(ValueError):
     Parameters
     ----------
     message : str
-    runs, minimum : int
-        The comparison's run count and the rule's minimum.
+    runs, minimum : int, optional
+        The comparison's run count and the rule's minimum (``None`` only while a caller's path prefix rebuilds it,
+        ``fusion._structures.within``, which copies them).
     """
 
-    def __init__(self, message: str, runs: int, minimum: int) -> None:
+    def __init__(self, message: str, runs: int | None = None, minimum: int | None = None) -> None:
         super().__init__(message)
         self.runs = runs
         self.minimum = minimum
@@ -48,9 +49,36 @@ def runs_named(name: str, how: str) -> Iterator[None]:
     try:
         yield
     except FewRunsError as e:
-        raise ValueError(f"{name} gives paired comparisons of {e.runs} runs, fewer than the {e.minimum} rule R4 "
-                         f"asks without a reason (this function takes none): give at least {e.minimum} runs "
-                         f"({how})") from e
+        # still a FewRunsError (a ValueError): a caller further out that names its own argument renames it, so the
+        # message names the argument of the function the user called (glue_21(s) calls awf_log_comparison(s21))
+        raise FewRunsError(f"{name} gives paired comparisons of {e.runs} runs, fewer than the {e.minimum} rule R4 "
+                           f"asks without a reason (this function takes none): give at least {e.minimum} runs "
+                           f"({how})", e.runs, e.minimum) from e
+
+
+def study_runs_named(name: str) -> Callable[[_F], _F]:
+    """Decorator: a chapter function that builds paired comparisons from its argument ``name`` (a study, or a mapping
+    of studies) and takes no ``reason`` refuses a study of fewer than ``MIN_RUNS`` runs by a ValueError naming
+    ``name`` (:func:`runs_named`; issue 35: the message named the comparison's own ``a and b``); signature and
+    docstring kept.
+
+    Parameters
+    ----------
+    name : str
+        The argument that holds the runs.
+
+    Returns
+    -------
+    callable
+        The decorator.
+    """
+    def decorate(fn: _F) -> _F:
+        @functools.wraps(fn)
+        def named(*args: Any, **kwargs: Any) -> Any:
+            with runs_named(name, f"a study of more runs as {name}"):
+                return fn(*args, **kwargs)
+        return named  # type: ignore[return-value]
+    return decorate
 
 
 def reader_runs_named(fn: _F) -> _F:

@@ -651,11 +651,13 @@ def use_book_tables(shell: object | None = None) -> None:
 def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "",
            finite: Collection[str] = (), texts: Collection[str] = ()) -> Any:
     """The rule of every chapter function that reads a table another function made (fuzz 18/19, class D): ``tab``
-    when it is a DataFrame holding ``columns`` (and the index levels ``index``), not empty, the columns ``finite``
-    (the numbers read) numeric and finite in every row (issue 35: a NaN cell gave a NaN glue value), and every cell
-    of the columns ``texts`` (statuses, labels the caller parses) a str, not a missing value; TypeError/ValueError
-    naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside,
-    nor a missing cell read as no status."""
+    when it is a DataFrame holding ``columns`` (and the index levels ``index``), not empty; TypeError/ValueError
+    naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside.
+
+    The columns ``finite`` the caller computes with hold finite real numbers (not bools, not text), the columns
+    ``texts`` it reads as text (statuses, labels it parses) hold strings in every row (issue 35: a NaN cell gave a
+    NaN glue value, a missing cell was read as no status): a TypeError (wrong type) or ValueError (NaN, inf) naming
+    ``name[column]`` and the row."""
     if not isinstance(tab, pd.DataFrame):
         raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
                         f"{type(tab).__name__}")
@@ -664,22 +666,28 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
         raise ValueError(f"{name} lacks the columns or index levels {missing}{f' (a result of {maker} holds them)' if maker else ''}")
     if tab.empty:
         raise ValueError(f"{name} is empty")
+    made = f" (as {maker} makes it)" if maker else ""
     for c in finite:
         if c not in tab.columns:
-            raise ValueError(f"{name} lacks the column {shown(c)}{f' (a result of {maker} holds it)' if maker else ''}")
+            raise ValueError(f"{name} lacks the column {shown(c)}{made}")
         col = tab[c]
-        if isinstance(col, pd.DataFrame) or not (pd.api.types.is_numeric_dtype(col) and not pd.api.types.is_bool_dtype(col)):
-            raise TypeError(f"{name}[{shown(c)}] must hold numbers{f' (as {maker} makes it)' if maker else ''}")
+        if isinstance(col, pd.DataFrame):
+            raise ValueError(f"{name} has more than one column {shown(c)}{made}")
+        odd = next(((i, v) for i, v in zip(col.index, col.to_numpy()) if isinstance(v, (bool, np.bool_))
+                    or not isinstance(v, (int, float, np.integer, np.floating))), None)
+        if odd is not None:
+            raise TypeError(f"{name}[{shown(c)}] must hold numbers{made}, got {shown(odd[1])} in row {shown(odd[0])}")
         bad = ~np.isfinite(col.to_numpy(dtype=float))
         if bad.any():
             raise ValueError(f"{name}[{shown(c)}] must be finite, got {shown(col.to_numpy()[bad][0])} in row "
                              f"{shown(col.index[bad][0])}")
     for c in texts:
-        bad = [i for i, v in zip(tab.index, tab[c]) if not isinstance(v, str)]
-        if bad:
-            made = f" (as {maker} gives it)" if maker else ""
-            raise ValueError(f"{name}[{shown(c)}] must hold a text in every row{made}, got "
-                             f"{shown(tab.loc[bad[0], c])} in row {shown(bad[0])}")
+        if c not in tab.columns:
+            raise ValueError(f"{name} lacks the column {shown(c)}{made}")
+        odd = next(((i, v) for i, v in zip(tab.index, tab[c]) if not isinstance(v, str)), None)
+        if odd is not None:
+            raise TypeError(f"{name}[{shown(c)}] must hold a text in every row{made}, got {shown(odd[1])} in row "
+                            f"{shown(odd[0])}")
     return tab
 
 

@@ -23,11 +23,14 @@ from matplotlib.figure import Figure, SubFigure
 from fusion._docstrings import with_sections
 from fusion.book._few_runs import runs_named
 from fusion.book.glue import GlueValues
+from fusion.book.study_cache import process_cache
 from fusion.book.ledger import (EVIDENCE_TYPES, Comparison, Conjunction, Evidence,  # noqa: F401 (readings' return hints)
                                 Unverifiable, ledger_dir)
 from fusion.book.tables import _SUPERSCRIPT, _frame, _nonfinite_word, rounded  # noqa: F401 (_frame: the chapters' table rule)
 from fusion._counts import count, seed as check_seed
-from fusion._validation import _real_number, instance_of, mapping_of
+from fusion._options import text
+from fusion._structures import within
+from fusion._validation import _real_number, as_callable, instance_of, mapping_of
 from fusion._shown import shown
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "book_words", "referenced", "reading_key",
@@ -63,6 +66,9 @@ def glue_figures(figures: dict[str, Figure]) -> None:
     from fusion.book.figures import glue_figure
 
     mapping_of(figures, "figures", "figure", values=Figure)
+    for key in figures:  # every key checked before the first figure is glued (and closed)
+        if not isinstance(key, str):
+            raise TypeError(f"figures: the glue keys must be strings, got {type(key).__name__} {shown(key, 60)}")
     for key, fig in figures.items():
         glue_figure(key, fig)   # checks the book's figure rules, glues, closes
 
@@ -280,6 +286,7 @@ def reading_of(rid: str, ev: Evidence | Mapping[str, Evidence], settings: Mappin
     ValueError
         If the record has no such reading (naming ``settings``).
     """
+    rid = text(rid, "rid")
     key = reading_key(settings)
     if not isinstance(ev, Mapping):
         if not isinstance(ev, EVIDENCE_TYPES):  # fuzz 21b, H: a non-Evidence was returned as the evidence
@@ -347,6 +354,11 @@ def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any]
     callable
         ``fn``, named ``ev_<rid>`` in ``module`` with a numpydoc docstring; it returns the reading's Evidence.
     """
+    module, rid, summary, seed_runs, returns = (text(v, n) for v, n in (
+        (module, "module"), (rid, "rid"), (summary, "summary"), (seed_runs, "seed_runs"), (returns, "returns")))
+    if not rid:
+        raise ValueError("rid must be a record id, got an empty string")
+    as_callable(at, "at")
     seed, runs = check_seed(seed), count(runs, "runs")
 
     def fn(settings: Mapping[str, Any], *, seed: int = seed, runs: int = runs) -> Evidence:
@@ -359,6 +371,27 @@ def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any]
     fn.__doc__ = _READING_DOC.format(rid=rid, summary=summary, seed_runs=seed_runs, returns=returns)
     fn.__annotations__["return"] = returns.replace(" or ", " | ")
     return fn
+
+
+@process_cache(maxsize=4)
+def _load_claims(path: Path, mtime_ns: int, size: int) -> Any:
+    from fusion.book import claims as cl
+
+    return cl.load(path)
+
+
+def _source_claims() -> Any:
+    """``book/claims/lecture003.yaml`` (:func:`fusion.book.claims.load`), read once per version of the file: the
+    YAML parse costs about 0.3 CPU-s, and each stochastic record's evidence function and :func:`evidence_at` read
+    the file (keyed by path, modification time and size, so an edited file is read again)."""
+    from fusion.book import claims as cl
+
+    path = cl.claims_dir() / f"{SOURCE}.yaml"
+    try:
+        st = path.stat()
+    except OSError:
+        return cl.load(path)  # its own refusal of a missing file
+    return _load_claims(path, st.st_mtime_ns, st.st_size)
 
 
 def evidence_at(records: Mapping[str, int], seed: int) -> dict[str, dict[str, Evidence]]:
@@ -378,15 +411,37 @@ def evidence_at(records: Mapping[str, int], seed: int) -> dict[str, dict[str, Ev
     -------
     dict
         Record id → {reading key → Evidence}, ``"primary"`` included.
+
+    Raises
+    ------
+    TypeError
+        ``records`` not a mapping, a record id not a string, a run count not an integer.
+    ValueError
+        A record id not in the claim file, a run count below 1 or below rule R4's minimum, naming
+        ``records[id]``.
     """
+    if not isinstance(records, Mapping):
+        raise TypeError(f"records must be a mapping of record ids to run counts, got {type(records).__name__}")
     seed = check_seed(seed)
+    checked: dict[str, int] = {}
+    for rid, runs in records.items():  # every entry checked before the claim file is read
+        path = f"records[{shown(rid)}]"
+        with within(path):
+            checked[text(rid, "the record id")] = count(runs, "runs")
+    if not checked:
+        return {}
     from fusion.book import claims as cl
 
-    cf = cl.load(cl.claims_dir() / f"{SOURCE}.yaml")
+    cf = _source_claims()
     out: dict[str, dict[str, Evidence]] = {}
-    for rid, runs in records.items():
-        spec = cf.record(rid)
-        keys = ["primary"] + [r.key for r in spec.readings if r.key != "primary"]
-        own = {r.key: r.runs for r in spec.readings}
-        out[rid] = {k: cl.evaluate(spec, k, seed, own.get(k) or runs) for k in keys}
+    for rid, runs in checked.items():
+        path = f"records[{shown(rid)}]"
+        try:
+            spec = cf.record(rid)
+        except cl.ClaimsFileError:
+            raise ValueError(f"{path}: no such record in {SOURCE}.yaml") from None
+        with within(path):  # too few runs for rule R4 is named by the record's entry
+            keys = ["primary"] + [r.key for r in spec.readings if r.key != "primary"]
+            own = {r.key: r.runs for r in spec.readings}
+            out[rid] = {k: cl.evaluate(spec, k, seed, own.get(k) or runs) for k in keys}
     return out

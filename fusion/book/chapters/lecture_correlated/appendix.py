@@ -4,6 +4,7 @@ r"""Chapter 04's appendix: sequential fusion, the James-Stein risk and the shrun
 from __future__ import annotations
 
 from fusion._validation import instance_of
+from fusion._shown import shown
 
 
 import numpy as np
@@ -128,7 +129,8 @@ def glue_sequential(tab: pd.DataFrame) -> GlueValues:
         ``lec_seq_mult`` and ``lec_seq_full`` (multiplications of all pseudo-measurements, with M's zeros and with
         a full M).
     """
-    _frame(tab, "tab", (M_LARGEST, VS_BATCH, "multiplications", FULL_M), maker="table_sequential")
+    _frame(tab, "tab", (M_LARGEST, VS_BATCH, "multiplications", FULL_M), maker="table_sequential",
+           finite=(M_LARGEST, "multiplications", FULL_M), texts=(VS_BATCH,))
     return {"lec_seq_n": len(tab), "lec_seq_zero": int((tab[M_LARGEST] == 0.0).sum()),
             "lec_seq_same": int(tab[VS_BATCH].str.startswith("less than").sum()),
             "lec_seq_mult": int(tab["multiplications"].sum()), "lec_seq_full": int(tab[FULL_M].sum())}
@@ -241,10 +243,11 @@ def glue_james_stein(tab: pd.DataFrame, runs: int | None = None) -> GlueValues:
     TypeError
         ``tab`` not a DataFrame or ``runs`` not an integer.
     ValueError
-        ``tab`` without the columns and index of :func:`table_james_stein` or empty; ``runs`` below ``MIN_RUNS``, not the
+        ``tab`` without the columns and index of :func:`table_james_stein` or empty, a non-finite exact value (or
+        Monte-Carlo value at d >= 3); ``runs`` below ``MIN_RUNS``, not the
         draws the table records, or not given for a table that records none.
     """
-    _frame(tab, "tab", ("exact", MONTE_CARLO), ("d", "‖x‖/σ"), maker="table_james_stein")
+    _frame(tab, "tab", ("exact", MONTE_CARLO), ("d", "‖x‖/σ"), maker="table_james_stein", finite=("exact",))
     made = tab.attrs.get("runs")
     if runs is None:
         if made is None:
@@ -254,6 +257,8 @@ def glue_james_stein(tab: pd.DataFrame, runs: int | None = None) -> GlueValues:
     if made is not None and runs != made:
         raise ValueError(f"runs = {runs} is not the {made} Monte-Carlo draws that tab was made with")
     three = tab[tab.index.get_level_values("d") >= 3]
+    if not np.all(np.isfinite(three[MONTE_CARLO].to_numpy(dtype=float))):  # NaN only at d = 2 (no estimate there)
+        raise ValueError(f"tab[{shown(MONTE_CARLO)}] must hold finite numbers for d >= 3, got a NaN or an infinity")
     out: GlueValues = {"lec_js_runs": runs, "lec_js_max": float(three["exact"].max()),
                            "lec_js_mc_dev": round(float((three[MONTE_CARLO] - three["exact"]).abs().max()), 4)}
     for d in sorted(set(three.index.get_level_values("d"))):
@@ -321,7 +326,8 @@ def glue_shrunken(tab: pd.DataFrame) -> GlueValues:
         ``lec_sh_max_gap`` (the largest ratio best c·LS over best ridge) and ``lec_sh_min_ratio`` (the smallest
         best c·LS over LS: the most shrinking helps).
     """
-    _frame(tab, "tab", (BEST_RIDGE, BEST_SCALED_LS, METHOD_SHORT_LABELS[LS]), maker="table_shrunken")
+    _frame(tab, "tab", (BEST_RIDGE, BEST_SCALED_LS, METHOD_SHORT_LABELS[LS]), maker="table_shrunken",
+           finite=(BEST_RIDGE, BEST_SCALED_LS, METHOD_SHORT_LABELS[LS]))
     return {"lec_sh_n": len(tab), "lec_sh_ridge_wins": int((tab[BEST_RIDGE] < tab[BEST_SCALED_LS]).sum()),
             "lec_sh_max_gap": round(float((tab[BEST_SCALED_LS] / tab[BEST_RIDGE]).max()), 2),
             "lec_sh_min_ratio": round(float((tab[BEST_SCALED_LS] / tab[METHOD_SHORT_LABELS[LS]]).min()), 3)}

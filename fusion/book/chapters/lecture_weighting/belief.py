@@ -3,7 +3,9 @@ comparisons, tables, figure and glue."""
 
 from __future__ import annotations
 
+from fusion.book._few_runs import study_runs_named
 from fusion._counts import sequence
+from fusion._structures import within
 from fusion._limits import loop_work
 from fusion._validation import as_array, instance_of, scalar, selection, std_scalar
 
@@ -189,11 +191,24 @@ _PARAM = {K.FUZZY: "s", K.BINARY: "ε", K.DELETION: "ε", K.DELETION_THIRD: "ε"
           K.DELETION_ALL: "ε", K.FUZZY_LIMIT: "m"}
 
 
+def _grids(s: BeliefParameterStudy, grid: object) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """``grid`` as (A's values, B's values): the study's primary grid for both when ``None``, else a pair of
+    non-empty sequences of numbers (TypeError/ValueError naming ``grid``; membership in ``s.params`` is checked
+    where the values are read, under ``grid``)."""
+    if grid is None:
+        return tuple(s.grid), tuple(s.grid)
+    pair = sequence(grid, "grid", 2)
+    return tuple(tuple(scalar(v, f"grid[{i}][{j}]") for j, v in
+                       enumerate(sequence(g, f"grid[{i}]", minimum=1, what="grid value")))
+                 for i, g in enumerate(pair))  # type: ignore[return-value]
+
+
 def _grid_text(v: tuple[float, ...] | np.ndarray) -> str:
     return "{" + ", ".join(f"{float(x):g}" for x in v) + "}"
 
 
 @_PARAMS("s")
+@study_runs_named("s")
 def belief_accuracy(s: BeliefParameterStudy, kind: BeliefKind, values: tuple[float, ...]) -> Comparison:
     """E2.4b: is a belief rule, over a grid of its parameter, more accurate than the arithmetic mean?
 
@@ -226,6 +241,7 @@ def belief_accuracy(s: BeliefParameterStudy, kind: BeliefKind, values: tuple[flo
 
 
 @_PARAMS("s", "grid")
+@study_runs_named("s")
 def belief_parameter_comparison(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
                                 grid: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
                                 kind: BeliefKind = K.FUZZY) -> Comparison:
@@ -248,12 +264,13 @@ def belief_parameter_comparison(s: BeliefParameterStudy, other: BeliefKind = K.D
     from fusion.scenarios.lecture_weighting import belief_spread
 
     kind, other = _key(kind, _PARAM, "kind"), _key(other, _PARAM, "other")
-    ga, gb = (tuple(s.grid), tuple(s.grid)) if grid is None else grid
+    ga, gb = _grids(s, grid)
     pa, pb = _PARAM[kind], _PARAM[other]
     metric = (f"max − min of the fused value over {pa} ∈ {_grid_text(ga)}" +
               (f" or {pb} ∈ {_grid_text(gb)}" if (pa, tuple(ga)) != (pb, tuple(gb)) else "") + " (°C)")
-    return Comparison(belief_spread(s, kind, ga), belief_spread(s, other, gb), METHOD_LABELS[kind], METHOD_LABELS[other],
-                      "less", metric, seed=s.seed)
+    with within("grid"):  # a value not among the study's params: named by the argument it came from
+        spread_a, spread_b = belief_spread(s, kind, ga), belief_spread(s, other, gb)
+    return Comparison(spread_a, spread_b, METHOD_LABELS[kind], METHOD_LABELS[other], "less", metric, seed=s.seed)
 
 
 def _rmse_text(c: Comparison) -> str:
@@ -262,6 +279,7 @@ def _rmse_text(c: Comparison) -> str:
 
 
 @_PARAMS("s", "grid")
+@study_runs_named("s")
 def belief_objectivity(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
                        grid: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
                        kind: BeliefKind = K.FUZZY) -> Comparison | Unverifiable:
@@ -286,9 +304,10 @@ def belief_objectivity(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
     """
     instance_of(s, BeliefParameterStudy, "s")
     kind, other = _key(kind, _PARAM, "kind"), _key(other, _PARAM, "other")
-    ga, gb = (tuple(s.grid), tuple(s.grid)) if grid is None else grid
+    ga, gb = _grids(s, grid)
     c = belief_parameter_comparison(s, other, (ga, gb), kind)
-    acc_a, acc_b = belief_accuracy(s, kind, ga), belief_accuracy(s, other, gb)
+    with within("grid"):
+        acc_a, acc_b = belief_accuracy(s, kind, ga), belief_accuracy(s, other, gb)
     acc = (f"; over its grid the {METHOD_LABELS[kind].split(' (')[0]} has {_rmse_text(acc_a)}, the "
            f"{METHOD_LABELS[other].split(' (')[0]} {_rmse_text(acc_b)}")
     bad = [name.split(' (')[0] for name, a in ((METHOD_LABELS[kind], acc_a), (METHOD_LABELS[other], acc_b))
@@ -298,6 +317,7 @@ def belief_objectivity(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
     return Comparison(c.a, c.b, c.a_name, c.b_name, c.claim, c.metric + acc, seed=c.seed)
 
 
+@study_runs_named("s")
 def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
     """RMSE of each belief fusion of E2.4b against its parameter, and the mean spread over the primary grid.
 
@@ -331,6 +351,7 @@ def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
 
 @_lec_glue
 @_PARAMS("s")
+@study_runs_named("s")
 def glue_24b(s: BeliefParameterStudy) -> GlueValues:
     """Glue values of E2.4b (keys ``lec_bp_*``)."""
     instance_of(s, BeliefParameterStudy, "s")
@@ -393,6 +414,7 @@ def _cell(ev: Comparison | Unverifiable, c: Comparison) -> str:
     return f"{m:+.3f} [{lo:+.3f}, {hi:+.3f}], {word}"
 
 
+@study_runs_named("s")
 def table_belief_grids(s: BeliefParameterStudy) -> pd.DataFrame:
     """E2.4b's readings under every grid of :data:`BELIEF_GRIDS` and every deletion rule: fuzzy spread minus the binary one.
 
@@ -424,6 +446,7 @@ def table_belief_grids(s: BeliefParameterStudy) -> pd.DataFrame:
     return tab
 
 
+@study_runs_named("s")
 def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
     """The truncated fuzzy belief (a reading of the lecture's belief: its fusion upper limit m varied) over every grid of :data:`LIMIT_GRIDS`.
 

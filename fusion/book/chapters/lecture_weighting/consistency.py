@@ -3,6 +3,7 @@ appendix's grid of thresholds and biases."""
 
 from __future__ import annotations
 
+from fusion.book._few_runs import study_runs_named
 from fusion._counts import sequence
 from fusion._limits import work
 from fusion._validation import as_array, instance_of, scalar, std_scalar, window as check_window
@@ -93,6 +94,7 @@ def figure_23(s: ConsistencyStudy) -> Figure:
     return fig
 
 
+@study_runs_named("s")
 def cc_log_comparison(s: ConsistencyStudy, a: AwfMethod, b: AwfMethod, case: FaultCase) -> Comparison:
     """Two methods of E2.3 on the log of the per-run MSE over the window (paired by run).
 
@@ -124,6 +126,7 @@ def cc_log_comparison(s: ConsistencyStudy, a: AwfMethod, b: AwfMethod, case: Fau
 
 
 @_lec_glue
+@study_runs_named("s")
 def glue_23(s: ConsistencyStudy) -> GlueValues:
     """Glue values of E2.3.
 

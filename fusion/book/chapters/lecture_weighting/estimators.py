@@ -3,6 +3,7 @@ linear-unbiased-minimum-variance under each reading of the weights: tables, figu
 
 from __future__ import annotations
 
+from fusion.book._few_runs import study_runs_named
 from fusion._counts import sequence
 from fusion._validation import distinct, instance_of, scalar, shown
 
@@ -182,6 +183,7 @@ def _pm(v: float, decimals: int = 4) -> str:
     return t[1:] if t.startswith("-") and float(t) == 0 else t
 
 
+@study_runs_named("s")
 def sweep_comparisons(s: AwfStudy) -> dict[tuple[float, str], Comparison]:
     """The lecture's AWF against the mean of means at every level of the sweep of E2.1.
 
@@ -208,6 +210,7 @@ def sweep_comparisons(s: AwfStudy) -> dict[tuple[float, str], Comparison]:
     return out
 
 
+@study_runs_named("s")
 def table_sweep(s: AwfStudy) -> pd.DataFrame:
     """The verdict of §2.1 against the level X: paired differences with the mean of means and their 95 % CIs.
 
@@ -310,10 +313,23 @@ def band_agreement_k(s: AwfStudy, X: float = 0.0, tol: float = 0.1) -> int:
 
 @_lec_glue
 @_PARAMS("s")
+@study_runs_named("s")
 def glue_21(s: AwfStudy) -> GlueValues:
-    """Glue values of E2.1."""
+    """Glue values of E2.1.
+
+    Raises
+    ------
+    ValueError
+        ``s`` without the rows the values read: the levels X = 0 and 900, k = 100 and 1000 among its ``ks``
+        (the chapter's ``awf_study(k_max=1000, ...)``).
+    """
     instance_of(s, AwfStudy, "s")
     tab = _estimates_table(s)
+    lacking = [r for r in ((X, e, k) for X in (0.0, 900.0) for e in ("lecture", "centred") for k in (100, 1000))
+               if r not in tab.index]
+    if lacking:
+        raise ValueError(f"s lacks the rows (X, estimator, k) {lacking} that glue_21 reads: E2.1's study has the "
+                         "levels 0 and 900 and k = 100 and 1000 among its ks")
     i = s.i_compare
     V = s.variances
     bound = wt.minimum_variance(V) / s.ks[i]
@@ -368,6 +384,7 @@ def glue_21(s: AwfStudy) -> GlueValues:
     return res
 
 
+@study_runs_named("s21")
 def awf_log_comparison(s21: AwfStudy, X: float = 900.0, method: AwfMethod = AwfMethod.AWF_LECTURE_NONE) -> Comparison:
     """The unguarded lecture AWF against the mean of means on the log of the per-run squared error.
 

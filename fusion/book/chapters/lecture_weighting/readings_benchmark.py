@@ -11,10 +11,11 @@ from fusion._frozen import constant
 from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
-from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B, SeedStability, _benchmark_results
+from fusion.scenarios.lecture_weighting.readings_benchmark import (BenchMethod as B, SeedStability, _benchmark_results,
+                                                                   seed_stability)
 from fusion._docstrings import reads_results
 from fusion._shown import shown
-from fusion._validation import instance_of
+from fusion._validation import count, instance_of
 
 __all__ = [
     "table_benchmark",
@@ -26,6 +27,26 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- benchmark
+def _paired(results: object, stab: object, needs: dict[tuple[float, bool], tuple[B, ...]] | None = None) -> dict:
+    """``results`` (checked as :func:`~fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability` checks it)
+    and ``stab``, its seed stability: ``seed_stability(results)`` itself, not another benchmark's (a ValueError naming
+    ``stab``, never a KeyError); with ``needs``, the scenarios and methods a caller reads (naming ``results``)."""
+    instance_of(stab, SeedStability, "stab")
+    results = _benchmark_results(results)
+    ref = seed_stability(results)
+    same = (ref.seeds, ref.scenarios, ref.methods) == (stab.seeds, stab.scenarios, stab.methods) and all(
+        np.array_equal(ref.ranks[sc], stab.ranks[sc]) for sc in ref.scenarios)
+    if not same:
+        raise ValueError(f"stab must be seed_stability(results): it holds seeds {list(stab.seeds)} and scenarios "
+                         f"{list(stab.scenarios)}, results give {list(ref.seeds)} and {list(ref.scenarios)} (or other ranks)")
+    for sc, methods in (needs or {}).items():
+        key = (ref.seeds[0], *sc)
+        lacking = [str(m) for m in methods if key not in results or m not in results[key]]
+        if lacking:
+            raise ValueError(f"results lacks {shown(key)} with the methods {lacking}")
+    return results
+
+
 def _scen_name(sc: tuple[float, bool]) -> str:
     return f"X={sc[0]:g}, {'fault' if sc[1] else 'no fault'}"
 
@@ -48,8 +69,15 @@ def table_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> p
     pandas.DataFrame
         Index the methods; per scenario a column "MSE ± SE" at the first seed (4 decimals) and one of the rank range
         over the seeds ("2–3").
+
+    Raises
+    ------
+    ValueError
+        ``results`` not a benchmark's output (checked entry by entry, naming the entry), ``stab`` not
+        ``seed_stability(results)`` (another benchmark's); ``samples`` below 1.
     """
-    instance_of(stab, SeedStability, "stab")
+    results = _paired(results, stab)
+    samples = count(samples, "samples")
     s0, methods = stab.seeds[0], stab.methods
     runs = next(iter(results.values()))[methods[0]].size
     tab = pd.DataFrame({_scen_name(sc): [f"{results[(s0, *sc)][m].mean():.4f} ± {results[(s0, *sc)][m].std() / np.sqrt(runs):.4f}"
@@ -79,8 +107,13 @@ def figure_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> 
     -------
     matplotlib.figure.Figure
         Bars per method, one per scenario: its mean MSE at k = ``samples`` (°C², log) at the first seed.
+
+    Raises
+    ------
+    ValueError
+        As :func:`table_benchmark`: bad ``results``, a ``stab`` of another benchmark, ``samples`` below 1.
     """
-    instance_of(stab, SeedStability, "stab")
+    results, samples = _paired(results, stab), count(samples, "samples")
     fig, ax = new_figure(figsize=(7.5, 3.8))
     methods, s0 = stab.methods, stab.seeds[0]
     pos = np.arange(len(methods))
@@ -94,6 +127,15 @@ def figure_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> 
     return fig
 
 
+#: The scenarios (level, fault) and methods :func:`glue_benchmark` reads at the first seed.
+_GLUED: dict[tuple[float, bool], tuple[B, ...]] = {
+    (0.0, False): (B.AWF_LECTURE_FLOOR, B.MEAN, B.ORACLE, B.OPTIMAL_FUSION_SET),
+    (900.0, False): (B.AWF_LECTURE_FLOOR, B.AWF_CENTRED, B.AWF_LECTURE_ABS, B.BELIEF, B.MEAN, B.ORACLE, B.MEDIAN,
+                     B.BIWEIGHT),
+    (0.0, True): (B.OPTIMAL_FUSION_SET, B.ORACLE, B.CHECK_AWF, B.BELIEF, B.AWF_CENTRED, B.SUPPORT_DEGREE, B.MEAN),
+    (900.0, True): (B.BELIEF, B.MEAN, B.ORACLE, B.MEDIAN, B.BIWEIGHT)}
+
+
 @_lec_glue
 @reads_results("stab")
 def glue_benchmark(results: dict, stab: SeedStability) -> GlueValues:
@@ -105,8 +147,14 @@ def glue_benchmark(results: dict, stab: SeedStability) -> GlueValues:
         Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
     stab : SeedStability
         Of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`: its first seed and its counts.
+
+    Raises
+    ------
+    ValueError
+        ``results`` not a benchmark's output (checked entry by entry, naming the entry), ``stab`` not
+        ``seed_stability(results)`` (another benchmark's), or ``results`` without the scenarios and methods it reads.
     """
-    instance_of(stab, SeedStability, "stab")
+    results = _paired(results, stab, _GLUED)
     s0 = stab.seeds[0]
 
     def m(sc: tuple[float, bool], name: B) -> tuple[float, int]:

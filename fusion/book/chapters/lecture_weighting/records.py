@@ -13,11 +13,12 @@ from typing import Any
 
 import numpy as np
 
+from fusion.book._few_runs import study_runs_named
 from fusion._frozen import constant
 from fusion._validation import count, one_of, records_of, text
 from fusion.book.rulebook import STATUSES
 from fusion.book.study_cache import study_cache
-from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
+from fusion.book.chapters.lecture import _source_claims, evidence_at, reading_function, reading_key
 from fusion.book.ledger import Comparison, Evidence, Unverifiable, ledger_dir
 from fusion.book.chapters.lecture_weighting.study_evidence import (
     _ev_awf_accuracy, _ev_awf_adapts, _ev_awf_estimated, _ev_awf_fault_tolerance, ev_awf_lumv, ev_awf_lumv_fixed,
@@ -191,9 +192,7 @@ def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Evi
 @functools.cache
 def _claim_readings(rid: str) -> frozenset[str]:
     """The reading keys of the stochastic record ``rid`` in the claim file, ``"primary"`` included (read once)."""
-    from fusion.book import claims as cl
-
-    spec = cl.load(cl.claims_dir() / "lecture003.yaml").record(rid)
+    spec = _source_claims().record(rid)
     return frozenset({"primary", *(r.key for r in spec.readings)})
 
 
@@ -273,6 +272,7 @@ _FROM_STUDIES: dict[str, Callable[..., Evidence | dict[str, Evidence]]] = EVIDEN
 }
 
 
+@study_runs_named("st")
 def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Evidence | dict[str, Evidence]]:
     """Every record's evidence of chapter 02, by record id (for :func:`fusion.book.claims.build_ledger`).
 

@@ -3,6 +3,7 @@ and the lecture's setting with one change of the noise SDs: comparisons, tables,
 
 from __future__ import annotations
 
+from fusion.book._few_runs import study_runs_named
 from fusion._counts import count
 from fusion._validation import instance_of
 
@@ -61,6 +62,7 @@ _REGIME_PLOT = ((_R.ORACLE, "oracle", ":"), (_R.MEAN, "mean", ":"), (_R.SAMPLE_G
 
 
 @_PARAMS("s")
+@study_runs_named("s")
 def regime_comparisons(s: RegimeStudy) -> dict[str, Comparison]:
     """The paired comparisons of E2.1b (per-run MSE over the evaluation window, paired by run).
 
@@ -196,6 +198,7 @@ def _interval_prose(c: Comparison) -> tuple[str, str, str]:
 
 
 @_PARAMS("s")
+@study_runs_named("s")
 def glue_regime(s: RegimeStudy) -> GlueValues:
     """Glue values of E2.1b (keys ``lec_rgm_*``): mean MSEs, paired differences and 95 % intervals.
 
@@ -245,6 +248,7 @@ def glue_regime(s: RegimeStudy) -> GlueValues:
 
 
 @_CHANGES("s")
+@study_runs_named("s")
 def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, RegimeMethod], Comparison]:
     """The lecture's AWF of running means against the per-sample fusions after each change of :func:`variance_change_study`.
 
@@ -263,6 +267,7 @@ def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, RegimeMethod],
 
 
 @_CHANGES("s")
+@study_runs_named("s")
 def table_changes(s: VarianceChangeStudy) -> pd.DataFrame:
     """E2.1b in the lecture's setting: after each change of the noise SDs, the AWF of running means against the rest.
 
@@ -292,6 +297,7 @@ def table_changes(s: VarianceChangeStudy) -> pd.DataFrame:
 
 
 @_CHANGES("s")
+@study_runs_named("s")
 def glue_changes(s: VarianceChangeStudy) -> GlueValues:
     """Glue values of the one-sided variance changes (keys ``lec_chg_*``): MSEs and paired differences as text.
 

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from fusion.book._few_runs import study_runs_named
 from fusion._docstrings import with_sections
 from fusion._validation import instance_of, mapping_of
 from fusion.book.chapters.lecture import sci
@@ -524,6 +525,7 @@ def ev_ls_diminishing(st: Mapping[str, Any]) -> Proposition:
     return Proposition(True, "R̂ᵢ(m) = R̂ᵢ(m−1) + (Rₘᵢ − R̂ᵢ(m−1))/m: gain 1/m")
 
 
+@study_runs_named("st")
 def ev_ls_tracks(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-ls-tracks``: the learned R converges to (1 − 2/n)Rᵢ + ΣRⱼ/n², not Rᵢ; after a swap, against forgetting.
 
