@@ -1072,9 +1072,9 @@ CALLABLES = public_callables()
 REG = registry()
 
 
-#: Documented category excluded from the mutation test: the per-chapter presentation helpers of
-#: ``fusion.book.chapters`` (figure recipes, table assembly, claims builders) are fed the results of the
-#: package functions above, which validate the input, and are exercised by executing the notebooks.
+#: Left out of this registry: the chapter layer ``fusion.book.chapters`` has its own registries of valid calls, one
+#: per group of chapters (``tests/test_bad_input_calls_ch*.py``, swept by :func:`refusal_problems`;
+#: ``tests/test_bad_input_calls_cover.py`` checks that together they cover every public chapter function).
 EXCLUDED_PREFIXES = ("fusion.book.chapters.",
                      # file- and cluster-bound: the claim files' schema errors (naming file, record and field) are
                      # tested in tests/test_rulebook.py, the sweep's failures in tests/test_stability.py
