@@ -102,7 +102,6 @@ import datetime as _dt
 import functools as _functools
 import inspect as _inspect
 import re as _re
-import warnings
 from math import isfinite as _isfinite
 
 import numpy as np
@@ -157,33 +156,29 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
     elif isinstance(x, (complex, np.complexfloating)):
         raise _complex_error(name)
     try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", np.exceptions.ComplexWarning)
-            a = x if isinstance(x, np.ndarray) else np.asarray(x)
-            if a.dtype.kind in "US" or (a.dtype.kind == "O" and _holds_text(a)):
-                raise TypeError(f"{name} must be numeric (array_like of numbers), got text")
-            if a.dtype.kind == "c":
-                raise _complex_error(name)
-            if a.dtype.kind in "mM":
-                raise TypeError(f"{name} must be numeric, got {a.dtype} (convert dates or durations to seconds first)")
-            if a.dtype.kind == "b" or (a.dtype.kind == "O" and _holds_bool(a)) or (a is not x and _holds_bool(x)):
-                raise _bool_error(name)
-            if a.dtype.kind not in _NUMERIC_KINDS:
-                raise _dtype_error(name, a.dtype)
-            wide = a.dtype.kind == "O" or (a.dtype.kind == "f" and a.dtype.itemsize > 8)  # longdouble, float128
-            with np.errstate(over="ignore"):  # a longdouble beyond the float range: refused just below, by name
-                out = np.asarray(a, dtype=float)
-            if wide and _beyond_float_range(a, out):  # np.longdouble('1e4000') or Decimal('1e400') -> inf
-                raise ValueError(f"{name} must be within the float range: it holds a finite number beyond it (at "
-                                 f"most {MAX_MAGNITUDE:g} in magnitude)")
-            if wide and ((out == 0) & (a != 0)).any():  # Fraction(1, 10**400), np.longdouble('1e-4000') -> 0.0
-                raise ValueError(f"{name} must be within the float range: it holds a non-zero number "
-                                 f"below it (at least {MIN_MAGNITUDE:g} in magnitude, or zero)")
-            if out is a and not isinstance(x, (list, tuple)):  # a view of the caller's data (a Series, a buffer,
-                out = out.copy()  # an object's __array__): rule 14, a private copy
-            return out
-    except np.exceptions.ComplexWarning:
-        raise _complex_error(name) from None
+        a = x if isinstance(x, np.ndarray) else np.asarray(x)
+        if a.dtype.kind in "US" or (a.dtype.kind == "O" and _holds_text(a)):
+            raise TypeError(f"{name} must be numeric (array_like of numbers), got text")
+        if a.dtype.kind == "c" or (a.dtype.kind == "O" and _holds_complex(a)):  # np.complex128 entries would
+            raise _complex_error(name)  # convert with a ComplexWarning, dropping the imaginary part
+        if a.dtype.kind in "mM":
+            raise TypeError(f"{name} must be numeric, got {a.dtype} (convert dates or durations to seconds first)")
+        if a.dtype.kind == "b" or (a.dtype.kind == "O" and _holds_bool(a)) or (a is not x and _holds_bool(x)):
+            raise _bool_error(name)
+        if a.dtype.kind not in _NUMERIC_KINDS:
+            raise _dtype_error(name, a.dtype)
+        wide = a.dtype.kind == "O" or (a.dtype.kind == "f" and a.dtype.itemsize > 8)  # longdouble, float128
+        with np.errstate(over="ignore"):  # a longdouble beyond the float range: refused just below, by name
+            out = np.asarray(a, dtype=float)
+        if wide and _beyond_float_range(a, out):  # np.longdouble('1e4000') or Decimal('1e400') -> inf
+            raise ValueError(f"{name} must be within the float range: it holds a finite number beyond it (at "
+                             f"most {MAX_MAGNITUDE:g} in magnitude)")
+        if wide and ((out == 0) & (a != 0)).any():  # Fraction(1, 10**400), np.longdouble('1e-4000') -> 0.0
+            raise ValueError(f"{name} must be within the float range: it holds a non-zero number "
+                             f"below it (at least {MIN_MAGNITUDE:g} in magnitude, or zero)")
+        if out is a and not isinstance(x, (list, tuple)):  # a view of the caller's data (a Series, a buffer,
+            out = out.copy()  # an object's __array__): rule 14, a private copy
+        return out
     except OverflowError:  # Python ints beyond the float range
         raise ValueError(f"{name} holds a number beyond the float range (at most {MAX_MAGNITUDE:g} in magnitude)") \
             from None
@@ -272,6 +267,12 @@ def _holds_bool(x: object) -> bool:
 
 #: Scalar types that are numbers and never booleans (the fast path of :func:`_holds_bool`).
 _PLAIN_NUMBERS = frozenset({int, float, np.float64, np.float32, np.int64, np.int32})
+
+
+def _holds_complex(a: np.ndarray) -> bool:
+    """Whether the object array ``a`` holds a complex number (checked before the conversion, so that no warning filter,
+    a process-global state that threads would share, is needed to catch numpy's ComplexWarning)."""
+    return any(isinstance(e, (complex, np.complexfloating)) for e in a.flat)
 
 
 def _holds_text(x: object) -> bool:
