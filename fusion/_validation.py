@@ -627,8 +627,9 @@ def as_rngs(rngs: object, name: str = "rngs", n: int | None = None) -> list[np.r
     """A list of generators, one per problem (rule 12): each entry is checked, naming it (``rngs[1]``).
 
     Any sequence (:func:`sequence`: a list, a tuple, a ``UserList``, ...). TypeError for a non-sequence or an
-    entry that is not a Generator (a float seed included); ValueError for an empty list or one of other than
-    ``n`` entries.
+    entry that is not a Generator (a float seed included); ValueError for an empty list, one of other than
+    ``n`` entries, or one whose entries share a stream (one Generator object twice, or two Generators of one bit
+    generator): problem ``b`` could not give what the single call gives with ``rngs[b]`` (fuzz 24a D3).
     """
     if isinstance(rngs, np.random.Generator):
         raise TypeError(f"{name} must be a list of numpy.random.Generator, got one Generator")
@@ -636,8 +637,14 @@ def as_rngs(rngs: object, name: str = "rngs", n: int | None = None) -> list[np.r
     if not rngs or (n is not None and len(rngs) != n):
         want = "a non-empty list" if n is None else f"a list of {n}"
         raise ValueError(f"{name} must be {want} generators (one per problem), got {len(rngs)}")
+    seen: dict[int, int] = {}
     for i, r in enumerate(rngs):
         as_rng(r, f"{name}[{i}]")
+        j = seen.setdefault(id(r.bit_generator), i)  # the same object, or two Generators of one bit generator
+        if j != i:
+            raise ValueError(f"{name}[{i}] draws from the same stream as {name}[{j}]: each problem needs its own "
+                             "generator (its result is then what the single call gives with it), e.g. "
+                             "np.random.SeedSequence(seed).spawn(n)")
     return list(rngs)
 
 
@@ -794,11 +801,15 @@ def finite_optimum(value: float, name: str) -> float:
     Raises
     ------
     ValueError
-        If ``value`` is infinite or NaN.
+        If ``value`` is infinite or NaN, or beyond :data:`MAX_MAGNITUDE` in magnitude (the result could not hold
+        it): naming the objective ``name``, not the result's field (fuzz 24a T1).
     """
     if not _isfinite(value):
         raise ValueError(f"{name} took no finite value at the points tried (best value {value}): "
                          "the objective is infinite everywhere the optimiser looked")
+    if abs(value) > MAX_MAGNITUDE:
+        raise ValueError(f"{name} returned a value of magnitude {abs(value):.3g} at its best point, beyond the "
+                         f"representable range (at most {MAX_MAGNITUDE:g} in magnitude): rescale the objective")
     return value
 
 
