@@ -394,6 +394,26 @@ def integer(value: object, name: str) -> int:
     return _integer(value, name)
 
 
+def axis_of(value: object, name: str, shape: tuple[int, ...], array: str) -> int:
+    """``value`` as an axis of an array of ``shape`` (named ``array`` in the message): an integer type
+    (:func:`integer`) in ``-ndim .. ndim - 1``, returned non-negative (fuzz 24a U3: an axis past the end was an
+    IndexError). A 0-d array has one axis, as numpy's reductions read it.
+
+    Raises
+    ------
+    TypeError
+        ``value`` not an integer, naming ``name``.
+    ValueError
+        ``value`` outside the array's axes, naming ``name``.
+    """
+    v = integer(value, name)
+    nd = max(len(shape), 1)
+    if not -nd <= v < nd:
+        raise ValueError(f"{name} = {shown(value)} is out of range for {array} of shape {shape} (an axis in "
+                         f"{-nd} .. {nd - 1})")
+    return v % nd
+
+
 def _check_scalar_magnitude(v: float, name: str, value: object, scale: bool = True, tiny: bool = False) -> None:
     """Rule 2 for a scalar, the rule of an array entry: magnitude at most :data:`MAX_MAGNITUDE`, and a
     non-zero value at least :data:`MIN_MAGNITUDE` (a scalar often becomes an entry of the data: a start
