@@ -119,8 +119,8 @@ def fruit_fly(
     Raises
     ------
     ValueError
-        Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, an
-        objective returning NaN or the wrong shape, or infinite at every candidate.
+        Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, ``step`` not two
+        finite numbers, an objective returning NaN or the wrong shape, or infinite at every candidate.
     TypeError
         An objective returning something other than real numbers.
 
@@ -195,9 +195,9 @@ def fruit_fly_batch(
     Raises
     ------
     ValueError
-        Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, no
-        generator, an objective returning NaN or the wrong shape, or infinite at every candidate
-        of a problem.
+        Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, ``step`` not two
+        finite numbers, no generator or one generator's stream given for two problems, an objective returning
+        NaN or the wrong shape, or infinite at every candidate of a problem.
     TypeError
         An objective returning something other than real numbers.
         ``rngs`` not a sequence of generators, ``f`` not callable.
