@@ -6,7 +6,6 @@ Re-exported by ``fusion._validation`` (every public function imports them from t
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Sequence
 
 import numpy as np
@@ -28,9 +27,7 @@ def as_mask(value: object, name: str) -> NDArray[np.bool_]:
     """
     input_size(value, name)  # rule 9: before any conversion
     try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("error")
-            m = np.asarray(value)
+        m = np.asarray(value)  # no warning filter: process-global state that another thread would see (fuzz 24a W)
     except MemoryError:
         raise
     except (TypeError, ValueError, RecursionError) as exc:

@@ -102,7 +102,6 @@ import datetime as _dt
 import functools as _functools
 import inspect as _inspect
 import re as _re
-import warnings
 from math import isfinite as _isfinite
 
 import numpy as np
@@ -157,33 +156,29 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
     elif isinstance(x, (complex, np.complexfloating)):
         raise _complex_error(name)
     try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", np.exceptions.ComplexWarning)
-            a = x if isinstance(x, np.ndarray) else np.asarray(x)
-            if a.dtype.kind in "US" or (a.dtype.kind == "O" and _holds_text(a)):
-                raise TypeError(f"{name} must be numeric (array_like of numbers), got text")
-            if a.dtype.kind == "c":
-                raise _complex_error(name)
-            if a.dtype.kind in "mM":
-                raise TypeError(f"{name} must be numeric, got {a.dtype} (convert dates or durations to seconds first)")
-            if a.dtype.kind == "b" or (a.dtype.kind == "O" and _holds_bool(a)) or (a is not x and _holds_bool(x)):
-                raise _bool_error(name)
-            if a.dtype.kind not in _NUMERIC_KINDS:
-                raise _dtype_error(name, a.dtype)
-            wide = a.dtype.kind == "O" or (a.dtype.kind == "f" and a.dtype.itemsize > 8)  # longdouble, float128
-            with np.errstate(over="ignore"):  # a longdouble beyond the float range: refused just below, by name
-                out = np.asarray(a, dtype=float)
-            if wide and _beyond_float_range(a, out):  # np.longdouble('1e4000') or Decimal('1e400') -> inf
-                raise ValueError(f"{name} must be within the float range: it holds a finite number beyond it (at "
-                                 f"most {MAX_MAGNITUDE:g} in magnitude)")
-            if wide and ((out == 0) & (a != 0)).any():  # Fraction(1, 10**400), np.longdouble('1e-4000') -> 0.0
-                raise ValueError(f"{name} must be within the float range: it holds a non-zero number "
-                                 f"below it (at least {MIN_MAGNITUDE:g} in magnitude, or zero)")
-            if out is a and not isinstance(x, (list, tuple)):  # a view of the caller's data (a Series, a buffer,
-                out = out.copy()  # an object's __array__): rule 14, a private copy
-            return out
-    except np.exceptions.ComplexWarning:
-        raise _complex_error(name) from None
+        a = x if isinstance(x, np.ndarray) else np.asarray(x)
+        if a.dtype.kind in "US" or (a.dtype.kind == "O" and _holds_text(a)):
+            raise TypeError(f"{name} must be numeric (array_like of numbers), got text")
+        if a.dtype.kind == "c" or (a.dtype.kind == "O" and _holds_complex(a)):  # np.complex128 entries would
+            raise _complex_error(name)  # convert with a ComplexWarning, dropping the imaginary part
+        if a.dtype.kind in "mM":
+            raise TypeError(f"{name} must be numeric, got {a.dtype} (convert dates or durations to seconds first)")
+        if a.dtype.kind == "b" or (a.dtype.kind == "O" and _holds_bool(a)) or (a is not x and _holds_bool(x)):
+            raise _bool_error(name)
+        if a.dtype.kind not in _NUMERIC_KINDS:
+            raise _dtype_error(name, a.dtype)
+        wide = a.dtype.kind == "O" or (a.dtype.kind == "f" and a.dtype.itemsize > 8)  # longdouble, float128
+        with np.errstate(over="ignore"):  # a longdouble beyond the float range: refused just below, by name
+            out = np.asarray(a, dtype=float)
+        if wide and _beyond_float_range(a, out):  # np.longdouble('1e4000') or Decimal('1e400') -> inf
+            raise ValueError(f"{name} must be within the float range: it holds a finite number beyond it (at "
+                             f"most {MAX_MAGNITUDE:g} in magnitude)")
+        if wide and ((out == 0) & (a != 0)).any():  # Fraction(1, 10**400), np.longdouble('1e-4000') -> 0.0
+            raise ValueError(f"{name} must be within the float range: it holds a non-zero number "
+                             f"below it (at least {MIN_MAGNITUDE:g} in magnitude, or zero)")
+        if out is a and not isinstance(x, (list, tuple)):  # a view of the caller's data (a Series, a buffer,
+            out = out.copy()  # an object's __array__): rule 14, a private copy
+        return out
     except OverflowError:  # Python ints beyond the float range
         raise ValueError(f"{name} holds a number beyond the float range (at most {MAX_MAGNITUDE:g} in magnitude)") \
             from None
@@ -272,6 +267,12 @@ def _holds_bool(x: object) -> bool:
 
 #: Scalar types that are numbers and never booleans (the fast path of :func:`_holds_bool`).
 _PLAIN_NUMBERS = frozenset({int, float, np.float64, np.float32, np.int64, np.int32})
+
+
+def _holds_complex(a: np.ndarray) -> bool:
+    """Whether the object array ``a`` holds a complex number (checked before the conversion, so that no warning filter,
+    a process-global state that threads would share, is needed to catch numpy's ComplexWarning)."""
+    return any(isinstance(e, (complex, np.complexfloating)) for e in a.flat)
 
 
 def _holds_text(x: object) -> bool:
@@ -391,6 +392,26 @@ def integer(value: object, name: str) -> int:
     a :class:`TypeError` naming ``name``.
     """
     return _integer(value, name)
+
+
+def axis_of(value: object, name: str, shape: tuple[int, ...], array: str) -> int:
+    """``value`` as an axis of an array of ``shape`` (named ``array`` in the message): an integer type
+    (:func:`integer`) in ``-ndim .. ndim - 1``, returned non-negative (fuzz 24a U3: an axis past the end was an
+    IndexError). A 0-d array has one axis, as numpy's reductions read it.
+
+    Raises
+    ------
+    TypeError
+        ``value`` not an integer, naming ``name``.
+    ValueError
+        ``value`` outside the array's axes, naming ``name``.
+    """
+    v = integer(value, name)
+    nd = max(len(shape), 1)
+    if not -nd <= v < nd:
+        raise ValueError(f"{name} = {shown(value)} is out of range for {array} of shape {shape} (an axis in "
+                         f"{-nd} .. {nd - 1})")
+    return v % nd
 
 
 def _check_scalar_magnitude(v: float, name: str, value: object, scale: bool = True, tiny: bool = False) -> None:
@@ -626,8 +647,9 @@ def as_rngs(rngs: object, name: str = "rngs", n: int | None = None) -> list[np.r
     """A list of generators, one per problem (rule 12): each entry is checked, naming it (``rngs[1]``).
 
     Any sequence (:func:`sequence`: a list, a tuple, a ``UserList``, ...). TypeError for a non-sequence or an
-    entry that is not a Generator (a float seed included); ValueError for an empty list or one of other than
-    ``n`` entries.
+    entry that is not a Generator (a float seed included); ValueError for an empty list, one of other than
+    ``n`` entries, or one whose entries share a stream (one Generator object twice, or two Generators of one bit
+    generator): problem ``b`` could not give what the single call gives with ``rngs[b]`` (fuzz 24a D3).
     """
     if isinstance(rngs, np.random.Generator):
         raise TypeError(f"{name} must be a list of numpy.random.Generator, got one Generator")
@@ -635,8 +657,14 @@ def as_rngs(rngs: object, name: str = "rngs", n: int | None = None) -> list[np.r
     if not rngs or (n is not None and len(rngs) != n):
         want = "a non-empty list" if n is None else f"a list of {n}"
         raise ValueError(f"{name} must be {want} generators (one per problem), got {len(rngs)}")
+    seen: dict[int, int] = {}
     for i, r in enumerate(rngs):
         as_rng(r, f"{name}[{i}]")
+        j = seen.setdefault(id(r.bit_generator), i)  # the same object, or two Generators of one bit generator
+        if j != i:
+            raise ValueError(f"{name}[{i}] draws from the same stream as {name}[{j}]: each problem needs its own "
+                             "generator (its result is then what the single call gives with it), e.g. "
+                             "np.random.SeedSequence(seed).spawn(n)")
     return list(rngs)
 
 
@@ -793,11 +821,15 @@ def finite_optimum(value: float, name: str) -> float:
     Raises
     ------
     ValueError
-        If ``value`` is infinite or NaN.
+        If ``value`` is infinite or NaN, or beyond :data:`MAX_MAGNITUDE` in magnitude (the result could not hold
+        it): naming the objective ``name``, not the result's field (fuzz 24a T1).
     """
     if not _isfinite(value):
         raise ValueError(f"{name} took no finite value at the points tried (best value {value}): "
                          "the objective is infinite everywhere the optimiser looked")
+    if abs(value) > MAX_MAGNITUDE:
+        raise ValueError(f"{name} returned a value of magnitude {abs(value):.3g} at its best point, beyond the "
+                         f"representable range (at most {MAX_MAGNITUDE:g} in magnitude): rescale the objective")
     return value
 
 

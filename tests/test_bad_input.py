@@ -927,7 +927,107 @@ def registry() -> dict[str, dict[str, A]]:
     R[bk + "recommend.check"] = dict(records=A([{"id": "a", "status": "reproduced"}], ("str",)),
                                      recommendations=A([_Rec("t", "u", "w", "a", "b", (ev,), ())], ("str",)))
     R[bk + "benchmarks.load_benchmark"] = dict(name=A("ci", OPT + ("notstr",)), results=A(None, ("notstr",)))
+    _set_every_parameter(R)
     return R
+
+
+#: Mutations of a ``bool`` flag (rule 18: a string or a number is not read as its truthiness).
+FLAG = ("str", "int")
+#: Mutations of a text option.
+TEXT_OPT = ("unknown", "notstr")
+#: Mutations of an optional number whose ``None`` default is valid (the scalar kinds apply to any value).
+OPT_NUM = ("nan_s", "str")
+
+
+def _set_every_parameter(R: dict[str, dict[str, A]]) -> None:
+    """Set, in the valid calls above, the parameters they left at their defaults (fuzz 24a, class U: 105 parameters
+    no sweep had ever mutated; ``tests/test_bad_input_fuzz24_params.py`` checks that every parameter is set here or
+    exempt there). The value is the default (or a valid value where the default is ``None``)."""
+    def add(_callable: str, **params: A) -> None:
+        spec = R["fusion." + _callable]
+        assert not set(params) & set(spec), f"{_callable}: {sorted(set(params) & set(spec))} already set"
+        spec.update(params)
+
+    add("book.exact.ExactComparison", relative_margin=A(None, OPT_NUM))
+    add("book.figures.glue_figure", alt=A(None, ("notstr",)))
+    add("book.ledger.Alternative", kind=A("open-choice", TEXT_OPT))
+    add("book.ledger.Claim", claimant=A("source", TEXT_OPT), test=A("", TEXT_OPT))
+    add("book.ledger.Comparison", relative_margin=A(None, OPT_NUM), conditions=A(("", ""), ("str", "int")),
+        infinite_mean=A((), ("str", "unknown_entry")))
+    add("book.ledger.Ledger", chapter=A(None, TEXT_OPT))
+    add("book.ledger.Proposition", runs=A(None, ("zero", "neg", "frac", "str")))
+    add("book.ledger.PublishedValues", runs=A(None, ("zero", "neg", "frac", "str")))
+    add("book.ledger.Source", chapters=A(("notebooks/x",), ("str", "int")))
+    add("book.rulebook.counted", status=A(None, TEXT_OPT))
+    add("book.rulebook.judge_paired", infinite_mean=A((), ("str", "unknown_entry")))
+    add("book.tables.highlight_mismatches", precision=A(None, ("neg", "frac", "str")))
+    add("book.tables.side_by_side", name=A("", ("notstr",)), index_name=A("observation", ("notstr",)))
+    add("estimates.chernoff.chernoff_fuse_gaussians", on_simplex=A(True, FLAG))
+    add("estimates.chernoff.first_order_fusion", simplified=A(False, FLAG))
+    add("estimates.chernoff.fuse_mixtures", eps0=A(None, ("str",)), redraw=A(False, FLAG), reference=A(False, FLAG),
+        timed=A(False, FLAG))
+    add("estimates.chernoff.fuse_mixtures_batch", redraw=A(False, FLAG), reference=A(False, FLAG), timed=A(False, FLAG),
+        keep_samples=A(False, FLAG))
+    add("estimates.ci.split_ci_objective", same_omega=A(False, FLAG))
+    add("estimates.ci.split_covariance_intersection", same_omega=A(False, FLAG))
+    add("estimates.mixtures.weighted_em", init=A(None, ("str", "int")))
+    add("estimates.mixtures.weighted_em_batch", init=A(None, ("str", "int", "empty_list")))
+    add("filtering.kalman.split_covariances", R_shared=A(None, ("str",)))
+    add("filtering.particles.effective_sample_size", axis=A(-1, (("past_end", 99), "frac", "str", ("below", -3))))
+    add("filtering.tracks.local_track", R_shared=A(None, ("str",)))
+    add("optimise.scalar.fruit_fly", step=A((30.0, -10.0), ("empty", "nan", "inf", "str", "less", ("three", (1.0, 2.0, 3.0)))),
+        vectorized=A(False, FLAG))
+    add("optimise.scalar.fruit_fly_batch", step=A((30.0, -10.0), ("empty", "nan", "inf", "str", "less")))
+    add("optimise.scalar.grid_search", vectorized=A(False, FLAG))
+    add("optimise.simplex.check_simplex", name=A("eps", ("notstr",)))
+    add("optimise.simplex.minimise_on_simplex", jac=A(None, ("str",)), x0=A(None, ("str", ("off", (0.5, 0.6)))),
+        ftol=A(1e-14, POS))
+    add("optimise.swarm.check_swarm_options", name=A("swarm_options", ("notstr",)))
+    add("readings.consistency.consistency_awf", adjacent=A("sorted", TEXT_OPT))
+    add("readings.fusion_set.belief_degree", binary_eps=A(None, ("neg", "nan_s", "str")))
+    add("readings.fusion_set.belief_matrix", binary_eps=A(None, ("neg", "nan_s", "str")))
+    for f in ("distribution_balance", "fusion_set_weights", "optimal_fusion_set"):
+        add("readings.fusion_set." + f, include_self=A(True, FLAG))
+    add("readings.robust.robust_fuse", sigma=A(None, ("str", "nan_s", "neg")), cut=A(0.1, ("neg", "nan_s", "str", "above")),
+        c=A(1.345, POS), alpha=A(0.05, UNIT), k=A(3.0, POS))
+    add("readings.weighting.awf", guard=A("floor", TEXT_OPT))
+    add("readings.weighting.inverse_variance_weights", guard=A("floor", TEXT_OPT))
+    add("readings.weighting.ls_learning", corrected=A(False, FLAG))
+    for f in ("improved_register", "three_point", "two_point"):
+        add("registration.methods." + f, causal=A(False, FLAG))
+    add("registration.methods.kalman_filter", q_model=A("per-step", TEXT_OPT), init=A("source", TEXT_OPT),
+        p0=A((100.0, 100.0), ("empty", "nan", "str", "less", "neg_entry")), t_extra=A(None, ("str", ("nan", [np.nan]))),
+        period=A(2.0, POS))
+    add("registration.methods.kalman_runs", smooth=A(False, FLAG), lag_one=A(False, FLAG))
+    add("registration.methods.quadratic_ls", past=A(None, ("zero", "neg", "frac", "str")))
+    add("scenarios.fusion_networks.NetworkNode", model_scale=A(1.0, POS), relay_of=A(None, ("neg", "frac", "str")))
+    add("scenarios.fusion_networks.NetworkScenario", edges=A(None, ("str", "int", ("float_pair", ((0.0, 1.5),)),
+                                                                   ("self_loop", ((1, 1),)))))
+    add("scenarios.infrared_radar.truth", velocity=A((300.0, 100.0, 0.0), ("empty", "nan", "inf", "str", "less")))
+    add("scenarios.lecture_correlated.ridge_study", ks_fixed=A((0.01, 0.1, 1.0), ("empty", "nan", "str", "neg_entry")),
+        x_far=A(273.65, REAL))
+    add("scenarios.lecture_weighting.learning.learned_limit_check", margin=A(0.05, NONNEG))
+    add("scenarios.lecture_weighting.readings_benchmark.benchmark", faults=A((False, True), ("str", "int", "empty_list",
+                                                                                           ("number", (0.1,)))))
+    add("scenarios.range_bearing.RangeBearingScenario", x0=A((800.0, 15.0, 600.0, 10.0), ("empty", "nan", "inf", "str", "less")),
+        p0_std=A((30.0, 3.0, 30.0, 3.0), ("empty", "nan", "inf", "str", "less", "neg_entry")),
+        regularised=A(True, FLAG), variants=A(True, FLAG), readings=A(False, FLAG))
+    add("scenarios.range_bearing.method_keys", readings=A(False, FLAG))
+    add("scenarios.range_bearing.run_tracking", all_nodes=A(False, FLAG))
+    add("scenarios.thermocouples.monte_carlo", failure=A(None, ("str", ("unknown_key", {"no_such_key": 1}))))
+    add("scenarios.thermocouples.simulate", n_runs=A(None, ("zero", "neg", "frac", "str")))
+    reg_options = dict(kf=A(None, ("str", ("unknown_key", {"no_such_key": 1}))), window=A(None, POS))
+    add("scenarios.time_registration.expected", **reg_options, sigma_filter=A(None, POS), delay=A(0.0, REAL),
+        a_after=A(None, REAL), t_change=A(20.0, REAL))
+    add("scenarios.time_registration.monte_carlo", **reg_options, sigma_filter=A(None, POS), delay=A(0.0, REAL),
+        a_after=A(None, REAL), t_change=A(20.0, REAL))
+    add("scenarios.time_registration.register", **reg_options)
+    add("scenarios.time_registration.registrar", **reg_options)
+    add("scenarios.two_mixtures.grid_log_normaliser", return_density=A(False, FLAG))
+    add("scenarios.two_sensor.path_by_period", readings=A(("as printed: Δ₀² I per step",), ("str", "unknown_entry",
+                                                                                            "empty_list", ("number", 0.1))))
+    add("scenarios.two_sensor.trajectory", start=A((300.0, 0.0), ("empty", "nan", "inf", "str", "less")),
+        legs=A((100.0, 30.0, 90.0), ("empty", "nan", "inf", "str", "less", "neg_entry")))
 
 
 #: Result and data types: frozen containers returned by the functions, not input-taking functions.

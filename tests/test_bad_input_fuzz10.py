@@ -295,7 +295,7 @@ def _work_cases() -> dict[str, tuple[Any, str]]:
         "particle_swarm": (lambda o: particle_swarm(fit, 2, np.random.default_rng(0), n_particles=sq(o, 2),
                                                     iterations=sq(o, 2)), "n_particles, iterations and dim"),
         "particle_swarm_batch": (lambda o: particle_swarm_batch(lambda a, x: np.sum(x * x, axis=1), 2,
-                                                                [np.random.default_rng(0)] * 2, n_particles=sq(o, 4),
+                                                                [np.random.default_rng(k) for k in range(2)], n_particles=sq(o, 4),
                                                                 iterations=sq(o, 4)),
                                  "rngs, n_particles, iterations and dim"),
     }

@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
-from fusion._validation import integer, work
+from fusion._validation import axis_of, sequence, work
 from fusion._frozen import frozen_arrays, restore_frozen
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
@@ -68,10 +68,7 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
     if not float(np.abs(np.where(arr == -np.inf, 0.0, arr)).max()) <= MAX_MAGNITUDE:  # rule 2 for the finite entries
         raise ValueError(f"a has an entry beyond the representable range (finite entries at most {MAX_MAGNITUDE:g} "
                          "in magnitude; -inf is allowed)")
-    axis = integer(axis, "axis")
-    if not -max(arr.ndim, 1) <= axis < max(arr.ndim, 1):
-        raise ValueError(f"axis {axis} is out of range for a of shape {arr.shape}")
-    return _logsumexp(arr, int(axis))
+    return _logsumexp(arr, axis_of(axis, "axis", arr.shape, "a"))
 
 
 def _logsumexp(arr: FloatArray, axis: int) -> FloatArray:
@@ -413,6 +410,7 @@ def weighted_em_batch(
         Number of components :math:`S`, between 1 and Q.
     rngs : sequence of numpy.random.Generator, length B
         One generator per set (used only for sets without a warm start).
+        Each draws its own stream: one Generator given twice is refused.
     max_iter, tol, floor
         As in :func:`weighted_em`.
     init : sequence of GaussianMixture or None, length B, optional
@@ -451,9 +449,7 @@ def weighted_em_batch(
     work((max_iter, xx.shape[0] * xx.shape[1], n_components, xx.shape[2]), "max_iter, x and n_components")  # rule 17
     tol = nonnegative_scalar(tol, "tol")
     floor = nonnegative_scalar(floor, "floor")
-    inits = [None] * xx.shape[0] if init is None else list(init)
-    if len(inits) != xx.shape[0]:
-        raise ValueError(f"init must have {xx.shape[0]} entries (one per set) or be None")
+    inits = [None] * xx.shape[0] if init is None else sequence(init, "init", xx.shape[0])  # fuzz 24a U5
     for b, g in enumerate(inits):
         if g is not None:
             instance_of(g, GaussianMixture, f"init[{b}]")

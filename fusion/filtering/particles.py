@@ -25,7 +25,7 @@ import numpy as np
 from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._validation import input_eps
+from fusion._validation import axis_of, input_eps
 from fusion._frozen import frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
                                 positive_scalar, psd_factor, std_scalar, step_scalar)
@@ -354,6 +354,7 @@ def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatAr
       data problems. *Journal of the American Statistical Association*, 89(425), 278-288.
     """
     w = as_array(weights, "weights", nonempty=False, subnormal=True)
+    axis = axis_of(axis, "axis", w.shape, "weights")
     if w.ndim < 1 or w.shape[axis] == 0:
         raise ValueError(f"weights must have a non-empty particle axis, got shape {w.shape}")
     tol = max(1e-6, 2.0 * w.shape[axis] * input_eps(weights))  # float32/float16 weights: their own precision

@@ -29,7 +29,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from fusion._validation import allocation, as_callable, as_rng, count, finite_optimum, objective_values, positive_scalar, scalar
+from fusion._validation import allocation, as_array, as_callable, as_rng, as_rngs, count, finite_optimum, objective_values, positive_scalar, scalar
 from fusion._validation import flag, loop_work, work
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
@@ -60,6 +60,12 @@ def _check(lo: float, hi: float, f: object) -> tuple[float, float]:
     return lo, hi
 
 
+def _step(step: object) -> tuple[float, float]:
+    """The random step's ``(a, b)`` of ``a rand + b``: two finite real numbers, named ``step`` (fuzz 24a U1)."""
+    a, b = as_array(step, "step", shape=(2,))
+    return float(a), float(b)
+
+
 def fruit_fly(
     f: Callable[[float], float],
     rng: np.random.Generator,
@@ -87,7 +93,7 @@ def fruit_fly(
     population, iterations : int
         Swarm size and number of generations (30 and 200 in Wang & Tang 2024).
     step : (float, float)
-        Random step :math:`a\,\mathrm{rand} + b`.
+        Random step :math:`a\,\mathrm{rand} + b`: two finite numbers.
     lo, hi : float
         Search interval, ``lo < hi`` (finite).
     vectorized : bool
@@ -113,8 +119,8 @@ def fruit_fly(
     Raises
     ------
     ValueError
-        Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, an
-        objective returning NaN or the wrong shape, or infinite at every candidate.
+        Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, ``step`` not two
+        finite numbers, an objective returning NaN or the wrong shape, or infinite at every candidate.
     TypeError
         An objective returning something other than real numbers.
 
@@ -128,12 +134,13 @@ def fruit_fly(
     as_rng(rng)
     population, iterations = count(population, "population"), count(iterations, "iterations")
     work((population, iterations), "population and iterations")  # rule 17: objective evaluations
-    X, Y = rng.uniform(0.0, 1.0, 2) * step[0] + step[1]
+    a, b = _step(step)
+    X, Y = rng.uniform(0.0, 1.0, 2) * a + b
     best_x, best_f = np.nan, np.inf
     evals = 0
     for _ in range(iterations):
-        xs = X + rng.uniform(0.0, 1.0, population) * step[0] + step[1]
-        ys = Y + rng.uniform(0.0, 1.0, population) * step[0] + step[1]
+        xs = X + rng.uniform(0.0, 1.0, population) * a + b
+        ys = Y + rng.uniform(0.0, 1.0, population) * a + b
         with np.errstate(divide="ignore"):
             s = np.clip(1.0 / np.hypot(xs, ys), lo, hi)
         smell = _values(f, s, vectorized)
@@ -171,11 +178,12 @@ def fruit_fly_batch(
         Takes an array of candidates of shape (P, population), row :math:`p` for problem
         :math:`p`, and returns their objective values, same shape.
     rngs : sequence of numpy.random.Generator
-        One generator per problem (P >= 1).
+        One generator per problem (P >= 1), each drawing its own stream (one Generator object given twice
+        is refused: the two problems could not each give what the single call gives).
     population, iterations : int
         Swarm size and number of generations (30 and 200 in Wang & Tang 2024).
     step : (float, float)
-        Random step :math:`a\,\mathrm{rand} + b`.
+        Random step :math:`a\,\mathrm{rand} + b`: two finite numbers.
     lo, hi : float
         Search interval, ``lo < hi`` (finite).
 
@@ -187,9 +195,9 @@ def fruit_fly_batch(
     Raises
     ------
     ValueError
-        Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, no
-        generator, an objective returning NaN or the wrong shape, or infinite at every candidate
-        of a problem.
+        Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, ``step`` not two
+        finite numbers, no generator or one generator's stream given for two problems, an objective returning
+        NaN or the wrong shape, or infinite at every candidate of a problem.
     TypeError
         An objective returning something other than real numbers.
         ``rngs`` not a sequence of generators, ``f`` not callable.
@@ -200,14 +208,9 @@ def fruit_fly_batch(
       model as an example. *Knowledge-Based Systems*, 26, 69-74.
     """
     lo, hi = _check(lo, hi, f)
-    if isinstance(rngs, (str, bytes, np.random.Generator)) or not isinstance(rngs, Sequence):
-        raise TypeError(f"rngs must be a sequence of numpy.random.Generator, got {type(rngs).__name__}")
-    if len(rngs) == 0:
-        raise ValueError("rngs must hold at least one generator")
-    for i, g in enumerate(rngs):
-        as_rng(g, f"rngs[{i}]")
+    rngs = as_rngs(rngs, "rngs")
     population, iterations = count(population, "population"), count(iterations, "iterations")
-    a, b = float(step[0]), float(step[1])
+    a, b = _step(step)
     n = len(rngs)
     allocation((n, 2 + 2 * population * iterations), "rngs, population and iterations")  # every draw, at once
     # rule 17: a draw per generator, then a loop step per iteration over every problem's swarm

@@ -21,8 +21,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
-from fusion._validation import input_eps
-from fusion._validation import _numeric, FloatArray, as_callable, count, finite_optimum, objective_values
+from fusion._validation import input_eps, text
+from fusion._validation import _numeric, FloatArray, as_callable, count, finite_optimum, objective_values, positive_scalar
 from fusion.optimise.result import OptimumResult
 
 __all__ = [
@@ -58,6 +58,7 @@ def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> Fl
     ValueError
         If the vector has the wrong shape or lies off the simplex.
     """
+    name = text(name, "name")  # the label of every message below (fuzz 24a U: never checked)
     if n is not None:
         n = count(n, "n")
     e = _numeric(eps, name)
@@ -91,7 +92,8 @@ def minimise_on_simplex(
     x0 : array_like, shape (n,), optional
         Starting point on the simplex; the uniform weights if ``None``.
     ftol : float
-        SLSQP's stopping tolerance on ``f`` (positive).
+        SLSQP's stopping tolerance on ``f`` (positive, finite; absolute, in the units of ``f``: one larger than
+        the variation of ``f`` over the simplex stops at the starting point).
 
     Returns
     -------
@@ -102,12 +104,14 @@ def minimise_on_simplex(
     Raises
     ------
     ValueError
-        ``n < 1`` or ``x0`` off the simplex.
+        ``n < 1``, ``x0`` off the simplex, or ``ftol`` not positive and finite.
     """
     as_callable(f, "f")
     n = count(n, "n")
     if jac is not None:
         as_callable(jac, "jac")
+    ftol = positive_scalar(ftol, "ftol")  # fuzz 24a U2: inf, NaN or a negative one returned the start as the minimum
+
     def value(e: FloatArray) -> float:  # issue 35, class 3: NaN, non-numbers and vectors refused, naming f
         v = objective_values(f(e.copy()), (), "f")  # a copy: f writing into its argument cannot alter x
         return float(v)

@@ -29,7 +29,7 @@ import numpy as np
 
 from fusion._validation import (as_rngs, FloatArray, as_callable, as_rng, count, finite_optimum, instance_of, nonnegative_scalar,
                                 objective_values, one_of, positive_scalar, scalar, work)
-from fusion._validation import flag
+from fusion._validation import flag, text
 from fusion._validation import LOOP_STEP, loop_work
 from fusion.optimise._ties import TIE_RTOL
 from fusion.optimise.result import OptimumResult, SwarmTrace
@@ -168,6 +168,7 @@ def particle_swarm_batch(
         :math:`N`.
     rngs : sequence of numpy.random.Generator
         One per problem (non-empty).
+        Each draws its own stream: one Generator given twice is refused.
     n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop, xtol, trace
         As in :func:`particle_swarm` (with ``trace``, every problem is scored to the iteration limit).
 
@@ -493,6 +494,7 @@ def check_swarm_options(swarm_options: object, name: str = "swarm_options") -> S
     TypeError
         Neither a :class:`SwarmOptions` nor ``None`` (a dict of options included).
     """
+    name = text(name, "name")  # the label of the message below (fuzz 24a U: never checked)
     if swarm_options is None:
         return SwarmOptions()
     if not isinstance(swarm_options, SwarmOptions):

@@ -38,7 +38,7 @@ from numpy.typing import ArrayLike
 from scipy import stats
 
 from fusion._frozen import constant
-from fusion._validation import FloatArray, as_array, as_reading_rows, one_of, positive_scalar
+from fusion._validation import FloatArray, as_array, as_reading_rows, one_of, positive_scalar, scalar
 from fusion.readings.fusion_set import _members_rows
 
 __all__ = ["ROBUST_METHODS", "robust_fuse"]
@@ -209,7 +209,8 @@ def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None
     method : {"median", "trimmed_mean", "huber", "grubbs", "biweight", "mad_reject", "inverse_variance", "uniform_set"}
         See the module docstring and :data:`ROBUST_METHODS` for the information each uses.
     sigma : array_like, shape (n_sensors,), optional
-        Known noise standard deviations; required by ``"inverse_variance"`` only.
+        Known noise standard deviations; required by ``"inverse_variance"`` only (checked when given, whatever
+        the method).
     cut : float
         Fraction cut from each end by ``"trimmed_mean"`` (:func:`scipy.stats.trim_mean`), in [0, 0.5).
     c : float
@@ -221,6 +222,8 @@ def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None
     k : float
         Rejection threshold of ``"mad_reject"`` in normalised MADs (a reading with
         :math:`|x - \mathrm{median}| > k\,\mathrm{MAD}/0.6745` is dropped).
+
+        Every option is checked whatever the method, also where the method does not use it.
 
     Returns
     -------
@@ -235,34 +238,34 @@ def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None
     """
     one_of(method, tuple(ROBUST_METHODS), "method")
     s = as_reading_rows(x)
+    # every option is checked whatever the method (fuzz 24a D4): a bad value is the caller's mistake even where
+    # this method ignores it
+    cut = scalar(cut, "cut", 0.0, 0.5, hi_open=True)
+    c, c_biweight, k = positive_scalar(c, "c"), positive_scalar(c_biweight, "c_biweight"), positive_scalar(k, "k")
+    alpha = scalar(alpha, "alpha", 0.0, 1.0, lo_open=True, hi_open=True)
+    if sigma is not None:
+        sig = as_array(sigma, "sigma", ndim=(0, 1))
+        sig = np.broadcast_to(sig, (s.shape[1],)) if sig.ndim == 0 else sig
+        if sig.shape != (s.shape[1],):
+            raise ValueError(f"sigma must have one entry per sensor ({s.shape[1]}), got shape {sig.shape}")
+        if np.any(sig <= 0):
+            raise ValueError("sigma must be finite and positive")
     if method == "median":
         return np.median(s, axis=1)
     if method == "trimmed_mean":
-        cut = float(cut)
-        if not (np.isfinite(cut) and 0.0 <= cut < 0.5):
-            raise ValueError(f"cut must be in [0, 0.5), got {cut}")
         return np.asarray(stats.trim_mean(s, cut, axis=1), dtype=float)
     if method == "huber":
-        return _huber(s, positive_scalar(c, "c"))
+        return _huber(s, c)
     if method == "grubbs":
-        alpha = float(alpha)
-        if not (np.isfinite(alpha) and 0.0 < alpha < 1.0):
-            raise ValueError(f"alpha must be in (0, 1), got {alpha}")
         return _grubbs(s, alpha)
     if method == "biweight":
-        return _biweight(s, positive_scalar(c_biweight, "c_biweight"))
+        return _biweight(s, c_biweight)
     if method == "mad_reject":
-        return _mad_reject(s, positive_scalar(k, "k"))
+        return _mad_reject(s, k)
     if method == "uniform_set":
         members = _members_rows(s, "mean")
         return np.where(members, s, 0.0).sum(axis=1) / members.sum(axis=1)
     if sigma is None:
         raise ValueError("sigma (the known noise standard deviations) is required by method 'inverse_variance'")
-    sig = as_array(sigma, "sigma", ndim=(0, 1))
-    sig = np.broadcast_to(sig, (s.shape[1],)) if sig.ndim == 0 else sig
-    if sig.shape != (s.shape[1],):
-        raise ValueError(f"sigma must have one entry per sensor ({s.shape[1]}), got shape {sig.shape}")
-    if not np.all(np.isfinite(sig)) or np.any(sig <= 0):
-        raise ValueError("sigma must be finite and positive")
     w = sig**-2.0
     return (s * w).sum(axis=1) / w.sum()

@@ -53,7 +53,7 @@ import numpy as np
 
 from fusion._frozen import freeze_arrays, restore_frozen
 from fusion._validation import is_integer
-from fusion._validation import store_read
+from fusion._validation import sequence, store_read
 from fusion._validation import seed as check_seed
 from fusion._validation import (_numeric, FloatArray, allocation, check_magnitude, count, instance_of, one_of,
                                 positive_scalar, std_scalar)
@@ -198,7 +198,10 @@ class NetworkScenario:
                                            or self.nodes[n.relay_of].relay_of is not None):
                 raise ValueError(f"nodes[{i}].relay_of must name another node that is not a relay, got {n.relay_of}")
         if self.edges is not None:
-            for e in self.edges:
+            if not isinstance(self.edges, tuple):  # a frozen record's tuple field (fuzz 24a U6: edges=5)
+                raise TypeError(f"edges must be a tuple of (int, int) pairs or None, got {type(self.edges).__name__}")
+            for i, e in enumerate(self.edges):
+                e = sequence(e, f"edges[{i}]")
                 if len(e) != 2 or not all(is_integer(j) and 0 <= j < len(self.nodes) for j in e) \
                         or e[0] == e[1]:
                     raise ValueError(f"edges must be pairs of distinct node indices in [0, {len(self.nodes)}), got {shown(e)}")

@@ -236,9 +236,7 @@ def truth(
     duration = positive_scalar(duration, "duration")
     grid_points(duration, T, "duration and T")  # rule 9: refused by name before np.arange
     t = np.arange(0.0, duration + 1e-9, T)
-    v = np.asarray(velocity, dtype=float)
-    if v.shape != (3,) or not np.all(np.isfinite(v)):
-        raise ValueError(f"velocity must be 3 finite numbers (m/s), got {shown(velocity)}")
+    v = as_array(velocity, "velocity", shape=(3,))  # the shared reader: no bool, text or complex entry (fuzz 24a U)
     p0 = spherical_to_cartesian(positive_scalar(r0, "r0"), scalar(az0, "az0"), scalar(el0, "el0"))
     pos = p0 + t[:, None] * v
     return trusted(Truth, t=t, pos=pos, sph=cartesian_to_spherical(pos))  # computed here: the private constructor

@@ -15,7 +15,7 @@ import numpy as np
 
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
-from fusion._validation import FloatArray, as_array, count, scalar, sequence, std_scalar
+from fusion._validation import FloatArray, as_array, count, scalar, shown, std_scalar
 from fusion._validation import allocation
 from fusion._validation import LOOP_STEP, distinct, loop_work, work
 from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
@@ -203,7 +203,10 @@ def ridge_study(
     sigma = std_scalar(sigma, "sigma")
     xs = as_array(xs, "xs", ndim=1).tolist()
     distinct(xs, "xs"), distinct(ms, "ms")  # mse and rel are keyed by x, conv's entries by m
-    loop_work((len(xs) + 1, 3 + len(sequence(ks_fixed, "ks_fixed"))), 501, "xs and ks_fixed")  # rule 17: moments
+    ks_fixed = as_array(ks_fixed, "ks_fixed", ndim=1).tolist()  # fuzz 24a U7: numbers, at least one, each > 0
+    if min(ks_fixed) <= 0:
+        raise ValueError(f"ks_fixed must hold positive ridge parameters, got {shown(ks_fixed)}")
+    loop_work((len(xs) + 1, 3 + len(ks_fixed)), 501, "xs and ks_fixed")  # rule 17: moments
     for i, x in enumerate(xs):
         _optimal_k_representable(x, sigma, f"xs[{i}]")
     x_far = scalar(x_far, "x_far")

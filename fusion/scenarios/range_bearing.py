@@ -94,7 +94,7 @@ def run_tracking(
     instance_of(sc, RangeBearingScenario, "sc")
     if not isinstance(seed, np.random.SeedSequence):
         raise ValueError("seed must be a numpy.random.SeedSequence")
-    return run_tracking_batch(sc, [seed], all_nodes=[bool(all_nodes)], swarm_options=swarm_options)[0]
+    return run_tracking_batch(sc, [seed], all_nodes=[flag(all_nodes, "all_nodes")], swarm_options=swarm_options)[0]
 
 
 def run_tracking_batch(
@@ -146,7 +146,8 @@ def run_tracking_batch(
     for s in seeds:
         if not isinstance(s, np.random.SeedSequence):
             raise ValueError("seeds must hold numpy.random.SeedSequence objects")
-    flags = [False] * len(seeds) if all_nodes is None else [bool(f) for f in sequence(all_nodes, "all_nodes")]
+    flags = [False] * len(seeds) if all_nodes is None else [flag(f, f"all_nodes[{i}]")
+                                                                for i, f in enumerate(sequence(all_nodes, "all_nodes"))]
     if len(flags) != len(seeds):
         raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
     swarm_options = check_swarm_options(swarm_options)

@@ -249,10 +249,10 @@ def manoeuvre_truth(t: ArrayLike, a_after: float | None, t_change: float = 20.0)
     Shi, Suo & Ma (2023) state a constant acceleration of 2 m/s²; the change is the book's robustness check.
     """
     as_array(t, "t", nonempty=False)
+    t_change = scalar(t_change, "t_change")  # checked also without a change (fuzz 24a D4: every option is checked)
     if a_after is None:
         return truth(t)
     a_after = scalar(a_after, "a_after")
-    t_change = scalar(t_change, "t_change")
     tt = np.asarray(t, dtype=float)
     x = truth(tt)
     dt = tt - t_change
@@ -369,6 +369,13 @@ def _filtered(names: Sequence[str], t_src: FloatArray, Z: FloatArray, t_dst: Flo
     return out
 
 
+def _options(kf: Mapping[str, Any] | None, window: float | None, t_dst: ArrayLike) -> float | None:
+    """Check the filter options and the least-squares window whatever the method (fuzz 24a D4: an option the
+    chosen method does not use is still the caller's, and a bad one is refused by name); the window as given."""
+    _kf_kwargs(kf, np.asarray(t_dst, dtype=float))
+    return None if window is None else positive_scalar(window, "window")
+
+
 def _direct(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, window: float | None = None) -> FloatArray:
     """A fixed-weight method of :data:`_DIRECT` on one sample vector."""
     fn, options = _DIRECT[name]
@@ -406,7 +413,8 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
     kf : mapping, optional
         Further filter options, keys :data:`KF_OPTIONS`.
     window : float, optional
-        Least-squares window (s); default sensor 2's period in the source, 5 s.
+        Least-squares window (s); default sensor 2's period in the source, 5 s. Checked, as ``kf`` is, whatever
+        the method, also one that does not use it.
 
     Returns
     -------
@@ -416,6 +424,7 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
     _check_name(name)
     sigma, q_v, q_a = _check_args(t_src, t_dst, sigma, q_v, q_a)
     same_length(as_array(t_src, "t_src", ndim=1), "t_src", as_array(z, "z", ndim=1), "z")
+    window = _options(kf, window, t_dst)
     if name in _DIRECT:
         return _direct(name, t_src, z, t_dst, window)
     ts, td = np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float)
@@ -443,7 +452,7 @@ def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
     kf : mapping, optional
         Further filter options (:data:`KF_OPTIONS`).
     window : float, optional
-        Least-squares window (s).
+        Least-squares window (s). Checked, as ``kf`` is, whatever the method, also one that does not use it.
 
     Returns
     -------
@@ -458,7 +467,7 @@ def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
     """
     _check_name(name)
     sigma, q_v, q_a = _check_args(t_src, t_dst, sigma, q_v, q_a)
-    _kf_kwargs(kf, np.asarray(t_dst, dtype=float))
+    window = _options(kf, window, t_dst)
     return partial(_registrar_call, name, np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float),
                    sigma, q_v, q_a, kf, window)
 
@@ -491,7 +500,7 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     kf : mapping, optional
         Further filter options (:data:`KF_OPTIONS`).
     window : float, optional
-        Least-squares window (s).
+        Least-squares window (s). Checked, as ``kf`` is, whatever the method, also one that does not use it.
     sigma_filter : float, optional
         Noise level the Kalman filter assumes (m); default the true ``sigma``. With it fixed, every
         method is affine with data-independent weights and the result is exactly
@@ -504,7 +513,8 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     a_after : float, optional
         Acceleration (m/s²) after ``t_change`` (:func:`manoeuvre_truth`); default none (the source's truth).
     t_change : float
-        Time of the change (s); 0 with ``a_after=0`` gives a constant-velocity target.
+        Time of the change (s); 0 with ``a_after=0`` gives a constant-velocity target. Checked also without
+        ``a_after``.
 
     Returns
     -------
@@ -710,7 +720,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     kf : mapping, optional
         Further filter options (:data:`KF_OPTIONS`).
     window : float, optional
-        Least-squares window (s).
+        Least-squares window (s). Checked, as ``kf`` is, whatever the method, also one that does not use it.
     sigma_filter : float, optional
         Noise level the filter assumes (m); default ``sigma``.
     delay : float
@@ -718,7 +728,8 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     a_after : float, optional
         Acceleration (m/s²) after ``t_change`` (:func:`manoeuvre_truth`); default none (the source's truth).
     t_change : float
-        Time of the change (s); 0 with ``a_after=0`` gives a constant-velocity target.
+        Time of the change (s); 0 with ``a_after=0`` gives a constant-velocity target. Checked also without
+        ``a_after``.
 
     Returns
     -------
@@ -741,6 +752,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     sigma, q_v, q_a = _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
+    window = _options(kf, window, t2)
     rng = np.random.default_rng(seed)
     z = manoeuvre_truth(t1 - delay, a_after, t_change) + sigma * rng.standard_normal((int(runs), t1.size))
     x2 = manoeuvre_truth(t2, a_after, t_change)

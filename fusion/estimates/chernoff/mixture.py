@@ -682,6 +682,7 @@ def fuse_mixtures_batch(
         ignored but must be finite).
     rngs : sequence of numpy.random.Generator, length B
         One per problem: its samples and its swarm.
+        Each draws its own stream: one Generator given twice is refused.
     n_samples : int
         :math:`R` per problem.
     eps0 : array_like, shape (B, N) or (N,), optional

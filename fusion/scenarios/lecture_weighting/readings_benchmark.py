@@ -12,7 +12,7 @@ from fusion._frozen import frozen_arrays
 from fusion import readings as rd
 from fusion._validation import derived_inputs
 from fusion._validation import flag
-from fusion._validation import LOOP_STEP, distinct, loop_work
+from fusion._validation import LOOP_STEP, distinct, loop_work, sequence
 from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import instance_of, record, seeds as check_seeds
 from fusion._validation import seed as check_seed
@@ -171,8 +171,8 @@ def benchmark(
     allocation((runs, samples, sig_chk.size), "runs, samples and sigma")
     _index(fault_sensor, sig_chk.size, "fault_sensor")
     fault_from = count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
-    if isinstance(faults, (str, bytes)) or len(faults) == 0 or any(not isinstance(f, (bool, np.bool_)) for f in faults):
-        raise ValueError(f"faults must be a non-empty sequence of bools, got {shown(faults)}")
+    faults = [flag(f, f"faults[{i}]")  # fuzz 24a U8: one rule for a sequence argument, then for each flag
+              for i, f in enumerate(sequence(faults, "faults", minimum=1, what="flag"))]
     # the results are keyed by (seed, level, fault): a repeated entry would collapse two of them
     distinct(list(seeds), "seeds"), distinct(lv.tolist(), "levels"), distinct([bool(f) for f in faults], "faults")
     loop_work((len(seeds), lv.size, len(faults)), runs * samples * sig_chk.size,

@@ -11,7 +11,7 @@ from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_semidefinite, finite_result, instance_of, nonnegative_scalar,
                                 one_of, positive_scalar, solve, std_scalar, step_scalar)
 from fusion._validation import flag
-from fusion._validation import distinct, loop_work
+from fusion._validation import distinct, loop_work, sequence
 from fusion.filtering.kalman import cv_model
 from fusion.scenarios.two_sensor.case import _PARAMS
 from fusion.scenarios.two_sensor.case import _legs, trajectory
@@ -272,8 +272,8 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
     Ts = np.atleast_1d(as_array(periods, "periods", ndim=(0, 1)))
     if np.any(Ts <= 0):
         raise ValueError("periods must be positive")
-    for rd in readings:
-        one_of(rd, Q_READINGS, "readings")
+    readings = tuple(one_of(rd, Q_READINGS, "readings") for rd in sequence(readings, "readings", minimum=1,
+                                                                             what="reading"))
     distinct(Ts.tolist(), "periods")  # the results are keyed by (period, reading)
     # rule 17: each period's path has duration / T samples, a filter step per sample and reading
     steps = float(np.sum(np.floor(float(trajectory(1.0).t[-1]) / Ts) + 1.0))
@@ -284,8 +284,9 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
         X, F, H = traj.states, model.F, model.H
         steady = traj.t >= t_steady
         if not steady.any():
-            raise ValueError(f"t_steady = {t_steady} leaves no step of the path sampled with Ts entry {Tp} s "
-                             f"(its last step is at {float(traj.t[-1]):.6g} s): lower t_steady, or that entry of Ts")
+            raise ValueError(f"t_steady = {t_steady} leaves no step of the path sampled with periods entry {Tp} s "
+                             f"(its last step is at {float(traj.t[-1]):.6g} s): lower t_steady, or that entry of "
+                             "periods")
         tl, on_leg, floor = straight_leg_floor(Tp, sigma)
         fl = float(floor[tl[on_leg] >= t_steady].mean())
         fl_causal = float(straight_leg_floor(Tp, sigma, causal=True)[2][tl[on_leg] >= t_steady].mean())
