@@ -9,15 +9,127 @@ Imported by :mod:`fusion._validation` after its own definitions, where the packa
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg.lapack import dpotrf as _potrf
 
 from fusion._limits import MAX_MAGNITUDE, MIN_VARIANCE
+from fusion._structures import singular_error
 from fusion._validation import FloatArray, _magnitude_problem, _numeric, as_state, check_magnitude, scalar
 
 
 _TINY = float(np.finfo(float).tiny)
+_EPS = float(np.finfo(float).eps)
+SINGULAR_MARGIN = 2.0
+"""The margin of positive definiteness, in units of ``n * eps``: a matrix whose correlation matrix
+``D^-1/2 P D^-1/2`` (``D`` its diagonal) has its smallest eigenvalue within ``SINGULAR_MARGIN * n * eps`` of
+zero, relative to its largest, is singular to working precision and refused, although LAPACK's Cholesky
+factorisation may succeed on it by rounding (``0.41 * ones((2, 2))``, exactly singular, does). The rule is
+invariant to the units of each state component (a diagonal rescaling); a correlation matrix of condition
+number up to about ``1 / (SINGULAR_MARGIN * n * eps)`` (5.6e14 for n = 4) is accepted; a rounded exactly singular
+matrix stays below ``n * eps`` (measured)."""
+
+
+def singular_mask(arr: FloatArray) -> np.ndarray:
+    """Which matrices of a stack (..., n, n) that passed a Cholesky factorisation are singular to working precision.
+
+    The rule of :data:`SINGULAR_MARGIN`: the smallest eigenvalue of the correlation matrix at most
+    ``SINGULAR_MARGIN * n * eps`` times its largest. Gershgorin's bound (smallest eigenvalue at least one minus the
+    largest off-diagonal row sum of absolute correlations, largest at most ``n``) settles the usual, well-conditioned
+    case without an eigenvalue decomposition.
+
+    Parameters
+    ----------
+    arr : ndarray, shape (..., n, n)
+        Symmetric matrices with a positive diagonal.
+
+    Returns
+    -------
+    ndarray of bool, shape (...)
+        True where the matrix is numerically singular.
+    """
+    n = arr.shape[-1]
+    bad = np.zeros(arr.shape[:-2], dtype=bool)
+    if n == 1 or (arr.ndim == 2 and n <= _SMALL_PAIR and _surely_regular(arr.tolist())):
+        return bad
+    s = 1.0 / np.sqrt(np.diagonal(arr, axis1=-2, axis2=-1))
+    C = arr * s[..., :, None] * s[..., None, :]  # |P_ij| s_i <= sqrt(P_jj): no overflow in this order
+    tol = SINGULAR_MARGIN * n * _EPS
+    off = np.abs(C).sum(axis=-1) - np.abs(np.diagonal(C, axis1=-2, axis2=-1))
+    unsure = 1.0 - off.max(axis=-1) <= tol * n
+    if unsure.any():
+        ev = np.linalg.eigvalsh(C[unsure])
+        bad[unsure] = ev[..., 0] <= tol * ev[..., -1]
+    return bad
+
+
+def _surely_regular(rows: list[list[float]]) -> bool:
+    """The Gershgorin bound of :func:`singular_mask` in plain floats, for one small matrix given as rows (cheaper
+    than any numpy call): True when the matrix is surely not singular to working precision (False: undecided)."""
+    n = len(rows)
+    floor = SINGULAR_MARGIN * n * n * _EPS
+    if n == 2:
+        (a, b), (_, c) = rows
+        return 1.0 - abs(b) / (math.sqrt(a) * math.sqrt(c)) > floor  # no underflow of a * c
+    s = [1.0 / math.sqrt(rows[i][i]) for i in range(n)]
+    for i, row in enumerate(rows):
+        off = sum(abs(v) * sj for j, (v, sj) in enumerate(zip(row, s)) if j != i) * s[i]
+        if not 1.0 - off > floor:
+            return False
+    return True
+
+
+def check_invertible(M: FloatArray, names: str) -> None:
+    """Refuse a computed positive-definite matrix (or stack) that is about to be inverted when it is singular to
+    working precision by the rule of :data:`SINGULAR_MARGIN`.
+
+    For the intermediate matrices of a fusion (``P1d / omega + P1i`` of split CI): valid parts can combine into a
+    matrix whose inverse is rounding noise, and :func:`numpy.linalg.inv` raises only when LAPACK happens to meet an
+    exact zero pivot; below that it returns plausible wrong numbers.
+
+    Parameters
+    ----------
+    M : ndarray, shape (..., n, n)
+        Symmetric positive-definite matrices (a positive diagonal).
+    names : str
+        The arguments the matrices come from, named in the message.
+
+    Raises
+    ------
+    ValueError
+        The message of ``singular_error`` (``fusion._structures``), naming ``names``.
+    """
+    if singular_mask(M).any():
+        raise singular_error(names, "a matrix to invert is singular to working precision by its condition number")
+
+
+def refuse_singular(arr: FloatArray, name: str) -> None:
+    """Refuse, naming the first by its index, a matrix of a stack (..., n, n) that passed a Cholesky factorisation
+    but is singular to working precision (the rule of :data:`SINGULAR_MARGIN`; the check of :func:`as_covariance`).
+
+    Parameters
+    ----------
+    arr : ndarray, shape (..., n, n)
+        Symmetric matrices with a positive diagonal.
+    name : str
+        The argument's name, used in the message (``covs[1]``).
+
+    Raises
+    ------
+    ValueError
+        A numerically singular matrix.
+    """
+    bad = singular_mask(arr)
+    if bad.any():
+        idx = tuple(int(i) for i in np.argwhere(bad)[0])
+        raise ValueError(_singular_message(f"{name}[{', '.join(map(str, idx))}]" if idx else name))
+
+
+def _singular_message(name: str) -> str:
+    return (f"{name} must be positive definite: it is singular to working precision (its correlation matrix has "
+            f"an eigenvalue within {SINGULAR_MARGIN:g} n eps of zero, relative to its largest)")
 
 
 def _finite_symmetric(arr: FloatArray, name: str, rtol: float) -> tuple[FloatArray, float]:
@@ -55,7 +167,8 @@ def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: f
         If ``P`` is not numeric.
     ValueError
         Wrong shape, NaN/inf, asymmetry beyond ``rtol`` (relative to the largest entry),
-        or not positive definite (Cholesky fails).
+        or not positive definite (Cholesky fails, or the matrix is singular to working precision by the rule of
+        :data:`SINGULAR_MARGIN`).
     """
     arr = _numeric(P, name)
     if arr.ndim == 0:
@@ -68,6 +181,7 @@ def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: f
     if _potrf(arr, lower=1, clean=0)[1] != 0:  # LAPACK Cholesky: info > 0 if not positive definite
         raise ValueError(f"{name} must be positive definite")
     _covariance_magnitude(arr, name)
+    refuse_singular(sym, name)  # Cholesky can succeed by rounding on an exactly singular matrix
     return sym
 
 
@@ -137,7 +251,7 @@ def as_covariances(P: ArrayLike, dim: int | None = None, name: str = "covs", rto
             pass
         else:
             d = np.diagonal(arr, axis1=-2, axis2=-1)
-            if float(d.max()) <= MAX_MAGNITUDE and float(d.min()) >= MIN_VARIANCE:
+            if float(d.max()) <= MAX_MAGNITUDE and float(d.min()) >= MIN_VARIANCE and not singular_mask(arr).any():
                 return arr
     out = np.empty_like(arr)
     for idx in np.ndindex(*arr.shape[:-2]):
@@ -188,10 +302,11 @@ def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1"
         # A NaN breaks the equality; an infinity or a huge entry either sits on the diagonal
         # (checked next) or makes the matrix indefinite (|P_ij| <= sqrt(P_ii P_jj)). Anything
         # that fails goes through the general path below for the precise message.
-        if (P1.tolist() == P1.T.tolist() and P2.tolist() == P2.T.tolist()
+        l1, l2 = P1.tolist(), P2.tolist()
+        if (l1 == P1.T.tolist() and l2 == P2.T.tolist()
                 and not _potrf(P1, 1, 0)[1] and not _potrf(P2, 1, 0)[1]):
             d = P1.diagonal().tolist() + P2.diagonal().tolist()
-            if max(d) <= MAX_MAGNITUDE and min(d) >= MIN_VARIANCE:
+            if max(d) <= MAX_MAGNITUDE and min(d) >= MIN_VARIANCE and _surely_regular(l1) and _surely_regular(l2):
                 return P1, P2
     A, B = _numeric(P1, names[0]), _numeric(P2, names[1])
     shape = A.shape
@@ -221,6 +336,9 @@ def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1"
     if not (max(diag) <= MAX_MAGNITUDE and min(diag) >= MIN_VARIANCE):
         _covariance_magnitude(A, names[0])
         _covariance_magnitude(B, names[1])
+    if n > _SMALL_PAIR or not (_surely_regular(la) and _surely_regular(lb)):
+        refuse_singular(A, names[0])  # finite, within the magnitude rule: singular to working precision?
+        refuse_singular(B, names[1])
     return A, B
 
 

@@ -225,10 +225,10 @@ def derived(names: str, what: str) -> Iterator[None]:
 def singular_system(names: str, finite: bool = False) -> Callable[[Callable[..., object]], Callable[..., object]]:
     """Decorate a public function whose covariances are inverted (rule 5), naming them on a singular system.
 
-    The covariance validators accept any matrix whose Cholesky factorisation succeeds, which keeps
-    ill-conditioned but valid input (condition numbers up to ``1e16``, documented and tested) working; a
-    matrix that is singular to working precision (e.g. all entries equal, a rank-one matrix whose last
-    pivot is rounding noise) can still pass and then make :func:`numpy.linalg.inv` fail. The decorated
+    The covariance validators refuse a matrix singular to working precision (the rule of
+    ``fusion._covariances.SINGULAR_MARGIN``) and keep ill-conditioned but valid input working; a matrix
+    computed from valid inputs can still be singular to working precision and make :func:`numpy.linalg.inv`
+    fail. The decorated
     function turns that :class:`numpy.linalg.LinAlgError` into a :class:`ValueError` naming ``names``,
     and so, with ``finite``, does a float or float-array result that is not finite (a log-determinant
     of ``-inf``, an inverse that overflows: the same near-singular matrix, caught later); results are

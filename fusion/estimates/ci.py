@@ -43,8 +43,8 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import chi2
 
 from fusion._frozen import frozen_arrays
-from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, covariance_pair, one_of,
-                                scalar, singular_error, singular_system, unit_scalar)
+from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, check_invertible,
+                                covariance_pair, one_of, scalar, singular_error, singular_system, unit_scalar)
 from fusion._validation import flag
 from fusion.optimise.scalar import _bounded_brent_batch
 
@@ -147,6 +147,7 @@ def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criteri
     return float(out) if w.ndim == 0 else np.asarray(out)
 
 
+@singular_system('P1d, P1i, P2d and P2i', finite=True)
 def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: ArrayLike,
                        same_omega: bool = False) -> float | FloatArray:
     r"""Trace of the split-CI covariance for weight ``omega``; with ``same_omega``, of Wang & Tang's (2024) eqs. 11-12.
@@ -180,7 +181,9 @@ def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike,
     Raises
     ------
     ValueError
-        Bad parts, mismatched shapes, ``omega`` outside its interval or not finite.
+        Bad parts, mismatched shapes, ``omega`` outside its interval or not finite, or a numerically singular system
+        (naming the parts): a matrix :math:`\tilde P_j` to invert singular to working precision by its condition
+        number (the rule of ``fusion._covariances.SINGULAR_MARGIN``).
 
     References
     ----------
@@ -204,7 +207,9 @@ def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike,
         raise ValueError(f"omega must lie in (0, {'1]' if same_omega else '1)'}, got {omega}")
     w1 = w[..., None, None]
     w2 = w1 if same_omega else 1.0 - w1
-    info = np.linalg.inv(A1d / w1 + A1i) + np.linalg.inv(A2d / w2 + A2i)
+    T1, T2 = A1d / w1 + A1i, A2d / w2 + A2i
+    check_invertible(np.stack(np.broadcast_arrays(T1, T2)), "P1d, P1i, P2d and P2i")
+    info = np.linalg.inv(T1) + np.linalg.inv(T2)
     out = np.trace(np.linalg.inv(info), axis1=-2, axis2=-1)
     return float(out) if w.ndim == 0 else np.asarray(out)
 
@@ -364,14 +369,21 @@ def covariance_intersection(
     Raises
     ------
     ValueError
-        Mismatched shapes, NaN/inf, non-symmetric or non-positive-definite covariances,
-        ``omega`` outside [0, 1], unknown criterion.
+        Mismatched shapes, NaN/inf, non-symmetric or non-positive-definite covariances (singular to working
+        precision included), ``omega`` outside [0, 1], unknown criterion.
 
     Notes
     -----
     With ``omega = 1`` (or 0) the result is the first (second) estimate. For identical
     inputs the result equals them for every ``omega``. When ``P1 = P2`` both criteria are
     constant in ``omega``: the optimum is undetermined and ``omega = 0.5`` is returned.
+
+    Accuracy: the information form inverts ``P1`` and ``P2`` explicitly, so the relative error of ``x`` and
+    ``P`` grows like :math:`\kappa\epsilon`, with :math:`\kappa` the condition number of the covariances
+    (measured on ``P1 = c 11^T + [[1, .15], [.15, .5]]``: 3e-5 at ``c = 1e12``, 4e-3 at ``c = 1e14``). A covariance
+    singular to working precision (its correlation matrix of condition number beyond about
+    :math:`1/(2n\epsilon)`, the rule of ``fusion._covariances.SINGULAR_MARGIN``) is refused, naming it; below
+    that, ill-conditioned covariances are valid input and the caller owns the lost digits.
 
     References
     ----------
@@ -433,7 +445,12 @@ def convex_combination(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLik
     Raises
     ------
     ValueError
-        Mismatched shapes, NaN/inf, covariances not symmetric positive definite.
+        Mismatched shapes, NaN/inf, covariances not symmetric positive definite (or singular to working precision).
+
+    Notes
+    -----
+    Accuracy as :func:`covariance_intersection` (explicit inverses): a relative error of about
+    :math:`\kappa\epsilon` for covariances of condition number :math:`\kappa`.
 
     References
     ----------
@@ -504,7 +521,9 @@ def _split_ci_covariance(A1d: FloatArray, A1i: FloatArray, A2d: FloatArray, A2i:
     at once, without the checks a second time (tested against the public function).
     """
     w2 = w if same_omega else 1.0 - w
-    I1, I2 = np.linalg.inv(A1d / w + A1i), np.linalg.inv(A2d / w2 + A2i)
+    T1, T2 = A1d / w + A1i, A2d / w2 + A2i
+    check_invertible(np.stack((T1, T2)), "P1d, P1i, P2d and P2i")
+    I1, I2 = np.linalg.inv(T1), np.linalg.inv(T2)
     P = np.linalg.inv(I1 + I2)
     return 0.5 * (P + P.T)
 
@@ -563,7 +582,9 @@ def split_covariance_intersection(
         Mismatched shapes, NaN/inf, parts that are not symmetric positive semidefinite (a flat
         vector is not reshaped into a matrix), sums that are not positive definite, unknown
         criterion, or ``omega`` outside (0, 1): the ends divide a correlated part by zero
-        (``omega = 1`` is allowed with ``same_omega``).
+        (``omega = 1`` is allowed with ``same_omega``); a numerically singular system (naming the parts): a sum, or
+        a matrix :math:`P_{j,d}/\omega + P_{j,i}` to invert at the weight used, singular to working precision by
+        its condition number (the rule of ``fusion._covariances.SINGULAR_MARGIN``).
 
     References
     ----------
@@ -585,6 +606,7 @@ def split_covariance_intersection(
 
     def fused(w: float) -> tuple[FloatArray, FloatArray]:
         T1, T2 = parts(w)
+        check_invertible(np.stack((T1, T2)), "P1d, P1i, P2d and P2i")
         I1, I2 = np.linalg.inv(T1), np.linalg.inv(T2)
         P = np.linalg.inv(I1 + I2)
         return 0.5 * (P + P.T), P @ (I1 @ x1 + I2 @ x2)

@@ -32,7 +32,7 @@ from fusion._frozen import frozen_arrays, restore_frozen
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
                                 as_covariance, as_rng, as_state, as_weights, count, instance_of, nonnegative_scalar,
-                                same_length)
+                                refuse_singular, same_length)
 
 __all__ = ["EmFit", "Moments", "GaussianMixture", "logsumexp", "gaussian_logpdf", "gm_logpdf", "gm_moments", "gm_sample", "weighted_em", "weighted_em_batch"]
 
@@ -121,6 +121,7 @@ class GaussianMixture:
         except np.linalg.LinAlgError:
             raise ValueError("covs must be positive definite") from None
         _covariance_magnitude(c, "covs")  # the covariance rule: no variance below MIN_VARIANCE
+        refuse_singular(c, "covs")  # the covariance rule: not singular to working precision
         for name, arr in (("weights", w), ("means", m), ("covs", c)):
             if arr.flags.writeable:  # validated copies (rule 14), read-only: an in-place write would bypass the checks
                 arr.setflags(write=False)

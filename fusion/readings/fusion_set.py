@@ -275,7 +275,7 @@ def consistency_degree(C: ArrayLike) -> FloatArray:
     Parameters
     ----------
     C : array_like, shape (m, m)
-        Fusion-degree matrix.
+        Fusion-degree matrix (:func:`fusion_degree_matrix`): symmetric, in [0, 1], ones on the diagonal, to 1e-9.
 
     Returns
     -------
@@ -290,9 +290,9 @@ def _as_fusion_degree_matrix(C: ArrayLike) -> FloatArray:
     arr = _numeric(C, "C")
     if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or arr.shape[0] == 0:
         raise ValueError(f"C must be a non-empty square matrix, got shape {arr.shape}")
-    check_magnitude(arr, "C")
-    if not np.allclose(arr, arr.T):
-        raise ValueError("C must be symmetric")
+    if not (np.all((arr >= 0.0) & (arr <= 1.0)) and np.abs(np.diagonal(arr) - 1.0).max() <= 1e-9
+            and np.abs(arr - arr.T).max() <= 1e-9):  # eqs. 6-7: exp(-d_ij / scale), tiny ones valid (far readings)
+        raise ValueError("C must be a fusion-degree matrix: symmetric, entries in [0, 1], ones on its diagonal")
     return arr
 
 
@@ -314,7 +314,7 @@ def distribution_balance(
     Parameters
     ----------
     C : array_like, shape (m, m)
-        Fusion-degree matrix.
+        Fusion-degree matrix (:func:`fusion_degree_matrix`): symmetric, in [0, 1], ones on the diagonal, to 1e-9.
     include_self : bool
         Whether the sum over :math:`j` includes :math:`j = i` (where :math:`c_{ii} = 1`).
         The source does not say; default ``True`` (the row of :math:`C` as printed).

@@ -30,7 +30,7 @@ from fusion._frozen import frozen_arrays
 from fusion._timing import LapTimer
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
                                 instance_of, one_of)
-from fusion._validation import flag
+from fusion._validation import flag, refuse_singular
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
@@ -741,6 +741,7 @@ def fuse_mixtures_batch(
         np.linalg.cholesky(cc)
     except np.linalg.LinAlgError:
         raise ValueError("covs must be positive definite (where the weight is positive)") from None
+    refuse_singular(np.where(pos[..., None, None], c, np.eye(d)), "covs")  # the covariance rule, where w > 0
     as_rngs(rngs, "rngs", B)
     n_samples = count(n_samples, "n_samples", minimum=2)
     if eps0 is None:
