@@ -32,18 +32,27 @@ number up to about ``1 / (SINGULAR_MARGIN * n * eps)`` (5.6e14 for n = 4) is acc
 matrix stays below ``n * eps`` (measured)."""
 
 
-def singular_mask(arr: FloatArray) -> np.ndarray:
+def _pivot_floor(n: int) -> float:
+    return SINGULAR_MARGIN * n * _EPS
+
+
+def singular_mask(arr: FloatArray, factor: FloatArray | None = None) -> np.ndarray:
     """Which matrices of a stack (..., n, n) that passed a Cholesky factorisation are singular to working precision.
 
-    The rule of :data:`SINGULAR_MARGIN`: the smallest eigenvalue of the correlation matrix at most
-    ``SINGULAR_MARGIN * n * eps`` times its largest. Gershgorin's bound (smallest eigenvalue at least one minus the
-    largest off-diagonal row sum of absolute correlations, largest at most ``n``) settles the usual, well-conditioned
-    case without an eigenvalue decomposition.
+    The rule of :data:`SINGULAR_MARGIN`, decided from the factorisation where it can be: with ``r_i = L_ii**2 /
+    P_ii`` (the Cholesky pivots of the correlation matrix ``C``, trace ``n``), ``det C = prod r_i`` and the smallest
+    eigenvalue lies between ``det C / e`` (the other eigenvalues sum to at most ``n``, so their product is at most
+    ``e``) and ``min r_i``, the largest between 1 and ``n``. A matrix with ``min r_i`` within the margin is
+    singular; one with ``det C / e`` beyond ``n`` times the margin is not; only those in between (condition
+    numbers near ``1 / (n eps)``) need the eigenvalues.
 
     Parameters
     ----------
     arr : ndarray, shape (..., n, n)
         Symmetric matrices with a positive diagonal.
+    factor : ndarray, shape (..., n, n), optional
+        Their lower Cholesky factors, when the caller has them (only the diagonal is read); computed otherwise (a
+        matrix that is not positive definite counts as singular).
 
     Returns
     -------
@@ -51,32 +60,56 @@ def singular_mask(arr: FloatArray) -> np.ndarray:
         True where the matrix is numerically singular.
     """
     n = arr.shape[-1]
-    bad = np.zeros(arr.shape[:-2], dtype=bool)
-    if n == 1 or (arr.ndim == 2 and n <= _SMALL_PAIR and _surely_regular(arr.tolist())):
-        return bad
-    s = 1.0 / np.sqrt(np.diagonal(arr, axis1=-2, axis2=-1))
-    C = arr * s[..., :, None] * s[..., None, :]  # |P_ij| s_i <= sqrt(P_jj): no overflow in this order
-    tol = SINGULAR_MARGIN * n * _EPS
-    off = np.abs(C).sum(axis=-1) - np.abs(np.diagonal(C, axis1=-2, axis2=-1))
-    unsure = 1.0 - off.max(axis=-1) <= tol * n
+    if factor is None:
+        try:
+            factor = np.linalg.cholesky(arr)
+        except np.linalg.LinAlgError:  # a stack: one at a time, a failed factorisation counted singular
+            flat = arr.reshape((-1,) + arr.shape[-2:])
+            return np.array([_one_singular(m) for m in flat], dtype=bool).reshape(arr.shape[:-2])
+    piv = np.diagonal(factor, axis1=-2, axis2=-1)
+    d = np.diagonal(arr, axis1=-2, axis2=-1)
+    with np.errstate(invalid="ignore", over="ignore", under="ignore"):
+        r = piv * piv / d
+    tol = _pivot_floor(n)
+    bad = np.atleast_1d(~(np.min(r, axis=-1) > tol))
+    with np.errstate(divide="ignore"):
+        unsure = ~bad & ~np.atleast_1d(np.exp(np.sum(np.log(r), axis=-1) - 1.0) > n * tol)
     if unsure.any():
-        ev = np.linalg.eigvalsh(C[unsure])
+        stack = arr.reshape((-1, n, n))[unsure]
+        s = 1.0 / np.sqrt(np.diagonal(stack, axis1=-2, axis2=-1))
+        ev = np.linalg.eigvalsh(stack * s[..., :, None] * s[..., None, :])  # |P_ij| s_i <= sqrt(P_jj)
         bad[unsure] = ev[..., 0] <= tol * ev[..., -1]
-    return bad
+    return bad.reshape(arr.shape[:-2])
 
 
-def _surely_regular(rows: list[list[float]]) -> bool:
-    """The Gershgorin bound of :func:`singular_mask` in plain floats, for one small matrix given as rows (cheaper
-    than any numpy call): True when the matrix is surely not singular to working precision (False: undecided)."""
-    n = len(rows)
-    floor = SINGULAR_MARGIN * n * n * _EPS
-    if n == 2:
-        (a, b), (_, c) = rows
-        return 1.0 - abs(b) / (math.sqrt(a) * math.sqrt(c)) > floor  # no underflow of a * c
-    s = [1.0 / math.sqrt(rows[i][i]) for i in range(n)]
-    for i, row in enumerate(rows):
-        off = sum(abs(v) * sj for j, (v, sj) in enumerate(zip(row, s)) if j != i) * s[i]
-        if not 1.0 - off > floor:
+def _one_singular(m: FloatArray) -> bool:
+    try:
+        return bool(singular_mask(m, np.linalg.cholesky(m)))
+    except np.linalg.LinAlgError:
+        return True
+
+
+#: ``e * n * SINGULAR_MARGIN * n * eps`` by size ``n``: the determinant of a correlation matrix above which it is
+#: surely not singular to working precision (:func:`singular_mask`).
+_DET_FLOOR = tuple(math.e * n * _pivot_floor(n) for n in range(65))
+
+
+#: The flat indices of an n x n matrix's diagonal, by n (for :func:`_regular_factors`).
+_DIAGONAL = tuple(range(0, n * n, n + 1) for n in range(65))
+
+
+def _regular_factors(factors: tuple[FloatArray, ...], diags: tuple[list[float], ...]) -> bool:
+    """The fast accept of :func:`singular_mask` for small matrices whose ``dpotrf`` factors (only the diagonals are
+    read) and diagonals the caller has, in plain floats: True when none is singular to working precision (False:
+    one is singular or undecided, for :func:`singular_mask` to settle; also when a product leaves the normal float
+    range, so that no underflow can pass a singular matrix)."""
+    for factor, diag in zip(factors, diags):
+        n = len(diag)
+        if n >= len(_DIAGONAL):
+            return False
+        pivots = math.prod(map(factor.item, _DIAGONAL[n]))  # prod L_ii, without a numpy call
+        den = math.prod(diag)
+        if not (1e-290 < den < 1e290 and pivots * pivots > _DET_FLOOR[n] * den):
             return False
     return True
 
@@ -178,10 +211,12 @@ def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: f
     if dim is not None and arr.shape[0] != dim:
         raise ValueError(f"{name} must be {dim}x{dim} to match the state, got {arr.shape}")
     sym, _ = _finite_symmetric(arr, name, rtol)
-    if _potrf(arr, lower=1, clean=0)[1] != 0:  # LAPACK Cholesky: info > 0 if not positive definite
+    factor, info = _potrf(arr, lower=1, clean=0)
+    if info != 0:  # LAPACK Cholesky: info > 0 if not positive definite
         raise ValueError(f"{name} must be positive definite")
     _covariance_magnitude(arr, name)
-    refuse_singular(sym, name)  # Cholesky can succeed by rounding on an exactly singular matrix
+    if singular_mask(arr, factor):  # Cholesky can succeed by rounding on an exactly singular matrix
+        raise ValueError(_singular_message(name))
     return sym
 
 
@@ -246,12 +281,13 @@ def as_covariances(P: ArrayLike, dim: int | None = None, name: str = "covs", rto
         symmetric = not np.abs(arr - np.swapaxes(arr, -1, -2)).max() != 0.0
     if symmetric:
         try:
-            np.linalg.cholesky(arr)
+            factor = np.linalg.cholesky(arr)
         except np.linalg.LinAlgError:
             pass
         else:
             d = np.diagonal(arr, axis1=-2, axis2=-1)
-            if float(d.max()) <= MAX_MAGNITUDE and float(d.min()) >= MIN_VARIANCE and not singular_mask(arr).any():
+            if (float(d.max()) <= MAX_MAGNITUDE and float(d.min()) >= MIN_VARIANCE
+                    and not singular_mask(arr, factor).any()):
                 return arr
     out = np.empty_like(arr)
     for idx in np.ndindex(*arr.shape[:-2]):
@@ -298,16 +334,25 @@ def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1"
     if (type(P1) is np.ndarray and type(P2) is np.ndarray and P1.dtype is _F64 and P2.dtype is _F64
             and P1.ndim == 2 and P1.shape == P2.shape and 2 <= P1.shape[0] == P1.shape[1] <= _SMALL_PAIR
             and (dim is None or dim == P1.shape[0])):
-        # the usual case (two small float matrices): plain floats, cheaper than any numpy call.
-        # A NaN breaks the equality; an infinity or a huge entry either sits on the diagonal
-        # (checked next) or makes the matrix indefinite (|P_ij| <= sqrt(P_ii P_jj)). Anything
-        # that fails goes through the general path below for the precise message.
-        l1, l2 = P1.tolist(), P2.tolist()
-        if (l1 == P1.T.tolist() and l2 == P2.T.tolist()
-                and not _potrf(P1, 1, 0)[1] and not _potrf(P2, 1, 0)[1]):
-            d = P1.diagonal().tolist() + P2.diagonal().tolist()
-            if max(d) <= MAX_MAGNITUDE and min(d) >= MIN_VARIANCE and _surely_regular(l1) and _surely_regular(l2):
-                return P1, P2
+        # the usual case (two small float matrices): plain floats and two LAPACK calls, cheaper than numpy's
+        # checks. Symmetry is bitwise equality with the transpose (a -0.0 facing a 0.0 takes the general path
+        # below). A NaN or infinity anywhere reaches a pivot of the factorisation (L_ij = NaN gives L_ii = NaN),
+        # so the determinant test of _regular_factors fails on it; a huge entry either sits on the diagonal
+        # (checked) or makes the matrix indefinite (|P_ij| <= sqrt(P_ii P_jj)). Anything that fails goes
+        # through the general path below for the precise message.
+        if P1.tobytes() == P1.T.tobytes() and P2.tobytes() == P2.T.tobytes():
+            (c1, i1), (c2, i2) = _potrf(P1, 1, 0), _potrf(P2, 1, 0)
+            if not i1 and not i2:
+                d1, d2 = P1.diagonal().tolist(), P2.diagonal().tolist()
+                d = d1 + d2
+                if max(d) <= MAX_MAGNITUDE and min(d) >= MIN_VARIANCE:
+                    # _regular_factors inlined (the hot path of covariance intersection)
+                    n = len(d1)
+                    idx, floor = _DIAGONAL[n], _DET_FLOOR[n]
+                    p1, p2 = math.prod(map(c1.item, idx)), math.prod(map(c2.item, idx))
+                    e1, e2 = math.prod(d1), math.prod(d2)
+                    if 1e-290 < e1 < 1e290 and 1e-290 < e2 < 1e290 and p1 * p1 > floor * e1 and p2 * p2 > floor * e2:
+                        return P1, P2
     A, B = _numeric(P1, names[0]), _numeric(P2, names[1])
     shape = A.shape
     n = shape[0] if len(shape) == 2 else 0
@@ -329,16 +374,17 @@ def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1"
         with np.errstate(invalid="ignore"):
             ok = not np.abs(S - S.transpose(0, 2, 1)).max() != 0.0
         diag = np.diagonal(S, axis1=1, axis2=2).reshape(-1).tolist()
-    if not ok or _potrf(A, 1, 0)[1] or _potrf(B, 1, 0)[1]:
+    (ca, ia), (cb, ib) = _potrf(A, 1, 0), _potrf(B, 1, 0)
+    if not ok or ia or ib:
         # asymmetric, NaN/inf, or not positive definite: the per-matrix checks say which and how
         A = as_covariance(A, dim=dim, name=names[0], rtol=rtol)
         return A, as_covariance(B, dim=A.shape[0], name=names[1], rtol=rtol)
     if not (max(diag) <= MAX_MAGNITUDE and min(diag) >= MIN_VARIANCE):
         _covariance_magnitude(A, names[0])
         _covariance_magnitude(B, names[1])
-    if n > _SMALL_PAIR or not (_surely_regular(la) and _surely_regular(lb)):
-        refuse_singular(A, names[0])  # finite, within the magnitude rule: singular to working precision?
-        refuse_singular(B, names[1])
+    for M, c, name in ((A, ca, names[0]), (B, cb, names[1])):  # finite, within the magnitude rule: singular?
+        if not _regular_factors((c,), (M.diagonal().tolist(),)) and singular_mask(M, c):
+            raise ValueError(_singular_message(name))
     return A, B
 
 
