@@ -539,9 +539,7 @@ def test_vectorised_runner_reproduces_the_per_run_implementation_it_replaced() -
                     scale = max(1.0, float(np.nanmax(np.abs(want))))
                     tol = 1e-5 if key == "ci_gaussian" else 1e-9
                     np.testing.assert_allclose(value, want, rtol=0, atol=tol * scale, err_msg=f"{field}[{key}]")
-            # 1e-9 as the fields above: the EM regularisation became relative to each coordinate (fuzz 24a S1), which
-            # moves these log-likelihoods by up to 4.5e-10 of the recorded ones
-            np.testing.assert_allclose(run.gm_loglik, old["gm_loglik"], rtol=1e-9)
+            np.testing.assert_allclose(run.gm_loglik, old["gm_loglik"], rtol=1e-10)
             np.testing.assert_allclose(run.gm1_loglik, old["gm1_loglik"], rtol=1e-10)
             if old["node_estimates"] is not None:
                 np.testing.assert_allclose(run.node_estimates, old["node_estimates"], rtol=1e-9)

@@ -7,9 +7,10 @@ filter are weighted, so the EM here is written for weighted samples (Dempster, L
 * E-step: :math:`\gamma_{qs} \propto \pi_s \mathcal N(x^{(q)}; \mu_s, P_s)`;
 * M-step: :math:`\pi_s = \sum_q w_q\gamma_{qs}`, :math:`\mu_s = \sum_q w_q\gamma_{qs}x^{(q)}/\pi_s`,
   :math:`P_s = \sum_q w_q\gamma_{qs}(x^{(q)} - \mu_s)(\cdot)^\top/\pi_s + \lambda\,\mathrm{diag}(\bar P)`, the floor a
-  share :math:`\lambda` of the variances of the whole weighted sample :math:`\bar P` (plus :math:`10^{-12}` times
-  each of those variances, at least :math:`(\epsilon\bar x_i)^2` for a coordinate without spread and at least
-  ``MIN_VARIANCE``: relative to each coordinate's scale, so the fit is equivariant under a change of unit).
+  share :math:`\lambda` of the variances of the whole weighted sample :math:`\bar P` (plus :math:`10^{-12}\min(s, 1)I`,
+  :math:`s` the largest of those variances in unit², at least :math:`(\epsilon\max_i|\bar x_i|)^2` for a repeated
+  point, and at least ``MIN_VARIANCE``: at most :math:`10^{-12}` of the data's scale, so the fit does not depend
+  on the unit; data of small variances, e.g. micrometres in metres, keep their covariances).
 
 References
 ----------
@@ -348,9 +349,9 @@ def weighted_em(
     floor : float
         Covariance floor :math:`\lambda`: ``floor`` times the weighted variance of each
         coordinate is added to every component covariance, so that resampled duplicates
-        cannot make a covariance singular (plus :math:`10^{-12}` times that variance, at least
-        :math:`(\epsilon\bar x_i)^2` for a coordinate without spread: relative to each
-        coordinate's scale, so the fit does not depend on the units).
+        cannot make a covariance singular (plus :math:`10^{-12}\min(s, 1)` on the diagonal, :math:`s`
+        the largest of those variances in unit²: at most :math:`10^{-12}` of the data's scale, so
+        the fit does not depend on the unit).
     init : GaussianMixture, optional
         Warm start (e.g. the previous frame's mixture, predicted); must have
         ``n_components`` components of the samples' dimension.
@@ -684,9 +685,12 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
     mean_all = np.matmul(ww[:, None, :], xx)[:, 0]  # (B, d)
     cov_all = _wscatter(xx, mean_all[:, None], ww[:, None])[:, 0]
     diag = np.diagonal(cov_all, axis1=1, axis2=2)
-    # each coordinate's scale (its unit²): its variance, at least the resolution of its mean (no spread at all)
-    scale = np.maximum(diag, (np.finfo(float).eps * mean_all) ** 2)
-    reg = (floor * diag + np.maximum(1e-12 * scale, MIN_VARIANCE))[:, :, None] * np.eye(d)
+    # the data's scale (unit²): the largest variance, at least the resolution of the mean (a repeated point); the
+    # added term is 1e-12 of it below 1 unit², the former absolute 1e-12 above (a change of unit moves the fit by
+    # at most 1e-12 of the variances either way)
+    scale = np.maximum(diag.max(axis=1), (np.finfo(float).eps * np.abs(mean_all).max(axis=1)) ** 2)
+    tiny = np.maximum(1e-12 * np.minimum(scale, 1.0), MIN_VARIANCE)
+    reg = floor * diag[:, :, None] * np.eye(d) + tiny[:, None, None] * np.eye(d)
     means, covs, pis = np.empty((B, S, d)), np.empty((B, S, d, d)), np.empty((B, S))
     for b in range(B):
         g0 = inits[b]
