@@ -7,10 +7,7 @@ filter are weighted, so the EM here is written for weighted samples (Dempster, L
 * E-step: :math:`\gamma_{qs} \propto \pi_s \mathcal N(x^{(q)}; \mu_s, P_s)`;
 * M-step: :math:`\pi_s = \sum_q w_q\gamma_{qs}`, :math:`\mu_s = \sum_q w_q\gamma_{qs}x^{(q)}/\pi_s`,
   :math:`P_s = \sum_q w_q\gamma_{qs}(x^{(q)} - \mu_s)(\cdot)^\top/\pi_s + \lambda\,\mathrm{diag}(\bar P)`, the floor a
-  share :math:`\lambda` of the variances of the whole weighted sample :math:`\bar P` (plus :math:`10^{-12}\min(s, 1)I`,
-  :math:`s` the largest of those variances in unit², at least :math:`(\epsilon\max_i|\bar x_i|)^2` for a repeated
-  point, and at least ``MIN_VARIANCE``: at most :math:`10^{-12}` of the data's scale, so the fit does not depend
-  on the unit; data of small variances, e.g. micrometres in metres, keep their covariances).
+  share :math:`\lambda` of the variances of the whole weighted sample :math:`\bar P` (plus :math:`10^{-12} I`).
 
 References
 ----------
@@ -33,7 +30,6 @@ from scipy.linalg import solve_triangular
 from fusion._validation import integer, work
 from fusion._frozen import frozen_arrays, restore_frozen
 from fusion._validation import derived_inputs
-from fusion._validation import MIN_VARIANCE
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
                                 as_covariance, as_rng, as_state, as_weights, count, instance_of, nonnegative_scalar,
                                 same_length)
@@ -349,9 +345,7 @@ def weighted_em(
     floor : float
         Covariance floor :math:`\lambda`: ``floor`` times the weighted variance of each
         coordinate is added to every component covariance, so that resampled duplicates
-        cannot make a covariance singular (plus :math:`10^{-12}\min(s, 1)` on the diagonal, :math:`s`
-        the largest of those variances in unit²: at most :math:`10^{-12}` of the data's scale, so
-        the fit does not depend on the unit).
+        cannot make a covariance singular.
     init : GaussianMixture, optional
         Warm start (e.g. the previous frame's mixture, predicted); must have
         ``n_components`` components of the samples' dimension.
@@ -685,12 +679,7 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
     mean_all = np.matmul(ww[:, None, :], xx)[:, 0]  # (B, d)
     cov_all = _wscatter(xx, mean_all[:, None], ww[:, None])[:, 0]
     diag = np.diagonal(cov_all, axis1=1, axis2=2)
-    # the data's scale (unit²): the largest variance, at least the resolution of the mean (a repeated point); the
-    # added term is 1e-12 of it below 1 unit², the former absolute 1e-12 above (a change of unit moves the fit by
-    # at most 1e-12 of the variances either way)
-    scale = np.maximum(diag.max(axis=1), (np.finfo(float).eps * np.abs(mean_all).max(axis=1)) ** 2)
-    tiny = np.maximum(1e-12 * np.minimum(scale, 1.0), MIN_VARIANCE)
-    reg = floor * diag[:, :, None] * np.eye(d) + tiny[:, None, None] * np.eye(d)
+    reg = floor * diag[:, :, None] * np.eye(d) + 1e-12 * np.eye(d)
     means, covs, pis = np.empty((B, S, d)), np.empty((B, S, d, d)), np.empty((B, S))
     for b in range(B):
         g0 = inits[b]
