@@ -156,7 +156,8 @@ def consistency_awf(
 
     and :math:`\hat\sigma_p^2` as in :func:`fusion.readings.weighting.running_variances` (the average over
     :math:`q \ne p` runs over the partners with at least one shared kept instant; the
-    ``"centred"`` form subtracts the pairwise means). The estimate at k combines the sensors
+    ``"centred"`` form subtracts the pairwise means, from the readings minus each sensor's first reading: shift
+    invariant in floating point too). The estimate at k combines the sensors
     kept at k: :math:`\hat X(k) = \sum_{p\,\text{kept}} W_p\bar X_p(k)`, weights renormalised.
     A sensor without any partner yet gets the variance estimate 0 (hence, after the floor, a
     large weight); so does, with the centred estimator, a sensor whose first kept reading shares only the current
@@ -192,9 +193,12 @@ def consistency_awf(
     pair = mf[..., :, None] * mf[..., None, :]
     N = np.cumsum(pair, axis=-3)
     safe = np.where(N > 0, N, 1.0)
-    R = np.cumsum(pair * A[..., :, None] * A[..., None, :], axis=-3) / safe
+    # centred: the moments of the readings minus each sensor's first reading (the same covariances, computed at the
+    # scale of the spread, not of the offset: ``fusion.readings.weighting._moment_stack``); lecture: raw moments
+    Y = A - A[..., :1, :] if variance == "centred" else A
+    R = np.cumsum(pair * Y[..., :, None] * Y[..., None, :], axis=-3) / safe
     if variance == "centred":
-        Sp = np.cumsum(pair * A[..., :, None], axis=-3) / safe  # mean of X_p over shared instants
+        Sp = np.cumsum(pair * Y[..., :, None], axis=-3) / safe  # mean of X_p over shared instants (minus X_p(1))
         R = R - Sp * np.swapaxes(Sp, -1, -2)
     valid = (N > 0) & ~np.eye(n, dtype=bool)
     nvalid = valid.sum(axis=-1)

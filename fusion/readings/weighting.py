@@ -363,13 +363,15 @@ def running_variances(X: ArrayLike, estimator: Estimator = "lecture") -> FloatAr
     the ``"lecture"`` estimator is :math:`\hat\sigma_p^2 = R_{pp}(k) - \bar R_p(k)`. It rests on
     :math:`E[X_pX_q] = E[X^2]` and :math:`E[X_p^2] = E[X^2] + \sigma_p^2`, true in expectation,
     but its sampling error contains the term :math:`X\,(\bar V_p - \bar V_q)`, which grows with
-    :math:`|X|`.
+    :math:`|X|`: it uses the raw moments by the lecture's definition and is not shift invariant.
 
     The ``"centred"`` estimator (Grubbs-type: Grubbs's 1948 two-instrument estimator averaged over
     the partners) replaces the moments by covariances,
     :math:`C_{pq}(k) = R_{pq}(k) - \bar X_p(k)\bar X_q(k)`:
     :math:`\hat\sigma_p^2 = C_{pp}(k) - \frac1{n-1}\sum_{q\ne p} C_{pq}(k)`. It does not depend on
-    :math:`X` at all (shift invariant); its mean is :math:`\frac{k-1}{k}\sigma_p^2` (1/k moments).
+    :math:`X` at all (shift invariant); its mean is :math:`\frac{k-1}{k}\sigma_p^2` (1/k moments). It is
+    computed from the readings minus each sensor's first reading, so that it is shift invariant in floating
+    point too (the difference of moments cancels at the scale of the spread, not of an offset).
 
     Parameters
     ----------
@@ -398,10 +400,11 @@ def _running_estimates(X: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray
     lecture, centred, means : ndarray, shape (..., K, n)
     """
     A = _as_sample_array(X)
+    n = A.shape[-1]
     k = np.arange(1, A.shape[-2] + 1, dtype=float)[:, None]
-    S = A.sum(axis=-1, keepdims=True)
-    avg = np.cumsum(np.concatenate([A * A, A * S, A], axis=-1), axis=-2) / k
-    return _estimates_from(avg, "lecture"), _estimates_from(avg, "centred"), avg[..., 2 * A.shape[-1]:]
+    avg = np.cumsum(np.concatenate([_moment_stack(A, "lecture"), _moment_stack(A, "centred")], axis=-1), axis=-2) / k
+    lecture, centred = avg[..., :3 * n], avg[..., 3 * n:]
+    return _estimates_from(lecture, "lecture"), _estimates_from(centred, "centred"), lecture[..., 2 * n:]
 
 
 def variance_estimates(X: ArrayLike, estimator: Estimator = "lecture") -> FloatArray:
@@ -434,12 +437,27 @@ def _moment_estimates(A: FloatArray, estimator: str, average: Callable[[FloatArr
     running averages of :math:`X_p^2`, :math:`X_pS` and :math:`X_p` (one call of ``average`` on
     their stack) replace the n x n matrix.
     """
+    return _estimates_from(average(_moment_stack(A, estimator)), estimator)
+
+
+def _moment_stack(A: FloatArray, estimator: str) -> FloatArray:
+    r"""The stack of :math:`Y_p^2`, :math:`Y_pS`, :math:`Y_p` (:math:`S = \sum_q Y_q`) averaged for ``estimator``.
+
+    :math:`Y = X` for the ``"lecture"`` estimator (raw moments by its definition). For the ``"centred"`` and
+    ``"sample"`` estimators :math:`Y_p(k) = X_p(k) - X_p(1)`, the readings minus each sensor's first reading: the
+    covariances are the same mathematically, and the differences of averages
+    :math:`\overline{Y_pY_q} - \bar Y_p\bar Y_q` cancel only at the scale of the readings' spread, not of their
+    offset (from :math:`X` itself a common offset of :math:`10^8` on a spread of 1 gave negative sample variances).
+    The reference is the first reading, so the estimate at k depends on readings up to k only.
+    """
+    if estimator != "lecture":
+        A = A - A[..., :1, :]
     S = A.sum(axis=-1, keepdims=True)
-    return _estimates_from(average(np.concatenate([A * A, A * S, A], axis=-1)), estimator)
+    return np.concatenate([A * A, A * S, A], axis=-1)
 
 
 def _estimates_from(avg: FloatArray, estimator: str) -> FloatArray:
-    """The estimates of :func:`_moment_estimates` from the averaged stack of :math:`X_p^2`, :math:`X_pS`, :math:`X_p`."""
+    """The estimates of :func:`_moment_estimates` from the averaged stack of :func:`_moment_stack` for ``estimator``."""
     n = avg.shape[-1] // 3
     diag, rowsum, m = avg[..., :n], avg[..., n:2 * n], avg[..., 2 * n:]
     if estimator != "lecture":
@@ -764,7 +782,9 @@ def tracking_variances(X: ArrayLike, estimator: Literal["lecture", "centred", "s
     :math:`C_{pq} = R_{pq} - \bar X_p\bar X_q`; ``"sample"`` each sensor's own sample variance
     :math:`C_{pp}`, which needs no other sensor but contains the variance of the measured quantity
     itself when that varies in time (the cross-moment estimators cancel it). With
-    ``memory="growing"`` the first two equal :func:`running_variances`.
+    ``memory="growing"`` the first two equal :func:`running_variances`. The ``"centred"`` and ``"sample"``
+    estimates are computed, as there, from the readings minus each sensor's first reading (shift invariant in
+    floating point); the ``"lecture"`` one from the raw moments, by its definition.
 
     Parameters
     ----------
@@ -800,9 +820,12 @@ def _tracking_estimates(X: ArrayLike, estimators: tuple[str, ...], memory: Memor
     ``tests/test_weighting.py``)."""
     A = _as_sample_array(X)
     running_average(np.zeros((1, 1)), memory, forgetting, window, axis=0)  # validates the memory parameters
-    S = A.sum(axis=-1, keepdims=True)
-    avg = running_average(np.concatenate([A * A, A * S, A], axis=-1), memory, forgetting, window, axis=-2)
-    return tuple(_estimates_from(avg, e) for e in estimators)
+    kinds = tuple(dict.fromkeys("lecture" if e == "lecture" else "centred" for e in estimators))  # the stacks needed
+    avg = running_average(np.concatenate([_moment_stack(A, kind) for kind in kinds], axis=-1), memory, forgetting,
+                          window, axis=-2)
+    n3 = 3 * A.shape[-1]
+    parts = {kind: avg[..., i * n3:(i + 1) * n3] for i, kind in enumerate(kinds)}
+    return tuple(_estimates_from(parts["lecture" if e == "lecture" else "centred"], e) for e in estimators)
 
 
 def fuse_current(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs") -> FloatArray:

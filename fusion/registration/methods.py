@@ -909,6 +909,21 @@ class AffineDecomposition:
     A: FloatArray
 
 
+def _register_values(values: object, shape: tuple[int, ...] | None) -> FloatArray:
+    """What ``register`` returned, checked: a finite 1-D array (of ``shape`` after the first call) within the
+    magnitude rule (rule 2 of ``fusion._validation``: :func:`expected_mse` squares the values and their differences,
+    so a value beyond 1e150 would overflow there); errors name ``register``."""
+    v = _numeric(values, "the values returned by register")
+    if v.ndim != 1 or not np.all(np.isfinite(v)) or (shape is not None and v.shape != shape):
+        what = "a finite 1-D array" if shape is None else "a finite 1-D array of one length"
+        raise ValueError(f"register must return {what}, got shape {v.shape}")
+    top = float(np.abs(v).max()) if v.size else 0.0
+    if top > MAX_MAGNITUDE:
+        raise ValueError(f"register returned a value of magnitude {top:.3g}, beyond the representable range "
+                         f"(at most {MAX_MAGNITUDE:g})")
+    return v
+
+
 def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: ArrayLike) -> AffineDecomposition:
     r"""Write a registration that is affine in the samples as :math:`f(z_0 + v) = f(z_0) + A v`.
 
@@ -929,26 +944,24 @@ def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: Array
     ValueError
         ``z0`` so long that its n + 1 calls of ``register`` (each on a copy of n samples) are beyond the work
         budget, or ``A`` beyond the memory budget (rules 9 and 17 of ``fusion._validation``); ``register``
-        returning anything but a finite 1-D array of one length.
+        returning anything but a finite 1-D array of one length, or a value beyond the representable range
+        (magnitude above 1e150, rule 2: :func:`expected_mse` squares them).
     """
     as_callable(register, "register")
     base = as_array(z0, "z0", ndim=1)
     loop_work((base.size + 1,), base.size, "z0")  # rule 17: a call of register a sample, each on a copy of z0
-    f0 = _numeric(register(base), "the values returned by register")
-    if f0.ndim != 1 or not np.all(np.isfinite(f0)):
-        raise ValueError(f"register must return a finite 1-D array, got shape {f0.shape}")
+    f0 = _register_values(register(base), None)
     allocation((f0.size, base.size), "z0 and the values returned by register")  # rule 9: A
     A = np.empty((f0.size, base.size))
     for i in range(base.size):
         e = base.copy()
         e[i] += 1.0
-        fi = _numeric(register(e), "the values returned by register")
-        if fi.shape != f0.shape or not np.all(np.isfinite(fi)):
-            raise ValueError(f"register must return a finite 1-D array of one length, got shape {fi.shape}")
+        fi = _register_values(register(e), f0.shape)
         A[:, i] = fi - f0
     return AffineDecomposition(f0=f0, A=A)
 
 
+@finite_result("register, z0, truth_at_query and sigma")
 def expected_mse(
     register: Callable[[FloatArray], FloatArray], z0: ArrayLike, truth_at_query: ArrayLike, sigma: float
 ) -> float:
@@ -979,8 +992,9 @@ def expected_mse(
     Raises
     ------
     ValueError
-        ``truth_at_query`` of the wrong shape, ``sigma`` negative or not finite, ``z0`` too long
-        (:func:`affine_decomposition`).
+        ``truth_at_query`` of the wrong shape, ``sigma`` negative or not finite, ``z0`` too long or
+        ``register`` returning values beyond the representable range (:func:`affine_decomposition`); an
+        expected MSE beyond the float range (``sigma`` and the responses in range, their product not).
     """
     dec = affine_decomposition(register, z0)
     f0, A = dec.f0, dec.A
