@@ -121,3 +121,16 @@ def test_e1_expected_mse_beyond_the_float_range_is_refused_naming_the_inputs() -
     # each input in range (sigma 1e150, responses 1e10), sigma^2 |a|^2 = 1e320 is not
     with pytest.raises(ValueError, match="register, z0, truth_at_query and sigma"):
         rm.expected_mse(lambda z: 1e10 * z[:3], np.linspace(0, 1, 6), np.zeros(3), 1e150)
+
+
+def test_s1_weighted_em_adds_the_documented_absolute_floor() -> None:
+    """Fuzz 24a S1, decided (documented): the M-step adds ``floor`` times each coordinate's weighted variance and
+    an absolute 1e-12 I; one component on samples of variance 1e-12 gets about twice their covariance."""
+    from fusion.estimates.mixtures import weighted_em
+
+    x = np.random.default_rng(3).normal(size=(400, 2)) * 1e-6
+    w = np.full(400, 1 / 400)
+    fit = weighted_em(x, w, 1, np.random.default_rng(0), max_iter=5, floor=0.0)
+    m = w @ x
+    sample = ((x - m).T * w) @ (x - m)
+    np.testing.assert_allclose(fit.mixture.covs[0], sample + 1e-12 * np.eye(2), rtol=1e-9, atol=0)

@@ -343,7 +343,12 @@ def weighted_em(
     floor : float
         Covariance floor :math:`\lambda`: ``floor`` times the weighted variance of each
         coordinate is added to every component covariance, so that resampled duplicates
-        cannot make a covariance singular.
+        cannot make a covariance singular. An absolute :math:`10^{-12} I` (in the samples' units squared) is
+        added too, so the fit is not invariant under a change of units that brings the coordinates' variances
+        near :math:`10^{-12}`: samples whose variances are below about :math:`10^{-8}` get visibly inflated
+        covariances (in units of 1e-6, about twice the data's) and should be rescaled first. Kept because the
+        book's recorded chapter-06 fits depend on it (every scale-relative rule tried moved the chain network's
+        premise study, 663.1 to 652.8).
     init : GaussianMixture, optional
         Warm start (e.g. the previous frame's mixture, predicted); must have
         ``n_components`` components of the samples' dimension.
