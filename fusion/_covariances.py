@@ -71,9 +71,9 @@ def singular_mask(arr: FloatArray, factor: FloatArray | None = None) -> np.ndarr
     with np.errstate(invalid="ignore", over="ignore", under="ignore"):
         r = piv * piv / d
     tol = _pivot_floor(n)
-    bad = np.atleast_1d(~(np.min(r, axis=-1) > tol))
+    bad = (~(np.min(r, axis=-1) > tol)).reshape(-1)  # flat over the stack
     with np.errstate(divide="ignore"):
-        unsure = ~bad & ~np.atleast_1d(np.exp(np.sum(np.log(r), axis=-1) - 1.0) > n * tol)
+        unsure = ~bad & ~(np.exp(np.sum(np.log(r), axis=-1) - 1.0) > n * tol).reshape(-1)
     if unsure.any():
         stack = arr.reshape((-1, n, n))[unsure]
         s = 1.0 / np.sqrt(np.diagonal(stack, axis1=-2, axis2=-1))

@@ -240,3 +240,19 @@ def test_d6_fusion_degree_matrices_stay_accepted(x: list[float], scale: float) -
     C = fs.fusion_degree_matrix(np.array(x), scale=scale)
     np.testing.assert_array_equal(fs.consistency_degree(C), C.mean(axis=1))
     fs.distribution_balance(C)
+
+
+@pytest.mark.parametrize("lead", [(), (1,), (3,), (1, 2), (2, 3)])
+def test_p_singular_mask_over_any_stack_shape(lead: tuple[int, ...]) -> None:
+    """The rule over a stack of any leading shape (fuzz 24b P6c: a (1, 2) stack of 3 x 3 matrices raised an
+    IndexError): each matrix judged alone, the exactly singular one found where it sits."""
+    from fusion._covariances import singular_mask
+
+    rng = np.random.default_rng(6)
+    B = rng.normal(size=(3, 2))
+    stack = np.broadcast_to(np.eye(3), lead + (3, 3)).copy()
+    where = tuple(k - 1 for k in lead)
+    stack[where] = B @ B.T  # rank 2, its correlation matrix's smallest eigenvalue rounds near 0
+    expect = np.zeros(lead, dtype=bool)
+    expect[where] = True
+    np.testing.assert_array_equal(singular_mask(stack), expect)
