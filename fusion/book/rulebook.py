@@ -646,7 +646,7 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     "undecided", the estimate and interval as computed).
 
     Round-off never decides (R2), whatever the units of ``a`` and ``b``: with S the largest finite magnitude
-    of their runs, differences all within round-off of zero (|A − B| <= 1e-9 S, the tie rule of a single run)
+    of their runs, differences all within round-off of zero (``|A - B| <= 1e-9 S``, the tie rule of a single run)
     are a tie, estimate and interval 0; differences equal to each other within round-off (their range
     <= 1e-9 S) are deterministic, and the interval is the zero-width [mean, mean]. Both tests are relative to
     S, so scaling ``a``, ``b`` and ``margin`` by one factor scales the estimate and interval and leaves the

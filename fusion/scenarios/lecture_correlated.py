@@ -206,7 +206,7 @@ def ridge_study(
     ks_fixed = as_array(ks_fixed, "ks_fixed", ndim=1).tolist()  # fuzz 24a U7: numbers, at least one, each > 0
     if min(ks_fixed) <= 0:
         raise ValueError(f"ks_fixed must hold positive ridge parameters, got {shown(ks_fixed)}")
-    loop_work((len(xs) + 1, 3 + len(ks_fixed)), 501, "xs and ks_fixed")  # rule 17: moments
+    loop_work((len(xs) + 1, 3 + len(ks_fixed)), 501, "xs and ks_fixed", step=20 * LOOP_STEP)  # rule 17: ~100 us a row
     for i, x in enumerate(xs):
         _optimal_k_representable(x, sigma, f"xs[{i}]")
     x_far = scalar(x_far, "x_far")

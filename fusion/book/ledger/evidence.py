@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import decimal
 import math
+from collections import UserList
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
@@ -253,8 +254,8 @@ class Comparison:
         if av.size < MIN_RUNS and not reason:
             raise FewRunsError(f"a and b hold {av.size} runs < {MIN_RUNS}: give more runs or a reason (the argument "
                                "reason: why fewer runs are enough)", av.size, MIN_RUNS)
-        if isinstance(conditions, list):  # a list pair is a pair (the chapter results store lists as tuples)
-            conditions = tuple(conditions)
+        if isinstance(conditions, (list, UserList)):  # a list pair is a pair (the chapter results store lists as
+            conditions = tuple(conditions)             # tuples); so is any list-like (the one sequence rule)
         if not (isinstance(conditions, tuple) and len(conditions) == 2 and all(isinstance(c, str) for c in conditions)):
             raise TypeError(f"conditions must be a pair of str, got {shown(conditions)}")
         if conditions[0] != conditions[1]:  # R6
