@@ -15,7 +15,7 @@ from fusion._shown import shown
 from fusion._validation import (as_array, as_times, distinct, instance_of, loop_work, one_of, scalar, sequence,
                                 std_scalar)
 from fusion.book.style import METHOD_LABELS
-from fusion.book.tables import integral_index
+from fusion.book.tables import _frame, integral_index
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 
@@ -98,7 +98,8 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
     TypeError
         ``closed`` is not a DataFrame, or its ``b (m²)`` or ``g`` column holds a value that is not a number.
     ValueError
-        ``closed`` lacks the columns ``b (m²)`` and ``g``, holds fewer than two methods, repeats a method, or holds
+        ``closed`` lacks the columns ``b (m²)`` and ``g`` (or holds one twice), holds fewer than two methods, repeats
+        a method or a row that is not a method of ``METHODS``, or holds
         a ``b`` or ``g`` that is not finite (a crossing at σ* = NaN or inf) or negative (``b`` is a squared bias and
         ``g`` a sum of squared weights: a negative one is no :func:`closed_form_table`).
     """
@@ -110,6 +111,9 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
     if closed.index.has_duplicates:
         raise ValueError(f"closed must not repeat a method (one row each), got "
                          f"{[str(k) for k in closed.index[closed.index.duplicated()].unique()[:5]]} twice")
+    # the rows are methods (fuzz 24d T5: an unknown row was listed as a method better below σ*)
+    _frame(closed, "closed", (B_OFFSET, "g"), maker="closed_form_table", unique=True, rows=sc.METHODS,
+           rows_are="a method of METHODS")
     b_all = as_array(closed[B_OFFSET].to_numpy(), f"closed[{B_OFFSET!r}]", nonnegative=True, subnormal=True)
     g_all = as_array(closed["g"].to_numpy(), "closed['g']", nonnegative=True, subnormal=True)
     names = list(closed.index)
