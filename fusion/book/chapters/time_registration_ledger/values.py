@@ -260,7 +260,8 @@ def latency_values(be: Mapping[float, float], sigma: float) -> GlueValues:
     Parameters
     ----------
     be : mapping
-        Noise level (m, a finite number >= 0) → break-even latency (s).
+        Noise level (m, a finite number > 0, as ``delay_break_even`` takes it) → break-even latency (s, >= 0: the
+        latency at which the methods' MSEs meet, as ``delay_break_even`` returns it rounded to 0.1 ms).
     sigma : float
         The chapter's noise level (a key of ``be``).
 
@@ -275,13 +276,14 @@ def latency_values(be: Mapping[float, float], sigma: float) -> GlueValues:
         ``be`` is not a mapping, a noise level (key) or ``sigma`` not a number.
     ValueError
         ``be`` is empty, holds a noise level (a key) that is not a valid standard deviation or a latency that is
-        not finite, or ``sigma`` is not one of its keys.
+        negative or not finite, or ``sigma`` is not one of its keys.
     """
     instance_of(be, Mapping, "be")
     if not be:
         raise ValueError("be is empty (it must map noise levels to break-even latencies)")
     # the floats the reader returns, not the caller's objects (fuzz 22b, FR4-5: a Decimal, a 0-d array)
-    lat = {std_scalar(k, f"the noise level {shown(k)} of be"): scalar(v, f"be[{k!r}]") for k, v in be.items()}
+    lat = {std_scalar(k, f"the noise level {shown(k)} of be"): scalar(v, f"be[{k!r}]", lo=0.0)
+           for k, v in be.items()}  # a latency >= 0 (fuzz 24d M1: -20 ms was glued)
     if len(lat) < len(be):  # keys equal as floats (1 and 1.0 are one key of a dict already)
         raise ValueError("be holds a noise level twice (as two keys of equal value)")
     sigma = scalar(sigma, "sigma")
