@@ -25,7 +25,7 @@ from fusion._validation import (as_array, as_times, distinct, instance_of, one_o
 from fusion._validation import template as format_template
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues, _glued_cell
-from fusion.book.tables import integral_index
+from fusion.book.tables import _frame, integral_index
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 # the robustness studies (and the paired interval they share with the benchmark) live in their own module
@@ -165,6 +165,7 @@ def _sweep_frame(frame: object, name: str, maker: str) -> pd.DataFrame:
     if unknown:
         raise ValueError(f"{name} has columns that are not registration methods: {[shown(c) for c in unknown[:5]]} "
                          f"(it must be the output of {maker})")
+    _frame(frame, name, list(dict.fromkeys(frame.columns)), maker=maker, unique=True)  # one row, one column each
     as_array(frame.to_numpy(), name, nonnegative=True)
     if np.any(as_array(frame.index, f"{name}.index") <= 0):
         raise ValueError(f"{name}.index must hold positive values (the output of {maker}), got {list(frame.index)[:5]}")
@@ -954,7 +955,8 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
     TypeError
         ``bench`` is not a DataFrame.
     ValueError
-        ``bench`` lacks a row (class, method) or a column read here, or a cell read here is not a finite number
+        ``bench`` lacks a row (class, method) or a column read here, holds a row or a column read more than once,
+        or a cell read here is not a finite number
         (an exact MSE not >= 0; TypeError for a non-number).
     """
     instance_of(bench, pd.DataFrame, "bench")
@@ -964,6 +966,7 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
                                                            if c not in bench.columns]
     if missing:
         raise ValueError(f"bench lacks the rows or columns {missing} (it must be the output of benchmark_table)")
+    _frame(bench, "bench", (EXACT_MSE, CI_LOW, CI_HIGH), maker="benchmark_table", unique=True)  # fuzz 24d T
     off = bench.loc[BenchClass.OFFLINE]
     rt_ = bench.loc[BenchClass.REAL_TIME]
 

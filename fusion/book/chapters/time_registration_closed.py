@@ -157,7 +157,8 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
     TypeError
         ``crossings`` is not a DataFrame, or ``pairs`` not a sequence of pairs.
     ValueError
-        ``crossings`` lacks the columns of :func:`crossing_table` or holds a σ* that is not a finite number >= 0
+        ``crossings`` lacks the columns of :func:`crossing_table`, holds a pair (row) or a column read more than
+        once, or holds a σ* that is not a finite number >= 0
         (TypeError for a non-number), or a pair of ``pairs`` does not cross at a positive noise level (or is named
         in the other order).
     """
@@ -172,6 +173,12 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
         if isinstance(p, (str, bytes)) or not isinstance(p, Sequence) or len(p) != 2:
             raise TypeError(f"pairs[{i}] must be a (method, method) pair, got {shown(p)}")
     key = list(zip(crossings[BETTER_BELOW], crossings[BETTER_ABOVE]))
+    if len(crossings):  # one column each, one row a pair (fuzz 24d T); an empty table is crossing_table's too
+        _frame(crossings, "crossings", (BETTER_BELOW, BETTER_ABOVE, SIGMA_STAR), maker="crossing_table", unique=True)
+    again = next((p for i, p in enumerate(key) if p in key[:i]), None)
+    if again is not None:
+        raise ValueError(f"crossings holds the pair {shown(again)} more than once (crossing_table gives one row "
+                         f"a pair)")
     missing = [p for p in items if tuple(p) not in key]
     if missing:
         raise ValueError(f"pairs: crossings holds no crossing for {missing}")

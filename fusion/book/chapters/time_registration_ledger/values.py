@@ -17,6 +17,7 @@ from fusion.book.chapters.time_registration import IMPROVED, TWO
 from fusion.book.chapters.time_registration_closed import B_OFFSET
 from fusion.book.exact import ExactComparison
 from fusion.book.glue import GlueValues, _checked_keep, _glued_cell
+from fusion.book.tables import _frame
 from fusion.book.style import METHOD_LABELS
 from fusion.book.ledger import ledger_dir
 from fusion.scenarios import time_registration as sc
@@ -315,7 +316,8 @@ def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues
         ``values`` is not a mapping or ``closed`` not a DataFrame.
     ValueError
         ``values`` lacks ``reg_gain_three`` or ``reg_gain_two`` (or the latter is zero), or ``closed`` lacks the
-        extrapolation row or the columns ``b (m²)`` and ``g`` or holds one twice, or a cell read there is not a
+        extrapolation row or the columns ``b (m²)`` and ``g`` or holds one twice, a row twice or a row that is not a
+        method, or a cell read there is not a
         finite non-negative number (TypeError for a non-number), named ``closed``.
     """
     record(values, "values", ("reg_gain_three", "reg_gain_two"), extra=True)
@@ -324,6 +326,8 @@ def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues
     instance_of(closed, pd.DataFrame, "closed")
     if EXTRAP not in closed.index or B_OFFSET not in closed.columns or "g" not in closed.columns:
         raise ValueError(f"closed must be the closed-form table (row {shown(str(EXTRAP))}, columns {shown(B_OFFSET)} and 'g')")
+    _frame(closed, "closed", (B_OFFSET, "g"), maker="closed_form_table", unique=True, rows=sc.METHODS,
+           rows_are="a method of METHODS")  # one row a method (fuzz 24d T)
     b, g = (_glued_cell(closed, EXTRAP, c, "closed", lo=0.0) for c in (B_OFFSET, "g"))  # fuzz 22b, V2-V5
     t1, t2 = sc.instants()
     between = t2[~np.isin(t2, t1)]
