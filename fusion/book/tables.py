@@ -648,8 +648,14 @@ def use_book_tables(shell: object | None = None) -> None:
         fmt.for_type(kind, html)
 
 
+def _plain(key: object) -> object:
+    """A row key as the caller wrote it: a numpy scalar as its Python value (``0``, not ``np.int64(0)``)."""
+    return key.item() if isinstance(key, np.generic) else key
+
+
 def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "",
-           finite: Collection[str] = (), texts: Collection[str] = ()) -> Any:
+           finite: Collection[str] = (), texts: Collection[str] = (), *, unique: bool = False,
+           rows: Collection[object] | Callable[[object], bool] | None = None, rows_are: str = "") -> Any:
     """The rule of every chapter function that reads a table another function made (fuzz 18/19, class D): ``tab``
     when it is a DataFrame holding ``columns`` (and the index levels ``index``), not empty; TypeError/ValueError
     naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside.
@@ -657,7 +663,13 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     The columns ``finite`` the caller computes with hold finite real numbers (not bools, not text), the columns
     ``texts`` it reads as text (statuses, labels it parses) hold strings in every row (issue 35: a NaN cell gave a
     NaN glue value, a missing cell was read as no status): a TypeError (wrong type) or ValueError (NaN, inf) naming
-    ``name[column]`` and the row."""
+    ``name[column]`` and the row.
+
+    A column read (``columns``, ``finite``, ``texts``) held twice is refused (fuzz 24d T: numpy's errors from
+    inside, or one of the two read silently). ``unique``: the rows are keys (a method, a length, a record) and a
+    repeated one is refused, naming ``name`` and the row (a row twice was counted twice, or drawn as a sequence).
+    ``rows``: the row keys the maker gives (a collection, or a test of one key), described by ``rows_are``; a row
+    that is not one is refused, naming it (an unknown method was listed as a method)."""
     if not isinstance(tab, pd.DataFrame):
         raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
                         f"{type(tab).__name__}")
@@ -667,6 +679,19 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     if tab.empty:
         raise ValueError(f"{name} is empty")
     made = f" (as {maker} makes it)" if maker else ""
+    twice = [c for c in dict.fromkeys((*columns, *finite, *texts)) if c in tab.columns
+             and isinstance(tab[c], pd.DataFrame)]
+    if twice:
+        raise ValueError(f"{name} has more than one column {shown(twice[0])}{made}")
+    if unique and tab.index.has_duplicates:
+        again = _plain(tab.index[tab.index.duplicated()][0])
+        raise ValueError(f"{name} holds the row {shown(again)} more than once{made}: one row each")
+    if rows is not None:
+        known = rows if callable(rows) else rows.__contains__
+        odd = next((r for r in tab.index if not known(r)), None)
+        if odd is not None:
+            raise ValueError(f"{name} holds the row {shown(_plain(odd))}, which is not "
+                             f"{rows_are or 'a row it makes'}{made}")
     for c in finite:
         if c not in tab.columns:
             raise ValueError(f"{name} lacks the column {shown(c)}{made}")
