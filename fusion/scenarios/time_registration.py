@@ -316,7 +316,7 @@ def _precise_times(t_src: ArrayLike, t_dst: ArrayLike, src: str = "t_src", dst: 
     """Refuse, naming ``src`` and ``dst``, times so far from the flight's start that the positions lose the precision.
 
     The registration errors are differences of positions: the closed forms perturb one sample by 1 m
-    (:func:`fusion.registration.methods.affine_decomposition`) and the bias of interpolation is of the order of
+    (:func:`fusion.registration.analysis.affine_decomposition`) and the bias of interpolation is of the order of
     :math:`a h^2/8` (h: the smallest step of ``t_src``), while the positions :math:`x(t) = v_0 t + a t^2/2` are rounded
     to :math:`\\epsilon\\max|x(t)|` (the float spacing). When that rounding exceeds 1e-6 of ``min(1 m, a h²/8)``
     the differences cancel catastrophically (fuzz 24d C: at t + 1e8 s the two-point E[MSE] came out 0.0 instead
@@ -491,7 +491,7 @@ def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
     -------
     functools.partial
         Callable of the samples ``z`` (shape (n,)) returning the registered values (shape (K,)),
-        as :func:`fusion.registration.methods.affine_decomposition` needs.
+        as :func:`fusion.registration.analysis.affine_decomposition` needs.
 
     Raises
     ------
@@ -518,7 +518,7 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     r"""Exact expected registration MSE (m²) of one method under white noise ``sigma`` (eq. reg-mse).
 
     :math:`E[\mathrm{MSE}] = \frac1K\sum_k (b_k^2 + \sigma^2\lVert a_k\rVert^2)` by superposition
-    (:func:`fusion.registration.methods.expected_mse`); the Kalman filter assumes the true ``sigma``.
+    (:func:`fusion.registration.analysis.expected_mse`); the Kalman filter assumes the true ``sigma``.
 
     Parameters
     ----------

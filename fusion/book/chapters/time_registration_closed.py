@@ -195,7 +195,7 @@ def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_
     The scenario of :func:`fusion.scenarios.time_registration.instants` (sensor 1 every 2 s from 1 s, the instants
     every 5 s from 3 s, the source's quadratic truth) run for ``horizon`` s instead of 40. Each method is affine in
     the samples, :math:`\hat x(t_k) = f_{0,k} + \mathbf a_k^\top\mathbf v`
-    (:func:`fusion.registration.methods.affine_decomposition`), so its error at :math:`t_k` has bias
+    (:func:`fusion.registration.analysis.affine_decomposition`), so its error at :math:`t_k` has bias
     :math:`f_{0,k} - x(t_k)` and variance :math:`\sigma^2\lVert\mathbf a_k\rVert^2` exactly.
 
     Parameters
