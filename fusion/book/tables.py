@@ -649,7 +649,7 @@ def use_book_tables(shell: object | None = None) -> None:
 
 
 def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "",
-           finite: Collection[str] = (), texts: Collection[str] = ()) -> Any:
+           finite: Collection[str] = (), texts: Collection[str] = (), nonnegative: Collection[str] = ()) -> Any:
     """The rule of every chapter function that reads a table another function made (fuzz 18/19, class D): ``tab``
     when it is a DataFrame holding ``columns`` (and the index levels ``index``), not empty; TypeError/ValueError
     naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside.
@@ -657,7 +657,8 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     The columns ``finite`` the caller computes with hold finite real numbers (not bools, not text), the columns
     ``texts`` it reads as text (statuses, labels it parses) hold strings in every row (issue 35: a NaN cell gave a
     NaN glue value, a missing cell was read as no status): a TypeError (wrong type) or ValueError (NaN, inf) naming
-    ``name[column]`` and the row."""
+    ``name[column]`` and the row. The columns ``nonnegative`` hold finite numbers that are non-negative as well (an
+    RMSE, a bound, a time: fuzz 24c, NEG)."""
     if not isinstance(tab, pd.DataFrame):
         raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
                         f"{type(tab).__name__}")
@@ -667,7 +668,7 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     if tab.empty:
         raise ValueError(f"{name} is empty")
     made = f" (as {maker} makes it)" if maker else ""
-    for c in finite:
+    for c in dict.fromkeys((*finite, *nonnegative)):
         if c not in tab.columns:
             raise ValueError(f"{name} lacks the column {shown(c)}{made}")
         col = tab[c]
@@ -681,6 +682,10 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
         if bad.any():
             raise ValueError(f"{name}[{shown(c)}] must be finite, got {shown(col.to_numpy()[bad][0])} in row "
                              f"{shown(col.index[bad][0])}")
+        neg = col.to_numpy(dtype=float) < 0 if c in nonnegative else bad
+        if neg.any():
+            raise ValueError(f"{name}[{shown(c)}] must be non-negative, got {shown(col.to_numpy()[neg][0])} in row "
+                             f"{shown(col.index[neg][0])}")
     for c in texts:
         if c not in tab.columns:
             raise ValueError(f"{name} lacks the column {shown(c)}{made}")
