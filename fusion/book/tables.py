@@ -654,8 +654,9 @@ def _plain(key: object) -> object:
 
 
 def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "",
-           finite: Collection[str] = (), texts: Collection[str] = (), *, unique: bool = False,
-           rows: Collection[object] | Callable[[object], bool] | None = None, rows_are: str = "") -> Any:
+           finite: Collection[str] = (), texts: Collection[str] = (), nonnegative: Collection[str] = (), *,
+           unique: bool = False, rows: Collection[object] | Callable[[object], bool] | None = None,
+           rows_are: str = "") -> Any:
     """The rule of every chapter function that reads a table another function made (fuzz 18/19, class D): ``tab``
     when it is a DataFrame holding ``columns`` (and the index levels ``index``), not empty; TypeError/ValueError
     naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside.
@@ -663,13 +664,14 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     The columns ``finite`` the caller computes with hold finite real numbers (not bools, not text), the columns
     ``texts`` it reads as text (statuses, labels it parses) hold strings in every row (issue 35: a NaN cell gave a
     NaN glue value, a missing cell was read as no status): a TypeError (wrong type) or ValueError (NaN, inf) naming
-    ``name[column]`` and the row.
+    ``name[column]`` and the row. The columns ``nonnegative`` hold finite numbers that are non-negative as well (an
+    RMSE, a bound, a time: fuzz 24c, NEG).
 
-    A column read (``columns``, ``finite``, ``texts``) held twice is refused (fuzz 24d T: numpy's errors from
-    inside, or one of the two read silently). ``unique``: the rows are keys (a method, a length, a record) and a
-    repeated one is refused, naming ``name`` and the row (a row twice was counted twice, or drawn as a sequence).
-    ``rows``: the row keys the maker gives (a collection, or a test of one key), described by ``rows_are``; a row
-    that is not one is refused, naming it (an unknown method was listed as a method)."""
+    A column read (``columns``, ``finite``, ``texts``, ``nonnegative``) held twice is refused (fuzz 24d T: numpy's
+    errors from inside, or one of the two read silently). ``unique``: the rows are keys (a method, a length, a
+    record) and a repeated one is refused, naming ``name`` and the row (a row twice was counted twice, or drawn as a
+    sequence). ``rows``: the row keys the maker gives (a collection, or a test of one key), described by
+    ``rows_are``; a row that is not one is refused, naming it (an unknown method was listed as a method)."""
     if not isinstance(tab, pd.DataFrame):
         raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
                         f"{type(tab).__name__}")
@@ -679,7 +681,7 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     if tab.empty:
         raise ValueError(f"{name} is empty")
     made = f" (as {maker} makes it)" if maker else ""
-    twice = [c for c in dict.fromkeys((*columns, *finite, *texts)) if c in tab.columns
+    twice = [c for c in dict.fromkeys((*columns, *finite, *texts, *nonnegative)) if c in tab.columns
              and isinstance(tab[c], pd.DataFrame)]
     if twice:
         raise ValueError(f"{name} has more than one column {shown(twice[0])}{made}")
@@ -692,7 +694,7 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
         if odd is not None:
             raise ValueError(f"{name} holds the row {shown(_plain(odd))}, which is not "
                              f"{rows_are or 'a row it makes'}{made}")
-    for c in finite:
+    for c in dict.fromkeys((*finite, *nonnegative)):
         if c not in tab.columns:
             raise ValueError(f"{name} lacks the column {shown(c)}{made}")
         col = tab[c]
@@ -706,6 +708,10 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
         if bad.any():
             raise ValueError(f"{name}[{shown(c)}] must be finite, got {shown(col.to_numpy()[bad][0])} in row "
                              f"{shown(col.index[bad][0])}")
+        neg = col.to_numpy(dtype=float) < 0 if c in nonnegative else bad
+        if neg.any():
+            raise ValueError(f"{name}[{shown(c)}] must be non-negative, got {shown(col.to_numpy()[neg][0])} in row "
+                             f"{shown(col.index[neg][0])}")
     for c in texts:
         if c not in tab.columns:
             raise ValueError(f"{name} lacks the column {shown(c)}{made}")

@@ -178,7 +178,7 @@ def timing_table(m: Mapping[str, float]) -> pd.DataFrame:
     ValueError
         ``m`` lacks a measurement read here, or one is not finite.
     """
-    m = _entries(m, "m", _TIMING_KEYS, "timing_benchmark (its measurements)")
+    m = _entries(m, "m", _TIMING_KEYS, "timing_benchmark (its measurements)", nonnegative=True)
     pub, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     timing = pd.DataFrame([
         ("Fig. 5", "ω by FOA (30 × 200)", pub["foa_time_s"][0], m["foa_vectorised"]),
@@ -235,7 +235,8 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
     """
     _covariance_pair(P1, P2)
     _results(res, "res", OptimumResult, "weight_search")
-    m = _entries(m, "m", ("foa_vectorised", "grid_vectorised", "closed_form"), "timing_benchmark().measurements")
+    m = _entries(m, "m", ("foa_vectorised", "grid_vectorised", "closed_form"), "timing_benchmark().measurements",
+                 nonnegative=True)
     if seeds is not None:
         instance_of(seeds, FruitFlySeeds, "seeds")
     if aniso is not None:
@@ -783,13 +784,26 @@ def timing_benchmark(results: Any = None) -> TimingBenchmark:
     -------
     TimingBenchmark
         The benchmark's date and machine, its measurements by key (s) and the per-step timings.
+
+    Raises
+    ------
+    TypeError
+        ``results`` not a path.
+    ValueError
+        As :func:`fusion.book.benchmarks.load_benchmark`; the stored ``ci.json`` without its per-step timings
+        (``per_step``, a mapping).
     """
     from fusion.book.benchmarks import load_benchmark
 
     res = load_benchmark("ci", results)
+    per_step = res.record.get("per_step")
+    if not isinstance(per_step, Mapping):   # load_benchmark checks the measurements only (fuzz 24c, TB)
+        where = "the stored benchmark" if results is None else f"results ({shown(str(results), 80)})"
+        raise ValueError(f"{where}: ci.json must hold 'per_step', a mapping of key -> per-step series, got "
+                         f"{'none' if per_step is None else type(per_step).__name__}")
     return TimingBenchmark(date=res.date, machine=res.machine,
                            measurements={item["key"]: item["value"] for item in res.measurements},
-                           per_step=dict(res.record["per_step"]))
+                           per_step=dict(per_step))
 
 
 def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) -> GlueValues:
