@@ -5,6 +5,9 @@ reading, so a spike there (rejected by the consistency check, or out of a slidin
 later reading and brought the cancellation back. The reference is now each sensor's median (kept) reading; the
 estimates are checked against an exact reference in fractions on readings of a 1/64 grid with a spike at the first
 reading (the spiked readings are exact in float64).
+
+F1: ``PublishedValues`` refuses a published value with more decimals than printed, judged up to float32 round-off:
+a float32, ``0.1 * 3`` or ``12.3 / 100`` is the decimal it prints to; 1.25 at 1 decimal is still refused.
 """
 
 from __future__ import annotations
@@ -12,6 +15,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -76,3 +80,30 @@ def test_f5_the_reference_is_a_median_kept_reading() -> None:
     from fusion.readings._moments import _reference
     np.testing.assert_array_equal(_reference(A, kept), [[2.0, 5.0]])
     np.testing.assert_array_equal(_reference(A, np.zeros(A.shape, dtype=bool)), [[0.0, 0.0]])
+
+
+# ---------------------------------------------------------------------------------------------- F1
+@settings(max_examples=60, deadline=None)
+@given(m=st.integers(-10**6, 10**6), d=st.integers(0, 6), how=st.sampled_from(["float32", "sum", "percent"]))
+def test_f1_a_printed_decimal_in_binary_is_accepted(m: int, d: int, how: str) -> None:
+    from fusion.book.ledger.evidence import PublishedValues
+
+    exact = m / 10**d
+    if how == "float32":
+        if abs(m) > 2**24:  # float32's integer precision: the value would lose printed digits
+            return
+        p = np.float32([exact])
+    elif how == "sum":
+        p = [exact / 3 + exact / 3 + exact / 3]
+    else:
+        p = [(m / 10**d * 100) / 100]
+    r = PublishedValues(p, [exact], d, "m")
+    assert r.matches == (True,)
+
+
+@pytest.mark.parametrize(("p", "d"), [(1.25, 1), (0.1000001, 1), (2.5, 0), (0.125, 2), (123.45, 1)])
+def test_f1_a_real_extra_decimal_is_still_refused(p: float, d: int) -> None:
+    from fusion.book.ledger.evidence import PublishedValues
+
+    with pytest.raises(ValueError, match=r"published\[0\].*decimals"):
+        PublishedValues([p], [p], d, "m")
