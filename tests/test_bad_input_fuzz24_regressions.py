@@ -8,10 +8,15 @@ reading (the spiked readings are exact in float64).
 
 F1: ``PublishedValues`` refuses a published value with more decimals than printed, judged up to float32 round-off:
 a float32, ``0.1 * 3`` or ``12.3 / 100`` is the decimal it prints to; 1.25 at 1 decimal is still refused.
+
+F2-F3: an argument documented as a tuple (``fig5_hypotheses(flat_pair=(P, P))``, ``fig5(aniso=(P1, P2, res,
+seeds))``) takes a list too, by the package's sequence rule (``fusion._counts.sequence``: only a frozen record's
+tuple fields are tuple-only). Every chapter registry's valid call is swept with each tuple argument as a list.
 """
 
 from __future__ import annotations
 
+import importlib
 from fractions import Fraction
 
 import numpy as np
@@ -107,3 +112,45 @@ def test_f1_a_real_extra_decimal_is_still_refused(p: float, d: int) -> None:
 
     with pytest.raises(ValueError, match=r"published\[0\].*decimals"):
         PublishedValues([p], [p], d, "m")
+
+
+# ---------------------------------------------------------------------------------------------- F2-F3
+_CHAPTER_REGISTRIES = ("test_bad_input_calls_ch010307", "test_bad_input_calls_ch0204", "test_bad_input_calls_ch05",
+                       "test_bad_input_calls_ch06")
+
+
+@pytest.mark.parametrize("module", _CHAPTER_REGISTRIES)
+def test_f2_f3_a_tuple_argument_is_accepted_as_a_list(module: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    m = importlib.import_module(module)
+    reg, calls = m.registry(), m.CALLABLES
+    refused, swept = [], 0
+    for name, spec in reg.items():
+        for arg, a in spec.items():
+            if not isinstance(a.value, tuple) or hasattr(a.value, "_fields"):
+                continue
+            kwargs = {k: v.value for k, v in spec.items()}
+            kwargs[arg] = list(a.value)
+            swept += 1
+            try:
+                calls[name](**kwargs)
+            except (ValueError, TypeError) as exc:
+                refused.append(f"{name}({arg}=list): {type(exc).__name__}: {str(exc)[:120]}")
+            finally:
+                plt.close("all")
+    assert swept > 0
+    assert not refused, "\n".join(refused)
+
+
+def test_f3_fig5_aniso_and_flat_pair_lists_give_the_tuples_results() -> None:
+    m = importlib.import_module("test_bad_input_calls_ch05")
+    spec = m.registry()["fusion.book.chapters.ci.fig5_hypotheses"]
+    kwargs = {k: v.value for k, v in spec.items()}
+    as_tuple = m.CALLABLES["fusion.book.chapters.ci.fig5_hypotheses"](**kwargs)
+    kwargs["flat_pair"] = list(kwargs["flat_pair"])
+    as_list = m.CALLABLES["fusion.book.chapters.ci.fig5_hypotheses"](**kwargs)
+    assert as_tuple.equals(as_list)
