@@ -154,3 +154,52 @@ def test_f3_fig5_aniso_and_flat_pair_lists_give_the_tuples_results() -> None:
     kwargs["flat_pair"] = list(kwargs["flat_pair"])
     as_list = m.CALLABLES["fusion.book.chapters.ci.fig5_hypotheses"](**kwargs)
     assert as_tuple.equals(as_list)
+
+
+# ---------------------------------------------------------------------------------------------- minor decisions
+@pytest.mark.parametrize("tol", [1e-300, 1e-200, 2.3e-308])
+def test_a_tiny_stopping_tolerance_is_valid(tol: float) -> None:
+    """A tolerance is only compared (fusion._validation.tolerance): a tiny one runs to the iteration limit."""
+    from fusion.optimise.scalar import bounded_minimum
+    from fusion.optimise.simplex import minimise_on_simplex
+    from fusion.optimise.swarm import SwarmOptions
+
+    r = minimise_on_simplex(lambda x: float((x[0] - 0.3) ** 2), 2, ftol=tol)
+    np.testing.assert_allclose(r.x, [0.3, 0.7], atol=1e-6)
+    assert abs(bounded_minimum(lambda x: (x - 0.25) ** 2, xatol=tol).x - 0.25) < 1e-6
+    assert SwarmOptions(xtol=tol).xtol == tol
+
+
+@pytest.mark.parametrize("tol", [0.0, -1e-3, float("nan"), float("inf"), 1e-320])
+def test_a_stopping_tolerance_is_still_positive_finite_and_normal(tol: float) -> None:
+    from fusion.optimise.simplex import minimise_on_simplex
+
+    with pytest.raises(ValueError, match="ftol"):
+        minimise_on_simplex(lambda x: float(x[0]), 2, ftol=tol)
+
+
+def test_a_decimal_or_fraction_table_cell_is_a_number() -> None:
+    import decimal
+
+    import pandas as pd
+
+    from fusion.book.tables import _frame
+
+    tab = pd.DataFrame({"v": [decimal.Decimal("1.5"), Fraction(1, 3), 2, np.float32(0.5)]}, dtype=object)
+    assert _frame(tab, "tab", ["v"], finite=["v"]) is tab
+    for bad in (True, "1.5", 1 + 2j):
+        with pytest.raises(TypeError, match=r"tab\['v'\] must hold numbers"):
+            _frame(pd.DataFrame({"v": [1.0, bad]}, dtype=object), "tab", ["v"], finite=["v"])
+
+
+def test_judge_paireds_constant_differences_test_is_on_the_values_scale() -> None:
+    """Documented: the round-off scale S is the values' magnitude, so an offset of a and b common to both (the
+    differences unchanged) turns differences spread by less than 1e-9 S into constant ones (zero-width interval)."""
+    from fusion.book import rulebook as R
+
+    assert "common offset" in " ".join(R.judge_paired.__doc__.split())
+    x = np.linspace(0.0, 1.0, 20)
+    d = 0.5 + 1e-7 * np.sin(np.arange(20))  # spread 2e-7: above 1e-9 S at S ~ 1, below it at S ~ 1e4
+    for c, zero_width in ((0.0, False), (1e4, True)):
+        j = R.judge_paired(c + x + d, c + x, "greater", 0.1)
+        assert (j.high - j.low == 0.0) is zero_width
