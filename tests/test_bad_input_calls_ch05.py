@@ -255,9 +255,11 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "weight_claim_inputs"] = dict(asym=A(wp, OBJ + (wrong_type,)), aniso=A(o["wp_an"], OBJ + (wrong_type,)),
                                         flat=A(o["flat"], ARR))
     m = o["bench"].measurements
+    an = (o["wp_an"].P1, o["wp_an"].P2, o["wp_an"].res, o["wp_an"].fruit_fly_seeds)
     R[c + "fig5"] = dict(P1=A(wp.P1, ARR + ("indef", "lensq")), P2=A(wp.P2, ARR + ("indef",)), res=A(wp.res, MAP_M),
                          m=A(m, MAP_M + (("a key less", _drop_key(m, "foa_vectorised")),) + _neg(m)),
-                         seeds=A(wp.fruit_fly_seeds, OBJ + (wrong_type,)))
+                         seeds=A(wp.fruit_fly_seeds, OBJ + (wrong_type,)),
+                         aniso=A(an, ("str", ("three items", an[:3]), ("seeds of another type", an[:3] + (5,)))))
     R[c + "fig5_hypotheses"] = dict(P1=A(wp.P1, ARR + ("indef", "lensq")), P2=A(wp.P2, ARR + ("indef",)),
                                     fruit_fly_seeds=A(wp.fruit_fly_seeds, OBJ + (wrong_type,)), seed=A(5, SEED_M),
                                     short_budget=A(3, COUNT_M), n_open=A(3, COUNT_M),

@@ -653,6 +653,16 @@ def _plain(key: object) -> object:
     return key.item() if isinstance(key, np.generic) else key
 
 
+def _is_real(v: object) -> bool:
+    """Whether a table cell is a real number by the package's one rule for scalars (``fusion._validation``'s
+    ``_real_number``: ints, floats, numpy's, ``Decimal`` and ``Fraction``; not bools, text or complex numbers)."""
+    try:
+        _real_number(v, "cell")
+    except (TypeError, ValueError):
+        return False
+    return True
+
+
 def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "",
            finite: Collection[str] = (), texts: Collection[str] = (), nonnegative: Collection[str] = (), *,
            unique: bool = False, rows: Collection[object] | Callable[[object], bool] | None = None,
@@ -661,7 +671,8 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     when it is a DataFrame holding ``columns`` (and the index levels ``index``), not empty; TypeError/ValueError
     naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside.
 
-    The columns ``finite`` the caller computes with hold finite real numbers (not bools, not text), the columns
+    The columns ``finite`` the caller computes with hold finite real numbers (not bools, not text; a ``Decimal``
+    or ``Fraction`` is a number, as for the array reader), the columns
     ``texts`` it reads as text (statuses, labels it parses) hold strings in every row (issue 35: a NaN cell gave a
     NaN glue value, a missing cell was read as no status): a TypeError (wrong type) or ValueError (NaN, inf) naming
     ``name[column]`` and the row. The columns ``nonnegative`` hold finite numbers that are non-negative as well (an
@@ -700,8 +711,7 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
         col = tab[c]
         if isinstance(col, pd.DataFrame):
             raise ValueError(f"{name} has more than one column {shown(c)}{made}")
-        odd = next(((i, v) for i, v in zip(col.index, col.to_numpy()) if isinstance(v, (bool, np.bool_))
-                    or not isinstance(v, (int, float, np.integer, np.floating))), None)
+        odd = next(((i, v) for i, v in zip(col.index, col.to_numpy()) if not _is_real(v)), None)
         if odd is not None:
             raise TypeError(f"{name}[{shown(c)}] must hold numbers{made}, got {shown(odd[1])} in row {shown(odd[0])}")
         bad = ~np.isfinite(col.to_numpy(dtype=float))

@@ -240,8 +240,7 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
     if seeds is not None:
         instance_of(seeds, FruitFlySeeds, "seeds")
     if aniso is not None:
-        if not isinstance(aniso, tuple) or len(aniso) != 4:
-            raise ValueError("aniso must be the tuple (P1, P2, res, FruitFlySeeds) of the anisotropic pair")
+        aniso = tuple(sequence(aniso, "aniso", 4))  # (P1, P2, res, FruitFlySeeds): a tuple or a list (fuzz 24e F3)
         _covariance_pair(aniso[0], aniso[1], ("aniso[0]", "aniso[1]"))
         _entries(_results(aniso[2], "aniso[2]", OptimumResult, "weight_search"), "aniso[2]", ("closed form",),
                  "weight_search", numbers=False)
@@ -334,8 +333,8 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
     seed = check_seed(seed)   # an integer seed (rule 11), named
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
     short_budget, n_open = count(short_budget, "short_budget"), count(n_open, "n_open")
-    if flat_pair is not None and (not isinstance(flat_pair, tuple) or len(flat_pair) != 2):
-        raise TypeError(f"flat_pair must be a pair (P, P) of covariances, got {shown(flat_pair, 80)}")
+    if flat_pair is not None:  # a pair (P, P): a tuple or a list (fuzz 24e F2)
+        flat_pair = tuple(sequence(flat_pair, "flat_pair", 2))
     pub = data.WANG2024_FOA.columns
 
     def objective(w: ArrayLike) -> Any:
