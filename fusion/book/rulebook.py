@@ -95,6 +95,7 @@ from scipy import stats
 
 from fusion._validation import _numeric, _real_number, check_magnitude, count, scalar, sequence, shown
 from fusion._validation import flag, one_of, text
+from fusion._limits import ROUND_OFF_TIE
 
 __all__ = [
     "STATUSES",
@@ -609,7 +610,7 @@ def _differences(av: np.ndarray, bv: np.ndarray) -> tuple[np.ndarray, np.ndarray
 
 
 #: Relative size of round-off: a difference within this share of the values' magnitude is a tie (the one tie rule).
-_TIE = 1e-9
+_TIE = ROUND_OFF_TIE  # fusion._limits: one tie rule for the rulebook and the rankings
 
 
 def _round_off(x: np.ndarray | float, scale: np.ndarray | float) -> np.ndarray | bool:
