@@ -260,7 +260,9 @@ def registry() -> dict[str, dict[str, A]]:
     one = nets[Network.UNEQUAL]
     multi = nets[Network.FEEDBACK]
     labels = dict(chc.PREMISE_LABELS)
-    lab = A(labels, ("str", ("empty", {}), ("a label not a str", {**labels, Network.UNEQUAL: 3.0})))
+    lab = A(labels, ("str", ("empty", {}), ("a label not a str", {**labels, Network.UNEQUAL: 3.0}),
+                     ("two networks one label", {**labels, Network.NON_GAUSSIAN: labels[Network.UNEQUAL]}),
+                     ("an empty label", {**labels, Network.CHAIN: " "})))
     for fn in ("baseline_table", "criteria_table", "criteria_values"):
         R[cr + fn] = dict(studies=_studies(o), labels=lab, reason=REASON)
     stA = A(one, ("str", ("None", None), ("another result", o["toy"]), ("a multi-frame network", multi)))

@@ -83,3 +83,34 @@ def test_pr_per_run_values_give_a_repeated_run_twice() -> None:
     g = _o()["guarded"]
     v = chc.per_run_mse([g[0], g[0], g[1]], "chernoff_pso")
     assert v[0] == v[1] and v[2] == chc.per_run_mse([g[1]], "chernoff_pso")[0]
+
+
+# ---- LB: one label for two networks --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("fn", ["baseline_table", "criteria_table", "criteria_values"])
+def test_lb_two_networks_with_one_label_are_refused(fn: str) -> None:
+    from fusion.book.chapters import chernoff as chc
+    from fusion.book.chapters import chernoff_criteria as ccr
+    from fusion.scenarios.fusion_networks import Network
+
+    lab = dict(chc.PREMISE_LABELS)
+    nets = _o()["nets"]
+    dup = {**lab, Network.NON_GAUSSIAN: lab[Network.UNEQUAL]}
+    with pytest.raises(ValueError, match=r"^labels must not repeat a label: labels\[.*unequal.*\] and "
+                                         r"labels\[.*non_gaussian.*\]"):
+        getattr(ccr, fn)(nets, dup, "small test study")
+    with pytest.raises(ValueError, match=r"^labels\[.*chain.*\] is empty"):
+        getattr(ccr, fn)(nets, {**lab, Network.CHAIN: ""}, "small test study")
+
+
+def test_lb_labels_of_networks_not_read_may_repeat() -> None:
+    """Only the networks read head columns: labels of other networks (the premise's feedback network) are free."""
+    from fusion.book.chapters import chernoff as chc
+    from fusion.book.chapters import chernoff_criteria as ccr
+    from fusion.scenarios.fusion_networks import Network
+
+    lab = dict(chc.PREMISE_LABELS)
+    assert Network.FEEDBACK not in ccr.CRITERIA_NETWORKS
+    table, _ = ccr.baseline_table(_o()["nets"], {**lab, Network.FEEDBACK: lab[Network.UNEQUAL]}, "small test study")
+    assert list(table.columns) == [lab[k] for k in ccr.CRITERIA_NETWORKS]
