@@ -349,7 +349,8 @@ _on_networks = with_sections(raises="""TypeError
 ValueError
     ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`, two of these networks with one label
     or one with an empty label (the labels head the tables' columns), ``studies`` with a key that is not a
-    network of :data:`~fusion.book.chapters.chernoff.PREMISE_LABELS`, or a network of fewer than
+    network of :data:`~fusion.book.chapters.chernoff.PREMISE_LABELS` or a study under another designed network's
+    key (its scenario named as that network's), or a network of fewer than
     :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 
 

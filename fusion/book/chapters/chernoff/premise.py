@@ -287,8 +287,9 @@ reason : str
                              raises="""TypeError
     ``studies`` not a mapping, or a value not a NetworkStudy; ``reason`` not a str.
 ValueError
-    ``studies`` empty, a key not a network of :data:`PREMISE_LABELS`, or a network of fewer than
-    :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
+    ``studies`` empty, a key not a network of :data:`PREMISE_LABELS`, a study under another designed network's key
+    (its scenario named as that network's), or a network of fewer than :data:`~fusion.book.ledger.MIN_RUNS` runs
+    without a ``reason`` (rule R4).""")
 
 
 def _enough_runs(studies: Mapping[str, NetworkStudy], reason: object, name: str = "studies") -> str:
@@ -315,6 +316,20 @@ def _known_networks(studies: Mapping[str, Any], name: str = "studies") -> None:
     unknown = [k for k in studies if k not in PREMISE_LABELS]
     if unknown:
         raise ValueError(f"{name} holds keys that are not networks of PREMISE_LABELS: {shown(unknown, 120)}")
+    # fuzz 24b WN2: a study under another network's key (its scenario named as that network's) is refused here, by
+    # the mapping's name, not later by an inner function's argument; a scenario of a name of its own is the caller's
+    by_name = {sc.name: k for k, sc in _network_scenarios().items()}
+    for k, st in studies.items():
+        own = by_name.get(getattr(getattr(st, "scenario", None), "name", None))
+        if own is not None and own != k:
+            raise ValueError(f"{name}[{shown(k)}] is the study of {shown(st.scenario.name)} (the network "
+                             f"{shown(own)}), not of the network {shown(k)}: each study under its own network's key")
+
+
+@functools.cache
+def _network_scenarios() -> dict[Network, NetworkScenario]:
+    """The designed networks' scenarios by key (their names tell a study's network)."""
+    return premise_scenarios() | redundancy_scenarios()
 
 
 def _on_studies(fn: Callable[[dict[str, NetworkStudy], str], _R]) -> Callable[..., _R]:
