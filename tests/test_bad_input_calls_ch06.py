@@ -116,8 +116,10 @@ def _studies(o: dict[str, Any]) -> A:
     nets = o["nets"]
     first = next(iter(nets))
     # a subset of the networks is valid (the functions show the networks given), so a missing one is not refused
+    second = list(nets)[1]
     return A(nets, ("str", ("empty", {}), ("None", None), ("a study not a NetworkStudy", {**nets, first: "abc"}),
-                    ("an unknown network", {**nets, "moon": nets[first]})))
+                    ("an unknown network", {**nets, "moon": nets[first]}),
+                    ("two networks under each other's key", {**nets, first: nets[second], second: nets[first]})))
 
 
 def N(value: Any, mutations: tuple) -> A:
@@ -232,7 +234,7 @@ def registry() -> dict[str, dict[str, A]]:
                                      step=N(0.25, ("zero", "neg", "nan_s", "str", ("above one", 1.5), ("not 1/integer", 0.3))))
     # its comparison has no reason argument: rule R4's 100 runs (2 x 50) of the range-only network
     R[c + "premise_mixture_scaled"] = dict(seed=A(3, SEED), runs=A(2, CNT),
-                                           factor=A(50, CNT))
+                                           factor=A(50, CNT + (("too few runs (R4, no reason)", 1),)))
     # ---- evidence functions
     sc = o["sc"]
     scA = A(sc, ("str",))

@@ -13,6 +13,8 @@ from typing import Any
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from test_bad_input_calls_ch06 import _o
 
@@ -114,3 +116,139 @@ def test_lb_labels_of_networks_not_read_may_repeat() -> None:
     assert Network.FEEDBACK not in ccr.CRITERIA_NETWORKS
     table, _ = ccr.baseline_table(_o()["nets"], {**lab, Network.FEEDBACK: lab[Network.UNEQUAL]}, "small test study")
     assert list(table.columns) == [lab[k] for k in ccr.CRITERIA_NETWORKS]
+
+
+# ---- DR: result tables read by key; OR: sizes in order, far_omega not ω* ---------------------------------------
+
+
+def _snis() -> Any:
+    from fusion.book.chapters import chernoff_steps as cst
+
+    return cst.snis_bias_study(np.random.default_rng(0), (5, 10), 2000)
+
+
+def _chosen() -> Any:
+    from fusion.book.chapters import chernoff_steps as cst
+
+    return cst.chosen_bias_study(np.random.default_rng(0), (5, 10, 20), 2000)
+
+
+_SNIS, _CHOSEN = [], []
+
+
+def _cached(store: list, make: Any) -> Any:
+    if not store:
+        store.append(make())
+    return store[0]
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.data())
+def test_dr_rows_in_any_order_give_the_same_glue(data: st.DataObject) -> None:
+    """The glue reads rows by key: any permutation of the rows gives the same values (it read them by position)."""
+    for s in (_cached(_SNIS, _snis), _cached(_CHOSEN, _chosen)):
+        order = data.draw(st.permutations(range(len(s.table))))
+        assert dataclasses.replace(s, table=s.table.iloc[list(order)]).glue() == s.glue()
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.data())
+def test_dr_a_repeated_row_is_refused(data: st.DataObject) -> None:
+    import pandas as pd
+
+    for s in (_cached(_SNIS, _snis), _cached(_CHOSEN, _chosen)):
+        i = data.draw(st.integers(0, len(s.table) - 1))
+        with pytest.raises(ValueError, match=rf"^{type(s).__name__}\.table repeats a row"):
+            dataclasses.replace(s, table=pd.concat([s.table, s.table.iloc[[i]]]))
+
+
+def test_dr_rows_of_other_exponents_or_sizes_are_refused() -> None:
+    s = _cached(_SNIS, _snis)
+    star = s.table["ω"].iloc[0]
+    with pytest.raises(ValueError, match=r"^SnisBiasStudy\.table repeats a row"):  # the fuzz's case: every ω 0.3
+        dataclasses.replace(s, table=s.table.assign(**{"ω": 0.3}))
+    for bad in (s.table.assign(**{"ω": s.table["ω"].where(s.table["ω"] != star, 0.3)}),
+                s.table.assign(**{"ω": -s.table["ω"]}), s.table[s.table["ω"] != star]):
+        with pytest.raises(ValueError, match=r"^SnisBiasStudy\.table must hold the rows of the exponents"):
+            dataclasses.replace(s, table=bad)
+    t = s.table.copy()
+    t.loc[t.index[-1], "R"] = 20
+    with pytest.raises(ValueError, match=r"^SnisBiasStudy\.table must hold every exponent at the same sizes R"):
+        dataclasses.replace(s, table=t)
+    with pytest.raises(ValueError, match=r"^ChosenBiasStudy\.table: the columns \['R'\] identify a row"):
+        dataclasses.replace(_cached(_CHOSEN, _chosen), table=_cached(_CHOSEN, _chosen).table.assign(R=np.nan))
+
+
+def test_dr_sigma_study_refuses_a_problem_twice() -> None:
+    import pandas as pd
+
+    from fusion.book.chapters import chernoff_first_order as cfo
+
+    s = cfo.sigma_first_order_study(np.random.default_rng(0), 2)
+    with pytest.raises(ValueError, match=r"^SigmaFirstOrderStudy\.runs repeats a row"):
+        dataclasses.replace(s, runs=pd.concat([s.runs, s.runs.iloc[[0]]]))
+    assert dataclasses.replace(s, runs=s.runs.iloc[::-1]).table().equals(s.table())
+
+
+def test_dr_is_variance_table_rows_read_by_index() -> None:
+    import pandas as pd
+
+    from fusion.book.chapters import chernoff as chc
+
+    s = chc.is_variance_study(np.random.default_rng(0), 20, 50)
+    t = s.table
+    with pytest.raises(ValueError, match=r"^IsVarianceStudy\.table must hold the rows .* misses \[0\.8\]"):
+        dataclasses.replace(s, table=t.drop(index=0.8))
+    with pytest.raises(ValueError, match=r"^IsVarianceStudy\.table repeats a row: the index label 0\.0"):
+        dataclasses.replace(s, table=pd.concat([t.iloc[:1], t]))
+    assert dataclasses.replace(s, table=t.iloc[::-1]).glue() == s.glue()
+
+
+def test_or_scaling_study_sizes_in_any_order() -> None:
+    from fusion.book.chapters import chernoff_scaling as csc
+
+    a, b = csc.scaling_study(1, (40, 20), 2, 2), csc.scaling_study(1, (20, 40), 2, 2)
+    assert a.rs == (20, 40) and a.glue() == b.glue()
+    assert a.glue()["chf_scale_r_lo"] == 20
+    with pytest.raises(ValueError, match=r"^ScalingStudy\.rs must be increasing"):
+        dataclasses.replace(a, rs=(40, 20))
+
+
+def test_or_far_omega_at_omega_star_is_refused() -> None:
+    from fusion.book.chapters import chernoff_steps as cst
+
+    star = float(cst.toy_reference().omega_star)
+    for w in (star, round(star, 4), star + 4e-5):
+        with pytest.raises(ValueError, match=r"^far_omega must differ from the exact ω\*"):
+            cst.snis_bias_study(np.random.default_rng(0), (5, 10), 2000, w)
+    cst.snis_bias_study(np.random.default_rng(0), (5, 10), 2000, star + 1e-3)  # another exponent: valid
+
+
+# ---- WN: networks under each other's key -----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("fn", ["premise_values", "premise_table", "criteria_values", "baseline_table"])
+def test_wn_studies_under_each_others_key_name_studies(fn: str) -> None:
+    from fusion.book.chapters import chernoff as chc
+    from fusion.book.chapters import chernoff_criteria as ccr
+    from fusion.scenarios.fusion_networks import Network
+
+    nets = _o()["nets"]
+    for a, b in ((Network.UNEQUAL, Network.FEEDBACK), (Network.UNEQUAL, Network.NON_GAUSSIAN)):
+        swapped = {**nets, a: nets[b], b: nets[a]}
+        args = (swapped, dict(chc.PREMISE_LABELS)) if fn in ("criteria_values", "baseline_table") else (swapped,)
+        with pytest.raises(ValueError, match=r"^studies\[.*'unequal'.*\] is the study of .* not of the network"):
+            getattr(ccr if len(args) == 2 else chc, fn)(*args, "small test study")
+
+
+# ---- debatables --------------------------------------------------------------------------------------------------
+
+
+def test_d7_premise_mixture_scaled_too_few_runs_names_its_arguments() -> None:
+    """D7 (decided: fixed): the comparison takes no reason, so fewer than MIN_RUNS runs are refused up front, naming
+    runs and factor (the rulebook's message asked for a ``reason`` the function does not have)."""
+    from fusion.book.chapters import chernoff as chc
+
+    with pytest.raises(ValueError, match=r"^runs \* factor must be at least 100") as info:
+        chc.premise_mixture_scaled(3, 2, 1)
+    assert "reason (" not in str(info.value)
