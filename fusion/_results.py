@@ -34,6 +34,9 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
 * ``bounds=(lo, hi)`` on :func:`array` and :func:`number`: every value in the closed interval (a probability,
   a share, a weight in [0, 1]);
 * ``relations``: cross-field checks (``Pd + Pi = gains.P``), each a callable raising a :class:`ValueError`.
+  Relations are structural (shapes, keys, orders, rows read by key); a field the producer derives by recomputing
+  the study (a verdict, an exact optimum, a moment) is not recomputed from the others, so a result replaced
+  (``dataclasses.replace``) with a contradicting value keeps it (fuzz 24b D5).
 
 Every array is then stored as a read-only float64 copy (the object owns its data). The checks reuse the
 shared validators of :mod:`fusion._validation` (:func:`~fusion._validation.as_array`,

@@ -3,7 +3,13 @@
 PR: a run list is identified by its runs' truths (a run and its unguarded twin share the seed, so the truth):
 the chapter's one run-list check (``fusion.book.chapters.chernoff.settings._check_study``) refuses a run given twice
 and, for the paired list ``plain``, runs of another seed (truths not those of ``runs``), naming the argument; the
-same runs in another order are paired by truth.
+same runs in another order are paired by truth. LB: the labels that head the criteria tables' columns are distinct
+and non-empty. DR: result tables are read by key (``fusion._results.table(key=, index=)``): a repeated row, a
+missing row that is read, or rows of other exponents are refused by the result's check, and any row order gives the
+same glue. OR: ``scaling_study`` sorts its sizes; ``snis_bias_study`` refuses ``far_omega`` at ω*. WN: a study under
+another designed network's key is refused naming ``studies[key]``. Debatables: D1 and D3 documented (the rulebook's
+relative tie rule; glue keyed by position), D4 fixed in part (NetworkStudy's KL non-negative, exponents in [0, 1]),
+D5 documented in ``fusion._results`` (relations are structural; derived fields are not recomputed), D7 fixed.
 """
 
 from __future__ import annotations
@@ -252,3 +258,40 @@ def test_d7_premise_mixture_scaled_too_few_runs_names_its_arguments() -> None:
     with pytest.raises(ValueError, match=r"^runs \* factor must be at least 100") as info:
         chc.premise_mixture_scaled(3, 2, 1)
     assert "reason (" not in str(info.value)
+
+
+def test_d1_paired_numbers_offset_far_beyond_the_differences_is_a_tie() -> None:
+    """D1 (decided: documented): the rulebook's one relative tie rule makes the deciding statistic a tie at an offset
+    of 1e12 against differences of 0.3, while the median and the share won are of the raw differences."""
+    from fusion.book.chapters import chernoff_steps as cst
+
+    a = np.array([1.0, 2.0, 1.5, 0.5, 1.2])
+    v = cst.paired_numbers(a + 1e12, a + 0.3 + 1e12, "chf_x", 4)
+    assert v["chf_x_d"] == v["chf_x_lo"] == v["chf_x_hi"] == 0.0
+    assert v["chf_x_med"] == pytest.approx(-0.3, abs=1e-3) and v["chf_x_won"] == 1.0
+    w = cst.paired_numbers(a, a + 0.3, "chf_x", 4)  # without the offset: the difference
+    assert w["chf_x_d"] == pytest.approx(-0.3) and w["chf_x_hi"] < 0
+    assert "1e12" in cst.paired_numbers.__doc__
+
+
+def test_d3_repeated_thresholds_and_tolerances_repeat_their_values() -> None:
+    """D3 (decided: documented): the glue is keyed by position, so a repeat gives the same values twice; a
+    tolerance of 1 or more stops the swarm at once, as 1 does."""
+    from fusion.book.chapters import chernoff as chc
+
+    o = _o()
+    g = chc.guard_usability(o["guarded"], o["plain"], o["sc"], (0.01, 0.01))
+    assert all(g[f"chf_gu_thr0{s}"] == g[f"chf_gu_thr1{s}"] for s in ("", "_runs", "_updates"))
+    v = chc.stopping_values(o["guarded"], o["sc"], (1.0, 10.0))
+    assert all(v[f"chf_stop_{k}_0"] == v[f"chf_stop_{k}_1"] for k in ("atlimit", "evals", "gap"))
+
+
+@pytest.mark.parametrize("field,bad", [("kl_local", -1.0), ("eps", -0.33), ("eps", 1.5)])
+def test_d4_network_study_keeps_its_ranges(field: str, bad: float) -> None:
+    """D4 (decided: fixed in part): a KL divergence is non-negative and an exponent in [0, 1] (the sum over a node's
+    row is not checked: tests build studies with placeholder exponents)."""
+    st = next(iter(_o()["nets"].values()))
+    arr = np.array(getattr(st, field))
+    arr.flat[0] = bad
+    with pytest.raises(ValueError, match=rf"^NetworkStudy\.{field} must hold"):
+        dataclasses.replace(st, **{field: arr})

@@ -293,7 +293,10 @@ def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4,
     dict
         ``<prefix>_stat`` ("mean" or "median"), ``<prefix>_d``, ``<prefix>_lo``, ``<prefix>_hi``,
         ``<prefix>_med`` (median difference), ``<prefix>_won`` (share of runs with a < b), ``<prefix>_runs``, and
-        ``<prefix>_region`` with ``relative_margin``.
+        ``<prefix>_region`` with ``relative_margin``. The statistic and its interval follow the rulebook's one tie
+        rule (relative round-off, ``fusion.book.rulebook``): differences within round-off of the values' magnitude
+        are ties, so values offset far beyond their differences (1e12 + x against 1e12 + x + 0.3) give
+        ``_d = _lo = _hi = 0`` beside the raw ``_med`` and ``_won``; a shift far from the data is not unit-free.
 
     Raises
     ------

@@ -134,7 +134,8 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     sc : RangeBearingScenario
         Particles per node (thresholds are fractions of them).
     thresholds : tuple of float
-        Other collapse thresholds (fractions of the particles) whose trigger counts are reported (empty: none).
+        Other collapse thresholds (fractions of the particles) whose trigger counts are reported (empty: none); the
+        glue is keyed by position, so a repeated threshold gives the same values under two positions.
 
     Returns
     -------

@@ -323,7 +323,8 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
     xtols : tuple of float
         Position tolerances, at least one, each finite and positive (the first is the one of ``sc.literal_xtol``,
         recorded as ``chernoff_literal``); the glue is keyed by position, so a repeated tolerance gives the same
-        values under two positions.
+        values under two positions. A tolerance of 1 or more (the exponents' box is [0, 1]) stops the swarm at its
+        first check, as 1 does.
 
     Returns
     -------
