@@ -116,10 +116,12 @@ def _studies(o: dict[str, Any]) -> A:
     nets = o["nets"]
     first = next(iter(nets))
     # a subset of the networks is valid (the functions show the networks given), so a missing one is not refused
-    second = list(nets)[1]
+    from fusion.scenarios.fusion_networks import Network
+
+    one, many = Network.UNEQUAL, Network.FEEDBACK  # a one-exchange network and one of several frames
     return A(nets, ("str", ("empty", {}), ("None", None), ("a study not a NetworkStudy", {**nets, first: "abc"}),
                     ("an unknown network", {**nets, "moon": nets[first]}),
-                    ("two networks under each other's key", {**nets, first: nets[second], second: nets[first]})))
+                    ("networks under each other's key", {**nets, one: nets[many], many: nets[one]})))
 
 
 def N(value: Any, mutations: tuple) -> A:

@@ -6,8 +6,9 @@ and, for the paired list ``plain``, runs of another seed (truths not those of ``
 same runs in another order are paired by truth. LB: the labels that head the criteria tables' columns are distinct
 and non-empty. DR: result tables are read by key (``fusion._results.table(key=, index=)``): a repeated row, a
 missing row that is read, or rows of other exponents are refused by the result's check, and any row order gives the
-same glue. OR: ``scaling_study`` sorts its sizes; ``snis_bias_study`` refuses ``far_omega`` at ω*. WN: a study under
-another designed network's key is refused naming ``studies[key]``. Debatables: D1 and D3 documented (the rulebook's
+same glue. OR: ``scaling_study`` sorts its sizes; ``snis_bias_study`` refuses ``far_omega`` at ω*. WN: a study that does
+not fit its key's network (several exchanges under an oracle network's key, several frames under a criteria
+network's) is refused naming ``studies[key]``, not the inner function's argument. Debatables: D1 and D3 documented (the rulebook's
 relative tie rule; glue keyed by position), D4 fixed in part (NetworkStudy's KL non-negative, exponents in [0, 1]),
 D5 documented in ``fusion._results`` (relations are structural; derived fields are not recomputed), D7 fixed.
 """
@@ -240,11 +241,25 @@ def test_wn_studies_under_each_others_key_name_studies(fn: str) -> None:
     from fusion.scenarios.fusion_networks import Network
 
     nets = _o()["nets"]
-    for a, b in ((Network.UNEQUAL, Network.FEEDBACK), (Network.UNEQUAL, Network.NON_GAUSSIAN)):
-        swapped = {**nets, a: nets[b], b: nets[a]}
-        args = (swapped, dict(chc.PREMISE_LABELS)) if fn in ("criteria_values", "baseline_table") else (swapped,)
-        with pytest.raises(ValueError, match=r"^studies\[.*'unequal'.*\] is the study of .* not of the network"):
-            getattr(ccr if len(args) == 2 else chc, fn)(*args, "small test study")
+    swapped = {**nets, Network.UNEQUAL: nets[Network.FEEDBACK], Network.FEEDBACK: nets[Network.UNEQUAL]}
+    args = (swapped, dict(chc.PREMISE_LABELS)) if fn in ("criteria_values", "baseline_table") else (swapped,)
+    with pytest.raises(ValueError, match=r"^studies\[.*'unequal'.*\] must be a network with one exchange .* got the "
+                                         r"study of 'feedback over three frames'"):
+        getattr(ccr if len(args) == 2 else chc, fn)(*args, "small test study")
+    if len(args) == 2:  # a multi-frame study under the chain's key (not an oracle network): named by its key
+        with pytest.raises(ValueError, match=r"^studies\[.*'chain'.*\] must be of a network with one frame"):
+            ccr.baseline_table({**nets, Network.CHAIN: nets[Network.FEEDBACK]}, dict(chc.PREMISE_LABELS), "r")
+
+
+def test_wn_one_exchange_study_under_another_key_stays_valid() -> None:
+    """The keys are the caller's: a one-exchange study under another one-exchange network's key is accepted (the
+    criteria tests run one study under several keys)."""
+    from fusion.book.chapters import chernoff as chc
+    from fusion.book.chapters import chernoff_criteria as ccr
+    from fusion.scenarios.fusion_networks import Network
+
+    nets = _o()["nets"]
+    ccr.baseline_table({**nets, Network.NON_GAUSSIAN: nets[Network.UNEQUAL]}, dict(chc.PREMISE_LABELS), "r")
 
 
 # ---- debatables --------------------------------------------------------------------------------------------------

@@ -70,10 +70,10 @@ CRITERIA_NETWORKS = (Network.UNEQUAL, Network.NON_GAUSSIAN, Network.CHAIN, Netwo
 _PMSE = "per-run squared position error averaged over the nodes (m²)"
 
 
-def _one_frame(study: NetworkStudy) -> NetworkScenario:
-    instance_of(study, NetworkStudy, "study")
+def _one_frame(study: NetworkStudy, name: str = "study") -> NetworkScenario:
+    instance_of(study, NetworkStudy, name)
     if study.scenario.frames != 1:
-        raise ValueError(f"study must be of a network with one frame (its later local posteriors are not kept), got "
+        raise ValueError(f"{name} must be of a network with one frame (its later local posteriors are not kept), got "
                          f"{study.scenario.frames} frames")
     return study.scenario
 
@@ -328,7 +328,7 @@ def _networks(studies: object, labels: object, reason: object) -> str:
     mapping_of(labels, "labels", "column label", values=str)
     seen: dict[str, str] = {}
     for key in CRITERIA_NETWORKS:
-        _key(studies, key)  # type: ignore[arg-type]
+        _one_frame(_key(studies, key), f"studies[{shown(key)}]")  # type: ignore[arg-type]  # fuzz 24b WN2: by its key
         if key not in labels:  # type: ignore[operator]
             raise ValueError(f"labels must hold the network {shown(key)}, got {sorted(map(str, labels))}")  # type: ignore[call-overload]
         # the labels are the tables' column headers (fuzz 24b LB): a repeated one would put one network's numbers
@@ -349,8 +349,8 @@ _on_networks = with_sections(raises="""TypeError
 ValueError
     ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`, two of these networks with one label
     or one with an empty label (the labels head the tables' columns), ``studies`` with a key that is not a
-    network of :data:`~fusion.book.chapters.chernoff.PREMISE_LABELS` or a study under another designed network's
-    key (its scenario named as that network's), or a network of fewer than
+    network of :data:`~fusion.book.chapters.chernoff.PREMISE_LABELS`, a study of these networks of several frames
+    (or, under a key of ``ORACLE_NETWORKS``, of several exchanges), or a network of fewer than
     :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 
 

@@ -458,7 +458,7 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
     ref = toy_reference()
     if rounded(far_omega, 4) == rounded(ref.omega_star, 4):  # fuzz 24b OR2: the rows of both exponents keyed alike
         raise ValueError(f"far_omega must differ from the exact ω* = {ref.omega_star:.4f} at 4 decimals (the table's "
-                         f"rows are keyed by ω), got {far_omega!r}")
+                         f"rows are keyed by ω), got {shown(far_omega)}")
     lg_grid = _logpdf(ref.proposal, ref.points)
     xs = mx.gm_sample(ref.proposal, rng, total)
     L, lg = _log_densities(list(ref.gms), xs), _logpdf(ref.proposal, xs)

@@ -287,9 +287,9 @@ reason : str
                              raises="""TypeError
     ``studies`` not a mapping, or a value not a NetworkStudy; ``reason`` not a str.
 ValueError
-    ``studies`` empty, a key not a network of :data:`PREMISE_LABELS`, a study under another designed network's key
-    (its scenario named as that network's), or a network of fewer than :data:`~fusion.book.ledger.MIN_RUNS` runs
-    without a ``reason`` (rule R4).""")
+    ``studies`` empty, a key not a network of :data:`PREMISE_LABELS`, a study under a key of
+    :data:`ORACLE_NETWORKS` not of one exchange and full connectivity, or a network of fewer than
+    :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 
 
 def _enough_runs(studies: Mapping[str, NetworkStudy], reason: object, name: str = "studies") -> str:
@@ -316,20 +316,13 @@ def _known_networks(studies: Mapping[str, Any], name: str = "studies") -> None:
     unknown = [k for k in studies if k not in PREMISE_LABELS]
     if unknown:
         raise ValueError(f"{name} holds keys that are not networks of PREMISE_LABELS: {shown(unknown, 120)}")
-    # fuzz 24b WN2: a study under another network's key (its scenario named as that network's) is refused here, by
-    # the mapping's name, not later by an inner function's argument; a scenario of a name of its own is the caller's
-    by_name = {sc.name: k for k, sc in _network_scenarios().items()}
-    for k, st in studies.items():
-        own = by_name.get(getattr(getattr(st, "scenario", None), "name", None))
-        if own is not None and own != k:
-            raise ValueError(f"{name}[{shown(k)}] is the study of {shown(st.scenario.name)} (the network "
-                             f"{shown(own)}), not of the network {shown(k)}: each study under its own network's key")
-
-
-@functools.cache
-def _network_scenarios() -> dict[Network, NetworkScenario]:
-    """The designed networks' scenarios by key (their names tell a study's network)."""
-    return premise_scenarios() | redundancy_scenarios()
+    # fuzz 24b WN2: a study under an oracle network's key (another network's study, say) is named here by the
+    # mapping's key, not later by the inner oracle_exponents' argument
+    for k in ORACLE_NETWORKS:
+        sc = getattr(studies.get(k), "scenario", None)
+        if sc is not None and (sc.frames != 1 or sc.rounds != 1 or sc.edges is not None):
+            raise ValueError(f"{name}[{shown(k)}] must be a network with one exchange and full connectivity (its "
+                             f"oracle's), got the study of {shown(sc.name)}")
 
 
 def _on_studies(fn: Callable[[dict[str, NetworkStudy], str], _R]) -> Callable[..., _R]:
