@@ -34,6 +34,9 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
 * ``bounds=(lo, hi)`` on :func:`array` and :func:`number`: every value in the closed interval (a probability,
   a share, a weight in [0, 1]);
 * ``relations``: cross-field checks (``Pd + Pi = gains.P``), each a callable raising a :class:`ValueError`.
+  Relations are structural (shapes, keys, orders, rows read by key); a field the producer derives by recomputing
+  the study (a verdict, an exact optimum, a moment) is not recomputed from the others, so a result replaced
+  (``dataclasses.replace``) with a contradicting value keeps it (fuzz 24b D5).
 
 Every array is then stored as a read-only float64 copy (the object owns its data). The checks reuse the
 shared validators of :mod:`fusion._validation` (:func:`~fusion._validation.as_array`,
@@ -195,10 +198,13 @@ def text(*choices: str) -> ValueSpec:
     return ValueSpec("text", {"choices": tuple(choices)})
 
 
-def table(*columns: Any, rows: Dim | None = None) -> ValueSpec:
+def table(*columns: Any, rows: Dim | None = None, key: tuple[Any, ...] = (), index: tuple[Any, ...] = ()) -> ValueSpec:
     """Spec of a :class:`pandas.DataFrame` field holding at least ``columns`` (those its consumers read), its number
-    of rows the named or fixed dimension ``rows`` if given."""
-    return ValueSpec("table", {"columns": tuple(columns), "rows": rows})
+    of rows the named or fixed dimension ``rows`` if given. Rows read by key (fuzz 24b class DR): ``key``, the
+    columns that identify a row (among ``columns``), no NaN there and no two rows with the same key (a repeated row
+    would be counted twice); ``index``, the index labels its consumers read (``table.loc[label]``), each present and
+    no index label twice."""
+    return ValueSpec("table", {"columns": tuple(columns), "rows": rows, "key": tuple(key), "index": tuple(index)})
 
 
 def instance(*classes: type, optional: bool = False) -> ValueSpec:
@@ -448,6 +454,25 @@ def _value(fs: ValueSpec, value: Any, label: str, bound: dict[str, tuple[Any, st
             raise ValueError(f"{label} must have the columns {shown(list(args['columns']))}, misses {shown(missing)}")
         if args["rows"] is not None:
             _bind((args["rows"],), (len(value),), f"{label} (rows)", bound)
+        if args.get("key"):
+            keys = value[list(args["key"])]
+            if keys.isna().to_numpy().any():
+                raise ValueError(f"{label}: the columns {shown(list(args['key']))} identify a row and must not hold NaN")
+            again = keys.duplicated().to_numpy()
+            if again.any():
+                i = int(np.argmax(again))
+                key = tuple(keys.iloc[i].tolist())
+                raise ValueError(f"{label} repeats a row: row {i} has the key {shown(key)} of an earlier "
+                                 f"row ({shown(list(args['key']))} identify a row)")
+        if args.get("index"):
+            if not value.index.is_unique:
+                again = value.index[value.index.duplicated()].tolist()[0]
+                raise ValueError(f"{label} repeats a row: the index label {shown(again)} occurs twice (rows are read "
+                                 "by it)")
+            missing = [k for k in args["index"] if k not in value.index]
+            if missing:
+                raise ValueError(f"{label} must hold the rows {shown(list(args['index']))} (read by index), misses "
+                                 f"{shown(missing)}")
         return value
     if fs.kind == "instance":
         if value is None and args["optional"]:

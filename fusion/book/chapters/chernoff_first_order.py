@@ -255,14 +255,16 @@ class SigmaFirstOrderStudy:
     toy : SigmaProblem
         :func:`sigma_first_order_problem` on the chapter's two-mixture example.
     runs : DataFrame
-        One row per random problem (:func:`random_two_mixtures`), the fields of :class:`SigmaProblem` as columns.
+        One row per random problem (:func:`random_two_mixtures`), the fields of :class:`SigmaProblem` as columns;
+        no row twice (a repeated problem would count as two).
     """
 
     toy: SigmaProblem
     runs: pd.DataFrame
 
     __result_spec__ = ResultSpec({"toy": instance(SigmaProblem),
-                                  "runs": table(*(f.name for f in dataclasses.fields(SigmaProblem)))})
+                                  "runs": table(*(f.name for f in dataclasses.fields(SigmaProblem)),
+                                                key=tuple(f.name for f in dataclasses.fields(SigmaProblem)))})
     __post_init__ = validated_post_init
 
 

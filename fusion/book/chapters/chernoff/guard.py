@@ -59,7 +59,7 @@ def guarded_runs(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int,
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``workers`` not an integer.
     ValueError
-        ``runs`` empty or of several scenarios, or ``sc`` not the runs' scenario (but for the guard); ``workers``
+        ``runs`` empty, of several scenarios or holding a run twice, or ``sc`` not the runs' scenario (but for the guard); ``workers``
         below 1 (checked whether or not a run is redone).
     """
     seed = check_seed(seed)
@@ -101,7 +101,7 @@ def guard_values(guarded: list[TrackingRun], sc: RangeBearingScenario) -> GlueVa
     TypeError
         ``sc`` not a RangeBearingScenario or ``guarded`` not a sequence of TrackingRun.
     ValueError
-        ``guarded`` holds no run, runs of several scenarios, or runs of a scenario other than ``sc`` (the guard's
+        ``guarded`` holds no run, a run twice, runs of several scenarios, or runs of a scenario other than ``sc`` (the guard's
         fields aside).
     """
     guarded = _check_study(guarded, sc, name="guarded")
@@ -134,7 +134,8 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     sc : RangeBearingScenario
         Particles per node (thresholds are fractions of them).
     thresholds : tuple of float
-        Other collapse thresholds (fractions of the particles) whose trigger counts are reported (empty: none).
+        Other collapse thresholds (fractions of the particles) whose trigger counts are reported (empty: none); the
+        glue is keyed by position, so a repeated threshold gives the same values under two positions.
 
     Returns
     -------
@@ -157,7 +158,8 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
         ``guarded`` or ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``thresholds``
         not a sequence of numbers.
     ValueError
-        ``guarded`` empty or of several scenarios, ``plain`` not as many runs of the same scenario, ``sc`` not
+        ``guarded`` empty, of several scenarios or holding a run twice, ``plain`` not the same runs (as many, of the same
+        scenario and truths: another seed's runs are refused), ``sc`` not
         their scenario, a threshold not in (0, 1), or fewer than two runs in which the guard did not act.
     """
     thresholds = tuple(scalar(t, f"thresholds[{j}]", 0.0, 1.0, lo_open=True, hi_open=True)

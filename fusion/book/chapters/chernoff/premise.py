@@ -287,7 +287,8 @@ reason : str
                              raises="""TypeError
     ``studies`` not a mapping, or a value not a NetworkStudy; ``reason`` not a str.
 ValueError
-    ``studies`` empty, a key not a network of :data:`PREMISE_LABELS`, or a network of fewer than
+    ``studies`` empty, a key not a network of :data:`PREMISE_LABELS`, a study under a key of
+    :data:`ORACLE_NETWORKS` not of one exchange and full connectivity, or a network of fewer than
     :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 
 
@@ -315,6 +316,13 @@ def _known_networks(studies: Mapping[str, Any], name: str = "studies") -> None:
     unknown = [k for k in studies if k not in PREMISE_LABELS]
     if unknown:
         raise ValueError(f"{name} holds keys that are not networks of PREMISE_LABELS: {shown(unknown, 120)}")
+    # fuzz 24b WN2: a study under an oracle network's key (another network's study, say) is named here by the
+    # mapping's key, not later by the inner oracle_exponents' argument
+    for k in ORACLE_NETWORKS:
+        sc = getattr(studies.get(k), "scenario", None)
+        if sc is not None and (sc.frames != 1 or sc.rounds != 1 or sc.edges is not None):
+            raise ValueError(f"{name}[{shown(k)}] must be a network with one exchange and full connectivity (its "
+                             f"oracle's), got the study of {shown(sc.name)}")
 
 
 def _on_studies(fn: Callable[[dict[str, NetworkStudy], str], _R]) -> Callable[..., _R]:

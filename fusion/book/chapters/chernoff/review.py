@@ -63,7 +63,7 @@ def gm_yardstick(rng: np.random.Generator, runs: list[TrackingRun], sc: RangeBea
     TypeError
         ``rng`` not a Generator, ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``sets`` not an integer.
     ValueError
-        ``runs`` empty or of several scenarios, ``sc`` not the runs' scenario, ``sets`` below 1 or beyond the memory budget.
+        ``runs`` empty, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, ``sets`` below 1 or beyond the memory budget.
     """
     from scipy.optimize import brentq
 
@@ -123,7 +123,8 @@ def consistency_figure(runs: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     TypeError
         ``runs`` or ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` empty or of several scenarios, ``plain`` not as many runs of the same scenario, ``sc`` not their scenario.
+        ``runs`` empty, of several scenarios or holding a run twice, ``plain`` not the same runs (as many, of the
+        same scenario and truths), ``sc`` not their scenario.
     """
     from scipy import stats as _stats
 
@@ -198,7 +199,7 @@ def double_count_values(runs: list[TrackingRun], sc: RangeBearingScenario) -> Gl
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` empty or of several scenarios, or ``sc`` not the runs' scenario.
+        ``runs`` empty, of several scenarios or holding a run twice, or ``sc`` not the runs' scenario.
     """
     runs = _check_study(runs, sc)
     lin = linearised_errors(sc)
@@ -247,7 +248,7 @@ def diagnostics(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int) ->
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` empty or of several scenarios, ``sc`` not the runs' scenario, or ``runs[0]`` without ``node_estimates``.
+        ``runs`` empty, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, or ``runs[0]`` without ``node_estimates``.
     """
     runs = _check_study(runs, sc)
     seed = check_seed(seed)
@@ -315,7 +316,7 @@ def review_values(runs: list[TrackingRun], crb_pos: FloatArray, sc: RangeBearing
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` of fewer than 2 runs or of several scenarios, ``sc`` not the runs' scenario, or ``crb_pos`` not
+        ``runs`` of fewer than 2 runs, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, or ``crb_pos`` not
         finite and non-negative with one entry per frame.
     """
     runs = _check_study(runs, sc)

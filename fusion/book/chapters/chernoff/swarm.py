@@ -66,7 +66,7 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0)
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``show`` not an integer.
     ValueError
-        ``runs`` is empty or of several scenarios, ``sc`` is not the runs' scenario, or ``show`` not a run's index.
+        ``runs`` is empty, of several scenarios or holds a run twice, ``sc`` is not the runs' scenario, or ``show`` not a run's index.
     """
     runs = _check_study(runs, sc)
     show = index(show, "show", len(runs))
@@ -134,7 +134,7 @@ def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple
     TypeError
         ``runs`` not a sequence of TrackingRun, ``frame`` or ``show`` not an integer.
     ValueError
-        ``runs`` is empty or of several scenarios, ``frame`` not in 1..K, or ``show`` not a run's index.
+        ``runs`` is empty, of several scenarios or holds a run twice, ``frame`` not in 1..K, or ``show`` not a run's index.
     """
     runs = _check_study(runs)
     frame = count(frame, "frame")
@@ -323,7 +323,8 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
     xtols : tuple of float
         Position tolerances, at least one, each finite and positive (the first is the one of ``sc.literal_xtol``,
         recorded as ``chernoff_literal``); the glue is keyed by position, so a repeated tolerance gives the same
-        values under two positions.
+        values under two positions. A tolerance of 1 or more (the exponents' box is [0, 1]) stops the swarm at its
+        first check, as 1 does.
 
     Returns
     -------
@@ -345,7 +346,7 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` is empty, of several scenarios, or without the readings (``readings=False``), or ``sc`` is not
+        ``runs`` is empty, of several scenarios, holds a run twice, or is without the readings (``readings=False``), or ``sc`` is not
         the runs' scenario, or ``xtols`` empty or holding a value that is not finite and positive.
     """
     runs = _check_study(runs, sc, readings=True)
