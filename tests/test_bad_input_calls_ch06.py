@@ -155,7 +155,9 @@ def registry() -> dict[str, dict[str, A]]:
     t = o["table"]
     R[c + "table_values"] = dict(table=A(t, ("str", ("None", None), ("another table", _cost_table()), ("a row missing", t.iloc[1:]),
                                              ("a column missing", t.iloc[:, 1:]),
-                                             ("a NaN cell", t.mask(t.notna() & (np.arange(t.shape[0])[:, None] == 0))))))
+                                             ("a NaN cell", t.mask(t.notna() & (np.arange(t.shape[0])[:, None] == 0))),
+                                             ("zero RMSEs", t * 0),  # fuzz 24b TV: an RMSE or a NEES is positive
+                                             ("a negative RMSE", t.mask(t.notna() & (np.arange(t.shape[0])[:, None] == 1), -5.0)))))
     R[c + "rmse_figure"] = dict(runs=_runs(o), crb_pos=N(o["crb"], ARR + ("len", "neg_entry")))
     R[c + "per_run_mse"] = dict(runs=_runs(o, other=False, twice=False), key=A("chernoff_pso", ("unknown", ("not a str", 3.0))))
     R[c + "per_run_nees"] = dict(runs=_runs(o, other=False, twice=False), key=A("chernoff_pso", ("unknown", ("no covariance", "mean_of_local_means"))),
@@ -194,7 +196,12 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "stonesoup_check"] = dict(record=A(rec, ("str", ("empty", {}), ("a key missing", {k: v for k, v in rec.items() if k != "rows"}),
                                                    ("no rows", {**rec, "rows": []}),
                                                    ("a row without a key", {**rec, "rows": [{k: v for k, v in rows[0].items() if k != next(iter(rows[0]))}]}),
-                                                   ("a NaN mean", {**rec, "measurement": {**rec["measurement"], "mean": [float("nan")] * len(rec["measurement"]["mean"])}}))))
+                                                   ("a NaN mean", {**rec, "measurement": {**rec["measurement"], "mean": [float("nan")] * len(rec["measurement"]["mean"])}}),
+                                                   # fuzz 24b SS: each named by its place in the record
+                                                   ("no omega 0.8 row", {**rec, "rows": [r for r in rows if r["omega"] != 0.8]}),
+                                                   ("rows an array", {**rec, "rows": np.array(rows)}),
+                                                   ("version None", {**rec, "stonesoup_version": None}),
+                                                   ("an indefinite covariance", {**rec, "measurement": {**rec["measurement"], "covariance": [[1.0, 2.0], [2.0, 1.0]]}}))))
     # ---- importance sampling
     R[c + "is_replicates"] = dict(seed=A(1, SEED), r=A(50, CNT), runs=A(3, CNT))
     R[c + "is_replicate_values"] = dict(seed=A(1, SEED), runs=A(3, CNT))
@@ -206,7 +213,7 @@ def registry() -> dict[str, dict[str, A]]:
                                     sc=_sc(o), thresholds=A((0.01, 0.05), ("str", ("nan", (np.nan,)), ("negative", (-0.1,)), ("one", (1.0,)))))
     # no other thresholds is valid (documented: "empty: none"), so an empty tuple is not refused
     R[c + "design_study"] = dict(sc=A(o["sc"], ("str", ("None", None))), seed=A(1, SEED), runs=A(2, CNT),
-                                 n_initial=A(200, CNT), workers=A(1, CNT))
+                                 n_initial=A(200, CNT + (("beyond the memory budget", 10**7),)), workers=A(1, CNT))
     R[c + "design"] = dict(seed=A(1, SEED), runs=A(2, CNT), sc=A(o["sc"], ("str",)))
     # ---- swarm, figures
     R[c + "eps_figure"] = dict(runs=_runs(o), sc=_sc(o), show=A(0, ("neg", "frac", "str", ("beyond", 3), ("bool", True))))
@@ -221,7 +228,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "review_values"] = dict(runs=_runs(o), crb_pos=N(o["crb"], ARR + ("len", "neg_entry")), sc=_sc(o), seed=A(1, SEED))
     R[c + "double_count_values"] = dict(runs=_runs(o), sc=_sc(o))
     R[c + "diagnostics"] = dict(runs=_runs(o), sc=_sc(o), seed=A(1, SEED))
-    R[c + "gm_yardstick"] = dict(rng=A(np.random.default_rng(0), RNG), runs=_runs(o), sc=_sc(o), sets=A(3, CNT))
+    R[c + "gm_yardstick"] = dict(rng=A(np.random.default_rng(0), RNG), runs=_runs(o), sc=_sc(o),
+                                 sets=A(3, CNT + (("beyond the memory budget", 10**6),)))
     # ---- the designed networks
     # the chain network's exponents are NaN where a node hears no other (documented): the valid call runs a fully
     # connected network under its key, so that the result is finite

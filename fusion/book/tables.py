@@ -732,13 +732,20 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     return tab
 
 
-def _cell_number(tab: pd.DataFrame, row: object, column: object, name: str) -> float:
+def _cell_number(tab: pd.DataFrame, row: object, column: object, name: str, positive: bool = False) -> float:
     """The number in cell (``row``, ``column``) of a table another function made (issue 35): a finite real number,
     else a ValueError naming ``name`` and the cell, never a message naming an inner argument (``value``) or a
-    TypeError from ``float``. Call after :func:`_frame` (the column is there) and a check of the rows read."""
+    TypeError from ``float``. Call after :func:`_frame` (the column is there) and a check of the rows read.
+    ``positive``: the cell holds a quantity that is positive by its definition (an RMSE, a NEES of a noisy
+    filter; fuzz 24b TV), so 0 or a negative number is refused too (a ratio of them would divide by 0 or flip)."""
     x = tab.loc[row, column]
+    if isinstance(x, (pd.Series, pd.DataFrame)):  # a repeated row or column label: which one is meant is unknown
+        raise ValueError(f"{name} holds row {shown(row, 60)} or column {shown(column, 60)} more than once")
     ok = isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_))
     if not ok or not np.isfinite(x):
         raise ValueError(f"{name}[{shown(column, 60)}] at row {shown(row, 60)} must be a finite number, "
+                         f"got {shown(x, 60)}")
+    if positive and not x > 0:
+        raise ValueError(f"{name}[{shown(column, 60)}] at row {shown(row, 60)} must be positive (an RMSE or a NEES), "
                          f"got {shown(x, 60)}")
     return float(x)

@@ -16,7 +16,7 @@ from fusion._validation import FloatArray, scalar
 from fusion._counts import sequence
 from fusion.book.tables import rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, RangeBearingScenario, TrackingRun, min_local_ess,
-                                            run_tracking_batch)
+                                            run_tracking_batch, _block_allocation)
 from fusion.book.chapters.chernoff.settings import (ALL_FRAMES, COLLAPSE_FRACTION, STUDY_RUNS, STUDY_WORKERS,
                                                     _check_study, guarded_scenario)
 from fusion.book.chapters.chernoff.tracking import any_collapsed, per_run_mse, per_run_nees
@@ -284,7 +284,8 @@ def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_
     TypeError
         ``sc`` not a RangeBearingScenario; ``seed``, ``runs``, ``n_initial`` or ``workers`` not an integer.
     ValueError
-        ``seed`` negative; ``runs``, ``n_initial`` or ``workers`` below 1.
+        ``seed`` negative; ``runs``, ``n_initial`` or ``workers`` below 1; ``runs`` and ``n_initial`` beyond the
+        memory budget (the particle clouds of a block of runs).
     """
     instance_of(sc, RangeBearingScenario, "sc")
     seed = check_seed(seed)
@@ -294,6 +295,9 @@ def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_
     # the nodes' first update is all that is read: the fusion and the centralised filter run small (they draw from
     # their own streams, after the nodes' weights are computed, so the effective sample sizes do not change)
     one = dataclasses.replace(sc, frames=1, variants=False, readings=False, n_samples=50, n_central=50, em_iterations=1)
+    # the "more particles" design's first update holds n_initial particles per node of a block of runs: refused by
+    # the tracking's memory rule before any run, naming this function's arguments (fuzz 24b SZ2: MemoryError)
+    _block_allocation(dataclasses.replace(one, n_initial=n_initial), runs, "runs, sc.sensors and n_initial")
     designs = {"plain": one, "more particles": dataclasses.replace(one, n_initial=n_initial),
                "guard": dataclasses.replace(one, guard=COLLAPSE_FRACTION)}
     ess, weighted = {}, {}

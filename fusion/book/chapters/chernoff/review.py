@@ -12,7 +12,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from fusion._validation import FloatArray, as_rng
-from fusion._counts import allocation, count
+from fusion._counts import allocation, count, input_allocation
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import mixtures as mx
@@ -70,7 +70,11 @@ def gm_yardstick(rng: np.random.Generator, runs: list[TrackingRun], sc: RangeBea
     rng = as_rng(rng)
     runs = _check_study(runs, sc)
     sets = count(sets, "sets")
-    allocation((sets, sc.n_particles, 4), "sets and sc.n_particles")
+    # every array the yardstick holds at once (fuzz 24b SZ1: one (sets, Q, 4) array within the budget, 10**6 sets
+    # raised MemoryError): per set and particle about 24 + K/2 floats measured (tracemalloc, K = 2..12), counted as
+    # 8 vectors of the state's 4 entries and K responsibilities; the sets' particles are weighted EM's input x
+    allocation((sets, sc.n_particles, 8 * 4 + sc.n_components), "sets, sc.n_particles and sc.n_components")
+    input_allocation((sets, sc.n_particles, 4), "sets and sc.n_particles")
     gain = np.stack([r.gm_loglik - r.gm1_loglik for r in runs])  # (runs, K, N)
     ess = np.stack([r.ess["local"] for r in runs]) / sc.n_particles
     d, Q = 4, sc.n_particles

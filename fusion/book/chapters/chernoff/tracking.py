@@ -245,7 +245,8 @@ def table_values(table: pd.DataFrame) -> GlueValues:
     TypeError
         ``table`` not a DataFrame.
     ValueError
-        ``table`` lacks a row or column of :func:`method_table` that it reads, or a cell read is not a finite number.
+        ``table`` lacks a row or column of :func:`method_table` that it reads, holds one twice, or a cell read is not
+        a finite positive number (an RMSE or a NEES: 0 or a negative one is impossible for a noisy filter).
     """
     _frame(table, "table", (RMSE_LATE, _NEES_LATE), maker="method_table")
     rows = [CRB_ROW, *(METHOD_LABELS[k] for k in ("chernoff_pso", "centralised_pf", "local1", *_NEES_KEYS))]
@@ -254,9 +255,9 @@ def table_values(table: pd.DataFrame) -> GlueValues:
         raise ValueError(f"table lacks the rows {missing} (a result of method_table holds them)")
 
     def t(key: str, col: str = RMSE_LATE) -> float:
-        return _cell_number(table, METHOD_LABELS[key], col, "table")
+        return _cell_number(table, METHOD_LABELS[key], col, "table", positive=True)
     v: dict[str, float] = {f"chf_rmse_{k}": rounded(t(k)) for k in METHODS if METHOD_LABELS[k] in table.index}
-    v["chf_rmse_crb"] = rounded(_cell_number(table, CRB_ROW, RMSE_LATE, "table"))
+    v["chf_rmse_crb"] = rounded(_cell_number(table, CRB_ROW, RMSE_LATE, "table", positive=True))
     v["chf_ratio_local"] = rounded(t("local1") / t("chernoff_pso"))
     v["chf_ratio_local_min"] = rounded(min(t(k) for k in METHODS if k.startswith("local") and METHOD_LABELS[k] in table.index)
                                        / t("chernoff_pso"))
