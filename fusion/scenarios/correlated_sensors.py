@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import constant, frozen_arrays
+from fusion._results import ResultSpec, instance, integer, number, tuple_of, validated_post_init
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
@@ -97,8 +98,22 @@ class CouplingStudy:
     scenarios: Mapping[str, Mapping[str, Any]]
 
 
+def _ratio_rows(values: Mapping[str, Any], cls: str) -> None:
+    """An :class:`EstimatedCovarianceStudy`'s rows: one per case, its ratios of MSEs finite and positive, a ratio per
+    calibration size of ``ns``."""
+    for i, row in enumerate(values["rows"]):
+        for n in values["ns"]:
+            if GLS_HAT_OVER_GLS.format(n=n) not in row:
+                raise ValueError(f"{cls}.rows[{i}] misses the ratio at n = {n} of {cls}.ns")
+        for key, value in row.items():
+            if key == "case":
+                continue
+            v = as_array(value, f"{cls}.rows[{i}][{shown(key)}]", ndim=0)
+            if not v > 0:
+                raise ValueError(f"{cls}.rows[{i}][{shown(key)}] must be a positive ratio of MSEs, got {shown(float(v))}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class EstimatedCovarianceStudy:
     r"""GLS with an estimated or a misstated noise covariance (:func:`estimated_covariance_study`).
 
@@ -120,6 +135,11 @@ class EstimatedCovarianceStudy:
     reps: int
     seed: int
     misstate: float
+
+    __result_spec__ = ResultSpec({"rows": tuple_of(instance(Mapping)), "ns": tuple_of(integer(2)), "reps": integer(1),
+                                  "seed": integer(0), "misstate": number(positive=True, bounds=(0.0, 1.0))},
+                                 relations=(lambda v, cls: _ratio_rows(v, cls),))
+    __post_init__ = validated_post_init
 
 class CouplingCase(StrEnum):
     """Keys of the correlated cases (:data:`SCENARIOS`; labels: :data:`fusion.book.style.METHOD_LABELS`).

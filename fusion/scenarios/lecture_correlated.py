@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fusion._results import ResultSpec, array, dict_of, instance, integer, number, tuple_of, validated_post_init
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import FloatArray, as_array, count, scalar, shown, std_scalar
@@ -92,7 +93,6 @@ class RidgeStudy:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class CorrelatedStudy:
     r"""Experiment E2.7: correlated noise, LDLᵀ pseudo-measurements, GLS and the naive fusion (:func:`correlated_study`).
 
@@ -136,6 +136,15 @@ class CorrelatedStudy:
     nees_samples: tuple[np.ndarray, np.ndarray]
     runs: int
     flops: tuple[Mapping[str, float], ...]
+
+    __result_spec__ = ResultSpec(
+        {"R": array("2N", "2N", covariance=True), "mrm_offdiag": number(), "rel_ldl_gls": number(),
+         "eg": array(2, "runs"), "en": array(2, "runs"), "Pg": array(2, 2, covariance=True),
+         "Pn": array(2, 2, covariance=True), "sq_gls": array("runs", bounds=(0.0, np.inf)), "sq_naive": array("runs", bounds=(0.0, np.inf)),
+         "mse_gls": number(), "mse_naive": number(), "nees_gls": number(), "nees_naive": number(),
+         "nees_samples": tuple_of(array("runs", bounds=(0.0, np.inf)), array("runs", bounds=(0.0, np.inf))), "runs": integer(1, dim="runs"),
+         "flops": tuple_of(dict_of(instance(int, float, np.integer, np.floating)))})
+    __post_init__ = validated_post_init
 
 
 # --------------------------------------------------------------------------- E2.5

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, array, dict_of, integer, number, same_keys, tuple_of, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import seed as check_seed
 from fusion._validation import distinct, loop_work
@@ -90,7 +91,6 @@ class PluginStudy:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class VectorStudy:
     r"""An ill-conditioned vector case: LS, centralised and distributed plug-in ridge (:func:`vector_study`).
 
@@ -116,6 +116,13 @@ class VectorStudy:
     runs: int
     seed: int
     scales: tuple[float, ...]
+
+    __result_spec__ = ResultSpec(
+        {"sq": dict_of(dict_of(array("runs", bounds=(0.0, np.inf))), key=tuple), "x": dict_of(array(2), key=tuple),
+         "A": array(2, 2, covariance=True), "cond": number(positive=True), "tr_ls": number(positive=True),
+         "runs": integer(1, dim="runs"), "seed": integer(0), "scales": tuple_of(number(positive=True))},
+        relations=(same_keys("sq", "x"),))
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()

@@ -42,6 +42,8 @@ from typing import Any
 import numpy as np
 
 from fusion._frozen import constant, frozen_arrays
+from fusion._results import (ResultSpec, array, dict_of, instance, integer, number, same_keys, text, tuple_of,
+                             validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
@@ -104,8 +106,44 @@ def _signal(kind: object, name: str = "kind") -> Signal:
     return Signal(one_of(kind, _SIGNAL_KEYS, name))  # type: ignore[arg-type]
 
 
+#: The errors of every configuration of a :class:`MechanismStudy` (its ``err``; ``evar`` holds the first three).
+_MECHANISM_ERRORS = ("raw", "denoised", "denoise-first", "fuse-first")
+
+
+def _cases_relation(values: Mapping[str, Any], cls: str) -> None:
+    """A :class:`SignalStudy`'s cases: one per (signal, mode, normaliser) run, each with the metrics its consumers read,
+    arrays (runs, sensors), finite, the errors non-negative."""
+    want = {(g, m, n) for g in values["signals"] for m in values["modes"] for n in values["normalisers"]}
+    if set(values["cases"]) != want:
+        raise ValueError(f"{cls}.cases must hold one case per (signal, mode, normaliser) of {cls}.signals, "
+                         f"{cls}.modes and {cls}.normalisers, got {shown(sorted(map(str, values['cases'])), 200)}")
+    shape = (values["runs"], values["gains"].size)
+    for key, case in values["cases"].items():
+        for part in ("raw", "denoised", "reconstructed", "gain_err", "weights"):
+            if part not in case:
+                raise ValueError(f"{cls}.cases[{shown(key)}] misses {shown(part)} (its consumers read it)")
+        for part, value in case.items():
+            if part == "example":
+                continue
+            metrics = value if isinstance(value, Mapping) else {"": value}
+            for name, arr in metrics.items():
+                where = f"{cls}.cases[{shown(key)}][{shown(part)}]" + (f"[{shown(name)}]" if name else "")
+                arr = as_array(arr, where, finite=True)
+                if arr.shape != shape:
+                    raise ValueError(f"{where} must have shape (runs, sensors) = {shape} ({cls}.runs and the sensors of "
+                                     f"{cls}.gains), got {arr.shape}")
+                if isinstance(value, Mapping) and (arr < 0).any():
+                    raise ValueError(f"{where} must be non-negative (an error), got {shown(float(arr.min()))}")
+
+
+def _configs_relation(values: Mapping[str, Any], cls: str) -> None:
+    """A :class:`MechanismStudy` has one configuration per label."""
+    if len(values["configs"]) != len(values["labels"]):
+        raise ValueError(f"{cls}.configs must hold one configuration per label of {cls}.labels "
+                         f"({len(values['labels'])}), got {len(values['configs'])}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class SignalStudy:
     r"""The lecture's reconstruction over signals, threshold rules and normalisers (:func:`signal_study`).
 
@@ -138,6 +176,15 @@ class SignalStudy:
     sigma: np.ndarray
     length: int
 
+    __result_spec__ = ResultSpec(
+        {"cases": dict_of(dict_of(instance(Mapping, np.ndarray)), key=tuple),
+         "truth": dict_of(array("sensors", "I")), "raw0": dict_of(array("sensors", "I")),
+         "signals": tuple_of(instance(Signal)), "modes": tuple_of(text()), "normalisers": tuple_of(text()),
+         "runs": integer(1, dim="runs"), "seed": integer(0), "gains": array("sensors", bounds=(0.0, np.inf)),
+         "sigma": array("sensors", bounds=(0.0, np.inf)), "length": integer(1, dim="I")},
+        relations=(same_keys("signals", "truth", "raw0"), lambda v, cls: _cases_relation(v, cls)))
+    __post_init__ = validated_post_init
+
 
 @dataclass(frozen=True)
 @frozen_arrays
@@ -163,7 +210,6 @@ class SeedStudy:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class MechanismStudy:
     r"""Bias, correlation, wavelet settings and the order of the steps (:func:`mechanism_study`).
 
@@ -221,9 +267,25 @@ class MechanismStudy:
     configs: tuple[Mapping[str, Any], ...]
     kind: Signal
 
+    __result_spec__ = ResultSpec(
+        {"labels": tuple_of(text()),
+         "err": dict_of(dict_of(array("runs", "sensors", bounds=(0.0, np.inf)), required=_MECHANISM_ERRORS)),
+         "evar": dict_of(dict_of(array("runs", "sensors", bounds=(0.0, np.inf)), required=_MECHANISM_ERRORS[:3])),
+         "stats": dict_of(dict_of(instance(np.ndarray, float, np.floating))),
+         "bias_share": array("sensors", bounds=(0.0, np.inf)), "bias_share_rec": array("sensors", bounds=(0.0, np.inf)),
+         "corr": array("sensors", "sensors"), "corr_random": array("sensors", "sensors"),
+         "mean_offdiag_corr": number(nonnegative=False), "mean_offdiag_corr_random": number(nonnegative=False),
+         "bias_curve": array("sensors", "I"), "rms_bias": array("sensors", bounds=(0.0, np.inf)),
+         "bias_spectrum": tuple_of(tuple_of(number(positive=True), number(bounds=(0.0, 1.0)))),
+         "bias_share_period": dict_of(number(bounds=(0.0, 1.0)), key=int),
+         "tone_bands": dict_of(array("bands", bounds=(0.0, 1.0)), key=int),
+         "runs": integer(1, dim="runs"), "seed": integer(0), "gains": array("sensors", bounds=(0.0, np.inf)),
+         "sigma": array("sensors", bounds=(0.0, np.inf)), "configs": tuple_of(instance(Mapping)), "kind": instance(Signal)},
+        relations=(same_keys("labels", "err", "evar", "stats"), lambda v, cls: _configs_relation(v, cls)))
+    __post_init__ = validated_post_init
+
 
 @dataclass(frozen=True)
-@frozen_arrays
 class VarianceStudy:
     r"""The lecture's step 3 under each reading of the variance of the weights (:func:`variance_study`).
 
@@ -268,6 +330,18 @@ class VarianceStudy:
     sigma: np.ndarray
     mode: str
     normaliser: str
+
+    __result_spec__ = ResultSpec(
+        {"readings": tuple_of(text()), "err": dict_of(array("runs", "sensors", bounds=(0.0, np.inf))),
+         "evar": dict_of(array("runs", "sensors", bounds=(0.0, np.inf))), "fused_mse": dict_of(array("runs", bounds=(0.0, np.inf))),
+         "raw": array("runs", "sensors", bounds=(0.0, np.inf)), "raw_evar": array("runs", "sensors", bounds=(0.0, np.inf)),
+         "denoised": array("runs", "sensors", bounds=(0.0, np.inf)), "denoised_evar": array("runs", "sensors", bounds=(0.0, np.inf)),
+         "w_final": dict_of(array("sensors", bounds=(0.0, 1.0))), "w_spread": dict_of(number()),
+         "w_true": array("sensors", bounds=(0.0, 1.0)), "window": integer(1), "runs": integer(1, dim="runs"),
+         "seed": integer(0), "gains": array("sensors", bounds=(0.0, np.inf)), "sigma": array("sensors", bounds=(0.0, np.inf)),
+         "mode": text(), "normaliser": text()},
+        relations=(same_keys("readings", "err", "evar", "fused_mse", "w_final", "w_spread"),))
+    __post_init__ = validated_post_init
 
 
 def config_label(cfg: dict[str, Any]) -> str:
