@@ -193,7 +193,7 @@ class ConsistencyStudy:
     index_order : dict
         ``index_order[numbering][case]``: for each numbering (a permutation of :data:`INDEX_ORDERS`), the per-run MSE over the window of the check (lecture estimator, guard
         ``index_guard``) with "adjacent" read as the sensors' index order, for each numbering of
-        :data:`INDEX_ORDERS` that fits the number of sensors.
+        :data:`INDEX_ORDERS` that fits the number of sensors (empty when none fits).
     index_guard : str
     """
 
@@ -225,7 +225,7 @@ class ConsistencyStudy:
          "p_excl_clean": number(bounds=(0.0, 1.0)), "p_excl_any_clean": number(bounds=(0.0, 1.0)),
          "ratio": array("R", bounds=(0.0, np.inf)), "pdet": array("R", bounds=(0.0, 1.0)), "diag": dict_of(instance(FaultDiagnostics)),
          "runs": integer(1, dim="runs"), "samples": integer(1, dim="samples"), "seed": integer(0),
-         "index_order": dict_of(dict_of(array("runs", bounds=(0.0, np.inf))), key=tuple), "index_guard": text()},
+         "index_order": dict_of(dict_of(array("runs", bounds=(0.0, np.inf))), key=tuple, nonempty=False), "index_guard": text()},
         relations=(same_keys("mask", "sq", "diag"), lambda v, cls: _consistency_relation(v, cls)))
     __post_init__ = validated_post_init
 
