@@ -24,7 +24,8 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
   finite floats or of arrays (their named dimensions bound as above); :func:`keyed`: a dict of whichever string
   keys the result holds (the methods a run computed), each a finite array (a covariance stack if asked);
 * :func:`integer`, :func:`flag`, :func:`text`, :func:`mask`: an int (not a bool) at least ``minimum`` (a count, a
-  seed, an index; with ``dim``, the count is that named dimension of the arrays: ``runs`` = their length), a bool, a string (one of given choices), a bool array of named dimensions (steps on a leg,
+  seed, an index; with ``dim``, the count is that named dimension of the arrays: ``runs`` = their length), a bool,
+  a string (one of given choices), a bool array of named dimensions (steps on a leg,
   runs at a corner; kept bool); :func:`table`: a :class:`pandas.DataFrame` with the columns its consumers read
   (its rows a named dimension if asked); :func:`instance`: an object of given classes (a study
   of its own, a scenario; optional allows ``None``);
@@ -75,6 +76,9 @@ __all__: list[str] = []  # private module: nothing public
 
 
 Dim = str | int
+
+#: ``bounds`` of a non-negative :func:`array` or :func:`number` (an MSE, a variance, a count of runs as a float).
+NONNEGATIVE = (0.0, np.inf)
 
 #: The leading batch axes of an :func:`array` spec (first entry only): any number of axes, their shape one group.
 BATCH = "..."
@@ -189,8 +193,9 @@ def same_keys(*fields: str) -> Callable[[Mapping[str, Any], str], None]:
         first = set(values[fields[0]])
         for name in fields[1:]:
             if set(values[name]) != first:
+                got = sorted(map(str, values[name]))
                 raise ValueError(f"{cls}.{name} must have the keys of {cls}.{fields[0]} "
-                                 f"{shown(sorted(map(str, first)), 200)}, got {shown(sorted(map(str, values[name])), 200)}")
+                                 f"{shown(sorted(map(str, first)), 200)}, got {shown(got, 200)}")
 
     relation.fields = fields  # type: ignore[attr-defined]  (the fields it relates: tests drop a key from each)
     return relation

@@ -28,8 +28,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import constant, frozen_arrays
-from fusion._results import ResultSpec, instance, integer, number, tuple_of, validated_post_init
+from fusion._frozen import constant
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
+                             validated_post_init)
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
@@ -62,7 +63,6 @@ MISSTATED_OVER_GLS = "misstated / GLS"
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class CouplingStudy:
     r"""GLS against the naive fusion over the coupling cases (:func:`coupling_study`).
 
@@ -97,6 +97,16 @@ class CouplingStudy:
     seed: int
     scenarios: Mapping[str, Mapping[str, Any]]
 
+    __result_spec__ = ResultSpec(
+        {"rows": tuple_of(instance(Mapping)),
+         "sq": dict_of(tuple_of(array("runs", bounds=NONNEGATIVE), array("runs", bounds=NONNEGATIVE))),
+         "weights": dict_of(tuple_of(instance(np.ndarray), instance(np.ndarray))),
+         "env_grid": array("E", bounds=NONNEGATIVE),
+         "curves": dict_of(array("E", bounds=NONNEGATIVE)), "far": dict_of(number(positive=True)), "env_far": number(),
+         "runs": integer(1, dim="runs"), "seed": integer(0), "scenarios": dict_of(instance(Mapping))},
+        relations=(same_keys("scenarios", "sq", "weights", "curves", "far"),))
+    __post_init__ = validated_post_init
+
 
 def _ratio_rows(values: Mapping[str, Any], cls: str) -> None:
     """An :class:`EstimatedCovarianceStudy`'s rows: one per case, its ratios of MSEs finite and positive, a ratio per
@@ -110,7 +120,8 @@ def _ratio_rows(values: Mapping[str, Any], cls: str) -> None:
                 continue
             v = as_array(value, f"{cls}.rows[{i}][{shown(key)}]", ndim=0)
             if not v > 0:
-                raise ValueError(f"{cls}.rows[{i}][{shown(key)}] must be a positive ratio of MSEs, got {shown(float(v))}")
+                raise ValueError(f"{cls}.rows[{i}][{shown(key)}] must be a positive ratio of MSEs, "
+                                 f"got {shown(float(v))}")
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._frozen import constant
-from fusion._results import ResultSpec, array, dict_of, integer, number, same_keys, text, tuple_of, validated_post_init
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, integer, number, same_keys, text, tuple_of,
+                             validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import distinct, loop_work, one_of
 from fusion._validation import allocation, record, seed as check_seed
@@ -374,9 +375,9 @@ class PairedStudy:
     failure_mode: str = "fixed"
 
     __result_spec__ = ResultSpec(
-        {"clean": dict_of(array("runs", "samples", bounds=(0.0, np.inf))),
-         "failed": dict_of(array("runs", "samples", bounds=(0.0, np.inf))),
-         "set_size": array("runs", nan=True, bounds=(0.0, np.inf)), "window": tuple_of(integer(1), integer(1)),
+        {"clean": dict_of(array("runs", "samples", bounds=NONNEGATIVE)),
+         "failed": dict_of(array("runs", "samples", bounds=NONNEGATIVE)),
+         "set_size": array("runs", nan=True, bounds=NONNEGATIVE), "window": tuple_of(integer(1), integer(1)),
          "seed": integer(0), "failed_member_share": tuple_of(number(bounds=(0.0, 1.0))),
          "failure_mode": text(*FAILURE_MODES)},
         relations=(same_keys("clean", "failed"), lambda v, cls: _window_relation(v, cls)))

@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import constant
-from fusion._results import ResultSpec, array, dict_of, integer, number, validated_post_init
+from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, number, validated_post_init
 from fusion import registration as reg
 from fusion.registration import methods as _methods
 from fusion._validation import derived_inputs
@@ -667,7 +667,7 @@ class MonteCarlo:
     runs: int
     seed: int
 
-    __result_spec__ = ResultSpec({"per_run": dict_of(array("runs", bounds=(0.0, np.inf))), "sigma": number(positive=True),
+    __result_spec__ = ResultSpec({"per_run": dict_of(array("runs", bounds=NONNEGATIVE)), "sigma": number(positive=True),
                                   "runs": integer(2, dim="runs"), "seed": integer(0)})
     __post_init__ = validated_post_init
 
@@ -835,9 +835,9 @@ class FusionRuns:
     runs: int
     seed: int
 
-    __result_spec__ = ResultSpec({"alone": array("runs", bounds=(0.0, np.inf)),
-                                  "unregistered": array("runs", bounds=(0.0, np.inf)),
-                                  "fused": dict_of(array("runs", bounds=(0.0, np.inf))), "sigma": number(positive=True),
+    __result_spec__ = ResultSpec({"alone": array("runs", bounds=NONNEGATIVE),
+                                  "unregistered": array("runs", bounds=NONNEGATIVE),
+                                  "fused": dict_of(array("runs", bounds=NONNEGATIVE)), "sigma": number(positive=True),
                                   "runs": integer(2, dim="runs"), "seed": integer(0)})
     __post_init__ = validated_post_init
 

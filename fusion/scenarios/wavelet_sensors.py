@@ -42,8 +42,8 @@ from typing import Any
 import numpy as np
 
 from fusion._frozen import constant, frozen_arrays
-from fusion._results import (ResultSpec, array, dict_of, instance, integer, number, same_keys, text, tuple_of,
-                             validated_post_init)
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, text,
+                             tuple_of, validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
@@ -130,8 +130,8 @@ def _cases_relation(values: Mapping[str, Any], cls: str) -> None:
                 where = f"{cls}.cases[{shown(key)}][{shown(part)}]" + (f"[{shown(name)}]" if name else "")
                 arr = as_array(arr, where, finite=True)
                 if arr.shape != shape:
-                    raise ValueError(f"{where} must have shape (runs, sensors) = {shape} ({cls}.runs and the sensors of "
-                                     f"{cls}.gains), got {arr.shape}")
+                    raise ValueError(f"{where} must have shape (runs, sensors) = {shape} ({cls}.runs and the "
+                                     f"sensors of {cls}.gains), got {arr.shape}")
                 if isinstance(value, Mapping) and (arr < 0).any():
                     raise ValueError(f"{where} must be non-negative (an error), got {shown(float(arr.min()))}")
 
@@ -180,8 +180,8 @@ class SignalStudy:
         {"cases": dict_of(dict_of(instance(Mapping, np.ndarray)), key=tuple),
          "truth": dict_of(array("sensors", "I")), "raw0": dict_of(array("sensors", "I")),
          "signals": tuple_of(instance(Signal)), "modes": tuple_of(text()), "normalisers": tuple_of(text()),
-         "runs": integer(1, dim="runs"), "seed": integer(0), "gains": array("sensors", bounds=(0.0, np.inf)),
-         "sigma": array("sensors", bounds=(0.0, np.inf)), "length": integer(1, dim="I")},
+         "runs": integer(1, dim="runs"), "seed": integer(0), "gains": array("sensors", bounds=NONNEGATIVE),
+         "sigma": array("sensors", bounds=NONNEGATIVE), "length": integer(1, dim="I")},
         relations=(same_keys("signals", "truth", "raw0"), lambda v, cls: _cases_relation(v, cls)))
     __post_init__ = validated_post_init
 
@@ -269,18 +269,19 @@ class MechanismStudy:
 
     __result_spec__ = ResultSpec(
         {"labels": tuple_of(text()),
-         "err": dict_of(dict_of(array("runs", "sensors", bounds=(0.0, np.inf)), required=_MECHANISM_ERRORS)),
-         "evar": dict_of(dict_of(array("runs", "sensors", bounds=(0.0, np.inf)), required=_MECHANISM_ERRORS[:3])),
+         "err": dict_of(dict_of(array("runs", "sensors", bounds=NONNEGATIVE), required=_MECHANISM_ERRORS)),
+         "evar": dict_of(dict_of(array("runs", "sensors", bounds=NONNEGATIVE), required=_MECHANISM_ERRORS[:3])),
          "stats": dict_of(dict_of(instance(np.ndarray, float, np.floating))),
-         "bias_share": array("sensors", bounds=(0.0, np.inf)), "bias_share_rec": array("sensors", bounds=(0.0, np.inf)),
+         "bias_share": array("sensors", bounds=NONNEGATIVE), "bias_share_rec": array("sensors", bounds=NONNEGATIVE),
          "corr": array("sensors", "sensors"), "corr_random": array("sensors", "sensors"),
          "mean_offdiag_corr": number(nonnegative=False), "mean_offdiag_corr_random": number(nonnegative=False),
-         "bias_curve": array("sensors", "I"), "rms_bias": array("sensors", bounds=(0.0, np.inf)),
+         "bias_curve": array("sensors", "I"), "rms_bias": array("sensors", bounds=NONNEGATIVE),
          "bias_spectrum": tuple_of(tuple_of(number(positive=True), number(bounds=(0.0, 1.0)))),
          "bias_share_period": dict_of(number(bounds=(0.0, 1.0)), key=int),
          "tone_bands": dict_of(array("bands", bounds=(0.0, 1.0)), key=int),
-         "runs": integer(1, dim="runs"), "seed": integer(0), "gains": array("sensors", bounds=(0.0, np.inf)),
-         "sigma": array("sensors", bounds=(0.0, np.inf)), "configs": tuple_of(instance(Mapping)), "kind": instance(Signal)},
+         "runs": integer(1, dim="runs"), "seed": integer(0), "gains": array("sensors", bounds=NONNEGATIVE),
+         "sigma": array("sensors", bounds=NONNEGATIVE), "configs": tuple_of(instance(Mapping)),
+         "kind": instance(Signal)},
         relations=(same_keys("labels", "err", "evar", "stats"), lambda v, cls: _configs_relation(v, cls)))
     __post_init__ = validated_post_init
 
@@ -332,13 +333,16 @@ class VarianceStudy:
     normaliser: str
 
     __result_spec__ = ResultSpec(
-        {"readings": tuple_of(text()), "err": dict_of(array("runs", "sensors", bounds=(0.0, np.inf))),
-         "evar": dict_of(array("runs", "sensors", bounds=(0.0, np.inf))), "fused_mse": dict_of(array("runs", bounds=(0.0, np.inf))),
-         "raw": array("runs", "sensors", bounds=(0.0, np.inf)), "raw_evar": array("runs", "sensors", bounds=(0.0, np.inf)),
-         "denoised": array("runs", "sensors", bounds=(0.0, np.inf)), "denoised_evar": array("runs", "sensors", bounds=(0.0, np.inf)),
+        {"readings": tuple_of(text()), "err": dict_of(array("runs", "sensors", bounds=NONNEGATIVE)),
+         "evar": dict_of(array("runs", "sensors", bounds=NONNEGATIVE)),
+         "fused_mse": dict_of(array("runs", bounds=NONNEGATIVE)),
+         "raw": array("runs", "sensors", bounds=NONNEGATIVE), "raw_evar": array("runs", "sensors", bounds=NONNEGATIVE),
+         "denoised": array("runs", "sensors", bounds=NONNEGATIVE),
+         "denoised_evar": array("runs", "sensors", bounds=NONNEGATIVE),
          "w_final": dict_of(array("sensors", bounds=(0.0, 1.0))), "w_spread": dict_of(number()),
          "w_true": array("sensors", bounds=(0.0, 1.0)), "window": integer(1), "runs": integer(1, dim="runs"),
-         "seed": integer(0), "gains": array("sensors", bounds=(0.0, np.inf)), "sigma": array("sensors", bounds=(0.0, np.inf)),
+         "seed": integer(0), "gains": array("sensors", bounds=NONNEGATIVE),
+         "sigma": array("sensors", bounds=NONNEGATIVE),
          "mode": text(), "normaliser": text()},
         relations=(same_keys("readings", "err", "evar", "fused_mse", "w_final", "w_spread"),))
     __post_init__ = validated_post_init

@@ -9,8 +9,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._results import (ResultSpec, array, dict_of, instance, integer, mask, number, same_keys, text, tuple_of,
-                             validated_post_init)
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, mask, number, same_keys, text,
+                             tuple_of, validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, window as check_window, work
 from fusion.readings import consistency as cs
@@ -221,11 +221,13 @@ class ConsistencyStudy:
         {"eps": number(positive=True), "bias": number(nonnegative=False), "x": number(nonnegative=False),
          "window": tuple_of(integer(0), integer(0)), "out": dict_of(array("runs", "samples"), key=tuple),
          "mask": dict_of(mask("runs", "samples", "n")), "names": tuple_of(instance(AwfMethod)),
-         "sq": dict_of(dict_of(array("runs", bounds=(0.0, np.inf)))), "p_excl_fault": number(bounds=(0.0, 1.0)),
+         "sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE))), "p_excl_fault": number(bounds=(0.0, 1.0)),
          "p_excl_clean": number(bounds=(0.0, 1.0)), "p_excl_any_clean": number(bounds=(0.0, 1.0)),
-         "ratio": array("R", bounds=(0.0, np.inf)), "pdet": array("R", bounds=(0.0, 1.0)), "diag": dict_of(instance(FaultDiagnostics)),
+         "ratio": array("R", bounds=NONNEGATIVE), "pdet": array("R", bounds=(0.0, 1.0)),
+         "diag": dict_of(instance(FaultDiagnostics)),
          "runs": integer(1, dim="runs"), "samples": integer(1, dim="samples"), "seed": integer(0),
-         "index_order": dict_of(dict_of(array("runs", bounds=(0.0, np.inf))), key=tuple, nonempty=False), "index_guard": text()},
+         "index_order": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=tuple, nonempty=False),
+         "index_guard": text()},
         relations=(same_keys("mask", "sq", "diag"), lambda v, cls: _consistency_relation(v, cls)))
     __post_init__ = validated_post_init
 

@@ -14,7 +14,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._results import (ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
                              validated_post_init)
 from fusion._frozen import constant, frozen_arrays
 from fusion._validation import derived_inputs
@@ -321,7 +321,7 @@ class AR1Study:
         {"c": number(positive=True), "bound": number(positive=True), "mse_oracle": number(), "mse_centred": number(),
          "mse_lecture_abs": number(), "mse_mean_of_means": number(), "ratio_lecture": array("n"),
          "ratio_centred": array("n"), "phi": number(nonnegative=False, bounds=(-1.0, 1.0)), "k": integer(1),
-         "runs": integer(1), "seed": integer(0), "variances": array("n", bounds=(0.0, np.inf))})
+         "runs": integer(1), "seed": integer(0), "variances": array("n", bounds=NONNEGATIVE)})
     __post_init__ = validated_post_init
 
 
@@ -476,14 +476,15 @@ class AwfStudy:
     pneg_est: Mapping[tuple[float, str], np.ndarray]
 
     __result_spec__ = ResultSpec(
-        {"variances": array("n", bounds=(0.0, np.inf)), "rows": tuple_of(instance(EstimatorRow)),
-         "band": dict_of(tuple_of(array("k_max"), array("k_max", bounds=(0.0, np.inf))), key=tuple),
+        {"variances": array("n", bounds=NONNEGATIVE), "rows": tuple_of(instance(EstimatorRow)),
+         "band": dict_of(tuple_of(array("k_max"), array("k_max", bounds=NONNEGATIVE)), key=tuple),
          "k_compare": integer(1), "i_compare": integer(0),
-         "mse": dict_of(dict_of(array("ks", bounds=(0.0, np.inf))), key=float), "sq": dict_of(dict_of(array("runs", bounds=(0.0, np.inf))), key=float),
+         "mse": dict_of(dict_of(array("ks", bounds=NONNEGATIVE)), key=float),
+         "sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float),
          "err": dict_of(dict_of(array("runs")), key=float), "runs": integer(1, dim="runs"),
          "k_max": integer(1, dim="k_max"), "seed": integer(0),
-         "sweep": dict_of(dict_of(array("runs", bounds=(0.0, np.inf))), key=float), "sd_pred_900": number(),
-         "mean_est": dict_of(array("n"), key=tuple), "sd_est": dict_of(array("n", bounds=(0.0, np.inf)), key=tuple),
+         "sweep": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float), "sd_pred_900": number(),
+         "mean_est": dict_of(array("n"), key=tuple), "sd_est": dict_of(array("n", bounds=NONNEGATIVE), key=tuple),
          "pneg_est": dict_of(array("n", bounds=(0.0, 1.0)), key=tuple)},
         relations=(same_keys("mse", "sq", "err"), same_keys("mean_est", "sd_est", "pneg_est"),
                    lambda v, cls: _awf_relation(v, cls)))
