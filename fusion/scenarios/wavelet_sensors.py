@@ -49,6 +49,7 @@ from fusion._validation import record, sequence, shown, within, seed as check_se
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
 from fusion._validation import LOOP_STEP, count_ceiling, distinct, loop_work, seeds as check_seeds
 from fusion.readings import wavelet as wv
+from fusion.scenarios._wavelet_relations import MECHANISM_ERRORS, cases_relation, configs_relation
 
 __all__ = ["CONFIGS", "Signal", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
            "measurand", "error_metrics", "signal_study", "seed_study", "mechanism_study", "variance_study"]
@@ -106,43 +107,6 @@ def _signal(kind: object, name: str = "kind") -> Signal:
     return Signal(one_of(kind, _SIGNAL_KEYS, name))  # type: ignore[arg-type]
 
 
-#: The errors of every configuration of a :class:`MechanismStudy` (its ``err``; ``evar`` holds the first three).
-_MECHANISM_ERRORS = ("raw", "denoised", "denoise-first", "fuse-first")
-
-
-def _cases_relation(values: Mapping[str, Any], cls: str) -> None:
-    """A :class:`SignalStudy`'s cases: one per (signal, mode, normaliser) run, each with the metrics its consumers read,
-    arrays (runs, sensors), finite, the errors non-negative."""
-    want = {(g, m, n) for g in values["signals"] for m in values["modes"] for n in values["normalisers"]}
-    if set(values["cases"]) != want:
-        raise ValueError(f"{cls}.cases must hold one case per (signal, mode, normaliser) of {cls}.signals, "
-                         f"{cls}.modes and {cls}.normalisers, got {shown(sorted(map(str, values['cases'])), 200)}")
-    shape = (values["runs"], values["gains"].size)
-    for key, case in values["cases"].items():
-        for part in ("raw", "denoised", "reconstructed", "gain_err", "weights"):
-            if part not in case:
-                raise ValueError(f"{cls}.cases[{shown(key)}] misses {shown(part)} (its consumers read it)")
-        for part, value in case.items():
-            if part == "example":
-                continue
-            metrics = value if isinstance(value, Mapping) else {"": value}
-            for name, arr in metrics.items():
-                where = f"{cls}.cases[{shown(key)}][{shown(part)}]" + (f"[{shown(name)}]" if name else "")
-                arr = as_array(arr, where, finite=True)
-                if arr.shape != shape:
-                    raise ValueError(f"{where} must have shape (runs, sensors) = {shape} ({cls}.runs and the "
-                                     f"sensors of {cls}.gains), got {arr.shape}")
-                if isinstance(value, Mapping) and (arr < 0).any():
-                    raise ValueError(f"{where} must be non-negative (an error), got {shown(float(arr.min()))}")
-
-
-def _configs_relation(values: Mapping[str, Any], cls: str) -> None:
-    """A :class:`MechanismStudy` has one configuration per label."""
-    if len(values["configs"]) != len(values["labels"]):
-        raise ValueError(f"{cls}.configs must hold one configuration per label of {cls}.labels "
-                         f"({len(values['labels'])}), got {len(values['configs'])}")
-
-
 @dataclass(frozen=True)
 class SignalStudy:
     r"""The lecture's reconstruction over signals, threshold rules and normalisers (:func:`signal_study`).
@@ -182,7 +146,7 @@ class SignalStudy:
          "signals": tuple_of(instance(Signal)), "modes": tuple_of(text()), "normalisers": tuple_of(text()),
          "runs": integer(1, dim="runs"), "seed": integer(0), "gains": array("sensors", bounds=NONNEGATIVE),
          "sigma": array("sensors", bounds=NONNEGATIVE), "length": integer(1, dim="I")},
-        relations=(same_keys("signals", "truth", "raw0"), lambda v, cls: _cases_relation(v, cls)))
+        relations=(same_keys("signals", "truth", "raw0"), cases_relation))
     __post_init__ = validated_post_init
 
 
@@ -269,8 +233,8 @@ class MechanismStudy:
 
     __result_spec__ = ResultSpec(
         {"labels": tuple_of(text()),
-         "err": dict_of(dict_of(array("runs", "sensors", bounds=NONNEGATIVE), required=_MECHANISM_ERRORS)),
-         "evar": dict_of(dict_of(array("runs", "sensors", bounds=NONNEGATIVE), required=_MECHANISM_ERRORS[:3])),
+         "err": dict_of(dict_of(array("runs", "sensors", bounds=NONNEGATIVE), required=MECHANISM_ERRORS)),
+         "evar": dict_of(dict_of(array("runs", "sensors", bounds=NONNEGATIVE), required=MECHANISM_ERRORS[:3])),
          "stats": dict_of(dict_of(instance(np.ndarray, float, np.floating))),
          "bias_share": array("sensors", bounds=NONNEGATIVE), "bias_share_rec": array("sensors", bounds=NONNEGATIVE),
          "corr": array("sensors", "sensors"), "corr_random": array("sensors", "sensors"),
@@ -282,7 +246,7 @@ class MechanismStudy:
          "runs": integer(1, dim="runs"), "seed": integer(0), "gains": array("sensors", bounds=NONNEGATIVE),
          "sigma": array("sensors", bounds=NONNEGATIVE), "configs": tuple_of(instance(Mapping)),
          "kind": instance(Signal)},
-        relations=(same_keys("labels", "err", "evar", "stats"), lambda v, cls: _configs_relation(v, cls)))
+        relations=(same_keys("labels", "err", "evar", "stats"), configs_relation))
     __post_init__ = validated_post_init
 
 
