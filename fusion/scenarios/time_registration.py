@@ -23,7 +23,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import constant, frozen_arrays
+from fusion._frozen import constant
+from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, number, validated_post_init
 from fusion import registration as reg
 from fusion.registration import methods as _methods
 from fusion._validation import derived_inputs
@@ -685,7 +686,6 @@ def two_point_remainder(t_src: ArrayLike, t_dst: ArrayLike) -> FloatArray:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class MonteCarlo:
     """Per-run registration MSE of several methods on the same noisy runs.
 
@@ -703,6 +703,10 @@ class MonteCarlo:
     sigma: float
     runs: int
     seed: int
+
+    __result_spec__ = ResultSpec({"per_run": dict_of(array("runs", bounds=NONNEGATIVE)), "sigma": number(positive=True),
+                                  "runs": integer(2, dim="runs"), "seed": integer(0)})
+    __post_init__ = validated_post_init
 
 
 def _weights(name: str, t_src: FloatArray, t_dst: FloatArray, window: float | None) -> FloatArray:
@@ -849,7 +853,6 @@ def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | No
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class FusionRuns:
     """Per-run MSE (m²) of sensor 2 alone and of its fusion with sensor 1 registered several ways.
 
@@ -872,6 +875,12 @@ class FusionRuns:
     sigma: float
     runs: int
     seed: int
+
+    __result_spec__ = ResultSpec({"alone": array("runs", bounds=NONNEGATIVE),
+                                  "unregistered": array("runs", bounds=NONNEGATIVE),
+                                  "fused": dict_of(array("runs", bounds=NONNEGATIVE)), "sigma": number(positive=True),
+                                  "runs": integer(2, dim="runs"), "seed": integer(0)})
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()
