@@ -274,7 +274,7 @@ def test_a_malformed_benchmark_result_is_refused_naming_the_file(tmp_path: Path,
 
 @given(st.lists(st.fixed_dictionaries({"key": st.text(max_size=5), "what": st.text(max_size=5)},
                                       optional={"value": st.floats(allow_nan=False, allow_infinity=False)}),
-                max_size=5))
+                max_size=5, unique_by=lambda m: m["key"]))  # a key names one measurement (fuzz 24b D6)
 @settings(max_examples=40, deadline=None)
 def test_a_well_formed_benchmark_result_loads(measurements: list) -> None:
     import tempfile

@@ -203,3 +203,35 @@ def test_judge_paireds_constant_differences_test_is_on_the_values_scale() -> Non
     for c, zero_width in ((0.0, False), (1e4, True)):
         j = R.judge_paired(c + x + d, c + x, "greater", 0.1)
         assert (j.high - j.low == 0.0) is zero_width
+
+
+def test_fuzz25_r1_registration_times_a_millisecond_apart_within_the_record_are_valid() -> None:
+    """Fuzz 25 R1: the precision rule refused two samples 1 ms apart at 39 s (its scale was set by the smallest
+    step); it measures the positions' rounding against the 1 m of the closed forms, and far times stay refused."""
+    from fusion.scenarios import time_registration as TR
+
+    t1, t2 = TR.instants()
+    j = np.sort(np.append(t1, t1[-1] + 1e-3))
+    assert TR.expected("reg_two_point", 0.5, t_src=j, t_dst=t2) == pytest.approx(0.6875, rel=1e-9)
+    with pytest.raises(ValueError, match="t_src and t_dst reach"):
+        TR.expected("reg_two_point", 1.0, t_src=t1 + 1e8, t_dst=t2 + 1e8)
+
+
+@pytest.mark.parametrize("sigma", [(1.0, 2.0), (0.5, 1.0, 2.0), (0.5, 1.0, 2.0, 3.0, 4.0)])
+def test_fuzz25_r4_belief_study_takes_any_number_of_sensors(sigma: tuple[float, ...]) -> None:
+    """Fuzz 25 R4: the result spec tied ``bin_w`` (the lecture's four readings) to the study's sensors."""
+    from fusion.scenarios.lecture_weighting import belief_study
+
+    st_ = belief_study(sigma=sigma, snapshots=3)
+    assert st_.bin_w.shape == (4,) and st_.eig_w.shape == (3, len(sigma))
+
+
+def test_fuzz25_r2_an_unresolvable_network_scenario_is_refused_naming_sc() -> None:
+    """Fuzz 25 R2: a prior far wider than the grid gave negative KL divergences, refused as a result field."""
+    from fusion.scenarios import fusion_networks as fn
+
+    nodes = (fn.NetworkNode((0.0, 0.0), "range_bearing", sigma_r=10.0, sigma_theta=0.035),
+             fn.NetworkNode((2000.0, 0.0), "range_bearing", sigma_r=10.0, sigma_theta=0.035))
+    sc = fn.NetworkScenario("wide prior", nodes, n_particles=40, n_samples=40, em_iterations=2, prior_std=1e4)
+    with pytest.raises(ValueError, match="^sc: the grid of the exact posterior"):
+        fn.run_network_study(sc, 3, 3)

