@@ -120,6 +120,21 @@ def _ir_scaled_relation(values: Mapping[str, Any], cls: str) -> None:
     if missing:
         raise ValueError(f"{cls}.ir_readings misses the scaled readings {shown(missing, 200)} of the x axis (the ledger "
                          "reads them: ir_readings with 'x' in scaled_axes)")
+def _ir_period_relation(values: Mapping[str, Any], cls: str) -> None:
+    """``ir_T`` is the period of the readings and one of ``ir_sens`` (fuzz 24c LI): the ledger glues it as the
+    readings' period and compares the other periods of ``ir_sens`` with it, so another number would be glued as
+    the period, or the readings' own period compared as "another period"."""
+    T = float(values["ir_T"])
+    periods = [float(k) for k in values["ir_sens"]]
+    if not any(np.isclose(T, p, rtol=1e-12, atol=0.0) for p in periods):
+        raise ValueError(f"{cls}.ir_T = {shown(T)} must be a period of ir_sens (the readings' own period), got the "
+                         f"periods {shown(sorted(periods), 120)}")
+    for axis, sim in values["ir_readings"].sims.items():
+        if sim.t.size > 1 and not np.isclose(float(sim.t[1] - sim.t[0]), T, rtol=1e-9, atol=0.0):
+            raise ValueError(f"{cls}.ir_T = {shown(T)} must be the period of ir_readings (its {axis!r} runs are at "
+                             f"{shown(float(sim.t[1] - sim.t[0]))} s)")
+
+
 _LEDGER_FIELDS = {
     "study": instance(FusionStudy), "model_rmse": dict_of(number(), required=("x", "y")), "nees": dict_of(number()),
     "nees_runs": integer(1), "eq2_error": number(), "eq6_asym": number(), "bench": dict_of(number()),
@@ -271,7 +286,8 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
     ir_sens : dict of float to dict
         Infrared + radar: period (s) -> quantity -> late mean of the improved CI.
     ir_T : float
-        The infrared + radar case's period (s).
+        The infrared + radar case's period (s): the period of ``ir_readings`` and one of ``ir_sens`` (else a
+        ValueError when built).
     pcrb : dict of str to float
         The bound at ``"T1"`` and in the ``"limit"`` (m).
     q_scaling : QScaling
@@ -318,7 +334,8 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
 
     __result_spec__ = ResultSpec({**_ARCH_FIELDS, **_PAIRED_FIELDS, **_IR_FIELDS, **_WEIGHT_FIELDS, **_LEG_FIELDS,
                                   **_LEDGER_FIELDS}, relations=(lambda v, cls: _runs_relation(v, cls),
-                                                                lambda v, cls: _ir_scaled_relation(v, cls)))
+                                                                lambda v, cls: _ir_scaled_relation(v, cls),
+                                                                lambda v, cls: _ir_period_relation(v, cls)))
     __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 
