@@ -38,6 +38,29 @@ __all__ = ["ir_flown_numbers", "ir_numbers", "ir_study", "ir_table", "ir_figure"
            "IR_SHOWN"]
 
 
+def _ir_budget(T: object, duration: object, runs: object, names: tuple[str, str, str] = ("T", "duration", "runs")
+               ) -> tuple[float, float, int]:
+    """The sizes of an infrared + radar study checked before any draw (fuzz 24c SZ/WN): ``T`` and ``duration``
+    positive, ``runs`` a count, the scans ``duration / T + 1`` a grid within the sample ceiling, every sensor's
+    measurements ``runs × scans × 2`` within the input budget of the filters (``fusion._limits.MAX_INPUT_ELEMENTS``,
+    a MemoryError at 10**7 runs otherwise) and the rules' fusion, a Python step per scan of about 0.7 ms, within
+    the work budget (``fusion._limits.MAX_WORK``: at most about 8·10⁴ scans; 3·10⁶ ran for minutes). A ValueError
+    names ``names`` (the caller's arguments: ``distance`` where the duration is a distance flown).
+    """
+    from fusion._counts import grid_points, input_allocation
+    from fusion._validation import LOOP_STEP, loop_work, positive_scalar
+
+    t_name, d_name, r_name = names
+    T = positive_scalar(T, t_name) if t_name else float(T)   # type: ignore[arg-type]
+    duration = positive_scalar(duration, d_name)
+    runs = count(runs, r_name)
+    both = f"{d_name} and {t_name}" if t_name else d_name
+    n = grid_points(duration, T, both)
+    input_allocation((runs, n, 2), f"{r_name}, {both}")
+    loop_work((n,), 48 * runs, f"{both} (with {r_name})", step=12 * LOOP_STEP)
+    return T, duration, runs
+
+
 def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
              azimuth_from: str = "x") -> tuple[ir.IrRadarRuns, dict[str, np.ndarray]]:
     r"""Simulate the infrared + radar case with the printed parameters at sampling period ``T`` (s).
@@ -68,6 +91,7 @@ def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
     from fusion._validation import one_of
 
     one_of(azimuth_from, ("x", "y"), "azimuth_from")
+    T, duration, runs = _ir_budget(T, duration, runs)
     p = data.WANG2024_IR_RADAR
     sim = ir.simulate(np.random.default_rng(seed), runs=runs, T=T, duration=duration, sigma_ir=p["sigma_ir"],
                       sigma_angle=p["sigma_angle"], sigma_range=p["sigma_range"], r0=p["range"],
@@ -115,6 +139,7 @@ def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], d
     seed = check_seed(seed)
     distance = scalar(distance, "distance", lo=0.0, lo_open=True)
     duration = distance / float(np.linalg.norm(data.WANG2024_IR_RADAR["velocity"]))
+    _ir_budget(IR_T, duration, runs, ("", "distance", "runs"))   # the flight's scans, named by distance
     t_min, _ = _averaging_start(t_min, duration)
     chapter_means = _entries(chapter_means, "chapter_means", (ir.AZIMUTH_MRAD, ir.ELEVATION_MRAD, ir.X_M, ir.Y_M),
              "infrared_radar.late_means (the improved CI's entry)")
@@ -646,6 +671,7 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     t_min, duration = _averaging_start(t_min, duration)
+    _ir_budget(T, duration, runs)   # before the first simulation (fuzz 24c WN: runs = 10**6 refused after 7 s)
     scaled_axes = tuple(sequence(scaled_axes, "scaled_axes", what="axes"))
     if not all(isinstance(a, str) for a in scaled_axes):
         raise TypeError(f"scaled_axes must be a sequence of str (keys of IR_AXES), got {shown(scaled_axes)}")
