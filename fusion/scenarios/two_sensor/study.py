@@ -249,7 +249,6 @@ class NeesStudy:
     est: Mapping[str, FloatArray]
 
 
-@derived_inputs()
 def _nees_work(n_steps: int, runs: int, names: str = "n_steps and runs") -> None:
     """The work budget (rule 17) of NEES runs of the two local filters and every rule of ``NEES_RULES`` (split CI's
     search among them) at each of ``n_steps`` steps over ``runs`` runs (fuzz 24c SZ): a step costs about 0.7 ms
@@ -260,6 +259,7 @@ def _nees_work(n_steps: int, runs: int, names: str = "n_steps and runs") -> None
     loop_work((n_steps,), 48 * runs, names, step=12 * LOOP_STEP)
 
 
+@derived_inputs()
 def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
                n_steps: int, runs: int, T: float = 1.0, velocity_sigma: float = 100.0,
                t_steady: float = 20.0) -> NeesStudy:
