@@ -131,7 +131,7 @@ def _ir_period_relation(values: Mapping[str, Any], cls: str) -> None:
                          f"periods {shown(sorted(periods), 120)}")
     for axis, sim in values["ir_readings"].sims.items():
         if sim.t.size > 1 and not np.isclose(float(sim.t[1] - sim.t[0]), T, rtol=1e-9, atol=0.0):
-            raise ValueError(f"{cls}.ir_T = {shown(T)} must be the period of ir_readings (its {axis!r} runs are at "
+            raise ValueError(f"{cls}.ir_T = {shown(T)} must be the period of ir_readings (its {shown(axis)} runs are at "
                              f"{shown(float(sim.t[1] - sim.t[0]))} s)")
 
 

@@ -350,7 +350,7 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
     from fusion.optimise.scalar import batch_budget
 
     # the short-budget batch (one swarm of 30 per seed of fruit_fly_seeds), named here (fuzz 24c WN)
-    batch_budget(len(fruit_fly_seeds.seeds), 30, short_budget, "short_budget (with fruit_fly_seeds' seeds)")
+    batch_budget(len(fruit_fly_seeds.seeds), 30, short_budget, "short_budget (with fruit_fly_seeds)")
     if flat_pair is not None and (not isinstance(flat_pair, tuple) or len(flat_pair) != 2):
         raise TypeError(f"flat_pair must be a pair (P, P) of covariances, got {shown(flat_pair, 80)}")
     pub = data.WANG2024_FOA.columns
@@ -877,7 +877,7 @@ def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) ->
         label = table.index[i]
         if not isinstance(label, str) or not label.startswith(prefix) or (i == 3 and "as printed" in label):
             raise ValueError(f"table must hold fig5_hypotheses' rows in its order: row {i} must be the hypothesis "
-                             f"{prefix!r}…, got {shown(label, 80)}")
+                             f"{shown(prefix)}…, got {shown(label, 80)}")
     pub = data.WANG2024_FOA.columns
     per_eval = float(pub["foa_time_s"][0]) / evaluations
     # each ω read by the glue rule (fuzz 22b, V11): a weight, a finite number in [0, 1], named
