@@ -36,6 +36,10 @@ MAX_WORK = 10**9
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
 #: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).
 LOOP_STEP = 10**3
+#: Two numbers are tied, equal up to round-off, when they differ by at most ``ROUND_OFF_TIE`` times the larger
+#: magnitude: the one tie rule of the rulebook (R2, ``fusion.book.rulebook``) and of the benchmark's ranks of methods
+#: (``fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability``).
+ROUND_OFF_TIE = 1e-9
 
 
 def work(shape: tuple[int, ...], names: str) -> int:

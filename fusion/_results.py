@@ -24,7 +24,8 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
   finite floats or of arrays (their named dimensions bound as above); :func:`keyed`: a dict of whichever string
   keys the result holds (the methods a run computed), each a finite array (a covariance stack if asked);
 * :func:`integer`, :func:`flag`, :func:`text`, :func:`mask`: an int (not a bool) at least ``minimum`` (a count, a
-  seed, an index), a bool, a string (one of given choices), a bool array of named dimensions (steps on a leg,
+  seed, an index; with ``dim``, the count is that named dimension of the arrays: ``runs`` = their length), a bool,
+  a string (one of given choices), a bool array of named dimensions (steps on a leg,
   runs at a corner; kept bool); :func:`table`: a :class:`pandas.DataFrame` with the columns its consumers read
   (its rows a named dimension if asked); :func:`instance`: an object of given classes (a study
   of its own, a scenario; optional allows ``None``);
@@ -33,7 +34,11 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
   hold dicts of dicts of arrays, tuples of numbers, dicts of studies);
 * ``bounds=(lo, hi)`` on :func:`array` and :func:`number`: every value in the closed interval (a probability,
   a share, a weight in [0, 1]);
-* ``relations``: cross-field checks (``Pd + Pi = gains.P``), each a callable raising a :class:`ValueError`.
+* ``relations``: cross-field checks (``Pd + Pi = gains.P``), each a callable raising a :class:`ValueError`;
+  :func:`same_keys`: dict fields holding the same keys (the methods of a clean and a failed run).
+  Relations are structural (shapes, keys, orders, rows read by key); a field the producer derives by recomputing
+  the study (a verdict, an exact optimum, a moment) is not recomputed from the others, so a result replaced
+  (``dataclasses.replace``) with a contradicting value keeps it (fuzz 24b D5).
 
 Every array is then stored as a read-only float64 copy (the object owns its data). The checks reuse the
 shared validators of :mod:`fusion._validation` (:func:`~fusion._validation.as_array`,
@@ -74,6 +79,9 @@ __all__: list[str] = []  # private module: nothing public
 
 
 Dim = str | int
+
+#: ``bounds`` of a non-negative :func:`array` or :func:`number` (an MSE, a variance, a count of runs as a float).
+NONNEGATIVE = (0.0, np.inf)
 
 #: The leading batch axes of an :func:`array` spec (first entry only): any number of axes, their shape one group.
 BATCH = "..."
@@ -174,9 +182,26 @@ def number(positive: bool = False, nonnegative: bool = True, bounds: tuple[float
     return NumbersSpec(None, positive, nonnegative, bounds=bounds)
 
 
-def integer(minimum: int | None = 0) -> ValueSpec:
-    """Spec of an int field (a Python or numpy integer, not a bool) at least ``minimum`` (none if None)."""
-    return ValueSpec("integer", {"minimum": minimum})
+def integer(minimum: int | None = 0, dim: str | None = None) -> ValueSpec:
+    """Spec of an int field (a Python or numpy integer, not a bool) at least ``minimum`` (none if None); with ``dim``,
+    the count is that named dimension of the array fields (``runs`` = the length of the per-run arrays)."""
+    return ValueSpec("integer", {"minimum": minimum, "dim": dim})
+
+
+def same_keys(*fields: str) -> Callable[[Mapping[str, Any], str], None]:
+    """A relation (``ResultSpec(relations=...)``): the dict fields ``fields`` hold the same keys (the same methods,
+    cases or levels: a key dropped from one of them is refused, naming it)."""
+
+    def relation(values: Mapping[str, Any], cls: str) -> None:
+        first = set(values[fields[0]])
+        for name in fields[1:]:
+            if set(values[name]) != first:
+                got = sorted(map(str, values[name]))
+                raise ValueError(f"{cls}.{name} must have the keys of {cls}.{fields[0]} "
+                                 f"{shown(sorted(map(str, first)), 200)}, got {shown(got, 200)}")
+
+    relation.fields = fields  # type: ignore[attr-defined]  (the fields it relates: tests drop a key from each)
+    return relation
 
 
 def mask(*dims: Dim) -> ValueSpec:
@@ -195,10 +220,13 @@ def text(*choices: str) -> ValueSpec:
     return ValueSpec("text", {"choices": tuple(choices)})
 
 
-def table(*columns: Any, rows: Dim | None = None) -> ValueSpec:
+def table(*columns: Any, rows: Dim | None = None, key: tuple[Any, ...] = (), index: tuple[Any, ...] = ()) -> ValueSpec:
     """Spec of a :class:`pandas.DataFrame` field holding at least ``columns`` (those its consumers read), its number
-    of rows the named or fixed dimension ``rows`` if given."""
-    return ValueSpec("table", {"columns": tuple(columns), "rows": rows})
+    of rows the named or fixed dimension ``rows`` if given. Rows read by key (fuzz 24b class DR): ``key``, the
+    columns that identify a row (among ``columns``), no NaN there and no two rows with the same key (a repeated row
+    would be counted twice); ``index``, the index labels its consumers read (``table.loc[label]``), each present and
+    no index label twice."""
+    return ValueSpec("table", {"columns": tuple(columns), "rows": rows, "key": tuple(key), "index": tuple(index)})
 
 
 def instance(*classes: type, optional: bool = False) -> ValueSpec:
@@ -426,6 +454,11 @@ def _value(fs: ValueSpec, value: Any, label: str, bound: dict[str, tuple[Any, st
         v = _validation.integer(value, label)
         if args["minimum"] is not None and v < args["minimum"]:
             raise ValueError(f"{label} must be at least {args['minimum']}, got {shown(v)}")
+        dim = args.get("dim")
+        if dim is not None and dim in bound and bound[dim][0] != v:
+            raise ValueError(f"{label} must be the {dim} of {bound[dim][1]}, {bound[dim][0]}; got {shown(v)}")
+        if dim is not None:
+            bound.setdefault(dim, (v, label))
         return v
     if fs.kind == "flag":
         return _validation.flag(value, label)
@@ -448,6 +481,25 @@ def _value(fs: ValueSpec, value: Any, label: str, bound: dict[str, tuple[Any, st
             raise ValueError(f"{label} must have the columns {shown(list(args['columns']))}, misses {shown(missing)}")
         if args["rows"] is not None:
             _bind((args["rows"],), (len(value),), f"{label} (rows)", bound)
+        if args.get("key"):
+            keys = value[list(args["key"])]
+            if keys.isna().to_numpy().any():
+                raise ValueError(f"{label}: the columns {shown(list(args['key']))} identify a row and must not hold NaN")
+            again = keys.duplicated().to_numpy()
+            if again.any():
+                i = int(np.argmax(again))
+                key = tuple(keys.iloc[i].tolist())
+                raise ValueError(f"{label} repeats a row: row {i} has the key {shown(key)} of an earlier "
+                                 f"row ({shown(list(args['key']))} identify a row)")
+        if args.get("index"):
+            if not value.index.is_unique:
+                again = value.index[value.index.duplicated()].tolist()[0]
+                raise ValueError(f"{label} repeats a row: the index label {shown(again)} occurs twice (rows are read "
+                                 "by it)")
+            missing = [k for k in args["index"] if k not in value.index]
+            if missing:
+                raise ValueError(f"{label} must hold the rows {shown(list(args['index']))} (read by index), misses "
+                                 f"{shown(missing)}")
         return value
     if fs.kind == "instance":
         if value is None and args["optional"]:

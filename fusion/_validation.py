@@ -586,6 +586,12 @@ def nonnegative_scalar(value: float, name: str) -> float:
     return scalar(value, name, lo=0.0)
 
 
+def tolerance(value: float, name: str) -> float:
+    """Return a stopping tolerance ``value`` as a finite float > 0: only compared, never divided by or multiplied,
+    so a tiny one (``ftol=1e-300``: run to the iteration limit) is valid down to the smallest normal float."""
+    return scalar(value, name, lo=0.0, lo_open=True, tiny=True)
+
+
 def unit_scalar(value: float, name: str) -> float:
     """Return ``value`` as a finite float in the closed interval [0, 1]."""
     return scalar(value, name, lo=0.0, hi=1.0)

@@ -508,8 +508,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[rg + "quadratic_ls"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")),
                                   lookahead=A(1, ("neg", "frac", "str")))
     R[rg + "spline_register"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
-    R[rg + "affine_decomposition"] = dict(register=A(_linear_register, OBJ), z0=A(Z_REG[:6], ARR))
-    R[rg + "expected_mse"] = dict(register=A(_linear_register, OBJ), z0=A(Z_REG[:6], ARR),
+    R["fusion.registration.analysis.affine_decomposition"] = dict(register=A(_linear_register, OBJ), z0=A(Z_REG[:6], ARR))
+    R["fusion.registration.analysis.expected_mse"] = dict(register=A(_linear_register, OBJ), z0=A(Z_REG[:6], ARR),
                                   truth_at_query=A(Z_REG[:5], ARR + ("len",)), sigma=A(0.5, NONNEG))
     R[rg + "sample_times"] = dict(first=A(0.0, REAL), period=A(0.1, POS), end=A(1.0, REAL))
     bk = "fusion.book."
@@ -1072,7 +1072,7 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "readings.correlated.LinearEstimate", "readings.correlated.LDLFactors", "readings.biased.RidgeFit", "readings.fusion_set.MeanDistances",
     "readings.biased.PluginRisk",
     "readings.weighting.LSLearning", "registration.methods.BlairEstimate", "registration.methods.FilteredStates",
-    "registration.methods.AffineDecomposition", "scenarios.infrared_radar.Truth",
+    "registration.analysis.AffineDecomposition", "scenarios.infrared_radar.Truth",
     "scenarios.range_bearing.SimulatedTarget", "scenarios.two_mixtures.ToyMixtures",
     "scenarios.two_mixtures.GridLogNormaliser", "scenarios.two_sensor.Trajectory",
     "filtering.feedback.FusionLoop", "scenarios.two_sensor.ArchitectureStudy", "filtering.kalman.ErrorMoments",

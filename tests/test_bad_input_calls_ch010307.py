@@ -65,7 +65,8 @@ def res(*others: Any) -> tuple:
 
 def frame(df: pd.DataFrame, col: Any = None, nan_at: tuple[Any, Any] | None = None) -> tuple:
     """Mutations of a table: a string, None, empty, the table without a column it reads (``col``, default its first)
-    and with a missing cell where it reads one (``nan_at`` = (row, column), default the first row of ``col``)."""
+    and with a missing cell where it reads one (``nan_at`` = (row, column), default the first row of ``col``); its
+    first row twice and the column ``col`` twice (fuzz 24d T: counted twice, or numpy's errors from inside)."""
     col = df.columns[0] if col is None else col
     row, ncol = (df.index[0], col) if nan_at is None else nan_at
     nan = df.copy()
@@ -73,7 +74,9 @@ def frame(df: pd.DataFrame, col: Any = None, nan_at: tuple[Any, Any] | None = No
     if not pd.api.types.is_float_dtype(nan.iloc[:, j]):
         nan[ncol] = nan[ncol].astype(object)
     nan.iat[nan.index.get_loc(row), j] = np.nan
-    return OBJ + (NONE, ("no column", df.drop(columns=[col])), ("empty", df.iloc[:0]), ("nan cell", nan))
+    return OBJ + (NONE, ("no column", df.drop(columns=[col])), ("empty", df.iloc[:0]),
+                  ("row twice", pd.concat([df.iloc[:1], df])), ("column twice", pd.concat([df, df[[col]]], axis=1)),
+                  ("nan cell", nan))  # the NaN cell last: entries take it as frame(...)[-1]
 
 
 def mapping(m: dict, key: Any = None) -> tuple:

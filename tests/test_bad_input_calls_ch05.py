@@ -142,6 +142,28 @@ def _nan_last(arr: np.ndarray) -> np.ndarray:
     return out
 
 
+def _negated(value: Any) -> Any:
+    """``value`` with every float negated (a mapping's entries, a table's numeric columns, an array): an RMSE, a NEES,
+    a bound, a time that cannot be negative (fuzz 24c, NEG)."""
+    if isinstance(value, pd.DataFrame):
+        out = value.copy()
+        num = out.select_dtypes("number").columns
+        out[num] = -out[num]
+        return out
+    if isinstance(value, dict) or hasattr(value, "items"):
+        return {k: _negated(v) for k, v in value.items()}
+    if isinstance(value, tuple):
+        return tuple(_negated(v) for v in value)
+    if isinstance(value, (float, np.floating)) or (isinstance(value, np.ndarray) and value.dtype.kind == "f"):
+        return -value
+    return value
+
+
+def _neg(value: Any) -> tuple[tuple[str, Any]]:
+    """The mutation "negated" of a value that cannot be negative."""
+    return (("negated", _negated(value)),)
+
+
 def _drop_key(mapping: Any, key: Any = None) -> dict:
     """The mapping without ``key`` (default its first key): one the function reads."""
     d = dict(mapping)
@@ -191,11 +213,11 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "baseline_slip_numbers"] = dict(sc=A(sc, OBJ + (sc_x, wrong_type)), study=A(study, OBJ + (study_x,)))
     R[c + "straight_leg"] = dict(study=A(study, OBJ + (wrong_type,)), T=A(TS, POS), sigma=A(150.0, POS))
     R[c + "rmse_figure"] = dict(study=A(study, OBJ + (wrong_type,)), on_leg=A(leg.on_leg, ARR + ("len",)),
-                                floor=A(leg.causal, ARR + ("len",)))
-    R[c + "rmse_numbers"] = dict(study=A(study, OBJ + (wrong_type,)), leg_floor=A(leg.floor, ARR + ("len",)),
+                                floor=A(leg.causal, ARR + ("len",) + _neg(leg.causal)))
+    R[c + "rmse_numbers"] = dict(study=A(study, OBJ + (wrong_type,)), leg_floor=A(leg.floor, ARR + ("len",) + _neg(leg.floor)),
                                  legs_steady=A(leg.steady, ("empty", "str", "len", "more")),
-                                 leg_rmse=A(leg.rmse, MAP_M),   # every entry read: a key less is valid
-                                 leg_causal=A(leg.causal, ARR + ("len",)))
+                                 leg_rmse=A(leg.rmse, MAP_M + _neg(leg.rmse)),   # every entry read: a key less is valid
+                                 leg_causal=A(leg.causal, ARR + ("len",) + _neg(leg.causal)))
     R[c + "weight_numbers"] = dict(sc=A(sc, OBJ + (sc_x,)), study=A(study, OBJ + (study_x,)),
                                    w_fruit_fly=A(o["w"], ARR + ("len", "above")), w_grid=A(o["w"], ARR + ("len", "above")),
                                    rng=A(np.random.default_rng(0), OBJ), steps=A((10, 20, 30), (("big", (10, 20, 10**6)), ("frac", (1.5,)), "str", ("empty", ()))),
@@ -206,12 +228,14 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "fuzzy_levels"] = dict(sc=A(sc, OBJ + (wrong_type,)), levels=A(np.array([0.001, 0.05]), ("nan", "inf", "empty", "more", "str", "above")),   # a scalar is one level
                                  t_steady=A(20.0, NONNEG + (("after the track", 1e6),)))
     va, vall = o["variants"], o["variants_all"]
-    R[c + "variant_numbers"] = dict(variants=A(va, MAP_M + (("a key less", _drop_key(va, two_sensor.study.RUN_AVERAGED)),)))
-    R[c + "variants_table"] = dict(variants=A(va, MAP_M), variants_all=A(vall, MAP_M + (("a key less", _drop_key(vall)),)))
+    R[c + "variant_numbers"] = dict(variants=A(va, MAP_M + (("a key less", _drop_key(va, two_sensor.study.RUN_AVERAGED)),) + _neg(va)))
+    R[c + "variants_table"] = dict(variants=A(va, MAP_M + _neg(va)), variants_all=A(vall, MAP_M + (("a key less", _drop_key(vall)),) + _neg(vall)))
     slip = ci.slip_table(study, sc)
     col_all = next(c for c in slip.columns if c.startswith("√Σe²/n, n = all"))
-    R[c + "slip_numbers"] = dict(variants=A(va, MAP_M), variants_all=A(vall, MAP_M),
-                                 slip=A(slip, FRAME_M + (("a column less", slip.drop(columns=[col_all])), ("nan cell", _nan_cell(slip, col_all)))),
+    in_fig6 = slip.index.get_level_values(0).str.startswith("Fig. 6")
+    R[c + "slip_numbers"] = dict(variants=A(va, MAP_M + _neg(va)), variants_all=A(vall, MAP_M + _neg(vall)),
+                                 slip=A(slip, FRAME_M + (("a column less", slip.drop(columns=[col_all])), ("nan cell", _nan_cell(slip, col_all)),
+                                                         ("no Fig. 6 rows", slip[~in_fig6]), ("only Fig. 6 rows", slip[in_fig6])) + _neg(slip)),
                                  n_all=A(sc.t.size, COUNT_M))
     R[c + "slip_band"] = dict(variants_all=A(vall, MAP_M), n_all=A(sc.t.size, COUNT_M))
     sw = ci.slip_at_weights(sc, study)
@@ -231,9 +255,11 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "weight_claim_inputs"] = dict(asym=A(wp, OBJ + (wrong_type,)), aniso=A(o["wp_an"], OBJ + (wrong_type,)),
                                         flat=A(o["flat"], ARR))
     m = o["bench"].measurements
+    an = (o["wp_an"].P1, o["wp_an"].P2, o["wp_an"].res, o["wp_an"].fruit_fly_seeds)
     R[c + "fig5"] = dict(P1=A(wp.P1, ARR + ("indef", "lensq")), P2=A(wp.P2, ARR + ("indef",)), res=A(wp.res, MAP_M),
-                         m=A(m, MAP_M + (("a key less", _drop_key(m, "foa_vectorised")),)),
-                         seeds=A(wp.fruit_fly_seeds, OBJ + (wrong_type,)))
+                         m=A(m, MAP_M + (("a key less", _drop_key(m, "foa_vectorised")),) + _neg(m)),
+                         seeds=A(wp.fruit_fly_seeds, OBJ + (wrong_type,)),
+                         aniso=A(an, ("str", ("three items", an[:3]), ("seeds of another type", an[:3] + (5,)))))
     R[c + "fig5_hypotheses"] = dict(P1=A(wp.P1, ARR + ("indef", "lensq")), P2=A(wp.P2, ARR + ("indef",)),
                                     fruit_fly_seeds=A(wp.fruit_fly_seeds, OBJ + (wrong_type,)), seed=A(5, SEED_M),
                                     short_budget=A(3, COUNT_M), n_open=A(3, COUNT_M),
@@ -253,23 +279,24 @@ def registry() -> dict[str, dict[str, A]]:
                                            seeds=A(2, COUNT_M))
     ffs = p["fruit_fly_step_study"]   # fruit_fly_step_study(seeds=3) of the synthetic ledger entries
     R[c + "fruit_fly_step_values"] = dict(table=A(ffs, FRAME_M + (("a column less", _without(ffs)), ("nan cell", _nan_cell(ffs)))))
-    R[c + "timing_table"] = dict(m=A(m, MAP_M + (("a key less", _drop_key(m)),)))
+    R[c + "timing_table"] = dict(m=A(m, MAP_M + (("a key less", _drop_key(m)),) + _neg(m)))
     R[c + "timing_numbers"] = dict(bench=A(o["bench"], OBJ + (wrong_type, ("none", None))))
 
     # ---------------------------------------------------------------- bounds and the path
     R[c + "pcrb_table"] = dict(periods=A([1.0, 0.1], ARR + ("neg",)), sigma=A(150.0, POS), delta0=A(10.0, POS))
-    R[c + "pcrb_numbers"] = dict(pcrb=A(o["pcrb"], FRAME_M + (("a column less", _without(o["pcrb"])),)),
+    R[c + "pcrb_numbers"] = dict(pcrb=A(o["pcrb"], FRAME_M + (("a column less", _without(o["pcrb"])),
+                                                              ("a row twice", pd.concat([o["pcrb"], o["pcrb"].iloc[:1]]))) + _neg(o["pcrb"])),
                                  q_printed=A(two_sensor.Q_READINGS[0], OPT + (("int", 5),)))
     R[c + "path_noise_limit"] = dict(sigma=A(150.0, POS), delta0=A(10.0, POS))
     rows = o["path_rows"]
-    R[c + "path_numbers"] = dict(rows=A(rows, MAP_M + (("a key less", _drop_key(rows)),)))
-    R[c + "path_period_table"] = dict(rows=A(rows, MAP_M))
+    R[c + "path_numbers"] = dict(rows=A(rows, MAP_M + (("a key less", _drop_key(rows)),) + _neg(rows)))
+    R[c + "path_period_table"] = dict(rows=A(rows, MAP_M + _neg(rows)))
 
     # ---------------------------------------------------------------- consistency
     nees = o["nees_st"].mean_nees
     est = o["nees_st"].est
-    R[c + "nees_table"] = dict(nees=A(nees, MAP_M))   # every entry read: a key less is a valid table
-    R[c + "nees_numbers"] = dict(nees=A(nees, MAP_M), nees_runs=A(5, COUNT_M))
+    R[c + "nees_table"] = dict(nees=A(nees, MAP_M + _neg(nees)))   # every entry read: a key less is a valid table
+    R[c + "nees_numbers"] = dict(nees=A(nees, MAP_M + _neg(nees)), nees_runs=A(5, COUNT_M))
     R[c + "nees_band"] = dict(runs=A(5, COUNT_M), n=A(4, COUNT_M))
     R[c + "nees_step_band"] = dict(runs=A(5, COUNT_M), n=A(4, COUNT_M))
     R[c + "model_rmse"] = dict(nees_est=A(est, MAP_M + (("a key less", _drop_key(est, "truth")),)),
@@ -281,11 +308,11 @@ def registry() -> dict[str, dict[str, A]]:
                                   velocity_sigma=A(100.0, NONNEG), random_velocity=A(False, (("int", 1), "str")))
     st, exact = o["nees_steps"], o["exact"]
     st_short = {k: v[:5] for k, v in st[True].items()}
-    R[c + "nees_start_table"] = dict(true_start=A(st[False], MAP_M + (("a key less", _drop_key(st[False])),)),
+    R[c + "nees_start_table"] = dict(true_start=A(st[False], MAP_M + (("a key less", _drop_key(st[False])),) + _neg(st[False])),
                                      random_start=A(st[True], MAP_M + (("fewer steps", st_short),)),
                                      runs=A(5, COUNT_M), T=A(TS, POS), t_steady=A(20.0, NONNEG + (("after the track", 1e6),)))
-    R[c + "nees_start_numbers"] = dict(true_start=A(st[False], MAP_M), random_start=A(st[True], MAP_M + (("fewer steps", st_short),)),
-                                       runs=A(5, COUNT_M), exact=A(exact, MAP_M + (("a key less", _drop_key(exact)),)),
+    R[c + "nees_start_numbers"] = dict(true_start=A(st[False], MAP_M + _neg(st[False])), random_start=A(st[True], MAP_M + (("fewer steps", st_short),)),
+                                       runs=A(5, COUNT_M), exact=A(exact, MAP_M + (("a key less", _drop_key(exact)),) + _neg(exact)),
                                        T=A(TS, POS), t_steady=A(20.0, NONNEG + (("after the track", 1e6),)))
     R[c + "split_ci_exactness"] = dict(Q=A(Q, ARR + ("indef",)), R=A(R1, ARR + ("indef",)), T=A(TS, POS),
                                        n_steps=A(sc.t.size, COUNT_M + (("one step", 1),)), velocity_sigma=A(100.0, NONNEG),
@@ -299,7 +326,7 @@ def registry() -> dict[str, dict[str, A]]:
                                             Pi=A(Pi, ARR + ("lensq",)), F=A(o["F"], ARR + ("lensq",)),
                                             x=A((1000.0, 20.0, 5000.0, 40.0), ARR + ("len",)))
     eqs = ci.printed_equation_checks(wp.P1, wp.P2, Pi, o["F"])
-    R[c + "printed_equation_numbers"] = dict(checks=A(eqs, MAP_M + (("a key less", _drop_key(eqs)),)))
+    R[c + "printed_equation_numbers"] = dict(checks=A(eqs, MAP_M + (("a key less", _drop_key(eqs)),) + _neg(eqs)))
 
     # ---------------------------------------------------------------- architecture
     arch, arch_o = o["arch"], o["arch_o"]
@@ -321,15 +348,15 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "architecture_studies"] = dict(R1=A(R1, ARR + ("indef",)), R2=A(R2, ARR + ("indef",)), Q=A(Q, ARR),
                                          seeds=A((1, 2), ("str", ("empty", ()), ("neg", (-1, 2)), ("frac", (1.5, 2)))),
                                          w_pub=A(0.0018, UNIT), runs=A(2, COUNT_M), nees_runs=A(2, COUNT_M), T=A(8.0, POS),
-                                         fixed_omegas=A((0.5,), (("above", (1.5,)), "str", ("nan", (np.nan,)))))
+                                         fixed_omegas=A((0.5,), (("above", (1.5,)), "str", ("nan", (np.nan,)), ("repeats w_pub", (0.0018,)))))
 
     # ---------------------------------------------------------------- paired studies
-    R[c + "paired_numbers"] = dict(paired=A(p["paired"], MAP_M + (("a key less", _drop_key(p["paired"])),)),
+    R[c + "paired_numbers"] = dict(paired=A(p["paired"], MAP_M + (("a key less", _drop_key(p["paired"])),) + _neg(p["paired"])),
                                    paired_u=A(p["paired_unequal"], MAP_M), paired_random=A(p["paired_random"], ARR + ("len",)),
                                    ai=A(ai, OBJ + (wrong_type,)), ml_gap=A(1e-13, NONNEG), rmse_avg=A(50.0, POS),
                                    paired_runs=A(100, COUNT_M + (("other runs", 50),)),
                                    paired_a=A(p["paired_aniso"], MAP_M), omega_u=A(np.full(5, 0.3), ARR + ("above",)),
-                                   paired_fig6=A(p["paired_fig6"], MAP_M[:2]))
+                                   paired_fig6=A(p["paired_fig6"], MAP_M[:2] + _neg(p["paired_fig6"])))
     R[c + "paired_studies"] = dict(R1=A(R1, ARR + ("indef",)), R2=A(R2, ARR + ("indef",)), Q=A(Q, ARR),
                                    weights=A((o["w"], o["w"]), ("str", ("len", (o["w"][:-1], o["w"][:-1])))),
                                    unequal=A(wp, OBJ + (wrong_type,)), aniso=A(o["wp_an"], OBJ + (wrong_type,)),
@@ -354,12 +381,13 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "ir_study"] = dict(T=A(0.1, POS), seed=A(1, SEED_M), runs=A(3, COUNT_M), duration=A(3.0, POS),
                              azimuth_from=A("x", OPT + (("int", 5),)))
     ir_rmse = o["ir_rmse"]
-    R[c + "ir_table"] = dict(rmse=A(ir_rmse, MAP_M), t=A(sim.t, ARR + ("len",)),   # every entry read: a key less is a valid table
+    R[c + "ir_table"] = dict(rmse=A(ir_rmse, MAP_M + _neg(ir_rmse)), t=A(sim.t, ARR + ("len", ("reversed", sim.t[::-1].copy()))),   # every entry read: a key less is a valid table
                              t_min=A(1.0, ("neg", "nan_s", "str", ("after the track", 99.0))))
     ir_tab = ci.ir_table(ir_rmse, sim.t, 1.0)
-    R[c + "ir_numbers"] = dict(ir_table=A(ir_tab, FRAME_M + (("a column less", _without(ir_tab)), ("nan cell", _nan_cell(ir_tab)))),
+    R[c + "ir_numbers"] = dict(ir_table=A(ir_tab, FRAME_M + (("a column less", _without(ir_tab)), ("nan cell", _nan_cell(ir_tab))) + _neg(ir_tab)),
                                t_ir=A(0.1, POS), duration=A(3.0, POS))
-    R[c + "ir_figure"] = dict(t=A(sim.t, ARR + ("len",)), rmse=A(ir_rmse, MAP_M + (("a key less", _drop_key(ir_rmse, ci.IR_SHOWN[0])),)), bound=A(o["bound"], ("inf", "empty", "more", "less", "str", "len", ("nan drawn", _nan_last(o["bound"])))),
+    R[c + "ir_figure"] = dict(t=A(sim.t, ARR + ("len", ("reversed", sim.t[::-1].copy()))), rmse=A(ir_rmse, MAP_M + (("a key less", _drop_key(ir_rmse, ci.IR_SHOWN[0])),) + _neg(ir_rmse)),
+                              bound=A(o["bound"], ("inf", "empty", "more", "less", "str", "len", ("nan drawn", _nan_last(o["bound"]))) + _neg(o["bound"])),
                               t_min=A(1.0, ("neg", "nan_s", "str", ("after the track", 99.0))))
     R[c + "fig11"] = dict(sim=A(sim, OBJ + (wrong_type,)), run=A(0, ("neg", "frac", "str", ("big", 99), ("bool", True))),
                           t_min=A(1.0, ("neg", "nan_s", "str", ("after the track", 99.0))))
@@ -369,9 +397,13 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "ir_flown_numbers"] = dict(seed=A(1, SEED_M), runs=A(3, COUNT_M), chapter_means=A(means, MAP_M + (("a key less", _drop_key(means)),)),
                                      distance=A(1000.0, POS), t_min=A(2.0, ("neg", "nan_s", "str")))
     R[c + "sensitivity_table"] = dict(periods=A((0.1, 0.5), ("str", ("empty", ()), ("neg", (-1.0,)), ("nan", (np.nan,)))), seed=A(1, SEED_M),
-                                      runs=A(2, COUNT_M), duration=A(3.0, POS), t_min=A(1.0, ("neg", "nan_s", "str", ("after the track", 99.0))))
+                                      runs=A(2, COUNT_M), duration=A(3.0, POS), t_min=A(1.0, ("neg", "nan_s", "str", ("after the track", 99.0))),
+                                      known=A({0.1: means}, ("str", ("a list", [(0.1, means)]), ("a period not a number", {"a": means}),
+                                                             ("a NaN period", {np.nan: means}), ("means not a mapping", {0.1: None}),
+                                                             ("a mean less", {0.1: _drop_key(means, "azimuth (mrad)")}),
+                                                             ("a NaN mean", {0.1: {k: np.nan for k in means}})) + _neg({0.1: means})))
     sens_table, _ = ci.sensitivity_table((0.1, 0.5), 1, 2, duration=3.0, t_min=1.0)
-    R[c + "sensitivity_numbers"] = dict(sens_table=A(sens_table, FRAME_M + (("a column less", _without(sens_table)), ("nan cell", _nan_cell(sens_table, "azimuth (mrad)")))))
+    R[c + "sensitivity_numbers"] = dict(sens_table=A(sens_table, FRAME_M + (("a column less", _without(sens_table)), ("nan cell", _nan_cell(sens_table, "azimuth (mrad)"))) + _neg(sens_table)))
 
     # ---------------------------------------------------------------- the ledger
     ledger_x = (("another type", leg), ("none", None), ("paired inputs", o["paired_in"]))

@@ -89,11 +89,22 @@ def _o() -> dict[str, Any]:
                 small=small, nets=nets, fc=fc, gms=gms, table=table)
 
 
-def _runs(o: dict[str, Any], key: str = "guarded", other: bool = True) -> A:
+def _runs(o: dict[str, Any], key: str = "guarded", other: bool = True, twice: bool = True) -> A:
     muts: tuple = ("str", ("empty", []), ("None", None), ("list of str", ["abc"]))
+    if twice:  # a run twice is no study (fuzz 24b PR2); per-run values (twice=False) give its entry twice
+        muts += (("a run twice", [o[key][0], *o[key][:-1]]),)
     if other:
         muts += (("another scenario's runs", o["plain2"]),)
     return A(o[key], muts)
+
+
+def _paired(o: dict[str, Any]) -> A:
+    """``plain`` beside ``guarded``: the same runs without the guard; refused: fewer runs, another scenario's, a run
+    twice, and runs of another seed (their truths differ: here the runs' truths moved, which is what tells them)."""
+    p = o["plain"]
+    return A(p, ("str", ("empty", []), ("fewer runs", p[:2]), ("another scenario's runs", o["plain2"]),
+                 ("a run twice", [p[0], *p[:-1]]),
+                 ("another seed's runs", [_other(r, truth=r.truth + 1.0) for r in p])))
 
 
 def _sc(o: dict[str, Any], other: bool = True) -> A:
@@ -105,8 +116,12 @@ def _studies(o: dict[str, Any]) -> A:
     nets = o["nets"]
     first = next(iter(nets))
     # a subset of the networks is valid (the functions show the networks given), so a missing one is not refused
+    from fusion.scenarios.fusion_networks import Network
+
+    one, many = Network.UNEQUAL, Network.FEEDBACK  # a one-exchange network and one of several frames
     return A(nets, ("str", ("empty", {}), ("None", None), ("a study not a NetworkStudy", {**nets, first: "abc"}),
-                    ("an unknown network", {**nets, "moon": nets[first]})))
+                    ("an unknown network", {**nets, "moon": nets[first]}),
+                    ("networks under each other's key", {**nets, one: nets[many], many: nets[one]})))
 
 
 def N(value: Any, mutations: tuple) -> A:
@@ -136,15 +151,16 @@ def registry() -> dict[str, dict[str, A]]:
     # ---- tracking tables
     R[c + "crb_position"] = dict(sc=_sc(o), runs=_runs(o))
     R[c + "method_table"] = dict(runs=_runs(o), crb_pos=N(o["crb"], ARR + ("len", "neg_entry")),
-                                 plain=A(o["plain"], ("str", ("empty", []), ("fewer runs", o["plain"][:2]),
-                                                      ("another scenario's runs", o["plain2"]))))
+                                 plain=_paired(o))
     t = o["table"]
     R[c + "table_values"] = dict(table=A(t, ("str", ("None", None), ("another table", _cost_table()), ("a row missing", t.iloc[1:]),
                                              ("a column missing", t.iloc[:, 1:]),
-                                             ("a NaN cell", t.mask(t.notna() & (np.arange(t.shape[0])[:, None] == 0))))))
+                                             ("a NaN cell", t.mask(t.notna() & (np.arange(t.shape[0])[:, None] == 0))),
+                                             ("zero RMSEs", t * 0),  # fuzz 24b TV: an RMSE or a NEES is positive
+                                             ("a negative RMSE", t.mask(t.notna() & (np.arange(t.shape[0])[:, None] == 1), -5.0)))))
     R[c + "rmse_figure"] = dict(runs=_runs(o), crb_pos=N(o["crb"], ARR + ("len", "neg_entry")))
-    R[c + "per_run_mse"] = dict(runs=_runs(o, other=False), key=A("chernoff_pso", ("unknown", ("not a str", 3.0))))
-    R[c + "per_run_nees"] = dict(runs=_runs(o, other=False), key=A("chernoff_pso", ("unknown", ("no covariance", "mean_of_local_means"))),
+    R[c + "per_run_mse"] = dict(runs=_runs(o, other=False, twice=False), key=A("chernoff_pso", ("unknown", ("not a str", 3.0))))
+    R[c + "per_run_nees"] = dict(runs=_runs(o, other=False, twice=False), key=A("chernoff_pso", ("unknown", ("no covariance", "mean_of_local_means"))),
                                  frames=A(chc.LATE, ("str", ("no frame", slice(10, None)), ("step 0", slice(None, None, 0)))))
     R[c + "gain_values"] = dict(runs=_runs(o, other=False))
     # no runs give an empty result (documented: "empty for no runs"), so an empty list is not refused
@@ -180,7 +196,12 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "stonesoup_check"] = dict(record=A(rec, ("str", ("empty", {}), ("a key missing", {k: v for k, v in rec.items() if k != "rows"}),
                                                    ("no rows", {**rec, "rows": []}),
                                                    ("a row without a key", {**rec, "rows": [{k: v for k, v in rows[0].items() if k != next(iter(rows[0]))}]}),
-                                                   ("a NaN mean", {**rec, "measurement": {**rec["measurement"], "mean": [float("nan")] * len(rec["measurement"]["mean"])}}))))
+                                                   ("a NaN mean", {**rec, "measurement": {**rec["measurement"], "mean": [float("nan")] * len(rec["measurement"]["mean"])}}),
+                                                   # fuzz 24b SS: each named by its place in the record
+                                                   ("no omega 0.8 row", {**rec, "rows": [r for r in rows if r["omega"] != 0.8]}),
+                                                   ("rows an array", {**rec, "rows": np.array(rows)}),
+                                                   ("version None", {**rec, "stonesoup_version": None}),
+                                                   ("an indefinite covariance", {**rec, "measurement": {**rec["measurement"], "covariance": [[1.0, 2.0], [2.0, 1.0]]}}))))
     # ---- importance sampling
     R[c + "is_replicates"] = dict(seed=A(1, SEED), r=A(50, CNT), runs=A(3, CNT))
     R[c + "is_replicate_values"] = dict(seed=A(1, SEED), runs=A(3, CNT))
@@ -188,11 +209,11 @@ def registry() -> dict[str, dict[str, A]]:
                                       replicates=A(50, COUNT + (("bool", True), ("one", 1))))
     R[c + "guarded_runs"] = dict(runs=_runs(o, "plain"), sc=_sc(o), seed=A(1, SEED), workers=A(1, CNT))
     R[c + "guard_values"] = dict(guarded=_runs(o), sc=_sc(o))
-    R[c + "guard_usability"] = dict(guarded=_runs(o), plain=A(o["plain"], ("str", ("empty", []), ("fewer runs", o["plain"][:2]), ("another scenario's runs", o["plain2"]))),
+    R[c + "guard_usability"] = dict(guarded=_runs(o), plain=_paired(o),
                                     sc=_sc(o), thresholds=A((0.01, 0.05), ("str", ("nan", (np.nan,)), ("negative", (-0.1,)), ("one", (1.0,)))))
     # no other thresholds is valid (documented: "empty: none"), so an empty tuple is not refused
     R[c + "design_study"] = dict(sc=A(o["sc"], ("str", ("None", None))), seed=A(1, SEED), runs=A(2, CNT),
-                                 n_initial=A(200, CNT), workers=A(1, CNT))
+                                 n_initial=A(200, CNT + (("beyond the memory budget", 10**7),)), workers=A(1, CNT))
     R[c + "design"] = dict(seed=A(1, SEED), runs=A(2, CNT), sc=A(o["sc"], ("str",)))
     # ---- swarm, figures
     R[c + "eps_figure"] = dict(runs=_runs(o), sc=_sc(o), show=A(0, ("neg", "frac", "str", ("beyond", 3), ("bool", True))))
@@ -202,12 +223,13 @@ def registry() -> dict[str, dict[str, A]]:
     bench = ROOT / "benchmarks" / "results" / "chernoff.json"
     R[c + "benchmark_cost"] = dict(path=A(bench, (("not a path", 3.0), ("missing", ROOT / "no-such-file.json"),
                                                   ("not JSON", ROOT / "pyproject.toml"))))
-    R[c + "consistency_figure"] = dict(runs=_runs(o), plain=A(o["plain"], ("str", ("empty", []), ("fewer runs", o["plain"][:2]), ("another scenario's runs", o["plain2"]))), sc=_sc(o))
+    R[c + "consistency_figure"] = dict(runs=_runs(o), plain=_paired(o), sc=_sc(o))
     # ---- review
     R[c + "review_values"] = dict(runs=_runs(o), crb_pos=N(o["crb"], ARR + ("len", "neg_entry")), sc=_sc(o), seed=A(1, SEED))
     R[c + "double_count_values"] = dict(runs=_runs(o), sc=_sc(o))
     R[c + "diagnostics"] = dict(runs=_runs(o), sc=_sc(o), seed=A(1, SEED))
-    R[c + "gm_yardstick"] = dict(rng=A(np.random.default_rng(0), RNG), runs=_runs(o), sc=_sc(o), sets=A(3, CNT))
+    R[c + "gm_yardstick"] = dict(rng=A(np.random.default_rng(0), RNG), runs=_runs(o), sc=_sc(o),
+                                 sets=A(3, CNT + (("beyond the memory budget", 10**6),)))
     # ---- the designed networks
     # the chain network's exponents are NaN where a node hears no other (documented): the valid call runs a fully
     # connected network under its key, so that the result is finite
@@ -222,7 +244,7 @@ def registry() -> dict[str, dict[str, A]]:
                                      step=N(0.25, ("zero", "neg", "nan_s", "str", ("above one", 1.5), ("not 1/integer", 0.3))))
     # its comparison has no reason argument: rule R4's 100 runs (2 x 50) of the range-only network
     R[c + "premise_mixture_scaled"] = dict(seed=A(3, SEED), runs=A(2, CNT),
-                                           factor=A(50, CNT))
+                                           factor=A(50, CNT + (("too few runs (R4, no reason)", 1),)))
     # ---- evidence functions
     sc = o["sc"]
     scA = A(sc, ("str",))
@@ -250,7 +272,9 @@ def registry() -> dict[str, dict[str, A]]:
     one = nets[Network.UNEQUAL]
     multi = nets[Network.FEEDBACK]
     labels = dict(chc.PREMISE_LABELS)
-    lab = A(labels, ("str", ("empty", {}), ("a label not a str", {**labels, Network.UNEQUAL: 3.0})))
+    lab = A(labels, ("str", ("empty", {}), ("a label not a str", {**labels, Network.UNEQUAL: 3.0}),
+                     ("two networks one label", {**labels, Network.NON_GAUSSIAN: labels[Network.UNEQUAL]}),
+                     ("an empty label", {**labels, Network.CHAIN: " "})))
     for fn in ("baseline_table", "criteria_table", "criteria_values"):
         R[cr + fn] = dict(studies=_studies(o), labels=lab, reason=REASON)
     stA = A(one, ("str", ("None", None), ("another result", o["toy"]), ("a multi-frame network", multi)))

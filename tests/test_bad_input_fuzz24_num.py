@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 
 from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
-from fusion.registration import methods as rm
+from fusion import registration as rm
 
 _X0 = np.round(np.random.default_rng(0).normal(0, 1, (40, 3)) * np.array([1.0, 2.0, 3.0]) * 64) / 64
 _OFFSETS = st.builds(lambda m, e: m * 10.0**e, st.sampled_from([1.0, -1.0, 3.0, -7.0]), st.integers(0, 9))

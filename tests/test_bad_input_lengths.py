@@ -192,7 +192,8 @@ def _list_pairs() -> list[Any]:
 #: Fields documented as a "tuple" of a frozen record (hashable): a tuple only (``fusion._validation.sequence``).
 TUPLE_FIELDS: set[tuple[str, str]] = {
     ("fusion.book.recommend.Evidence", "expect"), ("fusion.book.recommend.Recommendation", "evidence"),
-    ("fusion.book.recommend.Recommendation", "chapters"), ("fusion.scenarios.fusion_networks.NetworkScenario", "nodes")}
+    ("fusion.book.recommend.Recommendation", "chapters"), ("fusion.scenarios.fusion_networks.NetworkScenario", "nodes"),
+    ("fusion.book.ledger.Source", "chapters")}
 
 
 @pytest.mark.parametrize(("name", "arg"), _list_pairs())

@@ -154,7 +154,8 @@ def test_benchmark_and_seed_stability():
     n_m = len(st_.methods)
     for r in st_.ranks.values():
         assert r.shape == (2, n_m)
-        assert np.all(np.sort(r, axis=1) == np.arange(1, n_m + 1))
+        for row in np.sort(r, axis=1):  # competition ranks: 1, then each the one before (a tie) or its place
+            assert row[0] == 1 and all(row[i] in (row[i - 1], i + 1) for i in range(1, n_m))
     assert 0 <= st_.n_rev <= st_.n_sig
     # results keyed by method keys, in BenchMethod's order, each with a display label in the style registry
     from fusion.book.style import METHOD_LABELS
@@ -164,6 +165,24 @@ def test_benchmark_and_seed_stability():
     # shift invariance: every method but the lecture's AWF gives the same errors at 0 and 900
     a, b = res[1, 0.0, False], res[1, 900.0, False]
     np.testing.assert_allclose(a[sc.BenchMethod.AWF_CENTRED], b[sc.BenchMethod.AWF_CENTRED], rtol=1e-6, atol=1e-9)
+
+
+def test_seed_stability_ranks_methods_equal_up_to_round_off_as_tied():
+    """One tie rule (``fusion._limits.ROUND_OFF_TIE``, the rulebook's): two methods whose MSEs differ by round-off
+    share the better rank, whatever the order of their round-off; a real difference still orders them."""
+    res = sc.benchmark(seeds=(1,), runs=30, samples=20, levels=(900.0,), faults=(False,))
+    m = list(res[1, 900.0, False])
+    a, b = m[0], m[1]
+    base = res[1, 900.0, False]
+    ranks = []
+    for eps in (1e-13, -1e-13, 1e-3):
+        tweaked = {1: dict(base)}
+        tweaked[1][b] = base[a] * (1.0 + eps)
+        st_ = sc.seed_stability({(1, 900.0, False): tweaked[1]})
+        ranks.append(st_.ranks[(900.0, False)][0])
+    i, j = 0, 1
+    assert ranks[0][i] == ranks[0][j] == ranks[1][i] == ranks[1][j]  # tied either way round
+    assert ranks[2][j] == ranks[2][i] + 1  # 1e-3 apart: ordered
 
 
 def test_chapter_records_cover_every_critique_box():

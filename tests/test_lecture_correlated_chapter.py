@@ -205,7 +205,8 @@ def test_shrunken_ls_exact_mse() -> None:
     assert np.allclose(tab["LS"], float(f"{v.tr_ls:.4g}"))
     assert (tab["best c·LS"] <= tab["LS"]).all() and (tab["best ridge"] <= tab["LS"]).all()
     # an isotropic information matrix makes ridge c·LS with c = a/(a + k): the two optima agree
-    iso = dataclasses.replace(v, A=4.0 * np.eye(2), x={("strong direction", 3.0): np.array([2.0, 1.0])})
+    case = ("strong direction", 3.0)  # one case: its true value and its runs (x and sq hold the same cases)
+    iso = dataclasses.replace(v, A=4.0 * np.eye(2), x={case: np.array([2.0, 1.0])}, sq={case: v.sq[case]})
     row = ch.table_shrunken(iso).iloc[0]
     assert row["best ridge"] == pytest.approx(row["best c·LS"], rel=1e-3)
     g = ch.glue_shrunken(tab)

@@ -97,18 +97,33 @@ def _check_record(record: Mapping[str, Any], path: Path) -> None:
 
 
 def _check_measurements(ms: object, path: Path) -> None:
-    """A record's ``measurements``: a list of objects, each ``key`` (where given) a string and each ``value`` (where
-    given) a finite number; refused by a ValueError naming the file and the field."""
+    """A record's ``measurements``: a list of objects, each ``key`` (where given) a string held by no other
+    measurement (a reader looks a value up by its key: with two, which one it reads is arbitrary; fuzz 24b D6) and
+    each ``value`` (where given) a finite number, positive where its ``unit`` is seconds (``"s"``, ``"CPU-s"``: a
+    measured duration; fuzz 24b BC3); refused by a ValueError naming the file and the field."""
     if not isinstance(ms, list):
         raise ValueError(f"benchmark result {path}: measurements must be a list, got {shown(ms)}")
+    seen: dict[str, int] = {}
     for i, m in enumerate(ms):
         if not isinstance(m, dict):
             raise ValueError(f"benchmark result {path}: measurements[{i}] must be an object, got {shown(m)}")
         if "key" in m and not isinstance(m["key"], str):
             raise ValueError(f"benchmark result {path}: measurements[{i}].key must be a string, got {shown(m['key'])}")
+        if "key" in m:
+            if m["key"] in seen:
+                raise ValueError(f"benchmark result {path}: measurements[{i}].key {shown(m['key'])} repeats "
+                                 f"measurements[{seen[m['key']]}].key (a key names one measurement)")
+            seen[m["key"]] = i
         v = m.get("value")
         if "value" in m and (not isinstance(v, (int, float)) or isinstance(v, bool) or not math.isfinite(v)):
             raise ValueError(f"benchmark result {path}: measurements[{i}].value must be a finite number, got {shown(v)}")
+        if "value" in m and m.get("unit") in _SECONDS and not v > 0:
+            raise ValueError(f"benchmark result {path}: measurements[{i}].value is a duration ({m['unit']}) and must "
+                             f"be positive, got {shown(v)}")
+
+
+#: Units of a measured duration, whose values :func:`_check_measurements` requires positive.
+_SECONDS = ("s", "CPU-s")
 
 
 def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:

@@ -95,6 +95,7 @@ from scipy import stats
 
 from fusion._validation import _numeric, _real_number, check_magnitude, count, scalar, sequence, shown
 from fusion._validation import flag, one_of, text
+from fusion._limits import ROUND_OFF_TIE
 
 __all__ = [
     "STATUSES",
@@ -609,7 +610,7 @@ def _differences(av: np.ndarray, bv: np.ndarray) -> tuple[np.ndarray, np.ndarray
 
 
 #: Relative size of round-off: a difference within this share of the values' magnitude is a tie (the one tie rule).
-_TIE = 1e-9
+_TIE = ROUND_OFF_TIE  # fusion._limits: one tie rule for the rulebook and the rankings
 
 
 def _round_off(x: np.ndarray | float, scale: np.ndarray | float) -> np.ndarray | bool:
@@ -646,11 +647,13 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     "undecided", the estimate and interval as computed).
 
     Round-off never decides (R2), whatever the units of ``a`` and ``b``: with S the largest finite magnitude
-    of their runs, differences all within round-off of zero (|A − B| <= 1e-9 S, the tie rule of a single run)
+    of their runs, differences all within round-off of zero (``|A - B| <= 1e-9 S``, the tie rule of a single run)
     are a tie, estimate and interval 0; differences equal to each other within round-off (their range
     <= 1e-9 S) are deterministic, and the interval is the zero-width [mean, mean]. Both tests are relative to
     S, so scaling ``a``, ``b`` and ``margin`` by one factor scales the estimate and interval and leaves the
-    status and region unchanged (exactly for a power of two).
+    status and region unchanged (exactly for a power of two). S is the values' magnitude, not the differences':
+    the round-off of A − B grows with |A| and |B|, so a common offset of ``a`` and ``b`` (differences unchanged
+    mathematically) can make differences spread by less than 1e-9 S constant (zero-width interval).
 
     Parameters
     ----------

@@ -511,7 +511,7 @@ def _readings(readings: object, runs_factor: int) -> None:
         if runs_factor > 1 and "primary" not in rs:
             raise ValueError(f"{where} lacks the 'primary' reading that runs_factor = {runs_factor} scales")
         for name, v in rs.items():
-            if not (isinstance(name, str) and isinstance(v, tuple) and len(v) == 2 and isinstance(v[0], str)):
+            if not (isinstance(name, str) and isinstance(v, (tuple, list)) and len(v) == 2 and isinstance(v[0], str)):
                 raise TypeError(f"{where}[{shown(name)}] must be a (kind, runs) pair, got {shown(v)}")
             if v[0] not in R.READING_KINDS:
                 raise ValueError(f"{where}[{shown(name)}] kind must be one of {R.READING_KINDS}, got {shown(v[0])}")

@@ -648,16 +648,41 @@ def use_book_tables(shell: object | None = None) -> None:
         fmt.for_type(kind, html)
 
 
+def _plain(key: object) -> object:
+    """A row key as the caller wrote it: a numpy scalar as its Python value (``0``, not ``np.int64(0)``)."""
+    return key.item() if isinstance(key, np.generic) else key
+
+
+def _is_real(v: object) -> bool:
+    """Whether a table cell is a real number by the package's one rule for scalars (``fusion._validation``'s
+    ``_real_number``: ints, floats, numpy's, ``Decimal`` and ``Fraction``; not bools, text or complex numbers)."""
+    try:
+        _real_number(v, "cell")
+    except (TypeError, ValueError):
+        return False
+    return True
+
+
 def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "",
-           finite: Collection[str] = (), texts: Collection[str] = ()) -> Any:
+           finite: Collection[str] = (), texts: Collection[str] = (), nonnegative: Collection[str] = (), *,
+           unique: bool = False, rows: Collection[object] | Callable[[object], bool] | None = None,
+           rows_are: str = "") -> Any:
     """The rule of every chapter function that reads a table another function made (fuzz 18/19, class D): ``tab``
     when it is a DataFrame holding ``columns`` (and the index levels ``index``), not empty; TypeError/ValueError
     naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside.
 
-    The columns ``finite`` the caller computes with hold finite real numbers (not bools, not text), the columns
+    The columns ``finite`` the caller computes with hold finite real numbers (not bools, not text; a ``Decimal``
+    or ``Fraction`` is a number, as for the array reader), the columns
     ``texts`` it reads as text (statuses, labels it parses) hold strings in every row (issue 35: a NaN cell gave a
     NaN glue value, a missing cell was read as no status): a TypeError (wrong type) or ValueError (NaN, inf) naming
-    ``name[column]`` and the row."""
+    ``name[column]`` and the row. The columns ``nonnegative`` hold finite numbers that are non-negative as well (an
+    RMSE, a bound, a time: fuzz 24c, NEG).
+
+    A column read (``columns``, ``finite``, ``texts``, ``nonnegative``) held twice is refused (fuzz 24d T: numpy's
+    errors from inside, or one of the two read silently). ``unique``: the rows are keys (a method, a length, a
+    record) and a repeated one is refused, naming ``name`` and the row (a row twice was counted twice, or drawn as a
+    sequence). ``rows``: the row keys the maker gives (a collection, or a test of one key), described by
+    ``rows_are``; a row that is not one is refused, naming it (an unknown method was listed as a method)."""
     if not isinstance(tab, pd.DataFrame):
         raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
                         f"{type(tab).__name__}")
@@ -667,20 +692,36 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     if tab.empty:
         raise ValueError(f"{name} is empty")
     made = f" (as {maker} makes it)" if maker else ""
-    for c in finite:
+    twice = [c for c in dict.fromkeys((*columns, *finite, *texts, *nonnegative)) if c in tab.columns
+             and isinstance(tab[c], pd.DataFrame)]
+    if twice:
+        raise ValueError(f"{name} has more than one column {shown(twice[0])}{made}")
+    if unique and tab.index.has_duplicates:
+        again = _plain(tab.index[tab.index.duplicated()][0])
+        raise ValueError(f"{name} holds the row {shown(again)} more than once{made}: one row each")
+    if rows is not None:
+        known = rows if callable(rows) else rows.__contains__
+        odd = next((r for r in tab.index if not known(r)), None)
+        if odd is not None:
+            raise ValueError(f"{name} holds the row {shown(_plain(odd))}, which is not "
+                             f"{rows_are or 'a row it makes'}{made}")
+    for c in dict.fromkeys((*finite, *nonnegative)):
         if c not in tab.columns:
             raise ValueError(f"{name} lacks the column {shown(c)}{made}")
         col = tab[c]
         if isinstance(col, pd.DataFrame):
             raise ValueError(f"{name} has more than one column {shown(c)}{made}")
-        odd = next(((i, v) for i, v in zip(col.index, col.to_numpy()) if isinstance(v, (bool, np.bool_))
-                    or not isinstance(v, (int, float, np.integer, np.floating))), None)
+        odd = next(((i, v) for i, v in zip(col.index, col.to_numpy()) if not _is_real(v)), None)
         if odd is not None:
             raise TypeError(f"{name}[{shown(c)}] must hold numbers{made}, got {shown(odd[1])} in row {shown(odd[0])}")
         bad = ~np.isfinite(col.to_numpy(dtype=float))
         if bad.any():
             raise ValueError(f"{name}[{shown(c)}] must be finite, got {shown(col.to_numpy()[bad][0])} in row "
                              f"{shown(col.index[bad][0])}")
+        neg = col.to_numpy(dtype=float) < 0 if c in nonnegative else bad
+        if neg.any():
+            raise ValueError(f"{name}[{shown(c)}] must be non-negative, got {shown(col.to_numpy()[neg][0])} in row "
+                             f"{shown(col.index[neg][0])}")
     for c in texts:
         if c not in tab.columns:
             raise ValueError(f"{name} lacks the column {shown(c)}{made}")
@@ -691,13 +732,20 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     return tab
 
 
-def _cell_number(tab: pd.DataFrame, row: object, column: object, name: str) -> float:
+def _cell_number(tab: pd.DataFrame, row: object, column: object, name: str, positive: bool = False) -> float:
     """The number in cell (``row``, ``column``) of a table another function made (issue 35): a finite real number,
     else a ValueError naming ``name`` and the cell, never a message naming an inner argument (``value``) or a
-    TypeError from ``float``. Call after :func:`_frame` (the column is there) and a check of the rows read."""
+    TypeError from ``float``. Call after :func:`_frame` (the column is there) and a check of the rows read.
+    ``positive``: the cell holds a quantity that is positive by its definition (an RMSE, a NEES of a noisy
+    filter; fuzz 24b TV), so 0 or a negative number is refused too (a ratio of them would divide by 0 or flip)."""
     x = tab.loc[row, column]
+    if isinstance(x, (pd.Series, pd.DataFrame)):  # a repeated row or column label: which one is meant is unknown
+        raise ValueError(f"{name} holds row {shown(row, 60)} or column {shown(column, 60)} more than once")
     ok = isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_))
     if not ok or not np.isfinite(x):
         raise ValueError(f"{name}[{shown(column, 60)}] at row {shown(row, 60)} must be a finite number, "
+                         f"got {shown(x, 60)}")
+    if positive and not x > 0:
+        raise ValueError(f"{name}[{shown(column, 60)}] at row {shown(row, 60)} must be positive (an RMSE or a NEES), "
                          f"got {shown(x, 60)}")
     return float(x)

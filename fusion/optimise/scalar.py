@@ -29,8 +29,8 @@ from collections.abc import Callable, Sequence
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from fusion._validation import allocation, as_array, as_callable, as_rng, as_rngs, count, finite_optimum, objective_values, positive_scalar, scalar
-from fusion._validation import flag, loop_work, work
+from fusion._validation import allocation, as_array, as_callable, as_rng, as_rngs, count, finite_optimum, objective_values, scalar
+from fusion._validation import flag, loop_work, tolerance, work
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
 
@@ -330,7 +330,7 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     * Brent, R. P. (1973). *Algorithms for Minimization without Derivatives*. Prentice-Hall.
     """
     lo, hi = _check(lo, hi, f)
-    xatol = positive_scalar(xatol, "xatol")
+    xatol = tolerance(xatol, "xatol")
     def checked(x: float) -> float:
         return _one_value(f(x))
 

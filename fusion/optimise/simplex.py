@@ -21,8 +21,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
-from fusion._validation import input_eps, text
-from fusion._validation import _numeric, FloatArray, as_callable, count, finite_optimum, objective_values, positive_scalar
+from fusion._validation import input_eps, text, tolerance
+from fusion._validation import _numeric, FloatArray, as_callable, count, finite_optimum, objective_values
 from fusion.optimise.result import OptimumResult
 
 __all__ = [
@@ -110,7 +110,7 @@ def minimise_on_simplex(
     n = count(n, "n")
     if jac is not None:
         as_callable(jac, "jac")
-    ftol = positive_scalar(ftol, "ftol")  # fuzz 24a U2: inf, NaN or a negative one returned the start as the minimum
+    ftol = tolerance(ftol, "ftol")  # fuzz 24a U2: inf, NaN or a negative one returned the start as the minimum
 
     def value(e: FloatArray) -> float:  # issue 35, class 3: NaN, non-numbers and vectors refused, naming f
         v = objective_values(f(e.copy()), (), "f")  # a copy: f writing into its argument cannot alter x

@@ -29,7 +29,7 @@ import numpy as np
 
 from fusion._validation import (as_rngs, FloatArray, as_callable, as_rng, count, finite_optimum, instance_of, nonnegative_scalar,
                                 objective_values, one_of, positive_scalar, scalar, work)
-from fusion._validation import flag, text
+from fusion._validation import flag, text, tolerance
 from fusion._validation import LOOP_STEP, loop_work
 from fusion.optimise._ties import TIE_RTOL
 from fusion.optimise.result import OptimumResult, SwarmTrace
@@ -230,7 +230,7 @@ def _swarm_one(fitness: Callable[[FloatArray], FloatArray], dim: int, rng: np.ra
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
     lo = scalar(lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True)
     one_of(stop, ("stagnation", "positions"), "stop")
-    xtol = positive_scalar(xtol, "xtol")
+    xtol = tolerance(xtol, "xtol")
     u = rng.uniform(lo, 1.0, (n_particles, dim))  # G1
     v = rng.uniform(-vmax, vmax, (n_particles, dim))
 
@@ -298,7 +298,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
     lo = scalar(lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True)
     one_of(stop, ("stagnation", "positions"), "stop")
-    xtol = positive_scalar(xtol, "xtol")
+    xtol = tolerance(xtol, "xtol")
     B = len(rngs)
     u = np.empty((B, n_particles, dim))
     v = np.empty((B, n_particles, dim))
@@ -464,8 +464,8 @@ class SwarmOptions:
             object.__setattr__(self, k, count(getattr(self, k), k))
         for k in ("inertia", "c1", "c2", "tol"):
             object.__setattr__(self, k, nonnegative_scalar(getattr(self, k), k))
-        for k in ("vmax", "xtol"):
-            object.__setattr__(self, k, positive_scalar(getattr(self, k), k))
+        object.__setattr__(self, "vmax", positive_scalar(self.vmax, "vmax"))
+        object.__setattr__(self, "xtol", tolerance(self.xtol, "xtol"))
         object.__setattr__(self, "lo", scalar(self.lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True))
         object.__setattr__(self, "stop", one_of(self.stop, ("stagnation", "positions"), "stop"))
 

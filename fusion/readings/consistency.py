@@ -33,6 +33,7 @@ from fusion._validation import LOOP_STEP, integer, loop_work
 from fusion._results import ResultSpec, nested, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
+from fusion.readings._moments import _reference
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
 from fusion._shown import shown
 
@@ -156,8 +157,8 @@ def consistency_awf(
 
     and :math:`\hat\sigma_p^2` as in :func:`fusion.readings.weighting.running_variances` (the average over
     :math:`q \ne p` runs over the partners with at least one shared kept instant; the
-    ``"centred"`` form subtracts the pairwise means, from the readings minus each sensor's first reading: shift
-    invariant in floating point too). The estimate at k combines the sensors
+    ``"centred"`` form subtracts the pairwise means, from the readings minus each sensor's median kept reading:
+    shift invariant in floating point too, and independent of rejected readings). The estimate at k combines the sensors
     kept at k: :math:`\hat X(k) = \sum_{p\,\text{kept}} W_p\bar X_p(k)`, weights renormalised.
     A sensor without any partner yet gets the variance estimate 0 (hence, after the floor, a
     large weight); so does, with the centred estimator, a sensor whose first kept reading shares only the current
@@ -193,12 +194,13 @@ def consistency_awf(
     pair = mf[..., :, None] * mf[..., None, :]
     N = np.cumsum(pair, axis=-3)
     safe = np.where(N > 0, N, 1.0)
-    # centred: the moments of the readings minus each sensor's first reading (the same covariances, computed at the
-    # scale of the spread, not of the offset: ``fusion.readings.weighting._moment_stack``); lecture: raw moments
-    Y = A - A[..., :1, :] if variance == "centred" else A
+    # centred: the moments of the kept readings minus each sensor's median kept reading (the same covariances,
+    # computed at the scale of the spread, not of the offset, nor of a rejected reading: ``_moment_stack`` of
+    # ``fusion.readings._moments``); lecture: raw moments
+    Y = np.where(mask, A - _reference(A, mask), 0.0) if variance == "centred" else A
     R = np.cumsum(pair * Y[..., :, None] * Y[..., None, :], axis=-3) / safe
     if variance == "centred":
-        Sp = np.cumsum(pair * Y[..., :, None], axis=-3) / safe  # mean of X_p over shared instants (minus X_p(1))
+        Sp = np.cumsum(pair * Y[..., :, None], axis=-3) / safe  # mean of X_p over shared instants (minus c_p)
         R = R - Sp * np.swapaxes(Sp, -1, -2)
     valid = (N > 0) & ~np.eye(n, dtype=bool)
     nvalid = valid.sum(axis=-1)

@@ -28,7 +28,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import constant, frozen_arrays
+from fusion._frozen import constant
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
+                             validated_post_init)
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
@@ -61,7 +63,6 @@ MISSTATED_OVER_GLS = "misstated / GLS"
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class CouplingStudy:
     r"""GLS against the naive fusion over the coupling cases (:func:`coupling_study`).
 
@@ -96,9 +97,34 @@ class CouplingStudy:
     seed: int
     scenarios: Mapping[str, Mapping[str, Any]]
 
+    __result_spec__ = ResultSpec(
+        {"rows": tuple_of(instance(Mapping)),
+         "sq": dict_of(tuple_of(array("runs", bounds=NONNEGATIVE), array("runs", bounds=NONNEGATIVE))),
+         "weights": dict_of(tuple_of(instance(np.ndarray), instance(np.ndarray))),
+         "env_grid": array("E", bounds=NONNEGATIVE),
+         "curves": dict_of(array("E", bounds=NONNEGATIVE)), "far": dict_of(number(positive=True)), "env_far": number(),
+         "runs": integer(1, dim="runs"), "seed": integer(0), "scenarios": dict_of(instance(Mapping))},
+        relations=(same_keys("scenarios", "sq", "weights", "curves", "far"),))
+    __post_init__ = validated_post_init
+
+
+def _ratio_rows(values: Mapping[str, Any], cls: str) -> None:
+    """An :class:`EstimatedCovarianceStudy`'s rows: one per case, its ratios of MSEs finite and positive, a ratio per
+    calibration size of ``ns``."""
+    for i, row in enumerate(values["rows"]):
+        for n in values["ns"]:
+            if GLS_HAT_OVER_GLS.format(n=n) not in row:
+                raise ValueError(f"{cls}.rows[{i}] misses the ratio at n = {n} of {cls}.ns")
+        for key, value in row.items():
+            if key == "case":
+                continue
+            v = as_array(value, f"{cls}.rows[{i}][{shown(key)}]", ndim=0)
+            if not v > 0:
+                raise ValueError(f"{cls}.rows[{i}][{shown(key)}] must be a positive ratio of MSEs, "
+                                 f"got {shown(float(v))}")
+
 
 @dataclass(frozen=True)
-@frozen_arrays
 class EstimatedCovarianceStudy:
     r"""GLS with an estimated or a misstated noise covariance (:func:`estimated_covariance_study`).
 
@@ -120,6 +146,11 @@ class EstimatedCovarianceStudy:
     reps: int
     seed: int
     misstate: float
+
+    __result_spec__ = ResultSpec({"rows": tuple_of(instance(Mapping)), "ns": tuple_of(integer(2)), "reps": integer(1),
+                                  "seed": integer(0), "misstate": number(positive=True, bounds=(0.0, 1.0))},
+                                 relations=(lambda v, cls: _ratio_rows(v, cls),))
+    __post_init__ = validated_post_init
 
 class CouplingCase(StrEnum):
     """Keys of the correlated cases (:data:`SCENARIOS`; labels: :data:`fusion.book.style.METHOD_LABELS`).

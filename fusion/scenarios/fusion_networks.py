@@ -306,7 +306,8 @@ class NetworkStudy:
         how non-Gaussian the local posteriors are, with no sampling or fitting error.
     eps : ndarray, shape (runs, fusions, N, N)
         The swarm's exponents at every exchange of the ``chernoff_pso`` pipeline (exchanges in order of
-        frame and round; then per node, the exponent of each node's density, NaN for a node it does not hear).
+        frame and round; then per node, the exponent of each node's density, NaN for a node it does not hear);
+        each in [0, 1] (checked when built, as ``kl_local`` non-negative; the sum over a node's row is not).
     ess_local : ndarray, shape (runs, frames, N)
         Effective sample size of each node's local posterior (``chernoff_pso`` pipeline).
     local_mean, local_cov : ndarray, shapes (runs, N, 2) and (runs, N, 2, 2)
@@ -329,6 +330,12 @@ class NetworkStudy:
     __setstate__ = restore_frozen  # copies and unpickled objects keep read-only arrays
 
     def __post_init__(self) -> None:
+        # fuzz 24b D4: the fields the chapter glues as KL divergences and exponents keep their ranges
+        kl, eps = np.asarray(self.kl_local, dtype=float), np.asarray(self.eps, dtype=float)
+        if not np.all(np.isfinite(kl) & (kl >= 0.0)):
+            raise ValueError("NetworkStudy.kl_local must hold finite, non-negative KL divergences")
+        if not np.all(np.isnan(eps) | ((eps >= 0.0) & (eps <= 1.0))):
+            raise ValueError("NetworkStudy.eps must hold exponents in [0, 1] (NaN for a node not heard)")
         freeze_arrays(self)
         for d in (self.estimates, self.covariances):
             for v in d.values():

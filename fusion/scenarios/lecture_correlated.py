@@ -13,7 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._frozen import frozen_arrays
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
+                             validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import FloatArray, as_array, count, scalar, shown, std_scalar
 from fusion._validation import allocation
@@ -37,7 +38,6 @@ K_LABEL = "k label"
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class RidgeStudy:
     r"""Experiment E2.5: scalar ridge against least squares, convergence, centralised vs distributed (:func:`ridge_study`).
 
@@ -90,9 +90,19 @@ class RidgeStudy:
     sd_ratio_max: float
     var_gap_min_eig: float
 
+    __result_spec__ = ResultSpec(
+        {"kgrid": array("K", bounds=NONNEGATIVE), "mse": dict_of(array("K", bounds=NONNEGATIVE), key=float),
+         "rel": dict_of(array("K", bounds=(0.0, 1.0)), key=float),
+         "rows": tuple_of(instance(Mapping)), "conv": dict_of(array("M", bounds=NONNEGATIVE), key=tuple),
+         "m0": integer(1),
+         "sigma": number(positive=True), "bound_k1": number(positive=True), "rel1_kelvin": number(bounds=(0.0, 1.0)),
+         "cen_dist_maxdiff": number(), "rel_k": tuple_of(instance(Mapping)), "ks_fixed": tuple_of(number()),
+         "sd_ratio_max": number(), "var_gap_min_eig": number(nonnegative=False)},
+        relations=(same_keys("mse", "rel"),))
+    __post_init__ = validated_post_init
+
 
 @dataclass(frozen=True)
-@frozen_arrays
 class CorrelatedStudy:
     r"""Experiment E2.7: correlated noise, LDLᵀ pseudo-measurements, GLS and the naive fusion (:func:`correlated_study`).
 
@@ -136,6 +146,17 @@ class CorrelatedStudy:
     nees_samples: tuple[np.ndarray, np.ndarray]
     runs: int
     flops: tuple[Mapping[str, float], ...]
+
+    __result_spec__ = ResultSpec(
+        {"R": array("2N", "2N", covariance=True), "mrm_offdiag": number(), "rel_ldl_gls": number(),
+         "eg": array(2, "runs"), "en": array(2, "runs"), "Pg": array(2, 2, covariance=True),
+         "Pn": array(2, 2, covariance=True), "sq_gls": array("runs", bounds=NONNEGATIVE),
+         "sq_naive": array("runs", bounds=NONNEGATIVE),
+         "mse_gls": number(), "mse_naive": number(), "nees_gls": number(), "nees_naive": number(),
+         "nees_samples": tuple_of(array("runs", bounds=NONNEGATIVE), array("runs", bounds=NONNEGATIVE)),
+         "runs": integer(1, dim="runs"),
+         "flops": tuple_of(dict_of(instance(int, float, np.integer, np.floating)))})
+    __post_init__ = validated_post_init
 
 
 # --------------------------------------------------------------------------- E2.5
@@ -206,7 +227,7 @@ def ridge_study(
     ks_fixed = as_array(ks_fixed, "ks_fixed", ndim=1).tolist()  # fuzz 24a U7: numbers, at least one, each > 0
     if min(ks_fixed) <= 0:
         raise ValueError(f"ks_fixed must hold positive ridge parameters, got {shown(ks_fixed)}")
-    loop_work((len(xs) + 1, 3 + len(ks_fixed)), 501, "xs and ks_fixed")  # rule 17: moments
+    loop_work((len(xs) + 1, 3 + len(ks_fixed)), 501, "xs and ks_fixed", step=20 * LOOP_STEP)  # rule 17: ~100 us a row
     for i, x in enumerate(xs):
         _optimal_k_representable(x, sigma, f"xs[{i}]")
     x_far = scalar(x_far, "x_far")

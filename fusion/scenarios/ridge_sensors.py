@@ -25,7 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._frozen import frozen_arrays
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
+                             validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import seed as check_seed
 from fusion._validation import distinct, loop_work
@@ -50,7 +51,6 @@ VECTOR_METHODS: tuple[str, str, str] = (LS, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class PluginStudy:
     r"""Scalar ridge with a plug-in parameter against least squares, by true value (:func:`plugin_study`).
 
@@ -88,9 +88,20 @@ class PluginStudy:
     deltas: tuple[float, ...]
     xs: tuple[float, ...]
 
+    __result_spec__ = ResultSpec(
+        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float),
+         "hit": dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float),
+         "hits": dict_of(dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float), key=float), "curve": array("C"),
+         "ratio_known": array("C", bounds=NONNEGATIVE), "ratio_est": array("C", bounds=NONNEGATIVE),
+         "rel_curve": dict_of(array("C", bounds=(0.0, 1.0))),
+         "m": integer(1), "sigma": number(positive=True), "runs": integer(1, dim="runs"), "seed": integer(0),
+         "delta": number(positive=True), "deltas": tuple_of(number(positive=True)),
+         "xs": tuple_of(number(nonnegative=False))},
+        relations=(same_keys("xs", "sq", "hit"), same_keys("deltas", "hits")))
+    __post_init__ = validated_post_init
+
 
 @dataclass(frozen=True)
-@frozen_arrays
 class VectorStudy:
     r"""An ill-conditioned vector case: LS, centralised and distributed plug-in ridge (:func:`vector_study`).
 
@@ -116,6 +127,13 @@ class VectorStudy:
     runs: int
     seed: int
     scales: tuple[float, ...]
+
+    __result_spec__ = ResultSpec(
+        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=tuple), "x": dict_of(array(2), key=tuple),
+         "A": array(2, 2, covariance=True), "cond": number(positive=True), "tr_ls": number(positive=True),
+         "runs": integer(1, dim="runs"), "seed": integer(0), "scales": tuple_of(number(positive=True))},
+        relations=(same_keys("sq", "x"),))
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()

@@ -14,7 +14,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._frozen import constant, frozen_arrays
+from fusion._frozen import constant
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, integer, number, same_keys, text, tuple_of,
+                             validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import distinct, loop_work, one_of
 from fusion._validation import allocation, record, seed as check_seed
@@ -341,7 +343,6 @@ def best_linear_abs_error(sigma: ArrayLike, n_sensors: int = 10) -> float:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class PairedStudy:
     """Absolute errors of several methods on the same Monte-Carlo draws, with and without failure.
 
@@ -372,6 +373,15 @@ class PairedStudy:
     seed: int
     failed_member_share: tuple[float, ...] = ()
     failure_mode: str = "fixed"
+
+    __result_spec__ = ResultSpec(
+        {"clean": dict_of(array("runs", "samples", bounds=NONNEGATIVE)),
+         "failed": dict_of(array("runs", "samples", bounds=NONNEGATIVE)),
+         "set_size": array("runs", nan=True, bounds=NONNEGATIVE), "window": tuple_of(integer(1), integer(1)),
+         "seed": integer(0), "failed_member_share": tuple_of(number(bounds=(0.0, 1.0))),
+         "failure_mode": text(*FAILURE_MODES)},
+        relations=(same_keys("clean", "failed"), lambda v, cls: _window_relation(v, cls)))
+    __post_init__ = validated_post_init
 
     @property
     def n_runs(self) -> int:
@@ -510,6 +520,15 @@ def paired_study(
         failed_member_share=share,
         failure_mode=failure_mode,
     )
+
+
+def _window_relation(values: Mapping[str, object], cls: str) -> None:
+    """The failure window (1-based, inclusive) lies within the samples of the errors."""
+    first, last = values["window"]  # type: ignore[misc]
+    samples = next(iter(values["clean"].values())).shape[1]  # type: ignore[attr-defined]
+    if not first <= last <= samples:
+        raise ValueError(f"{cls}.window must be (first, last) with 1 <= first <= last <= {samples} (the samples of "
+                         f"{cls}.clean), got {shown((first, last))}")
 
 
 @derived_inputs()

@@ -23,7 +23,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import constant, frozen_arrays
+from fusion._frozen import constant
+from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, number, validated_post_init
 from fusion import registration as reg
 from fusion.registration import methods as _methods
 from fusion._validation import derived_inputs
@@ -307,6 +308,39 @@ def _times_named(fn: Callable[..., Any]) -> Callable[..., Any]:
     return call
 
 
+#: Largest rounding (m) of the true positions at the times, as a fraction of the closed forms' scale (see
+#: :func:`_precise_times`).
+_POSITION_ROUNDING = 1e-6
+
+
+def _precise_times(t_src: ArrayLike, t_dst: ArrayLike, src: str = "t_src", dst: str = "t_dst") -> None:
+    """Refuse, naming ``src`` and ``dst``, times so far from the flight's start that the positions lose the precision.
+
+    The registration errors are differences of positions: the closed forms perturb one sample by 1 m
+    (:func:`fusion.registration.analysis.affine_decomposition`) and the bias of interpolation is of the order of
+    :math:`a h^2/8` (h: the smallest step of ``t_src``), while the positions :math:`x(t) = v_0 t + a t^2/2` are rounded
+    to :math:`\\epsilon\\max|x(t)|` (the float spacing). When that rounding exceeds 1e-6 of ``min(1 m, a h²/8)``
+    the differences cancel catastrophically (fuzz 24d C: at t + 1e8 s the two-point E[MSE] came out 0.0 instead
+    of 1.25 m²); the scenario's times are measured from the flight's start at t = 0, where the truth is the UAV's,
+    so such times are refused rather than shifted (the truth, the latency bounds and the manoeuvre's ``t_change``
+    are absolute). Times within about 6e4 s of the start pass at the source's 2 s sampling.
+    """
+    ts, td = np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float)
+    both = np.concatenate([ts.ravel(), td.ravel()])
+    if both.size == 0:
+        return
+    far = float(np.max(np.abs(both)))
+    rounding = float(np.finfo(float).eps) * float(np.max(np.abs(truth(both))))
+    steps = np.diff(ts)
+    scale = min(1.0, abs(SCENARIO["a"]) * float(np.min(steps)) ** 2 / 8) if steps.size else 1.0
+    if not rounding <= _POSITION_ROUNDING * scale:
+        raise ValueError(
+            f"{src} and {dst} reach {far:.6g} s from the flight's start (t = 0), where the true positions are rounded "
+            f"to {rounding:.2g} m, more than {_POSITION_ROUNDING:g} of the registration errors' scale "
+            f"{scale:.3g} (1 m or a·h²/8 at the smallest step h of {src}): the errors, differences of those "
+            f"positions, would cancel; give times measured from the start of the flight")
+
+
 def _check_args(t_src: ArrayLike, t_dst: ArrayLike, sigma: float, q_v: float, q_a: float) -> tuple[float, float, float]:
     """Validate the times and the Kalman tuning shared by :func:`register` and :func:`registrar`; return ``sigma``,
     ``q_v`` and ``q_a`` as the floats read, which the callers compute with (fuzz 22b, FR: never a Decimal)."""
@@ -458,7 +492,7 @@ def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
     -------
     functools.partial
         Callable of the samples ``z`` (shape (n,)) returning the registered values (shape (K,)),
-        as :func:`fusion.registration.methods.affine_decomposition` needs.
+        as :func:`fusion.registration.analysis.affine_decomposition` needs.
 
     Raises
     ------
@@ -485,7 +519,7 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     r"""Exact expected registration MSE (m²) of one method under white noise ``sigma`` (eq. reg-mse).
 
     :math:`E[\mathrm{MSE}] = \frac1K\sum_k (b_k^2 + \sigma^2\lVert a_k\rVert^2)` by superposition
-    (:func:`fusion.registration.methods.expected_mse`); the Kalman filter assumes the true ``sigma``.
+    (:func:`fusion.registration.analysis.expected_mse`); the Kalman filter assumes the true ``sigma``.
 
     Parameters
     ----------
@@ -494,7 +528,8 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     sigma : float
         Measurement-noise standard deviation (m), > 0.
     t_src, t_dst : array_like, optional
-        Sample times and instants (s); default :func:`instants`.
+        Sample times and instants (s); default :func:`instants`. Refused, named, so far from the flight's start
+        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s).
     q_v, q_a : float
         Kalman tuning.
     kf : mapping, optional
@@ -528,6 +563,7 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     sigma, q_v, q_a = _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
+    _precise_times(t1, t2)
     if delay != 0.0:
         lo, hi = _delay_bounds(t1, t2)
         if not lo <= delay <= hi:
@@ -547,7 +583,8 @@ def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike |
     name : str
         A key of :data:`METHODS`.
     t_src, t_dst : array_like, optional
-        Sample times and instants (s); default :func:`instants`.
+        Sample times and instants (s); default :func:`instants`. Refused, named, so far from the flight's start
+        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s).
     sigma : float
         Noise standard deviation the Kalman methods assume (m); unused by the others.
     q_v, q_a : float
@@ -564,6 +601,7 @@ def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike |
     t1 = d1 if t_src is None else as_times(t_src, "t_src")
     t2 = d2 if t_dst is None else as_times(t_dst, "t_dst")
     sigma, q_v, q_a = _check_args(t1, t2, sigma, q_v, q_a)
+    _precise_times(t1, t2)
     est = register(name, t1, truth(t1), t2, sigma, q_v, q_a)
     return float(np.mean((est - truth(t2)) ** 2))
 
@@ -648,7 +686,6 @@ def two_point_remainder(t_src: ArrayLike, t_dst: ArrayLike) -> FloatArray:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class MonteCarlo:
     """Per-run registration MSE of several methods on the same noisy runs.
 
@@ -666,6 +703,10 @@ class MonteCarlo:
     sigma: float
     runs: int
     seed: int
+
+    __result_spec__ = ResultSpec({"per_run": dict_of(array("runs", bounds=NONNEGATIVE)), "sigma": number(positive=True),
+                                  "runs": integer(2, dim="runs"), "seed": integer(0)})
+    __post_init__ = validated_post_init
 
 
 def _weights(name: str, t_src: FloatArray, t_dst: FloatArray, window: float | None) -> FloatArray:
@@ -714,7 +755,8 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
         Number of runs, >= 2.
     seed : int
     t_src, t_dst : array_like, optional
-        Sample times and instants (s); default :func:`instants`.
+        Sample times and instants (s); default :func:`instants`. Refused, named, so far from the flight's start
+        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s).
     q_v, q_a : float
         Kalman tuning.
     kf : mapping, optional
@@ -752,6 +794,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     sigma, q_v, q_a = _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
+    _precise_times(t1, t2)
     window = _options(kf, window, t2)
     rng = np.random.default_rng(seed)
     z = manoeuvre_truth(t1 - delay, a_after, t_change) + sigma * rng.standard_normal((int(runs), t1.size))
@@ -786,7 +829,8 @@ def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | No
     sigma_filter : float
         Noise level the Kalman methods assume (m), > 0; unused by the others.
     t_src, t_dst : array_like, optional
-        Sample times and instants (s); default :func:`instants`.
+        Sample times and instants (s); default :func:`instants`. Refused, named, so far from the flight's start
+        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s).
     q_v, q_a : float
         Kalman tuning.
     kf : mapping, optional
@@ -803,12 +847,12 @@ def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | No
     t1 = d1 if t_src is None else as_times(t_src, "t_src")
     t2 = d2 if t_dst is None else as_times(t_dst, "t_dst")
     sf, q_v, q_a = _check_args(t1, t2, sf, q_v, q_a)
+    _precise_times(t1, t2)
     dec = reg.affine_decomposition(registrar(name, t1, t2, sf, q_v, q_a, kf=kf), truth(t1))
     return float(np.mean((dec.f0 - truth(t2)) ** 2)), float(np.mean(np.sum(dec.A**2, axis=1)))
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class FusionRuns:
     """Per-run MSE (m²) of sensor 2 alone and of its fusion with sensor 1 registered several ways.
 
@@ -831,6 +875,12 @@ class FusionRuns:
     sigma: float
     runs: int
     seed: int
+
+    __result_spec__ = ResultSpec({"alone": array("runs", bounds=NONNEGATIVE),
+                                  "unregistered": array("runs", bounds=NONNEGATIVE),
+                                  "fused": dict_of(array("runs", bounds=NONNEGATIVE)), "sigma": number(positive=True),
+                                  "runs": integer(2, dim="runs"), "seed": integer(0)})
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()

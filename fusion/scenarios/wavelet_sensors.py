@@ -42,11 +42,14 @@ from typing import Any
 import numpy as np
 
 from fusion._frozen import constant, frozen_arrays
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, text,
+                             tuple_of, validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
 from fusion._validation import LOOP_STEP, count_ceiling, distinct, loop_work, seeds as check_seeds
 from fusion.readings import wavelet as wv
+from fusion.scenarios._wavelet_relations import MECHANISM_ERRORS, cases_relation, configs_relation
 
 __all__ = ["CONFIGS", "Signal", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
            "measurand", "error_metrics", "signal_study", "seed_study", "mechanism_study", "variance_study"]
@@ -105,7 +108,6 @@ def _signal(kind: object, name: str = "kind") -> Signal:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class SignalStudy:
     r"""The lecture's reconstruction over signals, threshold rules and normalisers (:func:`signal_study`).
 
@@ -138,6 +140,15 @@ class SignalStudy:
     sigma: np.ndarray
     length: int
 
+    __result_spec__ = ResultSpec(
+        {"cases": dict_of(dict_of(instance(Mapping, np.ndarray)), key=tuple),
+         "truth": dict_of(array("sensors", "I")), "raw0": dict_of(array("sensors", "I")),
+         "signals": tuple_of(instance(Signal)), "modes": tuple_of(text()), "normalisers": tuple_of(text()),
+         "runs": integer(1, dim="runs"), "seed": integer(0), "gains": array("sensors", bounds=NONNEGATIVE),
+         "sigma": array("sensors", bounds=NONNEGATIVE), "length": integer(1, dim="I")},
+        relations=(same_keys("signals", "truth", "raw0"), cases_relation))
+    __post_init__ = validated_post_init
+
 
 @dataclass(frozen=True)
 @frozen_arrays
@@ -163,7 +174,6 @@ class SeedStudy:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class MechanismStudy:
     r"""Bias, correlation, wavelet settings and the order of the steps (:func:`mechanism_study`).
 
@@ -221,9 +231,26 @@ class MechanismStudy:
     configs: tuple[Mapping[str, Any], ...]
     kind: Signal
 
+    __result_spec__ = ResultSpec(
+        {"labels": tuple_of(text()),
+         "err": dict_of(dict_of(array("runs", "sensors", bounds=NONNEGATIVE), required=MECHANISM_ERRORS)),
+         "evar": dict_of(dict_of(array("runs", "sensors", bounds=NONNEGATIVE), required=MECHANISM_ERRORS[:3])),
+         "stats": dict_of(dict_of(instance(np.ndarray, float, np.floating))),
+         "bias_share": array("sensors", bounds=NONNEGATIVE), "bias_share_rec": array("sensors", bounds=NONNEGATIVE),
+         "corr": array("sensors", "sensors"), "corr_random": array("sensors", "sensors"),
+         "mean_offdiag_corr": number(nonnegative=False), "mean_offdiag_corr_random": number(nonnegative=False),
+         "bias_curve": array("sensors", "I"), "rms_bias": array("sensors", bounds=NONNEGATIVE),
+         "bias_spectrum": tuple_of(tuple_of(number(positive=True), number(bounds=(0.0, 1.0)))),
+         "bias_share_period": dict_of(number(bounds=(0.0, 1.0)), key=int),
+         "tone_bands": dict_of(array("bands", bounds=(0.0, 1.0)), key=int),
+         "runs": integer(1, dim="runs"), "seed": integer(0), "gains": array("sensors", bounds=NONNEGATIVE),
+         "sigma": array("sensors", bounds=NONNEGATIVE), "configs": tuple_of(instance(Mapping)),
+         "kind": instance(Signal)},
+        relations=(same_keys("labels", "err", "evar", "stats"), configs_relation))
+    __post_init__ = validated_post_init
+
 
 @dataclass(frozen=True)
-@frozen_arrays
 class VarianceStudy:
     r"""The lecture's step 3 under each reading of the variance of the weights (:func:`variance_study`).
 
@@ -268,6 +295,21 @@ class VarianceStudy:
     sigma: np.ndarray
     mode: str
     normaliser: str
+
+    __result_spec__ = ResultSpec(
+        {"readings": tuple_of(text()), "err": dict_of(array("runs", "sensors", bounds=NONNEGATIVE)),
+         "evar": dict_of(array("runs", "sensors", bounds=NONNEGATIVE)),
+         "fused_mse": dict_of(array("runs", bounds=NONNEGATIVE)),
+         "raw": array("runs", "sensors", bounds=NONNEGATIVE), "raw_evar": array("runs", "sensors", bounds=NONNEGATIVE),
+         "denoised": array("runs", "sensors", bounds=NONNEGATIVE),
+         "denoised_evar": array("runs", "sensors", bounds=NONNEGATIVE),
+         "w_final": dict_of(array("sensors", bounds=(0.0, 1.0))), "w_spread": dict_of(number()),
+         "w_true": array("sensors", bounds=(0.0, 1.0)), "window": integer(1), "runs": integer(1, dim="runs"),
+         "seed": integer(0), "gains": array("sensors", bounds=NONNEGATIVE),
+         "sigma": array("sensors", bounds=NONNEGATIVE),
+         "mode": text(), "normaliser": text()},
+        relations=(same_keys("readings", "err", "evar", "fused_mse", "w_final", "w_spread"),))
+    __post_init__ = validated_post_init
 
 
 def config_label(cfg: dict[str, Any]) -> str:

@@ -70,10 +70,10 @@ CRITERIA_NETWORKS = (Network.UNEQUAL, Network.NON_GAUSSIAN, Network.CHAIN, Netwo
 _PMSE = "per-run squared position error averaged over the nodes (m²)"
 
 
-def _one_frame(study: NetworkStudy) -> NetworkScenario:
-    instance_of(study, NetworkStudy, "study")
+def _one_frame(study: NetworkStudy, name: str = "study") -> NetworkScenario:
+    instance_of(study, NetworkStudy, name)
     if study.scenario.frames != 1:
-        raise ValueError(f"study must be of a network with one frame (its later local posteriors are not kept), got "
+        raise ValueError(f"{name} must be of a network with one frame (its later local posteriors are not kept), got "
                          f"{study.scenario.frames} frames")
     return study.scenario
 
@@ -326,10 +326,20 @@ def _networks(studies: object, labels: object, reason: object) -> str:
     mapping_of(studies, "studies", "NetworkStudy", values=NetworkStudy, maker="premise_study")
     _known_networks(studies)  # type: ignore[arg-type]  # issue 35: a study under an unknown key was left out silently
     mapping_of(labels, "labels", "column label", values=str)
+    seen: dict[str, str] = {}
     for key in CRITERIA_NETWORKS:
-        _key(studies, key)  # type: ignore[arg-type]
+        _one_frame(_key(studies, key), f"studies[{shown(key)}]")  # type: ignore[arg-type]  # fuzz 24b WN2: by its key
         if key not in labels:  # type: ignore[operator]
             raise ValueError(f"labels must hold the network {shown(key)}, got {sorted(map(str, labels))}")  # type: ignore[call-overload]
+        # the labels are the tables' column headers (fuzz 24b LB): a repeated one would put one network's numbers
+        # under another's header and drop a column, an empty one would head a column with nothing
+        label = labels[key]  # type: ignore[index]
+        if not label.strip():
+            raise ValueError(f"labels[{shown(key)}] is empty: a column label is needed")
+        if label in seen:
+            raise ValueError(f"labels must not repeat a label: labels[{shown(seen[label])}] and labels[{shown(key)}] "
+                             f"are both {shown(label)} (each labels one network's column)")
+        seen[label] = key
     return _enough_runs({k: studies[k] for k in CRITERIA_NETWORKS}, reason)  # type: ignore[index]
 
 
@@ -337,8 +347,10 @@ def _networks(studies: object, labels: object, reason: object) -> str:
 _on_networks = with_sections(raises="""TypeError
     ``studies`` or ``labels`` not a mapping, a study not a NetworkStudy, a label or ``reason`` not a str.
 ValueError
-    ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`, ``studies`` with a key that is not a
-    network of :data:`~fusion.book.chapters.chernoff.PREMISE_LABELS`, or a network of fewer than
+    ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`, two of these networks with one label
+    or one with an empty label (the labels head the tables' columns), ``studies`` with a key that is not a
+    network of :data:`~fusion.book.chapters.chernoff.PREMISE_LABELS`, a study of these networks of several frames
+    (or, under a key of ``ORACLE_NETWORKS``, of several exchanges), or a network of fewer than
     :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 
 
@@ -360,7 +372,7 @@ def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         Network key -> study (:func:`fusion.book.chapters.chernoff.premise_study`); the one-frame networks of
         :data:`CRITERIA_NETWORKS` are read.
     labels : dict
-        Network key -> column label.
+        Network key -> column label: non-empty, one label per network read.
     reason : str
         Why fewer than 100 runs are enough, when they are (rule R4; tests of small studies).
 
@@ -411,7 +423,7 @@ def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
     studies : dict
         As in :func:`baseline_table`.
     labels : dict
-        Network key -> column label.
+        Network key -> column label, as in :func:`baseline_table`.
     reason : str
         As in :func:`baseline_table`.
 

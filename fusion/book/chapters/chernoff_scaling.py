@@ -355,7 +355,7 @@ class ScalingStudy:
     Attributes
     ----------
     rs : tuple of int
-        Importance samples per problem.
+        Importance samples per problem, increasing (the glue's smallest and largest R are its ends).
     eps_err : ndarray, shape (len(rs), runs)
         :math:`\|\hat\varepsilon^* - \varepsilon^*\|_1` per problem: the exact minimiser of :math:`\hat J` on R samples
         against the closed-form-exact minimiser of :math:`\log Z` (local Gaussians,
@@ -398,7 +398,10 @@ class ScalingStudy:
 
 
 def _scaling_relation(values: dict[str, Any], cls: str) -> None:
-    """One row of eps_err per R, one column per run."""
+    """One row of eps_err per R, one column per run; ``rs`` increasing (the glue reads its ends as the smallest and
+    the largest R)."""
+    if any(b <= a for a, b in zip(values["rs"], values["rs"][1:])):
+        raise ValueError(f"{cls}.rs must be increasing (distinct sizes in order), got {values['rs']}")
     if values["eps_err"].shape != (len(values["rs"]), values["runs"]):
         raise ValueError(f"{cls}.eps_err must have shape (len(rs), runs) = ({len(values['rs'])}, {values['runs']}), "
                          f"got {values['eps_err'].shape}")
@@ -488,7 +491,8 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
     ----------
     seed : int
     rs : tuple of int
-        Importance sample sizes R: at least two (the slope in R), distinct, each >= 2.
+        Importance sample sizes R: at least two (the slope in R), distinct, each >= 2; taken in increasing order
+        (problem k at size R draws from ``SeedSequence([seed, R])`` whatever the order).
     n : int
     runs : int
 
@@ -509,7 +513,7 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
     """
     seed = check_seed(seed)
     runs, n = count(runs, "runs", minimum=2), count(n, "n", minimum=2)
-    rs = tuple(distinct(counts(rs, "rs", minimum=2), "rs"))
+    rs = tuple(sorted(distinct(counts(rs, "rs", minimum=2), "rs")))  # fuzz 24b OR1: the glue's lo/hi follow R
     if len(rs) < 2:
         raise ValueError(f"rs must hold at least two sample sizes (the slope of the error in R needs two), got {rs}")
     _problem_budget(n, runs, max(rs), ("n", "runs", "rs"), square=7 * runs)

@@ -293,7 +293,10 @@ def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4,
     dict
         ``<prefix>_stat`` ("mean" or "median"), ``<prefix>_d``, ``<prefix>_lo``, ``<prefix>_hi``,
         ``<prefix>_med`` (median difference), ``<prefix>_won`` (share of runs with a < b), ``<prefix>_runs``, and
-        ``<prefix>_region`` with ``relative_margin``.
+        ``<prefix>_region`` with ``relative_margin``. The statistic and its interval follow the rulebook's one tie
+        rule (relative round-off, ``fusion.book.rulebook``): differences within round-off of the values' magnitude
+        are ties, so values offset far beyond their differences (1e12 + x against 1e12 + x + 0.3) give
+        ``_d = _lo = _hi = 0`` beside the raw ``_med`` and ``_won``; a shift far from the data is not unit-free.
 
     Raises
     ------
@@ -326,6 +329,19 @@ def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4,
 # ---------------------------------------------------------------------------------------------- step H: SNIS bias
 
 
+def _snis_relation(values: dict[str, Any], cls: str) -> None:
+    """The table's rows are those of the exponents of ``delta`` (at the table's 4 decimals), each at the same sizes
+    R: glue reads the rows of ω* and of the far exponent by key."""
+    t = values["table"]
+    want = sorted({rounded(float(w), 4) for w in values["delta"]})
+    have = sorted(set(map(float, t["ω"])))
+    if have != want:
+        raise ValueError(f"{cls}.table must hold the rows of the exponents of {cls}.delta ({want}), got ω {have}")
+    sizes = {w: sorted(map(int, t.loc[t["ω"] == w, "R"])) for w in want}
+    if len({tuple(r) for r in sizes.values()}) > 1:
+        raise ValueError(f"{cls}.table must hold every exponent at the same sizes R, got {sizes}")
+
+
 @dataclass(frozen=True)
 class SnisBiasStudy:
     r"""Step H's self-normalised mean on the two-mixture example: delta method against simulation.
@@ -335,7 +351,8 @@ class SnisBiasStudy:
     table : DataFrame
         One row per exponent ω and R: the predicted :math:`R\,(c\cdot\hat c)` = :math:`|c|` and the measured
         :math:`R` times the mean error along :math:`\hat c = c/|c|`, with its 95 % interval, and the measured
-        :math:`R` times the mean error across :math:`\hat c` (zero to first order).
+        :math:`R` times the mean error across :math:`\hat c` (zero to first order). Rows identified by (ω, R), read
+        by key: no key twice, the exponents those of ``delta``, each at the same sizes R.
     delta : dict
         ω -> :class:`SnisDelta`.
     total : int
@@ -346,9 +363,11 @@ class SnisBiasStudy:
     delta: Mapping[float, SnisDelta]
     total: int
 
-    __result_spec__ = ResultSpec({"table": table("ω", "R", "blocks", C_NORM, ALONG, ALONG_LOW, ALONG_HIGH),
+    __result_spec__ = ResultSpec({"table": table("ω", "R", "blocks", C_NORM, ALONG, ALONG_LOW, ALONG_HIGH,
+                                                 key=("ω", "R")),
                                   "delta": dict_of(instance(SnisDelta), key=(float, int, np.number)),
-                                  "total": integer(1)})
+                                  "total": integer(1)},
+                                 relations=(lambda v, cls: _snis_relation(v, cls),))
     __post_init__ = validated_post_init
 
 
@@ -363,8 +382,9 @@ class SnisBiasStudy:
         t = self.table
         inside = (t[ALONG_LOW] <= t[C_NORM]) & (
             t[C_NORM] <= t[ALONG_HIGH])
-        first = t[t["ω"] == rounded(w_star)].iloc[0]  # the smallest R: the most blocks
-        last = t[t["ω"] == rounded(w_far)].iloc[-1]  # the largest R
+        # rows read by key (fuzz 24b DR): the exponent's rows in increasing R, whatever the table's order
+        first = t[t["ω"] == rounded(w_star)].sort_values("R").iloc[0]  # the smallest R: the most blocks
+        last = t[t["ω"] == rounded(w_far)].sort_values("R").iloc[-1]  # the largest R
         return {"chf_snis_total": int(self.total), "chf_snis_rs": ", ".join(str(r) for r in sorted(set(t["R"]))),
                 "chf_snis_omega_star": rounded(star), "chf_snis_far_omega": rounded(w_far, 2),
                 "chf_snis_c_star": rounded(float(np.linalg.norm(d.c))),
@@ -424,7 +444,8 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
     Parameters
     ----------
     far_omega : float
-        The second exponent of A, in [0, 1].
+        The second exponent of A, in [0, 1], other than the exact :math:`\omega^*` at the table's 4 decimals (the
+        table's rows are keyed by ω).
 
     Returns
     -------
@@ -435,6 +456,9 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
     total, rs = _pool_blocks(rng, rs, total)
     far_omega = unit_scalar(far_omega, "far_omega")
     ref = toy_reference()
+    if rounded(far_omega, 4) == rounded(ref.omega_star, 4):  # fuzz 24b OR2: the rows of both exponents keyed alike
+        raise ValueError(f"far_omega must differ from the exact ω* = {ref.omega_star:.4f} at 4 decimals (the table's "
+                         f"rows are keyed by ω), got {shown(far_omega)}")
     lg_grid = _logpdf(ref.proposal, ref.points)
     xs = mx.gm_sample(ref.proposal, rng, total)
     L, lg = _log_densities(list(ref.gms), xs), _logpdf(ref.proposal, xs)
@@ -862,14 +886,15 @@ class ChosenBiasStudy:
         One row per R: blocks, :math:`R` times the mean error along :math:`\hat c` with the exponent fixed at the
         exact :math:`\omega^*` (with its 95 % interval: at large R the few blocks leave it wide) and with
         :math:`\hat\omega` minimising :math:`\hat J` on the block, the extra term (their paired difference, with its
-        95 % interval) and the mean :math:`|\hat\omega - \omega^*|`.
+        95 % interval) and the mean :math:`|\hat\omega - \omega^*|`. Rows identified by R, read by key: no R twice.
     total : int
     """
 
     table: pd.DataFrame
     total: int
 
-    __result_spec__ = ResultSpec({"table": table("R", "blocks", "extra", EXTRA_LOW, EXTRA_HIGH, "mean |ω − ω*|"),
+    __result_spec__ = ResultSpec({"table": table("R", "blocks", "extra", EXTRA_LOW, EXTRA_HIGH, "mean |ω − ω*|",
+                                                 key=("R",)),
                                   "total": integer(1)})
     __post_init__ = validated_post_init
 
@@ -883,7 +908,7 @@ class ChosenBiasStudy:
     def glue(self) -> GlueValues:
         """Glue ``chf_chosen_*``: sizes, and at the smallest and the chapter's (largest) R the extra term with its
         interval; how many rows' intervals exclude zero."""
-        t = self.table
+        t = self.table.sort_values("R")  # rows read by key (fuzz 24b DR): increasing R, whatever the table's order
         first, last = t.iloc[0], t.iloc[-1]
         out: dict[str, Any] = {"chf_chosen_total": int(self.total), "chf_chosen_rs": ", ".join(str(int(r)) for r in t["R"]),
                                "chf_chosen_rows": int(len(t)),

@@ -25,7 +25,7 @@ from fusion._validation import (as_array, as_times, distinct, instance_of, one_o
 from fusion._validation import template as format_template
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues, _glued_cell
-from fusion.book.tables import integral_index
+from fusion.book.tables import _frame, integral_index
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 # the robustness studies (and the paired interval they share with the benchmark) live in their own module
@@ -165,6 +165,7 @@ def _sweep_frame(frame: object, name: str, maker: str) -> pd.DataFrame:
     if unknown:
         raise ValueError(f"{name} has columns that are not registration methods: {[shown(c) for c in unknown[:5]]} "
                          f"(it must be the output of {maker})")
+    _frame(frame, name, list(dict.fromkeys(frame.columns)), maker=maker, unique=True)  # one row, one column each
     as_array(frame.to_numpy(), name, nonnegative=True)
     if np.any(as_array(frame.index, f"{name}.index") <= 0):
         raise ValueError(f"{name}.index must hold positive values (the output of {maker}), got {list(frame.index)[:5]}")
@@ -237,7 +238,9 @@ def _record_times(t1: ArrayLike, t2: ArrayLike) -> tuple[np.ndarray, np.ndarray]
 
     ``t1``: at least three strictly increasing samples (the three-point formula's nodes); ``t2``: strictly increasing
     instants within the record, ``t1[0] <= t2 <= t1[-1]`` (an instant outside is an extrapolation, which neither
-    the cost count nor the noise gains of the record describe).
+    the cost count nor the noise gains of the record describe), and neither so far from the flight's start t = 0
+    that the true positions there lose the precision of the registration errors (``sc._precise_times``: about
+    6e4 s at the source's 2 s sampling).
 
     Parameters
     ----------
@@ -252,13 +255,30 @@ def _record_times(t1: ArrayLike, t2: ArrayLike) -> tuple[np.ndarray, np.ndarray]
     Raises
     ------
     ValueError
-        Too few samples, times not strictly increasing, or an instant outside ``[t1[0], t1[-1]]``, naming the argument.
+        Too few samples, times not strictly increasing, an instant outside ``[t1[0], t1[-1]]``, or times too far from
+        the flight's start for the precision, naming the argument.
     """
     t1, t2 = as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # strictly increasing times, named
     if t2[0] < t1[0] or t2[-1] > t1[-1]:
         raise ValueError(f"t2 must lie within the record of t1, [{t1[0]:g}, {t1[-1]:g}] s, got instants from "
                          f"{t2[0]:g} to {t2[-1]:g} s (an extrapolation)")
+    sc._precise_times(t1, t2, "t1", "t2")  # times whose positions lose the precision (fuzz 24d C): named
     return t1, t2
+
+
+def _scenario_instants(t2: ArrayLike, min_len: int, why: str) -> np.ndarray:
+    """Instants ``t2`` that a function registers onto the scenario's sensor-1 samples (``sc.instants()``), checked
+    by name (fuzz 24d W, D3: refused inside by ``monte_carlo``'s names, or extrapolated 1e6 s past the record to a
+    gain of 9e22): at least ``min_len`` strictly increasing instants (``why`` says what needs them) within the
+    record of those samples."""
+    t2 = as_times(t2, "t2")
+    if t2.size < min_len:
+        raise ValueError(f"t2 must hold at least {min_len} instants ({why}), got {t2.size}")
+    s1 = sc.instants()[0]
+    if t2[0] < s1[0] or t2[-1] > s1[-1]:
+        raise ValueError(f"t2 must lie within the record of the scenario's sensor-1 samples, [{s1[0]:g}, {s1[-1]:g}] "
+                         f"s, onto which it is registered; got instants from {t2[0]:g} to {t2[-1]:g} s")
+    return t2
 
 
 def _least_squares_windows(t1: np.ndarray, t2: np.ndarray, name: str = "t2") -> None:
@@ -411,7 +431,8 @@ def fig4_figure(mc: sc.MonteCarlo, exact: Mapping[str, float], axis_max: float) 
     mc : MonteCarlo
         Runs holding both Fig. 4 methods.
     exact : mapping
-        Exact expected MSE (m²) of each method (dotted lines).
+        Exact expected MSE (m²) of each method (dotted lines); as for :func:`mc_table`, its pairing with ``mc`` is
+        the caller's.
     axis_max : float
         Top of the published y-axis (m², dashed line).
 
@@ -455,7 +476,9 @@ def mc_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFrame:
     mc : MonteCarlo
         Simulated runs of every method.
     exact : mapping of str to float
-        Exact expected MSE (m²) of each method.
+        Exact expected MSE (m²) of each method. The mapping does not record its noise level or instants:
+        pairing it with ``mc`` (``mc.sigma``, the default instants) is the caller's, and a mapping of another
+        noise level is shown as given, its mismatch appearing as a large ``difference / s.e.`` (fuzz 24d D1).
 
     Returns
     -------
@@ -759,7 +782,7 @@ def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFra
     mc : MonteCarlo
         Runs holding every method of :data:`CLASSES`.
     exact : mapping
-        Exact expected MSE (m²) of each method.
+        Exact expected MSE (m²) of each method (as for :func:`mc_table`, its pairing with ``mc`` is the caller's).
 
     Returns
     -------
@@ -865,11 +888,14 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> Gl
     Parameters
     ----------
     exact : mapping
-        Method -> exact expected MSE (m²), from :func:`fusion.scenarios.time_registration.expected`.
+        Method -> exact expected MSE (m²), from :func:`fusion.scenarios.time_registration.expected`, quoted as given:
+        the mapping does not record its noise level, and pairing it with ``sigma`` is the caller's (as for
+        :func:`mc_table`, :func:`benchmark_table` and :func:`fig4_figure`).
     sigma : float
-        Measurement noise SD (m).
+        Measurement noise SD (m); the noise gains do not depend on it (fixed weights).
     t2 : array_like
-        Registration instants (s); the extrapolation gains use the instants from the second on.
+        Registration instants (s), registered onto the scenario's sensor-1 samples: within their record
+        (1 s to 39 s); the extrapolation gains use the instants from the second on.
 
     Returns
     -------
@@ -882,7 +908,8 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> Gl
         ``exact`` is not a mapping, or ``sigma`` not a number.
     ValueError
         ``exact`` lacks a method quoted or holds an MSE that is not a finite number >= 0; ``sigma`` is not a valid
-        standard deviation; ``t2`` holds fewer than two increasing instants.
+        standard deviation; ``t2`` holds fewer than two increasing instants or lies outside the record of the
+        scenario's sensor-1 samples (an extrapolation far past the record gave gains of 1e22).
 
     References
     ----------
@@ -891,9 +918,9 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> Gl
     _needed = (TWO, IMPROVED, RegMethod.LEAST_SQUARES, RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED,
                RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.QLS_NEXT, RegMethod.QLS_CAUSAL)
     exact = _exact_mses(exact, "exact", _needed)
-    sigma, _ = std_scalar(sigma, "sigma"), as_times(t2, "t2", min_len=2)
+    sigma = std_scalar(sigma, "sigma")
+    T2 = _scenario_instants(t2, 2, "the extrapolation gains use the instants from the second on")
     SIGMA = sigma
-    T2 = np.asarray(t2, dtype=float)
     return {"reg_exact_two": exact[TWO], "reg_exact_impr": exact[IMPROVED],
 "reg_exact_ls": exact[RegMethod.LEAST_SQUARES],
             "reg_exact_kf": exact[RegMethod.KALMAN_PREDICT], "reg_exact_causal": exact[CAUSAL_IMPROVED],
@@ -928,7 +955,8 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
     TypeError
         ``bench`` is not a DataFrame.
     ValueError
-        ``bench`` lacks a row (class, method) or a column read here, or a cell read here is not a finite number
+        ``bench`` lacks a row (class, method) or a column read here, holds a row or a column read more than once,
+        or a cell read here is not a finite number
         (an exact MSE not >= 0; TypeError for a non-number).
     """
     instance_of(bench, pd.DataFrame, "bench")
@@ -938,6 +966,7 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
                                                            if c not in bench.columns]
     if missing:
         raise ValueError(f"bench lacks the rows or columns {missing} (it must be the output of benchmark_table)")
+    _frame(bench, "bench", (EXACT_MSE, CI_LOW, CI_HIGH), maker="benchmark_table", unique=True)  # fuzz 24d T
     off = bench.loc[BenchClass.OFFLINE]
     rt_ = bench.loc[BenchClass.REAL_TIME]
 

@@ -15,7 +15,7 @@ from fusion._shown import shown
 from fusion._validation import (as_array, as_times, distinct, instance_of, loop_work, one_of, scalar, sequence,
                                 std_scalar)
 from fusion.book.style import METHOD_LABELS
-from fusion.book.tables import integral_index
+from fusion.book.tables import _frame, integral_index
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 
@@ -98,7 +98,8 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
     TypeError
         ``closed`` is not a DataFrame, or its ``b (m²)`` or ``g`` column holds a value that is not a number.
     ValueError
-        ``closed`` lacks the columns ``b (m²)`` and ``g``, holds fewer than two methods, repeats a method, or holds
+        ``closed`` lacks the columns ``b (m²)`` and ``g`` (or holds one twice), holds fewer than two methods, repeats
+        a method or a row that is not a method of ``METHODS``, or holds
         a ``b`` or ``g`` that is not finite (a crossing at σ* = NaN or inf) or negative (``b`` is a squared bias and
         ``g`` a sum of squared weights: a negative one is no :func:`closed_form_table`).
     """
@@ -110,6 +111,9 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
     if closed.index.has_duplicates:
         raise ValueError(f"closed must not repeat a method (one row each), got "
                          f"{[str(k) for k in closed.index[closed.index.duplicated()].unique()[:5]]} twice")
+    # the rows are methods (fuzz 24d T5: an unknown row was listed as a method better below σ*)
+    _frame(closed, "closed", (B_OFFSET, "g"), maker="closed_form_table", unique=True, rows=sc.METHODS,
+           rows_are="a method of METHODS")
     b_all = as_array(closed[B_OFFSET].to_numpy(), f"closed[{B_OFFSET!r}]", nonnegative=True, subnormal=True)
     g_all = as_array(closed["g"].to_numpy(), "closed['g']", nonnegative=True, subnormal=True)
     names = list(closed.index)
@@ -153,7 +157,8 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
     TypeError
         ``crossings`` is not a DataFrame, or ``pairs`` not a sequence of pairs.
     ValueError
-        ``crossings`` lacks the columns of :func:`crossing_table` or holds a σ* that is not a finite number >= 0
+        ``crossings`` lacks the columns of :func:`crossing_table`, holds a pair (row) or a column read more than
+        once, or holds a σ* that is not a finite number >= 0
         (TypeError for a non-number), or a pair of ``pairs`` does not cross at a positive noise level (or is named
         in the other order).
     """
@@ -168,6 +173,12 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
         if isinstance(p, (str, bytes)) or not isinstance(p, Sequence) or len(p) != 2:
             raise TypeError(f"pairs[{i}] must be a (method, method) pair, got {shown(p)}")
     key = list(zip(crossings[BETTER_BELOW], crossings[BETTER_ABOVE]))
+    if len(crossings):  # one column each, one row a pair (fuzz 24d T); an empty table is crossing_table's too
+        _frame(crossings, "crossings", (BETTER_BELOW, BETTER_ABOVE, SIGMA_STAR), maker="crossing_table", unique=True)
+    again = next((p for i, p in enumerate(key) if p in key[:i]), None)
+    if again is not None:
+        raise ValueError(f"crossings holds the pair {shown(again)} more than once (crossing_table gives one row "
+                         f"a pair)")
     missing = [p for p in items if tuple(p) not in key]
     if missing:
         raise ValueError(f"pairs: crossings holds no crossing for {missing}")
@@ -184,7 +195,7 @@ def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_
     The scenario of :func:`fusion.scenarios.time_registration.instants` (sensor 1 every 2 s from 1 s, the instants
     every 5 s from 3 s, the source's quadratic truth) run for ``horizon`` s instead of 40. Each method is affine in
     the samples, :math:`\hat x(t_k) = f_{0,k} + \mathbf a_k^\top\mathbf v`
-    (:func:`fusion.registration.methods.affine_decomposition`), so its error at :math:`t_k` has bias
+    (:func:`fusion.registration.analysis.affine_decomposition`), so its error at :math:`t_k` has bias
     :math:`f_{0,k} - x(t_k)` and variance :math:`\sigma^2\lVert\mathbf a_k\rVert^2` exactly.
 
     Parameters

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import decimal
 import math
+from collections import UserList
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
@@ -36,6 +37,9 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- evidence
+#: Relative tolerance of a published value against its rounding to the printed decimals: float32's epsilon.
+_F32 = float(np.finfo(np.float32).eps)
+
 def _run_count(runs: Any) -> int | None:
     """A Monte-Carlo run count (an int >= 1) or None (an exact value); TypeError/ValueError naming ``runs``."""
     if runs is None:
@@ -87,9 +91,10 @@ class PublishedValues:
     decimals : int or sequence of int
         Printed number of decimals of each published value: integers from 0 to 17 (the ceiling of a
         number of decimals, ``fusion._validation.COUNT_CEILINGS``), one or one per value. A published value
-        has at most its printed decimals (``round(p, decimals) == p``): ``1.25`` with 1 decimal is refused, since
-        R1 would then compare ours with a rounding of the published value (1.2) and a slip in ``decimals``
-        would decide the status.
+        has at most its printed decimals (``round(p, decimals) == p`` up to float32 round-off, a relative
+        :math:`2^{-23}`, so that a float32, ``0.1 * 3`` or ``12.3 / 100`` is the decimal it prints to): ``1.25``
+        with 1 decimal is refused, since R1 would then compare ours with a rounding of the published value (1.2)
+        and a slip in ``decimals`` would decide the status.
     unit : str
     runs : int or None
         Monte-Carlo runs our values were computed from (keyword; ``None``, the default, for an exact
@@ -128,7 +133,8 @@ class PublishedValues:
             raise ValueError(f"decimals must hold one number or one per published value ({pub.size}), got {len(dec_l)}")
         _text(unit, "unit")
         dec = np.broadcast_to(np.array(dec_l, dtype=int), pub.shape)
-        longer = [i for i, (p, d) in enumerate(zip(pub.tolist(), dec.tolist())) if round(p, d) != p]
+        # a real extra decimal, not the binary round-off of the printed decimal (float32, 0.1 * 3, 12.3 / 100: fuzz 24e F1)
+        longer = [i for i, (p, d) in enumerate(zip(pub.tolist(), dec.tolist())) if abs(round(p, d) - p) > _F32 * abs(p)]
         if longer:  # R1 would compare ours with the published value rounded (fuzz 24a D5)
             i = longer[0]
             raise ValueError(f"published[{i}] = {shown(float(pub[i]))} has more decimals than decimals[{i}] = "
@@ -253,8 +259,8 @@ class Comparison:
         if av.size < MIN_RUNS and not reason:
             raise FewRunsError(f"a and b hold {av.size} runs < {MIN_RUNS}: give more runs or a reason (the argument "
                                "reason: why fewer runs are enough)", av.size, MIN_RUNS)
-        if isinstance(conditions, list):  # a list pair is a pair (the chapter results store lists as tuples)
-            conditions = tuple(conditions)
+        if isinstance(conditions, (list, UserList)):  # a list pair is a pair (the chapter results store lists as
+            conditions = tuple(conditions)             # tuples); so is any list-like (the one sequence rule)
         if not (isinstance(conditions, tuple) and len(conditions) == 2 and all(isinstance(c, str) for c in conditions)):
             raise TypeError(f"conditions must be a pair of str, got {shown(conditions)}")
         if conditions[0] != conditions[1]:  # R6

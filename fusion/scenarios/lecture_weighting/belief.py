@@ -13,8 +13,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._results import ResultSpec, array, arrays, number, trusted, validated_post_init
-from fusion._frozen import constant, frozen_arrays
+from fusion._results import (NONNEGATIVE, ResultSpec, array, arrays, dict_of, instance, mask, number, trusted,
+                             tuple_of, validated_post_init)
+from fusion._frozen import constant
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
 from fusion._validation import distinct, loop_work
@@ -75,7 +76,6 @@ class PerronStats:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class BeliefStudy:
     """Experiment E2.4: belief-degree (Perron eigenvector) weights (:func:`belief_study`).
 
@@ -129,6 +129,19 @@ class BeliefStudy:
     perron: Mapping[str, PerronStats]
     bin_lam: tuple[float, float]
     bin_w: np.ndarray
+
+    __result_spec__ = ResultSpec(
+        {"base": array("n"), "deltas": array("D"), "W": array("D", "n", bounds=NONNEGATIVE), "unit_k_maxdiff": number(),
+         "unit_f_maxdiff": number(), "unit_fconv_maxdiff": number(), "unit_f_valdiff": number(nonnegative=False),
+         "eig_w": array("snapshots", "n", bounds=NONNEGATIVE), "row_w": array("snapshots", "n", bounds=NONNEGATIVE),
+         "rowsum_maxdiff": number(),
+         "rowsum_valdiff_rms": number(), "mse_eig": number(), "mse_row": number(),
+         "sq_eig": array("snapshots", bounds=NONNEGATIVE),
+         "sq_row": array("snapshots", bounds=NONNEGATIVE), "shifted": mask("snapshots"),
+         "perron": dict_of(instance(PerronStats)),
+         "bin_lam": tuple_of(number(nonnegative=False), number(nonnegative=False)),
+         "bin_w": array("n", bounds=NONNEGATIVE)})
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()

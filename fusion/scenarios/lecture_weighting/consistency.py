@@ -5,15 +5,19 @@ from __future__ import annotations
 from dataclasses import dataclass
 from collections.abc import Mapping, Sequence
 from enum import StrEnum
+from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, mask, number, same_keys, text,
+                             tuple_of, validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, window as check_window, work
 from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
 from fusion._frozen import frozen_arrays
+from fusion._shown import shown
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, LECTURE_GUARD_METHODS, AwfMethod, delete_weights
 
 __all__ = [
@@ -138,8 +142,25 @@ class FaultDiagnostics:
     abs_mse: float
 
 
+def _consistency_relation(values: Mapping[str, Any], cls: str) -> None:
+    """A :class:`ConsistencyStudy`: its window within the samples, one fused series per (case, method) and one MSE per
+    method of ``names`` in each case."""
+    first, stop = values["window"]
+    if not first < stop <= values["samples"]:
+        raise ValueError(f"{cls}.window must be (start, stop) with 0 <= start < stop <= {cls}.samples = "
+                         f"{values['samples']}, got {shown((first, stop))}")
+    names = set(values["names"])
+    for case, by_name in values["sq"].items():
+        if set(by_name) != names:
+            raise ValueError(f"{cls}.sq[{shown(case)}] must hold the methods of {cls}.names, got "
+                             f"{shown(sorted(map(str, by_name)), 200)}")
+    want = {(case, name) for case in values["sq"] for name in names}
+    if set(values["out"]) != want:
+        raise ValueError(f"{cls}.out must hold one series per (case, method) of {cls}.sq and {cls}.names, got "
+                         f"{len(values['out'])} keys for {len(want)}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class ConsistencyStudy:
     r"""Experiment E2.3: consistency check + AWF with a fault on one sensor (:func:`consistency_study`).
 
@@ -172,7 +193,7 @@ class ConsistencyStudy:
     index_order : dict
         ``index_order[numbering][case]``: for each numbering (a permutation of :data:`INDEX_ORDERS`), the per-run MSE over the window of the check (lecture estimator, guard
         ``index_guard``) with "adjacent" read as the sensors' index order, for each numbering of
-        :data:`INDEX_ORDERS` that fits the number of sensors.
+        :data:`INDEX_ORDERS` that fits the number of sensors (empty when none fits).
     index_guard : str
     """
 
@@ -195,6 +216,20 @@ class ConsistencyStudy:
     seed: int
     index_order: Mapping[tuple[int, ...], Mapping[FaultCase, np.ndarray]]
     index_guard: str
+
+    __result_spec__ = ResultSpec(
+        {"eps": number(positive=True), "bias": number(nonnegative=False), "x": number(nonnegative=False),
+         "window": tuple_of(integer(0), integer(0)), "out": dict_of(array("runs", "samples"), key=tuple),
+         "mask": dict_of(mask("runs", "samples", "n")), "names": tuple_of(instance(AwfMethod)),
+         "sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE))), "p_excl_fault": number(bounds=(0.0, 1.0)),
+         "p_excl_clean": number(bounds=(0.0, 1.0)), "p_excl_any_clean": number(bounds=(0.0, 1.0)),
+         "ratio": array("R", bounds=NONNEGATIVE), "pdet": array("R", bounds=(0.0, 1.0)),
+         "diag": dict_of(instance(FaultDiagnostics)),
+         "runs": integer(1, dim="runs"), "samples": integer(1, dim="samples"), "seed": integer(0),
+         "index_order": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=tuple, nonempty=False),
+         "index_guard": text()},
+        relations=(same_keys("mask", "sq", "diag"), lambda v, cls: _consistency_relation(v, cls)))
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()

@@ -14,6 +14,8 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
+                             validated_post_init)
 from fusion._frozen import constant, frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
@@ -282,7 +284,6 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class AR1Study:
     r"""AWF under stationary AR(1) noise (:func:`ar1_study`).
 
@@ -315,6 +316,13 @@ class AR1Study:
     runs: int
     seed: int
     variances: np.ndarray
+
+    __result_spec__ = ResultSpec(
+        {"c": number(positive=True), "bound": number(positive=True), "mse_oracle": number(), "mse_centred": number(),
+         "mse_lecture_abs": number(), "mse_mean_of_means": number(), "ratio_lecture": array("n"),
+         "ratio_centred": array("n"), "phi": number(nonnegative=False, bounds=(-1.0, 1.0)), "k": integer(1),
+         "runs": integer(1), "seed": integer(0), "variances": array("n", bounds=NONNEGATIVE)})
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()
@@ -405,8 +413,16 @@ class EstimatorRow:
     p_negative: float
 
 
+def _awf_relation(values: Mapping[str, object], cls: str) -> None:
+    """An :class:`AwfStudy`'s compared k: at most ``k_max``, its index within the k of ``mse``."""
+    n_ks = next(iter(next(iter(values["mse"].values())).values())).size  # type: ignore[attr-defined]
+    if not values["i_compare"] < n_ks:  # type: ignore[operator]
+        raise ValueError(f"{cls}.i_compare must index the {n_ks} k of {cls}.mse, got {values['i_compare']}")
+    if values["k_compare"] > values["k_max"]:  # type: ignore[operator]
+        raise ValueError(f"{cls}.k_compare must be at most {cls}.k_max = {values['k_max']}, got {values['k_compare']}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class AwfStudy:
     r"""Experiment E2.1: the lecture's and the centred variance estimator at several levels X (:func:`awf_study`).
 
@@ -458,6 +474,21 @@ class AwfStudy:
     mean_est: Mapping[tuple[float, str], np.ndarray]
     sd_est: Mapping[tuple[float, str], np.ndarray]
     pneg_est: Mapping[tuple[float, str], np.ndarray]
+
+    __result_spec__ = ResultSpec(
+        {"variances": array("n", bounds=NONNEGATIVE), "rows": tuple_of(instance(EstimatorRow)),
+         "band": dict_of(tuple_of(array("k_max"), array("k_max", bounds=NONNEGATIVE)), key=tuple),
+         "k_compare": integer(1), "i_compare": integer(0),
+         "mse": dict_of(dict_of(array("ks", bounds=NONNEGATIVE)), key=float),
+         "sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float),
+         "err": dict_of(dict_of(array("runs")), key=float), "runs": integer(1, dim="runs"),
+         "k_max": integer(1, dim="k_max"), "seed": integer(0),
+         "sweep": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float), "sd_pred_900": number(),
+         "mean_est": dict_of(array("n"), key=tuple), "sd_est": dict_of(array("n", bounds=NONNEGATIVE), key=tuple),
+         "pneg_est": dict_of(array("n", bounds=(0.0, 1.0)), key=tuple)},
+        relations=(same_keys("mse", "sq", "err"), same_keys("mean_est", "sd_est", "pneg_est"),
+                   lambda v, cls: _awf_relation(v, cls)))
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()

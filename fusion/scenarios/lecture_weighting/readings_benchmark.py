@@ -16,6 +16,7 @@ from fusion._validation import LOOP_STEP, distinct, loop_work, sequence
 from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import instance_of, record, seeds as check_seeds
 from fusion._validation import seed as check_seed
+from fusion._limits import ROUND_OFF_TIE
 from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
 from fusion.readings.robust import robust_fuse
@@ -255,10 +256,21 @@ class SeedStability:
     n_rev: int
 
 
+def _tied_ranks(values: np.ndarray) -> np.ndarray:
+    """Rank 1 for the smallest value; values tied up to round-off (``fusion._limits.ROUND_OFF_TIE``, the
+    rulebook's tie rule) share the best rank of the tie (1, 1, 3): the order of two methods that are one estimator
+    on a scenario is not decided by round-off."""
+    v = np.asarray(values, dtype=float)
+    lower = v[None, :] < v[:, None]
+    tied = np.abs(v[None, :] - v[:, None]) <= ROUND_OFF_TIE * np.maximum(np.abs(v[None, :]), np.abs(v[:, None]))
+    return 1.0 + np.sum(lower & ~tied, axis=1)
+
+
 def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]], n_se: float = 3.0) -> SeedStability:
     r"""How stable the benchmark's orderings are over seeds.
 
-    For each scenario (level, fault): the rank of every method by mean squared error in every seed;
+    For each scenario (level, fault): the rank of every method by mean squared error in every seed (methods
+    whose MSEs are equal up to round-off, the rulebook's tie rule, share the better rank);
     and, for the pairs of methods whose MSEs differ by more than ``n_se`` combined standard errors
     in the first seed, how many change order in the other seeds.
 
@@ -282,7 +294,7 @@ def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]]
     ranks = {}
     for s in scen:
         mses = np.array([[results[(sd, *s)][m].mean() for m in methods] for sd in seeds])
-        ranks[s] = np.array([np.argsort(np.argsort(row, kind="stable"), kind="stable") + 1.0 for row in mses])
+        ranks[s] = np.array([_tied_ranks(row) for row in mses])
     n_sig = n_rev = 0
     for s in scen:
         r0 = results[(seeds[0], *s)]

@@ -492,7 +492,8 @@ def variance_change_study(
     n, K = sig.size, samples
     after_sd: dict[str, np.ndarray] = {}
     for item in changes:
-        if not (isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], str) and isinstance(item[1], Mapping)):
+        if not (isinstance(item, (tuple, list)) and len(item) == 2 and isinstance(item[0], str)  # a list pair too
+                and isinstance(item[1], Mapping)):
             raise ValueError(f"changes must hold (name, {{sensor: SD}}) pairs, got {shown(item)}")
         new = sig.copy()
         for i, v in item[1].items():

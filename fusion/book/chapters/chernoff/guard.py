@@ -16,7 +16,7 @@ from fusion._validation import FloatArray, scalar
 from fusion._counts import sequence
 from fusion.book.tables import rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, RangeBearingScenario, TrackingRun, min_local_ess,
-                                            run_tracking_batch)
+                                            run_tracking_batch, _block_allocation)
 from fusion.book.chapters.chernoff.settings import (ALL_FRAMES, COLLAPSE_FRACTION, STUDY_RUNS, STUDY_WORKERS,
                                                     _check_study, guarded_scenario)
 from fusion.book.chapters.chernoff.tracking import any_collapsed, per_run_mse, per_run_nees
@@ -59,7 +59,7 @@ def guarded_runs(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int,
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``workers`` not an integer.
     ValueError
-        ``runs`` empty or of several scenarios, or ``sc`` not the runs' scenario (but for the guard); ``workers``
+        ``runs`` empty, of several scenarios or holding a run twice, or ``sc`` not the runs' scenario (but for the guard); ``workers``
         below 1 (checked whether or not a run is redone).
     """
     seed = check_seed(seed)
@@ -101,7 +101,7 @@ def guard_values(guarded: list[TrackingRun], sc: RangeBearingScenario) -> GlueVa
     TypeError
         ``sc`` not a RangeBearingScenario or ``guarded`` not a sequence of TrackingRun.
     ValueError
-        ``guarded`` holds no run, runs of several scenarios, or runs of a scenario other than ``sc`` (the guard's
+        ``guarded`` holds no run, a run twice, runs of several scenarios, or runs of a scenario other than ``sc`` (the guard's
         fields aside).
     """
     guarded = _check_study(guarded, sc, name="guarded")
@@ -134,7 +134,8 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     sc : RangeBearingScenario
         Particles per node (thresholds are fractions of them).
     thresholds : tuple of float
-        Other collapse thresholds (fractions of the particles) whose trigger counts are reported (empty: none).
+        Other collapse thresholds (fractions of the particles) whose trigger counts are reported (empty: none); the
+        glue is keyed by position, so a repeated threshold gives the same values under two positions.
 
     Returns
     -------
@@ -157,7 +158,8 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
         ``guarded`` or ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``thresholds``
         not a sequence of numbers.
     ValueError
-        ``guarded`` empty or of several scenarios, ``plain`` not as many runs of the same scenario, ``sc`` not
+        ``guarded`` empty, of several scenarios or holding a run twice, ``plain`` not the same runs (as many, of the same
+        scenario and truths: another seed's runs are refused), ``sc`` not
         their scenario, a threshold not in (0, 1), or fewer than two runs in which the guard did not act.
     """
     thresholds = tuple(scalar(t, f"thresholds[{j}]", 0.0, 1.0, lo_open=True, hi_open=True)
@@ -282,7 +284,8 @@ def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_
     TypeError
         ``sc`` not a RangeBearingScenario; ``seed``, ``runs``, ``n_initial`` or ``workers`` not an integer.
     ValueError
-        ``seed`` negative; ``runs``, ``n_initial`` or ``workers`` below 1.
+        ``seed`` negative; ``runs``, ``n_initial`` or ``workers`` below 1; ``runs`` and ``n_initial`` beyond the
+        memory budget (the particle clouds of a block of runs).
     """
     instance_of(sc, RangeBearingScenario, "sc")
     seed = check_seed(seed)
@@ -292,6 +295,9 @@ def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_
     # the nodes' first update is all that is read: the fusion and the centralised filter run small (they draw from
     # their own streams, after the nodes' weights are computed, so the effective sample sizes do not change)
     one = dataclasses.replace(sc, frames=1, variants=False, readings=False, n_samples=50, n_central=50, em_iterations=1)
+    # the "more particles" design's first update holds n_initial particles per node of a block of runs: refused by
+    # the tracking's memory rule before any run, naming this function's arguments (fuzz 24b SZ2: MemoryError)
+    _block_allocation(dataclasses.replace(one, n_initial=n_initial), runs, "runs, sc.sensors and n_initial")
     designs = {"plain": one, "more particles": dataclasses.replace(one, n_initial=n_initial),
                "guard": dataclasses.replace(one, guard=COLLAPSE_FRACTION)}
     ess, weighted = {}, {}

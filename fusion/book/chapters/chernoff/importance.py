@@ -47,6 +47,10 @@ def _moment_region(covs: list[FloatArray], e0: FloatArray, k: int) -> Any:
     return min_eig
 
 
+#: The exponents whose rows :meth:`IsVarianceStudy.glue` reads (by index: the table must hold them once).
+_GLUED_OMEGAS = (0.2, 0.7, 0.8, 0.1)
+
+
 @dataclass(frozen=True)
 class IsVarianceStudy:
     """Bias of the importance-sampled objective and the finite-moment regions, on the Gaussian pair of
@@ -55,7 +59,7 @@ class IsVarianceStudy:
     Attributes
     ----------
     table : pandas.DataFrame
-        One row per ω: ``rho`` (closed form :func:`fusion.estimates.chernoff.is_second_moment`, inf outside
+        One row per ω (the index; no ω twice, ω = 0.1, 0.2, 0.7 and 0.8 among them): ``rho`` (closed form :func:`fusion.estimates.chernoff.is_second_moment`, inf outside
         the region), ``rho (sampled)``, ``3rd moment finite`` (bool), ``bias predicted`` (-(ρ-1)/(2R), nats;
         NaN outside), ``bias sampled`` and ``bias se`` (mean of Ĵ - log Z over the replicates and its standard
         error), ``median`` (median of Ĵ - log Z, a typical estimate's error).
@@ -86,7 +90,8 @@ class IsVarianceStudy:
     power: float
 
     __result_spec__ = ResultSpec(
-        {"table": table("rho", "3rd moment finite", BIAS_PREDICTED, BIAS_SAMPLED, BIAS_SE, "median"),
+        {"table": table("rho", "3rd moment finite", BIAS_PREDICTED, BIAS_SAMPLED, BIAS_SE, "median",
+                        index=_GLUED_OMEGAS),
          **{name: number(bounds=(0.0, 1.0)) for name in ("lo", "hi", "lo3", "hi3")}, "R": integer(1),
          "replicates": integer(2), "ok": flag(), "power": number()},
         relations=(lambda v, cls: _regions_relation(v, cls),))
@@ -99,7 +104,7 @@ class IsVarianceStudy:
         v: dict[str, Any] = {"chf_isv_lo": rounded(self.lo), "chf_isv_hi": rounded(self.hi),
                              "chf_isv_lo3": rounded(self.lo3), "chf_isv_hi3": rounded(self.hi3), "chf_isv_r": self.R,
                              "chf_isv_reps": self.replicates, "chf_isv_power": rounded(self.power, 1)}
-        for w, key in ((0.2, "02"), (0.7, "07"), (0.8, "08"), (0.1, "01")):
+        for w, key in zip(_GLUED_OMEGAS, ("02", "07", "08", "01")):
             v[f"chf_isv_bias_{key}"] = rounded(float(t.loc[w, BIAS_SAMPLED]), 5)
             v[f"chf_isv_se_{key}"] = rounded(float(t.loc[w, BIAS_SE]), 5)
             v[f"chf_isv_pred_{key}"] = rounded(float(t.loc[w, BIAS_PREDICTED]), 5)

@@ -99,7 +99,35 @@ def nested_gaussian_weight(k: ArrayLike) -> FloatArray:
     k = as_array(k, "k")  # the shared rule: numbers (a string or complex refused by name), non-empty, finite
     if np.any(k <= 1.0):
         raise ValueError(f"k must hold finite ratios > 1, got {shown(k)}")
-    return 1.0 / np.log(k) - 1.0 / (k - 1.0)
+    u = k - 1.0  # exact for k in (1, 2] (Sterbenz)
+    near = u < _NEST_SERIES_BELOW
+    # 1/ln k and 1/(k-1) are ~1/u each and cancel to ~1/2 (fuzz 24b CC1: k = 1 + 2.2e-16 gave 1.0, 1 + 1e-15 gave
+    # 0.375, exact 0.5); below the threshold the Gregory series 1/ln(1+u) - 1/u = sum G_n u^(n-1) is used instead
+    series = np.polyval(_GREGORY[::-1], np.where(near, u, 0.0))
+    with np.errstate(divide="ignore", invalid="ignore"):  # the closed form only where it is used (u >= threshold)
+        closed = 1.0 / np.log(k) - 1.0 / u
+    out = np.where(near, series, closed)
+    return out[()] if out.ndim == 0 else out  # a scalar for a scalar ratio, as the closed form gave
+
+
+def _gregory(n: int) -> tuple[float, ...]:
+    """The first ``n`` coefficients of ``1/ln(1+u) - 1/u = G_1 + G_2 u + ...`` (Gregory's: 1/2, -1/12, 1/24, ...).
+
+    From ``u/ln(1+u) = sum G_j u^j`` (``G_0 = 1``) times ``ln(1+u)/u = sum (-1)^m u^m/(m+1)`` = 1, in exact
+    fractions.
+    """
+    from fractions import Fraction
+
+    g = [Fraction(1)]
+    for j in range(1, n + 1):
+        g.append(-sum(g[j - m] * Fraction((-1) ** m, m + 1) for m in range(1, j + 1)))
+    return tuple(float(x) for x in g[1:])
+
+
+#: Ratios ``k - 1`` below which :func:`nested_gaussian_weight` sums the series: there the closed form loses up to
+#: ``eps / u`` to cancellation (4e-14 at the threshold) and 14 terms leave ``|G_15| u^14 < 1e-30``.
+_NEST_SERIES_BELOW = 1e-2
+_GREGORY = _gregory(14)
 
 
 def nested_values(ks: tuple[float, ...] = (2.0, 10.0, 100.0, 1e4)) -> GlueValues:
@@ -287,7 +315,8 @@ reason : str
                              raises="""TypeError
     ``studies`` not a mapping, or a value not a NetworkStudy; ``reason`` not a str.
 ValueError
-    ``studies`` empty, a key not a network of :data:`PREMISE_LABELS`, or a network of fewer than
+    ``studies`` empty, a key not a network of :data:`PREMISE_LABELS`, a study under a key of
+    :data:`ORACLE_NETWORKS` not of one exchange and full connectivity, or a network of fewer than
     :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 
 
@@ -315,6 +344,13 @@ def _known_networks(studies: Mapping[str, Any], name: str = "studies") -> None:
     unknown = [k for k in studies if k not in PREMISE_LABELS]
     if unknown:
         raise ValueError(f"{name} holds keys that are not networks of PREMISE_LABELS: {shown(unknown, 120)}")
+    # fuzz 24b WN2: a study under an oracle network's key (another network's study, say) is named here by the
+    # mapping's key, not later by the inner oracle_exponents' argument
+    for k in ORACLE_NETWORKS:
+        sc = getattr(studies.get(k), "scenario", None)
+        if sc is not None and (sc.frames != 1 or sc.rounds != 1 or sc.edges is not None):
+            raise ValueError(f"{name}[{shown(k)}] must be a network with one exchange and full connectivity (its "
+                             f"oracle's), got the study of {shown(sc.name)}")
 
 
 def _on_studies(fn: Callable[[dict[str, NetworkStudy], str], _R]) -> Callable[..., _R]:

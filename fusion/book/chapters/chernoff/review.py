@@ -12,7 +12,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from fusion._validation import FloatArray, as_rng
-from fusion._counts import allocation, count
+from fusion._counts import allocation, count, input_allocation
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import mixtures as mx
@@ -63,14 +63,18 @@ def gm_yardstick(rng: np.random.Generator, runs: list[TrackingRun], sc: RangeBea
     TypeError
         ``rng`` not a Generator, ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``sets`` not an integer.
     ValueError
-        ``runs`` empty or of several scenarios, ``sc`` not the runs' scenario, ``sets`` below 1 or beyond the memory budget.
+        ``runs`` empty, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, ``sets`` below 1 or beyond the memory budget.
     """
     from scipy.optimize import brentq
 
     rng = as_rng(rng)
     runs = _check_study(runs, sc)
     sets = count(sets, "sets")
-    allocation((sets, sc.n_particles, 4), "sets and sc.n_particles")
+    # every array the yardstick holds at once (fuzz 24b SZ1: one (sets, Q, 4) array within the budget, 10**6 sets
+    # raised MemoryError): per set and particle about 24 + K/2 floats measured (tracemalloc, K = 2..12), counted as
+    # 8 vectors of the state's 4 entries and K responsibilities; the sets' particles are weighted EM's input x
+    allocation((sets, sc.n_particles, 8 * 4 + sc.n_components), "sets, sc.n_particles and sc.n_components")
+    input_allocation((sets, sc.n_particles, 4), "sets and sc.n_particles")
     gain = np.stack([r.gm_loglik - r.gm1_loglik for r in runs])  # (runs, K, N)
     ess = np.stack([r.ess["local"] for r in runs]) / sc.n_particles
     d, Q = 4, sc.n_particles
@@ -123,7 +127,8 @@ def consistency_figure(runs: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     TypeError
         ``runs`` or ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` empty or of several scenarios, ``plain`` not as many runs of the same scenario, ``sc`` not their scenario.
+        ``runs`` empty, of several scenarios or holding a run twice, ``plain`` not the same runs (as many, of the
+        same scenario and truths), ``sc`` not their scenario.
     """
     from scipy import stats as _stats
 
@@ -198,7 +203,7 @@ def double_count_values(runs: list[TrackingRun], sc: RangeBearingScenario) -> Gl
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` empty or of several scenarios, or ``sc`` not the runs' scenario.
+        ``runs`` empty, of several scenarios or holding a run twice, or ``sc`` not the runs' scenario.
     """
     runs = _check_study(runs, sc)
     lin = linearised_errors(sc)
@@ -247,7 +252,7 @@ def diagnostics(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int) ->
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` empty or of several scenarios, ``sc`` not the runs' scenario, or ``runs[0]`` without ``node_estimates``.
+        ``runs`` empty, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, or ``runs[0]`` without ``node_estimates``.
     """
     runs = _check_study(runs, sc)
     seed = check_seed(seed)
@@ -315,7 +320,7 @@ def review_values(runs: list[TrackingRun], crb_pos: FloatArray, sc: RangeBearing
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` of fewer than 2 runs or of several scenarios, ``sc`` not the runs' scenario, or ``crb_pos`` not
+        ``runs`` of fewer than 2 runs, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, or ``crb_pos`` not
         finite and non-negative with one entry per frame.
     """
     runs = _check_study(runs, sc)

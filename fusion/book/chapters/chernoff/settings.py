@@ -112,16 +112,33 @@ def pso_defaults() -> GlueValues:
 
 def _check_study(runs: object, sc: object = _NO_SCENARIO, *, name: str = "runs", readings: bool = False,
                  like: list[TrackingRun] | None = None, like_name: str = "runs") -> list[TrackingRun]:
-    """The chapter's one check of a run list (issue 35, fuzz 22b class TR), applied by every helper over runs:
-    ``fusion.scenarios.range_bearing._check_runs`` (a non-empty sequence of TrackingRun of one scenario, ``sc``
-    that scenario, the readings where asked), and with ``like`` (another list of the same study: the runs with and
-    without the guard) the same number of runs of the same scenario (but for the guard). Returns the runs as a
-    list."""
+    """The chapter's one check of a run list (issue 35, fuzz 22b class TR, fuzz 24b class PR), applied by every
+    helper over runs: ``fusion.scenarios.range_bearing._check_runs`` (a non-empty sequence of TrackingRun of one
+    scenario, ``sc`` that scenario, the readings where asked), no run twice (two runs of one truth: a repeated run
+    would count as an independent replicate), and with ``like`` (another list of the same study: the runs with and
+    without the guard) the same runs but for the guard: as many, of the same scenario, and the same truths (a run
+    and its unguarded twin share the seed, so the truth; another seed's runs differ). Runs are identified by their
+    truth; the runs of ``like``'s truths are returned in ``like``'s order (a reordered list pairs as given in
+    order). Returns the runs as a list."""
     out = _check_runs(runs, True, sc, name=name, readings=readings)
+    seen: dict[bytes, int] = {}
+    for i, r in enumerate(out):
+        j = seen.setdefault(np.asarray(r.truth, dtype=float).tobytes(), i)
+        if j != i:
+            raise ValueError(f"{name}[{i}] repeats {name}[{j}] (the same truth): each run must appear once, a repeated "
+                             "run is not an independent replicate")
     if like is not None:
         if len(out) != len(like):
             raise ValueError(f"{name} holds {len(out)} runs, {like_name} {len(like)}: the same study's runs are needed")
         _check_runs(list(like) + out, True, name=f"{like_name} + {name}")
+        order = []
+        for i, r in enumerate(like):
+            j = seen.get(np.asarray(r.truth, dtype=float).tobytes())
+            if j is None:
+                raise ValueError(f"{name} holds no run with the truth of {like_name}[{i}]: the same study's runs are "
+                                 f"needed (the runs of one seed with and without the guard), not another seed's")
+            order.append(out[j])
+        out = order
     return out
 
 

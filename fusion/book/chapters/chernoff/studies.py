@@ -20,6 +20,7 @@ from fusion.book.chapters.chernoff.premise import (PREMISE_MORE_RUNS, PREMISE_NE
                                                    premise_studies)
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS, STUDY_WORKERS, study_scenario
 from fusion.book.glue import GlueValues
+from fusion.book.ledger import MIN_RUNS
 from fusion._counts import count
 
 __all__ = ["tracking_study", "design", "checks_study", "common_study", "isv_study", "premise_study",
@@ -188,7 +189,8 @@ def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) 
     seed, runs : int
         The chapter's root seed and runs per network.
     factor : int
-        Multiple of the runs (an integer type, 1 or more).
+        Multiple of the runs (an integer type, 1 or more); ``factor * runs`` at least
+        :data:`~fusion.book.ledger.MIN_RUNS` (rule R4: the comparison takes no ``reason`` for fewer runs).
 
     Returns
     -------
@@ -196,10 +198,21 @@ def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) 
         Glue values ``chf_pr_ngx_*``: ``runs``, ``seed`` (int), ``d``/``lo``/``hi`` (mixture fusion − CI of Gaussians,
         mean and paired 95 % interval, m²), ``margin`` (R2's, m²), ``status`` (the rulebook's), ``median`` (m²),
         ``win`` (share of runs in which the mixtures are more accurate) and ``hill`` (the differences' Hill index).
+
+    Raises
+    ------
+    TypeError
+        An argument not an integer.
+    ValueError
+        ``seed`` negative, ``runs`` or ``factor`` below 1, or ``runs * factor`` below
+        :data:`~fusion.book.ledger.MIN_RUNS`.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
     factor = count(factor, "factor")
+    if runs * factor < MIN_RUNS:  # fuzz 24b D7: rule R4 asked for a reason, which this comparison does not take
+        raise ValueError(f"runs * factor must be at least {MIN_RUNS} (rule R4: the comparison takes no reason, so it "
+                         f"needs the rulebook's runs), got runs = {runs}, factor = {factor}")
     j = PREMISE_NETWORKS.index(Network.NON_GAUSSIAN)
     st = run_network_study(premise_scenarios()[Network.NON_GAUSSIAN], seed + 10 + j, factor * runs)
     c = _pcmp(st, "chernoff_pso", "ci_gaussian")

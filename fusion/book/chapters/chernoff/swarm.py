@@ -5,6 +5,7 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 import inspect
+import math
 from enum import StrEnum
 from pathlib import Path
 from typing import Any
@@ -25,7 +26,7 @@ from fusion.book.tables import rounded
 from fusion.optimise.swarm import particle_swarm
 from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun
 from fusion.book.chapters.chernoff.settings import LATE, STUDY_WORKERS, _MSE, _check_study
-from fusion._counts import count, index
+from fusion._counts import COUNT_CEILINGS, count, index
 from fusion.book.chapters.chernoff.compare import _reason, _word
 from fusion.book.chapters.chernoff.tracking import per_run_mse
 from fusion.book.glue import GlueValues
@@ -66,7 +67,7 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0)
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``show`` not an integer.
     ValueError
-        ``runs`` is empty or of several scenarios, ``sc`` is not the runs' scenario, or ``show`` not a run's index.
+        ``runs`` is empty, of several scenarios or holds a run twice, ``sc`` is not the runs' scenario, or ``show`` not a run's index.
     """
     runs = _check_study(runs, sc)
     show = index(show, "show", len(runs))
@@ -134,7 +135,7 @@ def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple
     TypeError
         ``runs`` not a sequence of TrackingRun, ``frame`` or ``show`` not an integer.
     ValueError
-        ``runs`` is empty or of several scenarios, ``frame`` not in 1..K, or ``show`` not a run's index.
+        ``runs`` is empty, of several scenarios or holds a run twice, ``frame`` not in 1..K, or ``show`` not a run's index.
     """
     runs = _check_study(runs)
     frame = count(frame, "frame")
@@ -207,6 +208,10 @@ PATENT_STAGES: tuple[BenchStage, ...] = (BenchStage.PARTICLE_FILTERS, BenchStage
 
 #: The study's timings that :func:`benchmark_cost` reads, by measurement ``key``.
 _BENCH_KEYS = ("loop_seconds", "study_seconds", "study_seconds_workers", "identical", "pso_over_slsqp")
+#: Those of them that are durations or a ratio of durations: positive whatever their unit.
+_POSITIVE_KEYS = ("loop_seconds", "study_seconds", "study_seconds_workers", "pso_over_slsqp")
+#: The largest ``runs`` a benchmark record may give: the count ceiling of runs (rule 9 of ``fusion._validation``).
+_MAX_RUNS = COUNT_CEILINGS["runs"]
 
 
 def _current_measurements(bench: dict[str, Any], path: Path) -> list[dict[str, Any]]:
@@ -223,14 +228,35 @@ def _current_measurements(bench: dict[str, Any], path: Path) -> list[dict[str, A
         raise ValueError(f"path: {exc}") from exc
     if not is_integer(bench["runs"]) or isinstance(bench["runs"], bool) or bench["runs"] < 1:
         raise ValueError(f"{where}: runs must be a positive integer, got {shown(bench['runs'])}")
-    if "workers" in bench and (not is_integer(bench["workers"]) or isinstance(bench["workers"], bool)):
-        raise ValueError(f"{where}: workers must be an integer, got {shown(bench['workers'])}")
+    if bench["runs"] > _MAX_RUNS:  # the prose's target is 60 s per 100 runs (fuzz 24b D6: 10**30 runs glued)
+        raise ValueError(f"{where}: runs must be at most {_MAX_RUNS:,} (the count ceiling of runs), got "
+                         f"{shown(bench['runs'])}")
+    if "workers" in bench and (not is_integer(bench["workers"]) or isinstance(bench["workers"], bool)
+                               or bench["workers"] < 1):  # fuzz 24b BC4: "batched with -3 worker processes"
+        raise ValueError(f"{where}: workers must be a positive integer, got {shown(bench['workers'])}")
+    if "load_average" in bench:  # glued in the prose (fuzz 24b BC2: [] -> IndexError, 0.5 -> TypeError)
+        la = bench["load_average"]
+        if not (isinstance(la, list) and la and all(isinstance(x, (int, float)) and not isinstance(x, bool)
+                                                    and math.isfinite(x) and x >= 0 for x in la)):
+            raise ValueError(f"{where}: load_average must be a non-empty list of non-negative numbers, got "
+                             f"{shown(la)}")
     ms = bench["measurements"]
+    seen: dict[str, int] = {}
     for i, m in enumerate(ms):
         if "stage" in m and not (isinstance(m["stage"], str) and isinstance(m.get("what"), str) and ", " in m["what"]
                                  and "value" in m):
             raise ValueError(f"{where}: measurements[{i}] of a stage must hold a str stage, a value and a str what "
                              f"('<study>, <label>: <unit>'), got {shown(m, 120)}")
+        if "stage" in m:  # a stage is a row of the table and a divisor of the ratios (fuzz 24b BC1, BC3)
+            if m["stage"] in seen:
+                raise ValueError(f"{where}: measurements[{i}] measures stage {shown(m['stage'])} again (first "
+                                 f"measurements[{seen[m['stage']]}]): a stage is measured once")
+            seen[m["stage"]] = i
+            if not m["value"] > 0:
+                raise ValueError(f"{where}: measurements[{i}].value (stage {shown(m['stage'])}, seconds per frame) "
+                                 f"must be positive, got {shown(m['value'])}")
+        if m.get("key") in _POSITIVE_KEYS and "value" in m and not m["value"] > 0:
+            raise ValueError(f"{where}: measurements[{i}].value ({m['key']}) must be positive, got {shown(m['value'])}")
     stages = {m["stage"] for m in ms if "stage" in m}
     keys = {m["key"] for m in ms if "key" in m and "value" in m}
     lacks = [str(st) for st in (BenchStage.EM, BenchStage.OPTIMISER, BenchStage.REFERENCE) if st not in stages]
@@ -268,11 +294,17 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
     ValueError
         ``path`` not an existing file holding a JSON object, or, when it has :data:`BENCH_SCHEMA`, without what is
         read here (``runs``, a list of measurements with finite values, those of the stages of EM, the swarm and
-        SLSQP, and the keys of the study's timings), naming ``path`` and the file.
+        SLSQP, and the keys of the study's timings), naming ``path`` and the file; also when a stage is measured
+        twice or a key repeats, a stage's seconds or a timing is not positive, ``runs`` or ``workers`` is not a
+        positive integer (``runs`` at most the count ceiling of runs), ``load_average`` (optional, shown as ``?``
+        when absent) is not a non-empty list of non-negative numbers, or ``schema`` is not an integer.
     """
     bench = read_argument(path, "path", "benchmark result")
     date = str(bench.get("date", bench.get("timestamp", "undated")))[:10]
-    current = bench.get("schema") == BENCH_SCHEMA
+    schema = bench.get("schema")
+    if schema is not None and (not is_integer(schema) or isinstance(schema, bool)):  # fuzz 24b D6: 2.0 read as 2
+        raise ValueError(f"path: benchmark result {path}: schema must be an integer, got {shown(schema)}")
+    current = schema == BENCH_SCHEMA
     pending = "not measured yet for the current pipeline (run benchmarks/bench_chernoff.py on an idle machine)"
     if not current:
         empty = pd.DataFrame({"stage": [], "ms per frame": []}).set_index("stage")
@@ -323,7 +355,8 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
     xtols : tuple of float
         Position tolerances, at least one, each finite and positive (the first is the one of ``sc.literal_xtol``,
         recorded as ``chernoff_literal``); the glue is keyed by position, so a repeated tolerance gives the same
-        values under two positions.
+        values under two positions. A tolerance of 1 or more (the exponents' box is [0, 1]) stops the swarm at its
+        first check, as 1 does.
 
     Returns
     -------
@@ -345,7 +378,7 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` is empty, of several scenarios, or without the readings (``readings=False``), or ``sc`` is not
+        ``runs`` is empty, of several scenarios, holds a run twice, or is without the readings (``readings=False``), or ``sc`` is not
         the runs' scenario, or ``xtols`` empty or holding a value that is not finite and positive.
     """
     runs = _check_study(runs, sc, readings=True)

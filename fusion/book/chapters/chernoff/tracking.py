@@ -159,7 +159,7 @@ def crb_position(sc: RangeBearingScenario, runs: list[TrackingRun]) -> FloatArra
     TypeError
         ``sc`` not a RangeBearingScenario, or ``runs`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` holds no run or runs of several scenarios, or ``sc`` is another scenario than theirs (the bound
+        ``runs`` holds no run, a run twice or runs of several scenarios, or ``sc`` is another scenario than theirs (the bound
         would be of other frames, sensors or noise).
     """
     runs = _check_study(runs, sc)
@@ -193,7 +193,8 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
     TypeError
         ``runs`` or ``plain`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty or of several scenarios, ``plain`` not as many runs of the same scenario, or ``crb_pos``
+        ``runs`` is empty, of several scenarios or holds a run twice, ``plain`` not the same runs (as many, of the
+        same scenario and truths: another seed's runs are refused), or ``crb_pos``
         not finite and non-negative with one entry per frame.
     """
     runs = _check_study(runs)
@@ -244,7 +245,8 @@ def table_values(table: pd.DataFrame) -> GlueValues:
     TypeError
         ``table`` not a DataFrame.
     ValueError
-        ``table`` lacks a row or column of :func:`method_table` that it reads, or a cell read is not a finite number.
+        ``table`` lacks a row or column of :func:`method_table` that it reads, holds one twice, or a cell read is not
+        a finite positive number (an RMSE or a NEES: 0 or a negative one is impossible for a noisy filter).
     """
     _frame(table, "table", (RMSE_LATE, _NEES_LATE), maker="method_table")
     rows = [CRB_ROW, *(METHOD_LABELS[k] for k in ("chernoff_pso", "centralised_pf", "local1", *_NEES_KEYS))]
@@ -253,9 +255,9 @@ def table_values(table: pd.DataFrame) -> GlueValues:
         raise ValueError(f"table lacks the rows {missing} (a result of method_table holds them)")
 
     def t(key: str, col: str = RMSE_LATE) -> float:
-        return _cell_number(table, METHOD_LABELS[key], col, "table")
+        return _cell_number(table, METHOD_LABELS[key], col, "table", positive=True)
     v: dict[str, float] = {f"chf_rmse_{k}": rounded(t(k)) for k in METHODS if METHOD_LABELS[k] in table.index}
-    v["chf_rmse_crb"] = rounded(_cell_number(table, CRB_ROW, RMSE_LATE, "table"))
+    v["chf_rmse_crb"] = rounded(_cell_number(table, CRB_ROW, RMSE_LATE, "table", positive=True))
     v["chf_ratio_local"] = rounded(t("local1") / t("chernoff_pso"))
     v["chf_ratio_local_min"] = rounded(min(t(k) for k in METHODS if k.startswith("local") and METHOD_LABELS[k] in table.index)
                                        / t("chernoff_pso"))
@@ -297,7 +299,7 @@ def rmse_figure(runs: list[TrackingRun], crb_pos: FloatArray) -> Figure:
     TypeError
         ``runs`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty or of several scenarios, or ``crb_pos`` not finite and non-negative with one entry per
+        ``runs`` is empty, of several scenarios or holds a run twice, or ``crb_pos`` not finite and non-negative with one entry per
         frame.
     """
     runs = _check_study(runs)
@@ -332,6 +334,7 @@ def per_run_mse(runs: list[TrackingRun], key: str) -> FloatArray:
         rounded to :math:`10^{-4}` m²: some estimates (those reached through BLAS products, such as the
         quadratic-feature densities of the mixtures) move in their last digits with the BLAS kernel, and
         the paired differences of the claims ledger must not.
+        One entry per run of ``runs``, in its order (a run given twice gives its entry twice).
 
     Raises
     ------
@@ -358,7 +361,8 @@ def per_run_nees(runs: list[TrackingRun], key: str, frames: slice = LATE) -> Flo
     -------
     ndarray, shape (runs,)
         Normalised estimation error squared of the 4-D state averaged over the window, dimensionless; 4 on
-        average for a consistent estimator; rounded to 10⁻⁴ (see :func:`per_run_mse`).
+        average for a consistent estimator; rounded to 10⁻⁴ (see :func:`per_run_mse`). One entry per run of
+        ``runs``, in its order.
 
     Raises
     ------
@@ -397,7 +401,7 @@ def gain_values(runs: list[TrackingRun]) -> GlueValues:
     TypeError
         ``runs`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty or of several scenarios.
+        ``runs`` is empty, of several scenarios or holds a run twice.
     """
     runs = _check_study(runs)
     mse = {k: per_run_mse(runs, k) for k in ("chernoff_pso", "chernoff_uniform", "ci_gaussian", "chernoff_prev")}
@@ -490,7 +494,7 @@ def any_collapsed(runs: list[TrackingRun], sc: RangeBearingScenario) -> np.ndarr
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` is empty or of several scenarios, or ``sc`` is not the runs' scenario.
+        ``runs`` is empty, of several scenarios or holds a run twice, or ``sc`` is not the runs' scenario.
     """
     runs = _check_study(runs, sc)
     return collapsed(runs, sc.n_particles) | central_collapsed(runs, sc.n_central)
@@ -517,7 +521,7 @@ def typical_run(runs: list[TrackingRun], n_particles: int, n_central: int | None
     TypeError
         ``runs`` not a sequence of TrackingRun, ``n_particles`` or ``n_central`` not an integer.
     ValueError
-        ``runs`` is empty or of several scenarios, ``n_particles`` or ``n_central`` not the runs' own.
+        ``runs`` is empty, of several scenarios or holds a run twice, ``n_particles`` or ``n_central`` not the runs' own.
     """
     runs = _check_study(runs)
     bad = collapsed(runs, n_particles)
@@ -557,7 +561,7 @@ def collapse_values(plain: list[TrackingRun], sc: RangeBearingScenario) -> GlueV
     TypeError
         ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``plain`` is empty or of several scenarios, ``sc`` is not its scenario, or no run is kept.
+        ``plain`` is empty, of several scenarios or holds a run twice, ``sc`` is not its scenario, or no run is kept.
     """
     plain = _check_study(plain, sc, name="plain")
     bad, cbad = collapsed(plain, sc.n_particles), central_collapsed(plain, sc.n_central)
@@ -617,7 +621,7 @@ def readings_values(runs: list[TrackingRun]) -> GlueValues:
     TypeError
         ``runs`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty, of several scenarios, or without the readings (``readings=False``).
+        ``runs`` is empty, of several scenarios, holds a run twice, or is without the readings (``readings=False``).
     """
     runs = _check_study(runs, readings=True)
     first_order = np.stack([r.eps["first_order"] for r in runs])
@@ -653,7 +657,7 @@ def equal_kl_g_values(runs: list[TrackingRun]) -> GlueValues:
     TypeError
         A run that is not a TrackingRun, or ``runs`` not a sequence.
     ValueError
-        ``runs`` holds no run, runs of several scenarios, or runs of a scenario without ``readings`` (their
+        ``runs`` holds no run, a run twice, runs of several scenarios, or runs of a scenario without ``readings`` (their
         ``eps`` has no ``equal_kl_g``).
     """
     runs = _check_study(runs, readings=True)

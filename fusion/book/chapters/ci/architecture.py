@@ -463,13 +463,17 @@ def architecture_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, seeds: Sequ
         A seed not an integer, a weight not a number.
     ValueError
         If ``seeds`` does not hold two seeds (integers >= 0), ``w_pub`` or an entry of ``fixed_omegas`` is not in
-        (0, 1].
+        (0, 1], or an entry of ``fixed_omegas`` repeats ``w_pub`` or another entry.
     """
     check_seeds(seeds, "seeds")
     seeds = tuple(seeds)
     scalar(w_pub, "w_pub", 0.0, 1.0, lo_open=True)
+    seen = {float(w_pub): "w_pub"}
     for i, w in enumerate(sequence(fixed_omegas, "fixed_omegas")):
-        scalar(w, f"fixed_omegas[{i}]", 0.0, 1.0, lo_open=True)
+        w = scalar(w, f"fixed_omegas[{i}]", 0.0, 1.0, lo_open=True)
+        if w in seen:   # the studies are keyed by the weights
+            raise ValueError(f"fixed_omegas[{i}] repeats {seen[w]} ({shown(w)}): every weight is run once")
+        seen[w] = f"fixed_omegas[{i}]"
     if len(seeds) != 2:
         raise ValueError(f"seeds must hold two seeds (identical sensors, anisotropic pair), got {shown(seeds)}")
     return {IDENTICAL_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[0]), R1, R2, Q, runs=runs,

@@ -16,6 +16,7 @@ from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor.bounds import CAUSAL_FLOOR, CENTRALISED_KF, CI_AVERAGE, STRAIGHT_LEG_FLOOR
 from fusion._shown import shown
 from fusion._structures import derived
+from fusion._validation import scalar
 from fusion.book.chapters.ci.checks import _frame, _periods
 
 __all__ = ["pcrb_numbers", "pcrb_table", "path_period_table", "path_numbers"]
@@ -66,7 +67,8 @@ def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
 
 
 def _check_rows(rows: object) -> None:
-    """Refuse, naming ``rows``, anything but a non-empty mapping of (period, reading) pairs to mappings."""
+    """Refuse, naming ``rows``, anything but a non-empty mapping of (period, reading) pairs to mappings of column
+    names to finite non-negative numbers (RMSEs and floors, m)."""
     if not isinstance(rows, Mapping):
         raise TypeError(f"rows must be a mapping of (period, reading) -> values, got {type(rows).__name__}")
     if not rows:
@@ -76,6 +78,8 @@ def _check_rows(rows: object) -> None:
             raise ValueError(f"rows must be keyed by (period, reading) pairs, got the key {shown(key, 80)}")
         if not isinstance(value, Mapping):
             raise TypeError(f"rows[{shown(key)}] must be a mapping of column -> value, got {type(value).__name__}")
+        for col, v in value.items():
+            scalar(v, f"rows[{shown(key)}][{shown(col)}]", 0.0, tiny=True)
 
 
 def path_period_table(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> pd.DataFrame:
@@ -96,9 +100,9 @@ def path_period_table(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> 
     Raises
     ------
     TypeError
-        ``rows`` is not a mapping, or an entry not a mapping.
+        ``rows`` is not a mapping, or an entry not a mapping, or a value not a number.
     ValueError
-        ``rows`` is empty, or a key is not a (period, reading) pair.
+        ``rows`` is empty, or a key is not a (period, reading) pair, or a value not finite and non-negative.
     """
     _check_rows(rows)
     t = pd.DataFrame(rows).T
@@ -122,9 +126,9 @@ def path_numbers(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> GlueV
     Raises
     ------
     TypeError
-        ``rows`` is not a mapping of mappings.
+        ``rows`` is not a mapping of mappings, or a value not a number.
     ValueError
-        ``rows`` lacks a (period, reading) row or a column read here.
+        ``rows`` lacks a (period, reading) row or a column read here, or a value is not finite and non-negative.
     """
     _check_rows(rows)
     qp, qc = two_sensor.Q_READINGS[0], two_sensor.Q_READINGS[2]
@@ -169,12 +173,15 @@ def pcrb_numbers(pcrb: pd.DataFrame, q_printed: str) -> GlueValues:
     Raises
     ------
     TypeError
-        ``pcrb`` not a DataFrame.
+        ``pcrb`` not a DataFrame, or a cell of a reading of Q not a number.
     ValueError
-        ``pcrb`` lacks a reading of Q or a row read here (periods 1, 0.02, 0.001 s and "T → 0"), or
-        ``q_printed`` is not one of its columns.
+        ``pcrb`` lacks a reading of Q or a row read here (periods 1, 0.02, 0.001 s and "T → 0"), holds a row or
+        a reading twice, or a bound that is not finite and non-negative, or ``q_printed`` is not one of its columns.
     """
-    _frame(pcrb, "pcrb", two_sensor.Q_READINGS, maker="pcrb_table")
+    _frame(pcrb, "pcrb", two_sensor.Q_READINGS, maker="pcrb_table", nonnegative=two_sensor.Q_READINGS)
+    if not pcrb.index.is_unique:
+        raise ValueError(f"pcrb must hold each period once (as pcrb_table makes it), got the rows "
+                         f"{shown(list(pcrb.index[pcrb.index.duplicated()]), 80)} more than once")
     if not isinstance(q_printed, str) or q_printed not in pcrb.columns:
         raise ValueError(f"q_printed must be a column of pcrb (a reading of Q), got {shown(q_printed, 80)}")
     missing = [r for r in (1.0, 0.02, 0.001, T_LIMIT) if r not in pcrb.index]

@@ -22,9 +22,10 @@ __all__: list[str] = []   # nothing public: the chapter's functions document the
 
 
 def _entries(value: object, name: str, keys: Collection[object], maker: str, *, width: int | None = None,
-             numbers: bool = True) -> Mapping:
+             numbers: bool = True, nonnegative: bool = False) -> Mapping:
     """``value`` when it is a mapping holding ``keys`` (the entries read), each a finite number (``width`` finite
-    numbers when given; not checked when not ``numbers``); TypeError/ValueError naming ``name`` and ``maker``, the
+    numbers when given; not checked when not ``numbers``), non-negative when ``nonnegative`` (an RMSE, a NEES, a
+    bound, a time: fuzz 24c, NEG); TypeError/ValueError naming ``name`` and ``maker``, the
     function whose result it must be. Returned as a new dict whose checked entries are the floats (float arrays)
     read, so that a caller computes with those, never with the caller's Decimal, Fraction or 0-d array (fuzz 22b,
     FR); not checked entries as given."""
@@ -36,9 +37,10 @@ def _entries(value: object, name: str, keys: Collection[object], maker: str, *, 
     out = dict(value)
     for k in keys if numbers else ():
         if width is None:
-            out[k] = scalar(value[k], f"{name}[{shown(k)}]", tiny=True)
+            out[k] = scalar(value[k], f"{name}[{shown(k)}]", 0.0 if nonnegative else None, tiny=True)
         else:
-            out[k] = as_array(value[k], f"{name}[{shown(k)}]", shape=(width,), subnormal=True)
+            out[k] = as_array(value[k], f"{name}[{shown(k)}]", shape=(width,), subnormal=True,
+                              nonnegative=nonnegative)
     return out
 
 

@@ -142,7 +142,7 @@ def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], d
     _ir_budget(IR_T, duration, runs, ("", "distance", "runs"))   # the flight's scans, named by distance
     t_min, _ = _averaging_start(t_min, duration)
     chapter_means = _entries(chapter_means, "chapter_means", (ir.AZIMUTH_MRAD, ir.ELEVATION_MRAD, ir.X_M, ir.Y_M),
-             "infrared_radar.late_means (the improved CI's entry)")
+             "infrared_radar.late_means (the improved CI's entry)", nonnegative=True)
     sim, rmse = ir_study(IR_T, seed, count(runs, "runs"), duration=duration)
     flown = ir.late_means(dict(rmse), sim.t, t_min)[IR_IMP]
     pub = data.WANG2024_IR_RADAR_RMSE.columns
@@ -169,11 +169,16 @@ def _ir_methods(rmse: object, name: str, read: tuple[str, ...]) -> None:
 
 
 def _scan_times(t: object, rmse: Mapping, name: str, read: Sequence[str] | None = None) -> np.ndarray:
-    """Scan times ``t`` (finite, 1-D) and the arrays of ``rmse`` read (all when ``read`` is None), each one finite
-    row of four per scan; TypeError/ValueError naming ``t`` or ``name[method]``, never numpy's or matplotlib's."""
+    """Scan times ``t`` (finite, 1-D, increasing: the late means are over the last scans) and the arrays of ``rmse``
+    read (all when ``read`` is None), each one finite non-negative row of four per scan; TypeError/ValueError naming
+    ``t`` or ``name[method]``, never numpy's or matplotlib's."""
     t = as_array(t, "t", ndim=1)
+    if (np.diff(t) <= 0).any():
+        i = int(np.flatnonzero(np.diff(t) <= 0)[0])
+        raise ValueError(f"t must increase (scan times, s), got t[{i + 1}] = {shown(float(t[i + 1]))} after "
+                         f"t[{i}] = {shown(float(t[i]))}")
     for k in (rmse if read is None else read):
-        arr = as_array(rmse[k], f"{name}[{shown(k)}]", ndim=2)
+        arr = as_array(rmse[k], f"{name}[{shown(k)}]", ndim=2, nonnegative=True)
         if arr.shape != (t.size, 4):
             raise ValueError(f"{name}[{shown(k)}] must hold one row of four per scan of t ({t.size}, 4), got "
                              f"{arr.shape}")
@@ -202,8 +207,9 @@ def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -
     TypeError
         ``rmse`` not a mapping.
     ValueError
-        ``rmse`` empty or holding a key that is not a method; ``t_min`` negative or after the last scan; as
-        :func:`fusion.scenarios.infrared_radar.late_means` for the arrays and ``t``.
+        ``rmse`` empty or holding a key that is not a method, or an array of it negative; ``t`` not increasing;
+        ``t_min`` negative or after the last scan; as :func:`fusion.scenarios.infrared_radar.late_means` for the
+        arrays and ``t``.
     """
     _ir_methods(rmse, "rmse", ())
     _start_on(t_min, _scan_times(t, rmse, "rmse"))
@@ -244,8 +250,8 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray], bound: ArrayLike | N
         ``rmse`` not a mapping.
     ValueError
         ``rmse`` lacks a method drawn (:data:`IR_SHOWN`) or holds a key that is not a method, an array of it or
-        ``bound`` is not one finite row of four per scan of ``t``, ``t`` not finite, ``t_min`` negative or after the
-        last scan.
+        ``bound`` is not one finite non-negative row of four per scan of ``t``, ``t`` not finite and increasing,
+        ``t_min`` negative or after the last scan.
     """
     _ir_methods(rmse, "rmse", IR_SHOWN)
     t = _scan_times(t, rmse, "rmse", IR_SHOWN)
@@ -254,7 +260,7 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray], bound: ArrayLike | N
         bound = as_array(bound, "bound", ndim=2, finite=False)
         if bound.shape != (t.size, 4):
             raise ValueError(f"bound must hold one row of four per scan of t ({t.size}, 4), got {bound.shape}")
-        as_array(bound[t >= t_min], "bound (its scans from t_min)")
+        as_array(bound[t >= t_min], "bound (its scans from t_min)", nonnegative=True)
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     shown = IR_SHOWN
     styles = ["-", "-", "--", "-", ":", "-"]
@@ -338,6 +344,23 @@ def fig11(sim: ir.IrRadarRuns, run: int = 0, t_min: float = 2.0) -> tuple[Figure
     return fig, inside
 
 
+def _known_means(known: object) -> dict[float, dict]:
+    """``known`` of :func:`sensitivity_table` (fuzz 24c, KN): a mapping of periods (positive numbers) to mappings
+    holding the azimuth, x and y means as finite non-negative numbers (RMSEs); TypeError/ValueError naming
+    ``known``. Returned by float period, the means as given."""
+    if not isinstance(known, Mapping):
+        raise TypeError(f"known must be a mapping of period -> improved-CI means, got {type(known).__name__}")
+    out = {}
+    for k, v in known.items():
+        T = scalar(k, f"known's period {shown(k)}", 0.0, lo_open=True)
+        _entries(v, f"known[{shown(k)}]", (ir.AZIMUTH_MRAD, ir.X_M, ir.Y_M),
+                 "infrared_radar.late_means (the improved CI's entry)", nonnegative=True)
+        if T in out:
+            raise ValueError(f"known holds the period {shown(T)} twice")
+        out[T] = dict(v)
+    return out
+
+
 def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float = 10.0,
                       t_min: float = 2.0, known: Mapping[float, Mapping[str, float]] | None = None,
                       ) -> tuple[pd.DataFrame, dict[float, dict[str, float]]]:
@@ -369,15 +392,17 @@ def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float 
     Raises
     ------
     TypeError
-        ``periods``, ``duration`` or ``t_min`` not numbers.
+        ``periods``, ``duration`` or ``t_min`` not numbers; ``known`` not a mapping of mappings, or a period or a
+        mean of it not a number.
     ValueError
-        ``periods`` empty, repeated or not positive; ``t_min`` negative or after ``duration``.
+        ``periods`` empty, repeated or not positive; ``t_min`` negative or after ``duration``; ``known`` with a
+        period that is not positive, or without the azimuth, x or y mean, or one not finite and non-negative.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     periods = _periods(periods)
     t_min, duration = _averaging_start(t_min, duration)
     imp = IR_IMP
-    known = {} if known is None else {float(k): dict(v) for k, v in known.items()}
+    known = {} if known is None else _known_means(known)
     means = {}
     for T in periods:
         if float(T) in known:
@@ -413,8 +438,8 @@ def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> GlueValu
     TypeError
         ``ir_table`` is not a DataFrame, or ``t_ir`` or ``duration`` not a number.
     ValueError
-        ``ir_table`` lacks a row or a column read here or a cell read is not finite, or ``t_ir`` or ``duration`` is
-        not finite and positive.
+        ``ir_table`` lacks a row or a column read here or a cell read is not finite and non-negative, or ``t_ir`` or
+        ``duration`` is not finite and positive.
     """
     instance_of(ir_table, pd.DataFrame, "ir_table")
     rows = [METHOD_LABELS[k] for k in (IR_IMP, ir.PER_SCAN, IR_FZ, ir.IrMethod.IR_ALONE)]
@@ -424,7 +449,7 @@ def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> GlueValu
         raise ValueError(f"ir_table lacks the rows or columns {missing} (it must be the ir_table of the study)")
     for r in rows:   # every cell glued: a finite number (the glue rule), named; the values glued as they are
         for c in cols:
-            _glued_cell(ir_table, r, c, "ir_table")
+            _glued_cell(ir_table, r, c, "ir_table", lo=0.0)   # an RMSE: non-negative (fuzz 24c, NG)
     # glued as the plain numbers given (fuzz 22b, FR: never the caller's Fraction, Decimal or 0-d array)
     t_ir, duration = given_number(t_ir, "t_ir", lo=0.0, lo_open=True), given_number(duration, "duration", lo=0.0,
                                                                                      lo_open=True)
@@ -1021,9 +1046,10 @@ def sensitivity_numbers(sens_table: pd.DataFrame) -> GlueValues:
     TypeError
         ``sens_table`` is not a DataFrame.
     ValueError
-        ``sens_table`` lacks the column ``"azimuth (mrad)"``, is empty or holds a value there that is not finite.
+        ``sens_table`` lacks the column ``"azimuth (mrad)"``, is empty or holds a value there that is not finite and
+        non-negative.
     """
-    _frame(sens_table, "sens_table", (ir.AZIMUTH_MRAD,), maker="sensitivity_table", finite=(ir.AZIMUTH_MRAD,))
+    _frame(sens_table, "sens_table", (ir.AZIMUTH_MRAD,), maker="sensitivity_table", nonnegative=(ir.AZIMUTH_MRAD,))
     ir_data = data.WANG2024_IR_RADAR
     ratio = float(data.WANG2024_IR_RADAR_RMSE.columns["azimuth_rad"][0]) / ir_data["sigma_ir"]
     return {"ci_ir_az_best": sens_table[ir.AZIMUTH_MRAD].min(), "ci_ir_pub_ratio": ratio,

@@ -58,7 +58,7 @@ def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> GlueValues:
     ----------
     * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
-    nees = _entries(nees, "nees", _NEES_READ, "two_sensor.nees_study (its mean_nees)")
+    nees = _entries(nees, "nees", _NEES_READ, "two_sensor.nees_study (its mean_nees)", nonnegative=True)
     NEES_RUNS = count(nees_runs, "nees_runs")
     return {"ci_nees_convex": rounded(nees[NeesRule.CONVEX], 2), "ci_nees_ci": rounded(nees[NeesRule.CI_HALF], 2),
             "ci_nees_printed": rounded(nees[NeesRule.PRINTED], 2),
@@ -167,7 +167,7 @@ def nees_step_band(runs: int, n: int = 4) -> tuple[float, float]:
 
 def _per_step(true_start: object, random_start: object, T: float, t_steady: float) -> tuple[float, float]:
     """Check the per-step NEES of both starts (fuzz 19, F9): two mappings with the same rules (a rule of
-    METHOD_LABELS), one finite value per step, the same steps in every array, and ``t_steady`` splitting them
+    METHOD_LABELS), one finite non-negative value per step, the same steps in every array, and ``t_steady`` splitting them
     (steps before and after it), so that no mean is taken over no step; ``(T, t_steady)`` as floats."""
     for name, d in (("true_start", true_start), ("random_start", random_start)):
         if not isinstance(d, Mapping):
@@ -182,7 +182,7 @@ def _per_step(true_start: object, random_start: object, T: float, t_steady: floa
         for rule, v in d.items():
             if not isinstance(rule, str) or rule not in METHOD_LABELS:
                 raise ValueError(f"{name} holds a key that is not a rule: {shown(rule)}")
-            v = as_array(v, f"{name}[{shown(rule)}]", ndim=1)
+            v = as_array(v, f"{name}[{shown(rule)}]", ndim=1, nonnegative=True)   # a NEES (fuzz 24c, NEG)
             if steps is None:
                 steps = v.size
             elif v.size != steps:
@@ -281,7 +281,8 @@ def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mappi
     if missing:
         raise ValueError(f"true_start lacks the rules {missing} (a result of nees_per_step holds them)")
     exact = _entries(exact, "exact", ("rel_diff_random", "nees_random_min", "nees_random_max", "nees_true_first",
-                              "nees_true_transient", "nees_true_steady", "nees_true_steady_min"), "split_ci_exactness")
+                              "nees_true_transient", "nees_true_steady", "nees_true_steady_min"), "split_ci_exactness",
+                      nonnegative=True)
     lo, hi = nees_step_band(runs)
     split, loc = NeesRule.SPLIT, NeesRule.LOCAL
     out: dict[str, Any] = {"ci_nps_lo": rounded(lo, 2), "ci_nps_hi": rounded(hi, 2), "ci_nps_runs": runs,

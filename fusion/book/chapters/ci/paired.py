@@ -34,7 +34,7 @@ __all__ = ["paired_numbers", "PairedClaimInputs", "PairedStudies", "paired_studi
 @_glue_doc("paired differences as text with their 95 % intervals, ratios")
 def _per_run(values: object, name: str, runs: int) -> None:
     """Per-run RMSE of a paired study: ``runs`` finite values (``paired_runs``, the run count beside them)."""
-    arr = as_array(values, name, ndim=1)
+    arr = as_array(values, name, ndim=1, nonnegative=True)
     if arr.size != runs:
         raise ValueError(f"{name} holds {arr.size} runs, but paired_runs = {runs}: the arrays and the run count "
                          "must come from the same paired studies")

@@ -297,6 +297,7 @@ def printed_equation_numbers(checks: Mapping[str, float]) -> GlueValues:
     ValueError
         ``checks`` lacks a key read here, or a value is not finite.
     """
-    checks = _entries(checks, "checks", ("eq2_error", "eq6_asym", "eq6_relerr"), "printed_equation_checks")
+    checks = _entries(checks, "checks", ("eq2_error", "eq6_asym", "eq6_relerr"), "printed_equation_checks",
+                      nonnegative=True)
     return {"ci_eq2_error": readable(checks["eq2_error"], 3), "ci_eq6_asym": rounded(checks["eq6_asym"], 1),
             "ci_eq6_relerr": rounded(checks["eq6_relerr"], 2)}

@@ -264,11 +264,12 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
     TypeError
         ``study`` not a FusionStudy, ``on_leg`` not bools, ``floor`` not numeric.
     ValueError
-        ``on_leg`` not one bool per step of ``study``, ``floor`` not one finite number per step it selects.
+        ``on_leg`` not one bool per step of ``study``, ``floor`` not one finite non-negative number per step it
+        selects.
     """
     instance_of(study, FusionStudy, "study")
     on_leg = _steps(on_leg, "on_leg", study.t.size)
-    floor = _per_step(floor, "floor", int(on_leg.sum()), "straight-leg step of on_leg")
+    floor = _per_step(floor, "floor", int(on_leg.sum()), "straight-leg step of on_leg", nonnegative=True)
     full = np.full(study.t.size, np.nan)   # gaps in the turns, for the plot only
     full[on_leg] = floor
     fig, _ = new_figure(figsize=(7.5, 13.0))
@@ -456,20 +457,21 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
     TypeError
         ``study`` not a FusionStudy, ``legs_steady`` not bools, ``leg_rmse`` not a mapping, a floor not numeric.
     ValueError
-        ``leg_floor`` (``leg_causal``) not one finite number per straight-leg step, ``legs_steady`` not one bool per
-        straight-leg step or selecting none, ``leg_rmse`` empty or not of finite numbers; the leg not that of
-        ``study`` (:func:`straight_leg` on it): another count of straight-leg steps, other steady steps, or a method's
-        RMSE of ``leg_rmse`` not the study's mean there (relative 1e-9).
+        ``leg_floor`` (``leg_causal``) not one finite non-negative number per straight-leg step, ``legs_steady`` not
+        one bool per straight-leg step or selecting none, ``leg_rmse`` empty or not of finite non-negative numbers;
+        the leg not that of ``study`` (:func:`straight_leg` on it): another count of straight-leg steps, other steady
+        steps, or a method's RMSE of ``leg_rmse`` not the study's mean there (relative 1e-9).
     """
     instance_of(study, FusionStudy, "study")
-    leg_floor = as_array(leg_floor, "leg_floor", ndim=1)
+    leg_floor = as_array(leg_floor, "leg_floor", ndim=1, nonnegative=True)
     legs_steady = _steps(legs_steady, "legs_steady", leg_floor.size, "straight-leg step of leg_floor")
     if not legs_steady.any():
         raise ValueError("legs_steady selects no straight-leg step: the floors' mean would be of nothing")
     mapping_of(leg_rmse, "leg_rmse", "RMSE (m)", maker="straight_leg")
-    leg_rmse = _entries(leg_rmse, "leg_rmse", list(leg_rmse), "straight_leg")
+    leg_rmse = _entries(leg_rmse, "leg_rmse", list(leg_rmse), "straight_leg", nonnegative=True)
     if leg_causal is not None:
-        leg_causal = _per_step(leg_causal, "leg_causal", leg_floor.size, "straight-leg step of leg_floor")
+        leg_causal = _per_step(leg_causal, "leg_causal", leg_floor.size, "straight-leg step of leg_floor",
+                               nonnegative=True)
     _leg_of(study, leg_floor, legs_steady, leg_rmse)   # the leg of this study (fuzz 24c MM)
 
     from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion as _fcf
@@ -525,19 +527,24 @@ def slip_numbers(variants: Mapping[str, tuple[float, float]], variants_all: Mapp
     TypeError
         ``variants`` or ``variants_all`` not a mapping, ``slip`` not a DataFrame.
     ValueError
-        ``variants`` or ``variants_all`` lacking a reading read here or one not two finite numbers; ``slip`` without
-        the slip over all steps or with a non-finite value there.
+        ``variants`` or ``variants_all`` lacking a reading read here or one not two finite non-negative numbers;
+        ``slip`` without the slip over all steps or with a value there that is not finite and non-negative, or
+        without the rows of Fig. 6 or those of the averaging rules.
     """
     S, SR = two_sensor.SLIP_STEPS, two_sensor.SLIP_RUNS
-    variants = _entries(variants, "variants", (S, SR), "two_sensor.rmse_variants", width=2)
-    variants_all = _entries(variants_all, "variants_all", (S,), "two_sensor.rmse_variants", width=2)
+    variants = _entries(variants, "variants", (S, SR), "two_sensor.rmse_variants", width=2, nonnegative=True)
+    variants_all = _entries(variants_all, "variants_all", (S,), "two_sensor.rmse_variants", width=2,
+                            nonnegative=True)
     _frame(slip, "slip", (), maker="slip_table")
     col_all = next((c for c in slip.columns if isinstance(c, str) and c.startswith("√Σe²/n, n = all")), None)
     if col_all is None:
         raise ValueError("slip lacks the column of the slip over all steps ('√Σe²/n, n = all ... steps (m)', a "
                          "result of slip_table holds it)")
-    _frame(slip, "slip", (col_all,), finite=(col_all,), maker="slip_table")
-    in_fig6 = slip.index.get_level_values(0).str.startswith("Fig. 6")
+    _frame(slip, "slip", (col_all,), nonnegative=(col_all,), maker="slip_table")
+    in_fig6 = np.array([isinstance(r, str) and r.startswith("Fig. 6") for r in slip.index.get_level_values(0)])
+    if in_fig6.all() or not in_fig6.any():
+        raise ValueError(f"slip must hold the rows of the averaging rules and those of Fig. 6 (its first index level, "
+                         f"as slip_table makes it), got {'only' if in_fig6.all() else 'none of'} the rows of Fig. 6")
     avg, fig6 = slip[~in_fig6], slip[in_fig6]
     return {"ci_slip_all_x": rounded(variants_all[S][0], 2), "ci_slip_all_y": rounded(variants_all[S][1], 2),
             "ci_slip_st_x": rounded(variants[S][0], 2), "ci_slip_st_y": rounded(variants[S][1], 2),
@@ -760,9 +767,10 @@ def variants_table(variants: Mapping[str, tuple[float, float]],
     if isinstance(variants, Mapping) and not variants:
         raise ValueError("variants is empty (it must map each reading of two_sensor.rmse_variants to (x, y))")
     variants = _entries(variants, "variants", list(variants) if isinstance(variants, Mapping) else (),
-             "two_sensor.rmse_variants", width=2)
+             "two_sensor.rmse_variants", width=2, nonnegative=True)
     same_keys(variants_all, "variants_all", variants, "variants")
-    variants_all = _entries(variants_all, "variants_all", list(variants), "two_sensor.rmse_variants", width=2)
+    variants_all = _entries(variants_all, "variants_all", list(variants), "two_sensor.rmse_variants", width=2,
+                            nonnegative=True)
     return pd.concat({"t ≥ 20 s": pd.DataFrame(variants, index=["x (m)", "y (m)"]).T,
                       "all steps": pd.DataFrame(variants_all, index=["x (m)", "y (m)"]).T}, axis=1).round(2)
 
@@ -788,7 +796,8 @@ def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> GlueValues:
     ValueError
         ``variants`` lacks a reading read here, or one is not two finite numbers (x, y).
     """
-    variants = _entries(variants, "variants", (RUN_AVERAGED, OVER_STEPS), "two_sensor.rmse_variants", width=2)
+    variants = _entries(variants, "variants", (RUN_AVERAGED, OVER_STEPS), "two_sensor.rmse_variants", width=2,
+                        nonnegative=True)
     return {"ci_var_avg_x": rounded(variants[RUN_AVERAGED][0], 1),
             "ci_var_avg_y": rounded(variants[RUN_AVERAGED][1], 1),
             "ci_var_run_x": rounded(variants[OVER_STEPS][0], 1)}

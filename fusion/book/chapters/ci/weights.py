@@ -178,7 +178,7 @@ def timing_table(m: Mapping[str, float]) -> pd.DataFrame:
     ValueError
         ``m`` lacks a measurement read here, or one is not finite.
     """
-    m = _entries(m, "m", _TIMING_KEYS, "timing_benchmark (its measurements)")
+    m = _entries(m, "m", _TIMING_KEYS, "timing_benchmark (its measurements)", nonnegative=True)
     pub, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     timing = pd.DataFrame([
         ("Fig. 5", "ω by FOA (30 × 200)", pub["foa_time_s"][0], m["foa_vectorised"]),
@@ -237,17 +237,13 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
     """
     _covariance_pair(P1, P2)
     _results(res, "res", OptimumResult, "weight_search")
-    m = _entries(m, "m", ("foa_vectorised", "grid_vectorised", "closed_form"), "timing_benchmark().measurements")
+    m = _entries(m, "m", ("foa_vectorised", "grid_vectorised", "closed_form"), "timing_benchmark().measurements",
+                 nonnegative=True)
     if seeds is not None:
         instance_of(seeds, FruitFlySeeds, "seeds")
     _optima_of(P1, P2, res, seeds)   # the optima marked are those of this pair's objective (fuzz 24c MM)
     if aniso is not None:
-        if not isinstance(aniso, tuple):
-            raise TypeError(f"aniso must be the tuple (P1, P2, res, FruitFlySeeds) of the anisotropic pair, got "
-                            f"{type(aniso).__name__}")
-        if len(aniso) != 4:
-            raise ValueError("aniso must be the tuple (P1, P2, res, FruitFlySeeds) of the anisotropic pair, got "
-                             f"{len(aniso)} entries")
+        aniso = tuple(sequence(aniso, "aniso", 4))  # (P1, P2, res, FruitFlySeeds): a tuple or a list (fuzz 24e F3)
         n = np.asarray(P1).shape[0]   # the anisotropic pair is of the same state (fuzz 24c FA1: aniso[0] named)
         as_covariance(aniso[0], n, name="aniso[0]")
         as_covariance(aniso[1], n, name="aniso[1]")
@@ -351,8 +347,8 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
 
     # the short-budget batch (one swarm of 30 per seed of fruit_fly_seeds), named here (fuzz 24c WN)
     batch_budget(len(fruit_fly_seeds.seeds), 30, short_budget, "short_budget (with fruit_fly_seeds)")
-    if flat_pair is not None and (not isinstance(flat_pair, tuple) or len(flat_pair) != 2):
-        raise TypeError(f"flat_pair must be a pair (P, P) of covariances, got {shown(flat_pair, 80)}")
+    if flat_pair is not None:  # a pair (P, P): a tuple or a list (fuzz 24e F2)
+        flat_pair = tuple(sequence(flat_pair, "flat_pair", 2))
     pub = data.WANG2024_FOA.columns
 
     def objective(w: ArrayLike) -> Any:
@@ -828,13 +824,26 @@ def timing_benchmark(results: Any = None) -> TimingBenchmark:
     -------
     TimingBenchmark
         The benchmark's date and machine, its measurements by key (s) and the per-step timings.
+
+    Raises
+    ------
+    TypeError
+        ``results`` not a path.
+    ValueError
+        As :func:`fusion.book.benchmarks.load_benchmark`; the stored ``ci.json`` without its per-step timings
+        (``per_step``, a mapping).
     """
     from fusion.book.benchmarks import load_benchmark
 
     res = load_benchmark("ci", results)
+    per_step = res.record.get("per_step")
+    if not isinstance(per_step, Mapping):   # load_benchmark checks the measurements only (fuzz 24c, TB)
+        where = "the stored benchmark" if results is None else f"results ({shown(str(results), 80)})"
+        raise ValueError(f"{where}: ci.json must hold 'per_step', a mapping of key -> per-step series, got "
+                         f"{'none' if per_step is None else type(per_step).__name__}")
     return TimingBenchmark(date=res.date, machine=res.machine,
                            measurements={item["key"]: item["value"] for item in res.measurements},
-                           per_step=dict(res.record["per_step"]))
+                           per_step=dict(per_step))
 
 
 #: How the labels of :func:`fig5_hypotheses`' five rows begin, in its order (their settings follow).

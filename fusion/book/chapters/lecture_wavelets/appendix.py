@@ -145,9 +145,10 @@ def glue_typical(tab: pd.DataFrame) -> GlueValues:
     TypeError
         ``tab`` not a DataFrame.
     ValueError
-        ``tab`` empty, without the columns of :func:`table_typical`, or a status cell that is not a text.
+        ``tab`` empty, without the columns of :func:`table_typical`, holding a record (row) or a column read more
+        than once (each is counted once), or a status cell that is not a text.
     """
-    _frame(tab, "tab", (BY_MEAN, TYPICAL_RUN), maker="table_typical", texts=(BY_MEAN, TYPICAL_RUN))
+    _frame(tab, "tab", (BY_MEAN, TYPICAL_RUN), maker="table_typical", texts=(BY_MEAN, TYPICAL_RUN), unique=True)
     mean = tab[BY_MEAN].str.split(":").str[0]
     typ = tab[TYPICAL_RUN].str.split(":").str[0]
     rep_m, rep_t = mean == "reproduced", typ == "reproduced"
@@ -229,6 +230,11 @@ def table_lengths(studies: Mapping[int, SignalStudy]) -> pd.DataFrame:
     return tab
 
 
+def _is_length(key: object) -> bool:
+    """Whether a row key of :func:`table_lengths` is an estimation length I (an integer, not a bool)."""
+    return isinstance(key, (int, np.integer)) and not isinstance(key, (bool, np.bool_))
+
+
 def glue_lengths(tab: pd.DataFrame) -> GlueValues:
     """Glue values of :func:`table_lengths` (keys ``lec_wlen_*``).
 
@@ -251,11 +257,13 @@ def glue_lengths(tab: pd.DataFrame) -> GlueValues:
     TypeError
         ``tab`` not a DataFrame.
     ValueError
-        ``tab`` empty, without the columns of :func:`table_lengths`, with no row at I = 1024, a status cell that is
+        ``tab`` empty, without the columns of :func:`table_lengths`, with no row at I = 1024, a row that is not an
+        integer length I or one held twice, a column read held twice, a status cell that is
         not a text or a gain error that is not a finite number >= 0 (TypeError for a non-number).
     """
     _frame(tab, "tab", (*_ACCURACY, GAIN_ERROR_4, HELPS_TYPICAL), maker="table_lengths",
-           texts=(*_ACCURACY, HELPS_TYPICAL))
+           texts=(*_ACCURACY, HELPS_TYPICAL), unique=True, rows=_is_length,
+           rows_are="an estimation length I (an integer)")
     if 1024 not in tab.index:
         raise ValueError("tab must hold the chapter's I = 1024")
     recs = list(_ACCURACY)

@@ -16,7 +16,7 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.rulebook import _runs_won
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
-from fusion._counts import seed as check_seed
+from fusion._counts import seed as check_seed, sequence
 from fusion._docstrings import with_sections
 from fusion._validation import as_array, instance_of, template, text
 from fusion._shown import shown
@@ -200,6 +200,7 @@ def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[Signal, str, str])
     instance_of(sg, SignalStudy, "sg")
     if e26 is not None:
         instance_of(e26, SignalStudy, "e26")
+    key = tuple(sequence(key, "key", 3))  # a tuple or a list (fuzz 24e F2-F3: the package's sequence rule)
     src = e26 if e26 is not None and _holds(e26.cases, key) else sg
     if not _holds(src.cases, key):
         raise ValueError(f"key must be a (signal, rule, normaliser) case of sg or e26, got {shown(key, 80)}")

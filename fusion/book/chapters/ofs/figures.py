@@ -17,7 +17,7 @@ from fusion._shown import shown
 from fusion._structures import same_keys, within
 from fusion._validation import as_array, instance_of, scalar, window as check_window
 from fusion.book.style import METHOD_LABELS, color, new_figure
-from fusion.book.tables import rounded
+from fusion.book.tables import _frame, rounded
 from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
 from fusion.book.chapters.ofs.settings import METHODS, FailureCase
@@ -210,7 +210,8 @@ def figure_mc(table: pd.DataFrame) -> Figure:
     TypeError
         ``table`` not a DataFrame.
     ValueError
-        ``table`` empty, lacking a column or a (setting, case) row of :func:`mc_table` of the three methods, or a
+        ``table`` empty, lacking a column or a (setting, case) row of :func:`mc_table` of the three methods, holding
+        a row or a column read more than once, or a
         cell drawn (a method's MAE, the bound without failure) that is not a finite number >= 0.
     """
     instance_of(table, pd.DataFrame, "table")
@@ -220,6 +221,8 @@ def figure_mc(table: pd.DataFrame) -> Figure:
     if lacking or table.index.nlevels != 2:
         raise ValueError(f"table must be mc_table of the three METHODS: it lacks the columns {lacking} or its two "
                          f"index levels (noise, case), got {table.index.nlevels}")
+    # one row per (setting, case) and one column per method read (fuzz 24d T1-T2: numpy's errors from inside)
+    _frame(table, "table", [METHOD_LABELS[m] for m in METHODS] + [BOUND_CLEAN], maker="mc_table", unique=True)
     rows = [(s, METHOD_LABELS[c]) for s in dict.fromkeys(table.index.get_level_values(0)) for c in FailureCase]
     missing = [r for r in rows if r not in table.index]
     if missing:

@@ -18,6 +18,7 @@ from fusion._frozen import constant
 from fusion._results import ResultSpec, array, dict_of, instance, number, validated_post_init
 from fusion._shown import shown
 from fusion.book.study_cache import study_cache
+from fusion.book.chapters.time_registration import _least_squares_windows, _record_times, _scenario_instants
 from fusion.book.chapters.time_registration import (CAUSAL_IMPROVED, FIG4, IMPROVED, S3_READINGS, TWO,
                                                     robustness_readings)
 from fusion.scenarios import time_registration as sc
@@ -149,7 +150,7 @@ def _robust_relation(values: Mapping[str, Any], cls: str) -> None:
 from fusion.book.chapters import time_registration_robustness as _robustness  # noqa: E402
 from fusion._counts import seed as check_seed
 from fusion._counts import count
-from fusion._validation import as_times, std_scalar
+from fusion._validation import std_scalar
 
 _robustness.RegistrationStudy = RegistrationStudy  # type: ignore[attr-defined]
 
@@ -177,13 +178,15 @@ def unregistered_runs(m: sc.MonteCarlo, t1: ArrayLike, t2: ArrayLike) -> np.ndar
     TypeError
         ``m`` is not a MonteCarlo, or ``t1``/``t2`` not numeric.
     ValueError
-        ``t1`` or ``t2`` is not strictly increasing and finite, or an instant of ``t2`` precedes ``t1[0]`` (it has
-        no last sample).
+        ``t1`` or ``t2`` is not strictly increasing and finite, or so far from the flight's start that the true
+        positions lose the precision of the errors (about 6e4 s at the source's sampling), or an instant of ``t2``
+        precedes ``t1[0]`` (it has no last sample).
     """
     from fusion._validation import as_times, instance_of
 
     instance_of(m, sc.MonteCarlo, "m")
     t1, t2 = as_times(t1, "t1"), as_times(t2, "t2")
+    sc._precise_times(t1, t2, "t1", "t2")  # times whose positions lose the precision (fuzz 24d C): named
     if t2[0] < t1[0]:
         raise ValueError(f"t2 must not precede sensor 1's first sample t1[0] = {t1[0]:g} s (no last sample), "
                          f"got t2[0] = {t2[0]:g} s")
@@ -203,7 +206,9 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
     Parameters
     ----------
     t1, t2 : array_like
-        Sensor-1 sample times and sensor-2 instants (s).
+        Sensor-1 sample times and sensor-2 instants (s), kept in the result for the evidence; the runs are on the
+        scenario's sensor-1 samples, and the fair, real-time and start-up readings register ``t2[1:]`` or
+        ``t2[2:]`` onto them (so ``t2`` holds three instants at least, within their record).
     sigma : float
         Primary noise level (m).
     runs : int
@@ -221,12 +226,19 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
     TypeError
         ``t1`` or ``t2`` not numeric, ``sigma`` not a number, ``runs`` or ``seed`` not an integer.
     ValueError
-        ``t1`` or ``t2`` not finite strictly increasing 1-D times, ``sigma`` not a valid standard deviation,
+        ``t1`` or ``t2`` not finite strictly increasing 1-D times (``t1``: three samples at least), an instant of
+        ``t2`` outside the record of ``t1`` or of the scenario's sensor-1 samples (the readings register ``t2``
+        onto these), ``t2`` of fewer than three instants (the start-up reading scores ``t2[2:]``) or with fewer
+        than two of those samples in the least-squares window before an instant, times so far from the flight's
+        start that the positions lose the precision (about 6e4 s), ``sigma`` not a valid standard deviation,
         ``runs`` below 1, ``seed`` negative.
     """
     seed = check_seed(seed)
     # the arguments read before any run (an unchecked one escaped as numpy's error, or was stored as given)
-    t1, t2 = as_times(t1, "t1"), as_times(t2, "t2")
+    t1, t2 = _record_times(t1, t2)  # increasing, within the record of t1, positions precise (fuzz 24d C): named
+    # the readings register t2[1:] and t2[2:] onto the scenario's samples (fuzz 24d W: refused inside by
+    # monte_carlo's names): three instants within their record, two samples in each least-squares window
+    _least_squares_windows(sc.instants()[0], _scenario_instants(t2, 3, "the start-up reading scores from the third"))
     sigma, runs = std_scalar(sigma, "sigma"), count(runs, "runs")
     names = list(STUDY_METHODS)
     fig4 = list(FIG4) + [RegMethod.LEAST_SQUARES]

@@ -17,6 +17,7 @@ from fusion.book.chapters.time_registration import IMPROVED, TWO
 from fusion.book.chapters.time_registration_closed import B_OFFSET
 from fusion.book.exact import ExactComparison
 from fusion.book.glue import GlueValues, _checked_keep, _glued_cell
+from fusion.book.tables import _frame
 from fusion.book.style import METHOD_LABELS
 from fusion.book.ledger import ledger_dir
 from fusion.scenarios import time_registration as sc
@@ -260,7 +261,8 @@ def latency_values(be: Mapping[float, float], sigma: float) -> GlueValues:
     Parameters
     ----------
     be : mapping
-        Noise level (m, a finite number >= 0) → break-even latency (s).
+        Noise level (m, a finite number > 0, as ``delay_break_even`` takes it) → break-even latency (s, >= 0: the
+        latency at which the methods' MSEs meet, as ``delay_break_even`` returns it rounded to 0.1 ms).
     sigma : float
         The chapter's noise level (a key of ``be``).
 
@@ -275,13 +277,14 @@ def latency_values(be: Mapping[float, float], sigma: float) -> GlueValues:
         ``be`` is not a mapping, a noise level (key) or ``sigma`` not a number.
     ValueError
         ``be`` is empty, holds a noise level (a key) that is not a valid standard deviation or a latency that is
-        not finite, or ``sigma`` is not one of its keys.
+        negative or not finite, or ``sigma`` is not one of its keys.
     """
     instance_of(be, Mapping, "be")
     if not be:
         raise ValueError("be is empty (it must map noise levels to break-even latencies)")
     # the floats the reader returns, not the caller's objects (fuzz 22b, FR4-5: a Decimal, a 0-d array)
-    lat = {std_scalar(k, f"the noise level {shown(k)} of be"): scalar(v, f"be[{k!r}]") for k, v in be.items()}
+    lat = {std_scalar(k, f"the noise level {shown(k)} of be"): scalar(v, f"be[{k!r}]", lo=0.0)
+           for k, v in be.items()}  # a latency >= 0 (fuzz 24d M1: -20 ms was glued)
     if len(lat) < len(be):  # keys equal as floats (1 and 1.0 are one key of a dict already)
         raise ValueError("be holds a noise level twice (as two keys of equal value)")
     sigma = scalar(sigma, "sigma")
@@ -313,7 +316,8 @@ def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues
         ``values`` is not a mapping or ``closed`` not a DataFrame.
     ValueError
         ``values`` lacks ``reg_gain_three`` or ``reg_gain_two`` (or the latter is zero), or ``closed`` lacks the
-        extrapolation row or the columns ``b (m²)`` and ``g`` or holds one twice, or a cell read there is not a
+        extrapolation row or the columns ``b (m²)`` and ``g`` or holds one twice, a row twice or a row that is not a
+        method, or a cell read there is not a
         finite non-negative number (TypeError for a non-number), named ``closed``.
     """
     record(values, "values", ("reg_gain_three", "reg_gain_two"), extra=True)
@@ -322,6 +326,8 @@ def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues
     instance_of(closed, pd.DataFrame, "closed")
     if EXTRAP not in closed.index or B_OFFSET not in closed.columns or "g" not in closed.columns:
         raise ValueError(f"closed must be the closed-form table (row {shown(str(EXTRAP))}, columns {shown(B_OFFSET)} and 'g')")
+    _frame(closed, "closed", (B_OFFSET, "g"), maker="closed_form_table", unique=True, rows=sc.METHODS,
+           rows_are="a method of METHODS")  # one row a method (fuzz 24d T)
     b, g = (_glued_cell(closed, EXTRAP, c, "closed", lo=0.0) for c in (B_OFFSET, "g"))  # fuzz 22b, V2-V5
     t1, t2 = sc.instants()
     between = t2[~np.isin(t2, t1)]
