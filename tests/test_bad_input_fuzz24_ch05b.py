@@ -91,7 +91,7 @@ def test_fig5_names_the_aniso_entry_at_fault(o: dict[str, Any]) -> None:
     good = (wp_an.P1, wp_an.P2, wp_an.res, wp_an.fruit_fly_seeds)
     with pytest.raises(ValueError, match=r"aniso\[0\] must be 4x4"):
         _ci().fig5(**dict(_valid("fig5"), aniso=(np.eye(2),) + good[1:]))
-    with pytest.raises(TypeError, match="aniso must be the tuple"):
+    with pytest.raises(TypeError, match="aniso must be a sequence"):
         _ci().fig5(**dict(_valid("fig5"), aniso="x"))
 
 
