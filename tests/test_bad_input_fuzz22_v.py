@@ -137,10 +137,16 @@ def test_fruit_fly_step_values_of_the_study(step):
     assert g["ci_step_grid_err"] == step.loc[EXHAUSTIVE, LARGEST_ERROR] and g["ci_step_runs"] == 5
 
 
+#: Labels of fig5_hypotheses' rows (read by position: their labels are checked, fuzz 24c q1).
+_H_LABELS = ["exhaustive search, 1001 points including ω = 0", "exhaustive search on k/300, k = 1…300",
+             "FOA 30 × 200 as printed (median of 3 seeds)", "FOA 30 × 23 (median of 3 seeds)",
+             "the same grid k/300 on the source's identical sensors"]
+
+
 @given(st.floats(allow_nan=True, allow_infinity=True))
 @settings(max_examples=60, deadline=None)
 def test_fig5_hypothesis_numbers_weights(w):
-    tab = pd.DataFrame({"ω found": [0.0, w, 0.001, 0.01, 0.5]})
+    tab = pd.DataFrame({"ω found": [0.0, w, 0.001, 0.01, 0.5]}, index=_H_LABELS)
     if math.isfinite(w) and 0.0 <= w <= 1.0 and not (0.0 < w < 2.3e-308):
         assert ci.fig5_hypothesis_numbers(tab)["ci_h_open"] == round(w, 4)
     else:
@@ -148,7 +154,8 @@ def test_fig5_hypothesis_numbers_weights(w):
 
 
 def test_fig5_hypothesis_numbers_text():
-    _refused(TypeError, "table", ci.fig5_hypothesis_numbers, pd.DataFrame({"ω found": [0.0, "x", 0.1, 0.1, 0.1]}))
+    _refused(TypeError, "table", ci.fig5_hypothesis_numbers, pd.DataFrame({"ω found": [0.0, "x", 0.1, 0.1, 0.1]},
+                                                                                 index=_H_LABELS))
 
 
 # ---------------------------------------------------------------- KP: keep has glue_all's rule

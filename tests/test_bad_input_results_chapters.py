@@ -137,8 +137,9 @@ FACTORIES: dict[str, Callable[[], Any]] = {
     "PairedStudies": lambda: importlib.import_module("fusion.book.chapters.ci.studies").paired_study(runs=3),
     "LegClaimInputs": lambda: _instance("StraightLeg").claim_inputs(),
     "StraightLeg": lambda: _straight_leg(),
-    "WeightClaimInputs": lambda: _ci().weight_claim_inputs(_instance("WeightPair"), _instance("WeightPair"),
-                                                           np.array([3.0, 1.0, 2.0])),
+    "WeightClaimInputs": lambda: _ci().weight_claim_inputs(   # the second pair at ANISO_R (fuzz 24c MM)
+        _instance("WeightPair"), _ci().weight_pair(*_ci().ANISO_R, _Q, 2, seed=4, search_seed=2, fruit_fly_seeds=[3],
+                                                   runs=2, T=5.0), np.array([3.0, 1.0, 2.0])),
     "Cell": lambda: _cell(),
     "LumvReading": lambda: _lumv_reading(),
     "MembershipStudy": lambda: _ofs().membership_study(0, 2),

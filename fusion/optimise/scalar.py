@@ -153,6 +153,22 @@ def fruit_fly(
     return OptimumResult(x=best_x, fun=best_f, n_evaluations=evals)
 
 
+def batch_budget(n: int, population: int, iterations: int, names: str) -> None:
+    """The memory and work budgets of :func:`fruit_fly_batch` on ``n`` problems (rules 9 and 17), checked under
+    ``names``: the batch's own arguments, or those of a caller that sets them (the seeds of a study, its
+    generations), so that a caller's refusal names its own arguments before any work (fuzz 24c WN).
+
+    Raises
+    ------
+    ValueError
+        Every draw at once beyond the memory budget (``fusion._counts.MAX_ELEMENTS``) or the loop beyond the
+        work budget (``fusion._limits.MAX_WORK``), naming ``names``.
+    """
+    allocation((n, 2 + 2 * population * iterations), names)  # every draw, at once
+    # rule 17: a draw per generator, then a loop step per iteration over every problem's swarm
+    loop_work((n + iterations,), 4 * n * population, names)
+
+
 def fruit_fly_batch(
     f: Callable[[np.ndarray], np.ndarray],
     rngs: Sequence[np.random.Generator],
@@ -212,9 +228,7 @@ def fruit_fly_batch(
     population, iterations = count(population, "population"), count(iterations, "iterations")
     a, b = _step(step)
     n = len(rngs)
-    allocation((n, 2 + 2 * population * iterations), "rngs, population and iterations")  # every draw, at once
-    # rule 17: a draw per generator, then a loop step per iteration over every problem's swarm
-    loop_work((n + iterations,), 4 * n * population, "rngs, population and iterations")
+    batch_budget(n, population, iterations, "rngs, population and iterations")
     draws = np.stack([g.uniform(0.0, 1.0, 2 + 2 * population * iterations) for g in rngs])
     X, Y = draws[:, 0] * a + b, draws[:, 1] * a + b
     best_x, best_f = np.full(n, np.nan), np.full(n, np.inf)

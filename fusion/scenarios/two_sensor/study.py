@@ -249,6 +249,16 @@ class NeesStudy:
     est: Mapping[str, FloatArray]
 
 
+def _nees_work(n_steps: int, runs: int, names: str = "n_steps and runs") -> None:
+    """The work budget (rule 17) of NEES runs of the two local filters and every rule of ``NEES_RULES`` (split CI's
+    search among them) at each of ``n_steps`` steps over ``runs`` runs (fuzz 24c SZ): a step costs about 0.7 ms
+    plus 3 us per run on this machine (12 loop steps plus 48 units a run), so that 10**4 steps of 5 runs are
+    accepted (about 10 CPU-s) and 10**6 refused by name, never run for half an hour."""
+    from fusion._validation import LOOP_STEP, loop_work
+
+    loop_work((n_steps,), 48 * runs, names, step=12 * LOOP_STEP)
+
+
 @derived_inputs()
 def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
                n_steps: int, runs: int, T: float = 1.0, velocity_sigma: float = 100.0,
@@ -290,6 +300,7 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     t_steady = nonnegative_scalar(t_steady, "t_steady")
     n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
     allocation((runs, n_steps, 4), "runs and n_steps")
+    _nees_work(n_steps, runs, "runs and n_steps")
     T = positive_scalar(T, "T")
     if not (np.arange(n_steps) * T >= t_steady).any():
         raise ValueError(f"t_steady = {t_steady} leaves no step of the n_steps = {n_steps} steps of T = {T} "

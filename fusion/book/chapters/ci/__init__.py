@@ -6,8 +6,9 @@ numbers (:mod:`fusion.data.wang2024`), draws the chapter's figures and builds it
 :class:`~fusion.book.ledger.Ledger`, one submodule per concept: the keys and settings (``constants``), the
 tracking case (``tracking``), the CI weight (``weights``, ``fruit_fly_step``), bounds by period (``bounds``), the
 feedback architecture (``architecture``), the printed equations (``printed``), consistency (``nees``), paired
-comparisons (``paired``), the infrared + radar case (``infrared``), the claims' evidence (``claim_evidence``),
-the seeded studies (``studies``) and number formatting (``text``). Every public name is re-exported here.
+comparisons (``paired``), the infrared + radar case (``infrared``, its trackers' readings ``infrared_readings``),
+the claims' inputs and evidence (``claim_inputs``, ``claim_evidence``), the seeded studies (``studies``) and
+number formatting (``text``). Every public name is re-exported here.
 
 References
 ----------
@@ -24,9 +25,11 @@ from fusion.book.chapters.ci import fruit_fly_step as _fruit_fly_step
 from fusion.book.chapters.ci import bounds as _bounds
 from fusion.book.chapters.ci import tracking as _tracking
 from fusion.book.chapters.ci import infrared as _infrared
+from fusion.book.chapters.ci import infrared_readings as _infrared_readings
 from fusion.book.chapters.ci import printed as _printed
 from fusion.book.chapters.ci import nees as _nees
 from fusion.book.chapters.ci import architecture as _architecture
+from fusion.book.chapters.ci import claim_inputs as _claim_inputs
 from fusion.book.chapters.ci import claim_evidence as _claim_evidence
 from fusion.book.chapters.ci import weights as _weights
 from fusion.book.chapters.ci import paired as _paired
@@ -37,9 +40,11 @@ from fusion.book.chapters.ci.fruit_fly_step import *  # noqa: F401,F403
 from fusion.book.chapters.ci.bounds import *  # noqa: F401,F403
 from fusion.book.chapters.ci.tracking import *  # noqa: F401,F403
 from fusion.book.chapters.ci.infrared import *  # noqa: F401,F403
+from fusion.book.chapters.ci.infrared_readings import *  # noqa: F401,F403
 from fusion.book.chapters.ci.printed import *  # noqa: F401,F403
 from fusion.book.chapters.ci.nees import *  # noqa: F401,F403
 from fusion.book.chapters.ci.architecture import *  # noqa: F401,F403
+from fusion.book.chapters.ci.claim_inputs import *  # noqa: F401,F403
 from fusion.book.chapters.ci.claim_evidence import *  # noqa: F401,F403
 from fusion.book.chapters.ci.weights import *  # noqa: F401,F403
 from fusion.book.chapters.ci.paired import *  # noqa: F401,F403
@@ -91,31 +96,31 @@ ANISO_LABEL = _tracking.ANISO_LABEL
 #: Legend label of the many-scan bound in :func:`ir_figure`.
 IR_BOUND_LABEL = _infrared.IR_BOUND_LABEL
 #: Azimuth conventions of the infrared + radar case: key of :func:`ir_study` -> description.
-IR_AXES = _infrared.IR_AXES
+IR_AXES = _infrared_readings.IR_AXES
 #: Readings of the trackers of source Figs. 9-10: label -> (tracker, factor on the process-noise variance).
 #: The angle-space filters' Q is the rule of thumb σa = the path's largest angular acceleration; the
 #: Cartesian filters' is white acceleration σa = 1 m/s² per axis. The first reading is the chapter's.
-IR_READINGS = _infrared.IR_READINGS
+IR_READINGS = _infrared_readings.IR_READINGS
 #: Intermediate white-acceleration levels σa (m/s²) of the Cartesian filters, readings of ``ci-fig9-angles`` only
 #: (between the 1 and 10 m/s² of :data:`IR_READINGS`, where the published 0.05 mrad lies).
-IR_SIGMA_A = _infrared.IR_SIGMA_A
+IR_SIGMA_A = _infrared_readings.IR_SIGMA_A
 #: The σa grid (m/s²) over which the chapter reports where both angles round to the published 0.05 mrad.
-IR_SIGMA_SCAN = _infrared.IR_SIGMA_SCAN
+IR_SIGMA_SCAN = _infrared_readings.IR_SIGMA_SCAN
 #: Methods run under every reading of :data:`IR_READINGS` (the others only under the unscaled ones).
-IR_ALWAYS = _infrared.IR_ALWAYS
+IR_ALWAYS = _infrared_readings.IR_ALWAYS
 #: Column order of the per-run RMSE arrays of :func:`ir_readings`.
-IR_COMPONENTS = _infrared.IR_COMPONENTS
+IR_COMPONENTS = _infrared_readings.IR_COMPONENTS
 #: Methods of the y/x ratio table (keys of :attr:`IrReadings.run_rmse`), in row order.
-IR_RATIO_METHODS = _infrared.IR_RATIO_METHODS
+IR_RATIO_METHODS = _infrared_readings.IR_RATIO_METHODS
 #: Methods drawn in :func:`ir_figure`, in legend order.
 IR_SHOWN = _infrared.IR_SHOWN
 #: Names of the chapter's computed results that :func:`evidence` and :func:`ledger_values` read (:class:`LedgerInputs`).
-LEDGER_INPUTS = _claim_evidence.LEDGER_INPUTS
+LEDGER_INPUTS = _claim_inputs.LEDGER_INPUTS
 #: The evidence functions of the chapter, in ledger order of their first record.
 EVIDENCE_FUNCTIONS = _claim_evidence.EVIDENCE_FUNCTIONS
 
 __all__ = (_constants.__all__ + _text.__all__ + _fruit_fly_step.__all__ + _bounds.__all__ + _tracking.__all__ +
-           _infrared.__all__ + _printed.__all__ + _nees.__all__ + _architecture.__all__ + _claim_evidence.__all__ +
-           _weights.__all__ + _paired.__all__ + _studies.__all__)
+           _infrared.__all__ + _infrared_readings.__all__ + _printed.__all__ + _nees.__all__ + _architecture.__all__ +
+           _claim_inputs.__all__ + _claim_evidence.__all__ + _weights.__all__ + _paired.__all__ + _studies.__all__)
 
 name_by_package(globals())

@@ -161,3 +161,79 @@ def _study_of(sc: object, study: object, sc_name: str = "sc", study_name: str = 
         if est is not None and (est.shape != track.est.shape or not np.array_equal(est, track.est)):
             raise ValueError(f"{study_name} must be fusion_study of {sc_name}: its local tracks ({method.value}) "
                              f"are not {sc_name}'s (another seed, runs or scenario)")
+
+
+def _optima_of(P1: object, P2: object, res: object = None, seeds: object = None, *,
+               names: tuple[str, str, str, str] = ("P1", "P2", "res", "seeds"), rtol: float = 1e-9) -> None:
+    """The optima ``res`` (:func:`~fusion.book.chapters.ci.weight_search`) and ``seeds``
+    (:func:`fusion.scenarios.two_sensor.fruit_fly_over_seeds`) searched on the CI objective of the pair
+    ``(P1, P2)`` (fuzz 24c MM/FA): every recorded :math:`\\operatorname{tr}P` is that objective at the recorded ω
+    (relative ``rtol``), so that another pair's optima are a ValueError naming ``res`` (``seeds``) and the pair,
+    never a figure or a glued number of one pair's objective with another's optima marked. ``P1``, ``P2`` checked
+    covariances of one size; ``res`` and ``seeds`` checked results (or ``None``, not compared)."""
+    from fusion.estimates.ci import ci_objective
+
+    p1, p2, res_name, seeds_name = names
+
+    def compare(x: np.ndarray, fun: np.ndarray, what: str) -> None:
+        x, fun = np.atleast_1d(np.asarray(x, dtype=float)), np.atleast_1d(np.asarray(fun, dtype=float))
+        inside = np.isfinite(x) & (x >= 0.0) & (x <= 1.0)
+        expected = np.full(x.shape, np.nan)
+        if inside.any():
+            expected[inside] = np.atleast_1d(ci_objective(x[inside], P1, P2))
+        off = ~(np.abs(fun - expected) <= rtol * np.abs(expected))
+        if off.any():
+            i = int(np.argmax(off))
+            raise ValueError(f"{what} must be searched on the pair ({p1}, {p2}): its tr P {shown(float(fun[i]))} at "
+                             f"ω = {shown(float(x[i]))} is not that pair's objective there "
+                             f"({shown(float(expected[i]))}; another pair's optima?)")
+
+    if res is not None:
+        assert isinstance(res, Mapping)
+        for k, r in res.items():
+            compare(r.x, r.fun, f"{res_name}[{shown(k)}]")
+    if seeds is not None:
+        compare(seeds.grid_x, seeds.grid_fun, f"{seeds_name} (its exhaustive search)")   # type: ignore[attr-defined]
+        compare(seeds.fruit_fly_x, seeds.fruit_fly_fun, f"{seeds_name} (its FOA runs)")   # type: ignore[attr-defined]
+
+
+def _same_search(res: Mapping, seeds: object, res_name: str = "res", seeds_name: str = "fruit_fly_seeds",
+                 grid: str = "exhaustive, 1001 points", rtol: float = 1e-9) -> None:
+    """``res`` (:func:`~fusion.book.chapters.ci.weight_search`) and ``seeds``
+    (:func:`fusion.scenarios.two_sensor.fruit_fly_over_seeds`, its 1001-point grid) of one pair, where the pair is
+    not given (fuzz 24c MM): both searched the same grid, so their exhaustive optima agree (ω and, to a relative
+    ``rtol``, tr P); another pair's is a ValueError naming both."""
+    r = res[grid]
+    gx, gf = float(seeds.grid_x), float(seeds.grid_fun)   # type: ignore[attr-defined]
+    if not (gx == float(r.x) and abs(gf - float(r.fun)) <= rtol * abs(float(r.fun))):
+        raise ValueError(f"{seeds_name} and {res_name} must be searches of one pair: their exhaustive searches on "
+                         f"1001 points end at different optima (ω = {shown(gx)}, tr P {shown(gf)} and ω = "
+                         f"{shown(float(r.x))}, tr P {shown(float(r.fun))}; another pair's?)")
+
+
+def _leg_of(study: object, leg_floor: np.ndarray, legs_steady: np.ndarray, leg_rmse: Mapping,
+            rtol: float = 1e-9) -> None:
+    """The straight-leg numbers ``leg_floor``, ``legs_steady`` and ``leg_rmse`` those of
+    :func:`~fusion.book.chapters.ci.straight_leg` on ``study`` (fuzz 24c MM): one floor per straight-leg step of
+    the study's path (its period ``study.t[1] - study.t[0]``), the study's steady steps among them, and each
+    method's RMSE of ``leg_rmse`` that the study ran its mean there (relative ``rtol``); another study's leg is a
+    ValueError naming the argument and ``study``, never a plausible wrong glued ratio."""
+    from fusion.scenarios.two_sensor import straight_leg_floor
+
+    t = np.asarray(study.t, dtype=float)   # type: ignore[attr-defined]
+    if t.size < 2:
+        return
+    on_leg = straight_leg_floor(float(t[1] - t[0]), 1.0)[1]
+    steady = np.asarray(study.steady, dtype=bool)   # type: ignore[attr-defined]
+    if on_leg.shape != steady.shape or int(on_leg.sum()) != leg_floor.size:
+        raise ValueError(f"leg_floor must be the straight leg of study: it has {leg_floor.size} steps, study's path "
+                         f"{int(on_leg.sum())} on its straight leg (another study's?)")
+    if not np.array_equal(legs_steady, steady[on_leg]):
+        raise ValueError("legs_steady must be study's steady steps on its straight leg (another study's?)")
+    rmse = study.rmse   # type: ignore[attr-defined]
+    for name, value in leg_rmse.items():
+        if name in rmse:
+            expected = float(np.asarray(rmse[name])[on_leg & steady, 0].mean())
+            if not abs(float(value) - expected) <= rtol * abs(expected):
+                raise ValueError(f"leg_rmse[{shown(name)}] = {shown(float(value))} must be study's RMSE on its "
+                                 f"straight leg ({shown(expected)}; another study's?)")

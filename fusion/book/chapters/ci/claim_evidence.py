@@ -9,20 +9,16 @@ study, from the chapter's computed results ``r`` (:class:`LedgerInputs`, built b
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, fields, is_dataclass
+from collections.abc import Mapping, Sequence
 from typing import Any, TypeAlias
 
 import numpy as np
-import pandas as pd
 from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion._docstrings import with_sections, reads_results
-from fusion._results import (ResultSpec, array, dict_of, instance, integer, number, shared_post_init, table, text,
-                             tuple_of, validated_post_init)
-from fusion._shown import shown
-from fusion._validation import FloatArray, instance_of
+from fusion._results import number, table, text
+from fusion._validation import instance_of
 from fusion.book.claims import build_ledger
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Evidence, Ledger, Proposition, PublishedValues, Unverifiable, fmt
@@ -33,7 +29,7 @@ from fusion.scenarios import two_sensor
 from fusion.scenarios.infrared_radar import AZIMUTH_MRAD, ELEVATION_MRAD, X_M, Y_M, IrMethod
 from fusion.scenarios.two_sensor.study import RUN_AVERAGED
 from fusion.scenarios.two_sensor import (ArchitectureStudy, NeesRule, fixed_weight_rule, FruitFlySeeds, FusionStudy,
-                                         QScaling, StudyMethod)
+                                         StudyMethod)
 from fusion.book.chapters.ci.constants import (BIBKEY, CI_, CI_N, CLEARLY, CVX, CVX_N, FB, FBC, FZ, FZ_N, IMP, IND,
                                                IR_CVX, IR_FZ, IR_IMP, IR_KEYS,
                                                LIT, LIT_OWN, METRIC, PRINTED, PRINTED_OWN, SEARCH_STEP, SPLIT_O,
@@ -41,330 +37,19 @@ from fusion.book.chapters.ci.constants import (BIBKEY, CI_, CI_N, CLEARLY, CVX, 
 from fusion.book.chapters.ci.architecture import architecture_row
 from fusion.book.chapters.ci.fruit_fly_step import (GRID_FINE, CANDIDATES_ABOVE, CANDIDATES_BELOW, LARGEST_ERROR,
                                                     MEDIAN_ERROR, RUNS_WITHIN)
-from fusion.book.chapters.ci.infrared import IR_AXES, IR_READINGS, IrReadings, IR_SIGMA_A, ir_ratio, ir_ratio_band, ir_rms
+from fusion.book.chapters.ci.infrared_readings import IR_AXES, IR_READINGS, IR_SIGMA_A, ir_ratio, ir_ratio_band, ir_rms
 from fusion.book.chapters.ci.text import nees_band, paired_text, readable
-from fusion.book.chapters.ci.paired import _PAIRED_CLAIM_FIELDS, _REAL, _RUNS, PairedClaimInputs, _runs_relation
-from fusion.book.chapters.ci.printed import PrintedWeightFacts
-from fusion.book.chapters.ci.tracking import _LEG_FIELDS, LegClaimInputs, _band_numbers, slip_pair_band
-from fusion.book.chapters.ci.weights import _WEIGHT_FIELDS, WeightClaimInputs, OMEGA_FOUND, TR_P
+from fusion.book.chapters.ci.tracking import _band_numbers, slip_pair_band
+from fusion.book.chapters.ci.weights import OMEGA_FOUND, TR_P
+from fusion.book.chapters.ci.claim_inputs import ArchInputs, IrInputs, LedgerInputs, PairedInputs, ledger_inputs
 
-__all__ = ["ArchInputs", "PeriodRuns", "PairedInputs", "IrInputs", "LedgerStudies", "LedgerInputs", "LEDGER_INPUTS", "ledger_inputs", "ev_headline", "ev_fig4_fig7", "ev_fig6", "ev_fig8", "ev_equations",
+__all__ = ["ev_headline", "ev_fig4_fig7", "ev_fig6", "ev_fig8", "ev_equations",
            "ev_fig5", "ev_times", "ev_misc", "ev_ir_values", "ev_ir_baselines", "ev_foa_step", "EVIDENCE_FUNCTIONS",
            "evidence", "ledger", "ledger_values"]
 
 #: What an evidence function returns: record id -> reading key -> evidence (or the record's one evidence), as
 #: :func:`fusion.book.claims.build_ledger` takes it.
 RecordEvidence: TypeAlias = "dict[str, dict[str, Evidence] | Evidence]"
-
-
-# --------------------------------------------------------------------------- claims
-#: Field specs of :class:`ArchInputs` (fusion._results), shared with the bundles that hold them.
-_ARCH_FIELDS = {"arch": tuple_of(instance(ArchitectureStudy), count=2), "arch_seeds": tuple_of(integer(0), count=2)}
-
-
-@dataclass(frozen=True)
-class ArchInputs:
-    """The ledger's entries of the two architecture studies (:func:`ledger_studies`).
-
-    Attributes
-    ----------
-    arch : tuple of ArchitectureStudy
-        The identical-sensor and the anisotropic pair's studies (:func:`arch_study`), in that order.
-    arch_seeds : tuple of int
-        Their seeds, in the same order.
-    """
-
-    arch: tuple[ArchitectureStudy, ArchitectureStudy]
-    arch_seeds: tuple[int, int]
-
-    __result_spec__ = ResultSpec(_ARCH_FIELDS)
-    __post_init__ = validated_post_init
-
-
-@dataclass(frozen=True)
-class PeriodRuns:
-    """CI at Fig. 5's two published weights on the identical sensors at one period of :data:`FIG6_PERIODS`.
-
-    Attributes
-    ----------
-    seed : int
-        Seed of the runs.
-    fruit_fly : ndarray
-        Per-run RMSE on x (m) at the fruit fly's published weight ``W_PUB``, shape (runs,).
-    grid : ndarray
-        The same at the grid's published weight ``W_GRID``, on the same runs.
-    """
-
-    seed: int
-    fruit_fly: FloatArray
-    grid: FloatArray
-
-    __result_spec__ = ResultSpec({"seed": integer(0), "fruit_fly": _RUNS, "grid": _RUNS})
-    __post_init__ = validated_post_init
-
-
-#: Field specs of the ledger's inputs (fusion._results), by the class that declares the fields: every class that
-#: holds them (PairedInputs, IrInputs, LedgerStudies, LedgerInputs) checks them when built.
-_PAIRED_FIELDS = {**_PAIRED_CLAIM_FIELDS,
-                  "aniso_seed": integer(0), "fig6_periods": dict_of(instance(PeriodRuns), key=_REAL),
-                  "flat_range": number(), "flat_pub_grid": tuple_of(number(positive=True), count=2)}
-_IR_FIELDS = {"ir_readings": instance(IrReadings), "ir_seed": integer(0),
-              "ir_paired": dict_of(array("ir_runs", bounds=(0.0, np.inf))), "ir_means": dict_of(dict_of(number()))}
-_PAIR = tuple_of(number(), count=2)
-
-
-def _ir_scaled_relation(values: Mapping[str, Any], cls: str) -> None:
-    """``ir_readings`` must hold the x axis's scaled readings (``ledger_values`` reads them; the default)."""
-    missing = [("x", label) for label, (_, factor) in IR_READINGS.items()
-               if factor != 1.0 and ("x", label) not in values["ir_readings"].run_rmse]
-    if missing:
-        raise ValueError(f"{cls}.ir_readings misses the scaled readings {shown(missing, 200)} of the x axis (the ledger "
-                         "reads them: ir_readings with 'x' in scaled_axes)")
-_LEDGER_FIELDS = {
-    "study": instance(FusionStudy), "model_rmse": dict_of(number(), required=("x", "y")), "nees": dict_of(number()),
-    "nees_runs": integer(1), "eq2_error": number(), "eq6_asym": number(), "bench": dict_of(number()),
-    "bench_date": text(), "bench_per_step": dict_of(tuple_of(number())), "fig5_hyp": table(),
-    "rmse_variants": dict_of(_PAIR), "rmse_variants_all": dict_of(_PAIR), "ir_sens": dict_of(dict_of(number()), key=_REAL),
-    "ir_T": number(positive=True), "pcrb": dict_of(number(), required=("T1", "limit")), "q_scaling": instance(QScaling),
-    "slip_all": dict_of(_PAIR), "slip_weights": dict_of(_PAIR, key=_REAL),
-    "slip_band": dict_of(tuple_of(integer(0), count=2)), "printed": instance(PrintedWeightFacts), "exact_rmse": _PAIR,
-    "fruit_fly_step_study": table(), "fruit_fly_step_targets": table()}
-
-
-@dataclass(frozen=True)
-class PairedInputs(PairedClaimInputs):
-    """The ledger's entries of the paired studies (:func:`ledger_studies`): :class:`PairedClaimInputs` and these.
-
-    Attributes
-    ----------
-    aniso_seed : int
-        Seed of the anisotropic pair.
-    fig6_periods : dict of float to PeriodRuns
-        :func:`fig6_periods`: period (s) -> the runs at the two published weights.
-    flat_range : float
-        Range of tr P(ω) of the identical sensors at :data:`SEARCH_STEP` over 11 weights in [0, 1].
-    flat_pub_grid : tuple of float
-        CI's tr P there at Fig. 5's two published weights, FOA's and the grid's (m²).
-    """
-
-    aniso_seed: int
-    fig6_periods: Mapping[float, PeriodRuns]
-    flat_range: float
-    flat_pub_grid: tuple[float, float]
-
-    __result_spec__ = ResultSpec(_PAIRED_FIELDS, relations=(lambda v, cls: _runs_relation(v, cls),))
-    __post_init__ = shared_post_init  # the studies' values shared, not copied
-
-
-@dataclass(frozen=True)
-class IrInputs:
-    """The ledger's entries of the infrared + radar readings (:func:`ledger_studies`).
-
-    Attributes
-    ----------
-    ir_readings : IrReadings
-        :func:`ir_reading_study`.
-    ir_seed : int
-        Their seed.
-    ir_paired : dict of str to ndarray
-        :func:`ir_paired` of those readings: method -> per-run azimuth RMSE (mrad).
-    ir_means : dict of str to dict
-        Method -> {quantity -> late mean of the primary reading's RMSE}.
-    """
-
-    ir_readings: IrReadings
-    ir_seed: int
-    ir_paired: Mapping[str, np.ndarray]
-    ir_means: Mapping[str, Mapping[str, float]]
-
-    __result_spec__ = ResultSpec(_IR_FIELDS, relations=(lambda v, cls: _ir_scaled_relation(v, cls),))
-    __post_init__ = shared_post_init  # the studies' values shared, not copied
-
-
-@dataclass(frozen=True)
-class LedgerStudies(IrInputs, PairedInputs, ArchInputs):
-    """The entries of :class:`LedgerInputs` that the chapter's Monte-Carlo studies give (:func:`ledger_studies`).
-
-    Attributes
-    ----------
-    arch
-        As in :class:`ArchInputs`.
-    arch_seeds
-        As in :class:`ArchInputs`.
-    paired
-        As in :class:`PairedInputs`.
-    paired_runs
-        As in :class:`PairedInputs`.
-    paired_seed
-        As in :class:`PairedInputs`.
-    paired_unequal
-        As in :class:`PairedInputs`.
-    unequal_seed
-        As in :class:`PairedInputs`.
-    paired_random
-        As in :class:`PairedInputs`.
-    random_seed
-        As in :class:`PairedInputs`.
-    paired_aniso
-        As in :class:`PairedInputs`.
-    paired_fig6
-        As in :class:`PairedInputs`.
-    fuzzy_levels
-        As in :class:`PairedInputs`.
-    aniso_seed
-        As in :class:`PairedInputs`.
-    fig6_periods
-        As in :class:`PairedInputs`.
-    flat_range
-        As in :class:`PairedInputs`.
-    flat_pub_grid
-        As in :class:`PairedInputs`.
-    ir_readings
-        As in :class:`IrInputs`.
-    ir_seed
-        As in :class:`IrInputs`.
-    ir_paired
-        As in :class:`IrInputs`.
-    ir_means
-        As in :class:`IrInputs`.
-    """
-
-    __result_spec__ = ResultSpec({**_ARCH_FIELDS, **_PAIRED_FIELDS, **_IR_FIELDS},
-                                 relations=(lambda v, cls: _runs_relation(v, cls),
-                                            lambda v, cls: _ir_scaled_relation(v, cls)))
-    __post_init__ = shared_post_init  # the studies' values shared, not copied
-
-
-@dataclass(frozen=True)
-class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
-    """The chapter's computed results that :func:`evidence` and :func:`ledger_values` read (:func:`ledger_inputs`).
-
-    Besides the attributes of :class:`LedgerStudies` (the Monte-Carlo studies), :class:`WeightClaimInputs` (the weight
-    search) and :class:`LegClaimInputs` (the straight leg's floors):
-
-    Attributes
-    ----------
-    study : FusionStudy
-        The chapter's study (50 runs, T = 1 s).
-    model_rmse : dict of str to float
-        Split CI on targets that follow the model: ``"x"``, ``"y"`` (m).
-    nees : dict of NeesRule to float
-        Mean NEES of each rule.
-    nees_runs : int
-        Runs of those NEES.
-    eq2_error : float
-        Largest change of two identical estimates under eq. 2.
-    eq6_asym : float
-        Largest asymmetry of eq. 6's matrix as extracted.
-    bench : dict of str to float
-        ``benchmarks/results/ci.json``'s measurements by key (s, or a count).
-    bench_date : str
-        Its date.
-    bench_per_step : dict of str to list
-        Its per-step timings and evaluation counts.
-    fig5_hyp : pandas.DataFrame
-        :func:`fig5_hypotheses`.
-    rmse_variants : dict of str to tuple
-        Readings of eq. 13 -> (x, y) RMSE (m), over the steady steps.
-    rmse_variants_all : dict of str to tuple
-        The same over every step.
-    ir_sens : dict of float to dict
-        Infrared + radar: period (s) -> quantity -> late mean of the improved CI.
-    ir_T : float
-        The infrared + radar case's period (s).
-    pcrb : dict of str to float
-        The bound at ``"T1"`` and in the ``"limit"`` (m).
-    q_scaling : QScaling
-        The study of scaled Q.
-    slip_all : dict of str to tuple
-        :func:`slip_all`.
-    slip_weights : dict of float to tuple
-        :func:`slip_at_weights`.
-    slip_band : dict of str to tuple
-        :func:`slip_band`.
-    printed : PrintedWeightFacts
-        :func:`printed_weight_facts`.
-    exact_rmse : tuple of float
-        Exact RMSE of CI = the average on the path, (x, y) (m).
-    fruit_fly_step_study : pandas.DataFrame
-        :func:`fruit_fly_step_study`.
-    fruit_fly_step_targets : pandas.DataFrame
-        :func:`fruit_fly_step_targets`.
-    """
-
-    study: FusionStudy
-    model_rmse: Mapping[str, float]
-    nees: Mapping[NeesRule, float]
-    nees_runs: int
-    eq2_error: float
-    eq6_asym: float
-    bench: Mapping[str, float]
-    bench_date: str
-    bench_per_step: Mapping[str, tuple[float, ...]]
-    fig5_hyp: pd.DataFrame
-    rmse_variants: Mapping[str, tuple[float, float]]
-    rmse_variants_all: Mapping[str, tuple[float, float]]
-    ir_sens: Mapping[float, Mapping[str, float]]
-    ir_T: float
-    pcrb: Mapping[str, float]
-    q_scaling: QScaling
-    slip_all: Mapping[str, tuple[float, float]]
-    slip_weights: Mapping[float, tuple[float, float]]
-    slip_band: Mapping[str, tuple[int, int]]
-    printed: PrintedWeightFacts
-    exact_rmse: tuple[float, float]
-    fruit_fly_step_study: pd.DataFrame
-    fruit_fly_step_targets: pd.DataFrame
-
-    __result_spec__ = ResultSpec({**_ARCH_FIELDS, **_PAIRED_FIELDS, **_IR_FIELDS, **_WEIGHT_FIELDS, **_LEG_FIELDS,
-                                  **_LEDGER_FIELDS}, relations=(lambda v, cls: _runs_relation(v, cls),
-                                                                lambda v, cls: _ir_scaled_relation(v, cls)))
-    __post_init__ = shared_post_init  # the studies' values shared, not copied
-
-
-#: Names of the chapter's computed results that :func:`evidence` and :func:`ledger_values` read (:class:`LedgerInputs`).
-LEDGER_INPUTS = tuple(f.name for f in fields(LedgerInputs))
-
-
-def ledger_inputs(*bundles: object, **parts: Any) -> LedgerInputs:
-    """The chapter's computed results that the ledger reads, checked for completeness.
-
-    Parameters
-    ----------
-    *bundles
-        Typed parts whose attributes are entries (:class:`LedgerStudies`, :class:`WeightClaimInputs`,
-        :class:`LegClaimInputs`, ...); their values are shared, not copied.
-    **parts
-        The other entries of :data:`LEDGER_INPUTS` by name (:class:`LedgerInputs` documents each). The entries of the
-        Monte-Carlo studies the stochastic records read come from :func:`ledger_studies` (the functions the
-        reseeding sweep calls).
-
-    Returns
-    -------
-    LedgerInputs
-        Every field of the bundles and of ``parts`` by name (studies, weight-search and straight-leg inputs).
-
-    Raises
-    ------
-    ValueError
-        If a bundle is not a dataclass instance, or an entry is missing, unknown or given twice.
-    """
-    entries: dict[str, Any] = {}
-    twice: list[str] = []
-    for i, b in enumerate(bundles):
-        if not is_dataclass(b) or isinstance(b, type):
-            raise ValueError(f"bundles: item {i} is not a dataclass instance ({type(b).__name__})")
-        for f in fields(b):
-            if f.name in entries:
-                twice.append(f.name)
-            entries[f.name] = getattr(b, f.name)
-    twice += [k for k in parts if k in entries]
-    entries.update(parts)
-    missing = [k for k in LEDGER_INPUTS if k not in entries]
-    extra = sorted(set(entries) - set(LEDGER_INPUTS))
-    if missing or extra or twice:
-        raise ValueError(f"parts: missing {missing}, unknown {extra}, given twice {sorted(set(twice))}")
-    return LedgerInputs(**entries)
 
 
 _SHOWN = {CVX: "convex combination (eqs. 3-4)", IR_CVX: "convex combination (eqs. 3-4)"}

@@ -104,6 +104,9 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     count(seeds, "seeds")
+    from fusion.optimise.scalar import batch_budget
+
+    batch_budget(seeds, 30, 200, "seeds")   # each rule's batch of the printed 30 × 200, named here (fuzz 24c WN)
     # in (0, 1); computed with the float the reader returns (fuzz 22b, FR1-2: a Fraction or a Decimal was used raw)
     target = scalar(target, "target", lo=0.0, hi=1.0, lo_open=True, hi_open=True)
     grid = grid_search(lambda w: (np.asarray(w, dtype=float) - target) ** 2, 1001, vectorized=True)

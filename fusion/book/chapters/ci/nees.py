@@ -88,6 +88,7 @@ def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: Arr
     x_start : array_like, shape (4,)
         Initial true state (its velocity is the filters' initial velocity).
     n_steps, runs : int
+        Steps and runs, within the memory and work budgets of ``nees_study`` (a ValueError names them).
     T : float
         Sampling period (s).
     velocity_sigma : float
@@ -110,6 +111,11 @@ def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: Arr
     x_start = as_array(x_start, "x_start", shape=(4,))
     random_velocity = flag(random_velocity, "random_velocity")
     n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
+    from fusion._validation import allocation
+    from fusion.scenarios.two_sensor.study import _nees_work
+
+    allocation((runs, n_steps, 4), "n_steps and runs")   # the budgets of nees_study, the same runs (fuzz 24c SZ)
+    _nees_work(n_steps, runs)
     T = scalar(T, "T", lo=0.0, lo_open=True)
     velocity_sigma = scalar(velocity_sigma, "velocity_sigma", lo=0.0, lo_open=True)
     model = cv_model(T)

@@ -27,11 +27,12 @@ from fusion.scenarios import infrared_radar as ir
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, Scenario
 from fusion.book.chapters.ci.architecture import architecture_studies
-from fusion.book.chapters.ci.claim_evidence import (ArchInputs, IrInputs, LedgerStudies, PairedInputs, PeriodRuns, _vs_ci, _x_below_y,
+from fusion.book.chapters.ci.claim_inputs import ArchInputs, IrInputs, LedgerStudies, PairedInputs, PeriodRuns
+from fusion.book.chapters.ci.claim_evidence import (_vs_ci, _x_below_y,
                                                     ev_fig6, ev_ir_baselines)
 from fusion.book.chapters.ci.constants import (FIG6_PERIODS, IR_DURATION, IR_T, LEDGER_RUNS, SEARCH_STEP, SEED,
                                                SOURCE_RUNS, SOURCE_T, W_GRID, W_PUB, study_seed)
-from fusion.book.chapters.ci.infrared import IrReadings, ir_paired, ir_readings
+from fusion.book.chapters.ci.infrared_readings import IrReadings, ir_paired, ir_readings
 from fusion.book.chapters.ci.paired import PairedStudies, paired_studies
 from fusion.book.chapters.ci.printed import printed_covariances
 from fusion.book.chapters.ci.tracking import ANISO_R

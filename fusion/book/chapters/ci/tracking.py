@@ -31,7 +31,7 @@ from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
 from fusion.scenarios.two_sensor.study import OVER_STEPS, RUN_AVERAGED
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 from fusion.book.chapters.ci.text import _glue_doc
-from fusion.book.chapters.ci.checks import _entries, _frame, _per_step, _steps, _study_of
+from fusion.book.chapters.ci.checks import _entries, _frame, _leg_of, _per_step, _steps, _study_of
 from fusion._counts import index
 from fusion._structures import mapping_of
 from fusion._structures import same_keys
@@ -458,7 +458,9 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
         ``study`` not a FusionStudy, ``legs_steady`` not bools, ``leg_rmse`` not a mapping, a floor not numeric.
     ValueError
         ``leg_floor`` (``leg_causal``) not one finite non-negative number per straight-leg step, ``legs_steady`` not
-        one bool per straight-leg step or selecting none, ``leg_rmse`` empty or not of finite non-negative numbers.
+        one bool per straight-leg step or selecting none, ``leg_rmse`` empty or not of finite non-negative numbers;
+        the leg not that of ``study`` (:func:`straight_leg` on it): another count of straight-leg steps, other steady
+        steps, or a method's RMSE of ``leg_rmse`` not the study's mean there (relative 1e-9).
     """
     instance_of(study, FusionStudy, "study")
     leg_floor = as_array(leg_floor, "leg_floor", ndim=1, nonnegative=True)
@@ -470,6 +472,7 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
     if leg_causal is not None:
         leg_causal = _per_step(leg_causal, "leg_causal", leg_floor.size, "straight-leg step of leg_floor",
                                nonnegative=True)
+    _leg_of(study, leg_floor, legs_steady, leg_rmse)   # the leg of this study (fuzz 24c MM)
 
     from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion as _fcf
 

@@ -29,8 +29,8 @@ from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
 from fusion.book.chapters.ci.text import _glue_doc, _sig3, excess_text, readable
-from fusion.book.chapters.ci.checks import (_entries, _frame, _indices, _per_step, _results, _sensor_noises,
-                                            _step_index, _study_of)
+from fusion.book.chapters.ci.checks import (_entries, _frame, _indices, _optima_of, _per_step, _results, _same_search,
+                                            _sensor_noises, _step_index, _study_of)
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
@@ -228,10 +228,12 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
     ------
     TypeError
         ``res`` not a mapping of OptimumResult, ``m`` not a mapping, ``seeds`` (``aniso``'s last entry) not a
-        FruitFlySeeds.
+        FruitFlySeeds, ``aniso`` not a tuple.
     ValueError
         ``P1`` or ``P2`` not covariances of one size, ``res`` empty, ``m`` without a measurement drawn, ``aniso`` not
-        four entries or its ``res`` without the closed form.
+        four entries, its covariances not of the size of ``P1`` or the pair ``(P1, P2)`` itself, or its ``res``
+        without the closed form; ``res`` or ``seeds`` (``aniso``'s) not searched on ``(P1, P2)`` (``aniso``'s pair):
+        a recorded tr P not that pair's objective at the recorded ω (relative 1e-9).
     """
     _covariance_pair(P1, P2)
     _results(res, "res", OptimumResult, "weight_search")
@@ -239,12 +241,20 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
                  nonnegative=True)
     if seeds is not None:
         instance_of(seeds, FruitFlySeeds, "seeds")
+    _optima_of(P1, P2, res, seeds)   # the optima marked are those of this pair's objective (fuzz 24c MM)
     if aniso is not None:
         aniso = tuple(sequence(aniso, "aniso", 4))  # (P1, P2, res, FruitFlySeeds): a tuple or a list (fuzz 24e F3)
-        _covariance_pair(aniso[0], aniso[1], ("aniso[0]", "aniso[1]"))
+        n = np.asarray(P1).shape[0]   # the anisotropic pair is of the same state (fuzz 24c FA1: aniso[0] named)
+        as_covariance(aniso[0], n, name="aniso[0]")
+        as_covariance(aniso[1], n, name="aniso[1]")
         _entries(_results(aniso[2], "aniso[2]", OptimumResult, "weight_search"), "aniso[2]", ("closed form",),
                  "weight_search", numbers=False)
         instance_of(aniso[3], FruitFlySeeds, "aniso[3]")
+        _optima_of(aniso[0], aniso[1], aniso[2], aniso[3], names=("aniso[0]", "aniso[1]", "aniso[2]", "aniso[3]"))
+        if np.array_equal(np.asarray(aniso[0], dtype=float), np.asarray(P1, dtype=float)) and np.array_equal(
+                np.asarray(aniso[1], dtype=float), np.asarray(P2, dtype=float)):
+            raise ValueError("aniso must be another pair than (P1, P2): the anisotropic pair's panel would repeat "
+                             "the first pair's")
     pub = data.WANG2024_FOA.columns
     fig, _ax = new_figure(figsize=(7.5, 8.4))
     fig.delaxes(_ax)
@@ -333,6 +343,10 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
     seed = check_seed(seed)   # an integer seed (rule 11), named
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
     short_budget, n_open = count(short_budget, "short_budget"), count(n_open, "n_open")
+    from fusion.optimise.scalar import batch_budget
+
+    # the short-budget batch (one swarm of 30 per seed of fruit_fly_seeds), named here (fuzz 24c WN)
+    batch_budget(len(fruit_fly_seeds.seeds), 30, short_budget, "short_budget (with fruit_fly_seeds)")
     if flat_pair is not None:  # a pair (P, P): a tuple or a list (fuzz 24e F2)
         flat_pair = tuple(sequence(flat_pair, "flat_pair", 2))
     pub = data.WANG2024_FOA.columns
@@ -383,7 +397,9 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
     seeds : array_like of int
         FOA seeds (:func:`fusion.scenarios.two_sensor.printed_fruit_fly_over_seeds`, 30 × 200).
     n_grid : int
-        Points of the grid on (0, 1].
+        Points of the grid on (0, 1]; every step's covariances on it are held at once, so steps × ``n_grid`` ×
+        n × n must stay within the memory budget (``fusion._counts.MAX_ELEMENTS``; a ValueError names
+        ``n_grid``).
 
     Returns
     -------
@@ -396,6 +412,11 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
     k = _step_index(k, "k", scs[0].tracks[0].Pd.shape[0])
     check_seeds(seeds, "seeds")
     n_grid = count(n_grid, "n_grid", minimum=2)
+    from fusion._counts import allocation
+
+    for i, sc in enumerate(scs):   # every step's covariances on the grid at once (fuzz 24c SZ: 6 GiB for 2e5)
+        allocation(sc.tracks[0].Pd.shape[:1] + (n_grid,) + sc.tracks[0].Pd.shape[1:],
+                   f"n_grid (with the steps of scenarios[{i}])")
     w = (np.arange(1, n_grid + 1) / n_grid)[None, :, None, None]
     ones = steps = 0
     for sc in scs:
@@ -465,7 +486,9 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fru
     flat : array_like
         The CI objective on identical sensors at 11 weights.
     fruit_fly_seeds : FruitFlySeeds
-        FOA over 100 seeds (:func:`fusion.scenarios.two_sensor.fruit_fly_over_seeds`).
+        FOA over 100 seeds (:func:`fusion.scenarios.two_sensor.fruit_fly_over_seeds`, its default 1001-point grid)
+        on the pair of ``res``: its exhaustive search must end where ``res``'s does (ω, and tr P to a relative
+        1e-9), else a ValueError (another pair's optima).
     suffix : str
         Appended to every key (another pair's numbers, e.g. ``"_an"``).
     omit : sequence of str
@@ -474,6 +497,7 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fru
     instance_of(fruit_fly_seeds, FruitFlySeeds, "fruit_fly_seeds")
     res = _entries(_results(res, "res", OptimumResult, "weight_search"), "res", _SEARCH_METHODS, "weight_search",
                    numbers=False)
+    _same_search(res, fruit_fly_seeds)   # one pair's searches (fuzz 24c MM)
     flat = as_array(flat, "flat", ndim=1)
     suffix = text_argument(suffix, "suffix")
     omit = [text_argument(o, f"omit[{i}]") for i, o in enumerate(sequence(omit, "omit"))]
@@ -701,6 +725,20 @@ class WeightClaimInputs:
 
 
 
+def _pair_noises(asym: WeightPair, aniso: WeightPair) -> None:
+    """The two pairs of :func:`weight_claim_inputs` told apart by the noises they record (fuzz 24c MM): ``aniso``
+    at ``ANISO_R``, ``asym`` with sensor 2 three times more precise (``R2 = R1 / 9``, relative 1e-12)."""
+    from fusion.book.chapters.ci.tracking import ANISO_R
+
+    if not (np.allclose(aniso.R1, ANISO_R[0], rtol=1e-12, atol=0.0)
+            and np.allclose(aniso.R2, ANISO_R[1], rtol=1e-12, atol=0.0)):
+        raise ValueError(f"aniso must be a weight_pair of ANISO_R (the anisotropic pair), got R1 = "
+                         f"{shown(aniso.R1.tolist(), 80)}, R2 = {shown(aniso.R2.tolist(), 80)}")
+    if not np.allclose(asym.R2, asym.R1 / 9, rtol=1e-12, atol=0.0):
+        raise ValueError(f"asym must be a weight_pair with sensor 2 three times more precise (R2 = R1 / 9), got "
+                         f"R1 = {shown(asym.R1.tolist(), 80)}, R2 = {shown(asym.R2.tolist(), 80)}")
+
+
 @reads_results("asym", "aniso")
 def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) -> WeightClaimInputs:
     """The ledger's entries on the weight search (for ``claims``): both pairs and the flat objective.
@@ -727,10 +765,13 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
     TypeError
         ``asym`` or ``aniso`` not a WeightPair, ``flat`` not numeric.
     ValueError
-        ``flat`` not a 1-D array of finite numbers.
+        ``flat`` not a 1-D array of finite numbers; ``aniso`` not a pair at ``ANISO_R`` or ``asym`` not one with
+        ``R2 = R1 / 9`` (the pairs swapped, or one pair twice: the ledger would read one pair's optima as the
+        other's).
     """
     instance_of(asym, WeightPair, "asym")
     instance_of(aniso, WeightPair, "aniso")
+    _pair_noises(asym, aniso)
     flat = as_array(flat, "flat", ndim=1)
     return WeightClaimInputs(fruit_fly_seeds=asym.fruit_fly_seeds, fruit_fly_step=asym.k,
                              foa_evaluations=asym.res["FOA (30 × 200)"].n_evaluations, ml_gap=asym.ml_gap(),
@@ -805,6 +846,11 @@ def timing_benchmark(results: Any = None) -> TimingBenchmark:
                            per_step=dict(per_step))
 
 
+#: How the labels of :func:`fig5_hypotheses`' five rows begin, in its order (their settings follow).
+_HYPOTHESIS_ROWS = ("exhaustive search, 1001 points", "exhaustive search on k/", "FOA 30 × 200 as printed", "FOA 30 × ",
+                    "the same grid k/")
+
+
 def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) -> GlueValues:
     """The numbers the prose quotes from :func:`fig5_hypotheses` (glue keys ``ci_h_*``).
 
@@ -829,12 +875,18 @@ def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) ->
     ValueError
         ``table`` lacks the column ``"ω found"`` (or holds it twice) or holds fewer than five rows, or an ω read
         there (rows 2-5, by position: the hypotheses' labels carry their settings) is not a finite number in
-        [0, 1] (TypeError for a non-number), named ``table``.
+        [0, 1] (TypeError for a non-number), named ``table``; a row's label not the hypothesis of
+        :func:`fig5_hypotheses` at its position (rows reordered).
     """
     evaluations = count(evaluations, "evaluations")
     _frame(table, "table", (OMEGA_FOUND,), maker="fig5_hypotheses")
     if len(table) < 5:
         raise ValueError("table must be fig5_hypotheses' table (five rows or more, column 'ω found')")
+    for i, prefix in enumerate(_HYPOTHESIS_ROWS):   # the rows read by position, told apart by their labels (q1)
+        label = table.index[i]
+        if not isinstance(label, str) or not label.startswith(prefix) or (i == 3 and "as printed" in label):
+            raise ValueError(f"table must hold fig5_hypotheses' rows in its order: row {i} must be the hypothesis "
+                             f"{shown(prefix)}…, got {shown(label, 80)}")
     pub = data.WANG2024_FOA.columns
     per_eval = float(pub["foa_time_s"][0]) / evaluations
     # each ω read by the glue rule (fuzz 22b, V11): a weight, a finite number in [0, 1], named
