@@ -26,7 +26,7 @@ def test_every_public_chapter_function_is_in_one_group() -> None:
     twice = sorted(k for k, o in owners.items() if len(o) > 1)
     assert not nowhere, f"public chapter functions in no registry group's PREFIXES: {nowhere}"
     assert not twice, f"public chapter functions in two groups: {twice}"
-    covered = set().union(*(set(m.registry()) | set(m.EXCLUDED) for m in modules))
-    assert chapter <= covered, f"without a valid call or an exclusion: {sorted(chapter - covered)}"
+    # each group's test_registry_covers_the_group checks that its registry() holds every name of its PREFIXES
+    # but its EXCLUDED; here only the exclusions are counted (no study is built)
     excluded = sum(len(m.EXCLUDED) for m in modules)
     assert excluded <= 0.06 * len(chapter), f"{excluded} of {len(chapter)} chapter functions excluded: build their calls"
