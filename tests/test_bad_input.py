@@ -1260,6 +1260,42 @@ def _close_figures(result: Any) -> None:
             plt.close(r)
 
 
+def group_names(callables: dict[str, Any], excluded: dict[str, str], pending: dict[str, str]) -> list[Any]:
+    """The parameters of a chapter registry's sweep: every public name of the group but the excluded ones, a strict
+    xfail (with its reason) for each pending one. Names, not the registry: collection, which every xdist worker
+    runs, builds no study; :func:`check_group` checks that they are the registry's keys."""
+    return [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=pending[n])) if n in pending else n
+            for n in sorted(set(callables) - set(excluded))]
+
+
+def check_group(callables: dict[str, Any], reg: dict[str, Any], excluded: dict[str, str]) -> None:
+    """A chapter registry holds a valid call of every public function of its group but the excluded ones, and
+    nothing else."""
+    missing = sorted(set(callables) - set(reg) - set(excluded))
+    assert not missing, f"public functions of the group without a valid call: {missing}"
+    stale = sorted((set(reg) | set(excluded)) - set(callables))
+    assert not stale, f"entries that are not public functions of the group: {stale}"
+    assert not set(reg) & set(excluded), "a function both in the registry and excluded"
+
+
+def group_tests(callables: dict[str, Any], registry: Callable[[], dict[str, dict[str, A]]], excluded: dict[str, str],
+                pending: dict[str, str]) -> tuple[Callable[[], None], Callable[[str], None]]:
+    """The two tests of a chapter registry (``tests/test_bad_input_calls_ch*.py``), bound to its group: the
+    registry covers the group (:func:`check_group`), and each function's sweep (:func:`refusal_problems`) finds
+    nothing, parametrised by :func:`group_names`. A module binds them as ``test_registry_covers_the_group,
+    test_bad_input_is_refused = group_tests(...)``."""
+
+    def covers() -> None:
+        check_group(callables, registry(), excluded)
+
+    @pytest.mark.parametrize("name", group_names(callables, excluded, pending))
+    def refused(name: str) -> None:
+        problems = refusal_problems(name, callables[name], registry()[name])
+        assert not problems, f"{name}:\n  " + "\n  ".join(problems)
+
+    return covers, refused
+
+
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="validation pending"))
                                   if n in PENDING_VALIDATION else n for n in sorted(REG)])
 def test_bad_input_is_refused(name: str) -> None:

@@ -28,7 +28,7 @@ import pytest  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).parent))
 from test_bad_input import (A, ARR, BATCH, COUNT, NONNEG, OBJ, POS, REAL, UNIT,  # noqa: E402
-                            public_callables, refusal_problems)
+                            group_tests, public_callables)
 
 PREFIXES = ("fusion.book.chapters.ofs.", "fusion.book.chapters.ofs_audit.", "fusion.book.chapters.ofs_fair.",
             "fusion.book.chapters.lecture_wavelets.", "fusion.book.chapters.time_registration.",
@@ -438,21 +438,7 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
     return r
 
 
-def test_registry_covers_the_group() -> None:
-    missing = sorted(set(CALLABLES) - set(registry()) - set(EXCLUDED))
-    assert not missing, f"public functions of the group without a valid call: {missing}"
-    stale = sorted((set(registry()) | set(EXCLUDED)) - set(CALLABLES))
-    assert not stale, f"entries that are not public functions of the group: {stale}"
-
-
 #: function -> why its sweep still finds unrefused bad input (a strict xfail: it fails loudly once fixed).
 PENDING: dict[str, str] = {}
 
-
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=PENDING[n]))
-                                  if n in PENDING else n for n in sorted(set(CALLABLES) - set(EXCLUDED))])
-# the names, not registry(): collection (in every xdist worker) builds no study; test_registry_covers_the_group
-# checks that these are registry()'s keys
-def test_bad_input_is_refused(name: str) -> None:
-    problems = refusal_problems(name, SWEPT[name], registry()[name])
-    assert not problems, f"{name}:\n  " + "\n  ".join(problems)
+test_registry_covers_the_group, test_bad_input_is_refused = group_tests(SWEPT, registry, EXCLUDED, PENDING)

@@ -21,7 +21,7 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 import pytest  # noqa: E402
 
-from test_bad_input import A, COUNT, NONNEG, POS, REAL, public_callables, refusal_problems  # noqa: E402
+from test_bad_input import A, COUNT, NONNEG, POS, REAL, group_tests, public_callables  # noqa: E402
 
 PREFIXES = ("fusion.book.chapters.lecture_weighting.", "fusion.book.chapters.lecture.",
             "fusion.book.chapters.lecture_correlated.")
@@ -373,22 +373,7 @@ def registry() -> dict[str, dict[str, A]]:
     return R
 
 
-def test_registry_covers_the_group() -> None:
-    reg = registry()
-    missing = sorted(set(CALLABLES) - set(reg) - set(EXCLUDED))
-    assert not missing, f"public functions of chapters 02 and 04 without a valid call: {missing}"
-    stale = sorted((set(reg) | set(EXCLUDED)) - set(CALLABLES))
-    assert not stale, f"entries that are not public functions of the group: {stale}"
-
-
 #: Functions whose sweep still finds an unrefused mutation (strict xfail: fixed ones must leave the set).
 PENDING: dict[str, str] = {}
 
-
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=PENDING[n]))
-                                  if n in PENDING else n for n in sorted(set(CALLABLES) - set(EXCLUDED))])
-# the names, not registry(): collection (in every xdist worker) builds no study; test_registry_covers_the_group
-# checks that these are registry()'s keys
-def test_bad_input_is_refused(name: str) -> None:
-    problems = refusal_problems(name, CALLABLES[name], registry()[name])
-    assert not problems, f"{name}:\n  " + "\n  ".join(problems)
+test_registry_covers_the_group, test_bad_input_is_refused = group_tests(CALLABLES, registry, EXCLUDED, PENDING)

@@ -22,7 +22,7 @@ import pandas as pd  # noqa: E402
 import pytest  # noqa: E402
 
 from test_bad_input import (A, ARR, COUNT, NONNEG, OBJ, OPT, POS, REAL, UNIT, public_callables,  # noqa: E402
-                            refusal_problems)
+                            group_tests)
 
 PREFIXES = ("fusion.book.chapters.ci.",)
 
@@ -421,22 +421,7 @@ def registry() -> dict[str, dict[str, A]]:
     return R
 
 
-def test_registry_covers_the_group() -> None:
-    missing = sorted(set(CALLABLES) - set(registry()) - set(EXCLUDED))
-    assert not missing, f"public functions of {PREFIXES} without a valid call: {missing}"
-    stale = sorted((set(registry()) | set(EXCLUDED)) - set(CALLABLES))
-    assert not stale, f"entries that are not public functions of {PREFIXES}: {stale}"
-    assert not set(registry()) & set(EXCLUDED)
-
-
 #: Functions whose sweep still finds unrefused bad input: a strict xfail each, with the reason.
 PENDING: dict[str, str] = {}
 
-
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=PENDING[n]))
-                                  if n in PENDING else n for n in sorted(set(CALLABLES) - set(EXCLUDED))])
-# the names, not registry(): collection (in every xdist worker) builds no study; test_registry_covers_the_group
-# checks that these are registry()'s keys
-def test_bad_input_is_refused(name: str) -> None:
-    problems = refusal_problems(name, CALLABLES[name], registry()[name])
-    assert not problems, f"{name}:\n  " + "\n  ".join(problems)
+test_registry_covers_the_group, test_bad_input_is_refused = group_tests(CALLABLES, registry, EXCLUDED, PENDING)

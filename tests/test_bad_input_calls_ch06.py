@@ -25,7 +25,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from test_bad_input import ARR, COUNT, NONNEG, OBJ, POS, UNIT, A, public_callables, refusal_problems
+from test_bad_input import ARR, COUNT, NONNEG, OBJ, POS, UNIT, A, group_tests, public_callables
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -390,21 +390,7 @@ def _truths() -> np.ndarray:
     return cst.study_truths(_o()["sc"], 1, 3)
 
 
-def test_registry_covers_the_group() -> None:
-    missing = sorted(set(CALLABLES) - set(registry()) - set(EXCLUDED))
-    assert not missing, f"public functions of chapter 06 without a valid call: {missing}"
-    stale = sorted((set(registry()) | set(EXCLUDED)) - set(CALLABLES))
-    assert not stale, f"entries that are not public functions of chapter 06: {stale}"
-
-
 #: Functions whose sweep still finds unrefused bad input: a strict xfail, with the reason.
 PENDING: dict[str, str] = {}
 
-
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=PENDING[n]))
-                                  if n in PENDING else n for n in sorted(set(CALLABLES) - set(EXCLUDED))])
-# the names, not registry(): collection (in every xdist worker) builds no study; test_registry_covers_the_group
-# checks that these are registry()'s keys
-def test_bad_input_is_refused(name: str) -> None:
-    problems = refusal_problems(name, CALLABLES[name], registry()[name])
-    assert not problems, f"{name}:\n  " + "\n  ".join(problems)
+test_registry_covers_the_group, test_bad_input_is_refused = group_tests(CALLABLES, registry, EXCLUDED, PENDING)
