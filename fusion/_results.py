@@ -20,7 +20,8 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
   declares it (``array("...", "K", "n")`` for the ``(..., K, n)`` results of a batch of problems);
 * :func:`nested`: an instance of another result class (already validated by its own constructor), whose
   named dimensions are bound to the outer ones (``{"K": "K", "n": 4}``); ``count`` for a tuple of them;
-* :func:`number`, :func:`numbers`, :func:`arrays`: a finite float, or a dict with exactly the given keys of
+* :func:`number`, :func:`numbers`, :func:`arrays`: a finite float (NaN allowed with ``nan=True``, a value
+  undefined in some case), or a dict with exactly the given keys of
   finite floats or of arrays (their named dimensions bound as above); :func:`keyed`: a dict of whichever string
   keys the result holds (the methods a run computed), each a finite array (a covariance stack if asked);
 * :func:`integer`, :func:`flag`, :func:`text`, :func:`mask`: an int (not a bool) at least ``minimum`` (a count, a
@@ -117,6 +118,7 @@ class NumbersSpec:
     nonnegative: bool = True
     item: ArraySpec | None = None
     bounds: tuple[float, float] | None = None
+    nan: bool = False
 
 
 @dataclasses.dataclass(frozen=True)
@@ -177,9 +179,11 @@ def numbers(*keys: Any, positive: bool = False, nonnegative: bool = True) -> Num
     return NumbersSpec(tuple(keys), positive, nonnegative)
 
 
-def number(positive: bool = False, nonnegative: bool = True, bounds: tuple[float, float] | None = None) -> NumbersSpec:
-    """Spec of one finite float field (>= 0, > 0 if ``positive``, any sign unless ``nonnegative``; in ``bounds``)."""
-    return NumbersSpec(None, positive, nonnegative, bounds=bounds)
+def number(positive: bool = False, nonnegative: bool = True, bounds: tuple[float, float] | None = None,
+           nan: bool = False) -> NumbersSpec:
+    """Spec of one finite float field (>= 0, > 0 if ``positive``, any sign unless ``nonnegative``; in ``bounds``);
+    with ``nan``, NaN is allowed (a value its docstring calls undefined in some case), infinities still refused."""
+    return NumbersSpec(None, positive, nonnegative, bounds=bounds, nan=nan)
 
 
 def integer(minimum: int | None = 0, dim: str | None = None) -> ValueSpec:
@@ -536,7 +540,11 @@ def _number(value: object, label: str, fs: NumbersSpec) -> float:
     """One finite float of the sign ``fs`` asks for, in its bounds."""
     if isinstance(value, (bool, np.bool_)):
         raise TypeError(f"{label} must be a number, got {shown(value)}")
-    v = float(as_array(value, label, ndim=0, subnormal=True))
+    v = float(as_array(value, label, ndim=0, subnormal=True, finite=not fs.nan))
+    if np.isinf(v):
+        raise ValueError(f"{label} must not be infinite, got {shown(v)}")
+    if np.isnan(v):  # allowed (``nan``): undefined, no sign or bound to check
+        return v
     if (fs.positive and not v > 0) or (fs.nonnegative and v < 0):
         raise ValueError(f"{label} must be {'positive' if fs.positive else 'non-negative'}, got {shown(v)}")
     _in_bounds(v, label, fs.bounds)

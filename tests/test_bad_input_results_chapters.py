@@ -282,7 +282,8 @@ def _mutations(fs: Any, value: Any, shared: bool) -> list[tuple[str, Any, type]]
             out.append(("out of bounds", bad, ValueError))
         return out
     if isinstance(fs, R.NumbersSpec) and fs.keys is None:
-        out = [("wrong type", "x", TypeError), ("NaN", float("nan"), ValueError), ("bool", True, TypeError)]
+        out = [("wrong type", "x", TypeError), ("bool", True, TypeError),
+               ("not finite", float("inf") if fs.nan else float("nan"), ValueError)]  # NaN allowed where nan=True
         if fs.nonnegative or fs.positive:
             out.append(("negative", -1.0, ValueError))
         return out

@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._results import (NONNEGATIVE, ResultSpec, array, arrays, dict_of, instance, mask, number, trusted,
+from fusion._results import (NONNEGATIVE, ResultSpec, array, arrays, dict_of, flag, instance, mask, number, trusted,
                              tuple_of, validated_post_init)
 from fusion._frozen import constant
 from fusion._validation import derived_inputs
@@ -73,6 +73,13 @@ class PerronStats:
     min_lambda: float
     lambda_is_modulus: bool
     max_residual: float
+
+    # min_weight: an exact zero is computed as about ±10⁻¹⁵ (any sign); a weight of weights summing to 1 is at most 1
+    __result_spec__ = ResultSpec(
+        {"min_gap": number(bounds=(0.0, 1.0)), "share_repeated": number(bounds=(0.0, 1.0)),
+         "min_weight": number(nonnegative=False, bounds=(-np.inf, 1.0)), "share_zero_weight": number(bounds=(0.0, 1.0)),
+         "min_lambda": number(positive=True), "lambda_is_modulus": flag(), "max_residual": number()})
+    __post_init__ = validated_post_init
 
 
 @dataclass(frozen=True)

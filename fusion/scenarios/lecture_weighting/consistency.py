@@ -16,7 +16,6 @@ from fusion._validation import allocation, count, one_of, scalar, window as chec
 from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
-from fusion._frozen import frozen_arrays
 from fusion._shown import shown
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, LECTURE_GUARD_METHODS, AwfMethod, delete_weights
 
@@ -106,7 +105,6 @@ def _window_mse(v: np.ndarray, x: float, win: slice) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class FaultDiagnostics:
     r"""Why the lecture's AWF fails over the fault window of E2.3, for one case (with or without the fault).
 
@@ -140,6 +138,13 @@ class FaultDiagnostics:
     abs_var_healthy: float
     abs_mse_faulty_term: float
     abs_mse: float
+
+    __result_spec__ = ResultSpec(
+        {"p_all_healthy_negative": number(bounds=(0.0, 1.0)), "weight_faulty": number(bounds=(0.0, 1.0)),
+         "mse_healthy_mean_of_means": number(), "abs_weight_faulty": number(bounds=(0.0, 1.0)),
+         "abs_weights_healthy": array("healthy", bounds=(0.0, 1.0)), "abs_var_faulty": number(nonnegative=False),
+         "abs_var_healthy": number(), "abs_mse_faulty_term": number(), "abs_mse": number()})
+    __post_init__ = validated_post_init
 
 
 def _consistency_relation(values: Mapping[str, Any], cls: str) -> None:

@@ -14,9 +14,9 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
-                             validated_post_init)
-from fusion._frozen import constant, frozen_arrays
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, flag, instance, integer, number, same_keys, text,
+                             tuple_of, validated_post_init)
+from fusion._frozen import constant
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
 from fusion._validation import LOOP_STEP, as_mask, distinct, loop_work
@@ -161,8 +161,12 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
 
 
 
+#: The fields of :class:`ConstantLevelRuns`, in the specs of the studies that extend it (after their own fields).
+_CONSTANT_LEVEL = {"runs": integer(1), "k": integer(1), "x": number(nonnegative=False), "seed": integer(0),
+                   "variances": array("n", bounds=NONNEGATIVE)}
+
+
 @dataclass(frozen=True, kw_only=True)
-@frozen_arrays
 class ConstantLevelRuns:
     """The settings a Monte-Carlo study of a constant level reports (keyword fields, after the study's own).
 
@@ -182,6 +186,9 @@ class ConstantLevelRuns:
     x: float
     seed: int
     variances: np.ndarray
+
+    __result_spec__ = ResultSpec(_CONSTANT_LEVEL)
+    __post_init__ = validated_post_init
 
 
 @dataclass(frozen=True)
@@ -218,6 +225,11 @@ class TailStudy(ConstantLevelRuns):
     hill: float
     block_mse: np.ndarray
     median_sq: float
+
+    __result_spec__ = ResultSpec(
+        {"t": array("T", bounds=NONNEGATIVE), "exceed": array("T", bounds=(0.0, 1.0)),
+         "t_exceed": array("T", bounds=NONNEGATIVE), "hill": number(positive=True),
+         "block_mse": array(5, bounds=NONNEGATIVE), "median_sq": number(), **_CONSTANT_LEVEL})
 
 
 @derived_inputs()
@@ -411,6 +423,12 @@ class EstimatorRow:
     mean_4: float
     sd_4: float
     p_negative: float
+
+    __result_spec__ = ResultSpec(
+        {"X": number(nonnegative=False), "estimator": text("lecture", "centred"), "k": integer(1),
+         "mean_1": number(nonnegative=False), "sd_1": number(), "mean_4": number(nonnegative=False), "sd_4": number(),
+         "p_negative": number(bounds=(0.0, 1.0))})
+    __post_init__ = validated_post_init
 
 
 def _awf_relation(values: Mapping[str, object], cls: str) -> None:
@@ -618,8 +636,14 @@ def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[AwfMethod, n
     return {name: v - x for name, v in est.items()}
 
 
+def _lumv_relation(values: Mapping[str, object], cls: str) -> None:
+    """A :class:`LumvStudy`'s runs: two per antithetic pair."""
+    if values["runs"] != 2 * values["pairs"]:  # type: ignore[operator]
+        raise ValueError(f"{cls}.runs must be 2 * {cls}.pairs = {2 * values['pairs']} (antithetic pairs), "  # type: ignore[operator]
+                         f"got {values['runs']}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class LumvStudy:
     r"""Linear, unbiased, minimum variance on antithetic pairs (:func:`lumv_study`).
 
@@ -655,6 +679,16 @@ class LumvStudy:
     runs: int
     pairs: int
     seed: int
+
+    __result_spec__ = ResultSpec(
+        {"err": dict_of(array("runs")), "sq": dict_of(array("runs", bounds=NONNEGATIVE)),
+         "pair_mean": dict_of(array("pairs")), "pair_sq": dict_of(array("pairs", bounds=NONNEGATIVE)),
+         "odd_residual": dict_of(number()), "bound": number(positive=True), "variances": array("n", bounds=NONNEGATIVE),
+         "x": number(nonnegative=False), "k": integer(1), "runs": integer(1, dim="runs"),
+         "pairs": integer(1, dim="pairs"), "seed": integer(0)},
+        relations=(same_keys("err", "sq", "pair_mean", "pair_sq", "odd_residual"),
+                   lambda v, cls: _lumv_relation(v, cls)))
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()
@@ -779,6 +813,11 @@ class SymmetryStudy(ConstantLevelRuns):
     residual: Mapping[str, float]
     scale: Mapping[str, float]
     even: Mapping[str, bool]
+
+    __result_spec__ = ResultSpec(
+        {"methods": tuple_of(text()), "residual": dict_of(number()), "scale": dict_of(number()),
+         "even": dict_of(flag()), **_CONSTANT_LEVEL},
+        relations=(same_keys("methods", "residual", "scale", "even"),))
 
 
 @derived_inputs()

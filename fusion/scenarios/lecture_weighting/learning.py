@@ -4,11 +4,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
-from fusion._frozen import frozen_arrays
-from fusion._validation import derived_inputs
+from fusion._results import ResultSpec, array, dict_of, instance, integer, number, text, tuple_of, validated_post_init
+from fusion._shown import shown
+from fusion._validation import as_array, derived_inputs
 from fusion._validation import count, scalar, sequence
 from fusion._validation import allocation
 from fusion._validation import LOOP_STEP, distinct, loop_work, work
@@ -58,9 +60,34 @@ class LearningRow:
     max_rel_limit_dev: float
     corrected_mc: float
 
+    __result_spec__ = ResultSpec(
+        {"R": text(), "min_r": number(positive=True), "optimal": number(positive=True),
+         "learned_limit": number(positive=True), "learned_mc": number(), "mean": number(positive=True),
+         "max_rel_limit_dev": number(), "corrected_mc": number(nan=True)})  # NaN for n = 2 (no corrected learning)
+    __post_init__ = validated_post_init
+
+
+def _learning_relation(values: Mapping[str, Any], cls: str) -> None:
+    """A :class:`LearningStudy`: one row, one ``bias`` entry (keyed by the row's ``R``) and one ``learned`` entry per
+    setting; ``learned[n]`` the n true variances (> 0) and their mean learned estimates (>= 0), shape (epochs, n),
+    the same epochs for every n, at least ``last``."""
+    rows, learned = values["rows"], values["learned"]
+    if set(values["bias"]) != {row.R for row in rows} or len(learned) != len(rows):
+        raise ValueError(f"{cls}.bias and {cls}.learned must hold one entry per row of {cls}.rows ({len(rows)}), "
+                         f"got {len(values['bias'])} and {len(learned)}")
+    epochs = None
+    for n, (R, mean) in learned.items():
+        where = f"{cls}.learned[{shown(n)}]"
+        R = as_array(R, f"{where}[0]", ndim=1, shape=(n,))
+        mean = as_array(mean, f"{where}[1]", ndim=2, shape=(epochs, n), nonnegative=True)
+        if np.any(R <= 0):
+            raise ValueError(f"{where}[0] must hold positive variances, got {shown(R)}")
+        epochs = mean.shape[0]
+    if epochs is not None and values["last"] > epochs:
+        raise ValueError(f"{cls}.last must be at most the {epochs} epochs of {cls}.learned, got {values['last']}")
+
 
 @dataclass(frozen=True)
-@frozen_arrays
 class LearningStudy:
     """Experiment E2.2: variance learning of sec. 2.2 (:func:`learning_study`).
 
@@ -86,6 +113,13 @@ class LearningStudy:
     x: float
     last: int
     n2_maxdev: float
+
+    __result_spec__ = ResultSpec(
+        {"rows": tuple_of(instance(LearningRow)),
+         "learned": dict_of(tuple_of(instance(np.ndarray), instance(np.ndarray)), key=int),  # n differs per key
+         "bias": dict_of(array("runs")), "x": number(nonnegative=False), "last": integer(1), "n2_maxdev": number()},
+        relations=(lambda v, cls: _learning_relation(v, cls),))
+    __post_init__ = validated_post_init
 
 
 def learning_study(
@@ -197,6 +231,27 @@ class LearnedLimitCheck:
     ns: tuple[int, ...]
     draws: int
     seed: int
+
+    __result_spec__ = ResultSpec(
+        {"sets": integer(1), "above_mean": integer(0), "above_best": integer(0), "above_best_any": integer(0),
+         "max_ratio_mean": number(positive=True), "margin": number(), "ns": tuple_of(integer(2)),
+         "draws": integer(1), "seed": integer(0)},
+        relations=(lambda v, cls: _limit_check_relation(v, cls),))
+    __post_init__ = validated_post_init
+
+
+def _limit_check_relation(values: Mapping[str, Any], cls: str) -> None:
+    """A :class:`LearnedLimitCheck`: ``draws`` sets per n, counts of them at most ``sets``, beyond the margin at most
+    beyond any amount."""
+    if values["sets"] != values["draws"] * len(values["ns"]):
+        raise ValueError(f"{cls}.sets must be {cls}.draws x the {len(values['ns'])} {cls}.ns = "
+                         f"{values['draws'] * len(values['ns'])}, got {values['sets']}")
+    for name in ("above_mean", "above_best", "above_best_any"):
+        if values[name] > values["sets"]:
+            raise ValueError(f"{cls}.{name} must be at most {cls}.sets = {values['sets']}, got {values[name]}")
+    if values["above_best"] > values["above_best_any"]:
+        raise ValueError(f"{cls}.above_best must be at most {cls}.above_best_any = {values['above_best_any']} "
+                         f"(beyond the margin is beyond any amount), got {values['above_best']}")
 
 
 @derived_inputs()

@@ -5,10 +5,12 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
+from typing import Any
 
 import numpy as np
 
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of
+from fusion._results import flag as flag_spec, validated_post_init  # flag: the argument check of _validation
 from fusion import readings as rd
 from fusion._validation import derived_inputs
 from fusion._validation import flag
@@ -224,8 +226,29 @@ def _benchmark_results(results: object) -> dict[tuple[int, float, bool], dict[st
     return out
 
 
+def _stability_relation(values: Mapping[str, Any], cls: str) -> None:
+    """A :class:`SeedStability`: ranks of shape (seeds, methods), each at most the number of methods; counts of
+    scenarios at most the scenarios, reversals at most one per resolved pair and later seed."""
+    n_seeds, n_methods = len(values["seeds"]), len(values["methods"])
+    for key, r in values["ranks"].items():
+        if r.shape != (n_seeds, n_methods):
+            raise ValueError(f"{cls}.ranks[{shown(key)}] must have shape ({n_seeds}, {n_methods}) (the seeds and "
+                             f"methods of {cls}.seeds and {cls}.methods), got {r.shape}")
+        if np.any(r > n_methods):
+            raise ValueError(f"{cls}.ranks[{shown(key)}] must hold ranks 1..{n_methods}, got {shown(float(r.max()))}")
+    if values["n_stable"] > len(values["scenarios"]):
+        raise ValueError(f"{cls}.n_stable must be at most the {len(values['scenarios'])} scenarios, "
+                         f"got {values['n_stable']}")
+    pairs = len(values["scenarios"]) * n_methods * (n_methods - 1) // 2
+    if values["n_sig"] > pairs:
+        raise ValueError(f"{cls}.n_sig must be at most the {pairs} pairs of methods of the scenarios, "
+                         f"got {values['n_sig']}")
+    if values["n_rev"] > values["n_sig"] * (n_seeds - 1):
+        raise ValueError(f"{cls}.n_rev must be at most {cls}.n_sig x the {n_seeds - 1} later seeds = "
+                         f"{values['n_sig'] * (n_seeds - 1)}, got {values['n_rev']}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class SeedStability:
     """How stable the benchmark's orderings are over seeds (:func:`seed_stability`).
 
@@ -254,6 +277,13 @@ class SeedStability:
     n_stable: int
     n_sig: int
     n_rev: int
+
+    __result_spec__ = ResultSpec(
+        {"seeds": tuple_of(integer(0)), "scenarios": tuple_of(tuple_of(number(nonnegative=False), flag_spec())),
+         "methods": tuple_of(instance(str)), "ranks": dict_of(array("seeds", "methods", bounds=(1.0, np.inf)), key=tuple),
+         "n_stable": integer(0), "n_sig": integer(0), "n_rev": integer(0)},
+        relations=(same_keys("scenarios", "ranks"), lambda v, cls: _stability_relation(v, cls)))
+    __post_init__ = validated_post_init
 
 
 def _tied_ranks(values: np.ndarray) -> np.ndarray:

@@ -9,10 +9,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from collections.abc import Mapping, Sequence
 from enum import StrEnum
+from typing import Any
 
 import numpy as np
 
-from fusion._frozen import constant, frozen_arrays
+from fusion._frozen import constant
+from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, text,
+                             tuple_of, validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, sequence
 from fusion.readings import weighting as wt
@@ -151,8 +154,50 @@ def _forgetting(value: float, name: str) -> float:
     return v
 
 
+# A forgetting factor in (0, 1): positive, at most 1 (bounds are closed), and below 1 (``_window_and_factors``).
+_FACTOR = number(positive=True, bounds=(0.0, 1.0))
+
+
+def _window_and_factors(values: Mapping[str, Any], cls: str) -> None:
+    """A study's evaluation window ``[change_at, samples)`` not empty and its forgetting factors below 1."""
+    if not values["change_at"] < values["samples"]:
+        raise ValueError(f"{cls}.change_at must be below {cls}.samples = {values['samples']}, got {values['change_at']}")
+    for name in ("forgetting", "forgetting_alt"):
+        if not values[name] < 1.0:
+            raise ValueError(f"{cls}.{name} must be in (0, 1), got {shown(values[name])}")
+
+
+def _regime_relation(values: Mapping[str, Any], cls: str) -> None:
+    """A :class:`RegimeStudy`: its window and factors; per scenario the methods of ``sq`` among ``methods``, a curve
+    for each of them, a weight curve for some; non-positive counts for scenarios of the study."""
+    _window_and_factors(values, cls)
+    methods = set(values["methods"])
+    for case, by_method in values["sq"].items():
+        extra = set(by_method) - methods
+        if extra:
+            raise ValueError(f"{cls}.sq[{shown(case)}] must hold methods of {cls}.methods, got "
+                             f"{shown(sorted(map(str, extra)), 200)}")
+        if set(values["curve"][case]) != set(by_method):
+            raise ValueError(f"{cls}.curve[{shown(case)}] must hold the methods of {cls}.sq[{shown(case)}]")
+        if not set(values["w_best"][case]) <= set(by_method):
+            raise ValueError(f"{cls}.w_best[{shown(case)}] must hold methods of {cls}.sq[{shown(case)}]")
+    extra = set(values["n_nonpositive"]) - set(values["scenarios"])
+    if extra:
+        raise ValueError(f"{cls}.n_nonpositive must be keyed by scenarios of {cls}.scenarios, got "
+                         f"{shown(sorted(map(str, extra)))}")
+
+
+def _change_relation(values: Mapping[str, Any], cls: str) -> None:
+    """A :class:`VarianceChangeStudy`: its window and factors; every method of ``methods`` for every change."""
+    _window_and_factors(values, cls)
+    methods = set(values["methods"])
+    for case, by_method in values["sq"].items():
+        if set(by_method) != methods:
+            raise ValueError(f"{cls}.sq[{shown(case)}] must hold the methods of {cls}.methods, got "
+                             f"{shown(sorted(map(str, by_method)), 200)}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class RegimeStudy:
     """Experiment E2.1b: the estimators in the regime they are for (:func:`regime_study`).
 
@@ -206,6 +251,20 @@ class RegimeStudy:
     fast_period: float
     walk_step: float
     walk_seed: int
+
+    __result_spec__ = ResultSpec(
+        {"scenarios": tuple_of(instance(RegimeScenario)), "methods": tuple_of(instance(RegimeMethod)),
+         "sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE))),
+         "curve": dict_of(dict_of(array("samples", bounds=NONNEGATIVE))), "w_best": dict_of(dict_of(array("samples"))),
+         "var_est": dict_of(array("runs"), keys=("sample", "centred")), "n_nonpositive": dict_of(integer(0)),
+         "variances": array("n", bounds=NONNEGATIVE), "swapped": array("n", bounds=NONNEGATIVE),
+         "runs": integer(1, dim="runs"), "samples": integer(1, dim="samples"), "seed": integer(0),
+         "amplitude": number(nonnegative=False), "period": number(positive=True), "step": number(nonnegative=False),
+         "change_at": integer(0), "forgetting": _FACTOR, "forgetting_alt": _FACTOR, "window": integer(1),
+         "guard": text(*wt.GUARDS), "level": number(nonnegative=False), "fast_period": number(positive=True),
+         "walk_step": number(), "walk_seed": integer(0)},
+        relations=(same_keys("scenarios", "sq", "curve", "w_best"), lambda v, cls: _regime_relation(v, cls)))
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()
@@ -409,7 +468,6 @@ CHANGE_METHODS: tuple[RegimeMethod, ...] = (_R.AWF_AS_WRITTEN, _R.RUNNING_MEANS_
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class VarianceChangeStudy:
     """E2.1b in the lecture's setting: a constant X and one change of the noise SDs (:func:`variance_change_study`).
 
@@ -440,6 +498,14 @@ class VarianceChangeStudy:
     change_at: int
     forgetting: float
     forgetting_alt: float
+
+    __result_spec__ = ResultSpec(
+        {"changes": tuple_of(instance(str)), "methods": tuple_of(instance(RegimeMethod)),
+         "sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE))), "sd_after": dict_of(array("n", bounds=NONNEGATIVE)),
+         "variances": array("n", bounds=NONNEGATIVE), "runs": integer(1, dim="runs"), "samples": integer(1),
+         "seed": integer(0), "change_at": integer(0), "forgetting": _FACTOR, "forgetting_alt": _FACTOR},
+        relations=(same_keys("changes", "sq", "sd_after"), lambda v, cls: _change_relation(v, cls)))
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()
