@@ -24,12 +24,12 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
   undefined in some case), or a dict with exactly the given keys of
   finite floats or of arrays (their named dimensions bound as above); :func:`keyed`: a dict of whichever string
   keys the result holds (the methods a run computed), each a finite array (a covariance stack if asked);
-* :func:`integer`, :func:`flag`, :func:`text`, :func:`mask`: an int (not a bool) at least ``minimum`` (a count, a
-  seed, an index; with ``dim``, the count is that named dimension of the arrays: ``runs`` = their length), a bool,
-  a string (one of given choices), a bool array of named dimensions (steps on a leg,
-  runs at a corner; kept bool); :func:`table`: a :class:`pandas.DataFrame` with the columns its consumers read
-  (its rows a named dimension if asked); :func:`instance`: an object of given classes (a study
-  of its own, a scenario; optional allows ``None``);
+* :func:`integer`, :func:`flag`, :func:`text`, :func:`mask`, :func:`integers`: an int (not a bool) at least
+  ``minimum`` (a count, a seed, an index; with ``dim``, the count is that named dimension of the arrays: ``runs`` =
+  their length), a bool, a string (one of given choices), a bool array of named dimensions (steps on a leg,
+  runs at a corner; kept bool), an integer array of named dimensions (seeds; kept integer); :func:`table`: a
+  :class:`pandas.DataFrame` with the columns its consumers read (its rows a named dimension if asked);
+  :func:`instance`: an object of given classes (a study of its own, a scenario; optional allows ``None``);
 * :func:`tuple_of`, :func:`dict_of`: a tuple of given length or a dict (keys of given types, or exactly given
   keys) whose items each satisfy a spec of any kind above, checked recursively (the chapter layer's results
   hold dicts of dicts of arrays, tuples of numbers, dicts of studies);
@@ -41,9 +41,9 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
   the study (a verdict, an exact optimum, a moment) is not recomputed from the others, so a result replaced
   (``dataclasses.replace``) with a contradicting value keeps it (fuzz 24b D5).
 
-Every array is then stored as a read-only float64 copy (the object owns its data). The checks reuse the
-shared validators of :mod:`fusion._validation` (:func:`~fusion._validation.as_array`,
-:func:`~fusion._validation.instance_of`).
+Every array is then stored as a read-only float64 copy (the object owns its data; a :func:`mask` or
+:func:`integers` array keeps its bool or integer dtype). The checks reuse the shared validators of
+:mod:`fusion._validation` (:func:`~fusion._validation.as_array`, :func:`~fusion._validation.instance_of`).
 
 *Cost.* The package's own producers (:func:`~fusion.filtering.kalman.gain_sequence`,
 :func:`~fusion.filtering.tracks.local_track`, the scenarios' simulations) build these objects from arrays
@@ -212,6 +212,14 @@ def mask(*dims: Dim) -> ValueSpec:
     """Spec of a bool array field (steps on a leg, runs at a corner) of the named or fixed dimensions ``dims``:
     a :class:`numpy.ndarray` of dtype bool, stored as a read-only bool copy."""
     return ValueSpec("mask", {"dims": tuple(dims)})
+
+
+def integers(*dims: Dim, minimum: int | None = 0) -> ValueSpec:
+    """Spec of an integer array field (the seeds of a study's runs) of the named or fixed dimensions ``dims``: a
+    :class:`numpy.ndarray` of an integer dtype, or of dtype object holding ints (seeds beyond int64), each at least
+    ``minimum`` (none if None); stored as a read-only copy of its own dtype (a float copy would round a seed beyond
+    2**53)."""
+    return ValueSpec("integers", {"dims": tuple(dims), "minimum": minimum})
 
 
 def flag() -> ValueSpec:
@@ -472,6 +480,15 @@ def _value(fs: ValueSpec, value: Any, label: str, bound: dict[str, tuple[Any, st
                             f"{value.dtype if isinstance(value, np.ndarray) else type(value).__name__}")
         _bind(args["dims"], value.shape, label, bound)
         return value
+    if fs.kind == "integers":
+        if not isinstance(value, np.ndarray) or not (value.dtype.kind in "iu" or value.dtype == object and all(
+                isinstance(v, int) and not isinstance(v, bool) for v in value.flat)):
+            raise TypeError(f"{label} must be an integer array, got "
+                            f"{value.dtype if isinstance(value, np.ndarray) else type(value).__name__}")
+        _bind(args["dims"], value.shape, label, bound)
+        if args["minimum"] is not None and value.size and min(value.flat) < args["minimum"]:
+            raise ValueError(f"{label} must hold integers of at least {args['minimum']}, got {shown(min(value.flat))}")
+        return value
     if fs.kind == "text":
         if args["choices"]:
             return _validation.one_of(value, args["choices"], label)
@@ -555,8 +572,8 @@ def _store(obj: object, values: Mapping[str, Any], copy: bool) -> None:
     """Set the fields of ``obj``: arrays (also a dict's) read-only, as float64 copies if ``copy``, else in place."""
     for name, v in values.items():
         if isinstance(v, np.ndarray):
-            if copy:
-                v = np.array(v, dtype=bool if v.dtype == bool else float)
+            if copy:  # an integer array (:func:`integers`) keeps its dtype, any other array is stored as float64
+                v = np.array(v, dtype=v.dtype if v.dtype.kind in "biuO" else float)
             v.setflags(write=False)
         else:  # dicts become read-only mappings, lists tuples (check_fields already copied a dict's arrays)
             v = frozen_value(v)

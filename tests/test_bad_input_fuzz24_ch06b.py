@@ -308,5 +308,5 @@ def test_d4_network_study_keeps_its_ranges(field: str, bad: float) -> None:
     st = next(iter(_o()["nets"].values()))
     arr = np.array(getattr(st, field))
     arr.flat[0] = bad
-    with pytest.raises(ValueError, match=rf"^NetworkStudy\.{field} must hold"):
+    with pytest.raises(ValueError, match=rf"^NetworkStudy\.{field} must lie in \[0"):
         dataclasses.replace(st, **{field: arr})

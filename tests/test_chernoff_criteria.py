@@ -143,8 +143,13 @@ def test_tables_pair_every_method_on_the_same_runs(chain: NetworkStudy, unequal:
 def test_bad_input_names_the_argument(unequal: NetworkStudy) -> None:
     with pytest.raises(ValueError, match="rule"):
         cc.gaussian_exchange(unequal, "median")
+    three = dataclasses.replace(unequal.scenario, frames=3)
+    with pytest.raises(ValueError, match="NetworkStudy.gm_gain"):  # arrays of one frame: refused when built
+        dataclasses.replace(unequal, scenario=three)
+    multi = dataclasses.replace(unequal, scenario=three, gm_gain=np.repeat(unequal.gm_gain, 3, axis=1),
+                                ess_local=np.repeat(unequal.ess_local, 3, axis=1))
     with pytest.raises(ValueError, match="study"):
-        cc.channel_filter(dataclasses.replace(unequal, scenario=dataclasses.replace(unequal.scenario, frames=3)))
+        cc.channel_filter(multi)
     with pytest.raises(ValueError, match="runs"):
         cc.prior_means(unequal.scenario, 1, 0)
     with pytest.raises(ValueError, match="means"):

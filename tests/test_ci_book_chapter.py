@@ -342,7 +342,8 @@ def test_evidence_is_the_claim_file(study: two_sensor.FusionStudy) -> None:
 def test_fig4_fig7_follow_split_ci_fed_back(study: two_sensor.FusionStudy) -> None:
     """Primary: the improved CI as split CI (ω, 1 − ω) fed back, against CI fed back; one margin of 0.1 m. The printed
     one-ω rule (its own optimum ω = 1) fed back is a counted reading."""
-    for split, want in ((130.0, "contradicted"), (-1.0, "reproduced under stated assumptions"),
+    # 40 m, not more: the synthetic RMSEs are about 50 m, and Q own's is shifted by the opposite (an RMSE is >= 0)
+    for split, want in ((40.0, "contradicted"), (-1.0, "reproduced under stated assumptions"),
                         (-0.05, "not distinguishable")):
         rec = _ledger(study, diff_unequal=-1.0, split_feedback=split)
         for cid in ("ci-fig4-convex-part", "ci-fig7-improved-vs-ci"):

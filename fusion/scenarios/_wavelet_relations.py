@@ -1,8 +1,9 @@
 """Cross-field checks of the wavelet studies' result specs (``fusion.scenarios.wavelet_sensors``; fuzz 24d S).
 
-A :class:`~fusion.scenarios.wavelet_sensors.SignalStudy`'s cases and a
-:class:`~fusion.scenarios.wavelet_sensors.MechanismStudy`'s configurations, checked when a study is built or rebuilt
-with ``dataclasses.replace`` (``fusion._results``).
+A :class:`~fusion.scenarios.wavelet_sensors.SignalStudy`'s and a
+:class:`~fusion.scenarios.wavelet_sensors.SeedStudy`'s cases and a
+:class:`~fusion.scenarios.wavelet_sensors.MechanismStudy`'s configurations, checked when a study is built or
+rebuilt with ``dataclasses.replace`` (``fusion._results``).
 """
 
 from __future__ import annotations
@@ -29,21 +30,35 @@ def cases_relation(values: Mapping[str, Any], cls: str) -> None:
                          f"{cls}.modes and {cls}.normalisers, got {shown(sorted(map(str, values['cases'])), 200)}")
     shape = (values["runs"], values["gains"].size)
     for key, case in values["cases"].items():
-        for part in ("raw", "denoised", "reconstructed", "gain_err", "weights"):
-            if part not in case:
-                raise ValueError(f"{cls}.cases[{shown(key)}] misses {shown(part)} (its consumers read it)")
-        for part, value in case.items():
-            if part == "example":
-                continue
-            metrics = value if isinstance(value, Mapping) else {"": value}
-            for name, arr in metrics.items():
-                where = f"{cls}.cases[{shown(key)}][{shown(part)}]" + (f"[{shown(name)}]" if name else "")
-                arr = as_array(arr, where, finite=True)
-                if arr.shape != shape:
-                    raise ValueError(f"{where} must have shape (runs, sensors) = {shape} ({cls}.runs and the "
-                                     f"sensors of {cls}.gains), got {arr.shape}")
-                if isinstance(value, Mapping) and (arr < 0).any():
-                    raise ValueError(f"{where} must be non-negative (an error), got {shown(float(arr.min()))}")
+        _case(case, f"{cls}.cases[{shown(key)}]", shape, f"{cls}.runs and the sensors of {cls}.gains")
+
+
+def seed_cases_relation(values: Mapping[str, Any], cls: str) -> None:
+    """A ``SeedStudy``'s cases (one per seed: ``same_keys``), each a case as a ``SignalStudy``'s, arrays (runs, sensors)
+    of the same sensors in every case (those of the first case's ``"weights"``)."""
+    first = next(iter(values["cases"].values()), {})
+    sensors = as_array(first.get("weights", ()), f"{cls}.cases[...]['weights']").shape[-1:]
+    shape = (values["runs"], *sensors)
+    for key, case in values["cases"].items():
+        _case(case, f"{cls}.cases[{shown(key)}]", shape, f"{cls}.runs and the sensors of the first case's weights")
+
+
+def _case(case: Mapping[str, Any], label: str, shape: tuple[int, ...], source: str) -> None:
+    """One case of a wavelet study: the metrics its consumers read, finite arrays of ``shape``, errors >= 0."""
+    for part in ("raw", "denoised", "reconstructed", "gain_err", "weights"):
+        if part not in case:
+            raise ValueError(f"{label} misses {shown(part)} (its consumers read it)")
+    for part, value in case.items():
+        if part == "example":
+            continue
+        metrics = value if isinstance(value, Mapping) else {"": value}
+        for name, arr in metrics.items():
+            where = f"{label}[{shown(part)}]" + (f"[{shown(name)}]" if name else "")
+            arr = as_array(arr, where, finite=True)
+            if arr.shape != shape:
+                raise ValueError(f"{where} must have shape (runs, sensors) = {shape} ({source}), got {arr.shape}")
+            if isinstance(value, Mapping) and (arr < 0).any():
+                raise ValueError(f"{where} must be non-negative (an error), got {shown(float(arr.min()))}")
 
 
 def configs_relation(values: Mapping[str, Any], cls: str) -> None:

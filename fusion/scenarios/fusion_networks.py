@@ -51,7 +51,7 @@ from enum import StrEnum
 
 import numpy as np
 
-from fusion._frozen import freeze_arrays, restore_frozen
+from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, validated_post_init
 from fusion._validation import is_integer
 from fusion._validation import sequence, store_read
 from fusion._validation import seed as check_seed
@@ -283,6 +283,18 @@ def redundancy_scenarios() -> dict[Network, NetworkScenario]:
             Network.OVERCONFIDENT: NetworkScenario("node 3 overconfident", faulty, prior_std=30.0)}
 
 
+def _network_relation(values: Mapping[str, object], cls: str) -> None:
+    """A network study's arrays have its scenario's nodes and frames, and its truth."""
+    sc: NetworkScenario = values["scenario"]  # type: ignore[assignment]  (the field spec checked its class)
+    for name, axis, size, what in (("kl_local", 1, len(sc.nodes), "N = len(scenario.nodes)"),
+                                   ("gm_gain", 1, sc.frames, "frames = scenario.frames")):
+        got = np.shape(values[name])[axis]
+        if got != size:
+            raise ValueError(f"{cls}.{name} must have {what} = {size} along axis {axis}, got {got}")
+    if tuple(np.asarray(values["truth"]).tolist()) != sc.truth:
+        raise ValueError(f"{cls}.truth must be the scenario's truth {shown(sc.truth)}, got {shown(values['truth'])}")
+
+
 @dataclass(frozen=True)
 class NetworkStudy:
     r"""Monte-Carlo runs of one network (arrays indexed by run first; read-only).
@@ -307,7 +319,8 @@ class NetworkStudy:
     eps : ndarray, shape (runs, fusions, N, N)
         The swarm's exponents at every exchange of the ``chernoff_pso`` pipeline (exchanges in order of
         frame and round; then per node, the exponent of each node's density, NaN for a node it does not hear);
-        each in [0, 1] (checked when built, as ``kl_local`` non-negative; the sum over a node's row is not).
+        each in [0, 1] (checked when built, as ``kl_local`` non-negative and the covariances symmetric positive
+        semidefinite; the sum over a node's row is not).
     ess_local : ndarray, shape (runs, frames, N)
         Effective sample size of each node's local posterior (``chernoff_pso`` pipeline).
     local_mean, local_cov : ndarray, shapes (runs, N, 2) and (runs, N, 2, 2)
@@ -327,19 +340,17 @@ class NetworkStudy:
     local_mean: FloatArray
     local_cov: FloatArray
 
-    __setstate__ = restore_frozen  # copies and unpickled objects keep read-only arrays
-
-    def __post_init__(self) -> None:
-        # fuzz 24b D4: the fields the chapter glues as KL divergences and exponents keep their ranges
-        kl, eps = np.asarray(self.kl_local, dtype=float), np.asarray(self.eps, dtype=float)
-        if not np.all(np.isfinite(kl) & (kl >= 0.0)):
-            raise ValueError("NetworkStudy.kl_local must hold finite, non-negative KL divergences")
-        if not np.all(np.isnan(eps) | ((eps >= 0.0) & (eps <= 1.0))):
-            raise ValueError("NetworkStudy.eps must hold exponents in [0, 1] (NaN for a node not heard)")
-        freeze_arrays(self)
-        for d in (self.estimates, self.covariances):
-            for v in d.values():
-                v.setflags(write=False)
+    # fuzz 24b D4: the fields the chapter glues as KL divergences and exponents keep their ranges
+    __result_spec__ = ResultSpec(
+        {"scenario": instance(NetworkScenario), "seed": integer(0), "truth": array(2),
+         "estimates": dict_of(array("runs", "N", 2), keys=NETWORK_METHODS),
+         "covariances": dict_of(array("runs", "N", 2, 2, covariance=True), keys=NETWORK_METHODS),
+         "gm_gain": array("runs", "frames", "N"), "kl_local": array("runs", "N", bounds=NONNEGATIVE),
+         "eps": array("runs", "fusions", "N", "N", nan=True, bounds=(0.0, 1.0)),
+         "ess_local": array("runs", "frames", "N", bounds=NONNEGATIVE), "local_mean": array("runs", "N", 2),
+         "local_cov": array("runs", "N", 2, 2, covariance=True)},
+        relations=(_network_relation,))
+    __post_init__ = validated_post_init
 
     @property
     def runs(self) -> int:

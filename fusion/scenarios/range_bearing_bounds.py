@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import frozen_arrays
+from fusion._results import NONNEGATIVE, ResultSpec, array, validated_post_init
 from fusion._validation import FloatArray, as_array, instance_of
 from fusion._validation import flag
 from fusion.filtering.particles import ncv_model
@@ -95,7 +95,6 @@ def posterior_crb(sc: RangeBearingScenario, truths: ArrayLike) -> FloatArray:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class LinearisedErrors:
     r"""Exact error covariances of linearised local filters and of their naive product (per frame).
 
@@ -122,6 +121,12 @@ class LinearisedErrors:
     rmse_uniform: FloatArray
     rmse_best: FloatArray
     rmse_central: FloatArray
+
+    __result_spec__ = ResultSpec(
+        {"nees_naive": array("K", bounds=NONNEGATIVE), "corr_position": array("K", bounds=(-1.0, 1.0)),
+         "corr_velocity": array("K", bounds=(-1.0, 1.0)), "rmse_uniform": array("K", bounds=NONNEGATIVE),
+         "rmse_best": array("K", bounds=NONNEGATIVE), "rmse_central": array("K", bounds=NONNEGATIVE)})
+    __post_init__ = validated_post_init
 
 
 def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,

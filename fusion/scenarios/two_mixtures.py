@@ -9,12 +9,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, array, instance, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import flag
 from fusion._validation import FloatArray, allocation, as_array, count, positive_scalar
@@ -25,8 +26,14 @@ from fusion.estimates.mixtures import GaussianMixture, logsumexp
 __all__ = ["GridLogNormaliser", "ToyMixtures", "toy_mixtures", "grid_log_normaliser"]
 
 
+def _two_dimensional(values: Mapping[str, Any], cls: str) -> None:
+    """Both toy mixtures are densities on the plane (what :func:`grid_log_normaliser` integrates)."""
+    for name in ("a", "b"):
+        if values[name].dim != 2:
+            raise ValueError(f"{cls}.{name} must be a mixture of dimension 2, got {values[name].dim}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class ToyMixtures:
     """The two toy mixtures of the Chernoff chapter.
 
@@ -42,6 +49,10 @@ class ToyMixtures:
 
     a: GaussianMixture
     b: GaussianMixture
+
+    __result_spec__ = ResultSpec({"a": instance(GaussianMixture), "b": instance(GaussianMixture)},
+                                 relations=(_two_dimensional,))
+    __post_init__ = validated_post_init
 
 
 def toy_mixtures() -> ToyMixtures:
@@ -64,7 +75,6 @@ def toy_mixtures() -> ToyMixtures:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class GridLogNormaliser:
     r"""Grid reference of the log normaliser and (optionally) the fused log density.
 
@@ -80,6 +90,9 @@ class GridLogNormaliser:
 
     log_z: FloatArray
     log_fused: FloatArray | None
+
+    __result_spec__ = ResultSpec({"log_z": array("E"), "log_fused": array("E", "n", "n", optional=True)})
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()

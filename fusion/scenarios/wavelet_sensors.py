@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._frozen import constant, frozen_arrays
+from fusion._frozen import constant
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, text,
                              tuple_of, validated_post_init)
 from fusion._validation import derived_inputs
@@ -49,7 +49,7 @@ from fusion._validation import record, sequence, shown, within, seed as check_se
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
 from fusion._validation import LOOP_STEP, count_ceiling, distinct, loop_work, seeds as check_seeds
 from fusion.readings import wavelet as wv
-from fusion.scenarios._wavelet_relations import MECHANISM_ERRORS, cases_relation, configs_relation
+from fusion.scenarios._wavelet_relations import MECHANISM_ERRORS, cases_relation, configs_relation, seed_cases_relation
 
 __all__ = ["CONFIGS", "Signal", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
            "measurand", "error_metrics", "signal_study", "seed_study", "mechanism_study", "variance_study"]
@@ -151,7 +151,6 @@ class SignalStudy:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class SeedStudy:
     r"""One case of :func:`signal_study` under several seeds (:func:`seed_study`).
 
@@ -171,6 +170,13 @@ class SeedStudy:
     kind: Signal
     mode: str
     normaliser: str
+
+    __result_spec__ = ResultSpec(
+        {"cases": dict_of(dict_of(instance(Mapping, np.ndarray)), key=int), "seeds": tuple_of(integer(0)),
+         "runs": integer(2), "kind": instance(Signal), "mode": text("hard", "soft"),
+         "normaliser": text(*wv.NORMALISERS)},
+        relations=(same_keys("seeds", "cases"), seed_cases_relation))
+    __post_init__ = validated_post_init
 
 
 @dataclass(frozen=True)

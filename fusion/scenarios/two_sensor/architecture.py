@@ -8,12 +8,13 @@ from collections.abc import Mapping
 
 from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import frozen_arrays
+from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, number, same_keys, tuple_of
+from fusion._results import validated_post_init
 from fusion._validation import check_magnitude, derived_inputs, distinct, loop_work
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar, work)
@@ -119,8 +120,15 @@ def fixed_weight_rule(reading: str, omega: float) -> str:
     return f"arch_printed_{reading}_w{scalar(omega, 'omega', 0.0, 1.0, lo_open=True):g}"
 
 
+def _rules_run(values: Mapping[str, Any], cls: str) -> None:
+    """The NEES, reported SDs and local gains of an architecture study are of rules whose RMSE it holds."""
+    for name in ("nees", "local_gain"):
+        extra = [k for k in values[name] if k not in values["run_rmse"]]
+        if extra:
+            raise ValueError(f"{cls}.{name} has keys without a run in {cls}.run_rmse: {shown(extra, 200)}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class ArchitectureStudy:
     r"""Every rule of :data:`ARCH_RULES` with and without feedback, and the centralised filter (:func:`architecture_study`).
 
@@ -152,6 +160,15 @@ class ArchitectureStudy:
     runs: int
     nees_runs: int
     local_gain: Mapping[tuple[Architecture, str], float] = field(default_factory=dict)
+
+    __result_spec__ = ResultSpec(
+        {"run_rmse": dict_of(array("runs", bounds=NONNEGATIVE), key=tuple),
+         "nees": dict_of(number(), key=tuple), "reported": dict_of(number(), key=tuple),
+         "model_rmse": dict_of(array("nees_runs", bounds=NONNEGATIVE), key=tuple),
+         "runs": integer(1, dim="runs"), "nees_runs": integer(1, dim="nees_runs"),
+         "local_gain": dict_of(number(), key=tuple, nonempty=False)},
+        relations=(same_keys("run_rmse", "model_rmse"), same_keys("nees", "reported"), _rules_run))
+    __post_init__ = validated_post_init
 
 
 class _PairedRuns(NamedTuple):
@@ -311,7 +328,6 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class QScaling:
     r"""CI with local filters whose process noise is scaled, no split and no feedback (:func:`q_scaling_study`).
 
@@ -334,6 +350,15 @@ class QScaling:
     nees: Mapping[float, float]
     runs: int
     nees_runs: int
+
+    __result_spec__ = ResultSpec(
+        {"scales": tuple_of(number(positive=True)),
+         "run_rmse": dict_of(array("runs", bounds=NONNEGATIVE), key=float),
+         "model_rmse": dict_of(array("nees_runs", bounds=NONNEGATIVE), key=float),
+         "nees": dict_of(number(), key=float), "runs": integer(1, dim="runs"),
+         "nees_runs": integer(1, dim="nees_runs")},
+        relations=(same_keys("scales", "run_rmse", "model_rmse", "nees"),))
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()

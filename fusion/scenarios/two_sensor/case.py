@@ -11,7 +11,6 @@ from numpy.typing import ArrayLike
 
 from fusion._docstrings import ParameterDocs
 from fusion._results import ResultSpec, array, nested, trusted, validated_post_init
-from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 finite_result, grid_points, positive_scalar, psd_factor, std_scalar)
@@ -35,7 +34,6 @@ _PARAMS = ParameterDocs({
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class Trajectory:
     r"""Sample times and true states of the two-sensor target.
 
@@ -51,6 +49,9 @@ class Trajectory:
 
     t: FloatArray
     states: FloatArray
+
+    __result_spec__ = ResultSpec({"t": array("K", increasing=True), "states": array("K", 4)})
+    __post_init__ = validated_post_init
 
 
 @_PARAMS("T")

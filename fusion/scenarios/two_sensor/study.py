@@ -5,12 +5,14 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from dataclasses import dataclass
+from typing import Any
 from enum import StrEnum
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import frozen_arrays
+from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, mask, number, same_keys, validated_post_init
+from fusion._shown import shown
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, count, diagonal_covariance, index, instance_of,
                                 nonnegative_scalar, positive_scalar, scalar, std_scalar)
@@ -65,8 +67,14 @@ STUDY_METHODS = (StudyMethod.SENSOR_1, StudyMethod.SENSOR_2, StudyMethod.CI, Stu
                  StudyMethod.CENTRAL)
 
 
+def _study_methods(values: Mapping[str, Any], cls: str) -> None:
+    """A fusion study's estimates are keyed by methods of ``STUDY_METHODS`` (the curves its consumers read)."""
+    extra = [k for k in values["est"] if k not in STUDY_METHODS]
+    if extra:
+        raise ValueError(f"{cls}.est has keys that are not methods of STUDY_METHODS: {shown(extra, 200)}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class FusionStudy:
     r"""Every fusion rule of chapter 05 on one :class:`Scenario`.
 
@@ -96,6 +104,17 @@ class FusionStudy:
     floor: FloatArray
     steady: FloatArray
     measurements: Mapping[StudyMethod, FloatArray]
+
+    __result_spec__ = ResultSpec(
+        {"t": array("K", increasing=True), "truth": array("K", 4),
+         "est": dict_of(array("runs", "K", 4), required=(StudyMethod.SENSOR_1, StudyMethod.SENSOR_2, StudyMethod.CI,
+                                                         StudyMethod.SPLIT_CI, StudyMethod.CONVEX, StudyMethod.FUZZY,
+                                                         StudyMethod.CENTRAL)),
+         "rmse": dict_of(array("K", 4, bounds=NONNEGATIVE)), "floor": array("K", 2, bounds=NONNEGATIVE),
+         "steady": mask("K"),
+         "measurements": dict_of(array("K", 2, bounds=NONNEGATIVE), keys=(StudyMethod.RAW_1, StudyMethod.RAW_2))},
+        relations=(same_keys("est", "rmse"), _study_methods))
+    __post_init__ = validated_post_init
 
     def steady_rmse(self, method: str, component: int) -> float:
         """Mean over the steady steps of the per-step RMSE of ``method`` on state ``component`` (0 = x, 2 = y)."""
@@ -231,8 +250,15 @@ NEES_RULES: tuple[tuple[NeesRule, str, float | None], ...] = (
     (NeesRule.PRINTED, "printed", None))
 
 
+def _nees_keys(values: Mapping[str, Any], cls: str) -> None:
+    """A NEES study's estimates: one per rule of its mean NEES, and the targets (``"truth"``)."""
+    want = {*values["mean_nees"], "truth"}
+    if set(values["est"]) != want:
+        raise ValueError(f"{cls}.est must hold the rules of {cls}.mean_nees and 'truth', "
+                         f"got {shown(sorted(map(str, values['est'])), 200)}")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class NeesStudy:
     """Mean NEES of the local filter and of the fused rules on targets that follow the model (:func:`nees_study`).
 
@@ -247,6 +273,10 @@ class NeesStudy:
 
     mean_nees: Mapping[str, float]
     est: Mapping[str, FloatArray]
+
+    __result_spec__ = ResultSpec({"mean_nees": dict_of(number()), "est": dict_of(array("runs", "K", 4))},
+                                 relations=(_nees_keys,))
+    __post_init__ = validated_post_init
 
 
 def _nees_work(n_steps: int, runs: int, names: str = "n_steps and runs") -> None:

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import frozen_arrays
+from fusion._results import NONNEGATIVE, ResultSpec, array, integers, number, validated_post_init
 from fusion._validation import seed as check_seed, seeds as check_seeds
 from fusion._validation import LOOP_STEP, distinct, loop_work
 from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_semidefinite, count, instance_of,
@@ -88,7 +88,6 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class FruitFlySeeds:
     r"""FOA repeated over seeds against one exhaustive search, on one CI objective (:func:`fruit_fly_over_seeds`).
 
@@ -110,6 +109,12 @@ class FruitFlySeeds:
     grid_x: float
     grid_fun: float
     rtol: float
+
+    __result_spec__ = ResultSpec(
+        {"seeds": integers("S"), "fruit_fly_x": array("S", bounds=(0.0, 1.0)),
+         "fruit_fly_fun": array("S", bounds=NONNEGATIVE), "grid_x": number(bounds=(0.0, 1.0)),
+         "grid_fun": number(positive=True), "rtol": number()})
+    __post_init__ = validated_post_init
 
     @property
     def share_reached(self) -> float:
