@@ -539,8 +539,10 @@ class Conjunction:
     """A claim about every member of a group ("every sensor"), one piece of evidence per member.
 
     The claim holds for the group only if it holds for each member, so the status is derived from
-    the members' statuses: *contradicted* if any member's is, *reproduced* if every member's is,
-    otherwise (some member not distinguishable, none contradicted) *not distinguishable*.
+    the members' statuses (R9): *contradicted* if any member's is; otherwise *cannot be checked* if any member's
+    is (an undefined statistic is never "not distinguishable", R3: the group is not decided by members the
+    evidence cannot decide); otherwise *reproduced* if every member's is, else (some member not distinguishable)
+    *not distinguishable*.
 
     Parameters
     ----------
@@ -592,6 +594,8 @@ class Conjunction:
         st = [ev.status() for _, ev in self.parts]
         if "contradicted" in st:
             return "contradicted"
+        if "cannot be checked" in st:  # R3, R9: a member the evidence cannot decide leaves the group undecided
+            return "cannot be checked"
         if all(s == "reproduced" for s in st):
             return "reproduced"
         return "not distinguishable"
