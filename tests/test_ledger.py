@@ -504,7 +504,7 @@ def test_an_exact_difference_at_round_off_is_shown_as_its_bound():
     from fusion.book.exact import ExactComparison
 
     texts = {ExactComparison(15110.0, 15110.0 + d, "A", "B", "less", "tr P").summary() for d in (3.638e-12, 1.819e-12, 0.0)}
-    assert texts == {"A 1.511e+04 vs B 1.511e+04 (tr P, exact); difference less than 10⁻¹² relative (round-off); "
+    assert texts == {"A 1.511×10^4 vs B 1.511×10^4 (tr P, exact); difference less than 10⁻¹² relative (round-off); "
                      "margin ±755.5; within the margin: no difference that matters"}
     assert "difference -1 (-50.0% of B)" in ExactComparison(1.0, 2.0, "A", "B", "less", "m").summary()
     assert "difference 0;" in ExactComparison(0.0, 0.0, "A", "B", "equal", "m", margin=0.1).summary()

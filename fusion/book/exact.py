@@ -5,7 +5,9 @@ book computes exactly (a closed-form mean-square error, an operation count, a pr
 paired comparison (R2) whose interval has zero width: the difference :math:`d = A - B` is placed against
 zero and the record's practical margin :math:`m`. "A is lower" is reproduced when :math:`d < -m`, not
 distinguishable when :math:`|d| \le m`, contradicted when :math:`d > m`; "no effect" is reproduced when
-:math:`|d| \le m`. The same margin that decides a Monte-Carlo comparison of the quantity decides its
+:math:`|d| \le m`. Round-off never decides (R2's one tie rule, ``fusion._limits.ROUND_OFF_TIE``): a difference
+within :math:`10^{-9} \max(|A|, |B|)` of zero is a tie, :math:`d = 0`, whatever the margin (at :math:`m = 0`
+too: one ulp between two closed forms is not "lower"). The same margin that decides a Monte-Carlo comparison of the quantity decides its
 exact value, so a gain of :math:`10^{-6}` is not "better" in one record while a 4 % gain is "no
 difference" in another.
 """
@@ -43,9 +45,11 @@ def _text(v: object, name: str) -> str:
 
 
 def _percent(share: float) -> str:
-    """``share`` as a signed percentage: ``{:+.1%}`` below 10⁸ %, else the ledger's number format (no 160 digits)."""
+    """``share`` as a signed percentage: ``{:+.1%}`` below 10⁸ %, else the ledger's number format (no 160 digits);
+    a share that rounds to zero reads ``0.0%`` (never ``-0.0%``)."""
     if abs(share) < 1e6:  # at most "+99999999.9%": the ledger holds +303610.1% of B (chapter 04)
-        return f"{share:+.1%}"
+        out = f"{share:+.1%}"
+        return "0.0%" if float(out[:-1]) == 0 else out
     from fusion.book.ledger.statuses import fmt  # the ledger's formatter (imported here: the ledger imports this module)
     return f"{'+' if share > 0 else ''}{fmt(100.0 * share)}%"
 
@@ -126,17 +130,23 @@ class ExactComparison:
         return self.a - self.b
 
     def region(self) -> str:
-        """``"lower"``, ``"higher"``, ``"equivalent"`` or ``"undecided"`` (R2 with a zero-width interval)."""
+        r"""``"lower"``, ``"higher"``, ``"equivalent"`` or ``"undecided"`` (R2 with a zero-width interval).
+
+        A tie, :math:`|A - B| \le 10^{-9} \max(|A|, |B|)` (R2's one tie rule, as :func:`fusion.book.rulebook.judge_paired`
+        applies it to a run), is ``"equivalent"`` whatever the margin, 0 included.
+        """
         d = self.difference
-        if d == 0.0 and self.margin == 0.0:
-            return "equivalent"  # an exact tie is no effect, even with no margin
+        if R._round_off(d, max(abs(self.a), abs(self.b))):  # R2's one tie rule: round-off never decides
+            return "equivalent"  # a tie is no effect, even with no margin
         return R.region(d, d, self.margin)
 
     def status(self) -> str:
         return R.status_from_region(self.region(), self.claim)  # type: ignore[arg-type]
 
     def _t(self, x: float) -> str:
-        return f"{x:.4g}"
+        """The ledger's number format (:func:`fusion.book.ledger.fmt`: 4 digits, ``1.5×10^-7``, ``-0`` -> ``0``)."""
+        from fusion.book.ledger.statuses import fmt  # imported here: the ledger imports this module
+        return fmt(x)
 
     def summary(self) -> str:
         """One line for the ledger: the two values, their difference (its size only, when it is round-off) and the

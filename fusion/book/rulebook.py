@@ -62,7 +62,8 @@ R8 whose claim
     the book's own question (``book``) appears among the book's questions.
 R9 groups and exact values
     A claim about every member of a group holds iff it holds for each member (contradicted if any member's
-    is contradicted, otherwise not distinguishable); a mathematical claim is reproduced iff it holds; a
+    is contradicted, otherwise cannot be checked if any member's cannot be checked, otherwise not
+    distinguishable); a mathematical claim is reproduced iff it holds; a
     claim that one method is better on a quantity computed exactly (a closed-form error, an operation
     count) is judged as R2 with a zero-width interval against the same practical margin
     (:class:`fusion.book.exact.ExactComparison`); a claim the source gives too little to compute cannot
@@ -240,7 +241,8 @@ RULES: tuple[Rule, ...] = (
          "shown as the book's questions."),
     Rule("R9", "groups, exact values, no data",
          "A claim about every member of a group holds iff it holds for each (contradicted if any member's is, "
-         "otherwise not distinguishable); a mathematical claim is reproduced iff it holds, otherwise "
+         "otherwise cannot be checked if any member's cannot be, otherwise not distinguishable); a mathematical "
+         "claim is reproduced iff it holds, otherwise "
          "contradicted; a claim that one method is better than another on a quantity computed exactly (a "
          "closed-form error, an operation count) is judged as R2 with a zero-width interval, against the same "
          "practical margin; a claim the source gives too little to compute cannot be checked, with the reason. "

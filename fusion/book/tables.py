@@ -7,6 +7,7 @@ decimals, so that their text is identical from run to run and machine to machine
 
 from __future__ import annotations
 
+import decimal
 import math
 import re
 from collections.abc import Callable, Collection, Sequence
@@ -77,6 +78,35 @@ def rounded(value: float, decimals: int = 4) -> float:
     return 0.0 if r == 0 else r
 
 
+def _roundings(ours: float, decimals: int) -> tuple[float, ...]:
+    """``ours`` rounded to ``decimals`` (R1): one value, or at an exact tie (``ours`` exactly halfway between two
+    printed values) both neighbours, the one Python's ``round`` gives (half to even) first.
+
+    Rounding half to even and half away from zero are both readings of "rounded to the printed decimals", and
+    they do not give every neighbour between them (1.5 -> 2 both ways): the tie rule accepts the floor and the
+    ceiling of the scaled value, whichever way the source rounds (fuzz 26a T). The one rounding rule of R1, of
+    ``fusion.book.ledger.PublishedValues`` and of :func:`side_by_side`.
+    """
+    r = round(ours, decimals)
+    with decimal.localcontext() as ctx:
+        ctx.prec = 2000  # exact for any double (at most 767 significant digits) times 10**17
+        x = decimal.Decimal(ours).scaleb(decimals)
+        if abs(x % 1) != decimal.Decimal("0.5"):  # not a tie: the ordinary rounding decides
+            return (r,)
+        lo = x.to_integral_value(rounding=decimal.ROUND_FLOOR)
+        both = [float(v.scaleb(-decimals)) for v in (lo, lo + 1)]
+    return (r,) + tuple(v for v in both if v != r)
+
+
+def _rounded_against(value: float, published: float, decimals: int) -> float:
+    """``value`` rounded to ``decimals`` as R1 reads it beside ``published``: :func:`rounded` (correctly rounded,
+    half to even, never ``-0.0``), except at an exact tie whose other neighbour is ``published`` rounded, which is
+    then shown (R1 accepts either neighbour)."""
+    both = _roundings(value, decimals)
+    target = round(published, decimals)
+    return (target if len(both) > 1 and target in both else both[0]) + 0.0  # + 0.0 turns -0.0 into 0.0
+
+
 def side_by_side(
     published: ArrayLike,
     reproduced: ArrayLike,
@@ -96,7 +126,10 @@ def side_by_side(
     name : str
         Quantity name appended to the column headers ("" for plain headers).
     decimals : int
-        Rounding of every column.
+        Rounding of the shown values, the book's rule (:func:`rounded`: correctly rounded, so that 0.15, stored as
+        0.1499999..., shows 0.1, and never ``-0.0``): at an exact tie, R1 reads either neighbour as the reproduced
+        value rounded (``fusion.book.ledger.PublishedValues``), and the one equal to the published value is shown
+        (1374.5 beside a published 1375 shows 1375).
     index_name : str
         Name of the index (row labels).
 
@@ -104,7 +137,8 @@ def side_by_side(
     -------
     pandas.DataFrame
         Columns ``published``, ``reproduced`` (each followed by ``name`` if given) and
-        ``difference``.
+        ``difference``: the difference of the two shown values (0 exactly when they are equal), so that
+        :func:`mismatches` of the table flags a row iff the ledger's R1 does not reproduce its value.
 
     Raises
     ------
@@ -132,15 +166,17 @@ def side_by_side(
         raise ValueError(
             f"published {pub.shape}, reproduced {rep.shape} and index ({len(index)}) must match"
         )
-    df = pd.DataFrame(
+    shown_pub = np.array([rounded(p, decimals) for p in pub.tolist()], dtype=float)
+    shown_rep = np.array([_rounded_against(r, p, decimals) for r, p in zip(rep.tolist(), pub.tolist())], dtype=float)
+    diff = np.array([rounded(d, decimals) for d in (shown_rep - shown_pub).tolist()], dtype=float)
+    return pd.DataFrame(
         {
-            f"published {name}".strip(): pub,
-            f"reproduced {name}".strip(): rep,
-            "difference": rep - pub,
+            f"published {name}".strip(): shown_pub,
+            f"reproduced {name}".strip(): shown_rep,
+            "difference": diff,
         },
         index=pd.Index(list(index), name=index_name, tupleize_cols=False),  # tuple labels: one label each
     )
-    return df.round(decimals) + 0.0  # + 0.0 turns -0.0 into 0.0
 
 
 def _pairs(columns: pd.Index) -> list[tuple[object, object, object | None]]:

@@ -23,7 +23,8 @@ not distinguishable
     A comparative claim whose interval contains zero, or lies wholly inside the practical margin
     the record states (a difference too small to matter, whatever its sign).
 cannot be checked
-    The source gives too little to compute anything (the record says why).
+    The source gives too little to compute anything (the record says why), or the evidence cannot decide
+    the claim (an undefined or infinite statistic, R3; a member of a group that cannot be checked, R9).
 
 Rules
 -----
@@ -37,8 +38,8 @@ Rules
   tests); an interval not wholly inside it keeps the rule above (rule R2).
 * :class:`Proposition` — a computed yes/no (reproduced or contradicted).
 * :class:`Conjunction` — a claim about every member of a group ("every sensor"): one comparison
-  or proposition per member; contradicted if any member's is, reproduced if every member's is,
-  otherwise not distinguishable.
+  or proposition per member; contradicted if any member's is, otherwise cannot be checked if any
+  member's is, reproduced if every member's is, otherwise not distinguishable.
 * :class:`Unverifiable` — cannot be checked.
 * A :class:`Claim` takes its primary evidence's status; *reproduced* becomes *reproduced under
   stated assumptions* when the claim lists assumptions or when any :class:`Alternative` reading

@@ -7,7 +7,6 @@
 
 from __future__ import annotations
 
-import decimal
 import math
 from collections import UserList
 from collections.abc import Sequence
@@ -26,6 +25,7 @@ from fusion.book._few_runs import FewRunsError
 from fusion.book._json import JSONObject
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger.statuses import MIN_RUNS, _text, fmt
+from fusion.book.tables import _roundings
 
 __all__ = [
     "PublishedValues",
@@ -37,8 +37,23 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- evidence
-#: Relative tolerance of a published value against its rounding to the printed decimals: float32's epsilon.
-_F32 = float(np.finfo(np.float32).eps)
+#: Relative round-off of a float64 computation of a printed decimal (``0.1 * 3``, ``12.3 / 100``: within one or two
+#: ulps of the decimal): a published value this close to its rounding to the printed decimals has no extra decimal.
+_F64_ROUND_OFF = 4 * float(np.finfo(np.float64).eps)
+
+
+def _extra_decimal(p: float, d: int) -> bool:
+    """Whether the published value ``p`` has more than ``d`` decimals (R1; fuzz 24a D5, fuzz 26a D1).
+
+    ``p`` has at most ``d`` decimals when it is the printed decimal ``q = round(p, d)`` up to the binary round-off
+    of writing it down: the float32 nearest ``q`` (``np.float32(0.3)``, a table read as float32), or within a few
+    float64 ulps of ``q`` (``0.1 * 3``, ``12.3 / 100``). The allowance is bound by the value's magnitude through
+    its own precision, never a fixed relative share: a relative 2⁻²³ of 1234567.85 is 0.15, which let an extra
+    decimal through above about 4e5.
+    """
+    q = round(p, d)
+    return not (p == q or abs(q - p) <= _F64_ROUND_OFF * abs(p) or p == float(np.float32(q)))
+
 
 def _run_count(runs: Any) -> int | None:
     """A Monte-Carlo run count (an int >= 1) or None (an exact value); TypeError/ValueError naming ``runs``."""
@@ -70,13 +85,21 @@ def _rounds_to(ours: float, published: float, decimals: int) -> bool:
     target = round(published, decimals)
     if round(ours, decimals) == target:
         return True
-    with decimal.localcontext() as ctx:
-        ctx.prec = 2000  # exact for any double (at most 767 significant digits) times 10**17
-        x = decimal.Decimal(ours).scaleb(decimals)
-        if abs(x % 1) != decimal.Decimal("0.5"):  # not a tie: the ordinary rounding above decided
-            return False
-        up = x.to_integral_value(rounding=decimal.ROUND_HALF_UP)  # away from zero; round() gave half to even
-        return float(up.scaleb(-decimals)) == target
+    return target in _roundings(ours, decimals)
+
+
+def _printed(ours: float, published: float, decimals: int) -> str:
+    """``ours`` at ``decimals`` decimals as the ledger prints it (:meth:`PublishedValues.summary`).
+
+    Python's rounding of ``ours`` (half to even at an exact tie), except at an exact tie whose other neighbour is
+    the published value: R1 accepts either neighbour, and the text shows the one that matches (0.25 beside a
+    published 0.3 reads "0.3", fuzz 26a D2). A zero is printed without a sign ("0.000", never "-0.000": the rule
+    of the book's formatters, ``fusion.book.tables.rounded``).
+    """
+    target = round(published, decimals)
+    both = _roundings(ours, decimals)
+    out = f"{target:.{decimals}f}" if len(both) > 1 and target in both else f"{ours:.{decimals}f}"
+    return out[1:] if out.startswith("-") and float(out) == 0 else out
 
 
 @dataclass(frozen=True)
@@ -87,14 +110,15 @@ class PublishedValues:
     ----------
     published, ours : sequence of float, same length
         ``ours`` may hold NaN where no value can be computed (counts as a mismatch). A value of ours exactly
-        halfway between two printed values matches either (R1's tie rule).
+        halfway between two printed values matches either (R1's tie rule: 1.5 matches a published 1 and 2).
     decimals : int or sequence of int
         Printed number of decimals of each published value: integers from 0 to 17 (the ceiling of a
         number of decimals, ``fusion._validation.COUNT_CEILINGS``), one or one per value. A published value
-        has at most its printed decimals (``round(p, decimals) == p`` up to float32 round-off, a relative
-        :math:`2^{-23}`, so that a float32, ``0.1 * 3`` or ``12.3 / 100`` is the decimal it prints to): ``1.25``
-        with 1 decimal is refused, since R1 would then compare ours with a rounding of the published value (1.2)
-        and a slip in ``decimals`` would decide the status.
+        has at most its printed decimals: it is the decimal ``round(p, decimals)`` up to the round-off of writing it
+        down, the float32 nearest that decimal or a few float64 ulps from it (so that a float32, ``0.1 * 3`` or
+        ``12.3 / 100`` is the decimal it prints to). ``1.25`` with 1 decimal is refused, since R1 would then compare
+        ours with a rounding of the published value (1.2) and a slip in ``decimals`` would decide the status; so is
+        ``1234567.85`` with 1 decimal (a float32 of 1234567.9 is 1234567.875, accepted: it is that decimal).
     unit : str
     runs : int or None
         Monte-Carlo runs our values were computed from (keyword; ``None``, the default, for an exact
@@ -134,7 +158,7 @@ class PublishedValues:
         _text(unit, "unit")
         dec = np.broadcast_to(np.array(dec_l, dtype=int), pub.shape)
         # a real extra decimal, not the binary round-off of the printed decimal (float32, 0.1 * 3, 12.3 / 100: fuzz 24e F1)
-        longer = [i for i, (p, d) in enumerate(zip(pub.tolist(), dec.tolist())) if abs(round(p, d) - p) > _F32 * abs(p)]
+        longer = [i for i, (p, d) in enumerate(zip(pub.tolist(), dec.tolist())) if _extra_decimal(p, d)]
         if longer:  # R1 would compare ours with the published value rounded (fuzz 24a D5)
             i = longer[0]
             raise ValueError(f"published[{i}] = {shown(float(pub[i]))} has more decimals than decimals[{i}] = "
@@ -159,11 +183,13 @@ class PublishedValues:
         return "reproduced" if all(self.matches) else "not reproduced"
 
     def summary(self) -> str:
+        """One number: ours at the printed decimals (at an exact tie, the neighbour that matches the published
+        value; a zero without a sign), or "k of n equal at the printed precision"."""
         n, k = len(self.published), sum(self.matches)
         u = f" {self.unit}" if self.unit else ""
         if n == 1:
             o = self.ours[0]
-            return f"{o:.{self.decimals[0]}f}{u}" if math.isfinite(o) else "no value"
+            return f"{_printed(o, self.published[0], self.decimals[0])}{u}" if math.isfinite(o) else "no value"
         return f"{k} of {n} equal at the printed precision"
 
     def brief(self) -> str:
@@ -513,8 +539,10 @@ class Conjunction:
     """A claim about every member of a group ("every sensor"), one piece of evidence per member.
 
     The claim holds for the group only if it holds for each member, so the status is derived from
-    the members' statuses: *contradicted* if any member's is, *reproduced* if every member's is,
-    otherwise (some member not distinguishable, none contradicted) *not distinguishable*.
+    the members' statuses (R9): *contradicted* if any member's is; otherwise *cannot be checked* if any member's
+    is (an undefined statistic is never "not distinguishable", R3: the group is not decided by members the
+    evidence cannot decide); otherwise *reproduced* if every member's is, else (some member not distinguishable)
+    *not distinguishable*.
 
     Parameters
     ----------
@@ -566,6 +594,8 @@ class Conjunction:
         st = [ev.status() for _, ev in self.parts]
         if "contradicted" in st:
             return "contradicted"
+        if "cannot be checked" in st:  # R3, R9: a member the evidence cannot decide leaves the group undecided
+            return "cannot be checked"
         if all(s == "reproduced" for s in st):
             return "reproduced"
         return "not distinguishable"
