@@ -139,6 +139,10 @@ def O() -> dict[str, Any]:  # noqa: N802 - the objects
     o["len64"] = wa.length_study(64, runs=100)
     o["len1024"] = wa.length_study(1024, runs=100)
     o["len128"] = wa.length_study(128, runs=100)
+    from fusion.scenarios import wavelet_sensors as ws  # studies of three sensors (valid; no sensor 4: fuzz 26d A10)
+
+    three = dict(gains=(1.0, 1.5, 0.8), sigma=(0.05, 0.1, 0.2))
+    o["m3"], o["v3"] = ws.mechanism_study(runs=100, **three), ws.variance_study(runs=100, **three)
     # chapter 07
     o["T1"], o["T2"] = sc.instants()
     o["mc7"] = sc.monte_carlo(list(sc.METHODS), 1.0, 4, 0)
@@ -322,8 +326,10 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
     add(mech.glue_mechanism, m=A(M, res(E) + few("m26")), e26=A(E, E26))
     add(mech.table_mechanism, m=A(M, res(E)),
         labels=A((0, 6), OBJ + (("beyond", (0, 99)), ("negative", (-1,)), ("empty", ()))))
-    add(mech.table_sensitivity, m=A(M, res(E)))
-    add(mech.table_sensitivity_display, m=A(M, res(E) + few("m26")), e26=A(E, E26), part=A("all", KEY))
+    # a valid study of three sensors: no sensor 4 to show (fuzz 26d, class A: refused naming m)
+    M3 = (("three sensors", o["m3"]),)
+    add(mech.table_sensitivity, m=A(M, res(E) + M3))
+    add(mech.table_sensitivity_display, m=A(M, res(E) + few("m26") + M3), e26=A(E, E26), part=A("all", KEY))
     add(lwr.ev_wavelet_accurate, settings=A({"reading": "primary"}, SETTINGS),
         seed=A(2601, SEED), runs=A(100, RUNS))
     add(lwr.ev_wavelet_better, settings=A({"reading": "primary"}, SETTINGS),
@@ -337,7 +343,7 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
     add(lwr.study, key=A("g1", KEY), seed=A(2601, SEED), runs=A(3, RUNS))
     add(signals.glue_signals, sg=A(SG, res(M) + few("sg")), e26=A(E, E26))
     add(signals.table_signals, sg=A(SG, res(M) + few("sg")), e26=A(E, E26), part=A("normalisers", KEY))
-    add(variance.glue_variance, v=A(V, res(M) + few("v26")))
+    add(variance.glue_variance, v=A(V, res(M) + few("v26") + (("three sensors", o["v3"]),)))
     add(variance.glue_weighting, v=A(V, res(M) + few("v26")), key=A("wwt", (("notstr", 3.0),)))
     add(variance.table_variance, v=A(V, res(M)))
     key = verdicts.PRIMARY

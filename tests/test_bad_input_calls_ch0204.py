@@ -110,11 +110,18 @@ def _ch02() -> dict[str, Any]:
                schg=sc.variance_change_study(samples=60, runs=5, change_at=30))
     sar = sc.ar1_study(runs=100)
     sw = ch.shift_weight_draws(draws=5)
+    # valid studies at other settings that lack what a chapter function reads (fuzz 26d, class A: refused naming it)
+    from fusion.scenarios.lecture_weighting.regime import VARIANCE_CHANGES
+
+    lacking = dict(s22=sc.learning_study(r_sets=((1.0, 4.0),), epochs=200, runs=20),
+                   s24=sc.belief_study(sigma=(0.5, 1.0, 2.0), snapshots=200), slumv=sc.lumv_study(x=0.0, runs=400),
+                   schg=sc.variance_change_study(samples=60, runs=100, change_at=30,
+                                                 changes=VARIANCE_CHANGES[1:]))
     st = {"s21": s21, "s22": s22, "s23": s23, "s23x0": s23x0, "s24": s24, "sreg": sreg, "s24b": s24b,
           "bench": bench, "llc": llc, "slumv": slumv, "schg": schg, "ssym": ssym}
     return dict(s21=s21, s21b=s21b, s22=s22, s23=s23, s23x0=s23x0, s24=s24, s24b=s24b, sreg=sreg,
                 schg=schg, bench=bench, bench2=bench2, offset=offset, few=few, stab=sc.seed_stability(bench), stab2=sc.seed_stability(bench2),
-                llc=llc, slumv=slumv, ssym=ssym, stail=stail, sar=sar, sw=sw, st=st)
+                llc=llc, slumv=slumv, ssym=ssym, stail=stail, sar=sar, sw=sw, st=st, lacking=lacking)
 
 
 @functools.cache
@@ -136,8 +143,13 @@ def _ch04() -> dict[str, Any]:
     js = ch.table_james_stein(ds=(3, 5), ratios=(0.0, 1.0), runs=100, seed=3)
     seq = ch.table_sequential()
     v2 = rs.vector_study(runs=2, seed=ch.SEED + 12)
+    one = cs.coupling_study({cs.CouplingCase.EQUAL: cs.SCENARIOS[cs.CouplingCase.EQUAL]}, runs=100)
+    # valid studies at other settings that lack what a chapter function reads (fuzz 26d, class A: refused naming it)
+    lacking = dict(s25=lsc.ridge_study(xs=(1.0, 10.0), draws=50), s27=lsc.correlated_study(runs=100, sizes=(6, 60)),
+                   cpl=one, st=dataclasses.replace(studies, cpl_wide=one),
+                   js=ch.table_james_stein(ds=(3, 5), ratios=(1.0,), runs=100, seed=3))
     return dict(st=studies, s27_few=lsc.correlated_study(runs=10), p25b=p25b, x25b=ch.plugin_exact(p25b), js=js, seq=seq, shr=ch.table_shrunken(v2),
-                v2=v2, bench27=load_benchmark("correlated"))
+                v2=v2, bench27=load_benchmark("correlated"), lacking=lacking)
 
 
 def _fig() -> Any:
@@ -215,13 +227,13 @@ def registry() -> dict[str, dict[str, A]]:
     R[es + "band_agreement_k"] = dict(s=_study_arg(s21, s23), X=A(0.0, REAL + (("not a level", 5.0),)),
                                       tol=A(0.1, NONNEG))  # tol = 0: exact agreement
     for f in ("figure_21a", "figure_21b", "table_guards"):
-        R[es + f] = dict(s=_study_arg(s21, s23))
+        R[es + f] = dict(s=_study_arg(s21, s23, *((o["s21b"],) if f == "figure_21a" else ())))
     for f in ("table_sweep", "sweep_comparisons"):
         R[es + f] = dict(s=_study_arg(s21, s23, few=few["s21"]))
     R[es + "glue_21"] = dict(s=_study_arg(s21, s23, o["s21b"], few=few["s21"]))
     R[es + "table_21"] = dict(s=_study_arg(s21, s23), levels=A((0.0, 100.0, 900.0), FLOATS + (("not a level", (5.0,)), ("repeated", (0.0, 0.0)))))
     R[es + "glue_ar1"] = dict(a=_study_arg(o["sar"], slumv))
-    R[es + "glue_lumv"] = dict(sl=_study_arg(slumv, o["sar"]))
+    R[es + "glue_lumv"] = dict(sl=_study_arg(slumv, o["sar"], o["lacking"]["slumv"]))
     R[es + "glue_tail"] = dict(tl=_study_arg(o["stail"], slumv))
     R[es + "lumv_bias"] = dict(sl=_study_arg(slumv, o["sar"]), name=A(next(iter(slumv.pair_mean)), ("unknown", ("int", 5), ("not a reading", AwfMethod.BEST_SENSOR))))
     R[es + "lumv_readings"] = dict(sl=_study_arg(slumv, o["sar"]))
@@ -232,7 +244,8 @@ def registry() -> dict[str, dict[str, A]]:
     for f in ("glue_regime", "regime_comparisons", "table_estimators", "table_regime"):
         R[rg + f] = dict(s=_study_arg(sreg, schg, few=few["sreg"] if "table" not in f else None))
     for f in ("change_comparisons", "glue_changes", "table_changes"):
-        R[rg + f] = dict(s=_study_arg(schg, sreg, few=few["schg"]))
+        R[rg + f] = dict(s=_study_arg(schg, sreg, *((o["lacking"]["schg"],) if f == "glue_changes" else ()),
+                                      few=few["schg"]))
     R[rg + "figure_regime"] = dict(s=_study_arg(sreg, schg), scenario=A(RegimeScenario.SINE_SWAP, ("unknown", ("int", 5))),
                                    smooth=A(25, INT + (("huge", 10**6),)))
 
@@ -240,9 +253,9 @@ def registry() -> dict[str, dict[str, A]]:
     ln = lw + "learning."
     R[ln + "figure_22a"] = dict(s=_study_arg(s22, llc), n=A(3, INT + (("no such setting", 7),)))
     for f in ("figure_22b", "glue_22", "table_22", "table_22_display"):
-        R[ln + f] = dict(s=_study_arg(s22, llc))
+        R[ln + f] = dict(s=_study_arg(s22, llc, *((o["lacking"]["s22"],) if f == "glue_22" else ())))
     # llc and s22 are independent studies (random variance sets; E2.2's settings): no pairing to mismatch
-    R[ln + "glue_learning_check"] = dict(llc=_study_arg(llc, s22), s22=_study_arg(s22, llc))
+    R[ln + "glue_learning_check"] = dict(llc=_study_arg(llc, s22), s22=_study_arg(s22, llc, o["lacking"]["s22"]))
     R[ln + "learning_settling"] = dict(s22=_study_arg(s22, llc), tol=A(0.05, POS))
     R[ln + "spread_check"] = dict(log_ranges=A((0.5, 1.0), FLOATS + ("nested_neg_flat",)), draws=A(50, INT),
                                   seed=A(2204, SEED))
@@ -274,7 +287,7 @@ def registry() -> dict[str, dict[str, A]]:
                          kind=A(BeliefKind.FUZZY, ("unknown", ("int", 5))))
     R[bl + "eig_row_comparison"] = dict(s=_study_arg(s24, s24b), select=A(slice(None), ("str", NONE, ("index", np.array([0, 0])))))
     R[bl + "figure_24"] = dict(s=_study_arg(s24, s24b))
-    R[bl + "glue_24"] = dict(s=_study_arg(s24, s24b))
+    R[bl + "glue_24"] = dict(s=_study_arg(s24, s24b, o["lacking"]["s24"]))
     for f in ("glue_24b", "table_belief_grid", "table_belief_grids", "table_belief_limit"):
         R[bl + f] = dict(s=_study_arg(s24b, s24, few=few["s24b"]))
     R[bl + "shift_weight_draws"] = dict(draws=A(5, INT), seed=A(2405, SEED),
@@ -327,7 +340,9 @@ def registry() -> dict[str, dict[str, A]]:
     lc = "fusion.book.chapters.lecture_correlated."
     S = c["st"]
     ap = lc + "appendix."
-    R[ap + "glue_james_stein"] = dict(tab=_frame_arg(c["js"], "exact", "Monte Carlo"), runs=A(100, INT[:-1] + (("other runs", 200),)))
+    js = _frame_arg(c["js"], "exact", "Monte Carlo")
+    R[ap + "glue_james_stein"] = dict(tab=A(js.value, js.mutations + (("without x = 0", c["lacking"]["js"]),)),
+                                      runs=A(100, INT[:-1] + (("other runs", 200),)))
     R[ap + "glue_sequential"] = dict(tab=_frame_arg(c["seq"], "largest |M| on later readings", "multiplications",
                                                     "with a full M", "vs batch GLS of sensors 1..i"))
     R[ap + "glue_shrunken"] = dict(tab=_frame_arg(c["shr"], "LS", "best c·LS", "best ridge"))
@@ -340,10 +355,11 @@ def registry() -> dict[str, dict[str, A]]:
     R[ap + "table_shrunken"] = dict(v=_study_arg(c["v2"], S.p25))
     co = lc + "correlated."
     R[co + "figure_27"] = dict(s=_study_arg(S.s27, S.cpl), shown=A(50, INT))
+    lacking = c["lacking"]
     for f in ("glue_27", "table_27"):
-        R[co + f] = dict(s=_study_arg(S.s27, S.cpl))
+        R[co + f] = dict(s=_study_arg(S.s27, S.cpl, *((lacking["s27"],) if f == "glue_27" else ())))
     for f in ("figure_coupling", "glue_coupling", "table_coupling"):
-        R[co + f] = dict(s=_study_arg(S.cpl, S.s27))
+        R[co + f] = dict(s=_study_arg(S.cpl, S.s27, *((lacking["cpl"],) if f == "glue_coupling" else ())))
     for f in ("glue_estimated", "table_estimated"):
         R[co + f] = dict(est=_study_arg(S.est, S.s27))
     for f in ("glue_timings", "table_timings"):
@@ -360,11 +376,12 @@ def registry() -> dict[str, dict[str, A]]:
     R[rr + "keep"] = dict(store=A({}, ("str", NONE, ("list", []))),
                           values=A({"lec_x": 1.0}, ("str", NONE, ("int key", {5: 1.0}), ("NaN", {"lec_x": float("nan")}))))
     few = dataclasses.replace(S, s27=c["s27_few"])  # rule R4: E2.7's paired comparisons at 10 runs
-    R[rr + "ledger_evidence"] = dict(st=A(S, ("str", NONE, ("other PluginStudy", S.p25), ("few runs", few))))
+    R[rr + "ledger_evidence"] = dict(st=A(S, ("str", NONE, ("other PluginStudy", S.p25), ("few runs", few),
+                                           ("cpl_wide without the wide case", lacking["st"]))))
     ri = lc + "ridge."
     R[ri + "figure_25"] = dict(s=_study_arg(S.s25, S.s27))
     for f in ("glue_25", "table_25", "table_25_display", "table_25_k", "table_25_k_display"):
-        R[ri + f] = dict(s=_study_arg(S.s25, S.s27))
+        R[ri + f] = dict(s=_study_arg(S.s25, S.s27, *((lacking["s25"],) if f == "glue_25" else ())))
     R[ri + "plugin_exact"] = dict(p=_study_arg(S.p25, S.v25))
     R[ri + "table_plugin"] = dict(p=_study_arg(S.p25, S.v25), x25=_study_arg(S.x25, S.p25, c["x25b"]))
     for f in ("figure_plugin", "glue_plugin"):

@@ -210,7 +210,8 @@ def ridge_study(
     ks_fixed : sequence of float
         Fixed ridge parameters (> 0) of the reliability check.
     x_far : float
-        A true value far from the shrinkage target (0.5 °C expressed in kelvin).
+        A true value far from the shrinkage target (0.5 °C expressed in kelvin), not one of ``xs`` (the rows of
+        ``rel_k`` are keyed by x).
 
     Returns
     -------
@@ -232,6 +233,8 @@ def ridge_study(
         _optimal_k_representable(x, sigma, f"xs[{i}]")
     x_far = scalar(x_far, "x_far")
     _optimal_k_representable(x_far, sigma, "x_far")
+    if x_far in xs:  # fuzz 26d A9: rel_k would hold that x's rows twice
+        raise ValueError(f"x_far must not be one of xs {shown(xs)} (rel_k's rows are keyed by x), got {shown(x_far)}")
     seed = _seed(seed)
     seed_vector = _seed(seed_vector, "seed_vector")
     draws = count(draws, "draws", minimum=2)

@@ -159,6 +159,18 @@ def _key(value: object, keys: Collection[Any], name: str) -> Any:
     return value
 
 
+def _holds(held: Collection[Any], needed: Collection[Any], name: str, what: str, reader: str) -> None:
+    """The rule of a chapter function that reads a study's entries by key (fuzz 26d, class A): ``name`` holds every
+    entry of ``needed`` (a level, a case, a sensor, a setting) among ``held``, else a ValueError naming ``name``, the
+    ``what`` it lacks and ``reader``, the function that reads them: never a KeyError or IndexError from inside, nor
+    another entry's number read in place of a missing one (a study made at other valid settings)."""
+    held = list(held)
+    lacking = [k for k in needed if k not in held]
+    if lacking:
+        raise ValueError(f"{name} lacks the {what} {shown(lacking, 200)} that {reader} reads (it holds "
+                         f"{shown(held, 200)})")
+
+
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 

@@ -115,6 +115,8 @@ class BeliefStudy:
         The binary belief matrix's two largest eigenvalues.
     bin_w : ndarray, shape (4,)
         Its weights (of the lecture's four readings 900, 900.4, 903 and 903.3, whatever the study's sensors).
+    x : float
+        The true value (°C) of the draws (``belief_study``'s ``x``).
     """
 
     base: np.ndarray
@@ -136,6 +138,7 @@ class BeliefStudy:
     perron: Mapping[str, PerronStats]
     bin_lam: tuple[float, float]
     bin_w: np.ndarray
+    x: float
 
     __result_spec__ = ResultSpec(
         {"base": array("n"), "deltas": array("D"), "W": array("D", "n", bounds=NONNEGATIVE), "unit_k_maxdiff": number(),
@@ -147,7 +150,8 @@ class BeliefStudy:
          "sq_row": array("snapshots", bounds=NONNEGATIVE), "shifted": mask("snapshots"),
          "perron": dict_of(instance(PerronStats)),
          "bin_lam": tuple_of(number(nonnegative=False), number(nonnegative=False)),
-         "bin_w": array(4, bounds=NONNEGATIVE)})  # the lecture's four readings, whatever the study's n (fuzz 25 R4)
+         "bin_w": array(4, bounds=NONNEGATIVE),  # the lecture's four readings, whatever the study's n (fuzz 25 R4)
+         "x": number(nonnegative=False)})
     __post_init__ = validated_post_init
 
 
@@ -237,7 +241,7 @@ def belief_study(
         mse_row=float(np.mean((fused_row - x) ** 2)),
         sq_eig=(fused_eig - x) ** 2, sq_row=(fused_row - x) ** 2, shifted=shifted, perron=perron,
         bin_lam=(float(lam_b[-1]), float(lam_b[-2])),
-        bin_w=rd.belief_degree(xb, binary_eps=1.0).weights,
+        bin_w=rd.belief_degree(xb, binary_eps=1.0).weights, x=float(x),
     )
 
 

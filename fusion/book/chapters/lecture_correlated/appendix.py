@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 
 from fusion._counts import seed as check_seed
-from fusion.book.chapters.lecture import _frame
+from fusion.book.chapters.lecture import _frame, _holds
 from fusion.book.tables import roundoff
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
@@ -243,7 +243,8 @@ def glue_james_stein(tab: pd.DataFrame, runs: int | None = None) -> GlueValues:
     TypeError
         ``tab`` not a DataFrame or ``runs`` not an integer.
     ValueError
-        ``tab`` without the columns and index of :func:`table_james_stein` or empty, a non-finite exact value (or
+        ``tab`` without the columns and index of :func:`table_james_stein` or empty, without a dimension d >= 3 or
+        the row ‖x‖/σ = 0 of one, a non-finite exact value (or
         Monte-Carlo value at d >= 3); ``runs`` below ``MIN_RUNS``, not the
         draws the table records, or not given for a table that records none.
     """
@@ -257,11 +258,16 @@ def glue_james_stein(tab: pd.DataFrame, runs: int | None = None) -> GlueValues:
     if made is not None and runs != made:
         raise ValueError(f"runs = {runs} is not the {made} Monte-Carlo draws that tab was made with")
     three = tab[tab.index.get_level_values("d") >= 3]
+    d3 = sorted({int(d) for d in three.index.get_level_values("d")})
+    if not d3:
+        raise ValueError(f"tab lacks a dimension d >= 3 that glue_james_stein reads (it holds d = "
+                         f"{sorted({int(d) for d in tab.index.get_level_values('d')})})")
+    _holds(tab.index, [(d, 0.0) for d in d3], "tab", "rows (d, ‖x‖/σ)", "glue_james_stein")
     if not np.all(np.isfinite(three[MONTE_CARLO].to_numpy(dtype=float))):  # NaN only at d = 2 (no estimate there)
         raise ValueError(f"tab[{shown(MONTE_CARLO)}] must hold finite numbers for d >= 3, got a NaN or an infinity")
     out: GlueValues = {"lec_js_runs": runs, "lec_js_max": float(three["exact"].max()),
                            "lec_js_mc_dev": round(float((three[MONTE_CARLO] - three["exact"]).abs().max()), 4)}
-    for d in sorted(set(three.index.get_level_values("d"))):
+    for d in d3:
         out[f"lec_js_min_{d}"] = float(tab.loc[(d, 0.0), "exact"])
     return out
 

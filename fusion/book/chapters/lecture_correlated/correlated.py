@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
+from fusion.book.chapters.lecture import _holds, _lec_glue, _r, legend_below
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings import correlated as co
@@ -107,9 +107,18 @@ def figure_27(s: CorrelatedStudy, shown: int = 2000) -> Figure:
 @_CORRELATED("s")
 @_lec_glue
 def glue_27(s: CorrelatedStudy) -> GlueValues:
-    """Glue values of E2.7."""
+    """Glue values of E2.7.
+
+    Raises
+    ------
+    TypeError
+        ``s`` not a CorrelatedStudy.
+    ValueError
+        ``s`` without the problem size Nm = 600 among its ``sizes`` (E2.7's ``correlated_study`` has it), named.
+    """
     instance_of(s, CorrelatedStudy, "s")
     ft = table_27(s)
+    _holds(ft.index, (600,), "s", "problem sizes Nm (correlated_study's sizes)", "glue_27")
     out = _r({"cor_mse_gls": (s.mse_gls, 4), "cor_tr_gls": (np.trace(s.Pg), 4),
               "cor_mse_naive": (s.mse_naive, 4), "cor_tr_naive": (np.trace(s.Pn), 4),
               "cor_nees_gls": (s.nees_gls, 3), "cor_nees_naive": (s.nees_naive, 3),
@@ -205,10 +214,26 @@ def figure_coupling(s: CouplingStudy) -> Figure:
 @_COUPLING("s")
 @_lec_glue
 def glue_coupling(s: CouplingStudy) -> GlueValues:
-    """Glue values of the correlated cases (keys ``lec_cc2_*``)."""
+    """Glue values of the correlated cases (keys ``lec_cc2_*``).
+
+    A case's keys are numbered by its place in :data:`fusion.scenarios.correlated_sensors.SCENARIOS` (``_1`` the
+    equal coupling, ..., ``_5`` the two sensors), whatever the study's order; ``lec_cc2_nees_min``/``_max``,
+    ``lec_cc2_ratio_max_curve`` and ``lec_cc2_n`` are taken over every case of the study.
+
+    Raises
+    ------
+    TypeError
+        ``s`` not a CouplingStudy.
+    ValueError
+        ``s`` without one of the cases of ``SCENARIOS``, named.
+    """
     instance_of(s, CouplingStudy, "s")
+    cases = list(cs.SCENARIOS)
+    _holds(s.scenarios, cases, "s", "coupling cases", "glue_coupling")
+    row = {r.get("case"): r for r in s.rows}
+    _holds(row, cases, "s", "rows of the coupling cases", "glue_coupling")
     d: dict[str, tuple[float, int]] = {}
-    for j, r in enumerate(s.rows):
+    for j, r in enumerate(row[c] for c in cases):
         d[f"cc2_ratio_{j + 1}"] = (r[cs.NAIVE_OVER_GLS], 2)
         d[f"cc2_minw_{j + 1}"] = (r[cs.MIN_GLS_WEIGHT], 3)
         d[f"cc2_nees_{j + 1}"] = (r[cs.NAIVE_NEES], 2)
@@ -218,7 +243,7 @@ def glue_coupling(s: CouplingStudy) -> GlueValues:
     d["cc2_nees_max"] = (max(r[cs.NAIVE_NEES] for r in s.rows), 2)
     d["cc2_ratio_max_curve"] = (max(float(c.max()) for c in s.curves.values()), 1)
     d["cc2_env_max"] = (float(s.env_grid.max()), 1)
-    for j, nm in enumerate(s.curves):
+    for j, nm in enumerate(cases):
         c = s.curves[nm]
         d[f"cc2_peak_{j + 1}"] = (float(c.max()), 2)
         d[f"cc2_peak_env_{j + 1}"] = (float(s.env_grid[int(np.argmax(c))]), 1)

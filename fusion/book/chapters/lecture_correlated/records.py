@@ -14,7 +14,7 @@ from fusion._frozen import constant
 from fusion._results import ResultSpec, instance, validated_post_init
 from fusion.book._few_runs import runs_named
 from fusion.book.study_cache import study_cache
-from fusion.book.chapters.lecture import SOURCE, sci
+from fusion.book.chapters.lecture import SOURCE, _holds, sci
 from fusion.book.tables import roundoff
 from fusion.book.claims import ClaimsFile
 from fusion.book.exact import ExactComparison
@@ -277,6 +277,8 @@ def _ev_correlation_matters(st: Studies) -> Readings:
                               seed=2701),
         "nees": Conjunction((("GLS consistent", Proposition(bool(lo <= ng <= hi), f"mean NEES {ng:.3f}")),
                              ("naive inconsistent", Proposition(bool(not lo <= nn <= hi), f"mean NEES {nn:.3f}"))))}
+    _holds(cpl.sq, keys, "st.cpl", "coupling cases", "lec-correlation-matters' evidence")
+    _holds(st.cpl_wide.sq, (WIDE,), "st.cpl_wide", "coupling case", "lec-correlation-matters' evidence")
     for case, key in keys.items():
         g, n = cpl.sq[case]
         out[key] = Comparison(g, n, "GLS", "naive", "less", _SQ, seed=cpl.seed)
@@ -339,6 +341,10 @@ def ledger_evidence(st: Studies) -> dict[str, Evidence | Readings]:
     ------
     TypeError
         ``st`` not a :class:`Studies`.
+    ValueError
+        A study of ``st`` without a case its record reads (``st.cpl`` without a case of
+        ``fusion.scenarios.correlated_sensors.SCENARIOS`` but the equal coupling, ``st.cpl_wide`` without
+        ``WIDE``), named ``st.<field>``; fewer runs than rule R4's, named ``st``.
     """
     instance_of(st, Studies, "st")
     with runs_named("st", "cached_studies' runs"):  # rule R4 named by the argument (fuzz 22b A2)

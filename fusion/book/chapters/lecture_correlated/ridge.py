@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
+from fusion.book.chapters.lecture import _holds, _lec_glue, _r, legend_below
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.readings import biased as rg
 from fusion.scenarios.lecture_correlated import K_LABEL, RidgeStudy
@@ -155,8 +155,21 @@ def figure_25(s: RidgeStudy) -> Figure:
 @_PARAMS("s")
 @_lec_glue
 def glue_25(s: RidgeStudy) -> GlueValues:
-    """Glue values of E2.5."""
+    """Glue values of E2.5.
+
+    ``lec_rg_relk001_far`` is read at the study's ``x_far`` (its one true value of ``rel_k`` that is not among ``xs``).
+
+    Raises
+    ------
+    TypeError
+        ``s`` not a RidgeStudy.
+    ValueError
+        ``s`` without the true values 0.5 and 10 among its ``xs`` or the fixed k 0.01 and 0.1 among its ``ks_fixed``
+        (E2.5's ``ridge_study`` has them), named.
+    """
     instance_of(s, RidgeStudy, "s")
+    _holds(s.mse, (0.5, 10.0), "s", "true values x", "glue_25")
+    _holds(s.ks_fixed, (0.01, 0.1), "s", "fixed ridge parameters (ks_fixed)", "glue_25")
     tab = table_25(s)
     d = {"rg_bound_k1": (s.bound_k1, 3), "rg_rel1_kelvin": (s.rel1_kelvin, 6)}
     for x, key in ((0.5, "x05"), (10.0, "x10")):
@@ -165,7 +178,10 @@ def glue_25(s: RidgeStudy) -> GlueValues:
         d[f"rg_mse0_{key}"] = (tab.loc[x, "MSE(0)"], 4)
         d[f"rg_mse1_{key}"] = (tab.loc[x, "MSE(k=1)"], 4)
     tk = table_25_k(s)
-    x_far = float(tk.index.max())
+    far = [float(x) for x in tk.index if x not in s.mse]   # ridge_study's x_far: its one x of rel_k not among xs
+    if len(far) != 1:
+        raise ValueError(f"s.rel_k must hold one true value x_far beside the study's xs, got {shown(far)}")
+    x_far = far[0]
     d.update({"rg_rel0": (tk["LS (k = 0)"].iloc[0], 4), "rg_relk01_x10": (tk.loc[10.0, "k = 0.1: gain"] + tk.loc[10.0, "LS (k = 0)"], 4),
               "rg_relk001_far": (tk.loc[x_far, "k = 0.01: gain"] + tk.loc[x_far, "LS (k = 0)"], 4),
               "rg_relkstar_x10": (tk.loc[10.0, "k*: gain"] + tk.loc[10.0, "LS (k = 0)"], 4),

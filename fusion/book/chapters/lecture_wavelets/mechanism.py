@@ -13,7 +13,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._validation import one_of
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
+from fusion.book.chapters.lecture import _holds, _lec_glue, _r, legend_below
 from fusion.book.ledger import Conjunction
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.book.chapters.lecture_wavelets.verdicts import (
@@ -126,8 +126,23 @@ def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:
     -------
     pandas.DataFrame
         Numeric columns (sensor 1, the most accurate, and sensor 4, the noisiest).
+
+    Raises
+    ------
+    TypeError
+        ``m`` not a MechanismStudy.
+    ValueError
+        ``m`` of fewer than 4 sensors (no sensor 4 to show), named.
     """
     instance_of(m, MechanismStudy, "m")
+    return _sensitivity(m, "table_sensitivity")
+
+
+def _sensitivity(m: MechanismStudy, reader: str, sensor4: bool = True) -> pd.DataFrame:
+    """:func:`table_sensitivity` as read by ``reader``; without ``sensor4``, sensor 1's columns only (all that the
+    figure and the glue read: a study of 3 sensors is theirs too)."""
+    if sensor4:
+        _holds(range(1, m.gains.size + 1), (4,), "m", "sensor", reader)
     rows = {}
     for lab in m.labels:
         e = m.err[lab]
@@ -135,9 +150,10 @@ def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:
             RAW_E4: 1e4 * e["raw"][:, 0].mean(), DENOISED_E4: 1e4 * e["denoised"][:, 0].mean(),
             RECONSTRUCTED_E4: 1e4 * e["denoise-first"][:, 0].mean(),
             FUSE_FIRST_E4: 1e4 * e["fuse-first"][:, 0].mean(),
-            "sensor 4: denoised ×10⁴": 1e4 * e["denoised"][:, 3].mean(),
-            "sensor 4: rec. ×10⁴": 1e4 * e["denoise-first"][:, 3].mean(),
         }
+        if sensor4:
+            rows[lab] |= {"sensor 4: denoised ×10⁴": 1e4 * e["denoised"][:, 3].mean(),
+                          "sensor 4: rec. ×10⁴": 1e4 * e["denoise-first"][:, 3].mean()}
     tab = pd.DataFrame(rows).T.round(2)
     tab.index.name = f"sensor 1 (most accurate) unless named, {m.runs} runs"
     return tab
@@ -148,6 +164,8 @@ def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:
 @studies_runs_named("m", "e26")  # rule R4 named by the study argument
 def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None, part: str = "all") -> pd.DataFrame:
     """:func:`table_sensitivity` at 2 decimals (text), with the verdicts for every sensor under each setting.
+
+    A study ``m`` of fewer than 4 sensors is refused as by :func:`table_sensitivity` (ValueError naming ``m``).
 
     Parameters
     ----------
@@ -166,7 +184,7 @@ def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None,
         order < fuse first.
     """
     instance_of(m, MechanismStudy, "m")
-    tab = table_sensitivity(m).map(lambda v: f"{v:.2f}")
+    tab = _sensitivity(m, "table_sensitivity_display").map(lambda v: f"{v:.2f}")
     tab["runs (verdicts)"] = [f"{e26.runs} (E2.6: reading more-runs)" if _is_primary(m, lab, e26) else str(m.runs)
                               for lab in m.labels]
     tab["every sensor: rec. < raw"] = [status_text(_wconj(m, lab, "denoise-first", "raw", e26=e26)) for lab in m.labels]
@@ -176,7 +194,7 @@ def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None,
                                                                             e26=e26))
                                                          for lab in m.labels]
     one_of(part, ("all", "numbers", "verdicts"), "part")
-    num = list(table_sensitivity(m).columns)
+    num = list(_sensitivity(m, "table_sensitivity_display").columns)
     return tab if part == "all" else tab[num] if part == "numbers" else tab.drop(columns=num)
 
 
@@ -216,7 +234,7 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
     axes[0].set_xlabel("sample n")
     axes[0].set_ylabel("bias of denoised signal / gⱼ")
     axes[0].set_title("solid: hard, dotted: soft", fontsize=9)
-    tab = table_sensitivity(m)
+    tab = _sensitivity(m, "figure_mechanism", sensor4=False)
     pos = np.arange(len(tab))
     for off, col, key in ((-0.3, RAW_E4, "raw"), (-0.1, DENOISED_E4, "denoised"),
                           (0.1, RECONSTRUCTED_E4, "reconstructed"), (0.3, FUSE_FIRST_E4, "reconstructed_fuse_first")):
@@ -264,7 +282,7 @@ def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueVal
     d["wm_spec_share_64"] = (m.bias_share_period[64], 3)
     d["wm_band_64_d4"] = (m.tone_bands[64][1], 3)
     d["wm_band_256_a4"] = (m.tone_bands[256][0], 3)
-    tab = table_sensitivity(m)
+    tab = _sensitivity(m, "glue_mechanism", sensor4=False)
     for i, lab in enumerate(m.labels):
         d[f"wm_raw_{i}"] = (tab.iloc[i][RAW_E4], 2)
         d[f"wm_den_{i}"] = (tab.iloc[i][DENOISED_E4], 2)

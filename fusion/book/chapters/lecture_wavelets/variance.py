@@ -8,7 +8,7 @@ from fusion._validation import instance_of
 import numpy as np
 import pandas as pd
 
-from fusion.book.chapters.lecture import _r
+from fusion.book.chapters.lecture import _holds, _r
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.book.chapters.lecture_wavelets.verdicts import _metric_label, sensor_conjunction
@@ -82,9 +82,11 @@ def glue_variance(v: VarianceStudy) -> GlueValues:
     TypeError
         ``v`` not a VarianceStudy.
     ValueError
-        ``v`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the statuses compare runs).
+        ``v`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the statuses compare runs), or
+        of fewer than 4 sensors (``lec_wvar_rec_*_4`` is sensor 4's).
     """
     instance_of(v, VarianceStudy, "v")
+    _holds(range(1, v.gains.size + 1), (4,), "v", "sensor", "glue_variance")
     d: dict[str, tuple[float, int]] = {"wvar_den_1": (1e4 * v.denoised[:, 0].mean(), 2),
                                        "wvar_raw_1": (1e4 * v.raw[:, 0].mean(), 2),
                                        "wvar_w_true_1": (v.w_true[0], 3)}

@@ -19,7 +19,7 @@ from matplotlib.figure import Figure
 from fusion._docstrings import ParameterDocs
 from fusion._results import ResultSpec, array, flag, integer, number, validated_post_init
 from fusion._validation import count
-from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, sci
+from fusion.book.chapters.lecture import _holds, _key, _lec_glue, _r, legend_below, sci
 from fusion.book.tables import roundoff
 from fusion.book.glue import GlueValues
 from fusion.book.ledger import MIN_RUNS, Comparison, Unverifiable
@@ -93,19 +93,28 @@ def glue_24(s: BeliefStudy) -> GlueValues:
     Parameters
     ----------
     s : BeliefStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.belief.belief_study`.
+        Result of :func:`fusion.scenarios.lecture_weighting.belief.belief_study`; its offsets (``lec_bel_s4_offset``,
+        ``lec_bel_fused_*``) are from its own true value ``s.x``.
+
+    Raises
+    ------
+    TypeError
+        ``s`` not a BeliefStudy.
+    ValueError
+        ``s`` of fewer than 4 sensors (``lec_bel_s4_offset`` is sensor 4's), named.
     """
     instance_of(s, BeliefStudy, "s")
+    _holds(range(1, s.base.size + 1), (4,), "s", "sensor", "glue_24")
     W = s.W
     i_peak = int(np.argmax(W[:, 0]))
     i_dip = int(np.argmin(W[:i_peak + 1, 0]))
     e1 = np.eye(W.shape[1])[0]
     fused = np.array([W[i] @ (s.base + dl * e1) for i, dl in enumerate(s.deltas)])
     near = [j for j in range(1, W.shape[1]) if j != int(np.argmax(s.base[1:])) + 1]  # the readings near the truth
-    out = _r({"bel_s4_offset": (s.base[3] - 900.0, 2), "bel_w_out_d0": (W[0, 0], 4),
+    out = _r({"bel_s4_offset": (s.base[3] - s.x, 2), "bel_w_out_d0": (W[0, 0], 4),
               "bel_dip_w": (W[i_dip, 0], 4), "bel_dip_delta": (s.deltas[i_dip], 2),
               "bel_near_w_peak_max": (float(np.max(W[i_peak, near])), 3),
-              "bel_fused_d0": (fused[0] - 900.0, 2), "bel_fused_peak": (fused[i_peak] - 900.0, 2),
+              "bel_fused_d0": (fused[0] - s.x, 2), "bel_fused_peak": (fused[i_peak] - s.x, 2),
               "bel_w_out_d20": (W[-1, 0], 6), "bel_peak_delta": (s.deltas[i_peak], 2),
               "bel_peak_w": (W[i_peak, 0], 4), "bel_unit_k_maxdiff": (s.unit_k_maxdiff, 12),
               "bel_unit_f_maxdiff": (s.unit_f_maxdiff, 4), "bel_unit_fconv_maxdiff": (s.unit_fconv_maxdiff, 12),

@@ -16,7 +16,7 @@ from scipy import stats
 
 from fusion._docstrings import ParameterDocs
 from fusion._results import ResultSpec, flag, instance, text, validated_post_init
-from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, sci
+from fusion.book.chapters.lecture import _holds, _key, _lec_glue, _r, legend_below, sci
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index
@@ -111,8 +111,16 @@ def figure_21a(s: AwfStudy) -> Figure:
     -------
     matplotlib.figure.Figure
         Two panels, X = 0 and X = 100: each estimator's mean ± 1 SD estimate of σ₁² against k (log), with the true σ₁².
+
+    Raises
+    ------
+    TypeError
+        ``s`` not an AwfStudy.
+    ValueError
+        ``s`` without the bands at X = 0 and 100 (``awf_study(levels=...)`` without them), named.
     """
     instance_of(s, AwfStudy, "s")
+    _holds(dict.fromkeys(X for X, _ in s.band), (0.0, 100.0), "s", "levels X of s.band", "figure_21a")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)
     k_axis = np.arange(1, s.k_max + 1)
     for ax, X in zip(axes, (0.0, 100.0)):
@@ -554,8 +562,22 @@ def glue_lumv(sl: LumvStudy) -> GlueValues:
     GlueValues
         Glue keys (prefixed ``lec_``) and rounded values; ``lec_lumv_n_hold_nonlinear``: readings with
         estimated weights that are unbiased and of minimum variance (linearity not required).
+
+    Raises
+    ------
+    TypeError
+        ``sl`` not a LumvStudy.
+    ValueError
+        ``sl`` whose antithetic pairs cancel exactly for the ``|σ̂²|`` reading (every pair's mean error 0, as at
+        ``sl.x = 0``, where the lecture's variance estimates are even in the noise): ``lec_lumv_se_gain``, the
+        standard error of the plain runs over that of the pairs, has no finite value; named.
     """
     instance_of(sl, LumvStudy, "sl")
+    pm = sl.pair_mean[AwfMethod.AWF_LECTURE_ABS]
+    if not np.std(pm, ddof=1) > 0:
+        raise ValueError(f"sl (x = {shown(sl.x)}): every antithetic pair of the |σ̂²| reading cancels exactly, so "
+                         "glue_lumv's standard-error gain of the pairs (lec_lumv_se_gain) is infinite; its values "
+                         "are E2.1c's at a level whose pairs do not cancel (the chapter's x = 900)")
     r = lumv_readings(sl)
     tag = {AwfMethod.ORACLE: "oracle", AwfMethod.AWF_LECTURE_FLOOR: "floor", AwfMethod.AWF_LECTURE_ABS: "abs",
            AwfMethod.AWF_LECTURE_EQUAL: "equal", AwfMethod.AWF_CENTRED: "cen"}
@@ -574,7 +596,7 @@ def glue_lumv(sl: LumvStudy) -> GlueValues:
     e = sl.err[AwfMethod.AWF_LECTURE_ABS][: sl.pairs]
     lo, hi = stats.ttest_1samp(e, 0.0).confidence_interval(0.95)
     d.update({"lumv_plain_abs": (float(e.mean()), 4), "lumv_plain_lo_abs": (float(lo), 4), "lumv_plain_hi_abs": (float(hi), 4),
-              "lumv_se_gain": (float(np.std(e, ddof=1) / np.std(sl.pair_mean[AwfMethod.AWF_LECTURE_ABS], ddof=1)), 0)})
+              "lumv_se_gain": (float(np.std(e, ddof=1) / np.std(pm, ddof=1)), 0)})
     d["lumv_bound"] = (sl.bound, 6)
     d["lumv_median_none"] = (float(np.median(sl.err[AwfMethod.AWF_LECTURE_NONE])), 4)
     out: GlueValues = _r(d)

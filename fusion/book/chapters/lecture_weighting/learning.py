@@ -11,7 +11,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._docstrings import ParameterDocs, reads_results
-from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below
+from fusion.book.chapters.lecture import _holds, _key, _lec_glue, _r, legend_below
 from fusion.book.tables import roundoff
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -149,10 +149,23 @@ def figure_22b(s: LearningStudy) -> Figure:
 @_lec_glue
 @_PARAMS("s")
 def glue_22(s: LearningStudy) -> GlueValues:
-    """Glue values of E2.2."""
+    """Glue values of E2.2.
+
+    ``lec_ls_r5_*`` and ``lec_ls_r2_*`` are those of the study's settings of 5 and of 2 sensors, whatever their order
+    in ``r_sets``; the other values are taken over every setting.
+
+    Raises
+    ------
+    TypeError
+        ``s`` not a LearningStudy.
+    ValueError
+        ``s`` without a setting of 5 or of 2 sensors (E2.2's have both), named.
+    """
     instance_of(s, LearningStudy, "s")
     tab = table_22(s)
-    r5, r2 = tab.iloc[3], tab.iloc[0]
+    by_n = {len(R.split(",")): R for R in tab.index}  # R: the setting's variances; the sizes differ (learned[n])
+    _holds(by_n, (5, 2), "s", "settings of n sensors", "glue_22")
+    r5, r2 = tab.loc[by_n[5]], tab.loc[by_n[2]]
     out = _r({"ls_limit_maxrel": (tab["max |R̂ − limit|/limit"].max(), 4),
               "ls_r5_min": (r5[MIN_R], 4), "ls_r5_learned": (r5[LEARNED_LIMIT], 4),
               "ls_r5_opt": (r5["optimal"], 4), "ls_r2_learned": (r2[LEARNED_LIMIT], 4),
@@ -179,11 +192,22 @@ def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> GlueValue
     Returns
     -------
     GlueValues
-        Glue keys (prefixed ``lec_``) and values.
+        Glue keys (prefixed ``lec_``) and values; ``lec_llc_settle_max`` the latest settling epoch of the settings
+        of 3 or more sensors.
+
+    Raises
+    ------
+    TypeError
+        ``llc`` not a LearnedLimitCheck, ``s22`` not a LearningStudy.
+    ValueError
+        ``s22`` without a setting of 3 or more sensors, named.
     """
     instance_of(llc, LearnedLimitCheck, "llc")
     instance_of(s22, LearningStudy, "s22")
     settle = learning_settling(s22)
+    if not any(n >= 3 for n in settle):
+        raise ValueError(f"s22 lacks a setting of 3 or more sensors that glue_learning_check reads (lec_llc_settle_max; "
+                         f"it holds settings of {sorted(settle)} sensors)")
     factor = max(float(np.max(wt.learned_variance_limit(R) / R)) for R, _ in s22.learned.values())
     return {"lec_llc_sets": int(llc.sets), "lec_llc_above_mean": int(llc.above_mean),
             "lec_llc_above_best": int(llc.above_best),

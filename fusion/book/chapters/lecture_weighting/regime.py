@@ -14,7 +14,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._docstrings import ParameterDocs
-from fusion.book.chapters.lecture import _r, legend_below
+from fusion.book.chapters.lecture import _holds, _r, legend_below
 from fusion.book.ledger import Comparison
 from fusion.book.tables import _SUPERSCRIPT
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -305,11 +305,20 @@ def glue_changes(s: VarianceChangeStudy) -> GlueValues:
     -------
     GlueValues
         ``lec_chg_<change>_<method>`` (MSE, 4 significant digits) and ``lec_chg_<d|lo|hi>_<change>_<method>``
-        (as the ledger writes them), with change ``swap``, ``degrade``, ``improve`` and method ``ps``
-        (per-sample, forgetting), ``blue`` or ``awf``.
+        (as the ledger writes them), with change ``swap``, ``degrade``, ``improve`` (the study's changes of those
+        :class:`~fusion.scenarios.lecture_weighting.regime.VarianceChange` keys, in any order; a change of another
+        key is not glued) and method ``ps`` (per-sample, forgetting), ``blue`` or ``awf``.
+
+    Raises
+    ------
+    TypeError
+        ``s`` not a VarianceChangeStudy.
+    ValueError
+        ``s`` without one of the three changes, named.
     """
     instance_of(s, VarianceChangeStudy, "s")
-    tag = {s.changes[i]: t for i, t in enumerate(("swap", "degrade", "improve")[:len(s.changes)])}
+    tag = {VarianceChange.SWAP: "swap", VarianceChange.DEGRADE: "degrade", VarianceChange.IMPROVE: "improve"}
+    _holds(s.changes, tag, "s", "changes", "glue_changes")
     mk = {_R.PER_SAMPLE_FORGETTING: "ps", _R.PER_SAMPLE_BLUE: "blue", _R.RUNNING_MEANS_ORACLE: "rm",
           _R.PER_SAMPLE_FORGETTING_ALT: "ps_alt"}
     out: GlueValues = {}
@@ -324,10 +333,11 @@ def glue_changes(s: VarianceChangeStudy) -> GlueValues:
     return out
 
 
-def _change(s: VarianceChangeStudy, key: VarianceChange) -> VarianceChange:
-    """``key`` if :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study` ran that change, else ValueError."""
-    if key not in s.changes:
-        raise ValueError(f"the study must hold the change {shown(key)}, got {s.changes}")
+def _change(s: VarianceChangeStudy, key: VarianceChange, name: str = 's["schg"]',
+            reader: str = "the change readings") -> VarianceChange:
+    """``key`` if :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study` ran that change, else a
+    ValueError naming ``name`` (the chapter's rule, ``_holds``)."""
+    _holds(s.changes, (key,), name, "change", reader)
     return key
 
 
