@@ -213,7 +213,7 @@ def registry() -> dict[str, dict[str, A]]:
                                     sc=_sc(o), thresholds=A((0.01, 0.05), ("str", ("nan", (np.nan,)), ("negative", (-0.1,)), ("one", (1.0,)))))
     # no other thresholds is valid (documented: "empty: none"), so an empty tuple is not refused
     R[c + "design_study"] = dict(sc=A(o["sc"], ("str", ("None", None))), seed=A(1, SEED), runs=A(2, CNT),
-                                 n_initial=A(200, CNT + (("beyond the memory budget", 10**7),)), workers=A(1, CNT))
+                                 n_initial=A(200, CNT + (("beyond the memory budget", 10**7), ("not above sc.n_particles", 60))), workers=A(1, CNT))
     R[c + "design"] = dict(seed=A(1, SEED), runs=A(2, CNT), sc=A(o["sc"], ("str",)))
     # ---- swarm, figures
     R[c + "eps_figure"] = dict(runs=_runs(o), sc=_sc(o), show=A(0, ("neg", "frac", "str", ("beyond", 3), ("bool", True))))
@@ -235,7 +235,7 @@ def registry() -> dict[str, dict[str, A]]:
     # connected network under its key, so that the result is finite
     R[c + "premise_studies"] = dict(seed=A(3, SEED), runs=A(2, CNT),
                                     scenarios=A(o["connected"], ("str", ("empty", {}), ("a scenario not a NetworkScenario", {**o["small"], next(iter(o["small"])): "abc"}))),
-                                    more=A({next(iter(o["small"])): 3}, ("str", ("unknown network", {"moon": 3}), ("zero", {next(iter(o["small"])): 0}))))
+                                    more=A({next(iter(o["small"])): 3}, ("str", ("unknown network", {"moon": 3}), ("zero", {next(iter(o["small"])): 0}), ("below runs", {next(iter(o["small"])): 1}))))
     R[c + "premise_study"] = dict(seed=A(3, SEED), runs=A(2, CNT),
                                   scenarios=A(o["connected"], ("str", ("empty", {}), ("a network missing", {k: v for k, v in o["small"].items() if k != next(iter(o["small"]))}))))
     for fn in ("premise_table", "premise_figure", "premise_values", "premise_robust_values"):
@@ -248,7 +248,9 @@ def registry() -> dict[str, dict[str, A]]:
     # ---- evidence functions
     sc = o["sc"]
     scA = A(sc, ("str",))
-    R[c + "ev_tracking"] = dict(settings=A({"a": "chernoff_pso", "b": "chernoff_uniform"}, ("str", ("None", None), ("a list", []), ("a key missing", {"a": "chernoff_pso"}), ("unknown method", {"a": "chernoff_pso", "b": "nope"}))),
+    R[c + "ev_tracking"] = dict(settings=A({"a": "chernoff_pso", "b": "chernoff_uniform"}, ("str", ("None", None), ("a list", []), ("a key missing", {"a": "chernoff_pso"}), ("unknown method", {"a": "chernoff_pso", "b": "nope"}),
+                                                                                           ("a method against itself", {"a": "chernoff_pso", "b": "chernoff_pso"}),
+                                                                                           ("NEES of a method without a covariance", {"a": "mean_of_local_means", "b": "chernoff_pso", "metric": "nees"}))),
                                 seed=A(1, SEED), runs=A(3, CNT), sc=scA)
     R[c + "ev_pso"] = dict(settings=A({"check": "within-se"}, ("str", ("None", None), ("a list", []), ("unknown check", {"check": "vibes"}))),
                            seed=A(1, SEED), runs=A(3, CNT), sc=scA)
@@ -274,7 +276,8 @@ def registry() -> dict[str, dict[str, A]]:
     labels = dict(chc.PREMISE_LABELS)
     lab = A(labels, ("str", ("empty", {}), ("a label not a str", {**labels, Network.UNEQUAL: 3.0}),
                      ("two networks one label", {**labels, Network.NON_GAUSSIAN: labels[Network.UNEQUAL]}),
-                     ("an empty label", {**labels, Network.CHAIN: " "})))
+                     ("an empty label", {**labels, Network.CHAIN: " "}),
+                     ("a label of no network", {**labels, "moon": "x"})))
     for fn in ("baseline_table", "criteria_table", "criteria_values"):
         R[cr + fn] = dict(studies=_studies(o), labels=lab, reason=REASON)
     stA = A(one, ("str", ("None", None), ("another result", o["toy"]), ("a multi-frame network", multi)))

@@ -326,6 +326,7 @@ def _networks(studies: object, labels: object, reason: object) -> str:
     mapping_of(studies, "studies", "NetworkStudy", values=NetworkStudy, maker="premise_study")
     _known_networks(studies)  # type: ignore[arg-type]  # issue 35: a study under an unknown key was left out silently
     mapping_of(labels, "labels", "column label", values=str)
+    _known_networks(labels, "labels")  # type: ignore[arg-type]  # fuzz 26b D6: a label of no network, as studies
     seen: dict[str, str] = {}
     for key in CRITERIA_NETWORKS:
         _one_frame(_key(studies, key), f"studies[{shown(key)}]")  # type: ignore[arg-type]  # fuzz 24b WN2: by its key
@@ -348,8 +349,8 @@ _on_networks = with_sections(raises="""TypeError
     ``studies`` or ``labels`` not a mapping, a study not a NetworkStudy, a label or ``reason`` not a str.
 ValueError
     ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`, two of these networks with one label
-    or one with an empty label (the labels head the tables' columns), ``studies`` with a key that is not a
-    network of :data:`~fusion.book.chapters.chernoff.PREMISE_LABELS`, a study of these networks of several frames
+    or one with an empty label (the labels head the tables' columns), ``studies`` or ``labels`` with a key that is
+    not a network of :data:`~fusion.book.chapters.chernoff.PREMISE_LABELS`, a study of these networks of several frames
     (or, under a key of ``ORACLE_NETWORKS``, of several exchanges), or a network of fewer than
     :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 

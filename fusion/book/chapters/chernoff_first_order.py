@@ -27,7 +27,7 @@ from fusion.scenarios import two_mixtures
 from fusion.book.chapters.chernoff_steps import MARGIN, _gaussian_rows, _log_densities, _logpdf, paired_numbers
 from fusion.book.glue import GlueValues
 
-__all__ = ['sigma_point_first_order', 'random_two_mixtures', 'SIGMA_RANDOM_NODES', 'SigmaProblem', 'sigma_first_order_problem', 'SigmaFirstOrderStudy', 'sigma_first_order_study']
+__all__ = ['sigma_point_first_order', 'random_two_mixtures', 'SIGMA_RANDOM_NODES', 'SAME_DENSITY_NATS', 'SigmaProblem', 'sigma_first_order_problem', 'SigmaFirstOrderStudy', 'sigma_first_order_study']
 
 
 # ---------------------------------------------------------------------------------------------- step D: sigma points
@@ -178,6 +178,11 @@ class SigmaProblem:
 
 
 
+#: :func:`sigma_first_order_problem` refuses two mixtures whose exact log Z at ω = 1/2 lies at most this far below
+#: the mean of its end points (nats; the Bhattacharyya distance of a and b): one density, whose ω* is undetermined.
+SAME_DENSITY_NATS = 1e-12
+
+
 def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: int = _SIGMA_GRID[1]) -> SigmaProblem:
     r"""Step D's first-order mixture and the sigma-point mixture against the exact answer, for two 2-D mixtures.
 
@@ -207,8 +212,11 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
     TypeError
         ``a`` or ``b`` not a mixture, ``n`` not an integer.
     ValueError
-        ``a`` or ``b`` not 2-D, ``n`` below 2, or an n x n grid beyond the memory budget
-        (``fusion._validation.allocation``).
+        ``a`` or ``b`` not 2-D, ``n`` below 2, an n x n grid beyond the memory budget
+        (``fusion._validation.allocation``), or ``b`` the same density as ``a`` on the grid (their Bhattacharyya
+        distance at most :data:`SAME_DENSITY_NATS`; ``a`` itself, or its components reordered or split): every
+        exponent then gives the same fusion and ω* is undetermined (fuzz 26b D5: the bounded search returned its
+        end point as "exact").
     """
     for name, gm in (("a", a), ("b", b)):
         instance_of(gm, mx.GaussianMixture, name)
@@ -237,6 +245,13 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
     def sp(w: float) -> float:
         return sigma_point_first_order([a, b], [w, 1 - w]).log_z_first_order
 
+    # fuzz 26b D5: log Z is convex in ω with log Z(0) = log Z(1) (both normalised), below them in between unless a
+    # and b are one density (Hölder's equality): then every ω gives the same fusion and ω* is no number at all
+    dip = 0.5 * (exact(0.0) + exact(1.0)) - exact(0.5)
+    if dip <= SAME_DENSITY_NATS:
+        raise ValueError(f"b is the same density as a on the grid (log Z(1/2) is {dip:.2g} nats below the mean of its "
+                         f"end points, at most {SAME_DENSITY_NATS:g}): every exponent gives the same fusion, so the "
+                         "exact ω* is undetermined")
     opts = {"bounds": (0.0, 1.0), "method": "bounded", "options": {"xatol": 1e-6}}
     w_star = float(minimize_scalar(exact, **opts).x)  # type: ignore[call-overload]
     out = {"omega_exact": w_star}

@@ -342,6 +342,94 @@ def _snis_relation(values: dict[str, Any], cls: str) -> None:
         raise ValueError(f"{cls}.table must hold every exponent at the same sizes R, got {sizes}")
 
 
+#: The delta-method terms of an exponent are kept when a grid twice as wide gives them to this relative tolerance:
+#: the quadrature's truncation is what a wider grid changes. The wider grids have 1201 nodes per axis (spacings
+#: 0.03, 0.06, 0.12 at half-widths 18, 36, 72), whose own discretisation error on the toy's terms is at most about
+#: 4e-9 (0.12 against 0.06, measured), below this tolerance; the reference grid (601 nodes on [-9, 9]², spacing
+#: 0.03) and the first wider one differ by truncation alone.
+_DELTA_RTOL = 1e-8
+#: How often the reference grid's half-width is doubled before an exponent's ∫p²/g counts as unresolved (9 -> 72).
+_DELTA_WIDENINGS = 3
+
+
+def _tail_margin(gms: tuple[mx.GaussianMixture, ...], e: FloatArray, proposal: mx.GaussianMixture
+                 ) -> tuple[float, float]:
+    r"""The Gaussian tails' verdict on :math:`\int p_\varepsilon^2/g`: its margin and the worst direction's angle.
+
+    Along a ray :math:`x = t u` (:math:`|u| = 1`) a mixture decays as its slowest component,
+    :math:`\log\hat p_i(tu) = -\tfrac{t^2}2\min_s u^\top P_{is}u + O(t)` (:math:`P` the precisions), so
+    :math:`\log(p_\varepsilon^2/g) = -\tfrac{t^2}2 h(u) + O(t)` with
+    :math:`h(u) = 2\sum_i\varepsilon_i\min_s u^\top P_{is}u - \min_k u^\top P_{gk}u`: the integral is finite when
+    :math:`h > 0` in every direction and infinite when :math:`h < 0` in one (for a one-component proposal, when
+    :math:`2\Sigma_p^{-1} - \Sigma_g^{-1}` is not positive definite for some product of components). The minimum is
+    taken over 7200 directions of the plane: a sampled minimum below zero is a true one (the sampled minimum is at
+    least the true one).
+    """
+    th = np.linspace(0.0, np.pi, 7200, endpoint=False)
+    u = np.stack([np.cos(th), np.sin(th)], axis=1)
+
+    def slowest(gm: mx.GaussianMixture) -> FloatArray:
+        keep = gm.weights > 0
+        prec = np.linalg.inv(gm.covs[keep])
+        return np.min(np.einsum("ui,sij,uj->us", u, prec, u), axis=1)
+    h = 2 * sum(float(ei) * slowest(gm) for ei, gm in zip(e, gms)) - slowest(proposal)
+    k = int(np.argmin(h))
+    return float(h[k]), float(th[k])
+
+
+def _toy_delta(w: float, name: str) -> SnisDelta:
+    r""":func:`snis_delta_terms` of :math:`p_{(w, 1-w)}` and the chapter's proposal on the two-mixture example,
+    refused by ``name`` where they do not exist or the grid cannot resolve them.
+
+    The terms are computed on the reference grid of :func:`toy_reference` and on grids of twice, four and eight
+    times its half-width (1201 nodes per axis, ``_DELTA_RTOL``); the narrowest grid whose terms a grid twice as
+    wide gives to ``_DELTA_RTOL`` is kept (the reference grid wherever it resolves the integral, so those numbers
+    are unchanged).
+
+    Raises
+    ------
+    ValueError
+        ``name`` (the exponent) where :math:`\int p^2/g` is infinite (:func:`_tail_margin`: the delta method does not
+        apply) or reaches beyond the widest grid.
+    """
+    ref = toy_reference()
+    e = np.array([w, 1 - w])
+    margin, angle = _tail_margin(ref.gms, e, ref.proposal)
+    if margin < 0:
+        raise ValueError(f"{name} = {shown(w)}: ∫p²/g is infinite for the chapter's proposal (along the direction at "
+                         f"{np.degrees(angle):.1f}°, p² decays slower than g: h = {margin:.3g} < 0), so the delta "
+                         "method's c and V do not exist; choose an exponent whose ∫p²/g is finite")
+    axis0 = np.unique(ref.points[:, 0])
+    previous = None
+    for k in range(_DELTA_WIDENINGS + 1):
+        if k == 0:
+            pts, L = ref.points, ref.L
+            cell = ref.cell
+        else:
+            axis = np.linspace(-1.0, 1.0, 1201) * (float(axis0[-1]) * 2.0**k)
+            X, Y = np.meshgrid(axis, axis)
+            pts = np.column_stack([X.ravel(), Y.ravel()])
+            L = _log_densities(list(ref.gms), pts)
+            cell = float((axis[1] - axis[0]) ** 2)
+        dt = snis_delta_terms(pts, L[:, 0] * e[0] + L[:, 1] * e[1], _logpdf(ref.proposal, pts), cell)
+        if previous is not None and _delta_agree(previous, dt):
+            return previous
+        previous = dt
+    limit = float(axis0[-1]) * 2.0**_DELTA_WIDENINGS
+    raise ValueError(f"{name} = {shown(w)}: ∫p²/g is finite but its mass reaches beyond the widest quadrature grid "
+                     f"[-{limit:g}, {limit:g}]² (the terms change by more than {_DELTA_RTOL:g} when it is widened), so "
+                     "the delta method's c and V are not resolved; choose an exponent nearer the proposal's 1/2")
+
+
+def _delta_agree(a: SnisDelta, b: SnisDelta) -> bool:
+    """Whether two grids' delta terms agree to ``_DELTA_RTOL`` (c on the scale of its bound √(∫p²/g · tr V))."""
+    scale_c = np.sqrt(b.second_moment * np.trace(b.V))
+    return bool(abs(a.second_moment - b.second_moment) <= _DELTA_RTOL * b.second_moment
+                and np.linalg.norm(a.c - b.c) <= _DELTA_RTOL * scale_c
+                and np.linalg.norm(a.V - b.V) <= _DELTA_RTOL * np.linalg.norm(b.V)
+                and np.linalg.norm(a.mu - b.mu) <= _DELTA_RTOL * (1.0 + np.linalg.norm(b.mu)))
+
+
 @dataclass(frozen=True)
 class SnisBiasStudy:
     r"""Step H's self-normalised mean on the two-mixture example: delta method against simulation.
@@ -373,7 +461,9 @@ class SnisBiasStudy:
 
     def glue(self) -> GlueValues:
         """Glue ``chf_snis_*``: sizes, :math:`|c|` and the measurement at ω* and at the far ω, the ratio bias / SD at
-        the chapter's R, and how many rows' intervals cover :math:`|c|`."""
+        the chapter's R, and how many rows' intervals cover :math:`|c|`. Exponents are glued at the table's 4
+        decimals, the precision at which the far ω must differ from ω* (fuzz 26b D1: 2 decimals glued 0.5535 as
+        0.55, ω* rounded)."""
         ws = sorted(self.delta)
         star = toy_reference().omega_star
         w_star = min(ws, key=lambda w: abs(w - star))
@@ -386,7 +476,7 @@ class SnisBiasStudy:
         first = t[t["ω"] == rounded(w_star)].sort_values("R").iloc[0]  # the smallest R: the most blocks
         last = t[t["ω"] == rounded(w_far)].sort_values("R").iloc[-1]  # the largest R
         return {"chf_snis_total": int(self.total), "chf_snis_rs": ", ".join(str(r) for r in sorted(set(t["R"]))),
-                "chf_snis_omega_star": rounded(star), "chf_snis_far_omega": rounded(w_far, 2),
+                "chf_snis_omega_star": rounded(star), "chf_snis_far_omega": rounded(w_far),
                 "chf_snis_c_star": rounded(float(np.linalg.norm(d.c))),
                 "chf_snis_c_far": rounded(float(np.linalg.norm(far.c))),
                 "chf_snis_r_first": int(first["R"]), "chf_snis_meas_star": rounded(first[ALONG]),
@@ -445,13 +535,27 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
     ----------
     far_omega : float
         The second exponent of A, in [0, 1], other than the exact :math:`\omega^*` at the table's 4 decimals (the
-        table's rows are keyed by ω).
+        table's rows are keyed by ω), and one whose :math:`\int p_\omega^2/g` is finite and resolved: for the
+        chapter's proposal the integral is infinite below ω ≈ 0.103 (along the vertical, :math:`p_\omega^2` then
+        decays slower than g: the delta method's c and V do not exist), finite but reaching beyond the widest
+        quadrature grid just above it (0.11, 0.12 are refused), and finite up to ω = 1, where its mass lies far
+        out (|c| ≈ 2.6e29 at ω = 1, on a grid of half-width 36: the terms are computed on grids widened from the
+        reference grid until two successive ones agree to 1e-8, relative).
 
     Returns
     -------
     SnisBiasStudy
         One row per (ω, R): blocks, the norm of c, R × bias along c with its 95 % interval and across c; the delta
         terms per ω; ``total``.
+
+    Raises
+    ------
+    TypeError
+        ``rng`` not a Generator, ``rs``, ``total`` not integers, ``far_omega`` not a real number.
+    ValueError
+        ``rs`` or ``total`` as the pool refuses them; ``far_omega`` outside [0, 1], equal to ω* at 4 decimals, or
+        one whose :math:`\int p^2/g` is infinite (decided from the Gaussian components' tails) or reaches beyond
+        the quadrature grid of half-width 72 (checked before any sample is drawn).
     """
     total, rs = _pool_blocks(rng, rs, total)
     far_omega = unit_scalar(far_omega, "far_omega")
@@ -459,13 +563,14 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
     if rounded(far_omega, 4) == rounded(ref.omega_star, 4):  # fuzz 24b OR2: the rows of both exponents keyed alike
         raise ValueError(f"far_omega must differ from the exact ω* = {ref.omega_star:.4f} at 4 decimals (the table's "
                          f"rows are keyed by ω), got {shown(far_omega)}")
-    lg_grid = _logpdf(ref.proposal, ref.points)
+    # the delta terms first: an exponent whose ∫p²/g is infinite or unresolved is refused before any sample
+    terms = {w: _toy_delta(w, name) for w, name in ((ref.omega_star, "the exact ω*"), (far_omega, "far_omega"))}
     xs = mx.gm_sample(ref.proposal, rng, total)
     L, lg = _log_densities(list(ref.gms), xs), _logpdf(ref.proposal, xs)
     rows, delta = [], {}
     for w in (ref.omega_star, far_omega):
         e = np.array([w, 1 - w])
-        dt = snis_delta_terms(ref.points, ref.L[:, 0] * e[0] + ref.L[:, 1] * e[1], lg_grid, ref.cell)
+        dt = terms[w]
         delta[float(w)] = dt
         chat = dt.c / np.linalg.norm(dt.c)
         perp = np.array([-chat[1], chat[0]])
@@ -942,8 +1047,7 @@ def chosen_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (20, 80, 4
     ref = toy_reference()
     w_star = ref.omega_star
     e = np.array([w_star, 1 - w_star])
-    dt = snis_delta_terms(ref.points, ref.L[:, 0] * e[0] + ref.L[:, 1] * e[1], _logpdf(ref.proposal, ref.points),
-                          ref.cell)
+    dt = _toy_delta(w_star, "the exact ω*")
     chat = dt.c / np.linalg.norm(dt.c)
     xs = mx.gm_sample(ref.proposal, rng, total)
     L, lg = _log_densities(list(ref.gms), xs), _logpdf(ref.proposal, xs)

@@ -20,7 +20,8 @@ from fusion.scenarios.range_bearing import METHODS, RangeBearingScenario, Tracki
 from fusion.book.chapters.chernoff.settings import ALL_FRAMES, COLLAPSE_FRACTION, EARLY, LATE, study_scenario
 from fusion.book.chapters.chernoff.compare import (NEES_CONSISTENT, _NEES, _equivalent, _mse_comparison, _reason,
                                                    _window_text)
-from fusion.book.chapters.chernoff.premise import PREMISE_NETWORKS, _MINERR, _PMSE, _POVER, _pcmp, oracle_exponents
+from fusion.book.chapters.chernoff.premise import (PREMISE_NETWORKS, _MINERR, _PMSE, _POVER, _network_scenarios,
+                                                   _oracle_ready, _pcmp, oracle_exponents)
 from fusion.book.chapters.chernoff.tracking import (any_collapsed, central_collapsed, collapsed, per_run_nees,
                                                     readings_values)
 from fusion.book.chapters.chernoff.studies import (checks_study, common_study, design, isv_study, premise_study,
@@ -82,6 +83,18 @@ def _evidence_doc(settings: str = "The reading's settings (from the claim file).
 _WINDOWS = {"late": LATE, "early": EARLY, "all": ALL_FRAMES}
 
 
+def _pair(s: dict[str, Any], refused: dict[str, str]) -> None:
+    """The compared pair of a reading's settings, checked before its study runs (fuzz 26b EV: the comparison or
+    the study's functions refused them after it, naming their own arguments): ``settings['b']`` other than
+    ``settings['a']``, and neither one of ``refused`` (value -> why it cannot be compared here)."""
+    for k in ("a", "b"):
+        if s[k] in refused:
+            raise ValueError(f"settings[{shown(k)}] = {shown(s[k])}: {refused[s[k]]}")
+    if s["a"] == s["b"]:
+        raise ValueError(f"settings['b'] must differ from settings['a'] (a method against itself is no comparison), "
+                         f"got {shown(s['a'])} for both")
+
+
 _TRACK_METHODS = (*METHODS, "consistent")
 
 
@@ -100,6 +113,9 @@ def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
     s = _settings(settings, {"a": _TRACK_METHODS, "b": _TRACK_METHODS, "design": ("guard", "plain", "plain-kept"),
                              "window": tuple(_WINDOWS), "metric": ("mse", "nees"), "claim": ("less", "greater")},
                   {"design": "guard", "window": "late", "metric": "mse", "claim": "less"})
+    _pair(s, {"consistent": "a NEES yardstick, not a method with a squared error (metric 'mse')"}
+          if s["metric"] == "mse" else
+          {"mean_of_local_means": "a method without a covariance, so without a NEES (metric 'nees')"})
     plain, guarded = tracking_study(seed, runs, sc)
     rs = guarded if s["design"] == "guard" else plain
     if s["design"] == "plain-kept":
@@ -107,8 +123,6 @@ def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
         rs = [r for r, x in zip(plain, bad) if not x]
     frames = _WINDOWS[s["window"]]
     if s["metric"] == "mse":
-        if "consistent" in (s["a"], s["b"]):
-            raise ValueError("settings: 'consistent' is a NEES yardstick, not a method with a squared error")
         return _mse_comparison(rs, s["a"], s["b"], s["claim"], seed, frames)
     vals = {k: (np.full(len(rs), NEES_CONSISTENT) if k == "consistent" else per_run_nees(rs, k, frames))
             for k in (s["a"], s["b"])}
@@ -380,14 +394,19 @@ def ev_premise(settings: dict[str, Any], *, seed: int, runs: int,
     seed = check_seed(seed)
     s = _settings(settings, {"network": tuple(map(str, PREMISE_NETWORKS)), "a": _NET_METHODS, "b": _NET_METHODS,
                              "test": ("mse", "losses", "over")}, {"test": "mse"})
+    refused = {"nominal": "the yardstick of the 'over' test"} if s["test"] != "over" else {}
+    if s["test"] != "mse":
+        refused["oracle"] = "a method of the 'mse' test"
+    elif not _oracle_ready(_network_scenarios(scenarios)[s["network"]]):
+        refused["oracle"] = (f"its exponents need a network with one exchange and full connectivity, not "
+                             f"settings['network'] = {shown(s['network'])}")
+    _pair(s, refused)
     st = premise_study(seed, runs, scenarios)[s["network"]]
     a, b = s["a"], s["b"]
     if s["test"] == "over":
         v = {k: np.full(st.runs, 0.05) if k == "nominal" else st.overconfident(k) for k in (a, b)}
         name = {k: "the nominal 5 % of a consistent estimator (a constant: a one-sample test)" if k == "nominal" else METHOD_LABELS[k] for k in (a, b)}
         return Comparison(v[a], v[b], name[a], name[b], "greater", _POVER, seed=st.seed)
-    if "nominal" in (a, b) or "oracle" in (a, b) and s["test"] != "mse":
-        raise ValueError("settings: 'nominal' is the yardstick of the 'over' test, 'oracle' a method of the 'mse' test")
     if "oracle" in (a, b):  # the MSE oracle's fixed exponents on the Gaussian summaries (cross-validated)
         mse = {k: oracle_exponents(st)[1] if k == "oracle" else st.mse(k) for k in (a, b)}
         name = {k: "MSE-oracle exponents (cross-validated)" if k == "oracle" else METHOD_LABELS[k] for k in (a, b)}

@@ -20,7 +20,7 @@ from fusion.book.tables import rounded
 from fusion.scenarios.fusion_networks import Network
 from fusion.scenarios.range_bearing import RangeBearingScenario
 from fusion.book.chapters.chernoff.settings import BIBKEY, STUDY_RUNS, _MSE, study_scenario
-from fusion.book.chapters.chernoff.premise import _PMSE, oracle_exponents
+from fusion.book.chapters.chernoff.premise import _PMSE, _check_scenarios, oracle_exponents
 from fusion.book.chapters.chernoff.evidence import _is_region_counts
 from fusion.book.chapters.chernoff.compare import _word
 from fusion.book.chapters.chernoff.tracking import any_collapsed
@@ -30,8 +30,27 @@ from fusion.book.chapters.chernoff.guard import guard_usability
 from fusion.book.chapters.chernoff.mixture import toy
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
+from fusion._validation import count
 
 __all__ = ["ledger_values", "chapter_evidence", "claim_values", "SOURCE_CHAPTER", "referenced"]
+
+
+def _study_args(runs: object, sc: object, scenarios: object, network_runs: object) -> tuple[int, int | None]:
+    """The study arguments of :func:`chapter_evidence` and :func:`claim_values`, checked before any study runs
+    (fuzz 26b CE: ``sc`` and ``network_runs`` were checked by the studies, after minutes of others, or named
+    ``runs``): ``runs`` a count, ``sc`` None or a RangeBearingScenario, ``scenarios`` None or the designed networks,
+    and the networks' count (``network_runs``, else ``runs``) at least the 2 a network study takes."""
+    runs = count(runs, "runs")
+    if sc is not None:
+        instance_of(sc, RangeBearingScenario, "sc")
+    if scenarios is not None:
+        _check_scenarios(scenarios)
+    if network_runs is None:
+        if runs < 2:
+            raise ValueError(f"runs must be at least 2 when network_runs is not given (the networks run runs times; "
+                             f"a network study takes 2 or more), got {runs}")
+        return runs, None
+    return runs, count(network_runs, "network_runs", minimum=2)
 
 
 def chapter_evidence(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario | None = None,
@@ -48,20 +67,38 @@ def chapter_evidence(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScena
     scenarios : dict, optional
         The designed networks (tests).
     network_runs : int, optional
-        Runs per network, when not ``runs`` (tests run small tracking studies and 100-run networks).
+        Runs per network (2 or more), when not ``runs`` (tests run small tracking studies and 100-run networks);
+        without it ``runs`` must be 2 or more.
     claims : fusion.book.claims.ClaimsFile, optional
-        Default ``book/claims/cn107330468b.yaml``.
+        The claim file of this chapter's source (:data:`BIBKEY`); default ``book/claims/cn107330468b.yaml``.
 
     Returns
     -------
     dict
         Record id -> {reading key -> evidence}, for :func:`fusion.book.claims.build_ledger`.
+
+    Raises
+    ------
+    TypeError
+        ``seed``, ``runs`` or ``network_runs`` not an integer, ``sc`` not a RangeBearingScenario, ``scenarios`` not
+        a mapping of NetworkScenario, ``claims`` not a ClaimsFile.
+    ValueError
+        ``seed`` negative, ``runs`` below 1, the networks' run count (``network_runs``, else ``runs``) below 2,
+        ``scenarios`` without a network of the chapter, ``claims`` the claim file of another source (its records
+        would give no evidence). All checked before any study runs.
     """
     seed = check_seed(seed)
+    runs, network_runs = _study_args(runs, sc, scenarios, network_runs)
     from fusion.book import claims as cl
 
-    cf = claims if claims is not None else cl.load(Path(__file__).resolve().parents[4] / "book" / "claims"
-                                                   / f"{BIBKEY}.yaml")
+    if claims is None:
+        cf = cl.load(Path(__file__).resolve().parents[4] / "book" / "claims" / f"{BIBKEY}.yaml")
+    else:
+        instance_of(claims, cl.ClaimsFile, "claims")
+        cf = claims
+        if cf.source != BIBKEY:
+            raise ValueError(f"claims is the claim file of {shown(cf.source)}, not of this chapter's source "
+                             f"{shown(BIBKEY)}: its records give this chapter no evidence")
     out: dict[str, dict[str, Evidence]] = {}
     for spec in cf.records:
         if spec.chapter != SOURCE_CHAPTER:
@@ -87,7 +124,7 @@ def claim_values(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario 
     sc : RangeBearingScenario, optional
     scenarios : dict, optional
     network_runs : int, optional
-        As in :func:`chapter_evidence`.
+        As in :func:`chapter_evidence` (checked, with the others, before any study runs).
 
     Returns
     -------
@@ -95,8 +132,14 @@ def claim_values(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario 
         ``chf_runs``, ``chf_n_any_collapsed``, ``chf_r_toy``, ``chf_design_n0``, the linearised analysis
         (:func:`double_count_values`), the collapse thresholds (:func:`guard_usability`) and the networks' run counts
         (``chf_pr_runs``, ``chf_pr_non_gaussian_runs``).
+
+    Raises
+    ------
+    TypeError, ValueError
+        The arguments as :func:`chapter_evidence` refuses them.
     """
     seed = check_seed(seed)
+    runs, network_runs = _study_args(runs, sc, scenarios, network_runs)
     sc_ = study_scenario() if sc is None else sc
     plain, rs = tracking_study(seed, runs, sc)
     nets = premise_study(seed, runs if network_runs is None else network_runs, scenarios)

@@ -269,7 +269,8 @@ def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_
         Root seed (every design uses the same runs).
     runs : int
     n_initial : int
-        Particles of the "more particles" design's first update.
+        Particles of the "more particles" design's first update: more than ``sc.n_particles`` (the filter draws
+        the larger of the two, so a smaller count would repeat the plain design).
     workers : int
         Processes (results do not depend on it).
 
@@ -284,13 +285,18 @@ def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_
     TypeError
         ``sc`` not a RangeBearingScenario; ``seed``, ``runs``, ``n_initial`` or ``workers`` not an integer.
     ValueError
-        ``seed`` negative; ``runs``, ``n_initial`` or ``workers`` below 1; ``runs`` and ``n_initial`` beyond the
-        memory budget (the particle clouds of a block of runs).
+        ``seed`` negative; ``runs``, ``n_initial`` or ``workers`` below 1; ``n_initial`` not above
+        ``sc.n_particles``; ``runs`` and ``n_initial`` beyond the memory budget (the particle clouds of a block of
+        runs).
     """
     instance_of(sc, RangeBearingScenario, "sc")
     seed = check_seed(seed)
     runs = count(runs, "runs")
     n_initial = count(n_initial, "n_initial")
+    if n_initial <= sc.n_particles:  # fuzz 26b DS: the pipeline draws max(n_initial, n_particles) at the first update
+        raise ValueError(f"n_initial must exceed sc.n_particles = {sc.n_particles} (the 'more particles' design draws "
+                         f"max(n_initial, sc.n_particles) at the first update: {n_initial} would run the plain "
+                         f"design under another name), got {n_initial}")
     workers = check_workers(workers)
     # the nodes' first update is all that is read: the fusion and the centralised filter run small (they draw from
     # their own streams, after the nodes' weights are computed, so the effective sample sizes do not change)

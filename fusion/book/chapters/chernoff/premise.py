@@ -177,6 +177,12 @@ ORACLE_NETWORKS = (Network.UNEQUAL, Network.NON_GAUSSIAN, Network.RELAY, Network
 _ORACLE_CACHE: dict[tuple[int, float], tuple[NetworkStudy, tuple[FloatArray, FloatArray]]] = {}
 
 
+def _oracle_ready(sc: NetworkScenario) -> bool:
+    """Whether :func:`oracle_exponents` applies to a network: one frame, one exchange, full connectivity (the
+    fused mean is then a function of the exponents alone)."""
+    return bool(sc.frames == 1 and sc.rounds == 1 and sc.edges is None)
+
+
 def oracle_exponents(st: NetworkStudy, step: float = 0.02) -> tuple[FloatArray, FloatArray]:
     r"""The MSE-optimal fixed exponents of covariance intersection of the nodes' Gaussian summaries (an oracle).
 
@@ -215,9 +221,9 @@ def oracle_exponents(st: NetworkStudy, step: float = 0.02) -> tuple[FloatArray, 
     hit = _ORACLE_CACHE.get((id(st), step))
     if hit is not None and hit[0] is st:  # the studies are read-only: computed once per study
         return hit[1]
-    sc = st.scenario
-    if sc.frames != 1 or sc.rounds != 1 or sc.edges is not None:
+    if not _oracle_ready(st.scenario):
         raise ValueError("st must be a network with one exchange and full connectivity")
+    sc = st.scenario
     N = len(sc.nodes)
     n = round(1.0 / step)
     if abs(n * step - 1.0) > 1e-6:   # a float32 step (0.1 is 0.10000000149) divides 1 within its own precision
@@ -262,8 +268,8 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
     scenarios : dict, optional
         The networks by key of :data:`PREMISE_NETWORKS` (default: the designed ones; tests pass smaller ones).
     more : dict, optional
-        Network key -> runs, for networks run more often than ``runs`` (the chapter passes
-        :data:`PREMISE_MORE_RUNS`).
+        Network key -> runs, for networks run more often than ``runs`` (each count at least ``runs``; the chapter
+        passes :data:`PREMISE_MORE_RUNS`).
 
     Returns
     -------
@@ -277,13 +283,18 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
         or a run count in it not an integer.
     ValueError
         ``seed`` negative, ``runs`` below 1; ``scenarios`` without one of :data:`PREMISE_NETWORKS`; ``more`` naming
-        another network or a run count below 1.
+        another network or a run count below ``runs``.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
-    scs = premise_scenarios() | redundancy_scenarios() if scenarios is None else _check_scenarios(scenarios)
-    more = {} if more is None else _check_more(more)
+    scs = _network_scenarios(scenarios)
+    more = {} if more is None else _check_more(more, runs)
     return {k: run_network_study(scs[k], seed + j, more.get(k, runs)) for j, k in enumerate(PREMISE_NETWORKS)}
+
+
+def _network_scenarios(scenarios: object) -> Mapping[str, NetworkScenario]:
+    """The networks :func:`premise_studies` runs: ``scenarios`` checked, or the designed ones when it is None."""
+    return premise_scenarios() | redundancy_scenarios() if scenarios is None else _check_scenarios(scenarios)
 
 
 def _check_scenarios(scenarios: object, name: str = "scenarios") -> Mapping[str, NetworkScenario]:
@@ -296,14 +307,21 @@ def _check_scenarios(scenarios: object, name: str = "scenarios") -> Mapping[str,
     return scenarios  # type: ignore[return-value]
 
 
-def _check_more(more: object) -> dict[str, int]:
-    """``more`` of :func:`premise_studies`: network key (of :data:`PREMISE_NETWORKS`) -> a run count."""
+def _check_more(more: object, runs: int) -> dict[str, int]:
+    """``more`` of :func:`premise_studies`: network key (of :data:`PREMISE_NETWORKS`) -> a run count, at least
+    ``runs`` (fuzz 26b D3: a smaller one ran the network fewer times than ``runs``, silently)."""
     if not isinstance(more, Mapping):
         raise TypeError(f"more must be a mapping of network key to runs, got {type(more).__name__}")
     unknown = [k for k in more if k not in PREMISE_NETWORKS]
     if unknown:
         raise ValueError(f"more names networks that are not of PREMISE_NETWORKS: {shown(unknown, 120)}")
-    return {k: count(v, f"more[{shown(k)}]") for k, v in more.items()}
+    out = {k: count(v, f"more[{shown(k)}]") for k, v in more.items()}
+    fewer = {k: v for k, v in out.items() if v < runs}
+    if fewer:
+        k = next(iter(fewer))
+        raise ValueError(f"more[{shown(str(k))}] must be at least runs = {runs} (more is for networks run more often "
+                         f"than runs), got {fewer[k]}")
+    return out
 
 
 #: Docstring entry of the functions of :func:`premise_studies`' result (:func:`fusion._docstrings.with_sections`).
@@ -348,7 +366,7 @@ def _known_networks(studies: Mapping[str, Any], name: str = "studies") -> None:
     # mapping's key, not later by the inner oracle_exponents' argument
     for k in ORACLE_NETWORKS:
         sc = getattr(studies.get(k), "scenario", None)
-        if sc is not None and (sc.frames != 1 or sc.rounds != 1 or sc.edges is not None):
+        if sc is not None and not _oracle_ready(sc):
             raise ValueError(f"{name}[{shown(k)}] must be a network with one exchange and full connectivity (its "
                              f"oracle's), got the study of {shown(sc.name)}")
 
@@ -383,8 +401,9 @@ def premise_robust_values(studies: dict[str, NetworkStudy], reason: str = "") ->
         ``chf_pr_<k>_mix_win`` (share of runs in which the mixtures are more accurate), ``chf_pr_<k>_mix_win_lo``/
         ``_hi`` (its 95 % interval), ``chf_pr_<k>_mix_sign_p`` (two-sided sign-test p-value, 2 significant digits),
         ``chf_pr_<k>_mix_top3`` (share of the total absolute difference carried by the three largest runs), and
-        ``chf_pr_<k>_mix_wo2`` (mean difference without the two largest absolute differences, m²), ``chf_pr_<k>_mix_mean``
-        (the mean difference, m²).
+        ``chf_pr_<k>_mix_wo2`` (mean difference without the two largest absolute differences, m²; left out for a
+        network of two runs or fewer, where no run remains: two is the smallest count ``premise_studies`` takes),
+        ``chf_pr_<k>_mix_mean`` (the mean difference, m²).
     """
     from scipy import stats as _stats
 
@@ -401,7 +420,8 @@ def premise_robust_values(studies: dict[str, NetworkStudy], reason: str = "") ->
                   f"chf_pr_{key}_mix_win": rounded(wins / d.size, 3), f"chf_pr_{key}_mix_win_lo": rounded(0.5 + lo, 3),
                   f"chf_pr_{key}_mix_win_hi": rounded(0.5 + hi, 3), f"chf_pr_{key}_mix_sign_p": float(f"{p:.2g}"),
                   f"chf_pr_{key}_mix_top3": rounded(float(a[order[:3]].sum() / a.sum()), 2) if a.sum() > 0 else 0.0,
-                  f"chf_pr_{key}_mix_wo2": rounded(float(d[order[2:]].mean()), 2),
+                  # fuzz 26b PR: two runs leave none without the two largest (the mean of nothing is no number)
+                  **({f"chf_pr_{key}_mix_wo2": rounded(float(d[order[2:]].mean()), 2)} if d.size > 2 else {}),
                   f"chf_pr_{key}_mix_mean": rounded(float(d.mean()), 2)})
     return v
 

@@ -353,9 +353,11 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
         The study's runs (with ``swarm_trace``, ``objective["slsqp"]`` and ``ess["pso"]``).
     sc : RangeBearingScenario
     xtols : tuple of float
-        Position tolerances, at least one, each finite and positive (the first is the one of ``sc.literal_xtol``,
-        recorded as ``chernoff_literal``); the glue is keyed by position, so a repeated tolerance gives the same
-        values under two positions. A tolerance of 1 or more (the exponents' box is [0, 1]) stops the swarm at its
+        Position tolerances, at least one, each finite and positive, in any order (the chapter's first is
+        ``sc.literal_xtol``, the rule recorded as ``chernoff_literal``; nothing requires it: the literal rule's MSE
+        comparison ``chf_stop_mse_*`` reads the recorded ``chernoff_literal`` at ``sc.literal_xtol``, glued as
+        ``chf_stop_xtol``, whatever the tolerances given); the glue is keyed by position, so a repeated tolerance
+        gives the same values under two positions. A tolerance of 1 or more (the exponents' box is [0, 1]) stops the swarm at its
         first check, as 1 does.
 
     Returns
@@ -370,8 +372,9 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
         (evaluations of the first tolerance over the stagnation rule's, 1 decimal), ``chf_stop_within_all`` (int, the
         fewest frames within the sampling error over every rule and tolerance; ``chf_stop_within_text`` in words);
         with ``sc.readings``
-        ``chf_stop_mse_d``/``_lo``/``_hi``/``_word``: the patent's method with the literal rule minus with the
-        stagnation rule, per-run MSE from frame 5 on (m², paired 95 % interval; the same samples).
+        ``chf_stop_mse_d``/``_lo``/``_hi``/``_word``: the patent's method with the literal rule (at
+        ``sc.literal_xtol``, not ``xtols[0]``) minus with the stagnation rule, per-run MSE from frame 5 on (m², paired
+        95 % interval; the same samples).
 
     Raises
     ------

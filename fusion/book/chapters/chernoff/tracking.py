@@ -48,7 +48,8 @@ def scenario_values(sc: RangeBearingScenario, runs: int) -> GlueValues:
         (particles per node filter), ``chf_s`` (mixture components per node), ``chf_r``
         (importance samples R), ``chf_central`` (particles of the centralised filter), ``chf_mf``
         (components of the first-order fused mixture, :math:`S^N`) and ``chf_mf_10``
-        (:math:`3^{10}`, the count for ten nodes).
+        (:math:`3^{10}`: the count for ten nodes of three components each, the appendix's fixed example, whatever
+        ``sc.n_components``; fuzz 26b D8: the prose beside it states the three).
 
     Raises
     ------
@@ -62,7 +63,7 @@ def scenario_values(sc: RangeBearingScenario, runs: int) -> GlueValues:
     n = len(sc.sensors)
     return {"chf_runs": runs, "chf_frames": sc.frames, "chf_n": n, "chf_q_particles": sc.n_particles,
             "chf_s": sc.n_components, "chf_r": sc.n_samples, "chf_central": sc.n_central,
-            "chf_mf": sc.n_components**n, "chf_mf_10": 3**10}
+            "chf_mf": sc.n_components**n, "chf_mf_10": 3**10}  # the prose's example: ten nodes of S = 3, not sc's
 
 
 def message_sizes(sc: RangeBearingScenario, d: int = 4) -> GlueValues:
@@ -561,14 +562,17 @@ def collapse_values(plain: list[TrackingRun], sc: RangeBearingScenario) -> GlueV
     TypeError
         ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``plain`` is empty, of several scenarios or holds a run twice, ``sc`` is not its scenario, or no run is kept.
+        ``plain`` is empty, of several scenarios or holds a run twice, ``sc`` is not its scenario, or every run of
+        ``plain`` collapses (no run is kept).
     """
     plain = _check_study(plain, sc, name="plain")
     bad, cbad = collapsed(plain, sc.n_particles), central_collapsed(plain, sc.n_central)
     anyb = bad | cbad
     keep = [r for r, b in zip(plain, anyb) if not b]
     if not keep:
-        raise ValueError("every run collapses: nothing is kept")
+        raise ValueError(f"plain: every one of its {len(plain)} runs collapses (a node below "  # fuzz 26b D7: named
+                         f"{COLLAPSE_FRACTION} x sc.n_particles or the centralised filter below {COLLAPSE_FRACTION} x "
+                         "sc.n_central effective particles), so no run is kept to compare")
     events, late, late_at = [], 0, []
     for j in np.flatnonzero(bad):
         ess = plain[j].ess["local"]
