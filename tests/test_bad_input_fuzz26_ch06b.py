@@ -228,3 +228,16 @@ def test_gu_a_guarded_run_gives_the_values_of_repaired_runs() -> None:
     assert {"chf_gu_nees_max", "chf_gu_mse_max", "chf_gu_own_ratio_max"} <= set(v)
     gv = chc.guard_values(g, sc)
     assert {"chf_guard_ess_min", "chf_guard_central_min"} <= set(gv)
+
+
+@pytest.mark.parametrize("reading", ["runs", "guard"])
+def test_gu_the_filter_design_reading_of_a_study_without_repaired_runs(reading: str) -> None:
+    """ev_filter_design reads guard_usability: with no repaired run it says so (no value of a repaired run to quote)."""
+    from fusion.book.chapters import chernoff as chc
+    from fusion.book.ledger import Conjunction, Proposition
+
+    o = _o()
+    r = chc.ev_filter_design({"reading": reading}, seed=1, runs=3, sc=o["sc"])
+    parts = [r] if isinstance(r, Proposition) else [p for _, p in r.parts]
+    assert isinstance(r, (Proposition, Conjunction))
+    assert any("0 repaired" in p.ours for p in parts)

@@ -330,6 +330,8 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
                            f"filter in {int(central_collapsed(plain, sc_.n_central).sum())}; with the guard in "
                            f"{int(any_collapsed(rs, sc_).sum())}", runs=len(plain))
     u = guard_usability(rs, plain, sc_)
+    if s["reading"] == "runs" and not u["chf_gu_runs"]:  # guard_usability has no value of a repaired run then
+        return Proposition(True, "0 repaired runs: the guard acted in no run, nothing to place", runs=len(rs))
     if s["reading"] == "runs":
         return Proposition(
             u["chf_gu_usable"], f"{u['chf_gu_runs']} repaired runs: local NEES at most {u['chf_gu_nees_max']:.2f} "
@@ -347,7 +349,8 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
         ("the repaired filters usable", Proposition(
             u["chf_gu_own_usable"], f"{u['chf_gu_own_n']} repaired filters: own mean NEES at most "
             f"{u['chf_gu_own_ratio_max']:.2f} times the same filter's 95th percentile in the untouched runs (a post-hoc "
-            "criterion: it replaced, after the fourth review, the rule first fixed, which fails)", runs=len(rs)))])
+            "criterion: it replaced, after the fourth review, the rule first fixed, which fails)", runs=len(rs))
+         if u["chf_gu_own_n"] else Proposition(True, "0 repaired filters: the guard acted in no run", runs=len(rs)))])
 
 
 @_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does

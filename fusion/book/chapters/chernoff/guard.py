@@ -183,12 +183,14 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     for tag, x in (("nees", nees), ("mse", mse)):
         others = x[~hit]
         p95 = float(np.percentile(others, 95))
-        v[f"chf_gu_{tag}_p95"] = rounded(p95, 2)
-        if hit.any():  # no repaired run: nothing to place, no value (fuzz 26b GU)
+        if hit.any():  # no repaired run: nothing to place, no value (fuzz 26b GU); keys in the order glued
             worst = float(x[hit].max())
             rank = float(max(np.mean(others < y) for y in x[hit]) * 100)
             usable = usable and worst <= p95
-            v.update({f"chf_gu_{tag}_max": rounded(worst, 2), f"chf_gu_{tag}_rank": rounded(rank, 0)})
+            v.update({f"chf_gu_{tag}_max": rounded(worst, 2), f"chf_gu_{tag}_p95": rounded(p95, 2),
+                      f"chf_gu_{tag}_rank": rounded(rank, 0)})
+        else:
+            v[f"chf_gu_{tag}_p95"] = rounded(p95, 2)
     v["chf_gu_usable"] = bool(usable)
     # the rule's own false alarm: k runs exchangeable with the others all at or below a 95th percentile, on one measure
     v["chf_gu_chance_fail"] = rounded(1.0 - 0.95 ** int(hit.sum()), 2)
