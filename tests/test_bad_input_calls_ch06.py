@@ -85,16 +85,28 @@ def _o() -> dict[str, Any]:
     fc = csc.frame_clouds(sc, 1, 3, run=0, frame=1)
     gms = cfo.random_two_mixtures(np.random.default_rng(5))
     table = chc.method_table(guarded, crb, plain)
+    # valid runs the chapter's tables cannot show (fuzz 26b FW, NS, VA): 4 frames (no frame of LATE), 4 nodes, no variants
+    edge = {k: dist.monte_carlo(_other(sc, **kw), 3, 2, workers=1) for k, kw in
+            (("frames4", dict(frames=4)), ("nodes4", dict(sensors=sc.sensors + ((500.0, 500.0),))),
+             ("novariants", dict(variants=False)))}
     return dict(connected=connected, sc=sc, plain=plain, guarded=guarded, sc2=sc2, plain2=plain2, crb=crb, toy=toy,
-                small=small, nets=nets, fc=fc, gms=gms, table=table)
+                small=small, nets=nets, fc=fc, gms=gms, table=table, **edge)
 
 
-def _runs(o: dict[str, Any], key: str = "guarded", other: bool = True, twice: bool = True) -> A:
+def _runs(o: dict[str, Any], key: str = "guarded", other: bool = True, twice: bool = True, frames: bool = False,
+          nodes: bool = False, variants: bool = False) -> A:
+    """``frames``, ``nodes``, ``variants``: runs the function cannot show are refused (fuzz 26b FW, NS, VA: 4 frames
+    where frames 5 on are averaged, 4 nodes where every node is shown, no variants where they are read; asked of the
+    functions without ``sc``, where a run list of another scenario is not refused for ``sc`` first)."""
     muts: tuple = ("str", ("empty", []), ("None", None), ("list of str", ["abc"]))
     if twice:  # a run twice is no study (fuzz 24b PR2); per-run values (twice=False) give its entry twice
         muts += (("a run twice", [o[key][0], *o[key][:-1]]),)
     if other:
         muts += (("another scenario's runs", o["plain2"]),)
+    for flag, edge, how in ((frames, "frames4", "runs of 4 frames"), (nodes, "nodes4", "runs of 4 nodes"),
+                            (variants, "novariants", "runs without the variants")):
+        if flag:
+            muts += ((how, o[edge]),)
     return A(o[key], muts)
 
 
@@ -150,7 +162,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "scenario_table"] = dict(sc=A(o["sc"], ("str", ("None", None))))
     # ---- tracking tables
     R[c + "crb_position"] = dict(sc=_sc(o), runs=_runs(o))
-    R[c + "method_table"] = dict(runs=_runs(o), crb_pos=N(o["crb"], ARR + ("len", "neg_entry")),
+    R[c + "method_table"] = dict(runs=_runs(o, frames=True, nodes=True, variants=True), crb_pos=N(o["crb"], ARR + ("len", "neg_entry")),
                                  plain=_paired(o))
     t = o["table"]
     R[c + "table_values"] = dict(table=A(t, ("str", ("None", None), ("another table", _cost_table()), ("a row missing", t.iloc[1:]),
@@ -158,11 +170,11 @@ def registry() -> dict[str, dict[str, A]]:
                                              ("a NaN cell", t.mask(t.notna() & (np.arange(t.shape[0])[:, None] == 0))),
                                              ("zero RMSEs", t * 0),  # fuzz 24b TV: an RMSE or a NEES is positive
                                              ("a negative RMSE", t.mask(t.notna() & (np.arange(t.shape[0])[:, None] == 1), -5.0)))))
-    R[c + "rmse_figure"] = dict(runs=_runs(o), crb_pos=N(o["crb"], ARR + ("len", "neg_entry")))
-    R[c + "per_run_mse"] = dict(runs=_runs(o, other=False, twice=False), key=A("chernoff_pso", ("unknown", ("not a str", 3.0))))
+    R[c + "rmse_figure"] = dict(runs=_runs(o, nodes=True), crb_pos=N(o["crb"], ARR + ("len", "neg_entry")))
+    R[c + "per_run_mse"] = dict(runs=_runs(o, other=False, twice=False, frames=True), key=A("chernoff_pso", ("unknown", ("not a str", 3.0))))
     R[c + "per_run_nees"] = dict(runs=_runs(o, other=False, twice=False), key=A("chernoff_pso", ("unknown", ("no covariance", "mean_of_local_means"))),
                                  frames=A(chc.LATE, ("str", ("no frame", slice(10, None)), ("step 0", slice(None, None, 0)))))
-    R[c + "gain_values"] = dict(runs=_runs(o, other=False))
+    R[c + "gain_values"] = dict(runs=_runs(o, other=False, frames=True, variants=True))
     # no runs give an empty result (documented: "empty for no runs"), so an empty list is not refused
     empty_ok = A(o["plain"], ("str", ("None", None), ("list of str", ["abc"])))
     R[c + "collapsed"] = dict(runs=empty_ok, n_particles=A(60, COUNT + (("bool", True), ("other size", 61))))
@@ -171,8 +183,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "typical_run"] = dict(runs=_runs(o, "plain", other=False), n_particles=A(60, CNT + (("other size", 61),)),
                                 n_central=A(100, COUNT + (("bool", True), ("other size", 101))))  # None: valid (optional)
     R[c + "collapse_values"] = dict(plain=_runs(o, "plain"), sc=_sc(o))
-    R[c + "readings_values"] = dict(runs=_runs(o))
-    R[c + "equal_kl_g_values"] = dict(runs=_runs(o))
+    R[c + "readings_values"] = dict(runs=_runs(o, variants=True))
+    R[c + "equal_kl_g_values"] = dict(runs=_runs(o, variants=True))
     # ---- gaussian checks, mixture example, peers
     R[c + "random_spd"] = dict(rng=A(np.random.default_rng(0), RNG), n=A(3, CNT))
     R[c + "gaussian_checks"] = dict(rng=A(np.random.default_rng(0), RNG), cases=A(3, CNT),
@@ -217,7 +229,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "design"] = dict(seed=A(1, SEED), runs=A(2, CNT), sc=A(o["sc"], ("str",)))
     # ---- swarm, figures
     R[c + "eps_figure"] = dict(runs=_runs(o), sc=_sc(o), show=A(0, ("neg", "frac", "str", ("beyond", 3), ("bool", True))))
-    R[c + "pso_figure"] = dict(runs=_runs(o, other=False), frame=A(3, ("zero", "neg", "frac", "str", ("beyond", 7), ("bool", True))),
+    R[c + "pso_figure"] = dict(runs=_runs(o, other=False, variants=True), frame=A(3, ("zero", "neg", "frac", "str", ("beyond", 7), ("bool", True))),
                                show=A(0, ("neg", "frac", "str", ("beyond", 3), ("bool", True))))
     R[c + "stopping_values"] = dict(runs=_runs(o), sc=_sc(o), xtols=A((0.001, 0.01), ("str", ("empty", ()), ("nan", (np.nan,)), ("zero", (0.0,)))))
     bench = ROOT / "benchmarks" / "results" / "chernoff.json"

@@ -98,18 +98,24 @@ def _pair(s: dict[str, Any], refused: dict[str, str]) -> None:
 _TRACK_METHODS = (*METHODS, "consistent")
 
 
+def _paired_count(runs: object) -> int:
+    """``runs`` of a reading that returns a :class:`~fusion.book.ledger.Comparison`: a count of at least 2 paired
+    runs, refused by name before the study (fuzz 26b R1b: one run was refused by the comparison as "a and b")."""
+    return count(runs, "runs", minimum=2)
+
+
 @_evidence_doc(settings="""``a``, ``b`` (keys of :data:`~fusion.scenarios.range_bearing.METHODS`; ``"consistent"``:
                            NEES 4 in every run), ``design`` (``"guard"``, default; ``"plain"``: no collapse guard;
                            ``"plain-kept"``: no guard, the runs with a collapsed filter left out), ``window``
                            (``"late"``, default: frames 5 on; ``"early"``: 1-4; ``"all"``), ``metric`` (``"mse"``,
                            default, or ``"nees"``) and ``claim`` (``"less"``, default, or ``"greater"``).""",
-               seed_runs="The study's root seed and run count (:func:`tracking_study`).",
+               seed_runs="The study's root seed and run count (:func:`tracking_study`; at least 2: paired runs).",
                returns="""Per-run values of ``a`` and ``b`` (MSE in m² or NEES, averaged over the window's frames),
                          their labels, the claimed direction and the metric's text.""")
 def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
                 sc: RangeBearingScenario | None = None) -> Comparison:
     """A paired comparison of two methods of the tracking study (records ``chf-gain-*``, ``chf-double-count``)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), _paired_count(runs)
     s = _settings(settings, {"a": _TRACK_METHODS, "b": _TRACK_METHODS, "design": ("guard", "plain", "plain-kept"),
                              "window": tuple(_WINDOWS), "metric": ("mse", "nees"), "claim": ("less", "greater")},
                   {"design": "guard", "window": "late", "metric": "mse", "claim": "less"})
@@ -252,14 +258,13 @@ def ev_first_order(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
 
 
 @_evidence_doc(settings="``r``: importance samples per set (default 2 000, the tracking study's).",
-               seed_runs="Seed and replicates (independent sample sets, :func:`is_replicates`).",
+               seed_runs="Seed and replicates (independent sample sets, :func:`is_replicates`; at least 2: paired runs).",
                returns="""Per replicate the absolute error of the importance-sampled minimiser against the
                           first-order minimiser's error (the same in every replicate: it draws nothing), direction
                           "less".""")
 def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
     """Record chf-is-rebuild: the IS minimiser's error against the first-order minimiser's, over independent sample sets."""
-    seed = check_seed(seed)
-    runs = count(runs, "runs")
+    seed, runs = check_seed(seed), _paired_count(runs)
     s = _settings(settings, {"r": ()}, {"r": 2_000})
     r = count(s["r"], "settings['r']")  # named as the reading's setting, not as is_replicates' own r
     t = toy(seed)
@@ -339,6 +344,8 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
                            f"filter in {int(central_collapsed(plain, sc_.n_central).sum())}; with the guard in "
                            f"{int(any_collapsed(rs, sc_).sum())}", runs=len(plain))
     u = guard_usability(rs, plain, sc_)
+    if s["reading"] == "runs" and not u["chf_gu_runs"]:  # guard_usability has no value of a repaired run then
+        return Proposition(True, "0 repaired runs: the guard acted in no run, nothing to place", runs=len(rs))
     if s["reading"] == "runs":
         return Proposition(
             u["chf_gu_usable"], f"{u['chf_gu_runs']} repaired runs: local NEES at most {u['chf_gu_nees_max']:.2f} "
@@ -356,7 +363,8 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
         ("the repaired filters usable", Proposition(
             u["chf_gu_own_usable"], f"{u['chf_gu_own_n']} repaired filters: own mean NEES at most "
             f"{u['chf_gu_own_ratio_max']:.2f} times the same filter's 95th percentile in the untouched runs (a post-hoc "
-            "criterion: it replaced, after the fourth review, the rule first fixed, which fails)", runs=len(rs)))])
+            "criterion: it replaced, after the fourth review, the rule first fixed, which fails)", runs=len(rs))
+         if u["chf_gu_own_n"] else Proposition(True, "0 repaired filters: the guard acted in no run", runs=len(rs)))])
 
 
 @_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does

@@ -94,7 +94,8 @@ def guard_values(guarded: list[TrackingRun], sc: RangeBearingScenario) -> GlueVa
         ``chf_guard_updates`` (int, guarded node updates), ``chf_guard_central`` (int, guarded updates of the
         centralised filter), ``chf_guard_ess_min`` (smallest ESS of any node and frame in those runs, after the
         last tempering step, 1 decimal), ``chf_guard_central_min`` (the centralised filter's, 0 decimals),
-        ``chf_n_collapsed_guard`` (int, runs still collapsed, node or centralised).
+        ``chf_n_collapsed_guard`` (int, runs still collapsed, node or centralised). When the guard acted in no run
+        (``chf_n_guarded`` 0) the two minima, of no run, are left out.
 
     Raises
     ------
@@ -106,12 +107,14 @@ def guard_values(guarded: list[TrackingRun], sc: RangeBearingScenario) -> GlueVa
     """
     guarded = _check_study(guarded, sc, name="guarded")
     hit = [r for r in guarded if r.guarded]
-    return {"chf_guard_stages": GUARD_STAGES, "chf_n_guarded": len(hit),
-            "chf_guard_updates": sum(1 for r in hit for _, i in r.guarded if i >= 0),
-            "chf_guard_central": sum(1 for r in hit for _, i in r.guarded if i < 0),
-            "chf_guard_ess_min": rounded(float(min_local_ess(hit).min()), 1) if hit else 0.0,
-            "chf_guard_central_min": rounded(float(min(np.min(r.ess["centralised_pf"]) for r in hit)), 0) if hit else 0.0,
-            "chf_n_collapsed_guard": int(any_collapsed(guarded, sc).sum())}
+    v: dict[str, Any] = {"chf_guard_stages": GUARD_STAGES, "chf_n_guarded": len(hit),
+                         "chf_guard_updates": sum(1 for r in hit for _, i in r.guarded if i >= 0),
+                         "chf_guard_central": sum(1 for r in hit for _, i in r.guarded if i < 0)}
+    if hit:  # the minima of the runs the guard acted in: none, no value (fuzz 26b GU: no 0.0 placeholder)
+        v["chf_guard_ess_min"] = rounded(float(min_local_ess(hit).min()), 1)
+        v["chf_guard_central_min"] = rounded(float(min(np.min(r.ess["centralised_pf"]) for r in hit)), 0)
+    v["chf_n_collapsed_guard"] = int(any_collapsed(guarded, sc).sum())
+    return v
 
 
 def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: RangeBearingScenario,
@@ -150,7 +153,10 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
         the largest MSE), ``chf_gu_worst_node``/``_nees`` (its node with the largest mean NEES, and that NEES) and
         ``chf_gu_worst_repaired`` (str, the filters the guard repaired in it); and
         per threshold ``j`` ``chf_gu_thr<j>`` (%), ``chf_gu_thr<j>_runs`` and ``chf_gu_thr<j>_updates`` (int:
-        runs and node updates of the plain runs below it). 2 decimals (ranks and percentiles 0).
+        runs and node updates of the plain runs below it). 2 decimals (ranks and percentiles 0). When the guard acted
+        in no run (``chf_gu_runs`` 0) the values of repaired runs (``chf_gu_nees_max``/``_rank``,
+        ``chf_gu_mse_max``/``_rank``, ``chf_gu_own_ratio_max`` and the ``chf_gu_worst_*``) are left out, and
+        ``chf_gu_usable`` and ``chf_gu_own_usable`` are True (no repaired run lies above the percentile).
 
     Raises
     ------
@@ -158,13 +164,14 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
         ``guarded`` or ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``thresholds``
         not a sequence of numbers.
     ValueError
-        ``guarded`` empty, of several scenarios or holding a run twice, ``plain`` not the same runs (as many, of the same
-        scenario and truths: another seed's runs are refused), ``sc`` not
-        their scenario, a threshold not in (0, 1), or fewer than two runs in which the guard did not act.
+        ``guarded`` empty, of several scenarios or holding a run twice, ``plain`` not the same runs (as many, of the
+        same scenario and truths: another seed's runs are refused), ``sc`` not their scenario, a threshold not in (0,
+        1), or fewer than two runs in which the guard did not act, ``guarded`` of fewer than 5 frames (no frame of
+        LATE) or of more than 3 nodes (not a study the chapter's tables show).
     """
     thresholds = tuple(scalar(t, f"thresholds[{j}]", 0.0, 1.0, lo_open=True, hi_open=True)
                        for j, t in enumerate(sequence(thresholds, "thresholds")))
-    guarded = _check_study(guarded, sc, name="guarded")
+    guarded = _check_study(guarded, sc, name="guarded", window=True, nodes=True)
     plain = _check_study(plain, sc, name="plain", like=guarded, like_name="guarded")
     hit = np.array([bool(r.guarded) for r in guarded])
     if (~hit).sum() < 2:
@@ -176,11 +183,14 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     for tag, x in (("nees", nees), ("mse", mse)):
         others = x[~hit]
         p95 = float(np.percentile(others, 95))
-        worst = float(x[hit].max()) if hit.any() else 0.0  # no repaired run: nothing to place
-        rank = float(max(np.mean(others < y) for y in x[hit]) * 100) if hit.any() else 0.0
-        usable = usable and (not hit.any() or worst <= p95)
-        v.update({f"chf_gu_{tag}_max": rounded(worst, 2), f"chf_gu_{tag}_p95": rounded(p95, 2),
-                  f"chf_gu_{tag}_rank": rounded(rank, 0)})
+        if hit.any():  # no repaired run: nothing to place, no value (fuzz 26b GU); keys in the order glued
+            worst = float(x[hit].max())
+            rank = float(max(np.mean(others < y) for y in x[hit]) * 100)
+            usable = usable and worst <= p95
+            v.update({f"chf_gu_{tag}_max": rounded(worst, 2), f"chf_gu_{tag}_p95": rounded(p95, 2),
+                      f"chf_gu_{tag}_rank": rounded(rank, 0)})
+        else:
+            v[f"chf_gu_{tag}_p95"] = rounded(p95, 2)
     v["chf_gu_usable"] = bool(usable)
     # the rule's own false alarm: k runs exchangeable with the others all at or below a 95th percentile, on one measure
     v["chf_gu_chance_fail"] = rounded(1.0 - 0.95 ** int(hit.sum()), 2)
@@ -190,15 +200,17 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
            for i in range(-1, len(sc.sensors))}
     pairs = sorted({(j, i) for j, r in enumerate(guarded) for _, i in r.guarded})
     ratios = [own[i][j] / float(np.percentile(own[i][~hit], 95)) for j, i in pairs]
-    v["chf_gu_own_ratio_max"] = rounded(float(max(ratios)), 2) if ratios else 0.0
+    if ratios:
+        v["chf_gu_own_ratio_max"] = rounded(float(max(ratios)), 2)
     v["chf_gu_own_n"] = len(pairs)
     v["chf_gu_own_usable"] = bool(all(x <= 1.0 for x in ratios))
-    worst = int(np.flatnonzero(hit)[np.argmax(mse[hit])]) if hit.any() else 0
-    v["chf_gu_worst_run"] = worst + 1
-    v["chf_gu_worst_nees"] = rounded(float(max(own[i][worst] for i in range(len(sc.sensors)))), 2)
-    v["chf_gu_worst_node"] = int(np.argmax([own[i][worst] for i in range(len(sc.sensors))])) + 1
-    v["chf_gu_worst_repaired"] = ", ".join("centralised" if i < 0 else f"node {i + 1}"
-                                           for i in sorted({i for _, i in guarded[worst].guarded}))
+    if hit.any():  # the worst repaired run: none when the guard acted in no run (fuzz 26b GU)
+        worst = int(np.flatnonzero(hit)[np.argmax(mse[hit])])
+        v["chf_gu_worst_run"] = worst + 1
+        v["chf_gu_worst_nees"] = rounded(float(max(own[i][worst] for i in range(len(sc.sensors)))), 2)
+        v["chf_gu_worst_node"] = int(np.argmax([own[i][worst] for i in range(len(sc.sensors))])) + 1
+        v["chf_gu_worst_repaired"] = ", ".join("centralised" if i < 0 else f"node {i + 1}"
+                                               for i in sorted({i for _, i in guarded[worst].guarded}))
     ess = np.stack([r.ess["local"] for r in plain])  # (runs, K, N)
     for j, t in enumerate(thresholds):
         below = ess < t * sc.n_particles

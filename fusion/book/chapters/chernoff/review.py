@@ -63,12 +63,14 @@ def gm_yardstick(rng: np.random.Generator, runs: list[TrackingRun], sc: RangeBea
     TypeError
         ``rng`` not a Generator, ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``sets`` not an integer.
     ValueError
-        ``runs`` empty, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, ``sets`` below 1 or beyond the memory budget.
+        ``runs`` empty, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, ``sets`` below 1
+        or beyond the memory budget, ``runs`` of fewer than 5 frames (no frame of LATE) (not a study the chapter's
+        tables show).
     """
     from scipy.optimize import brentq
 
     rng = as_rng(rng)
-    runs = _check_study(runs, sc)
+    runs = _check_study(runs, sc, window=True)
     sets = count(sets, "sets")
     # every array the yardstick holds at once (fuzz 24b SZ1: one (sets, Q, 4) array within the budget, 10**6 sets
     # raised MemoryError): per set and particle about 24 + K/2 floats measured (tracemalloc, K = 2..12), counted as
@@ -127,12 +129,13 @@ def consistency_figure(runs: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     TypeError
         ``runs`` or ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` empty, of several scenarios or holding a run twice, ``plain`` not the same runs (as many, of the
-        same scenario and truths), ``sc`` not their scenario.
+        ``runs`` empty, of several scenarios or holding a run twice, ``plain`` not the same runs (as many, of the same
+        scenario and truths), ``sc`` not their scenario, ``runs`` of more than 3 nodes (not a study the chapter's
+        tables show).
     """
     from scipy import stats as _stats
 
-    runs = _check_study(runs, sc)
+    runs = _check_study(runs, sc, nodes=True)
     plain = _check_study(plain, sc, name="plain", like=runs)
     frames = np.arange(1, sc.frames + 1)
     from matplotlib.ticker import NullFormatter, ScalarFormatter
@@ -203,9 +206,10 @@ def double_count_values(runs: list[TrackingRun], sc: RangeBearingScenario) -> Gl
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` empty, of several scenarios or holding a run twice, or ``sc`` not the runs' scenario.
+        ``runs`` empty, of several scenarios or holding a run twice, or ``sc`` not the runs' scenario, ``runs`` of
+        fewer than 5 frames (no frame of LATE) or of more than 3 nodes (not a study the chapter's tables show).
     """
-    runs = _check_study(runs, sc)
+    runs = _check_study(runs, sc, window=True, nodes=True)
     lin = linearised_errors(sc)
     noq = linearised_errors(sc, common_process=False)
     nop = linearised_errors(sc, common_prior=False)
@@ -252,9 +256,11 @@ def diagnostics(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int) ->
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` empty, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, or ``runs[0]`` without ``node_estimates``.
+        ``runs`` empty, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, or ``runs[0]``
+        without ``node_estimates``, ``runs`` of fewer than 5 frames (no frame of LATE) or computed with
+        ``RangeBearingScenario.variants=False`` (not a study the chapter's tables show).
     """
-    runs = _check_study(runs, sc)
+    runs = _check_study(runs, sc, window=True, variants=True)
     seed = check_seed(seed)
     node = runs[0].node_estimates
     if node is None:
@@ -320,10 +326,11 @@ def review_values(runs: list[TrackingRun], crb_pos: FloatArray, sc: RangeBearing
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` of fewer than 2 runs, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, or ``crb_pos`` not
-        finite and non-negative with one entry per frame.
+        ``runs`` of fewer than 2 runs, of several scenarios or holding a run twice, ``sc`` not the runs' scenario, or
+        ``crb_pos`` not finite and non-negative with one entry per frame, ``runs`` of fewer than 5 frames (no frame of
+        LATE) or computed with ``RangeBearingScenario.variants=False`` (not a study the chapter's tables show).
     """
-    runs = _check_study(runs, sc)
+    runs = _check_study(runs, sc, window=True, variants=True)
     if len(runs) < 2:
         raise ValueError(f"runs holds {len(runs)} run: the intervals need at least 2")
     crb_pos = _check_crb(crb_pos, runs)

@@ -9,9 +9,10 @@ import inspect
 
 import numpy as np
 
+from fusion._shown import shown
 from fusion._validation import FloatArray, as_array, instance_of
 from fusion.optimise.swarm import particle_swarm
-from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun, _NO_SCENARIO, _check_runs
+from fusion.scenarios.range_bearing import METHODS, RangeBearingScenario, TrackingRun, _NO_SCENARIO, _check_runs
 from fusion.book.glue import GlueValues
 
 __all__ = ["BIBKEY", "LATE", "COLLAPSE_FRACTION", "pso_defaults", "STUDY_RUNS", "STUDY_WORKERS", "STUDY_REASON",
@@ -110,8 +111,26 @@ def pso_defaults() -> GlueValues:
     return {f"chf_pso_{k}": p[v].default for k, v in names.items()}
 
 
+#: The nodes the chapter's tables and figures show: the local filters of ``METHODS`` (``local1`` ... ``local3``).
+_TABLE_NODES = sum(k.startswith("local") for k in METHODS)
+
+
+#: The variants of ``RangeBearingScenario.variants`` (NaN records when it is False).
+_VARIANTS = ("chernoff_slsqp", "chernoff_redraw", "chernoff_prev")
+
+
+def _check_window(runs: list[TrackingRun], name: str = "runs") -> None:
+    """``runs`` (checked by ``_check_runs``) hold a frame of :data:`LATE`, the window the chapter averages (fuzz 26b
+    class FW): ValueError naming ``name`` for runs of fewer than 5 frames, whose averages would be of no frame."""
+    k = int(np.shape(runs[0].truth)[0])
+    if not range(k)[LATE]:
+        raise ValueError(f"{name} has {k} frames: the chapter averages frames {LATE.start + 1} on (LATE), so its runs "
+                         f"need at least {LATE.start + 1} (RangeBearingScenario.frames >= {LATE.start + 1})")
+
+
 def _check_study(runs: object, sc: object = _NO_SCENARIO, *, name: str = "runs", readings: bool = False,
-                 like: list[TrackingRun] | None = None, like_name: str = "runs") -> list[TrackingRun]:
+                 like: list[TrackingRun] | None = None, like_name: str = "runs", window: bool = False,
+                 nodes: bool = False, variants: bool = False, least: int = 1, why: str = "") -> list[TrackingRun]:
     """The chapter's one check of a run list (issue 35, fuzz 22b class TR, fuzz 24b class PR), applied by every
     helper over runs: ``fusion.scenarios.range_bearing._check_runs`` (a non-empty sequence of TrackingRun of one
     scenario, ``sc`` that scenario, the readings where asked), no run twice (two runs of one truth: a repeated run
@@ -119,8 +138,32 @@ def _check_study(runs: object, sc: object = _NO_SCENARIO, *, name: str = "runs",
     without the guard) the same runs but for the guard: as many, of the same scenario, and the same truths (a run
     and its unguarded twin share the seed, so the truth; another seed's runs differ). Runs are identified by their
     truth; the runs of ``like``'s truths are returned in ``like``'s order (a reordered list pairs as given in
-    order). Returns the runs as a list."""
+    order). Returns the runs as a list.
+
+    What the chapter's tables and figures can show (fuzz 26b, classes FW, NS, VA, R1), asked by each helper for what
+    it reads, ValueError naming ``name``: with ``window`` (a helper averaging frames 5 on) a frame of :data:`LATE`
+    (``_check_window``); with ``nodes`` (a helper showing every node) at most the 3 nodes of ``METHODS`` (a fourth
+    node's filter, ``local4``, has no row or key: it would be left out silently); with ``variants`` the records of
+    ``RangeBearingScenario.variants`` (NaN when False), as ``readings`` asks for the readings; at least ``least``
+    runs (``why`` says what needs them: paired runs)."""
     out = _check_runs(runs, True, sc, name=name, readings=readings)
+    if len(out) < least:
+        raise ValueError(f"{name} holds {len(out)} run{'s' if len(out) != 1 else ''}: at least {least} are needed "
+                         f"({why})")
+    if window:
+        _check_window(out, name)
+    if nodes:
+        n = int(np.shape(out[0].gm_loglik)[-1])
+        if n > _TABLE_NODES:
+            raise ValueError(f"{name} has {n} nodes: the chapter's tables and figures show at most {_TABLE_NODES} "
+                             f"(METHODS holds local1-local{_TABLE_NODES}; RangeBearingScenario.sensors with at most "
+                             f"{_TABLE_NODES} sensors)")
+    if variants:
+        for i, r in enumerate(out):
+            for key in _VARIANTS:
+                if key in r.estimates and not np.all(np.isfinite(r.estimates[key])):
+                    raise ValueError(f"{name}[{i}] holds no variants (estimates[{shown(key)}] is NaN): the runs must be "
+                                     "computed with RangeBearingScenario.variants=True")
     seen: dict[bytes, int] = {}
     for i, r in enumerate(out):
         j = seen.setdefault(np.asarray(r.truth, dtype=float).tobytes(), i)

@@ -67,9 +67,11 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0)
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``show`` not an integer.
     ValueError
-        ``runs`` is empty, of several scenarios or holds a run twice, ``sc`` is not the runs' scenario, or ``show`` not a run's index.
+        ``runs`` is empty, of several scenarios or holds a run twice, ``sc`` is not the runs' scenario, or ``show``
+        not a run's index, ``runs`` of fewer than 5 frames (no frame of LATE) or computed with
+        ``RangeBearingScenario.variants=False`` (not a study the chapter's tables show).
     """
-    runs = _check_study(runs, sc)
+    runs = _check_study(runs, sc, window=True, variants=True)
     show = index(show, "show", len(runs))
     n = len(sc.sensors)
     frames = np.arange(1, sc.frames + 1)
@@ -135,9 +137,10 @@ def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple
     TypeError
         ``runs`` not a sequence of TrackingRun, ``frame`` or ``show`` not an integer.
     ValueError
-        ``runs`` is empty, of several scenarios or holds a run twice, ``frame`` not in 1..K, or ``show`` not a run's index.
+        ``runs`` is empty, of several scenarios or holds a run twice, ``frame`` not in 1..K, or ``show`` not a run's
+        index, ``runs`` computed with ``RangeBearingScenario.variants=False`` (not a study the chapter's tables show).
     """
-    runs = _check_study(runs)
+    runs = _check_study(runs, variants=True)
     frame = count(frame, "frame")
     if frame > runs[0].truth.shape[0]:
         raise ValueError(f"frame = {frame} is beyond the runs' {runs[0].truth.shape[0]} frames")
@@ -381,10 +384,12 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
     TypeError
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``runs`` is empty, of several scenarios, holds a run twice, or is without the readings (``readings=False``), or ``sc`` is not
-        the runs' scenario, or ``xtols`` empty or holding a value that is not finite and positive.
+        ``runs`` is empty, of several scenarios, holds a run twice, or is without the readings (``readings=False``),
+        or ``sc`` is not the runs' scenario, or ``xtols`` empty or holding a value that is not finite and positive,
+        ``runs`` of one run (a paired interval needs 2), of fewer than 5 frames (no frame of LATE) or computed with
+        ``RangeBearingScenario.variants=False`` (not a study the chapter's tables show).
     """
-    runs = _check_study(runs, sc, readings=True)
+    runs = _check_study(runs, sc, readings=True, window=True, variants=True, least=2, why="paired runs")
     xtols = tuple(scalar(x, f"xtols[{j}]", 0.0, lo_open=True) for j, x in enumerate(sequence(xtols, "xtols", minimum=1)))
     fit = np.stack([r.swarm_trace["fitness"] for r in runs])  # (runs, K, T + 1)
     spread = np.stack([r.swarm_trace["spread"] for r in runs])

@@ -13,10 +13,11 @@ from matplotlib.figure import Figure
 
 from fusion._validation import FloatArray, count, frame_slice, instance_of
 from fusion.book.style import METHOD_LABELS, new_figure
+from fusion.filtering.kalman import nees
 from fusion.book.tables import _cell_number, _frame, rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, METHODS, RangeBearingScenario, TrackingRun, min_local_ess,
                                             nees_per_frame, position_sq_errors, posterior_crb)
-from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE, _check_crb, _check_study
+from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE, _check_crb, _check_study, _check_window
 from fusion.scenarios.range_bearing import _check_runs, _check_size
 from fusion.book.glue import GlueValues
 
@@ -168,6 +169,27 @@ def crb_position(sc: RangeBearingScenario, runs: list[TrackingRun]) -> FloatArra
     return np.sqrt(crb[:, 0, 0] + crb[:, 2, 2])
 
 
+def _defined_nees(runs: list[TrackingRun], key: str) -> FloatArray:
+    """``nees_per_frame(runs, key)`` with NaN where the method's covariance is singular to working precision (fuzz
+    26b SP: a fused covariance of valid runs with few particles can be): its NEES is undefined there, so the
+    window's mean is too, and :func:`method_table` shows "—" rather than refusing the other methods' values."""
+    try:
+        return nees_per_frame(runs, key)
+    except ValueError as e:
+        if not str(e).startswith("covariances must be positive definite"):
+            raise
+    out = np.empty((len(runs), int(np.shape(runs[0].truth)[0])))
+    for j, r in enumerate(runs):
+        for k in range(out.shape[1]):
+            try:
+                out[j, k] = nees(r.estimates[key][k] - r.truth[k], r.covariances[key][k])
+            except ValueError as e:
+                if not str(e).startswith("covariances must be positive definite"):
+                    raise
+                out[j, k] = np.nan
+    return out
+
+
 def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[TrackingRun] | None = None) -> pd.DataFrame:
     """Table of every method: RMSE over frames 5-K (m) and mean NEES (4-D), with the CRB as floor (2 decimals).
 
@@ -187,20 +209,23 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
         columns ``"RMSE from frame 5 (m)"`` (root of the squared position error averaged over runs
         and frames 5-K; for the CRB the root mean square of ``crb_pos`` over the same frames),
         ``"RMSE, no guard (m)"`` (with ``plain``), ``"NEES, frames 1-4"`` and ``"mean NEES (4-D), frames 5-30"`` (frames
-        5-K; NaN for the mean of local means, which has no covariance, and for the CRB row); 2 decimals.
+        5-K; NaN for the mean of local means, which has no covariance, and for the CRB row; NaN, shown "—", also for a
+        method whose covariance is singular to working precision in some run and frame of the window, where its
+        NEES is undefined: the other columns and methods keep their values); 2 decimals.
 
     Raises
     ------
     TypeError
         ``runs`` or ``plain`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty, of several scenarios or holds a run twice, ``plain`` not the same runs (as many, of the
-        same scenario and truths: another seed's runs are refused), or ``crb_pos``
+        ``runs`` is empty, of several scenarios or holds a run twice, not a study the table shows (fewer than 5
+        frames, more than 3 nodes, or computed with ``RangeBearingScenario.variants=False``), ``plain`` not the same
+        runs (as many, of the same scenario and truths: another seed's runs are refused), or ``crb_pos``
         not finite and non-negative with one entry per frame.
     """
-    runs = _check_study(runs)
+    runs = _check_study(runs, window=True, nodes=True, variants=True)
     if plain is not None:
-        plain = _check_study(plain, name="plain", like=runs)
+        plain = _check_study(plain, name="plain", like=runs, variants=True)
     crb_pos = _check_crb(crb_pos, runs)
     rows = {}
     for key in METHODS:
@@ -211,8 +236,9 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
         rows[label] = {RMSE_LATE: np.sqrt(position_sq_errors(runs, key)[:, LATE].mean())}
         if plain is not None:
             rows[label]["RMSE, no guard (m)"] = np.sqrt(position_sq_errors(plain, key)[:, LATE].mean())
-        rows[label]["NEES, frames 1-4"] = nees_per_frame(runs, key)[:, EARLY].mean() if has_cov else np.nan
-        rows[label]["mean NEES (4-D), frames 5-30"] = nees_per_frame(runs, key)[:, LATE].mean() if has_cov else np.nan
+        nees_k = _defined_nees(runs, key) if has_cov else None
+        rows[label]["NEES, frames 1-4"] = nees_k[:, EARLY].mean() if nees_k is not None else np.nan
+        rows[label]["mean NEES (4-D), frames 5-30"] = nees_k[:, LATE].mean() if nees_k is not None else np.nan
     rows[CRB_ROW] = {k: np.nan for k in next(iter(rows.values()))}
     rows[CRB_ROW][RMSE_LATE] = np.sqrt(np.mean(crb_pos[LATE] ** 2))
     return pd.DataFrame(rows).T.round(2)
@@ -300,14 +326,16 @@ def rmse_figure(runs: list[TrackingRun], crb_pos: FloatArray) -> Figure:
     TypeError
         ``runs`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty, of several scenarios or holds a run twice, or ``crb_pos`` not finite and non-negative with one entry per
-        frame.
+        ``runs`` is empty, of several scenarios or holds a run twice, or ``crb_pos`` not finite and non-negative with
+        one entry per frame, ``runs`` of more than 3 nodes (not a study the chapter's tables show).
     """
-    runs = _check_study(runs)
+    runs = _check_study(runs, nodes=True)
     crb_pos = _check_crb(crb_pos, runs)
     frames = np.arange(1, crb_pos.size + 1)
     fig, ax = new_figure(figsize=(7.5, 4.8))
     for key, (c, ls) in _STYLE.items():
+        if key not in runs[0].estimates:  # a node the runs do not have (fewer than 3 sensors): every node is drawn
+            continue
         rmse = np.sqrt(position_sq_errors(runs, key).mean(axis=0))
         ax.plot(frames, rmse, color=c, ls=ls, lw=2.0 if key == "chernoff_pso" else 1.2, label=METHOD_LABELS[key])
     # the posterior CRB is not drawn: with 100 runs the centralised filter's RMSE falls below it at some
@@ -340,8 +368,10 @@ def per_run_mse(runs: list[TrackingRun], key: str) -> FloatArray:
     Raises
     ------
     ValueError
-        ``key`` is not a key of ``METHODS``, or ``runs`` is empty.
+        ``key`` is not a key of ``METHODS``, or ``runs`` is empty or of fewer than 5 frames (no frame of
+        :data:`LATE`).
     """
+    _check_window(_check_runs(runs, True))  # no NaN average of an empty window (fuzz 26b FW1), as per_run_nees
     return np.round(position_sq_errors(runs, key)[:, LATE].mean(axis=1), 4)
 
 
@@ -393,8 +423,8 @@ def gain_values(runs: list[TrackingRun]) -> GlueValues:
         ``chf_gain_uni`` (patent minus uniform exponents), ``chf_gain_ci`` (patent minus CI of
         Gaussians), ``chf_gain_prev`` (ε⁽⁰⁾ = previous ε* minus patent): means over runs of the
         per-run MSE difference (frames 5-K, m², 4 decimals; negative means the first is more
-        accurate), each with ``_se`` (standard error, ``ddof=1``; NaN, with a numpy warning, for a
-        single run); ``chf_n_worse_uni`` (int: runs in which the patent's method has the larger MSE
+        accurate), each with ``_se`` (standard error, ``ddof=1``; left out for a single run, which has
+        none); ``chf_n_worse_uni`` (int: runs in which the patent's method has the larger MSE
         than uniform exponents).
 
     Raises
@@ -402,16 +432,18 @@ def gain_values(runs: list[TrackingRun]) -> GlueValues:
     TypeError
         ``runs`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty, of several scenarios or holds a run twice.
+        ``runs`` is empty, of several scenarios or holds a run twice, ``runs`` of fewer than 5 frames (no frame of
+        LATE) or computed with ``RangeBearingScenario.variants=False`` (not a study the chapter's tables show).
     """
-    runs = _check_study(runs)
+    runs = _check_study(runs, window=True, variants=True)
     mse = {k: per_run_mse(runs, k) for k in ("chernoff_pso", "chernoff_uniform", "ci_gaussian", "chernoff_prev")}
     diffs = {"uni": mse["chernoff_pso"] - mse["chernoff_uniform"], "ci": mse["chernoff_pso"] - mse["ci_gaussian"],
              "prev": mse["chernoff_prev"] - mse["chernoff_pso"]}
     v: dict[str, Any] = {}
     for name, d in diffs.items():
         v[f"chf_gain_{name}"] = rounded(float(d.mean()))
-        v[f"chf_gain_{name}_se"] = rounded(float(d.std(ddof=1) / np.sqrt(d.size)))
+        if d.size > 1:  # one run has no standard error: no value rather than a NaN (fuzz 26b R1c)
+            v[f"chf_gain_{name}_se"] = rounded(float(d.std(ddof=1) / np.sqrt(d.size)))
     v["chf_n_worse_uni"] = int(np.sum(diffs["uni"] > 0))
     return v
 
@@ -562,10 +594,11 @@ def collapse_values(plain: list[TrackingRun], sc: RangeBearingScenario) -> GlueV
     TypeError
         ``plain`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario.
     ValueError
-        ``plain`` is empty, of several scenarios or holds a run twice, ``sc`` is not its scenario, or every run of
-        ``plain`` collapses (no run is kept).
+        ``plain`` is empty, of several scenarios or holds a run twice, ``sc`` is not its scenario, every run of
+        ``plain`` collapses (no run is kept), or ``plain`` has fewer than 5 frames (no frame of LATE: not a study the
+        chapter's tables show).
     """
-    plain = _check_study(plain, sc, name="plain")
+    plain = _check_study(plain, sc, name="plain", window=True)
     bad, cbad = collapsed(plain, sc.n_particles), central_collapsed(plain, sc.n_central)
     anyb = bad | cbad
     keep = [r for r, b in zip(plain, anyb) if not b]
@@ -625,9 +658,10 @@ def readings_values(runs: list[TrackingRun]) -> GlueValues:
     TypeError
         ``runs`` not a sequence of TrackingRun.
     ValueError
-        ``runs`` is empty, of several scenarios, holds a run twice, or is without the readings (``readings=False``).
+        ``runs`` is empty, of several scenarios, holds a run twice, or is without the readings (``readings=False``),
+        ``runs`` computed with ``RangeBearingScenario.variants=False`` (not a study the chapter's tables show).
     """
-    runs = _check_study(runs, readings=True)
+    runs = _check_study(runs, readings=True, variants=True)
     first_order = np.stack([r.eps["first_order"] for r in runs])
     kl = np.stack([r.eps["equal_kl"] for r in runs])
     sl = np.stack([r.eps["slsqp"] for r in runs])
@@ -661,10 +695,11 @@ def equal_kl_g_values(runs: list[TrackingRun]) -> GlueValues:
     TypeError
         A run that is not a TrackingRun, or ``runs`` not a sequence.
     ValueError
-        ``runs`` holds no run, a run twice, runs of several scenarios, or runs of a scenario without ``readings`` (their
-        ``eps`` has no ``equal_kl_g``).
+        ``runs`` holds no run, a run twice, runs of several scenarios, or runs of a scenario without ``readings``
+        (their ``eps`` has no ``equal_kl_g``), ``runs`` computed with ``RangeBearingScenario.variants=False`` (not a
+        study the chapter's tables show).
     """
-    runs = _check_study(runs, readings=True)
+    runs = _check_study(runs, readings=True, variants=True)
     klg = np.stack([r.eps["equal_kl_g"] for r in runs])
     sl = np.stack([r.eps["slsqp"] for r in runs])
     ok = np.all(np.isfinite(klg), axis=2)
