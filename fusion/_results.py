@@ -256,11 +256,14 @@ def tuple_of(*items: FieldSpec, count: int | None = None) -> ValueSpec:
 
 
 def dict_of(value: FieldSpec, keys: tuple[Any, ...] | None = None, key: type | tuple[type, ...] = str,
-            nonempty: bool = True, required: tuple[Any, ...] = ()) -> ValueSpec:
+            nonempty: bool = True, required: tuple[Any, ...] = (), read_key: Callable[[Any], Any] | None = None
+            ) -> ValueSpec:
     """Spec of a dict field whose values each satisfy ``value``: exactly the keys ``keys`` if given, otherwise any
     keys of the type(s) ``key`` (at least one unless not ``nonempty``) among which every key of ``required`` (those
-    its consumers read). Stored as a read-only mapping."""
-    return ValueSpec("dict", {"value": value, "keys": keys, "key": key, "nonempty": nonempty, "required": required})
+    its consumers read); each key stored as ``read_key`` reads it if given (two keys read alike refused). Stored
+    as a read-only mapping."""
+    return ValueSpec("dict", {"value": value, "keys": keys, "key": key, "nonempty": nonempty, "required": required,
+                              "read_key": read_key})
 
 
 def keyed(*dims: Dim, covariance: bool = False) -> KeyedSpec:
@@ -535,6 +538,12 @@ def _value(fs: ValueSpec, value: Any, label: str, bound: dict[str, tuple[Any, st
     if fs.kind == "dict":
         if not isinstance(value, Mapping):
             raise TypeError(f"{label} must be a dict, got {type(value).__name__}")
+        read_key = args.get("read_key")
+        if read_key is not None:
+            read = [read_key(k) for k in value]
+            if len(set(read)) != len(read):
+                raise ValueError(f"{label} holds two keys read as one: {shown([str(k) for k in value], 200)}")
+            value = dict(zip(read, value.values()))
         keys = args["keys"]
         if keys is not None and set(value) != set(keys):
             raise ValueError(f"{label} must have the keys {shown(sorted(map(str, keys)))}, got "
@@ -593,10 +602,16 @@ def validated_post_init(self: object) -> None:
 def shared_post_init(self: object) -> None:
     """``__post_init__`` of a bundle of other results' values (chapter 05's ledger inputs): :func:`check_fields`, then
     the given values themselves are stored, not the checked copies: arrays made read-only in place, dicts and lists
-    read-only mappings and tuples of the same items. The bundle shares its studies' data (one computation, one copy
-    in memory: the studies are cached and their arrays already read-only)."""
-    check_fields(self)
-    _store(self, {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}, copy=False)  # type: ignore[arg-type]
+    read-only mappings and tuples of the same items (a dict's keys as its spec's ``read_key`` reads them). The
+    bundle shares its studies' data (one computation, one copy in memory: the studies are cached and their arrays
+    already read-only)."""
+    checked = check_fields(self)
+    given = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}  # type: ignore[arg-type]
+    for name, v in given.items():   # a dict's keys as its spec's ``read_key`` reads them, the values shared
+        c = checked.get(name)
+        if isinstance(v, Mapping) and isinstance(c, Mapping) and any(a is not b for a, b in zip(c, v)):
+            given[name] = dict(zip(c, v.values()))
+    _store(self, given, copy=False)
 
 
 def trusted(cls: type, **fields: Any) -> Any:

@@ -87,10 +87,11 @@ def _objects() -> dict[str, Any]:
     leg = ci.straight_leg(study, TS, 150.0)
     wp = ci.weight_pair(R1, R1 / 9, Q, 2, seed=1, search_seed=2, fruit_fly_seeds=[3], runs=2, T=TS)
     wp_an = ci.weight_pair(*ci.ANISO_R, Q, 2, seed=4, search_seed=2, fruit_fly_seeds=[3], runs=2, T=TS)
+    wp_an_k3 = ci.weight_pair(*ci.ANISO_R, Q, 3, seed=4, search_seed=2, fruit_fly_seeds=[3], runs=2, T=TS)
     a, b = sc.tracks
     flat = ci_objective(np.linspace(0, 1, 11), a.gains.P[2], b.gains.P[2])
-    arch = {ci.IDENTICAL_LABEL: _arch_study(0), ci.ANISO_LABEL: _arch_study(1)}
-    arch_o = {ci.IDENTICAL_LABEL: _arch_study(2, lit_feedback=60.0), ci.ANISO_LABEL: _arch_study(3)}
+    arch = {ci.IDENTICAL_LABEL: _arch_study(0), ci.ANISO_LABEL: _arch_study(1, placement=False)}
+    arch_o = {ci.IDENTICAL_LABEL: _arch_study(2, lit_feedback=60.0), ci.ANISO_LABEL: _arch_study(3, placement=False)}
     parts = _ledger_inputs(study, -1.0)
     r = ci.ledger_inputs(**parts)
     paired_in = ci.PairedInputs(**{f.name: getattr(r, f.name) for f in dataclasses.fields(ci.PairedInputs)})
@@ -115,7 +116,7 @@ def _objects() -> dict[str, Any]:
     bench = ci.timing_benchmark()
     F = tr.cv_model(TS).F
     return dict(Q=Q, R1=R1, R2=R2, sc=sc, sc_o=sc_o, sc_an=sc_an, w=w, study=study, study_o=study_o, leg=leg, wp=wp,
-                wp_an=wp_an, flat=flat, arch=arch, arch_o=arch_o, parts=parts, r=r, paired_in=paired_in, ir_in=ir_in,
+                wp_an=wp_an, wp_an_k3=wp_an_k3, flat=flat, arch=arch, arch_o=arch_o, parts=parts, r=r, paired_in=paired_in, ir_in=ir_in,
                 readings=readings, small=small, sim=sim, ir_rmse=ir_rmse, bound=bound, variants=variants,
                 variants_all=variants_all, nees_st=nees_st, nees_steps=nees_steps, exact=exact, path_rows=path_rows,
                 pcrb=pcrb, bench=bench, F=F, a=a)
@@ -252,7 +253,9 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "fruit_fly_table"] = dict(res=A(wp.res, MAP_M))   # every entry read: a key less is a valid table
     R[c + "weight_search_numbers"] = dict(res=A(wp.res, MAP_M), flat=A(o["flat"], ARR), fruit_fly_seeds=A(wp.fruit_fly_seeds, OBJ + (wrong_type,)),
                                           suffix=A("", (("int", 5),)), omit=A((), (("unknown", ("no-such-key",)), ("int", 5))))
-    R[c + "weight_claim_inputs"] = dict(asym=A(wp, OBJ + (wrong_type,)), aniso=A(o["wp_an"], OBJ + (wrong_type,)),
+    R[c + "weight_claim_inputs"] = dict(asym=A(wp, OBJ + (wrong_type, ("the anisotropic pair", o["wp_an"]))),
+                                        aniso=A(o["wp_an"], OBJ + (wrong_type, ("the unequal pair", wp),
+                                                                   ("searched at another step", o["wp_an_k3"]))),
                                         flat=A(o["flat"], ARR))
     m = o["bench"].measurements
     an = (o["wp_an"].P1, o["wp_an"].P2, o["wp_an"].res, o["wp_an"].fruit_fly_seeds)
@@ -267,7 +270,9 @@ def registry() -> dict[str, dict[str, A]]:
     hyp = ci.fig5_hypotheses(wp.P1, wp.P2, wp.fruit_fly_seeds, 5, short_budget=3, n_open=3, flat_pair=(wp.P1, wp.P1))
     R[c + "fig5_hypothesis_numbers"] = dict(table=A(hyp, FRAME_M + (("a column less", _without(hyp)), ("nan cell", _nan_cell(hyp, "ω found", 1)))),
                                             evaluations=A(6000, COUNT_M))
-    R[c + "printed_weight_facts"] = dict(scenarios=A((sc, o["sc_an"]), ("str", ("empty", ()), ("another type", (leg,)))),
+    R[c + "printed_weight_facts"] = dict(scenarios=A((sc, o["sc_an"]), ("str", ("empty", ()), ("another type", (leg,)),
+                                                                    ("one scenario twice", (sc, sc)),
+                                                                    ("the same pair on other runs", (sc, o["sc_o"])))),
                                          k=A(2, ("neg", "frac", "str", ("big", 10**6))), seeds=A(np.arange(2), ("str", ("empty", []), ("neg", [-1]), ("frac", [1.5]))),
                                          n_grid=A(11, COUNT_M))
     printed = ci.printed_weight_facts((sc, o["sc_an"]), 2, np.arange(2), n_grid=11)
@@ -333,7 +338,10 @@ def registry() -> dict[str, dict[str, A]]:
     table = ci.architecture_table(arch)
     R[c + "architecture_table"] = dict(studies=A(arch, MAP_M + (("another type", {"x": leg}),)))
     R[c + "architecture_figure"] = dict(studies=A(arch, MAP_M + (("another type", {"x": leg}),)))
-    R[c + "architecture_numbers"] = dict(arch=A(arch, MAP_M + (("one study", dict(list(arch.items())[:1])),)),
+    ai_an = list(arch.values())
+    R[c + "architecture_numbers"] = dict(arch=A(arch, MAP_M + (("one study", dict(list(arch.items())[:1])),
+                                                               ("studies swapped", dict(zip(arch, ai_an[::-1]))),
+                                                               ("one study twice", dict(zip(arch, ai_an[:1] * 2))))),
                                          arch_table=A(table, FRAME_M + (("another study's table", ci.architecture_table(arch_o)),
                                                                         ("a column less", _without(table)))),
                                          arch_runs=A(100, COUNT_M + (("other runs", 50),)),
@@ -353,13 +361,14 @@ def registry() -> dict[str, dict[str, A]]:
     # ---------------------------------------------------------------- paired studies
     R[c + "paired_numbers"] = dict(paired=A(p["paired"], MAP_M + (("a key less", _drop_key(p["paired"])),) + _neg(p["paired"])),
                                    paired_u=A(p["paired_unequal"], MAP_M), paired_random=A(p["paired_random"], ARR + ("len",)),
-                                   ai=A(ai, OBJ + (wrong_type,)), ml_gap=A(1e-13, NONNEG), rmse_avg=A(50.0, POS),
+                                   ai=A(ai, OBJ + (wrong_type, ai_x)), ml_gap=A(1e-13, NONNEG), rmse_avg=A(50.0, POS),
                                    paired_runs=A(100, COUNT_M + (("other runs", 50),)),
                                    paired_a=A(p["paired_aniso"], MAP_M), omega_u=A(np.full(5, 0.3), ARR + ("above",)),
                                    paired_fig6=A(p["paired_fig6"], MAP_M[:2] + _neg(p["paired_fig6"])))
     R[c + "paired_studies"] = dict(R1=A(R1, ARR + ("indef",)), R2=A(R2, ARR + ("indef",)), Q=A(Q, ARR),
                                    weights=A((o["w"], o["w"]), ("str", ("len", (o["w"][:-1], o["w"][:-1])))),
-                                   unequal=A(wp, OBJ + (wrong_type,)), aniso=A(o["wp_an"], OBJ + (wrong_type,)),
+                                   unequal=A(wp, OBJ + (wrong_type, ("the anisotropic pair", o["wp_an"]))),
+                                   aniso=A(o["wp_an"], OBJ + (wrong_type, ("the unequal pair", wp))),
                                    runs=A(2, COUNT_M), seeds=A((1, 2, 3), ("str", ("empty", ()), ("neg", (-1, 2, 3)))),
                                    weight_seed=A(4, SEED_M), fig6_omegas=A((0.0018, 0.0033), (("above", (1.5,)), "str")),
                                    T=A(TS, POS))
@@ -413,11 +422,17 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "ev_fig6"] = dict(r=A(o["paired_in"], OBJ + (("another type", leg), ("none", None), ("IR inputs", o["ir_in"]))))
     R[c + "ev_ir_baselines"] = dict(r=A(o["ir_in"], OBJ + (("another type", leg), ("none", None), ("paired inputs", o["paired_in"]))))
     values = ci.ledger_values(r)
-    R[c + "ledger"] = dict(r=A(r, OBJ + ledger_x), values=A(values, MAP_M + (("a key less", _drop_key(values)),)))
+    edited = {**values, "ci_lg_leg_best": values["ci_lg_leg_best"] + 1.0}   # a value r does not give
+    R[c + "ledger"] = dict(r=A(r, OBJ + ledger_x), values=A(values, MAP_M + (("a key less", _drop_key(values)),
+                                                                             ("a value edited", edited))))
     # every entry refuses None (a string too where a study, mapping or count is read; bench_date is text)
     R[c + "ledger_inputs"] = {k: A(v, (("none", None),) + (OBJ if k in ("study", "arch", "paired", "ir_readings", "bench")
                                                          else ())) for k, v in p.items()}
     R[c + "ledger_inputs"]["nees_runs"] = A(p["nees_runs"], COUNT_M + (("none", None),))
+    R[c + "ledger_inputs"]["arch"] = A(p["arch"], (("none", None),) + OBJ + (("studies swapped", p["arch"][::-1]),
+                                                                            ("one study twice", p["arch"][:1] * 2)))
+    for k, other in (("fruit_fly_step_study", "fruit_fly_step_targets"), ("fruit_fly_step_targets", "fruit_fly_step_study")):
+        R[c + "ledger_inputs"][k] = A(p[k], (("none", None), (f"the {other} table", p[other])))
     return R
 
 

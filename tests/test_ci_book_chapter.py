@@ -228,7 +228,8 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
                                  index=["grid with 0", "grid k/300", "FOA 200", "FOA 23"]),
         "ir_readings": _ir_readings(), "pcrb": {"T1": 63.6, "limit": 31.8}, "leg_floor": 16.0,
         "leg_best": 50.0, "arch": (_arch_study(0, split_feedback, lit_feedback=lit_feedback, printed_feedback=printed_feedback),
-                                   _arch_study(1, split_feedback, lit_feedback=lit_feedback, printed_feedback=printed_feedback)),
+                                   _arch_study(1, split_feedback, lit_feedback=lit_feedback, printed_feedback=printed_feedback,
+                                               placement=False)),
         "arch_seeds": (4, 5), "q_scaling": qs,
         "printed": chapter.PrintedWeightFacts(ones=522, steps=522, fruit_fly=fs, monotone=True, trace_ratio=142.0,
                                               trace={0.0018: 1.07e6, 0.0033: 5.9e5, 1.0: 7553.0}),
@@ -273,10 +274,11 @@ def _readings(**fields) -> chapter.IrReadings:
 
 
 def _arch_study(seed: int, split_feedback: float = -1.0, lit_feedback: float = 50.0,
-                printed_feedback: float = 130.0) -> two_sensor.ArchitectureStudy:
+                printed_feedback: float = 130.0, placement: bool = True) -> two_sensor.ArchitectureStudy:
     """Synthetic per-run results of every architecture: all rules tie except split CI with feedback (Q shared
     ``split_feedback``, Q own its opposite), eqs. 11-12 with their own optimised ω fed back (``printed_feedback``)
-    and at the published weight fed back (``lit_feedback``, with every placement of Q)."""
+    and at the published weight fed back (``lit_feedback``, with every placement of Q if ``placement``: as
+    architecture_studies, on the identical sensors only, not on the anisotropic pair)."""
     A, AR, fixed_rule = two_sensor.Architecture, two_sensor.ArchRule, two_sensor.fixed_weight_rule
     rng = np.random.default_rng(seed)
     base = 50 + rng.standard_normal(100)
@@ -294,6 +296,9 @@ def _arch_study(seed: int, split_feedback: float = -1.0, lit_feedback: float = 5
     runs[(A.FEEDBACK, AR.SPLIT_OWN)] = base - split_feedback
     runs[(A.FEEDBACK, fixed[0])] = base + lit_feedback
     runs[(A.INDEPENDENT, AR.FUZZY)] = base + 0.5
+    if not placement:
+        keys = [k for k in keys if k not in ((A.FEEDBACK, fixed_rule("own", 0.0018)), (A.FEEDBACK_COMMON, fixed[0]))]
+        runs = {k: runs[k] for k in keys}
     return two_sensor.ArchitectureStudy(run_rmse=runs, nees={k: 4.0 for k in keys}, reported={k: 50.0 for k in keys},
                                         model_rmse={k: v + 1.0 for k, v in runs.items()}, runs=100, nees_runs=100,
                                         local_gain={k: 0.3 for k in keys})

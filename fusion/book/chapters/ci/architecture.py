@@ -19,7 +19,7 @@ from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import Architecture, ArchitectureStudy, ArchRule
-from fusion.book.chapters.ci.checks import _frame, _results
+from fusion.book.chapters.ci.checks import _arch_pair, _frame, _results
 from fusion.book.chapters.ci.constants import (BSC_N, CI_N, CVX_N, FB, FBC, IND, LIT, LIT_OWN, LOSSLESS_N, PRINTED,
                                                PRINTED_OWN, SOURCE_T, SPLIT_O, SPLIT_S)
 from fusion.book.chapters.ci.text import _glue_doc, nees_band, paired_text
@@ -311,7 +311,9 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
     TypeError
         ``arch`` not a mapping of ArchitectureStudy, ``arch_table`` not a DataFrame, a count not an integer.
     ValueError
-        ``arch`` not the two studies keyed ``IDENTICAL_LABEL`` then ``ANISO_LABEL`` or lacking a rule read here;
+        ``arch`` not the two studies keyed ``IDENTICAL_LABEL`` then ``ANISO_LABEL`` or lacking a rule read here, or
+        its studies swapped or one twice (told apart by the rules they record: architecture_studies runs Q's
+        placement on the identical sensors only);
         ``arch_table`` not :func:`architecture_table` of ``arch``; ``arch_runs`` not the studies' runs;
         ``k_steady`` not in 1 .. the path's steps.
     """
@@ -319,10 +321,11 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
     if list(arch) != [IDENTICAL_LABEL, ANISO_LABEL]:
         raise ValueError(f"arch must hold the two studies of architecture_studies, keyed {shown(IDENTICAL_LABEL)} then "
                          f"{shown(ANISO_LABEL)}, got the keys {shown(list(arch), 200)}")
+    ai, an = arch.values()
+    _arch_pair(ai, an, (f"arch[{shown(IDENTICAL_LABEL)}]", f"arch[{shown(ANISO_LABEL)}]"))
     _frame(arch_table, "arch_table", (), maker="architecture_table")
     if not arch_table.equals(architecture_table(arch)):
         raise ValueError("arch_table must be architecture_table(arch): it differs (a table of other studies?)")
-    ai, an = arch.values()
     arch_runs = count(arch_runs, "arch_runs")
     if arch_runs != ai.runs or arch_runs != an.runs:
         raise ValueError(f"arch_runs = {arch_runs} is not the studies' runs ({ai.runs}, {an.runs})")

@@ -31,7 +31,8 @@ def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
     Parameters
     ----------
     periods : array_like of float
-        Sampling periods (s).
+        Sampling periods (s). Float32 ones are read as the numbers they print as (``np.float32(0.02)`` is the
+        row 0.02, which :func:`pcrb_numbers` reads), the chapter's one rule for a period that labels a row.
     sigma : float
         Each sensor's noise (m).
     delta0 : float

@@ -108,9 +108,22 @@ def _sensor_noises(R1: object, R2: object, names: tuple[str, str] = ("R1", "R2")
         diagonal_covariance(R, 2, name)
 
 
+def _period_key(value: object) -> object:
+    """The chapter's one rule for a period or weight that keys a table row or a dict entry (fuzz 26c q2): a float
+    narrower than float64 (float32, float16) is read as the number it prints as, its shortest decimal
+    (``np.float32(0.02)`` is 0.02 s, not 0.019999999552965164, which no reader of the row 0.02 finds); any other
+    value unchanged (checked by its reader)."""
+    if isinstance(value, np.floating) and value.dtype.itemsize < 8:
+        return float(str(value))
+    return value
+
+
 def _periods(periods: object, name: str = "periods") -> FloatArray:
     """Sampling periods, one table row each (fuzz 19's debatable empties): a non-empty 1-d array of distinct,
-    finite, positive numbers (a scalar is one period); TypeError/ValueError naming ``name``."""
+    finite, positive numbers (a scalar is one period), float32 ones read as they print (:func:`_period_key`);
+    TypeError/ValueError naming ``name``."""
+    if isinstance(periods, (np.ndarray, np.floating)) and periods.dtype.kind == "f" and periods.dtype.itemsize < 8:
+        periods = np.array([_period_key(p) for p in np.atleast_1d(periods).ravel()]).reshape(np.shape(periods))
     arr = as_array(periods, name, ndim=(0, 1))
     arr = np.atleast_1d(arr)
     if (arr <= 0).any():
@@ -237,3 +250,34 @@ def _leg_of(study: object, leg_floor: np.ndarray, legs_steady: np.ndarray, leg_r
             if not abs(float(value) - expected) <= rtol * abs(expected):
                 raise ValueError(f"leg_rmse[{shown(name)}] = {shown(float(value))} must be study's RMSE on its "
                                  f"straight leg ({shown(expected)}; another study's?)")
+
+
+def _placement_rules(study: object) -> list:
+    """The keys of an ArchitectureStudy's runs of eqs. 11-12 fed back with Q in the sensors' own parts at a fixed
+    weight (``placement_omegas``): :func:`~fusion.book.chapters.ci.architecture_studies` runs them on the identical
+    sensors only, so they tell its two studies apart (fuzz 26c B2)."""
+    from fusion.scenarios.two_sensor import Architecture, ArchRule
+
+    prefix = f"{ArchRule.PRINTED_OWN}_w"
+    return [k for k in study.run_rmse if k[0] == Architecture.FEEDBACK and str(k[1]).startswith(prefix)]
+
+
+def _identical_study(study: object, name: str) -> None:
+    """``study`` is architecture_studies' identical-sensor study by the rules it records: it holds the placement
+    rules (:func:`_placement_rules`); ValueError naming ``name`` (the anisotropic pair's study lacks them)."""
+    if not _placement_rules(study):
+        raise ValueError(f"{name} must be the identical-sensor study of architecture_studies: it holds no run of "
+                         "eqs. 11-12 with Q in the sensors' own parts at a fixed weight, which architecture_studies "
+                         "runs on the identical sensors only (the anisotropic pair's study?)")
+
+
+def _arch_pair(ai: object, an: object, names: tuple[str, str]) -> None:
+    """``(ai, an)`` are architecture_studies' identical-sensor and anisotropic-pair studies, in that order, by the
+    rules they record (fuzz 26c B2): ``ai`` holds the placement rules, ``an`` none (so neither the studies swapped nor
+    one study twice); ValueError naming ``names``."""
+    _identical_study(ai, names[0])
+    placed = _placement_rules(an)
+    if placed:
+        raise ValueError(f"{names[1]} must be the anisotropic pair's study of architecture_studies: it holds "
+                         f"{shown([str(k[1]) for k in placed], 120)}, eqs. 11-12 with Q in the sensors' own parts, "
+                         "which architecture_studies runs on the identical sensors only (the identical sensors' study?)")

@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike
 from fusion import data
 from fusion._docstrings import with_sections, reads_results
 from fusion._results import number, table, text
+from fusion._shown import shown
 from fusion._validation import instance_of
 from fusion.book.claims import build_ledger
 from fusion.book.exact import ExactComparison
@@ -35,7 +36,8 @@ from fusion.book.chapters.ci.constants import (BIBKEY, CI_, CI_N, CLEARLY, CVX, 
                                                LIT, LIT_OWN, METRIC, PRINTED, PRINTED_OWN, SEARCH_STEP, SPLIT_O,
                                                SPLIT_S, W_GRID, W_PUB, claim_file)
 from fusion.book.chapters.ci.architecture import architecture_row
-from fusion.book.chapters.ci.fruit_fly_step import (GRID_FINE, CANDIDATES_ABOVE, CANDIDATES_BELOW, LARGEST_ERROR,
+from fusion.book.chapters.ci.fruit_fly_step import (GRID_FINE, CANDIDATES_ABOVE, CANDIDATES_BELOW, EXHAUSTIVE,
+                                                    FRUIT_FLY_STEP_RULES, LARGEST_ERROR,
                                                     MEDIAN_ERROR, RUNS_WITHIN)
 from fusion.book.chapters.ci.infrared_readings import IR_AXES, IR_READINGS, IR_SIGMA_A, ir_ratio, ir_ratio_band, ir_rms
 from fusion.book.chapters.ci.text import nees_band, paired_text, readable
@@ -523,7 +525,7 @@ def ev_foa_step(r: LedgerInputs) -> RecordEvidence:
     """Evidence of ``ci-foa-step``: where the printed FOA step sends the flies (:func:`fruit_fly_step_study`)."""
     instance_of(r, LedgerInputs, "r")
     fst = r.fruit_fly_step_study
-    printed, sym, grid_row = fst.index[0], fst.index[1], fst.index[2]
+    (printed, sym), grid_row = FRUIT_FLY_STEP_RULES, EXHAUSTIVE   # by label (LedgerInputs holds them), not position
     med, worst = fst.loc[printed, MEDIAN_ERROR], fst.loc[printed, LARGEST_ERROR]
     runs = int(fst.loc[printed, "runs"])
     targets = {f"minimum-{_key(t)}": Proposition(bool(row[MEDIAN_ERROR] <= fst.loc[grid_row, LARGEST_ERROR]),
@@ -578,15 +580,48 @@ def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
     Parameters
     ----------
     values : mapping
-        The glue values the claim file's texts name (:func:`ledger_values`).
+        The glue values the claim file's texts name: :func:`ledger_values` of ``r``, compared with it (the texts
+        must not quote a number the evidence of ``r`` contradicts; it costs a few ms).
 
     Returns
     -------
     Ledger
         The ``wang2024covariance`` claim file's records with evidence and statuses (for ``book/ledger``).
+
+    Raises
+    ------
+    TypeError
+        ``values`` not a mapping.
+    ValueError
+        ``values`` not ``ledger_values(r)``: a key missing or extra, or a value that differs (fuzz 26c B3: another
+        study's numbers, or an edited one, would be quoted beside the evidence of ``r``).
     """
     instance_of(r, LedgerInputs, "r")
+    _values_of(values, ledger_values(r))
     return build_ledger(BIBKEY, None, evidence(r), values=values, claims=claim_file())
+
+
+def _values_of(values: object, expected: Mapping[str, Any]) -> None:
+    """``values`` is ``expected`` (:func:`ledger_values` of the ledger's inputs): the same keys, each value equal
+    (NaN equal to NaN); TypeError/ValueError naming ``values``."""
+    if not isinstance(values, Mapping):
+        raise TypeError(f"values must be a mapping (ledger_values(r)), got {type(values).__name__}")
+    missing = [k for k in expected if k not in values]
+    extra = [k for k in values if k not in expected]
+    if missing or extra:
+        raise ValueError(f"values must be ledger_values(r): it misses {shown(missing, 120)} and holds the unknown "
+                         f"keys {shown(extra, 120)}")
+    for k, want in expected.items():
+        got = values[k]
+        try:   # a number equals its float (np.float64, an int); a text only the same text
+            same = isinstance(got, str) == isinstance(want, str) and bool(got == want)
+        except (TypeError, ValueError):   # an array's truth value
+            same = False
+        if not same and isinstance(want, float) and np.isnan(want):
+            same = isinstance(got, (float, np.floating)) and bool(np.isnan(got))
+        if not same:
+            raise ValueError(f"values must be ledger_values(r): values[{shown(k)}] = {shown(got)} differs from "
+                             f"{shown(want)}, the value r gives (the claim texts would quote it beside r's evidence)")
 
 
 @_on_inputs

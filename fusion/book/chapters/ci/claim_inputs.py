@@ -14,8 +14,12 @@ from fusion._results import (ResultSpec, array, dict_of, instance, integer, numb
 from fusion._shown import shown
 from fusion._validation import FloatArray
 from fusion.scenarios.two_sensor import ArchitectureStudy, NeesRule, FusionStudy, QScaling
+from fusion.book.chapters.ci.checks import _arch_pair
+from fusion.book.chapters.ci.fruit_fly_step import (CANDIDATES_ABOVE, CANDIDATES_BELOW, EXHAUSTIVE,
+                                                     FRUIT_FLY_STEP_RULES, LARGEST_ERROR, MEDIAN_ERROR, RUNS_WITHIN)
 from fusion.book.chapters.ci.infrared_readings import IR_READINGS, IrReadings
-from fusion.book.chapters.ci.paired import _PAIRED_CLAIM_FIELDS, _REAL, _RUNS, PairedClaimInputs, _runs_relation
+from fusion.book.chapters.ci.paired import (_PAIRED_CLAIM_FIELDS, _REAL, _RUNS, PairedClaimInputs, _real_keyed,
+                                            _runs_relation)
 from fusion.book.chapters.ci.printed import PrintedWeightFacts
 from fusion.book.chapters.ci.tracking import _LEG_FIELDS, LegClaimInputs
 from fusion.book.chapters.ci.weights import _WEIGHT_FIELDS, WeightClaimInputs
@@ -29,6 +33,12 @@ __all__ = ["ArchInputs", "PeriodRuns", "PairedInputs", "IrInputs", "LedgerStudie
 _ARCH_FIELDS = {"arch": tuple_of(instance(ArchitectureStudy), count=2), "arch_seeds": tuple_of(integer(0), count=2)}
 
 
+def _arch_relation(values: Mapping[str, Any], cls: str) -> None:
+    """``arch`` holds architecture_studies' identical-sensor then anisotropic-pair study, told apart by the rules
+    they record (fuzz 26c B2: swapped, or one study twice, the ledger read one pair's rules as the other's)."""
+    _arch_pair(*values["arch"], (f"{cls}.arch[0]", f"{cls}.arch[1]"))
+
+
 @dataclass(frozen=True)
 class ArchInputs:
     """The ledger's entries of the two architecture studies (:func:`ledger_studies`).
@@ -36,7 +46,9 @@ class ArchInputs:
     Attributes
     ----------
     arch : tuple of ArchitectureStudy
-        The identical-sensor and the anisotropic pair's studies (:func:`arch_study`), in that order.
+        The identical-sensor and the anisotropic pair's studies (:func:`arch_study`), in that order (told apart by
+        the rules they record, else a ValueError when built: architecture_studies runs Q's placement on the
+        identical sensors only).
     arch_seeds : tuple of int
         Their seeds, in the same order.
     """
@@ -44,7 +56,7 @@ class ArchInputs:
     arch: tuple[ArchitectureStudy, ArchitectureStudy]
     arch_seeds: tuple[int, int]
 
-    __result_spec__ = ResultSpec(_ARCH_FIELDS)
+    __result_spec__ = ResultSpec(_ARCH_FIELDS, relations=(lambda v, cls: _arch_relation(v, cls),))
     __post_init__ = validated_post_init
 
 
@@ -73,11 +85,13 @@ class PeriodRuns:
 #: Field specs of the ledger's inputs (fusion._results), by the class that declares the fields: every class that
 #: holds them (PairedInputs, IrInputs, LedgerStudies, LedgerInputs) checks them when built.
 _PAIRED_FIELDS = {**_PAIRED_CLAIM_FIELDS,
-                  "aniso_seed": integer(0), "fig6_periods": dict_of(instance(PeriodRuns), key=_REAL),
+                  "aniso_seed": integer(0), "fig6_periods": _real_keyed(instance(PeriodRuns)),
                   "flat_range": number(), "flat_pub_grid": tuple_of(number(positive=True), count=2)}
 _IR_FIELDS = {"ir_readings": instance(IrReadings), "ir_seed": integer(0),
               "ir_paired": dict_of(array("ir_runs", bounds=(0.0, np.inf))), "ir_means": dict_of(dict_of(number()))}
 _PAIR = tuple_of(number(), count=2)
+#: Columns of :func:`fruit_fly_step_study`'s and :func:`fruit_fly_step_targets`' tables that the ledger reads.
+_FOA_STEP_COLUMNS = (CANDIDATES_BELOW, CANDIDATES_ABOVE, MEDIAN_ERROR, LARGEST_ERROR, RUNS_WITHIN, "runs")
 
 
 def _ir_scaled_relation(values: Mapping[str, Any], cls: str) -> None:
@@ -106,11 +120,25 @@ _LEDGER_FIELDS = {
     "study": instance(FusionStudy), "model_rmse": dict_of(number(), required=("x", "y")), "nees": dict_of(number()),
     "nees_runs": integer(1), "eq2_error": number(), "eq6_asym": number(), "bench": dict_of(number()),
     "bench_date": text(), "bench_per_step": dict_of(tuple_of(number())), "fig5_hyp": table(),
-    "rmse_variants": dict_of(_PAIR), "rmse_variants_all": dict_of(_PAIR), "ir_sens": dict_of(dict_of(number()), key=_REAL),
+    "rmse_variants": dict_of(_PAIR), "rmse_variants_all": dict_of(_PAIR), "ir_sens": _real_keyed(dict_of(number())),
     "ir_T": number(positive=True), "pcrb": dict_of(number(), required=("T1", "limit")), "q_scaling": instance(QScaling),
-    "slip_all": dict_of(_PAIR), "slip_weights": dict_of(_PAIR, key=_REAL),
+    "slip_all": dict_of(_PAIR), "slip_weights": _real_keyed(_PAIR),
     "slip_band": dict_of(tuple_of(integer(0), count=2)), "printed": instance(PrintedWeightFacts), "exact_rmse": _PAIR,
-    "fruit_fly_step_study": table(), "fruit_fly_step_targets": table()}
+    "fruit_fly_step_study": table(*_FOA_STEP_COLUMNS, index=(*FRUIT_FLY_STEP_RULES, EXHAUSTIVE)),
+    "fruit_fly_step_targets": table(*_FOA_STEP_COLUMNS)}
+
+
+def _foa_targets_relation(values: Mapping[str, Any], cls: str) -> None:
+    """``fruit_fly_step_targets`` is indexed by its test minima, distinct numbers in (0, 1) (fuzz 26c B4: the
+    study's table of rules in its place was read as minima; the ledger reads both tables by what they hold)."""
+    index = values["fruit_fly_step_targets"].index
+    bad = [t for t in index if not isinstance(t, _REAL) or isinstance(t, (bool, np.bool_)) or not 0.0 < float(t) < 1.0]
+    if bad or len(index) == 0:
+        raise ValueError(f"{cls}.fruit_fly_step_targets must be indexed by test minima in (0, 1) (fruit_fly_step_targets"
+                         f"), got the rows {shown(list(index), 200)}")
+    if not index.is_unique:
+        raise ValueError(f"{cls}.fruit_fly_step_targets repeats a test minimum: "
+                         f"{shown(list(index[index.duplicated()]), 80)}")
 
 
 @dataclass(frozen=True)
@@ -213,7 +241,8 @@ class LedgerStudies(IrInputs, PairedInputs, ArchInputs):
 
     __result_spec__ = ResultSpec({**_ARCH_FIELDS, **_PAIRED_FIELDS, **_IR_FIELDS},
                                  relations=(lambda v, cls: _runs_relation(v, cls),
-                                            lambda v, cls: _ir_scaled_relation(v, cls)))
+                                            lambda v, cls: _ir_scaled_relation(v, cls),
+                                            lambda v, cls: _arch_relation(v, cls)))
     __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 
@@ -270,9 +299,11 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
     exact_rmse : tuple of float
         Exact RMSE of CI = the average on the path, (x, y) (m).
     fruit_fly_step_study : pandas.DataFrame
-        :func:`fruit_fly_step_study`.
+        :func:`fruit_fly_step_study`: its rows the step rules and the exhaustive search, read by label (a table
+        without them, the targets' table for one, is a ValueError when built).
     fruit_fly_step_targets : pandas.DataFrame
-        :func:`fruit_fly_step_targets`.
+        :func:`fruit_fly_step_targets`: its rows indexed by distinct test minima in (0, 1) (else a ValueError when
+        built).
     """
 
     study: FusionStudy
@@ -302,7 +333,9 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
     __result_spec__ = ResultSpec({**_ARCH_FIELDS, **_PAIRED_FIELDS, **_IR_FIELDS, **_WEIGHT_FIELDS, **_LEG_FIELDS,
                                   **_LEDGER_FIELDS}, relations=(lambda v, cls: _runs_relation(v, cls),
                                                                 lambda v, cls: _ir_scaled_relation(v, cls),
-                                                                lambda v, cls: _ir_period_relation(v, cls)))
+                                                                lambda v, cls: _ir_period_relation(v, cls),
+                                                                lambda v, cls: _arch_relation(v, cls),
+                                                                lambda v, cls: _foa_targets_relation(v, cls)))
     __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 

@@ -203,9 +203,12 @@ def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping
     ----------
     true_start, random_start : mapping of str to ndarray, shape (K,)
         Rule -> NEES averaged over the runs at each step (:func:`nees_per_step`), from the true
-        initial velocity and from one drawn from the filters' prior.
+        initial velocity and from one drawn from the filters' prior. Plain arrays record neither their seed, nor
+        their start, nor their runs: the two swapped, or one of other runs, is not detected (the known open class
+        of same-shaped results that no object records; fuzz 26c q6), so pass the two results of one study.
     runs : int
-        Runs averaged at each step (sets the band, :func:`nees_step_band`).
+        Runs averaged at each step (sets the band, :func:`nees_step_band`); not checked against the arrays,
+        which do not record it.
     T : float
         Sampling period (s).
     t_steady : float
@@ -259,7 +262,8 @@ def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mappi
     runs : int
         Runs averaged at each step.
     exact : mapping of str to float
-        :func:`split_ci_exactness`.
+        :func:`split_ci_exactness`, at the same ``T`` and noises as the runs (its numbers record neither: another
+        case's is not detected, fuzz 26c q6).
     T, t_steady : float
         Sampling period and start of the steady-state average (s).
 

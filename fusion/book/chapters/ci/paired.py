@@ -21,11 +21,11 @@ from fusion.estimates.ci import ci_weight
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, FusionStudy, Scenario, StudyMethod
-from fusion.book.chapters.ci.checks import _entries, _sensor_noises
+from fusion.book.chapters.ci.checks import _entries, _identical_study, _period_key, _sensor_noises
 from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S, W_GRID, W_PUB
 from fusion.book.chapters.ci.text import _glue_doc, paired_text, readable
 from fusion.book.chapters.ci.tracking import fuzzy_levels
-from fusion.book.chapters.ci.weights import WeightPair
+from fusion.book.chapters.ci.weights import WeightPair, _pair_noises
 from fusion._shown import shown
 
 __all__ = ["paired_numbers", "PairedClaimInputs", "PairedStudies", "paired_studies"]
@@ -79,11 +79,14 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
     TypeError
         ``paired``, ``paired_u`` or ``paired_a`` not a mapping; ``paired_runs`` not an integer.
     ValueError
-        A mapping lacks a method (``paired_fig6`` a published weight) read here, or an array of per-run RMSE does
+        ``ai`` not the identical-sensor study (it lacks the runs with Q's placement that architecture_studies
+        makes on the identical sensors only); a mapping lacks a method (``paired_fig6`` a published weight) read
+        here, or an array of per-run RMSE does
         not hold ``paired_runs`` finite values (the run count of another study); ``ml_gap`` negative, ``rmse_avg``
         not positive, ``omega_u`` not weights in [0, 1] (each not finite).
     """
     instance_of(ai, ArchitectureStudy, "ai")
+    _identical_study(ai, "ai")   # by the rules it records (fuzz 26c B2): not the anisotropic pair's study
     M = StudyMethod
     paired_runs = count(paired_runs, "paired_runs")
     for name, runs_by, read in (("paired", paired, (M.CI, M.SPLIT_CI)),
@@ -144,6 +147,13 @@ def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> GlueValue
 
 #: Key types of a dict keyed by a real number (a period, a weight, a significance level).
 _REAL = (float, int, np.number)
+
+
+def _real_keyed(value: Any, **kw: Any) -> Any:
+    """Spec of a dict keyed by real numbers (periods, weights, levels), each key read by the chapter's one rule
+    (``_period_key``: a float32 key is the number it prints as, so that its readers find it; fuzz 26c q2)."""
+    return dict_of(value, key=_REAL, read_key=_period_key, **kw)
+
 #: A per-run RMSE (m, or mrad): one non-negative value per run.
 _RUNS = array("runs", bounds=(0.0, np.inf))
 #: Field specs of :class:`PairedClaimInputs` (``fusion._results``), shared with the ledger's bundles of
@@ -151,7 +161,7 @@ _RUNS = array("runs", bounds=(0.0, np.inf))
 _PAIRED_CLAIM_FIELDS = {
     "paired": dict_of(_RUNS), "paired_runs": integer(1), "paired_seed": integer(0), "paired_unequal": dict_of(_RUNS),
     "unequal_seed": integer(0), "paired_random": _RUNS, "random_seed": integer(0), "paired_aniso": dict_of(_RUNS),
-    "paired_fig6": dict_of(_RUNS, key=_REAL, required=(W_PUB, W_GRID)), "fuzzy_levels": dict_of(_RUNS, key=_REAL)}
+    "paired_fig6": _real_keyed(_RUNS, required=(W_PUB, W_GRID)), "fuzzy_levels": _real_keyed(_RUNS)}
 
 
 def _runs_relation(values: Mapping[str, Any], cls: str) -> None:
@@ -250,7 +260,7 @@ class PairedStudies:
 
     __result_spec__ = ResultSpec(
         {"runs": integer(1), "seeds": tuple_of(integer(0), count=3), "sc": instance(Scenario), "paired": dict_of(_RUNS),
-         "paired_fig6": dict_of(_RUNS, key=_REAL, required=(W_PUB, W_GRID)), "paired_random": _RUNS,
+         "paired_fig6": _real_keyed(_RUNS, required=(W_PUB, W_GRID)), "paired_random": _RUNS,
          "paired_u": dict_of(_RUNS), "omega_u": tuple_of(number(bounds=(0.0, 1.0))),
          "paired_an": dict_of(array("aniso_runs", bounds=(0.0, np.inf)))},
         relations=(lambda v, cls: _studies_relation(v, cls),))
@@ -340,10 +350,12 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     ------
     ValueError
         If ``seeds`` does not hold three seeds, ``runs`` is not a positive count or ``fig6_omegas`` misses one of the
-        two published weights.
+        two published weights; ``aniso`` not a pair at ``ANISO_R`` or ``unequal`` not one with ``R2 = R1 / 9`` (the
+        pairs swapped, or one pair twice: each pair's rules would run on the other's noises).
     """
     instance_of(unequal, WeightPair, "unequal")
     instance_of(aniso, WeightPair, "aniso")
+    _pair_noises(unequal, aniso, ("unequal", "aniso"))   # by the noises they record, as weight_claim_inputs (fuzz 26c B1)
     _sensor_noises(R1, R2)
     check_seeds(seeds, "seeds")
     seeds = tuple(seeds)

@@ -405,10 +405,27 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
     -------
     PrintedWeightFacts
         FOA run at step ``k`` of the first scenario; the trace ratio and traces at that step.
+
+    Raises
+    ------
+    TypeError
+        ``scenarios`` not a sequence of Scenario, ``k``, ``n_grid`` or a seed not an integer.
+    ValueError
+        ``scenarios`` empty or repeating a sensor pair (two scenarios with the same local covariances: the same
+        pair at the same period, whose steps would be counted twice, whatever their runs); ``k`` not a step of the
+        first; ``seeds`` empty or repeating a seed; ``n_grid`` below 2 or beyond the memory budget.
     """
     scs = sequence(scenarios, "scenarios", minimum=1, what="Scenario")
     for i, sc in enumerate(scs):
         instance_of(sc, Scenario, f"scenarios[{i}]")
+    for j, sc in enumerate(scs):   # the repeat rule (fuzz 26c q3): the counts read the covariances, not the runs
+        parts = [x for tr in sc.tracks for x in (tr.Pd, tr.Pi)]
+        for i in range(j):
+            earlier = [x for tr in scs[i].tracks for x in (tr.Pd, tr.Pi)]
+            if all(a.shape == b.shape and np.allclose(a, b, rtol=1e-12, atol=0.0) for a, b in zip(parts, earlier)):
+                raise ValueError(f"scenarios must not repeat a sensor pair: scenarios[{j}] has the covariances of "
+                                 f"scenarios[{i}] (the same pair at the same period, whatever its runs), whose steps "
+                                 "would be counted twice")
     k = _step_index(k, "k", scs[0].tracks[0].Pd.shape[0])
     check_seeds(seeds, "seeds")
     n_grid = count(n_grid, "n_grid", minimum=2)
@@ -725,18 +742,32 @@ class WeightClaimInputs:
 
 
 
-def _pair_noises(asym: WeightPair, aniso: WeightPair) -> None:
-    """The two pairs of :func:`weight_claim_inputs` told apart by the noises they record (fuzz 24c MM): ``aniso``
-    at ``ANISO_R``, ``asym`` with sensor 2 three times more precise (``R2 = R1 / 9``, relative 1e-12)."""
+def _pair_noises(asym: WeightPair, aniso: WeightPair, names: tuple[str, str] = ("asym", "aniso"),
+                 same_search: bool = False) -> None:
+    """The two pairs of :func:`weight_claim_inputs` and :func:`paired_studies` told apart by the noises they record
+    (fuzz 24c MM, fuzz 26c B1): ``aniso`` at ``ANISO_R``, ``asym`` with sensor 2 three times more precise
+    (``R2 = R1 / 9``, relative 1e-12); ``names`` are the arguments' names. With ``same_search`` (fuzz 26c q7: the
+    ledger quotes one step for both searches), both searched at the same step ``k`` of runs at the same period."""
     from fusion.book.chapters.ci.tracking import ANISO_R
 
+    asym_name, aniso_name = names
     if not (np.allclose(aniso.R1, ANISO_R[0], rtol=1e-12, atol=0.0)
             and np.allclose(aniso.R2, ANISO_R[1], rtol=1e-12, atol=0.0)):
-        raise ValueError(f"aniso must be a weight_pair of ANISO_R (the anisotropic pair), got R1 = "
+        raise ValueError(f"{aniso_name} must be a weight_pair of ANISO_R (the anisotropic pair), got R1 = "
                          f"{shown(aniso.R1.tolist(), 80)}, R2 = {shown(aniso.R2.tolist(), 80)}")
     if not np.allclose(asym.R2, asym.R1 / 9, rtol=1e-12, atol=0.0):
-        raise ValueError(f"asym must be a weight_pair with sensor 2 three times more precise (R2 = R1 / 9), got "
+        raise ValueError(f"{asym_name} must be a weight_pair with sensor 2 three times more precise (R2 = R1 / 9), got "
                          f"R1 = {shown(asym.R1.tolist(), 80)}, R2 = {shown(asym.R2.tolist(), 80)}")
+    if not same_search:
+        return
+    if aniso.k != asym.k:
+        raise ValueError(f"{aniso_name} is searched at step {aniso.k} and {asym_name} at step {asym.k}: the ledger "
+                         "quotes one step for both (give weight_pair the same k)")
+    t_a, t_n = asym.sc.t, aniso.sc.t
+    if t_a.shape != t_n.shape or not np.allclose(t_a, t_n, rtol=1e-12, atol=0.0):
+        raise ValueError(f"{aniso_name} and {asym_name} are runs at other periods or of other lengths ({t_n.size} "
+                         f"steps to {shown(float(t_n[-1]))} s, {t_a.size} steps to {shown(float(t_a[-1]))} s): the "
+                         "ledger quotes one step for both (give weight_pair the same T)")
 
 
 @reads_results("asym", "aniso")
@@ -767,11 +798,11 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
     ValueError
         ``flat`` not a 1-D array of finite numbers; ``aniso`` not a pair at ``ANISO_R`` or ``asym`` not one with
         ``R2 = R1 / 9`` (the pairs swapped, or one pair twice: the ledger would read one pair's optima as the
-        other's).
+        other's); the two searched at other steps ``k`` or on runs at other periods (the ledger quotes one step).
     """
     instance_of(asym, WeightPair, "asym")
     instance_of(aniso, WeightPair, "aniso")
-    _pair_noises(asym, aniso)
+    _pair_noises(asym, aniso, same_search=True)
     flat = as_array(flat, "flat", ndim=1)
     return WeightClaimInputs(fruit_fly_seeds=asym.fruit_fly_seeds, fruit_fly_step=asym.k,
                              foa_evaluations=asym.res["FOA (30 × 200)"].n_evaluations, ml_gap=asym.ml_gap(),
