@@ -613,6 +613,26 @@ def input_eps(x: object) -> float:
     return _F64_EPS
 
 
+def sums_to_one(w: FloatArray, given: object, axis: int = -1, floor: float = 1e-9) -> bool:
+    """Whether the weights ``w`` (floats) sum to one along ``axis``: the package's one simplex rule for the sum.
+
+    The tolerance is ``floor`` (the check's own, for float64 weights) or ``2 n`` times the machine epsilon of the
+    caller's ``given`` weights (:func:`input_eps`), whichever is larger: weights normalised in float32 or float16
+    (``0.4f + 0.6f``) sum to one in their own precision and are accepted as given.
+    """
+    tol = max(floor, 2.0 * w.shape[axis] * input_eps(given))
+    return bool(np.all(np.abs(w.sum(axis=axis) - 1.0) <= tol))
+
+
+def in_given_precision(a: FloatArray, given: object) -> FloatArray:
+    """``a`` (a float64 copy of ``given``) back in ``given``'s float32 or float16 dtype (exact), else ``a``: rows
+    of a converted array keep the caller's precision for :func:`sums_to_one` and
+    ``fusion.optimise.simplex.check_simplex``."""
+    if input_eps(given) > _F64_EPS:
+        return a.astype(getattr(given, "dtype"))
+    return a
+
+
 def solve(A: FloatArray, b: FloatArray, name: str, *, assume: str = "gen") -> FloatArray:
     """``numpy.linalg.solve(A, b)`` with a ValueError naming ``name`` for a singular or non-finite system (rule 5).
 

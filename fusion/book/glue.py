@@ -5,11 +5,14 @@ from __future__ import annotations
 from decimal import Decimal
 
 import cmath
+import datetime
+import numbers
 from collections.abc import Mapping
 from typing import Any, TypeAlias, Union
 
 import numpy as np
 import pandas as pd
+from pandas.api.extensions import ExtensionArray
 from matplotlib.figure import Figure
 from pandas.io.formats.style import Styler
 
@@ -53,8 +56,8 @@ def _checked_keep(store: object, values: object) -> None:
 
 def _check_finite(key: str, value: object) -> None:
     """The book's finiteness rule of a glued value (:func:`glue_all` and the chapters' ``keep``): ValueError naming
-    ``values[key]`` for a value :func:`_finite` refuses."""
-    if not _finite(value):
+    ``values[key]`` for a value :func:`_finite` refuses (TypeError naming it for a value of a type it does not take)."""
+    if not _finite(value, key):
         raise ValueError(f"values[{shown(key)}] must be finite, got {shown(value)} (a glued number is printed in the book)")
 
 
@@ -85,23 +88,45 @@ def _glued_cell(table: object, row: object, column: object, name: str, lo: float
                   tiny=True)
 
 
-def _finite(value: object) -> bool:
+#: The values glue_all and ``keep`` take as they are (checked when a number: finite, not a missing-value marker):
+#: numbers (Python, NumPy, Decimal, Fraction), text, None, dates and times, and a figure or a table (a DataFrame
+#: or Styler prints a missing cell as a word). Containers are the ones :func:`_finite` looks into; anything else
+#: is refused by type (fuzz 26a G/D3: a deque, array.array, dict view or generator printed ``nan`` unchecked).
+_GLUE_LEAVES = (type(None), str, bytes, numbers.Number, np.generic, datetime.date, datetime.time, datetime.timedelta,
+                Figure, pd.DataFrame, Styler)
+#: The containers whose entries are checked: their text prints their entries.
+_GLUE_CONTAINERS = (list, tuple, set, frozenset, Mapping, pd.Series, pd.Index, np.ndarray, ExtensionArray)
+
+
+def _finite(value: object, key: str = "key") -> bool:
     """False for a number that is NaN or infinite, and for a missing-value marker (``pd.NA``, ``NaT``).
 
     Numbers are floats, complex numbers, NumPy scalars, Decimals (a signalling NaN included) and numeric arrays
     (every entry; a 0-d array is its number). Containers are looked into, as their text prints their entries:
-    lists, tuples, sets, a mapping's values, a Series or Index, an object or structured array (fuzz 22a D1). A
+    lists, tuples, sets, a mapping's values, a Series or Index, a pandas extension array (``pd.array``,
+    Categorical, SparseArray: the arrays a Series holds), an object or structured array (fuzz 22a D1). A
     DataFrame or Styler is not: the book's tables print a missing cell as a word.
+
+    Raises
+    ------
+    TypeError
+        A value, or an entry of a container, of another type (:data:`_GLUE_LEAVES`, :data:`_GLUE_CONTAINERS`):
+        a deque, ``array.array``, dict view, generator, masked array (whose text prints ``--``), ...,
+        naming ``values[key]``.
     """
     todo, seen = [value], set()
     while todo:
         v = todo.pop()
-        if isinstance(v, (list, tuple, set, frozenset, Mapping, pd.Series, pd.Index, np.ndarray)):
+        if v is pd.NA or v is pd.NaT:
+            return False
+        if isinstance(v, np.ma.MaskedArray) or not isinstance(v, _GLUE_LEAVES + _GLUE_CONTAINERS):
+            raise TypeError(f"values[{shown(key)}] must be a number, text, a figure, a table or a list, tuple, set, "
+                            f"mapping, Series, Index, pandas or NumPy array of them, got {type(v).__name__} "
+                            f"{shown(v, 60)}" + (f" inside {type(value).__name__}" if v is not value else ""))
+        if isinstance(v, _GLUE_CONTAINERS):
             if id(v) in seen:  # a container that holds itself
                 continue
             seen.add(id(v))
-        if v is pd.NA or v is pd.NaT:
-            return False
         if isinstance(v, Decimal):
             if not v.is_finite():
                 return False
@@ -110,6 +135,8 @@ def _finite(value: object) -> bool:
                 return False
         elif isinstance(v, (pd.Series, pd.Index)):
             todo.append(v.to_numpy())
+        elif isinstance(v, ExtensionArray):   # its entries as objects: pd.NA, NaN, NaT, as the Series shows them
+            todo.append(np.asarray(v, dtype=object))
         elif isinstance(v, np.ndarray):
             if v.dtype.names:
                 todo += [v[n] for n in v.dtype.names]
@@ -146,12 +173,16 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     Raises
     ------
     TypeError
-        ``values`` not a mapping, a key not a string, ``decimals`` not an integer.
+        ``values`` not a mapping, a key not a string, ``decimals`` not an integer; a value (or an entry of a
+        container) that is not a number, text, None, a date or time, a figure, a DataFrame or Styler, nor one of
+        the containers below (a deque, ``array.array``, dict view, generator or masked array: what it prints is
+        not checked), naming ``values[key]``.
     ValueError
         A number (a float, a complex number, a NumPy scalar, a Decimal, any entry of a numeric array) NaN or
         infinite, or a missing value (``pd.NA``, ``pd.NaT``, a NumPy ``NaT``), also inside a list, tuple, set,
-        mapping, Series, Index, object or structured array (not a DataFrame or Styler, whose tables print a missing
-        cell as a word), naming ``values[key]``; checked for every value before any is glued, whatever ``decimals``.
+        mapping, Series, Index, pandas extension array (``pd.array``, Categorical, SparseArray), object or
+        structured array (not a DataFrame or Styler, whose tables print a missing cell as a word), naming
+        ``values[key]``; checked for every value before any is glued, whatever ``decimals``.
     """
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")

@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
-from fusion._validation import axis_of, sequence, work
+from fusion._validation import axis_of, in_given_precision, sequence, sums_to_one, work
 from fusion._frozen import frozen_arrays, restore_frozen
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
@@ -92,7 +92,8 @@ class GaussianMixture:
     Attributes
     ----------
     weights : ndarray, shape (S,)
-        Non-negative, summing to one.
+        Non-negative, summing to one (within 1e-9; float32 or float16 weights within ``2 S`` times their machine
+        epsilon, stored renormalised in float64).
     means : ndarray, shape (S, d)
     covs : ndarray, shape (S, d, d)
         Symmetric positive definite.
@@ -112,8 +113,10 @@ class GaussianMixture:
             raise ValueError(f"inconsistent shapes: weights {w.shape}, means {m.shape}, covs {c.shape}")
         if c.shape[1:] != (m.shape[1], m.shape[1]):
             raise ValueError(f"covs must have shape (S, {m.shape[1]}, {m.shape[1]}), got {c.shape}")
-        if np.any(w < 0) or abs(w.sum() - 1.0) > 1e-9:
+        if np.any(w < 0) or not sums_to_one(w, self.weights):   # within 1e-9, or float32 weights' precision
             raise ValueError("weights must be non-negative and sum to one")
+        if in_given_precision(w, self.weights) is not w:   # float32/float16 weights: stored renormalised in float64,
+            w = w / w.sum()                                # so that the record rebuilds (dataclasses.replace)
         if not np.allclose(c, np.swapaxes(c, 1, 2)):
             raise ValueError("covs must be symmetric")
         try:

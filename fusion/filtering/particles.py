@@ -25,7 +25,7 @@ import numpy as np
 from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._validation import axis_of, input_eps
+from fusion._validation import axis_of, sums_to_one
 from fusion._frozen import frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
                                 positive_scalar, psd_factor, std_scalar, step_scalar)
@@ -192,7 +192,7 @@ def _normalised(weights: ArrayLike, name: str = "weights") -> FloatArray:
     """Finite, non-negative 1-D weights summing to one (within 1e-6, or 2 n times the machine epsilon of a float32 or
     float16 input: normalised in the caller's precision), kept as given."""
     w = as_weights(weights, name)
-    if abs(w.sum() - 1.0) > max(1e-6, 2.0 * w.size * input_eps(weights)):
+    if not sums_to_one(w, weights, floor=1e-6):
         raise ValueError(f"{name} must be normalised (sum to one), got sum {shown(w.sum())}")
     return w
 
@@ -357,8 +357,7 @@ def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatAr
     axis = axis_of(axis, "axis", w.shape, "weights")
     if w.ndim < 1 or w.shape[axis] == 0:
         raise ValueError(f"weights must have a non-empty particle axis, got shape {w.shape}")
-    tol = max(1e-6, 2.0 * w.shape[axis] * input_eps(weights))  # float32/float16 weights: their own precision
-    if np.any(w < 0) or not np.allclose(w.sum(axis=axis), 1.0, rtol=0.0, atol=tol):
+    if np.any(w < 0) or not sums_to_one(w, weights, axis=axis, floor=1e-6):  # float32/float16: their own precision
         raise ValueError("weights must be non-negative and sum to one along axis")
     ess = 1.0 / np.sum(w**2, axis=axis)
     return float(ess) if np.ndim(ess) == 0 else ess

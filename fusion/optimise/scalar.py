@@ -30,7 +30,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from fusion._validation import allocation, as_array, as_callable, as_rng, as_rngs, count, finite_optimum, objective_values, scalar
-from fusion._validation import flag, loop_work, tolerance, work
+from fusion._validation import flag, loop_work, tolerance
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
 
@@ -120,7 +120,9 @@ def fruit_fly(
     ------
     ValueError
         Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, ``step`` not two
-        finite numbers, an objective returning NaN or the wrong shape, or infinite at every candidate.
+        finite numbers, an objective returning NaN or the wrong shape, or infinite at every candidate;
+        ``population`` and ``iterations`` beyond the work budget (``fusion._limits.MAX_WORK``, counted as
+        :func:`fruit_fly_batch` counts one problem: a loop step per generation plus its evaluations).
     TypeError
         An objective returning something other than real numbers.
 
@@ -133,7 +135,9 @@ def fruit_fly(
     lo, hi = _check(lo, hi, f)
     as_rng(rng)
     population, iterations = count(population, "population"), count(iterations, "iterations")
-    work((population, iterations), "population and iterations")  # rule 17: objective evaluations
+    # rule 17: what fruit_fly_batch counts for one problem, a loop step per generation on top of its evaluations
+    # (population=1, iterations=10**7 was accepted as 1e7 evaluations: minutes of Python loop)
+    loop_work((1 + iterations,), 4 * population, "population and iterations")
     a, b = _step(step)
     X, Y = rng.uniform(0.0, 1.0, 2) * a + b
     best_x, best_f = np.nan, np.inf

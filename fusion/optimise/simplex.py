@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
-from fusion._validation import input_eps, text, tolerance
+from fusion._validation import sums_to_one, text, tolerance
 from fusion._validation import _numeric, FloatArray, as_callable, count, finite_optimum, objective_values
 from fusion.optimise.result import OptimumResult
 
@@ -64,8 +64,8 @@ def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> Fl
     e = _numeric(eps, name)
     if e.ndim != 1 or e.size == 0 or (n is not None and e.size != n):
         raise ValueError(f"{name} must be a 1-D vector of length {n}, got shape {e.shape}")
-    tol = max(1e-8, 2.0 * e.size * input_eps(eps))  # float32 or float16 weights: one in their own precision
-    if not np.all(np.isfinite(e)) or np.any(e < -1e-12) or abs(e.sum() - 1.0) > tol:
+    # float32 or float16 weights: one in their own precision (the one simplex rule, fusion._validation.sums_to_one)
+    if not np.all(np.isfinite(e)) or np.any(e < -1e-12) or not sums_to_one(e, eps, floor=1e-8):
         raise ValueError(f"{name} must lie on the simplex (non-negative, summing to one), got {e}")
     return np.clip(e, 0.0, None)
 

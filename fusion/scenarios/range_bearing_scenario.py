@@ -46,7 +46,9 @@ class RangeBearingScenario:
     Attributes
     ----------
     sensors : tuple of (float, float)
-        Sensor positions (m); one particle filter (node) per sensor.
+        Sensor positions (m); one particle filter (node) per sensor. Any (N, 2) array-like is accepted and stored
+        as a tuple of tuples of floats (as are ``x0`` and ``p0_std``): the frozen scenario holds no alias of the
+        caller's list or array, and hashes.
     sigma_r : float
         Range noise standard deviation (m).
     sigma_theta : float
@@ -142,16 +144,19 @@ class RangeBearingScenario:
         S = _numeric(self.sensors, "sensors")
         if S.ndim != 2 or S.shape[0] < 1 or S.shape[1] != 2:
             raise ValueError(f"sensors must be N >= 1 positions (x, y), shape (N, 2), got {S.shape}")
-        if not np.all(np.isfinite(S)):
-            raise ValueError("sensors contains NaN or infinite values")
+        S = as_array(S, "sensors", shape=(None, 2))   # finite, and the shared magnitude rule (1e150, no subnormal)
+        # frozen: store what was checked, as tuples of floats (hashable, and no alias of the caller's list or array)
+        object.__setattr__(self, "sensors", tuple(tuple(row) for row in S.tolist()))
         for name in ("sigma_r", "sigma_theta"):
             store_read(self, name, std_scalar(getattr(self, name), name))
         for name in ("T", "q"):
             store_read(self, name, positive_scalar(getattr(self, name), name))
-        as_array(self.x0, "x0", shape=(4,))
+        x0 = as_array(self.x0, "x0", shape=(4,))
         p0 = as_array(self.p0_std, "p0_std", shape=(4,))
         if np.any(p0 <= 0):
             raise ValueError("p0_std must be positive")
+        object.__setattr__(self, "x0", tuple(x0.tolist()))
+        object.__setattr__(self, "p0_std", tuple(p0.tolist()))
         for name, least in (("frames", 1), ("n_particles", 2), ("n_components", 1), ("n_samples", 2),
                             ("n_central", 2), ("em_iterations", 1)):
             count(getattr(self, name), name, minimum=least)

@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike
 
 from fusion._results import ResultSpec, array, instance, validated_post_init
 from fusion._validation import derived_inputs
-from fusion._validation import flag
+from fusion._validation import flag, in_given_precision
 from fusion._validation import FloatArray, allocation, as_array, count, positive_scalar
 from fusion.estimates.chernoff.mixture import _check_mixtures, log_densities
 from fusion.optimise.simplex import check_simplex
@@ -136,7 +136,7 @@ def grid_log_normaliser(
     n = count(n, "n", minimum=2)
     allocation((n, n, len(gms)), "n and gms")  # the n x n grid's log-densities, before they are computed
     E = np.atleast_2d(as_array(eps, "eps", ndim=(1, 2)))
-    for e in E:
+    for e in in_given_precision(E, eps):   # float32 eps: on the simplex in its own precision
         check_simplex(e, len(gms))
     axis = np.linspace(-limit, limit, n)
     X, Y = np.meshgrid(axis, axis)

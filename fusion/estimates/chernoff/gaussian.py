@@ -28,6 +28,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import (singular_system, _numeric, FloatArray, as_covariance, check_magnitude, gaussian_pair,
                                 one_of, unit_scalar)
 from fusion._validation import flag
+from fusion._covariances import singular_mask
 from fusion._docstrings import with_sections
 from fusion.estimates.mixtures import _dot, _matvec
 from fusion.optimise.simplex import _simplex_newton, check_simplex
@@ -258,7 +259,10 @@ def is_second_moment(means: ArrayLike, covs: ArrayLike, eps: ArrayLike, eps0: Ar
     -------
     float
         :math:`\rho \ge 1` (1 when ``eps == eps0``), or ``inf`` outside the finite-variance region (and
-        where :math:`\log\rho` is finite but beyond the float range of :math:`\rho`, above 709).
+        where :math:`\log\rho` is finite but beyond the float range of :math:`\rho`, above 709). The region's
+        boundary is decided by the package's covariance rule on :math:`\Lambda` (``inf`` when it is not positive
+        definite or singular to working precision by ``fusion._covariances.SINGULAR_MARGIN``), which does not
+        depend on the units of each state component.
 
     Raises
     ------
@@ -278,7 +282,9 @@ def is_second_moment(means: ArrayLike, covs: ArrayLike, eps: ArrayLike, eps0: Ar
     Pinv, Ginv = np.linalg.inv(P), np.linalg.inv(G)
     Lam = 2.0 * Pinv - Ginv
     Lam = 0.5 * (Lam + Lam.T)
-    if np.min(np.linalg.eigvalsh(Lam)) <= 1e-12 * np.max(np.abs(np.linalg.eigvalsh(2.0 * Pinv))):
+    # finite variance iff Lambda > 0, decided by the package's covariance rule (fusion._covariances.SINGULAR_MARGIN,
+    # on Lambda's correlation matrix: unit-free; an absolute condition test returned inf for covs in mixed units)
+    if singular_mask(Lam):
         return float("inf")
     a = target.x - prop.x
     h = 2.0 * Pinv @ a

@@ -30,7 +30,7 @@ from fusion._frozen import frozen_arrays
 from fusion._timing import LapTimer
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
                                 instance_of, one_of)
-from fusion._validation import flag, refuse_singular
+from fusion._validation import flag, in_given_precision, refuse_singular, sums_to_one
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
@@ -731,7 +731,7 @@ def fuse_mixtures_batch(
     if m.shape != (B, N, S, d) or c.shape != (B, N, S, d, d):
         raise ValueError(f"weights must be (B, N, S), means (B, N, S, d) and covs (B, N, S, d, d); got {w.shape}, "
                          f"{m.shape}, {c.shape}")
-    if np.any(w < 0) or not np.allclose(w.sum(axis=2), 1.0, rtol=0.0, atol=1e-9):
+    if np.any(w < 0) or not sums_to_one(w, weights, axis=2):   # within 1e-9, or float32 weights' precision
         raise ValueError("weights must be non-negative and sum to one over each mixture's components")
     pos = w > 0
     cc = c[pos]
@@ -751,7 +751,7 @@ def fuse_mixtures_batch(
         e = np.broadcast_to(e, (B, N)) if e.shape == (N,) else e
         if e.shape != (B, N):
             raise ValueError(f"eps0 must have shape ({B}, {N}) or ({N},), got {np.shape(eps0)}")
-        e0 = np.stack([check_simplex(row, N, name="eps0") for row in e])
+        e0 = np.stack([check_simplex(row, N, name="eps0") for row in in_given_precision(e, eps0)])
     with np.errstate(divide="ignore"):
         logw = np.where(pos, np.log(np.where(pos, w, 1.0)), -np.inf)
     c = np.where(pos[..., None, None], c, np.eye(d))

@@ -178,7 +178,8 @@ def belief_study(
     seeds : (int, int, int)
         Seeds of the three random parts.
     snapshots : int
-        Draws of the eigenvector against row-sum comparison.
+        Draws of the eigenvector against row-sum comparison (at least 2, odd or even); the even-indexed ones,
+        ``ceil(snapshots / 2)``, each get their own U(0, 10) shift of reading 1.
 
     Returns
     -------
@@ -201,7 +202,8 @@ def belief_study(
     to_k = snap + 273.15
     wc = rd.belief_degree(snap).weights
     snaps = x + np.random.default_rng(seeds[1]).normal(size=(snapshots, sig.size)) * sig
-    snaps[::2, 0] += np.random.default_rng(seeds[2]).uniform(0, 10, size=snapshots // 2)
+    # one independent shift for each even-indexed snapshot: ceil(snapshots / 2) draws (an odd count too)
+    snaps[::2, 0] += np.random.default_rng(seeds[2]).uniform(0, 10, size=(snapshots + 1) // 2)
     eig_w = rd.fuse_epochs(snaps, "belief_degree").weights
     row_w = rd.row_sum_weights(rd.belief_matrices(snaps))
     xb = np.array([900.0, 900.4, 903.0, 903.3])
