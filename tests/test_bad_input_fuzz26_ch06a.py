@@ -150,6 +150,8 @@ def test_premise_robust_values_two_runs_leave_out_the_trimmed_mean() -> None:
     for k in _nets(2):
         assert f"chf_pr_{k}_mix_wo2" not in v
         assert v[f"chf_pr_{k}_runs"] == 2 and np.isfinite(v[f"chf_pr_{k}_mix_mean"])
+        # a share's interval stays a share: the paired t interval of two runs reaches far beyond [0, 1]
+        assert 0.0 <= v[f"chf_pr_{k}_mix_win_lo"] <= v[f"chf_pr_{k}_mix_win"] <= v[f"chf_pr_{k}_mix_win_hi"] <= 1.0
     v3 = chc.premise_robust_values(_nets(3), "small test")
     assert all(np.isfinite(v3[f"chf_pr_{k}_mix_wo2"]) for k in _nets(3))
 

@@ -399,7 +399,8 @@ def premise_robust_values(studies: dict[str, NetworkStudy], reason: str = "") ->
     dict
         Per network ``<k>``: ``chf_pr_<k>_runs`` (int), ``chf_pr_<k>_mix_median`` (median paired difference, m²),
         ``chf_pr_<k>_mix_win`` (share of runs in which the mixtures are more accurate), ``chf_pr_<k>_mix_win_lo``/
-        ``_hi`` (its 95 % interval), ``chf_pr_<k>_mix_sign_p`` (two-sided sign-test p-value, 2 significant digits),
+        ``_hi`` (its 95 % interval: the paired interval of the share, clipped to [0, 1], which it passes for a few
+        runs), ``chf_pr_<k>_mix_sign_p`` (two-sided sign-test p-value, 2 significant digits),
         ``chf_pr_<k>_mix_top3`` (share of the total absolute difference carried by the three largest runs), and
         ``chf_pr_<k>_mix_wo2`` (mean difference without the two largest absolute differences, m²; left out for a
         network of two runs or fewer, where no run remains: two is the smallest count ``premise_studies`` takes),
@@ -417,8 +418,8 @@ def premise_robust_values(studies: dict[str, NetworkStudy], reason: str = "") ->
         _, lo, hi = _wins(st, "chernoff_pso", "ci_gaussian", reason).interval()
         p = float(_stats.binomtest(wins, d.size - ties, 0.5).pvalue) if d.size > ties else 1.0
         v.update({f"chf_pr_{key}_runs": st.runs, f"chf_pr_{key}_mix_median": rounded(float(np.median(d)), 2),
-                  f"chf_pr_{key}_mix_win": rounded(wins / d.size, 3), f"chf_pr_{key}_mix_win_lo": rounded(0.5 + lo, 3),
-                  f"chf_pr_{key}_mix_win_hi": rounded(0.5 + hi, 3), f"chf_pr_{key}_mix_sign_p": float(f"{p:.2g}"),
+                  f"chf_pr_{key}_mix_win": rounded(wins / d.size, 3), f"chf_pr_{key}_mix_win_lo": rounded(max(0.5 + lo, 0.0), 3),
+                  f"chf_pr_{key}_mix_win_hi": rounded(min(0.5 + hi, 1.0), 3), f"chf_pr_{key}_mix_sign_p": float(f"{p:.2g}"),
                   f"chf_pr_{key}_mix_top3": rounded(float(a[order[:3]].sum() / a.sum()), 2) if a.sum() > 0 else 0.0,
                   # fuzz 26b PR: two runs leave none without the two largest (the mean of nothing is no number)
                   **({f"chf_pr_{key}_mix_wo2": rounded(float(d[order[2:]].mean()), 2)} if d.size > 2 else {}),
