@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion._docstrings import with_sections, reads_results
+from fusion.book._few_runs import inputs_runs_named
 from fusion._results import number, table, text
 from fusion._validation import instance_of
 from fusion.book.claims import build_ledger
@@ -120,6 +121,7 @@ def _pv(published: float | Sequence[float], ours: ArrayLike, decimals: int = 0, 
     return PublishedValues(np.broadcast_to(np.asarray(published, dtype=float), ours.shape), ours, decimals, unit)
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_headline(r: LedgerInputs) -> RecordEvidence:
@@ -166,6 +168,7 @@ def _vs_ci(arch: ArchInputs, r: PairedInputs) -> dict[str, Comparison]:
             **_repair_readings(arch, ci_fb)}
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_fig4_fig7(r: LedgerInputs) -> RecordEvidence:
@@ -186,6 +189,7 @@ def ev_fig4_fig7(r: LedgerInputs) -> RecordEvidence:
     return {"ci-fig4-convex-part": vs_ci, "ci-fig7-improved-vs-ci": dict(vs_ci), "ci-fig4-size": size}
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_fig6(r: PairedInputs) -> RecordEvidence:
@@ -205,6 +209,7 @@ def ev_fig6(r: PairedInputs) -> RecordEvidence:
     }}
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_fig8(r: LedgerInputs) -> RecordEvidence:
@@ -235,6 +240,7 @@ def ev_fig8(r: LedgerInputs) -> RecordEvidence:
                                                      f"{fmt(gap, 2)} m over every run of one step")}
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_equations(r: LedgerInputs) -> RecordEvidence:
@@ -266,6 +272,7 @@ def _half_weight_bound_holds() -> bool:
     return bool(np.all((u + v) ** 2 <= (u**2 + v**2) / w + 1e-12))
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_fig5(r: LedgerInputs) -> RecordEvidence:
@@ -325,6 +332,7 @@ def ev_fig5(r: LedgerInputs) -> RecordEvidence:
     }
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_times(r: LedgerInputs) -> RecordEvidence:
@@ -360,6 +368,7 @@ def ev_times(r: LedgerInputs) -> RecordEvidence:
     }
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_misc(r: LedgerInputs) -> RecordEvidence:
@@ -438,6 +447,7 @@ def _x_below_y(r: IrInputs) -> dict[str, Comparison]:
             **{k: xy(axis, label, meth) for k, axis, label, meth in _ir_hypotheses(prim, cart)}}
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_ir_values(r: LedgerInputs) -> RecordEvidence:
@@ -476,6 +486,7 @@ def ev_ir_values(r: LedgerInputs) -> RecordEvidence:
     }
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_ir_baselines(r: IrInputs) -> RecordEvidence:
@@ -517,6 +528,7 @@ def ev_ir_baselines(r: IrInputs) -> RecordEvidence:
     return out
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_foa_step(r: LedgerInputs) -> RecordEvidence:
@@ -549,6 +561,7 @@ EVIDENCE_FUNCTIONS = (ev_headline, ev_fig4_fig7, ev_fig6, ev_fig8, ev_equations,
                       ev_ir_values, ev_ir_baselines, ev_foa_step)
 
 
+@inputs_runs_named("r")
 @_on_inputs
 @reads_results("r")
 def evidence(r: LedgerInputs) -> RecordEvidence:
@@ -570,6 +583,7 @@ def evidence(r: LedgerInputs) -> RecordEvidence:
     return out
 
 
+@inputs_runs_named("r")
 @_on_inputs
 @reads_results("r")
 def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
@@ -589,6 +603,7 @@ def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
     return build_ledger(BIBKEY, None, evidence(r), values=values, claims=claim_file())
 
 
+@inputs_runs_named("r")
 @_on_inputs
 @reads_results("r")
 def ledger_values(r: LedgerInputs) -> GlueValues:
