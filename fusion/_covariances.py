@@ -416,6 +416,27 @@ def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9)
     return sym
 
 
+def computed_part(M: FloatArray) -> FloatArray:
+    """A semidefinite part a loop computes (not an input), its variances below :data:`MIN_VARIANCE` set to zero.
+
+    The tiny-variance rule of :func:`as_semidefinite` is a rule for inputs (a caller's variance of 1e-160 is a unit
+    or typing error). A part a recursion computes can decay to such a variance as a valid state: the correlated
+    part of split CI with its process noise in the independent part, fed back at every step, decays geometrically
+    (chapter 05's architecture study at T = 0.5 s: below 1.49e-154 after some hundred steps). Such a variance is
+    zero to working precision against the covariance it is a part of, so its row and column are set to zero (a
+    principal submatrix padded with zeros: still semidefinite, and :func:`as_semidefinite` accepts it); a part
+    without one is returned as it is (the same object), so every result that was accepted before is unchanged.
+    """
+    d = np.abs(np.diagonal(M))
+    tiny = (d > 0) & (d < MIN_VARIANCE)
+    if not tiny.any():
+        return M
+    out = np.array(M, dtype=float)
+    out[tiny, :] = 0.0
+    out[:, tiny] = 0.0
+    return out
+
+
 def gaussian_pair(
     m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike, names: tuple[str, str, str, str]
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:

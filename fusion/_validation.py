@@ -939,5 +939,5 @@ from fusion._selections import as_mask, frame_slice, selection, window  # noqa: 
 # The covariance rules live in fusion._covariances, which uses the rules above: imported last.
 from fusion._covariances import (  # noqa: E402, F401 (re-exported)
     _SMALL_PAIR, _TINY, _covariance_magnitude, _finite_symmetric, as_covariance, as_covariances, as_semidefinite,
-    check_invertible, refuse_singular,
+    check_invertible, computed_part, refuse_singular,
     covariance_pair, diagonal_covariance, gaussian_pair)

@@ -246,7 +246,8 @@ def registry() -> dict[str, dict[str, A]]:
     # ---------------------------------------------------------------- the CI weight
     R[c + "weight_pair"] = dict(R1=A(R1, ARR + ("indef",)), R2=A(R1 / 9, ARR + ("indef",)), Q=A(Q, ARR),
                                 k=A(2, ("neg", "frac", "str", ("big", 10**6))), seed=A(1, SEED_M), search_seed=A(2, SEED_M),
-                                fruit_fly_seeds=A([3], ("str", ("empty", []), ("neg", [-1]), ("frac", [1.5]))),
+                                fruit_fly_seeds=A([3], ("str", ("empty", []), ("neg", [-1]), ("frac", [1.5]), ("repeat", [3, 3]),
+                                                                 ("huge", list(range(10**5))))),
                                 runs=A(2, COUNT_M), T=A(TS, POS))
     R[c + "weight_search"] = dict(P1=A(wp.P1, ARR + ("indef", "lensq")), P2=A(wp.P2, ARR + ("indef",)),
                                   rng=A(np.random.default_rng(0), OBJ))
@@ -265,7 +266,7 @@ def registry() -> dict[str, dict[str, A]]:
                          aniso=A(an, ("str", ("three items", an[:3]), ("seeds of another type", an[:3] + (5,)))))
     R[c + "fig5_hypotheses"] = dict(P1=A(wp.P1, ARR + ("indef", "lensq")), P2=A(wp.P2, ARR + ("indef",)),
                                     fruit_fly_seeds=A(wp.fruit_fly_seeds, OBJ + (wrong_type,)), seed=A(5, SEED_M),
-                                    short_budget=A(3, COUNT_M), n_open=A(3, COUNT_M),
+                                    short_budget=A(3, COUNT_M), n_open=A(3, COUNT_M + (("huge", 10**7),)),
                                     flat_pair=A((wp.P1, wp.P1), ("str", ("one", (wp.P1,)), ("indef", (wp.P1, -wp.P1)))))
     hyp = ci.fig5_hypotheses(wp.P1, wp.P2, wp.fruit_fly_seeds, 5, short_budget=3, n_open=3, flat_pair=(wp.P1, wp.P1))
     R[c + "fig5_hypothesis_numbers"] = dict(table=A(hyp, FRAME_M + (("a column less", _without(hyp)), ("nan cell", _nan_cell(hyp, "ω found", 1)))),
@@ -280,7 +281,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[c + "split_fruit_fly_gap"] = dict(sc=A(sc, OBJ + (wrong_type,)), k=A(2, ("neg", "frac", "str", ("big", 10**6))),
                                         rng=A(np.random.default_rng(0), OBJ))
     R[c + "fruit_fly_step_study"] = dict(seeds=A(2, COUNT_M), target=A(0.8, UNIT), seed=A(0, SEED_M))
-    R[c + "fruit_fly_step_targets"] = dict(seed=A(0, SEED_M), targets=A((0.5,), (("above", (1.5,)), ("nan", (np.nan,)), "str", ("empty", ()))),
+    R[c + "fruit_fly_step_targets"] = dict(seed=A(0, SEED_M), targets=A((0.5,), (("above", (1.5,)), ("nan", (np.nan,)), "str", ("empty", ()),
+                                                                          ("repeat", (0.5, 0.5)))),
                                            seeds=A(2, COUNT_M))
     ffs = p["fruit_fly_step_study"]   # fruit_fly_step_study(seeds=3) of the synthetic ledger entries
     R[c + "fruit_fly_step_values"] = dict(table=A(ffs, FRAME_M + (("a column less", _without(ffs)), ("nan cell", _nan_cell(ffs)))))

@@ -95,19 +95,66 @@ def studies_runs_named(*names: str) -> Callable[[_F], _F]:
     """A function that builds comparisons from the studies it is given as the arguments ``names`` (each with a
     ``runs``) and takes no ``reason``: its rule R4 refusal names the study arguments with fewer runs than the
     minimum (every one of ``names`` if none has a ``runs`` below it); signature and docstring kept."""
-    def decorate(fn: _F) -> _F:
-        signature = inspect.signature(fn)
+    def rename(given: dict[str, Any], e: FewRunsError) -> None:
+        short = [n for n in names if isinstance(getattr(given.get(n), "runs", None), numbers.Integral)
+                 and given[n].runs < e.minimum] or list(names)   # type: ignore[operator]
+        raise ValueError(f"{' and '.join(short)} gives paired comparisons of {e.runs} runs, fewer than the "
+                         f"{e.minimum} rule R4 asks without a reason (this function takes none): give a study "
+                         f"of at least {e.minimum} runs") from e
+    return lambda fn: _renamed(fn, rename)
 
-        @functools.wraps(fn)
-        def named(*args: Any, **kwargs: Any) -> Any:
-            try:
-                return fn(*args, **kwargs)
-            except FewRunsError as e:
-                given = signature.bind(*args, **kwargs).arguments
-                short = [n for n in names if isinstance(getattr(given.get(n), "runs", None), numbers.Integral)
-                         and given[n].runs < e.minimum] or list(names)
-                raise ValueError(f"{' and '.join(short)} gives paired comparisons of {e.runs} runs, fewer than the "
-                                 f"{e.minimum} rule R4 asks without a reason (this function takes none): give a study "
-                                 f"of at least {e.minimum} runs") from e
-        return named  # type: ignore[return-value]
-    return decorate
+
+def _renamed(fn: _F, rename: Callable[[dict[str, Any], FewRunsError], None]) -> _F:
+    """``fn`` whose rule R4 refusal is re-raised by ``rename(arguments bound by name, the refusal)``; signature and
+    docstring kept."""
+    signature = inspect.signature(fn)
+
+    @functools.wraps(fn)
+    def named(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return fn(*args, **kwargs)
+        except FewRunsError as e:
+            rename(signature.bind(*args, **kwargs).arguments, e)
+            raise
+    return named  # type: ignore[return-value]
+
+
+def _short_fields(record: object, minimum: int | None) -> list[str]:
+    """The fields of the result record ``record`` (a dataclass) holding a study of fewer than ``minimum`` runs: a
+    field whose value, or an entry of it (a tuple of studies, a mapping of them), has an integer ``runs`` below it."""
+    import dataclasses
+
+    if minimum is None or not dataclasses.is_dataclass(record):
+        return []
+    short = []
+    for f in dataclasses.fields(record):
+        value = getattr(record, f.name, None)
+        parts = (list(value.values()) if isinstance(value, dict) else list(value) if isinstance(value, (tuple, list))
+                 else [value])
+        if any(isinstance(getattr(p, "runs", None), numbers.Integral) and p.runs < minimum for p in parts):
+            short.append(f.name)
+    return short
+
+
+def inputs_runs_named(name: str) -> Callable[[_F], _F]:
+    """Decorator: a function of a record of results (its argument ``name``, e.g. a chapter's ``LedgerInputs``
+    ``r``) that builds paired comparisons from the studies it holds and takes no ``reason`` refuses a study of fewer
+    than ``MIN_RUNS`` runs by a FewRunsError naming the record's fields that hold one (``r.arch``; ``r`` when none
+    is found) and the minimum (fuzz 26c A5: the message named the comparison's ``a and b`` and ``reason``);
+    signature and docstring kept.
+
+    Parameters
+    ----------
+    name : str
+        The argument that holds the record.
+
+    Returns
+    -------
+    callable
+        The decorator.
+    """
+    def rename(given: dict[str, Any], e: FewRunsError) -> None:
+        fields = [f"{name}.{f}" for f in _short_fields(given.get(name), e.minimum)] or [name]
+        with runs_named(" and ".join(fields), f"studies of at least {e.minimum} runs in {name}"):
+            raise e
+    return lambda fn: _renamed(fn, rename)

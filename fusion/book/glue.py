@@ -76,7 +76,9 @@ def _glued_cell(table: object, row: object, column: object, name: str, lo: float
                 hi: float | None = None) -> float:
     """The cell ``table.loc[row, column]`` that a chapter glues, as a float by the glue rule (fuzz 22b, V): the row
     and the column present once each (read by label, never by position), the cell a finite number (TypeError for
-    text or another non-number) within [``lo``, ``hi``] when given (an MSE, a share); errors name ``name``."""
+    text or another non-number) within [``lo``, ``hi``] when given (an MSE, a share); errors name ``name``. A
+    float32 (or float16) cell is read as the shortest decimal that prints it (0.654, not 0.6539999842643738: a
+    table cast to float32 glues the numbers it shows)."""
     from fusion._validation import instance_of, scalar
 
     instance_of(table, pd.DataFrame, name)
@@ -84,8 +86,10 @@ def _glued_cell(table: object, row: object, column: object, name: str, lo: float
         hits = int(np.sum(labels == label)) if label in labels else 0
         if hits != 1:
             raise ValueError(f"{name} must hold the {what} {shown(label)} once, got it {hits} times")
-    return scalar(table.loc[row, column], f"{name}.loc[{shown(row)}, {shown(column)}]", lo, hi,  # type: ignore[attr-defined]
-                  tiny=True)
+    cell = table.loc[row, column]  # type: ignore[attr-defined]
+    if isinstance(cell, (np.float16, np.float32)):   # the decimal it prints (0.654), not its widening (fuzz 26c q10)
+        cell = float(str(cell))
+    return scalar(cell, f"{name}.loc[{shown(row)}, {shown(column)}]", lo, hi, tiny=True)
 
 
 #: The values glue_all and ``keep`` take as they are (checked when a number: finite, not a missing-value marker):

@@ -74,7 +74,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import frozen_arrays
-from fusion._validation import derived, singular_system, FloatArray, as_array, as_covariance, as_semidefinite, one_of, scalar
+from fusion._validation import (derived, singular_system, FloatArray, as_array, as_covariance, as_semidefinite, computed_part,
+                               one_of, scalar)
 from fusion.estimates import ci as es
 from fusion.filtering.kalman import _model
 from fusion._shown import shown
@@ -122,7 +123,9 @@ def _local_update(F: FloatArray, H: FloatArray, Qd: FloatArray, Qi: FloatArray, 
     S = H @ Pm @ H.T + R
     G = np.linalg.solve(S, H @ Pm).T
     A = np.eye(F.shape[0]) - G @ H
-    return Pm, G, A, _semidefinite(A @ Pdm @ A.T), _semidefinite(A @ Pim @ A.T + G @ R @ G.T)
+    # parts the loop computes: the tiny-variance rule of inputs does not apply (a part that decays is a valid state)
+    return (Pm, G, A, computed_part(_semidefinite(A @ Pdm @ A.T)),
+            computed_part(_semidefinite(A @ Pim @ A.T + G @ R @ G.T)))
 
 
 def _semidefinite(M: FloatArray) -> FloatArray:

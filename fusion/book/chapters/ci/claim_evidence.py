@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion._docstrings import with_sections, reads_results
+from fusion.book._few_runs import inputs_runs_named
 from fusion._results import number, table, text
 from fusion._shown import shown
 from fusion._validation import instance_of
@@ -122,6 +123,7 @@ def _pv(published: float | Sequence[float], ours: ArrayLike, decimals: int = 0, 
     return PublishedValues(np.broadcast_to(np.asarray(published, dtype=float), ours.shape), ours, decimals, unit)
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_headline(r: LedgerInputs) -> RecordEvidence:
@@ -168,6 +170,7 @@ def _vs_ci(arch: ArchInputs, r: PairedInputs) -> dict[str, Comparison]:
             **_repair_readings(arch, ci_fb)}
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_fig4_fig7(r: LedgerInputs) -> RecordEvidence:
@@ -188,6 +191,7 @@ def ev_fig4_fig7(r: LedgerInputs) -> RecordEvidence:
     return {"ci-fig4-convex-part": vs_ci, "ci-fig7-improved-vs-ci": dict(vs_ci), "ci-fig4-size": size}
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_fig6(r: PairedInputs) -> RecordEvidence:
@@ -207,6 +211,7 @@ def ev_fig6(r: PairedInputs) -> RecordEvidence:
     }}
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_fig8(r: LedgerInputs) -> RecordEvidence:
@@ -237,6 +242,7 @@ def ev_fig8(r: LedgerInputs) -> RecordEvidence:
                                                      f"{fmt(gap, 2)} m over every run of one step")}
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_equations(r: LedgerInputs) -> RecordEvidence:
@@ -268,6 +274,7 @@ def _half_weight_bound_holds() -> bool:
     return bool(np.all((u + v) ** 2 <= (u**2 + v**2) / w + 1e-12))
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_fig5(r: LedgerInputs) -> RecordEvidence:
@@ -327,6 +334,7 @@ def ev_fig5(r: LedgerInputs) -> RecordEvidence:
     }
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_times(r: LedgerInputs) -> RecordEvidence:
@@ -362,6 +370,7 @@ def ev_times(r: LedgerInputs) -> RecordEvidence:
     }
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_misc(r: LedgerInputs) -> RecordEvidence:
@@ -440,6 +449,7 @@ def _x_below_y(r: IrInputs) -> dict[str, Comparison]:
             **{k: xy(axis, label, meth) for k, axis, label, meth in _ir_hypotheses(prim, cart)}}
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_ir_values(r: LedgerInputs) -> RecordEvidence:
@@ -478,6 +488,7 @@ def ev_ir_values(r: LedgerInputs) -> RecordEvidence:
     }
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_ir_baselines(r: IrInputs) -> RecordEvidence:
@@ -519,6 +530,7 @@ def ev_ir_baselines(r: IrInputs) -> RecordEvidence:
     return out
 
 
+@inputs_runs_named("r")
 @_evidence_doc
 @reads_results("r")
 def ev_foa_step(r: LedgerInputs) -> RecordEvidence:
@@ -551,6 +563,7 @@ EVIDENCE_FUNCTIONS = (ev_headline, ev_fig4_fig7, ev_fig6, ev_fig8, ev_equations,
                       ev_ir_values, ev_ir_baselines, ev_foa_step)
 
 
+@inputs_runs_named("r")
 @_on_inputs
 @reads_results("r")
 def evidence(r: LedgerInputs) -> RecordEvidence:
@@ -572,6 +585,7 @@ def evidence(r: LedgerInputs) -> RecordEvidence:
     return out
 
 
+@inputs_runs_named("r")
 @_on_inputs
 @reads_results("r")
 def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
@@ -624,6 +638,7 @@ def _values_of(values: object, expected: Mapping[str, Any]) -> None:
                              f"{shown(want)}, the value r gives (the claim texts would quote it beside r's evidence)")
 
 
+@inputs_runs_named("r")
 @_on_inputs
 @reads_results("r")
 def ledger_values(r: LedgerInputs) -> GlueValues:

@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 from fusion._frozen import constant
-from fusion._counts import seed as check_seed
+from fusion._counts import distinct, seed as check_seed
 from fusion._validation import count, scalar, sequence
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues, _glued_cell
@@ -43,7 +43,7 @@ def fruit_fly_step_targets(seed: int = 0, targets: Sequence[float] = FRUIT_FLY_S
     seed : int
         First seed.
     targets : sequence of float
-        Minimisers, each in (0, 1).
+        Minimisers, each in (0, 1), distinct (they key the rows).
     seeds : int
         Seeded runs per minimum.
 
@@ -57,7 +57,8 @@ def fruit_fly_step_targets(seed: int = 0, targets: Sequence[float] = FRUIT_FLY_S
     if not items:
         raise ValueError("targets is empty (it must hold at least one test minimum)")
     # the floats the reader returns (fuzz 22b, FR), not the caller's objects
-    items = [scalar(t, f"targets[{i}]", lo=0.0, hi=1.0, lo_open=True, hi_open=True) for i, t in enumerate(items)]
+    items = distinct([scalar(t, f"targets[{i}]", lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+                      for i, t in enumerate(items)], "targets")   # the rows are keyed by them (fuzz 26c A2)
     return pd.DataFrame({t: fruit_fly_step_study(seeds, t, seed).iloc[0] for t in items}).T.rename_axis(
         "test minimum")
 

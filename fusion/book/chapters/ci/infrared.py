@@ -117,7 +117,7 @@ def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], d
     -------
     dict
         Glue key -> value: the table (``ci_tab_ir_flown``: the improved CI's late means under both readings
-        and the published values), the flight's length (s), its scans in the average, and the improved CI's
+        and the published values; the source's 1 km read as the initial range, and ``distance`` in km flown), the flight's length (s), its scans in the average, and the improved CI's
         x and y errors (m) and their order under the distance-flown reading.
 
     Raises
@@ -140,7 +140,8 @@ def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], d
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     cols = list(flown)
     table = pd.DataFrame({f"1 km = initial range ({IR_DURATION:g} s, the chapter)": [chapter_means[c] for c in cols],
-                          f"1 km = distance flown ({duration:.2f} s)": [flown[c] for c in cols],
+                          # the label says the distance given (fuzz 26c q1: "1 km" whatever distance)
+                          f"{distance / 1000:g} km = distance flown ({duration:.2f} s)": [flown[c] for c in cols],
                           "published": [1e3 * pub["azimuth_rad"][0], 1e3 * pub["elevation_rad"][0], pub["x_m"][0],
                                         pub["y_m"][0]]}, index=cols).T.map(lambda v: float(f"{v:.3g}"))
     x, y = (flown[c] for c in cols if c.startswith(("x", "y")))
@@ -160,21 +161,24 @@ def _ir_methods(rmse: object, name: str, read: tuple[str, ...]) -> None:
         raise ValueError(f"{name} holds keys that are not methods: {shown(unknown, 120)}")
 
 
-def _scan_times(t: object, rmse: Mapping, name: str, read: Sequence[str] | None = None) -> np.ndarray:
+def _scan_times(t: object, rmse: Mapping, name: str, read: Sequence[str] | None = None
+                ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
     """Scan times ``t`` (finite, 1-D, increasing: the late means are over the last scans) and the arrays of ``rmse``
     read (all when ``read`` is None), each one finite non-negative row of four per scan; TypeError/ValueError naming
-    ``t`` or ``name[method]``, never numpy's or matplotlib's."""
+    ``t`` or ``name[method]``, never numpy's or matplotlib's. Returns ``t`` and those arrays, read as arrays (a
+    list or a DataFrame of the rows is array_like: fuzz 26c A4), for the caller to use instead of ``rmse``."""
     t = as_array(t, "t", ndim=1)
     if (np.diff(t) <= 0).any():
         i = int(np.flatnonzero(np.diff(t) <= 0)[0])
         raise ValueError(f"t must increase (scan times, s), got t[{i + 1}] = {shown(float(t[i + 1]))} after "
                          f"t[{i}] = {shown(float(t[i]))}")
+    arrays = {}
     for k in (rmse if read is None else read):
-        arr = as_array(rmse[k], f"{name}[{shown(k)}]", ndim=2, nonnegative=True)
+        arr = arrays[k] = as_array(rmse[k], f"{name}[{shown(k)}]", ndim=2, nonnegative=True)
         if arr.shape != (t.size, 4):
             raise ValueError(f"{name}[{shown(k)}] must hold one row of four per scan of t ({t.size}, 4), got "
                              f"{arr.shape}")
-    return t
+    return t, arrays
 
 
 def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -> pd.DataFrame:
@@ -204,9 +208,10 @@ def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -
         arrays and ``t``.
     """
     _ir_methods(rmse, "rmse", ())
-    _start_on(t_min, _scan_times(t, rmse, "rmse"))
+    t_read, arrays = _scan_times(t, rmse, "rmse")
+    _start_on(t_min, t_read)
     pub = data.WANG2024_IR_RADAR_RMSE.columns
-    table = pd.DataFrame(ir.late_means(dict(rmse), t, t_min)).T
+    table = pd.DataFrame(ir.late_means(arrays, t, t_min)).T
     table.index = [METHOD_LABELS[m] for m in table.index]
     table.loc["published: improved CI (Figs. 9-10)"] = [1e3 * pub["azimuth_rad"][0], 1e3 * pub["elevation_rad"][0],
                                                         pub["x_m"][0], pub["y_m"][0]]
@@ -246,7 +251,7 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray], bound: ArrayLike | N
         ``t_min`` negative or after the last scan.
     """
     _ir_methods(rmse, "rmse", IR_SHOWN)
-    t = _scan_times(t, rmse, "rmse", IR_SHOWN)
+    t, rmse = _scan_times(t, rmse, "rmse", IR_SHOWN)
     t_min = _start_on(t_min, t)
     if bound is not None:   # undefined (NaN) at the first scan, t = 0: only the scans drawn must be finite
         bound = as_array(bound, "bound", ndim=2, finite=False)
@@ -339,17 +344,17 @@ def fig11(sim: ir.IrRadarRuns, run: int = 0, t_min: float = 2.0) -> tuple[Figure
 def _known_means(known: object) -> dict[float, dict]:
     """``known`` of :func:`sensitivity_table` (fuzz 24c, KN): a mapping of periods (positive numbers) to mappings
     holding the azimuth, x and y means as finite non-negative numbers (RMSEs); TypeError/ValueError naming
-    ``known``. Returned by float period, the means as given."""
+    ``known``. Returned by float period, the means read as floats (the other entries as given)."""
     if not isinstance(known, Mapping):
         raise TypeError(f"known must be a mapping of period -> improved-CI means, got {type(known).__name__}")
     out = {}
     for k, v in known.items():
         T = scalar(k, f"known's period {shown(k)}", 0.0, lo_open=True)
-        _entries(v, f"known[{shown(k)}]", (ir.AZIMUTH_MRAD, ir.X_M, ir.Y_M),
-                 "infrared_radar.late_means (the improved CI's entry)", nonnegative=True)
+        read = _entries(v, f"known[{shown(k)}]", (ir.AZIMUTH_MRAD, ir.X_M, ir.Y_M),
+                        "infrared_radar.late_means (the improved CI's entry)", nonnegative=True)
         if T in out:
             raise ValueError(f"known holds the period {shown(T)} twice")
-        out[T] = dict(v)
+        out[T] = read   # the floats read, not the caller's 0-d arrays (fuzz 26c q4, the rule of fuzz 22b FR)
     return out
 
 
@@ -379,7 +384,8 @@ def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float 
     table : pandas.DataFrame
         Azimuth (mrad), x (m), y (m) per period, 3 significant digits.
     means : dict of float to dict
-        The unrounded :func:`fusion.scenarios.infrared_radar.late_means` of the improved CI per period.
+        The unrounded :func:`fusion.scenarios.infrared_radar.late_means` of the improved CI per period (those of
+        ``known``: its azimuth, x and y means read as floats).
 
     Raises
     ------

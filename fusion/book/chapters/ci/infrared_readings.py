@@ -13,7 +13,7 @@ import pandas as pd
 from numpy.typing import ArrayLike
 
 from fusion._frozen import constant
-from fusion._counts import seed as check_seed
+from fusion._counts import allocation, seed as check_seed
 from fusion import data
 from fusion._results import ResultSpec, array, dict_of, instance, integer, number, trusted, tuple_of, validated_post_init
 from fusion._shown import shown
@@ -241,7 +241,8 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
     seed : int
         Seed of the simulation (the same for both axes).
     runs : int
-        Monte-Carlo runs (>= 100 for the ledger's comparisons).
+        Monte-Carlo runs (>= 100 for the ledger's comparisons; at most about 8,000: the memory budget of the
+        bootstrap interval of :func:`ir_ratio` on them).
     duration : float
         Length of the track (s).
     t_min : float
@@ -266,6 +267,7 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
     seed = check_seed(seed)   # an integer seed (rule 11), named
     t_min, duration = _averaging_start(t_min, duration)
     _ir_budget(T, duration, runs)   # before the first simulation (fuzz 24c WN: runs = 10**6 refused after 7 s)
+    _jackknife_budget(runs, "runs")   # the readings' ratios (ir_ratio_table), before any simulation (fuzz 26c A8)
     scaled_axes = tuple(sequence(scaled_axes, "scaled_axes", what="axes"))
     if not all(isinstance(a, str) for a in scaled_axes):
         raise TypeError(f"scaled_axes must be a sequence of str (keys of IR_AXES), got {shown(scaled_axes)}")
@@ -352,6 +354,15 @@ def _binary_scaled(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return x / scale, scale
 
 
+def _jackknife_budget(runs: int, name: str) -> None:
+    """The memory budget of :func:`ir_ratio`'s interval on ``runs`` runs, named ``name`` (fuzz 26c A8): the BCa
+    interval's jackknife (``scipy.stats.bootstrap``) leaves out one run at a time, all at once, holding about four
+    arrays of ``runs × (runs − 1)`` (its indices and the two columns gathered by them): at most about 8,000 runs
+    within ``fusion._counts.MAX_ELEMENTS`` (30,000 runs asked for 6.7 GiB in one array; 10,000 ran 28 s). A
+    jackknife in O(runs) memory would change scipy's interval, whose numbers the book quotes."""
+    allocation((4, runs, max(runs - 1, 1)), f"{name} (the bootstrap interval's jackknife holds runs x (runs - 1))")
+
+
 def ir_ratio(run_rmse: np.ndarray, seed: int) -> tuple[float, float, float]:
     r"""Ratio of the y to the x RMSE over runs and scans, with a paired bootstrap 95 % interval over runs.
 
@@ -376,14 +387,16 @@ def ir_ratio(run_rmse: np.ndarray, seed: int) -> tuple[float, float, float]:
     TypeError
         ``run_rmse`` is not numeric, or ``seed`` not an integer.
     ValueError
-        ``run_rmse`` is not of shape (runs, 4) with at least two runs, or holds NaN, infinite or negative entries,
-        or its x errors are all zero; or the bootstrap interval is undefined: the resampled ratio does not vary (the
+        ``run_rmse`` is not of shape (runs, 4) with at least two runs (and at most about 8,000: the jackknife of
+        the interval holds runs × (runs − 1) entries, within the memory budget), or holds NaN, infinite or negative
+        entries, or its x errors are all zero; or the bootstrap interval is undefined: the resampled ratio does not vary (the
         runs' x and y errors constant, or the y errors all zero) or a resample holds only zero x errors.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     run_rmse = as_array(run_rmse, "run_rmse", shape=(None, len(IR_COMPONENTS)), nonnegative=True, subnormal=True)
     if run_rmse.shape[0] < 2:
         raise ValueError(f"run_rmse must hold at least 2 runs for the bootstrap, got {run_rmse.shape[0]}")
+    _jackknife_budget(run_rmse.shape[0], "run_rmse")
     if not (run_rmse[:, 2] > 0).any():
         raise ValueError("run_rmse: the x errors (column 2) are all zero, so the ratio y/x is undefined")
     from scipy import stats
@@ -495,11 +508,11 @@ def ir_bound_table(readings: IrReadings) -> pd.DataFrame:
 
 @_on_readings
 @reads_results("readings", "sim")
-def _ir_pair(readings: IrReadings, sim: ir.IrRadarRuns, rmse: object) -> None:
+def _ir_pair(readings: IrReadings, sim: ir.IrRadarRuns, rmse: object) -> dict[str, np.ndarray]:
     """``sim`` the primary simulation of ``readings`` (``readings.sims["x"]``: its scans and measurements) and
     ``rmse`` its :func:`fusion.scenarios.infrared_radar.rmse_by_rule` (recomputed, 0.07 CPU-s at 200 runs), else a
     ValueError naming ``sim`` or ``rmse`` (fuzz 22b MM6-MM7: another period gave an IndexError, another seed or
-    run count plausible numbers)."""
+    run count plausible numbers). Returns the arrays of ``rmse`` read (array_like values, fuzz 26c A4)."""
     own = readings.sims["x"]
     if sim is not own and (sim.t.shape != own.t.shape or not np.array_equal(sim.t, own.t)
                            or sim.ir.z.shape != own.ir.z.shape or not np.array_equal(sim.ir.z, own.ir.z)
@@ -510,13 +523,15 @@ def _ir_pair(readings: IrReadings, sim: ir.IrRadarRuns, rmse: object) -> None:
     _entries(rmse, "rmse", IR_SHOWN, "fusion.scenarios.infrared_radar.rmse_by_rule(sim)", numbers=False)
     assert isinstance(rmse, Mapping)
     expected = ir.rmse_by_rule(sim)
+    read = {}
     for name in IR_SHOWN:
-        got = np.asarray(rmse[name], dtype=float)
+        got = read[name] = as_array(rmse[name], f"rmse[{shown(name)}]")
         # rtol: float32 precision (sim's own RMSE stored as float32 is sim's; another simulation's differs by far more)
         if got.shape != expected[name].shape or not np.allclose(got, expected[name], rtol=1e-6, atol=0.0):
             what = "other values" if got.shape == expected[name].shape else f"shape {got.shape}"
             raise ValueError(f"rmse[{shown(name)}] must be sim's RMSE per scan (rmse_by_rule(sim), shape "
                              f"{expected[name].shape}), got {what}")
+    return read
 
 
 def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[str, np.ndarray]) -> GlueValues:
@@ -541,7 +556,7 @@ def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[
     """
     instance_of(readings, IrReadings, "readings")
     instance_of(sim, ir.IrRadarRuns, "sim")
-    _ir_pair(readings, sim, rmse)
+    rmse = _ir_pair(readings, sim, rmse)
     prim, cart = list(IR_READINGS)[0], list(IR_READINGS)[3]
     q_lo, q_hi = list(IR_READINGS)[1], list(IR_READINGS)[2]
     c_lo, c_hi = list(IR_READINGS)[4], list(IR_READINGS)[5]

@@ -18,6 +18,7 @@ from typing import Any, cast
 import numpy as np
 
 from fusion.book.study_cache import process_cache, study_cache
+from fusion._options import text
 from fusion._validation import count
 from fusion.book._few_runs import runs_named
 from fusion.book.ledger import Evidence
@@ -349,16 +350,18 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     Raises
     ------
     TypeError
-        ``settings`` neither a mapping nor None.
+        ``settings`` neither a mapping nor None, ``rid`` not a string.
     ValueError
-        If the record or the reading is unknown.
+        If the record or the reading is unknown, or ``runs`` below the 100 runs rule R4 asks of a paired comparison.
     """
     seed = check_seed(seed)
     if settings is not None and not isinstance(settings, Mapping):
         raise TypeError(f"settings must be a mapping ({{'reading': key}}) or None, got {type(settings).__name__}")
+    rid = text(rid, "rid")   # a record id is a string (fuzz 26c A6: a list gave "unhashable type")
     if rid not in _STOCHASTIC:
         raise ValueError(f"rid: {shown(rid)} is not a stochastic record of the chapter; they are {sorted(_STOCHASTIC)}")
-    ev = _record(rid, seed, count(runs, "runs"))
+    with runs_named("runs", "the argument runs"):  # rule R4 named by the argument (fuzz 26c A5)
+        ev = _record(rid, seed, count(runs, "runs"))
     key = str(dict(settings or {}).get("reading", "primary"))
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")

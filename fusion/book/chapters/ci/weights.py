@@ -11,7 +11,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
-from fusion._counts import seed as check_seed, seeds as check_seeds, sequence
+from fusion._counts import allocation, distinct, seed as check_seed, seeds as check_seeds, sequence
 from fusion._validation import as_array, as_rng, text as text_argument
 from fusion import data
 from fusion._docstrings import reads_results
@@ -328,7 +328,8 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
         Generations of the short-budget FOA (23: the budget whose median answer rounds to the published
         0.0018 among 20-26, a one-parameter fit to one number).
     n_open : int
-        Points of the grid that omits ω = 0.
+        Points of the grid that omits ω = 0 (1: the one point ω = 1); the objective holds four arrays of
+        ``n_open`` matrices of the size of ``P1`` at once, within the memory budget (``fusion._counts.MAX_ELEMENTS``).
     flat_pair : (array_like, array_like), optional
         Two equal covariances (the source's identical sensors) for the last hypothesis; skipped if ``None``.
 
@@ -343,6 +344,9 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
     seed = check_seed(seed)   # an integer seed (rule 11), named
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
     short_budget, n_open = count(short_budget, "short_budget"), count(n_open, "n_open")
+    # the grid's objective holds four (n_open, n, n) arrays at once (the two weighted inverses, their sum and its
+    # inverse): the memory budget, named n_open before any work (fuzz 26c q9)
+    allocation((n_open, 4) + P1.shape, "n_open (with the size of P1)")
     from fusion.optimise.scalar import batch_budget
 
     # the short-budget batch (one swarm of 30 per seed of fruit_fly_seeds), named here (fuzz 24c WN)
@@ -371,9 +375,13 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
     ]
     if flat_pair is not None:   # the source's identical sensors: every ω ties, the first grid point wins
         F1, F2 = as_covariance(flat_pair[0], name="flat_pair[0]"), as_covariance(flat_pair[1], name="flat_pair[1]")
-        flat = grid_search(lambda w: ci_objective(w, F1, F2), n_open, lo=1.0 / n_open, hi=1.0, vectorized=True)
+        if n_open == 1:   # the one-point grid k/1 is ω = 1 (grid_search needs two points): fuzz 26c A7
+            flat_x, flat_fun = 1.0, float(ci_objective(1.0, F1, F2))
+        else:
+            flat = grid_search(lambda w: ci_objective(w, F1, F2), n_open, lo=1.0 / n_open, hi=1.0, vectorized=True)
+            flat_x, flat_fun = flat.x, flat.fun
         rows.append((f"the same grid k/{n_open} on the source's identical sensors (flat objective, first of the ties)",
-                     flat.x, flat.fun, pub["grid_optimum"][0]))
+                     flat_x, flat_fun, pub["grid_optimum"][0]))
     t = pd.DataFrame(rows, columns=["hypothesis", OMEGA_FOUND, TR_P, "published ω"]).set_index("hypothesis")
     t[TR_P] = t[TR_P].round(3)
     t["equal at 4 decimals"] = np.round(t[OMEGA_FOUND], 4) == np.round(t["published ω"], 4)
@@ -429,7 +437,6 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
     k = _step_index(k, "k", scs[0].tracks[0].Pd.shape[0])
     check_seeds(seeds, "seeds")
     n_grid = count(n_grid, "n_grid", minimum=2)
-    from fusion._counts import allocation
 
     for i, sc in enumerate(scs):   # every step's covariances on the grid at once (fuzz 24c SZ: 6 GiB for 2e5)
         allocation(sc.tracks[0].Pd.shape[:1] + (n_grid,) + sc.tracks[0].Pd.shape[1:],
@@ -470,6 +477,9 @@ def timing_numbers(bench: TimingBenchmark) -> GlueValues:
         if missing:
             raise ValueError(f"bench.{field} misses the keys {shown(missing, 200)} (the prose quotes them)")
     m, ps = bench.measurements, bench.per_step
+    empty = [k for k in _BENCH_PER_STEP if not len(ps[k])]
+    if empty:   # the prose quotes their means (fuzz 26c q5: "value must be finite, got nan")
+        raise ValueError(f"bench.per_step holds empty series {shown(empty, 200)} (the prose quotes their means)")
     pub_fruit_fly, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     return {"ci_bench_machine": bench.machine, "ci_bench_date": bench.date,
             "ci_closed_us": rounded(1e6 * m["closed_form"], 2),
@@ -686,11 +696,15 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
         A seed, ``k`` or ``runs`` not an integer, a covariance not numeric.
     ValueError
         If ``k`` is not a step of the scenario, ``R1`` or ``R2`` not a diagonal 2 × 2 covariance, a seed negative or
-        ``fruit_fly_seeds`` empty.
+        ``fruit_fly_seeds`` empty, repeated or beyond FOA's budgets (30 × 200 per seed).
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     search_seed = check_seed(search_seed, "search_seed")
-    check_seeds(fruit_fly_seeds, "fruit_fly_seeds")
+    # the callee's rules (integers, no repeat, the batch's budgets) named here, before the scenario (fuzz 26c A3)
+    fly = distinct(check_seeds(fruit_fly_seeds, "fruit_fly_seeds"), "fruit_fly_seeds")
+    from fusion.optimise.scalar import batch_budget
+
+    batch_budget(len(fly), 30, 200, "fruit_fly_seeds")   # fruit_fly_over_seeds' printed 30 x 200 per seed
     _sensor_noises(R1, R2)
     sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)
     a, b = sc.tracks
@@ -861,15 +875,23 @@ def timing_benchmark(results: Any = None) -> TimingBenchmark:
     TypeError
         ``results`` not a path.
     ValueError
-        As :func:`fusion.book.benchmarks.load_benchmark`; the stored ``ci.json`` without its per-step timings
-        (``per_step``, a mapping).
+        As :func:`fusion.book.benchmarks.load_benchmark` (naming ``results``, or the stored benchmark when it is
+        None); the stored ``ci.json`` without its per-step timings (``per_step``, a mapping). A per-step series
+        may be empty here (it is what the file holds); :func:`timing_numbers` refuses an empty one it quotes.
     """
     from fusion.book.benchmarks import load_benchmark
 
-    res = load_benchmark("ci", results)
+    where = "the stored benchmark" if results is None else f"results ({shown(str(results), 80)})"
+    try:
+        res = load_benchmark("ci", results)
+    except ValueError as e:   # load_benchmark names its own `name` (fixed here to "ci"): name results (fuzz 26c q5)
+        msg = str(e)
+        for head in ("name and results: ", "name: "):
+            if msg.startswith(head):
+                raise ValueError(f"{where}: {msg[len(head):]}") from None
+        raise
     per_step = res.record.get("per_step")
     if not isinstance(per_step, Mapping):   # load_benchmark checks the measurements only (fuzz 24c, TB)
-        where = "the stored benchmark" if results is None else f"results ({shown(str(results), 80)})"
         raise ValueError(f"{where}: ci.json must hold 'per_step', a mapping of key -> per-step series, got "
                          f"{'none' if per_step is None else type(per_step).__name__}")
     return TimingBenchmark(date=res.date, machine=res.machine,
@@ -897,7 +919,7 @@ def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) ->
     dict
         ``ci_h_open``, ``ci_h_foa200``, ``ci_h_foa23``, ``ci_h_flat``: ω of rows 1-4; ``ci_h_per_eval_us``: the
         published FOA time per evaluation (µs); ``ci_h_grid_evals``: the published grid time in such evaluations
-        (to the hundred).
+        (both to three significant digits; an int from 100 on).
 
     Raises
     ------
@@ -923,5 +945,12 @@ def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) ->
     # each ω read by the glue rule (fuzz 22b, V11): a weight, a finite number in [0, 1], named
     w = [_glued_cell(table, table.index[i], OMEGA_FOUND, "table", lo=0.0, hi=1.0) for i in range(1, 5)]
     return {"ci_h_open": rounded(w[0], 4), "ci_h_foa200": rounded(w[1], 5), "ci_h_foa23": rounded(w[2], 5),
-            "ci_h_flat": rounded(w[3], 4), "ci_h_per_eval_us": rounded(1e6 * per_eval, 1),
-            "ci_h_grid_evals": int(round(float(pub["grid_time_s"][0]) / per_eval, -2))}
+            "ci_h_flat": rounded(w[3], 4), "ci_h_per_eval_us": _three_digits(1e6 * per_eval),
+            "ci_h_grid_evals": _three_digits(float(pub["grid_time_s"][0]) / per_eval)}
+
+
+def _three_digits(x: float) -> float | int:
+    """``x`` to three significant digits, an int when that is a whole number of 100 or more (fuzz 26c q8: a fixed
+    rounding to the hundred glued 0 evaluations for a count of 3.3): 19,883 -> 19900, 31.33 -> 31.3, 3.31 -> 3.31."""
+    v = float(f"{x:.3g}")
+    return int(v) if v >= 100 and v.is_integer() else v
