@@ -898,11 +898,13 @@ def test_chapter_functions_check_the_seed_they_draw_from() -> None:
         src = path.read_text(encoding="utf-8")
         tree = ast.parse(src)
         top = {id(n) for n in tree.body}
+        lines = src.splitlines(keepends=True)
         for node in ast.walk(tree):
             if not isinstance(node, ast.FunctionDef):
                 continue
             params = [a.arg for a in node.args.args + node.args.kwonlyargs]
-            body = ast.get_source_segment(src, node) or ""
+            # the def's lines (ast.get_source_segment re-splits the file at every call: a second per run)
+            body = "".join(lines[node.lineno - 1:node.end_lineno])
             entry = id(node) in top and not node.name.startswith("_")
             if "seed" in params and "check_seed(seed" not in body and ("default_rng(seed" in body or entry):
                 missing.append(f"{path.name}:{node.name} (seed)")

@@ -56,6 +56,20 @@ def call(name: str, arg: str, value: Any) -> tuple[str, Any]:
     return classes_call(name, arg, value, fresh=True)
 
 
+_VALID: dict[str, tuple[str, Any]] = {}
+
+
+def plain_call(name: str, arg: str, plain: Any) -> tuple[str, Any]:
+    """:func:`call` with ``arg = plain``. When ``plain`` is the registry's own value of ``arg`` (an int, float or
+    str of the same type), that is the registry's valid call of ``name``, whatever ``arg``: made once per callable."""
+    v = REG[name][arg].value
+    if not (type(plain) is type(v) and isinstance(v, (int, float, str)) and plain == v):
+        return call(name, arg, plain)
+    if name not in _VALID:
+        _VALID[name] = call(name, arg, plain)
+    return _VALID[name]
+
+
 def assert_same_or_refused(name: str, arg: str, value: Any, plain: Any) -> None:
     """The call with ``value`` equals the call with ``plain``, or raises a ValueError/TypeError naming ``arg``."""
     how, out = call(name, arg, value)
@@ -63,7 +77,7 @@ def assert_same_or_refused(name: str, arg: str, value: Any, plain: Any) -> None:
         assert isinstance(out, (ValueError, TypeError)), f"{name}: {arg}: {type(out).__name__}: {out}"
         assert _names(out, arg), f"{name}: {arg}: message does not name it: {out}"
         return
-    how0, ref = call(name, arg, plain)
+    how0, ref = plain_call(name, arg, plain)
     assert how0 == "ok", f"{name}: the plain call raised {ref!r}"
     assert same(out, ref), f"{name}: {arg} = {type(value).__name__}: a result different from the plain value's"
 
@@ -193,7 +207,7 @@ def test_a_0d_integer_array_is_the_seed_it_holds(target: tuple[str, str]) -> Non
     s = int(REG[name][arg].value)
     how, out = call(name, arg, np.array(s))
     assert how == "ok", f"{name}: {arg} = np.array({s}) refused: {out!r}"
-    how0, ref = call(name, arg, s)
+    how0, ref = plain_call(name, arg, s)
     assert how0 == "ok" and same(out, ref), f"{name}: {arg} = np.array({s}): a result different from seed {s}'s"
     stored = [getattr(out, f.name) for f in dataclasses.fields(out)] if dataclasses.is_dataclass(out) else []
     assert not any(isinstance(v, np.ndarray) and v.ndim == 0 for v in stored), f"{name}: stores the 0-d array"

@@ -115,7 +115,9 @@ def test_architecture_numbers_companions_must_agree(arch):
     studies, table = arch
     assert ci.architecture_numbers(studies, table, 3, 241)["ci_arch_runs"] == 3       # the notebook's call
     _refused(ValueError, "arch_runs", ci.architecture_numbers, studies, table, 500, 50)
-    other = ci.architecture_table(ci.arch_study(2025, 3))
+    # a table of other studies, same shape and labels (the two pairs' studies swapped: no third study computed)
+    other = ci.architecture_table({ci.IDENTICAL_LABEL: studies[ci.ANISO_LABEL],
+                                   ci.ANISO_LABEL: studies[ci.IDENTICAL_LABEL]})
     _refused(ValueError, "arch_table", ci.architecture_numbers, studies, other, 3, 50)
     _refused(TypeError, "arch_table", ci.architecture_numbers, studies, {}, 3, 50)
     _refused(ValueError, "k_steady", ci.architecture_numbers, studies, table, 3, 10**6)

@@ -10,6 +10,7 @@ the claim files' pattern. D5: a published value has at most its printed decimals
 from __future__ import annotations
 
 import copy
+import functools
 import json
 import math
 from pathlib import Path
@@ -90,7 +91,9 @@ def test_j_differences_all_within_round_off_are_a_tie_not_a_sign():
 
 # --- K: the claim schema's identifiers match the whole text -------------------------------------------------------
 
+@functools.cache
 def _lecture003() -> dict:
+    """The committed claims file, parsed once (every test below changes a deep copy)."""
     return yaml.safe_load((C.claims_dir() / "lecture003.yaml").read_text(encoding="utf-8"))
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import ast
 import dataclasses
+import functools
 import importlib
 import re
 from collections.abc import Callable
@@ -49,8 +50,12 @@ def _dataclasses() -> dict[str, tuple[str, ast.ClassDef]]:
 DATACLASSES = _dataclasses()
 
 
+@functools.cache
 def _consumers() -> dict[str, list[str]]:
-    """Consumed class -> the public functions (module.function(argument)) of the package that take it."""
+    """Consumed class -> the public functions (module.function(argument)) of the package that take it.
+
+    (Walks every module of the package: computed when a test asks, not at collection, which every worker repeats.)
+    """
     names = set(DATACLASSES)
     found: dict[str, list[str]] = {}
     root = CHAPTERS.parent.parent
@@ -71,9 +76,6 @@ def _consumers() -> dict[str, list[str]]:
                 for cls in classes:
                     found.setdefault(cls, []).append(f"{path.stem}.{node.name}({arg})")
     return found
-
-
-CONSUMERS = _consumers()
 
 
 def _cls(name: str) -> type:
@@ -248,14 +250,14 @@ SPECCED = sorted(name for name in DATACLASSES if getattr(_cls(name), "__result_s
 def test_the_enumeration_finds_the_consumed_classes() -> None:
     """The AST enumeration is not empty and finds the classes issue 35 named (so a broken parser cannot pass)."""
     assert len(DATACLASSES) >= 40
-    assert {"TableReproduction", "AuditResult", "FairStudy", "WeightStudy", "Correction"} <= set(CONSUMERS)
-    assert len(CONSUMERS) >= 15
+    assert {"TableReproduction", "AuditResult", "FairStudy", "WeightStudy", "Correction"} <= set(_consumers())
+    assert len(_consumers()) >= 15
 
 
 def test_every_chapter_dataclass_declares_a_spec() -> None:
     """Every dataclass of the chapter layer, consumed or not (a consumed one is named with its consumers)."""
     missing = sorted(c for c in DATACLASSES if c not in SPECCED)
-    assert not missing, {c: CONSUMERS.get(c, "not consumed") for c in missing}
+    assert not missing, {c: _consumers().get(c, "not consumed") for c in missing}
 
 
 def test_every_specced_class_has_a_factory_and_validates_when_built() -> None:
