@@ -30,8 +30,8 @@ from test_bad_input import ARR, COUNT, NONNEG, OBJ, POS, UNIT, A, group_tests, p
 ROOT = Path(__file__).resolve().parents[1]
 
 PREFIXES = ("fusion.book.chapters.chernoff.", "fusion.book.chapters.chernoff_scaling.",
-            "fusion.book.chapters.chernoff_steps.", "fusion.book.chapters.chernoff_criteria.",
-            "fusion.book.chapters.chernoff_first_order.")
+            "fusion.book.chapters.chernoff_steps.", "fusion.book.chapters.chernoff_snis.",
+            "fusion.book.chapters.chernoff_criteria.", "fusion.book.chapters.chernoff_first_order.")
 
 CALLABLES = {k: f for k, f in public_callables().items() if k.startswith(PREFIXES) and not inspect.isclass(f)}
 
@@ -349,11 +349,12 @@ def registry() -> dict[str, dict[str, A]]:
     from fusion.estimates.chernoff import first_order_fusion
 
     sp = "fusion.book.chapters.chernoff_steps."
+    sh = "fusion.book.chapters.chernoff_snis."  # step H's studies, split off chernoff_steps
     rs_bad = ("str", ("empty", ()), ("repeated", (10, 10)), ("below two", (1, 10)), ("not dividing", (7, 10)),
               ("beyond half", (10, 2000)))
-    R[sp + "snis_bias_study"] = dict(rng=A(np.random.default_rng(0), RNG), rs=A((5, 10), rs_bad), total=A(2000, CNT),
+    R[sh + "snis_bias_study"] = dict(rng=A(np.random.default_rng(0), RNG), rs=A((5, 10), rs_bad), total=A(2000, CNT),
                                      far_omega=N(0.7, UNIT))
-    R[sp + "chosen_bias_study"] = dict(rng=A(np.random.default_rng(0), RNG), rs=A((5, 10), rs_bad), total=A(2000, CNT))
+    R[sh + "chosen_bias_study"] = dict(rng=A(np.random.default_rng(0), RNG), rs=A((5, 10), rs_bad), total=A(2000, CNT))
     g = first_order_fusion([ga, gb], [0.5, 0.5]).mixture
     R[sp + "defensive_mixture"] = dict(proposal=A(g, ("str", ("None", None), ("a 3-D mixture", gm3))),
                                        local=A([ga, gb], ("str", ("empty", []), ("a non-mixture", [ga, "abc"]), ("dimensions differ", [ga, gm3]))),
@@ -378,7 +379,7 @@ def registry() -> dict[str, dict[str, A]]:
     lt = -0.5 * np.sum((pts - 0.5) ** 2, axis=1)
     cell = float((xs[1] - xs[0]) ** 2)
     lp = -0.5 * np.sum(pts ** 2, axis=1) / 2.0 - np.log(2 * np.pi * 2.0)
-    R[sp + "snis_delta_terms"] = dict(points=N(pts, ("nan", "inf", "empty", "less", "str", "len")),
+    R[sh + "snis_delta_terms"] = dict(points=N(pts, ("nan", "inf", "empty", "less", "str", "len")),
                                       log_target=N(lt, ("nan", "inf", "empty", "more", "str", "len")),
                                       log_proposal=N(lp, ("nan", "inf", "empty", "more", "str", "len")),
                                       cell=N(cell, POS + (("bool", True),)))

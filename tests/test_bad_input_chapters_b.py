@@ -174,7 +174,8 @@ def test_valid_inputs_still_give_the_same_values() -> None:
 #: The modules of part b: chapters 05 (ci), 06 (chernoff*) and 07 (time_registration*).
 PACKAGES = ("fusion.book.chapters.ci", "fusion.book.chapters.chernoff", "fusion.book.chapters.time_registration_ledger")
 MODULES = ("fusion.book.chapters.chernoff_criteria", "fusion.book.chapters.chernoff_first_order",
-           "fusion.book.chapters.chernoff_scaling", "fusion.book.chapters.chernoff_steps",
+           "fusion.book.chapters.chernoff_scaling", "fusion.book.chapters.chernoff_snis",
+           "fusion.book.chapters.chernoff_steps",
            "fusion.book.chapters.time_registration", "fusion.book.chapters.time_registration_robustness")
 
 #: Mutations by annotation: each must be refused naming the parameter (none of them is valid in these modules).

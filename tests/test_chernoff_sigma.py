@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from fusion.book.chapters import chernoff_first_order as csf
+from fusion.book.chapters import chernoff_snis as csn
 from fusion.book.chapters import chernoff_steps as cst
 from fusion.estimates import chernoff as ch
 from fusion.estimates.mixtures import GaussianMixture
@@ -63,7 +64,7 @@ def test_block_minimum_matches_grid_search():
     ref = cst.toy_reference()
     xs = cst.mx.gm_sample(ref.proposal, np.random.default_rng(5), 6 * 50)
     L, lg = cst._log_densities(list(ref.gms), xs), cst._logpdf(ref.proposal, xs)
-    w = cst._block_minimum(L.reshape(6, 50, 2), lg.reshape(6, 50))
+    w = csn._block_minimum(L.reshape(6, 50, 2), lg.reshape(6, 50))
     grid = np.linspace(0, 1, 20001)
     for k in range(6):
         Lk, gk = L[k * 50:(k + 1) * 50], lg[k * 50:(k + 1) * 50]
