@@ -121,7 +121,7 @@ FACTORIES: dict[str, Callable[[], Any]] = {
     "LedgerInputs": lambda: _ledger(),
     # the classes no public function takes (issue 35 class E, second round): the smallest valid studies
     "DesignStudy": lambda: importlib.import_module("fusion.book.chapters.chernoff.guard").design_study(
-        _range_bearing(), 6, runs=2, n_initial=300, workers=1),
+        dataclasses.replace(_range_bearing(), n_particles=200), 6, runs=2, n_initial=300, workers=1),
     "IsVarianceStudy": lambda: importlib.import_module("fusion.book.chapters.chernoff.importance").is_variance_study(
         _rng(), R=5, replicates=20),
     "SigmaProblem": lambda: _instance("SigmaFirstOrderStudy").toy,
