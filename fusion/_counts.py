@@ -452,6 +452,14 @@ def _length(value: object, name: str, length: int | None) -> int:
     return n
 
 
+def not_masked(value: object, name: str) -> None:
+    """Refuse a masked array with a TypeError naming ``name``: its mask would be dropped and the values under it used
+    (the one rule of :func:`sequence` and of the validated arrays, ``fusion._validation``)."""
+    if isinstance(value, np.ma.MaskedArray):
+        raise TypeError(f"{name} must be a plain array, got a masked array (its mask would be ignored: fill or "
+                        "compress it first)")
+
+
 def sequence(value: object, name: str, length: int | None = None, *, minimum: int = 0, what: str = "items") -> list:
     """A sequence argument (issue 35, class 6): a list, tuple or 1-D array, not a string, a dict or a number.
 
@@ -502,6 +510,7 @@ def sequence(value: object, name: str, length: int | None = None, *, minimum: in
             if len(items) != n:
                 raise ValueError(f"{name} has len() {n} but {'more' if len(items) > n else len(items)} items")
     elif hasattr(value, "__array__") or hasattr(value, "__array_interface__"):
+        not_masked(value, name)   # its items would be the masked constant or the values under the mask
         try:
             arr = np.asarray(value)
         except MemoryError:

@@ -111,8 +111,8 @@ from scipy.linalg.lapack import dpotrf as _potrf
 
 from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, seeds and sequences)
     BY_KIND, COUNT_CEILINGS, COUNT_KINDS, MAX_COUNT, MAX_ELEMENTS, _bool_error, _complex_error, _integer, allocation,
-    count, count_ceiling, count_kind, counts, distinct, grid_points, index, iterable, machine_workers, PAIR_WORK,
-    pairwise, seed, seeds, sequence, workers)
+    count, count_ceiling, count_kind, counts, distinct, grid_points, index, iterable, machine_workers, not_masked,
+    PAIR_WORK, pairwise, seed, seeds, sequence, workers)
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, mapping_of, psd_factor, record, records_of, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
@@ -133,9 +133,7 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
     conversion to numbers depends on a unit the function cannot know).
     """
     input_size(x, name)  # rule 9: before any copy or conversion
-    if isinstance(x, np.ma.MaskedArray):
-        raise TypeError(f"{name} must be a plain array, got a masked array (its mask would be ignored: fill or "
-                        "compress it first)")
+    not_masked(x, name)
     if isinstance(x, np.ndarray) and type(x) is not np.ndarray:  # np.matrix and other subclasses: their indexing
         x = np.asarray(x)  # and products differ from an array's; the same numbers as a plain array
     if isinstance(x, np.ndarray):
