@@ -34,7 +34,8 @@ from fusion.book.tables import rounded
 from fusion.readings.robust import ROBUST_METHODS, robust_fuse
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
-from fusion._counts import distinct, sequence
+from fusion._counts import allocation, distinct, sequence
+from fusion._limits import work
 from fusion._structures import record, records_of
 from fusion._shown import shown
 
@@ -162,6 +163,21 @@ SIZE, COUNT, SPREAD = "fault size (σ), 2 faulty sensors", "faulty sensors (bias
 #: Name of the opposite-sign sweep: two faulty sensors, one biased by +b, one by -b.
 OPPOSITE = "fault size (σ), 2 faulty sensors of opposite signs"
 
+#: Units of work (rule 17, ``fusion._limits.work``) of one reading fused by one method at one sweep point of
+#: :func:`fair_study`: measured 80 ns a reading, method and point on this machine (the default sweeps, 23 points x
+#: 11 methods, ran 20 CPU-s at 1,000 runs x 100 samples x 10 sensors), so that the budget stops a study near half a
+#: minute (about 1,300 runs of the default sweeps; the book's 100 and the ledger's 500 stay well inside).
+FAIR_WORK = 3
+
+
+def _budget(shape: tuple[int, int, int], points: int, methods: int, names: tuple[str, str]) -> None:
+    """Refuse a fair study whose draws, of ``shape`` (runs, samples, sensors), are beyond the memory budget or whose
+    ``points`` x ``methods`` fusions of them are beyond the work budget (:data:`FAIR_WORK`), naming ``names`` (the
+    memory's, the work's): :func:`fair_study` and its cached entries (``fusion.book.chapters.ofs.fair``) call it
+    before anything is drawn, each naming its own arguments."""
+    allocation(shape, names[0])
+    work((points, methods, *shape, FAIR_WORK), names[1])
+
 
 def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequence[float] = (0, 1, 2, 3, 4, 6, 8, 10),
                counts: Sequence[int] = (0, 1, 2, 3, 4, 5), spreads: Sequence[float] = (1, 2, 4, 8, 16),
@@ -208,8 +224,11 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
         A count or a sweep point not of its type, ``methods`` not strings.
     ValueError
         Every sweep empty (nothing to run), a sweep repeating a point (its results are keyed by it), a point out
-        of range (a count beyond ``n_sensors``, a spread below 1, a size not finite), ``methods`` empty, unknown or
-        repeated.
+        of range (a count beyond ``n_sensors``, a spread below 1, a size not finite), ``sizes`` or ``opposite``
+        given points with fewer than two sensors (each of their points biases two), ``methods`` empty, unknown or
+        repeated; the draws beyond the memory budget (naming ``n_runs, n_samples and n_sensors``) or the study
+        beyond the work budget (``fusion._limits.MAX_WORK``, :data:`FAIR_WORK` units a reading, method and point),
+        refused before anything is drawn.
     """
     seed = check_seed(seed)
     n_runs, n_samples, n_sensors = (count(v, k) for v, k in ((n_runs, "n_runs"), (n_samples, "n_samples"),
@@ -225,6 +244,15 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
         distinct(points, name)
     if not (sizes or counts or opposite or spreads):
         raise ValueError("sizes, counts, opposite and spreads are all empty: the study would run no point")
+    for name, points in (("sizes", sizes), ("opposite", opposite)):
+        # both sweeps bias two sensors (fuzz 26d D1-D2): one sensor cannot hold them
+        if points and n_sensors < 2:
+            raise ValueError(f"{name}: its sweep biases two faulty sensors, but n_sensors = {n_sensors}; give "
+                             f"n_sensors >= 2 or {name}=()")
+    # the memory and work budgets before anything is drawn (fuzz 26d D3): the draws are one (n_runs, n_samples,
+    # n_sensors) array, and every sweep point runs every method over it
+    _budget((n_runs, n_samples, n_sensors), len(sizes) + len(counts) + len(opposite) + len(spreads), len(methods),
+            ("n_runs, n_samples and n_sensors", "n_runs, n_samples, n_sensors, the sweeps and methods"))
     rng = np.random.default_rng(count(seed, "seed", minimum=0, maximum=None))
     e = rng.standard_normal((n_runs, n_samples, n_sensors))
     perm = np.argsort(rng.random((n_runs, n_sensors)), axis=1)
@@ -232,8 +260,6 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     mae: dict[tuple[str, float], dict[str, FloatArray]] = {}
 
     def faulty(k: int, size: float) -> FloatArray:
-        if not 0 <= k <= n_sensors:
-            raise ValueError(f"counts must lie in 0..{n_sensors}, got {k}")
         bias = np.zeros((n_runs, n_sensors))
         np.put_along_axis(bias, perm[:, :k], float(size), axis=1)
         return truth + e + bias[:, None, :]

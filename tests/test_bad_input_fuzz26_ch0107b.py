@@ -1,0 +1,58 @@
+"""Fuzz 26d (chapters 01-04 and 07), classes B, C, D, E, F, W and the debatables DB2-DB8 (the second fixer's share):
+bad input refused by the caller's argument name, valid input kept, the texts of a study taken from it (issue 35)."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from fusion.book.chapters import ofs, ofs_fair
+
+
+def _starts(e: pytest.ExceptionInfo, name: str) -> bool:
+    return re.match(rf"{re.escape(name)}\b", str(e.value)) is not None
+
+
+# --------------------------------------------------------------------------- D: fair_study with one sensor, budgets
+@pytest.mark.parametrize("sweep", ["sizes", "opposite"])
+def test_d_two_sensor_sweeps_need_two_sensors(sweep: str) -> None:
+    kw = dict(sizes=(), counts=(), spreads=(), opposite=())
+    kw[sweep] = (2.0,)
+    with pytest.raises(ValueError) as e:
+        ofs_fair.fair_study(0, 5, 5, n_sensors=1, **kw)
+    assert _starts(e, sweep) and "n_sensors" in str(e.value), str(e.value)
+    # two sensors hold them; one sensor still runs the sweeps that need one
+    ofs_fair.fair_study(0, 5, 5, n_sensors=2, **kw)
+    st = ofs_fair.fair_study(0, 5, 5, n_sensors=1, sizes=(), counts=(0, 1), spreads=(1, 2), opposite=())
+    assert (ofs_fair.COUNT, 1.0) in st.mae
+
+
+def test_d_fair_study_budgets_before_drawing() -> None:
+    with pytest.raises(ValueError) as e:
+        ofs_fair.fair_study(0, 10**6)   # 7.45 GiB of draws
+    assert _starts(e, "n_runs") and "memory budget" in str(e.value), str(e.value)
+    with pytest.raises(ValueError) as e:
+        ofs_fair.fair_study(0, 5000)    # 0.4 GB of draws, but about two minutes of fusing
+    assert _starts(e, "n_runs") and "work budget" in str(e.value), str(e.value)
+    # the work counts the points and methods asked: one point of one method at 5,000 runs is inside the budget
+    ofs_fair.fair_study(0, 5000, 2, sizes=(1,), counts=(), spreads=(), opposite=(), methods=("mean",))
+
+
+@pytest.mark.parametrize("fn", [ofs.fair, ofs.fair_weights])
+@pytest.mark.parametrize("runs", [10**6, 10**4])
+def test_d_fair_entries_name_runs(fn, runs: int) -> None:
+    with pytest.raises(ValueError) as e:
+        fn(0, runs)
+    assert _starts(e, "runs") and "budget" in str(e.value), str(e.value)
+
+
+# --------------------------------------------------------------------------- W4: the chapter 01 studies name runs
+@pytest.mark.parametrize("name", ["study", "weight_study", "membership_study", "alpha_study", "claim_values",
+                                  "evidence", "faulty_member_share", "healthy_dropped_share",
+                                  "not_neighbourhood_share"])
+def test_w4_ofs_studies_name_runs(name: str) -> None:
+    with pytest.raises(ValueError) as e:
+        getattr(ofs, name)(0, 10**6)
+    assert _starts(e, "runs") and "memory budget" in str(e.value), str(e.value)
+
