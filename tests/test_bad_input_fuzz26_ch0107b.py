@@ -56,3 +56,26 @@ def test_w4_ofs_studies_name_runs(name: str) -> None:
         getattr(ofs, name)(0, 10**6)
     assert _starts(e, "runs") and "memory budget" in str(e.value), str(e.value)
 
+
+# --------------------------------------------------------------------------- C, DB2: one-run benchmark's standard error
+def test_c_glue_offset_refuses_one_run_naming_results() -> None:
+    from fusion.book.chapters import lecture_weighting as ch2
+    from fusion.scenarios import lecture_weighting as lw
+    kw = dict(seeds=(9001,), samples=20, levels=(900.0,), fault_from=0, faults=(True,))
+    with pytest.raises(ValueError) as e:
+        ch2.glue_offset(lw.benchmark(runs=1, **kw))
+    assert _starts(e, "results") and "2 runs" in str(e.value), str(e.value)
+    g = ch2.glue_offset(lw.benchmark(runs=2, **kw))
+    assert all(v == v for v in g.values())
+
+
+def test_db2_table_benchmark_one_run_shows_no_standard_error() -> None:
+    from fusion.book.chapters import lecture_weighting as ch2
+    from fusion.scenarios import lecture_weighting as lw
+    for runs in (1, 2):
+        res = lw.benchmark(seeds=(5, 6), runs=runs, samples=10)
+        tab = ch2.table_benchmark(res, lw.seed_stability(res), samples=10)
+        cells = tab.iloc[:, 0]
+        assert all(c.endswith("± n/a") for c in cells) == (runs == 1), list(cells)
+        assert not any(c.endswith("± 0.0000") for c in cells), list(cells)
+
