@@ -79,3 +79,17 @@ def test_db2_table_benchmark_one_run_shows_no_standard_error() -> None:
         assert all(c.endswith("± n/a") for c in cells) == (runs == 1), list(cells)
         assert not any(c.endswith("± 0.0000") for c in cells), list(cells)
 
+
+# --------------------------------------------------------------------------- B: E2.6 of another setup than m
+def test_b_glue_mechanism_refuses_e26_of_another_setup() -> None:
+    from fusion.book.chapters.lecture_wavelets import mechanism as mech
+    from fusion.book.chapters.lecture_wavelets import records as lwr
+    m = lwr.study("m26", 2601, 100)
+    mech.glue_mechanism(m, lwr.study("e26", 2601, 100))   # the chapter's pairing
+    from fusion.book.chapters.lecture_wavelets import appendix as wa
+    for other in (lwr.study("g1", 2601, 100), wa.length_study(64, runs=100)):   # equal gains; 64 samples
+        for fn in (mech.table_sensitivity_display, mech.glue_mechanism):
+            with pytest.raises(ValueError) as e:
+                fn(m, other)
+            assert _starts(e, "e26") and "another setup" in str(e.value), str(e.value)
+
