@@ -93,3 +93,39 @@ def test_b_glue_mechanism_refuses_e26_of_another_setup() -> None:
                 fn(m, other)
             assert _starts(e, "e26") and "another setup" in str(e.value), str(e.value)
 
+
+# --------------------------------------------------------------------------- E: chapter-layer specs of what is read
+def test_e1_registration_study_robust_entries_hold_the_methods_read() -> None:
+    import dataclasses
+
+    from fusion.book.chapters import time_registration_ledger as trl
+    from fusion.scenarios import time_registration as sc
+    st = trl.cached_study(0, 100)
+    k0 = next(iter(st.robust))
+    mc4 = sc.monte_carlo([m.value for m in sc.RegMethod][:4], 1.0, 4, 0)   # without the improved method
+    with pytest.raises(ValueError) as e:
+        dataclasses.replace(st, robust={**st.robust, k0: mc4})
+    assert _starts(e, "RegistrationStudy.robust") and "reg_improved" in str(e.value), str(e.value)
+    with pytest.raises(ValueError) as e:
+        dataclasses.replace(st, sigma=2.0)   # every run at sigma 1
+    assert _starts(e, "RegistrationStudy.robust") and "sigma" in str(e.value), str(e.value)
+    dataclasses.replace(st, robust=dict(st.robust))   # the study's own entries
+
+
+@pytest.mark.parametrize("field", ["known", "estimated"])
+def test_e2_plugin_exact_requires_every_crossing(field: str) -> None:
+    import dataclasses
+
+    from fusion.book.chapters import lecture_correlated as ch
+    from fusion.book.chapters.lecture_correlated.ridge import _CROSSINGS
+    from fusion.scenarios import ridge_sensors as rs
+    x = ch.plugin_exact(rs.plugin_study(xs=(0.0, 0.5, 1.0, 3.0), runs=100, seed=4))
+    for drop in _CROSSINGS:
+        if field == "known":
+            c0 = next(iter(x.known))
+            value = {**x.known, c0: {k: v for k, v in x.known[c0].items() if k != drop}}
+        else:
+            value = {k: v for k, v in x.estimated.items() if k != drop}
+        with pytest.raises(ValueError) as e:
+            dataclasses.replace(x, **{field: value})
+        assert _starts(e, f"PluginExact.{field}") and drop in str(e.value), str(e.value)

@@ -143,6 +143,16 @@ def _robust_relation(values: Mapping[str, Any], cls: str) -> None:
     if not want <= set(values["robust"]):
         raise ValueError(f"{cls}.robust must hold the runs of every robustness reading, misses "
                          f"{shown(sorted(want - set(values['robust'])))}")
+    # each reading's runs hold the methods its readers compare, at the study's noise (fuzz 26d E1: a KeyError later)
+    methods = (*FIG4, RegMethod.LEAST_SQUARES)
+    for key, m in values["robust"].items():
+        lacking = [str(x) for x in methods if x not in m.per_run]
+        if lacking:
+            raise ValueError(f"{cls}.robust[{shown(key)}] must hold the runs of {[str(x) for x in methods]}, "
+                             f"lacks {lacking}")
+        if m.sigma != values["sigma"]:
+            raise ValueError(f"{cls}.robust[{shown(key)}] holds runs at sigma = {m.sigma:g}, not the study's "
+                             f"{cls}.sigma = {values['sigma']:g}")
 
 
 # the robustness tables take this study; their module cannot import it (this module imports the chapter module, which
