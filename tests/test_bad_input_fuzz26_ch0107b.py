@@ -129,3 +129,41 @@ def test_e2_plugin_exact_requires_every_crossing(field: str) -> None:
         with pytest.raises(ValueError) as e:
             dataclasses.replace(x, **{field: value})
         assert _starts(e, f"PluginExact.{field}") and drop in str(e.value), str(e.value)
+
+
+# --------------------------------------------------------------------------- F: texts of the study, not the default's
+def test_f1_figure_21a_states_the_study_variance() -> None:
+    from fusion.book.chapters import lecture_weighting as ch2
+    from fusion.scenarios import lecture_weighting as lw
+    kw = dict(levels=(0.0, 100.0, 900.0), runs=20, k_max=100, ks=(10, 100), k_compare=100)
+    for sigma, v in (((0.5, 1.0, 2.0, 4.0), 0.25), ((1.0, 1.0, 2.0, 4.0), 1.0)):
+        ax = ch2.figure_21a(lw.awf_study(sigma=sigma, **kw)).axes[0]
+        assert ax.get_ylabel() == f"estimate of σ₁² (σ₁² = {v:g})"
+        assert ax.get_ylim() == pytest.approx((-10 * v, 12 * v))
+
+
+@pytest.mark.parametrize("sensor", [0, 2])
+def test_f2_figure_23_names_the_faulty_sensor(sensor: int) -> None:
+    from fusion.book.chapters import lecture_weighting as ch2
+    from fusion.scenarios import lecture_weighting as lw
+    f = ch2.figure_23(lw.consistency_study(runs=20, fault_sensor=sensor, curve_draws=200))
+    texts = [f.axes[0].get_title(), f.axes[1].get_xlabel(), f.axes[1].get_ylabel()]
+    assert all(f"sensor {sensor + 1}" in t for t in texts), texts
+    assert not any(f"sensor {k}" in t for t in texts for k in {1, 2, 3, 4} - {sensor + 1}), texts
+
+
+def test_f3_figure_25_states_the_study_sigma() -> None:
+    from fusion.book.chapters import lecture_correlated as ch4
+    from fusion.scenarios import lecture_correlated as lsc
+    for sigma in (1.0, 2.0):
+        s = lsc.ridge_study(sigma=sigma, draws=50)
+        assert ch4.figure_25(s).axes[0].get_ylabel() == f"MSE (m = {s.m0}, σ = {sigma:g})"
+
+
+def test_f4_table_regime_names_the_study_level() -> None:
+    from fusion.book.chapters import lecture_weighting as ch2
+    from fusion.scenarios import lecture_weighting as lw
+    kw = dict(samples=60, runs=20, change_at=30, period=40.0, window=10)
+    for level in (100.0, 900.0):
+        cols = list(ch2.table_regime(lw.regime_study(level=level, **kw)).columns)
+        assert f"slow sine at {level:g}" in cols and sum(c.startswith("slow sine at") for c in cols) == 1, cols

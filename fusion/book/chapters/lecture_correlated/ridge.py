@@ -140,7 +140,7 @@ def figure_25(s: RidgeStudy) -> Figure:
         axes[1].plot(s.kgrid, s.rel[x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
     axes[0].set_yscale("log")
     axes[0].set_xlabel("ridge parameter k")
-    axes[0].set_ylabel(f"MSE (m = {s.m0}, σ = 1)")
+    axes[0].set_ylabel(f"MSE (m = {s.m0}, σ = {s.sigma:g})")   # the study's σ (fuzz 26d F3)
     axes[1].set_xlabel("ridge parameter k")
     axes[1].set_ylabel("reliability P(|error| ≤ σ/√m)")
     for j, ((x, k), diffs) in enumerate(s.conv.items()):
