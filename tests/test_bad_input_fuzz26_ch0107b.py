@@ -11,7 +11,7 @@ from fusion.book.chapters import ofs, ofs_fair
 
 
 def _starts(e: pytest.ExceptionInfo, name: str) -> bool:
-    return re.match(rf"{re.escape(name)}\b", str(e.value)) is not None
+    return re.match(rf"{re.escape(name)}(?!\w)", str(e.value)) is not None
 
 
 # --------------------------------------------------------------------------- D: fair_study with one sensor, budgets
@@ -167,3 +167,35 @@ def test_f4_table_regime_names_the_study_level() -> None:
     for level in (100.0, 900.0):
         cols = list(ch2.table_regime(lw.regime_study(level=level, **kw)).columns)
         assert f"slow sine at {level:g}" in cols and sum(c.startswith("slow sine at") for c in cols) == 1, cols
+
+
+# --------------------------------------------------------------------------- W1-W3: the caller's argument named
+@pytest.mark.parametrize("fn", ["table_belief_limit", "table_belief_grids"])
+def test_w1_w2_belief_tables_name_s(fn: str) -> None:
+    from fusion.book.chapters import lecture_weighting as ch2
+    from fusion.scenarios import lecture_weighting as lw
+    s = lw.belief_parameter_study(params=(1.0, 2.0), grid=(1.0, 2.0), snapshots=100)
+    with pytest.raises(ValueError) as e:
+        getattr(ch2, fn)(s)
+    assert _starts(e, "s") and "params" in str(e.value), str(e.value)
+
+
+def test_w3_log_range_bounded_by_name() -> None:
+    from hypothesis import given, settings, strategies as st
+
+    from fusion.book.chapters import lecture_weighting as ch2
+    from fusion.scenarios import lecture_weighting as lw
+    from fusion.scenarios.lecture_weighting.learning import MAX_LOG_RANGE
+
+    @settings(max_examples=15, deadline=None)
+    @given(st.floats(min_value=MAX_LOG_RANGE, max_value=1e6, exclude_min=True))
+    def beyond(a: float) -> None:
+        with pytest.raises(ValueError) as e:
+            ch2.spread_check((1.0, a), 20, 2204)
+        assert _starts(e, "log_ranges[1]"), str(e.value)
+        with pytest.raises(ValueError) as e:
+            lw.learned_limit_check(draws=20, log_range=a)
+        assert _starts(e, "log_range"), str(e.value)
+
+    beyond()
+    ch2.spread_check((MAX_LOG_RANGE,), 20, 2204)   # the bound itself: every variance within the numeric range

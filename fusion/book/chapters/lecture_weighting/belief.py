@@ -430,7 +430,8 @@ def table_belief_grids(s: BeliefParameterStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : BeliefParameterStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study` (its ``params`` must hold every grid value).
+        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study` (its ``params`` must hold every grid value: a
+        ValueError naming ``s`` otherwise).
 
     Returns
     -------
@@ -441,6 +442,8 @@ def table_belief_grids(s: BeliefParameterStudy) -> pd.DataFrame:
         checked (:func:`belief_objectivity`).
     """
     instance_of(s, BeliefParameterStudy, "s")
+    _holds(s.params.tolist(), sorted({v for g in BELIEF_GRIDS for grid in g for v in grid}), "s", "params",
+           "table_belief_grids (every grid of BELIEF_GRIDS)")   # named s, not belief_objectivity's grid (fuzz 26d W2)
     rows = []
     for g in BELIEF_GRIDS:
         row: dict[str, str] = {"s grid": _grid_text(g[0]), "ε grid": _grid_text(g[1])}
@@ -462,7 +465,8 @@ def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : BeliefParameterStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`, with the limit grids.
+        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`, with the limit grids (its
+        ``params`` must hold every value of :data:`LIMIT_GRIDS`: a ValueError naming ``s`` otherwise).
 
     Returns
     -------
@@ -472,6 +476,8 @@ def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
         (ε on the same grid), each with its 95 % CI (negative: the truncated belief moves less).
     """
     instance_of(s, BeliefParameterStudy, "s")
+    _holds(s.params.tolist(), sorted({v for g in LIMIT_GRIDS for v in g}), "s", "params",
+           "table_belief_limit (every grid of LIMIT_GRIDS)")   # named s, not belief_accuracy's values (fuzz 26d W1)
     rows = []
     for g in LIMIT_GRIDS:
         acc = belief_accuracy(s, K.FUZZY_LIMIT, g)
