@@ -199,3 +199,11 @@ def test_w3_log_range_bounded_by_name() -> None:
 
     beyond()
     ch2.spread_check((MAX_LOG_RANGE,), 20, 2204)   # the bound itself: every variance within the numeric range
+
+
+# --------------------------------------------------------------------------- DB3: fair_numbers lists points in order
+def test_db3_fair_numbers_do_not_depend_on_the_sweep_order() -> None:
+    kw = dict(counts=(0, 1, 5), spreads=(1, 16), opposite=(2, 6))
+    a = ofs_fair.fair_numbers(ofs_fair.fair_study(0, 100, 10, sizes=(0, 4, 8), **kw))
+    b = ofs_fair.fair_numbers(ofs_fair.fair_study(0, 100, 10, sizes=(8, 4, 0), **{k: v[::-1] for k, v in kw.items()}))
+    assert a == b, {k: (a[k], b[k]) for k in a if a[k] != b[k]}

@@ -411,7 +411,8 @@ def fair_numbers(study: FairStudy) -> GlueValues:
     -------
     GlueValues
         Glue key -> value: mean absolute errors (°C, 3 decimals) of the clean, largest-fault, most-faults
-        and widest-spread settings; the settings where the optimal fusion set beats every other method;
+        and widest-spread settings; the settings where the optimal fusion set beats every other method (listed in
+        ascending order, whatever the order of the sweeps);
         the equal-weight ablation's largest relative change and its verdict counts; the spread settings
         where the arithmetic mean is better or worse.
 
@@ -427,12 +428,15 @@ def fair_numbers(study: FairStudy) -> GlueValues:
     F = {k: {m: float(v.mean()) for m, v in e.items()} for k, e in study.mae.items()}
     V = verdicts(study)  # names study when its runs are fewer than rule R4's minimum
     others = [_row(m) for m in FAIR_METHODS if m not in ("optimal_fusion_set", "uniform_set")]
-    size_keys = [k for k in study.mae if k[0] == SIZE]
-    opp_keys = [k for k in study.mae if k[0] == OPPOSITE]
+    # the points in ascending order, whatever the sweeps' order (fuzz 26d DB3: "8, 6, 4" glued for a reversed sweep,
+    # and the "largest" size, count and spread read as the last point given, not the largest)
+    size_keys = sorted(k for k in study.mae if k[0] == SIZE)
+    opp_keys = sorted(k for k in study.mae if k[0] == OPPOSITE)
     beaten = ("mean", "huber", "trimmed_mean_25")
     opp_lose = [k[1] for k in opp_keys if all(V.loc[_row(m), (k[0], f"{k[1]:g}")] == "better" for m in beaten)]
     size_win = [k[1] for k in size_keys if (V.loc[others, (k[0], f"{k[1]:g}")] == "worse").all()]
-    count_keys = [k for k in study.mae if k[0] == COUNT]
+    count_keys = sorted(k for k in study.mae if k[0] == COUNT)
+    spread_keys = sorted(k for k in study.mae if k[0] == SPREAD)
     count_win = [k[1] for k in count_keys if (V.loc[others, (k[0], f"{k[1]:g}")] == "worse").all()]
     abl = [abs(F[k]["uniform_set"] / F[k]["optimal_fusion_set"] - 1) for k in study.mae]
     k_abl = list(study.mae)[int(np.argmax(abl))]
@@ -455,10 +459,10 @@ def fair_numbers(study: FairStudy) -> GlueValues:
         "ofs_fair_max_count": f"{count_keys[-1][1]:g}",
         "ofs_fair_halfway": {m: rounded(F[count_keys[-1]][m], 3) for m in ("optimal_fusion_set", "median")}["optimal_fusion_set"],
         "ofs_fair_halfway_median": rounded(F[count_keys[-1]]["median"], 3),
-        "ofs_fair_spread_max": f"{[k for k in study.mae if k[0] == SPREAD][-1][1]:g}",
-        "ofs_fair_spread_ivar": rounded(F[[k for k in study.mae if k[0] == SPREAD][-1]]["inverse_variance"], 3),
-        "ofs_fair_spread_ofs": rounded(F[[k for k in study.mae if k[0] == SPREAD][-1]]["optimal_fusion_set"], 3),
-        "ofs_fair_spread_median": rounded(F[[k for k in study.mae if k[0] == SPREAD][-1]]["median"], 3),
+        "ofs_fair_spread_max": f"{spread_keys[-1][1]:g}",
+        "ofs_fair_spread_ivar": rounded(F[spread_keys[-1]]["inverse_variance"], 3),
+        "ofs_fair_spread_ofs": rounded(F[spread_keys[-1]]["optimal_fusion_set"], 3),
+        "ofs_fair_spread_median": rounded(F[spread_keys[-1]]["median"], 3),
         "ofs_fair_abl_max": rounded(max(abl), 3), "ofs_fair_abl_where": f"{k_abl[0]} = {k_abl[1]:g}",
         "ofs_fair_abl_ofs": rounded(F[k_abl]["optimal_fusion_set"], 3), "ofs_fair_abl_uni": rounded(F[k_abl]["uniform_set"], 3),
         "ofs_fair_abl_median": rounded(float(np.median(abl)), 4),
@@ -470,11 +474,12 @@ def fair_numbers(study: FairStudy) -> GlueValues:
         **{f"ofs_fair_abl_n_{k}": int((V.loc[_row("uniform_set")] == w).sum())
            for k, w in (("better", "better"), ("worse", "worse"), ("nd", "not distinguishable"),
                         ("eq", WORDS["equivalent"]))},
-        "ofs_fair_spread_mean_better_upto": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
-                                                       and V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "better"),
-        "ofs_fair_spread_ofs_better_from": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
-                                                      and V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "worse"),
-        "ofs_fair_spread_median_words": ", ".join(f"{w} at {v}" for v, w in V.loc[_row("median"), SPREAD].items()),
+        "ofs_fair_spread_mean_better_upto": ", ".join(f"{k[1]:g}" for k in spread_keys
+                                                       if V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "better"),
+        "ofs_fair_spread_ofs_better_from": ", ".join(f"{k[1]:g}" for k in spread_keys
+                                                      if V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "worse"),
+        "ofs_fair_spread_median_words": ", ".join(f"{V.loc[_row('median'), (SPREAD, f'{k[1]:g}')]} at {k[1]:g}"
+                                                  for k in spread_keys),
     }
 
 
