@@ -207,3 +207,26 @@ def test_db3_fair_numbers_do_not_depend_on_the_sweep_order() -> None:
     a = ofs_fair.fair_numbers(ofs_fair.fair_study(0, 100, 10, sizes=(0, 4, 8), **kw))
     b = ofs_fair.fair_numbers(ofs_fair.fair_study(0, 100, 10, sizes=(8, 4, 0), **{k: v[::-1] for k, v in kw.items()}))
     assert a == b, {k: (a[k], b[k]) for k in a if a[k] != b[k]}
+
+
+# --------------------------------------------------------------------------- DB7: one "written as" rule
+def test_db7_table_shift_weight_takes_a_grid_point_as_written() -> None:
+    import numpy as np
+    from hypothesis import given, settings, strategies as st
+
+    from fusion.book.chapters import lecture_weighting as ch2
+    d = ch2.shift_weight_draws(draws=5)
+
+    @settings(max_examples=25, deadline=None)
+    @given(st.integers(0, 200), st.sampled_from(["float32", "product"]))
+    def on_grid(k: int, how: str) -> None:
+        a = np.float32(k / 10) if how == "float32" else k * 0.1
+        tab = ch2.table_shift_weight(d, (a,))
+        assert tab.index.tolist() == [f"{k / 10:g}"]
+
+    on_grid()
+    for a in (np.float32(0.35), 0.3 + 1e-6):   # between grid points: refused by name
+        with pytest.raises(ValueError) as e:
+            ch2.table_shift_weight(d, (a,))
+        assert _starts(e, "at[0]"), str(e.value)
+

@@ -19,6 +19,7 @@ from matplotlib.figure import Figure
 from fusion._docstrings import ParameterDocs
 from fusion._results import ResultSpec, array, flag, integer, number, validated_post_init
 from fusion._validation import count
+from fusion._limits import written_as
 from fusion.book.chapters.lecture import _holds, _key, _lec_glue, _r, legend_below, sci
 from fusion.book.tables import roundoff
 from fusion.book.glue import GlueValues
@@ -596,7 +597,8 @@ def table_shift_weight(s: ShiftWeightDraws, at: tuple[float, ...] = (0.0, 1.0, 2
     s : ShiftWeightDraws
         Result of :func:`shift_weight_draws`.
     at : tuple of float
-        Shifts Δ (°C) on the grid of ``s.deltas``.
+        Shifts Δ (°C) on the grid of ``s.deltas``, up to round-off: a grid point as written down (a float32 0.3,
+        ``0.1 * 3``; the rule of ``fusion._limits.written_as``, PublishedValues' too) is that point.
 
     Returns
     -------
@@ -615,7 +617,9 @@ def table_shift_weight(s: ShiftWeightDraws, at: tuple[float, ...] = (0.0, 1.0, 2
     for i, a in enumerate(sequence(at, "at", minimum=1, what="shift")):
         a = scalar(a, f"at[{i}]")
         j = int(np.argmin(np.abs(s.deltas - a)))
-        if abs(s.deltas[j] - a) > 1e-9 * max(1.0, abs(a)):
+        # a grid point up to round-off, or as written down (fusion._limits.written_as: a float32 0.3 is 0.3, as in
+        # PublishedValues; fuzz 26d DB7)
+        if abs(s.deltas[j] - a) > 1e-9 * max(1.0, abs(a)) and not written_as(a, float(np.round(s.deltas[j], 9))):
             raise ValueError(f"at[{i}] = {shown(a)} is not a shift of the grid of s.deltas ({s.deltas[0]:g} to "
                              f"{s.deltas[-1]:g} in steps of {s.deltas[1] - s.deltas[0]:g})")
         idx.append(j)
