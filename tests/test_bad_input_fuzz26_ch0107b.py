@@ -230,3 +230,16 @@ def test_db7_table_shift_weight_takes_a_grid_point_as_written() -> None:
             ch2.table_shift_weight(d, (a,))
         assert _starts(e, "at[0]"), str(e.value)
 
+
+# --------------------------------------------------------------------------- DB4: chapter 03's studies of other seeds
+def test_db4_chapter03_studies_of_other_seeds_are_read_each_on_its_own() -> None:
+    from fusion.book.chapters.lecture_wavelets import records as lwr
+    st = {k: lwr.study(k, 2601, 100) for k in lwr.STUDIES}
+    mixed = {**st, "e26": lwr.study("e26", 2602, 100)}
+    lwr.ledger_values(mixed)   # documented: accepted
+    def seeds_of(ev: object) -> set:
+        parts = getattr(ev, "parts", None)
+        return set().union(*(seeds_of(p) for _, p in parts)) if parts else {getattr(ev, "seed", None)}
+
+    seeds = set().union(*(seeds_of(ev) for rec in lwr.evidence(mixed).values() for ev in rec.values()))
+    assert {2601, 2602} <= seeds, seeds   # each reading at its own study's seed
