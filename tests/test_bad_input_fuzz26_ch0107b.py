@@ -243,3 +243,20 @@ def test_db4_chapter03_studies_of_other_seeds_are_read_each_on_its_own() -> None
 
     seeds = set().union(*(seeds_of(ev) for rec in lwr.evidence(mixed).values() for ev in rec.values()))
     assert {2601, 2602} <= seeds, seeds   # each reading at its own study's seed
+
+
+# --------------------------------------------------------------------------- DB5, DB8: chapter 07's instants
+def test_db5_db8_noise_gain_by_instant_documented_behaviour() -> None:
+    import numpy as np
+
+    from fusion.book.chapters import time_registration_ledger as trl
+    from fusion.scenarios import time_registration as sc
+    t1, t2 = (np.asarray(t, dtype=float) for t in sc.instants())
+    a = trl.noise_gain_by_instant(t1, t2)
+    b = trl.noise_gain_by_instant(t1 - 30.0, t2 - 30.0)   # DB5: before the start, the same gains
+    np.testing.assert_allclose(b.to_numpy(dtype=float), a.to_numpy(dtype=float), rtol=1e-9, atol=1e-9)
+    t2n = t2.copy()
+    j = int(np.searchsorted(t1, t2[0]))
+    t2n[0] = t1[j] * (1 + 1e-15) if t1[j] != 0 else t1[j] + 1e-15   # DB8: a few ulps from a sample
+    c = trl.noise_gain_by_instant(t1, t2n)
+    assert not c["sample time"].iloc[0] and c["g two-point"].iloc[0] == pytest.approx(1.0, abs=1e-9)
