@@ -260,3 +260,17 @@ def test_db5_db8_noise_gain_by_instant_documented_behaviour() -> None:
     t2n[0] = t1[j] * (1 + 1e-15) if t1[j] != 0 else t1[j] + 1e-15   # DB8: a few ulps from a sample
     c = trl.noise_gain_by_instant(t1, t2n)
     assert not c["sample time"].iloc[0] and c["g two-point"].iloc[0] == pytest.approx(1.0, abs=1e-9)
+
+
+# --------------------------------------------------------------------------- DB6: the work budget applied
+def test_db6_time_registration_studies_within_the_work_budget() -> None:
+    from fusion.book.chapters import time_registration_ledger as trl
+    from fusion.scenarios import time_registration as sc
+    t1, t2 = sc.instants()
+    with pytest.raises(ValueError) as e:
+        trl.study(t1, t2, 1.0, 10**6, 0)   # minutes before (10.4 CPU-s at 1e5 runs)
+    assert _starts(e, "runs") and "work budget" in str(e.value), str(e.value)
+    names = [m.value for m in sc.RegMethod]
+    with pytest.raises(ValueError) as e:
+        sc.monte_carlo(names, 1.0, 5 * 10**6, 0)
+    assert _starts(e, "runs, names") and "work budget" in str(e.value), str(e.value)
