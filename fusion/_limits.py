@@ -107,3 +107,32 @@ def loop_work(steps: tuple[int, ...], per_step: int, names: str, step: int = LOO
         If the work is beyond :data:`MAX_WORK`, naming ``names``.
     """
     return work(tuple(steps) + (int(step) + int(per_step),), names)
+
+
+#: Relative round-off of a float64 computation of a decimal (``0.1 * 3``, ``12.3 / 100``: within one or two ulps of
+#: it), the float64 part of :func:`written_as`.
+F64_ROUND_OFF = 4 * float(np.finfo(np.float64).eps)
+
+
+def written_as(p: float, q: float) -> bool:
+    """Whether ``p`` is the number ``q`` up to the binary round-off of writing it down: ``q`` itself, within a few
+    float64 ulps of it (``0.1 * 3`` for 0.3), or the float32 nearest it (``np.float32(0.3)``, a table read as float32).
+
+    The one rule of the package for "the value given is that decimal" (``PublishedValues``' printed decimals,
+    fuzz 24e F1 / 26a D1; a shift of ``table_shift_weight``'s grid, fuzz 26d DB7): bound by the value's own
+    precision, never a fixed relative share of it.
+
+    Parameters
+    ----------
+    p : float
+        The value given.
+    q : float
+        The number it should be.
+
+    Returns
+    -------
+    bool
+        True when ``p`` is ``q`` as written down.
+    """
+    return bool(p == q or abs(q - p) <= F64_ROUND_OFF * abs(p) or p == float(np.float32(q)))
+

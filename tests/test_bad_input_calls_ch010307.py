@@ -54,6 +54,9 @@ EXCLUDED: dict[str, str] = {}
 
 SEED = ("neg", "frac", "str", ("bool", True))          # a seed: an int >= 0
 RUNS = COUNT + (("bool", True),)                       # a count: an int >= 1, not a bool
+#: a run count that sets the draws: beyond the memory or work budget, refused by the caller's name before any draw
+#: (fuzz 26d D3, W4, DB6: the callee's n_runs named, 7.45 GiB drawn, or minutes run)
+RUNS_DRAWN = RUNS + (("beyond the budgets", 10**6),)
 NONE = ("None", None)
 KEY = ("unknown",) + OBJ                              # a key, method, reading or option: a string of a known set
 
@@ -178,8 +181,8 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
     NO_LESS = ("nan", "inf", "empty", "more", "str")  # arrays whose one-lower shape is documented as one item
     add(ofs.alpha_key, alpha=A(0.25, POS))
     add(ofs.alpha_methods, alphas=A((0.1, 1.0), ARR + (("repeated", (1.0, 1.0)),)))
-    add(ofs.alpha_study, seed=A(0, SEED), runs=A(2, RUNS))
-    add(ofs.claim_values, seed=A(0, SEED), runs=A(100, RUNS))
+    add(ofs.alpha_study, seed=A(0, SEED), runs=A(2, RUNS_DRAWN))
+    add(ofs.claim_values, seed=A(0, SEED), runs=A(100, RUNS_DRAWN))
     # the two studies swapped are not refused: a PairedStudy does not record its noise levels (the caller's pairing)
     add(ofs.closing_numbers, study_hs=A(o["hs"], res(o["ws"])), study_eq=A(o["eq"], res(o["ws"])),
         weights=A(o["ws"], res(o["hs"])), judged=A(o["judged"], mapping(o["judged"])), relative_margin=A(0.05, UNIT))
@@ -187,16 +190,16 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
         fields=A(("a", "b"), (("unknown field", ("nope",)), ("notstr", (3.0,)))))
     add(ofs.corrected_table1)
     add(ofs.eq9_readings, z=A(o["z"], ARR), weight_epochs=A(10, RUNS))
-    add(ofs.evidence, seed=A(0, SEED), runs=A(100, RUNS),
+    add(ofs.evidence, seed=A(0, SEED), runs=A(100, RUNS_DRAWN),
         claims=A(o["claims"], OBJ + (("other source", o["claims_tr"]), ("other type", o["ledger"]))))
-    add(ofs.fair, seed=A(0, SEED), runs=A(2, RUNS))
-    add(ofs.fair_weights, seed=A(0, SEED), runs=A(2, RUNS))
+    add(ofs.fair, seed=A(0, SEED), runs=A(2, RUNS_DRAWN))
+    add(ofs.fair_weights, seed=A(0, SEED), runs=A(2, RUNS_DRAWN))
     add(ofs.family_mae, z=A(o["z3"], ARR), families=A({"x": "laplace"}, mapping({"x": "laplace"})
                                                        + (("unknown family", {"x": "nope"}),)),
         scale=A(2.0, POS), window=A((5, 15), OBJ + (("reversed", (15, 5)), ("beyond", (5, 99)))), truth=A(900.0, REAL))
     # one epoch, shape (n_sensors,), is valid (documented): no "less"
     add(ofs.family_values, z=A(o["z3"][0], NO_LESS), family=A("gauss", KEY), scale=A(2.0, POS))
-    add(ofs.faulty_member_share, seed=A(0, SEED), runs=A(2, RUNS), noise=A("equal", KEY), failure=A("fixed", KEY))
+    add(ofs.faulty_member_share, seed=A(0, SEED), runs=A(2, RUNS_DRAWN), noise=A("equal", KEY), failure=A("fixed", KEY))
     add(ofs.figure_errors,
         errors=A(o["err"], OBJ + (NONE, ("empty", {}), ("unknown key", {"nope": [1.0, 2.0]}),
         ("2-D", {"mean": [[1.0, 1.0]]}))))
@@ -206,7 +209,7 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
     add(ofs.figure_scale, scales=A(np.array([1.0, 2.0]), ARR), sweep=A({"a": np.array([1.0, 2.0])},
                                                                         mapping({"a": 1}) + (("short", {"a": [1.0]}),)),
         default=A(2.0, POS))
-    add(ofs.healthy_dropped_share, seed=A(0, SEED), runs=A(2, RUNS), noise=A("equal", KEY))
+    add(ofs.healthy_dropped_share, seed=A(0, SEED), runs=A(2, RUNS_DRAWN), noise=A("equal", KEY))
     add(ofs.joint)
     add(ofs.ledger_numbers, ledger=A(o["ledger"], res(o["hs"]) + (("other source", o["ledger_tr"]),)),
         prefix=A("ofs_", (("notstr", 3.0),)),
@@ -217,11 +220,11 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
     add(ofs.mc_table,
         studies=A(o["studies"], mapping(o["studies"]) + (("other type", {"hs": o["ws"], "eq": o["eq"]}),)),
         sigmas=A(o["sig"], mapping(o["sig"]) + (("negative", {"hs": -o["sig"]["hs"], "eq": 1.0}),)))
-    add(ofs.membership_study, seed=A(0, SEED), runs=A(2, RUNS))
-    add(ofs.not_neighbourhood_share, seed=A(0, SEED), runs=A(2, RUNS), noise=A("equal", KEY))
+    add(ofs.membership_study, seed=A(0, SEED), runs=A(2, RUNS_DRAWN))
+    add(ofs.not_neighbourhood_share, seed=A(0, SEED), runs=A(2, RUNS_DRAWN), noise=A("equal", KEY))
     add(ofs.observation_numbers, tabs=A(o["tabs"], res(o["joint"])))
     add(ofs.reproduce_tables, alpha_range=A((1e-3, 1e2), ARR + (("reversed", (1e2, 1e-3)), ("negative", (-1.0, 1.0)))))
-    add(ofs.study, seed=A(0, SEED), runs=A(2, RUNS), noise=A("equal", KEY), failure=A("fixed", KEY),
+    add(ofs.study, seed=A(0, SEED), runs=A(2, RUNS_DRAWN), noise=A("equal", KEY), failure=A("fixed", KEY),
         include_self=A(True, OBJ + (("int", 1),)))
     add(ofs.support_bound_check, seed=A(0, SEED), n=A(1000, RUNS), alpha=A(0.25, POS))
     add(ofs.support_table)
@@ -235,7 +238,7 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
     add(ofs.verdict_table, ledger=A(o["ledger"], res(o["hs"]) + (("other source", o["ledger_tr"]),)))
     add(ofs.weight_ablation, z=A(o["z3"], ARR), window=A((5, 15), OBJ + (("reversed", (15, 5)), ("beyond", (5, 99)))),
         truth=A(900.0, REAL))
-    add(ofs.weight_study, seed=A(0, SEED), runs=A(2, RUNS), include_self=A(True, OBJ + (("int", 1),)))
+    add(ofs.weight_study, seed=A(0, SEED), runs=A(2, RUNS_DRAWN), include_self=A(True, OBJ + (("int", 1),)))
 
     # ---------------------------------------------------------------- chapter 01: ofs_audit
     order = np.arange(6)
@@ -269,7 +272,7 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
         methods=A(("mean", "median"), OBJ + (("unknown", ("nope",)), ("repeated", ("mean", "mean")),
                                                                      ("empty", ()))))
     add(of.fair_numbers, study=A(o["fair"], res(o["hs"]) + (("few runs", o["fair_few"]),)))
-    add(of.fair_study, seed=A(0, SEED), n_runs=A(2, RUNS), n_samples=A(2, RUNS),
+    add(of.fair_study, seed=A(0, SEED), n_runs=A(2, RUNS_DRAWN), n_samples=A(2, RUNS),
         sizes=A((0, 1), OBJ + (("repeated", (1, 1)),)),
         counts=A((0, 1), OBJ + (("negative", (-1,)),)), spreads=A((1, 2), OBJ + (("zero", (0,)),)),
         n_sensors=A(10, RUNS),
@@ -439,7 +442,7 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
     add(trl.noise_gain_by_instant, t1=A(T1r, times), t2=A(T2r, times))
     add(trl.stress_table, sigma=A(1.0, POS), names=A((RegMethod.TWO_POINT,), MET))
     add(trl.structured_ops)
-    add(trl.study, t1=A(T1r, times), t2=A(T2r, times), sigma=A(1.0, POS), runs=A(2, RUNS), seed=A(0, SEED))
+    add(trl.study, t1=A(T1r, times), t2=A(T2r, times), sigma=A(1.0, POS), runs=A(2, RUNS_DRAWN), seed=A(0, SEED))
     add(trl.unregistered_runs, m=A(o["mc7_4"], res(o["st7"])), t1=A(T1r, times), t2=A(T2r, times))
     return r
 

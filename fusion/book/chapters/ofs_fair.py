@@ -34,7 +34,8 @@ from fusion.book.tables import rounded
 from fusion.readings.robust import ROBUST_METHODS, robust_fuse
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
-from fusion._counts import distinct, sequence
+from fusion._counts import allocation, distinct, sequence
+from fusion._limits import work
 from fusion._structures import record, records_of
 from fusion._shown import shown
 
@@ -162,6 +163,21 @@ SIZE, COUNT, SPREAD = "fault size (σ), 2 faulty sensors", "faulty sensors (bias
 #: Name of the opposite-sign sweep: two faulty sensors, one biased by +b, one by -b.
 OPPOSITE = "fault size (σ), 2 faulty sensors of opposite signs"
 
+#: Units of work (rule 17, ``fusion._limits.work``) of one reading fused by one method at one sweep point of
+#: :func:`fair_study`: measured 80 ns a reading, method and point on this machine (the default sweeps, 23 points x
+#: 11 methods, ran 20 CPU-s at 1,000 runs x 100 samples x 10 sensors), so that the budget stops a study near half a
+#: minute (about 1,300 runs of the default sweeps; the book's 100 and the ledger's 500 stay well inside).
+FAIR_WORK = 3
+
+
+def _budget(shape: tuple[int, int, int], points: int, methods: int, names: tuple[str, str]) -> None:
+    """Refuse a fair study whose draws, of ``shape`` (runs, samples, sensors), are beyond the memory budget or whose
+    ``points`` x ``methods`` fusions of them are beyond the work budget (:data:`FAIR_WORK`), naming ``names`` (the
+    memory's, the work's): :func:`fair_study` and its cached entries (``fusion.book.chapters.ofs.fair``) call it
+    before anything is drawn, each naming its own arguments."""
+    allocation(shape, names[0])
+    work((points, methods, *shape, FAIR_WORK), names[1])
+
 
 def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequence[float] = (0, 1, 2, 3, 4, 6, 8, 10),
                counts: Sequence[int] = (0, 1, 2, 3, 4, 5), spreads: Sequence[float] = (1, 2, 4, 8, 16),
@@ -208,8 +224,11 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
         A count or a sweep point not of its type, ``methods`` not strings.
     ValueError
         Every sweep empty (nothing to run), a sweep repeating a point (its results are keyed by it), a point out
-        of range (a count beyond ``n_sensors``, a spread below 1, a size not finite), ``methods`` empty, unknown or
-        repeated.
+        of range (a count beyond ``n_sensors``, a spread below 1, a size not finite), ``sizes`` or ``opposite``
+        given points with fewer than two sensors (each of their points biases two), ``methods`` empty, unknown or
+        repeated; the draws beyond the memory budget (naming ``n_runs, n_samples and n_sensors``) or the study
+        beyond the work budget (``fusion._limits.MAX_WORK``, :data:`FAIR_WORK` units a reading, method and point),
+        refused before anything is drawn.
     """
     seed = check_seed(seed)
     n_runs, n_samples, n_sensors = (count(v, k) for v, k in ((n_runs, "n_runs"), (n_samples, "n_samples"),
@@ -225,6 +244,15 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
         distinct(points, name)
     if not (sizes or counts or opposite or spreads):
         raise ValueError("sizes, counts, opposite and spreads are all empty: the study would run no point")
+    for name, points in (("sizes", sizes), ("opposite", opposite)):
+        # both sweeps bias two sensors (fuzz 26d D1-D2): one sensor cannot hold them
+        if points and n_sensors < 2:
+            raise ValueError(f"{name}: its sweep biases two faulty sensors, but n_sensors = {n_sensors}; give "
+                             f"n_sensors >= 2 or {name}=()")
+    # the memory and work budgets before anything is drawn (fuzz 26d D3): the draws are one (n_runs, n_samples,
+    # n_sensors) array, and every sweep point runs every method over it
+    _budget((n_runs, n_samples, n_sensors), len(sizes) + len(counts) + len(opposite) + len(spreads), len(methods),
+            ("n_runs, n_samples and n_sensors", "n_runs, n_samples, n_sensors, the sweeps and methods"))
     rng = np.random.default_rng(count(seed, "seed", minimum=0, maximum=None))
     e = rng.standard_normal((n_runs, n_samples, n_sensors))
     perm = np.argsort(rng.random((n_runs, n_sensors)), axis=1)
@@ -232,8 +260,6 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     mae: dict[tuple[str, float], dict[str, FloatArray]] = {}
 
     def faulty(k: int, size: float) -> FloatArray:
-        if not 0 <= k <= n_sensors:
-            raise ValueError(f"counts must lie in 0..{n_sensors}, got {k}")
         bias = np.zeros((n_runs, n_sensors))
         np.put_along_axis(bias, perm[:, :k], float(size), axis=1)
         return truth + e + bias[:, None, :]
@@ -385,7 +411,8 @@ def fair_numbers(study: FairStudy) -> GlueValues:
     -------
     GlueValues
         Glue key -> value: mean absolute errors (°C, 3 decimals) of the clean, largest-fault, most-faults
-        and widest-spread settings; the settings where the optimal fusion set beats every other method;
+        and widest-spread settings; the settings where the optimal fusion set beats every other method (listed in
+        ascending order, whatever the order of the sweeps);
         the equal-weight ablation's largest relative change and its verdict counts; the spread settings
         where the arithmetic mean is better or worse.
 
@@ -401,12 +428,15 @@ def fair_numbers(study: FairStudy) -> GlueValues:
     F = {k: {m: float(v.mean()) for m, v in e.items()} for k, e in study.mae.items()}
     V = verdicts(study)  # names study when its runs are fewer than rule R4's minimum
     others = [_row(m) for m in FAIR_METHODS if m not in ("optimal_fusion_set", "uniform_set")]
-    size_keys = [k for k in study.mae if k[0] == SIZE]
-    opp_keys = [k for k in study.mae if k[0] == OPPOSITE]
+    # the points in ascending order, whatever the sweeps' order (fuzz 26d DB3: "8, 6, 4" glued for a reversed sweep,
+    # and the "largest" size, count and spread read as the last point given, not the largest)
+    size_keys = sorted(k for k in study.mae if k[0] == SIZE)
+    opp_keys = sorted(k for k in study.mae if k[0] == OPPOSITE)
     beaten = ("mean", "huber", "trimmed_mean_25")
     opp_lose = [k[1] for k in opp_keys if all(V.loc[_row(m), (k[0], f"{k[1]:g}")] == "better" for m in beaten)]
     size_win = [k[1] for k in size_keys if (V.loc[others, (k[0], f"{k[1]:g}")] == "worse").all()]
-    count_keys = [k for k in study.mae if k[0] == COUNT]
+    count_keys = sorted(k for k in study.mae if k[0] == COUNT)
+    spread_keys = sorted(k for k in study.mae if k[0] == SPREAD)
     count_win = [k[1] for k in count_keys if (V.loc[others, (k[0], f"{k[1]:g}")] == "worse").all()]
     abl = [abs(F[k]["uniform_set"] / F[k]["optimal_fusion_set"] - 1) for k in study.mae]
     k_abl = list(study.mae)[int(np.argmax(abl))]
@@ -429,10 +459,10 @@ def fair_numbers(study: FairStudy) -> GlueValues:
         "ofs_fair_max_count": f"{count_keys[-1][1]:g}",
         "ofs_fair_halfway": {m: rounded(F[count_keys[-1]][m], 3) for m in ("optimal_fusion_set", "median")}["optimal_fusion_set"],
         "ofs_fair_halfway_median": rounded(F[count_keys[-1]]["median"], 3),
-        "ofs_fair_spread_max": f"{[k for k in study.mae if k[0] == SPREAD][-1][1]:g}",
-        "ofs_fair_spread_ivar": rounded(F[[k for k in study.mae if k[0] == SPREAD][-1]]["inverse_variance"], 3),
-        "ofs_fair_spread_ofs": rounded(F[[k for k in study.mae if k[0] == SPREAD][-1]]["optimal_fusion_set"], 3),
-        "ofs_fair_spread_median": rounded(F[[k for k in study.mae if k[0] == SPREAD][-1]]["median"], 3),
+        "ofs_fair_spread_max": f"{spread_keys[-1][1]:g}",
+        "ofs_fair_spread_ivar": rounded(F[spread_keys[-1]]["inverse_variance"], 3),
+        "ofs_fair_spread_ofs": rounded(F[spread_keys[-1]]["optimal_fusion_set"], 3),
+        "ofs_fair_spread_median": rounded(F[spread_keys[-1]]["median"], 3),
         "ofs_fair_abl_max": rounded(max(abl), 3), "ofs_fair_abl_where": f"{k_abl[0]} = {k_abl[1]:g}",
         "ofs_fair_abl_ofs": rounded(F[k_abl]["optimal_fusion_set"], 3), "ofs_fair_abl_uni": rounded(F[k_abl]["uniform_set"], 3),
         "ofs_fair_abl_median": rounded(float(np.median(abl)), 4),
@@ -444,11 +474,12 @@ def fair_numbers(study: FairStudy) -> GlueValues:
         **{f"ofs_fair_abl_n_{k}": int((V.loc[_row("uniform_set")] == w).sum())
            for k, w in (("better", "better"), ("worse", "worse"), ("nd", "not distinguishable"),
                         ("eq", WORDS["equivalent"]))},
-        "ofs_fair_spread_mean_better_upto": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
-                                                       and V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "better"),
-        "ofs_fair_spread_ofs_better_from": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
-                                                      and V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "worse"),
-        "ofs_fair_spread_median_words": ", ".join(f"{w} at {v}" for v, w in V.loc[_row("median"), SPREAD].items()),
+        "ofs_fair_spread_mean_better_upto": ", ".join(f"{k[1]:g}" for k in spread_keys
+                                                       if V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "better"),
+        "ofs_fair_spread_ofs_better_from": ", ".join(f"{k[1]:g}" for k in spread_keys
+                                                      if V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "worse"),
+        "ofs_fair_spread_median_words": ", ".join(f"{V.loc[_row('median'), (SPREAD, f'{k[1]:g}')]} at {k[1]:g}"
+                                                  for k in spread_keys),
     }
 
 

@@ -16,6 +16,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._limits import written_as
 from fusion._validation import integer
 from fusion._validation import _numeric, _real_number, count, counts, seed as check_seed
 from fusion._validation import one_of, shown
@@ -37,11 +38,6 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- evidence
-#: Relative round-off of a float64 computation of a printed decimal (``0.1 * 3``, ``12.3 / 100``: within one or two
-#: ulps of the decimal): a published value this close to its rounding to the printed decimals has no extra decimal.
-_F64_ROUND_OFF = 4 * float(np.finfo(np.float64).eps)
-
-
 def _extra_decimal(p: float, d: int) -> bool:
     """Whether the published value ``p`` has more than ``d`` decimals (R1; fuzz 24a D5, fuzz 26a D1).
 
@@ -51,8 +47,7 @@ def _extra_decimal(p: float, d: int) -> bool:
     its own precision, never a fixed relative share: a relative 2⁻²³ of 1234567.85 is 0.15, which let an extra
     decimal through above about 4e5.
     """
-    q = round(p, d)
-    return not (p == q or abs(q - p) <= _F64_ROUND_OFF * abs(p) or p == float(np.float32(q)))
+    return not written_as(p, round(p, d))   # the package's one rule (fusion._limits.written_as)
 
 
 def _run_count(runs: Any) -> int | None:

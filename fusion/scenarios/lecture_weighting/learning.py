@@ -13,7 +13,7 @@ from fusion._shown import shown
 from fusion._validation import as_array, derived_inputs
 from fusion._validation import count, scalar, sequence
 from fusion._validation import allocation
-from fusion._validation import LOOP_STEP, distinct, loop_work, work
+from fusion._validation import LOOP_STEP, MAX_MAGNITUDE, distinct, loop_work, work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas
 
@@ -23,6 +23,7 @@ __all__ = [
     "LearningStudy",
     "learning_study",
     "learned_limit_check",
+    "MAX_LOG_RANGE",
 ]
 
 
@@ -254,6 +255,12 @@ def _limit_check_relation(values: Mapping[str, Any], cls: str) -> None:
                          f"(beyond the margin is beyond any amount), got {values['above_best']}")
 
 
+#: Largest half-width a of :func:`learned_limit_check`'s log-variances, ``ln(MAX_MAGNITUDE)`` (about 345.4): every variance
+#: :math:`e^{u}`, :math:`|u| \le a`, stays within the package's range [1e-150, 1e150] (fuzz 26d W3: a larger a was
+#: refused as a "derived quantity" naming every argument).
+MAX_LOG_RANGE = float(np.log(MAX_MAGNITUDE))
+
+
 @derived_inputs()
 def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 20000, seed: int = 2204,
                         log_range: float = 4.0, margin: float = 0.05) -> LearnedLimitCheck:
@@ -272,7 +279,8 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
         Variance sets per n (draws x sum(ns) within the work budget, ``fusion._validation.MAX_WORK``).
     seed : int
     log_range : float
-        Half-width a of the uniform log-variances (> 0).
+        Half-width a of the uniform log-variances (> 0, at most :data:`MAX_LOG_RANGE`, about 345: the variances stay
+        within the package's numeric range).
     margin : float
         Practical margin, a share of the best sensor's variance (>= 0; rule R9: "no worse than the best sensor"
         fails only beyond it).
@@ -289,7 +297,7 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
     distinct(n_arr.tolist(), "ns")  # one rule for sizes: a repeated n would draw its sets twice
     work((n_arr.size * LOOP_STEP + 8 * draws * int(n_arr.sum()),), "ns and draws")  # rule 17: draws x sum(ns)
     seed = _seed(seed)
-    a = scalar(log_range, "log_range", lo=0.0, lo_open=True)
+    a = scalar(log_range, "log_range", lo=0.0, lo_open=True, hi=MAX_LOG_RANGE)
     m = scalar(margin, "margin", lo=0.0)
     rng = np.random.default_rng(seed)
     above_mean = above_best = above_any = 0

@@ -140,7 +140,7 @@ def figure_25(s: RidgeStudy) -> Figure:
         axes[1].plot(s.kgrid, s.rel[x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
     axes[0].set_yscale("log")
     axes[0].set_xlabel("ridge parameter k")
-    axes[0].set_ylabel(f"MSE (m = {s.m0}, σ = 1)")
+    axes[0].set_ylabel(f"MSE (m = {s.m0}, σ = {s.sigma:g})")   # the study's σ (fuzz 26d F3)
     axes[1].set_xlabel("ridge parameter k")
     axes[1].set_ylabel("reliability P(|error| ≤ σ/√m)")
     for j, ((x, k), diffs) in enumerate(s.conv.items()):
@@ -211,6 +211,11 @@ def _bias_sd(m: int, sig: float, x: float, k: Any) -> tuple[Any, Any]:
 #: Key types of a dict keyed by a real number (a tolerance c, a true value x).
 _REAL = (float, int, np.number)
 
+#: The crossings of :func:`~fusion.readings.biased.plugin_crossings` that the tables, figure and glue read of
+#: :attr:`PluginExact.known` and :attr:`PluginExact.estimated` (required by its spec, fuzz 26d E2).
+_CROSSINGS = ("reliability", "mse", "variance", "peak_theta", "peak_ratio", "var_peak_theta", "var_peak_ratio",
+              "ratio_0")
+
 
 @dataclass(frozen=True)
 class PluginExact:
@@ -239,7 +244,8 @@ class PluginExact:
     at: Mapping[tuple[str, float], Mapping[float, Any]]
 
     __result_spec__ = ResultSpec(
-        {"known": dict_of(dict_of(number()), key=_REAL), "estimated": dict_of(number()),
+        {"known": dict_of(dict_of(number(), required=_CROSSINGS), key=_REAL),
+         "estimated": dict_of(number(), required=_CROSSINGS),
          "ratio_at": dict_of(number(positive=True), key=_REAL), "theta_at": dict_of(number(nonnegative=False), key=_REAL),
          "at": dict_of(dict_of(instance(rg.PluginRisk), key=_REAL), key=tuple)},
         relations=(lambda v, cls: _plugin_relation(v, cls),))

@@ -45,7 +45,7 @@ _RAISES = with_sections(raises="""TypeError
     ``m`` not a MechanismStudy, ``e26`` neither None nor a SignalStudy.
 ValueError
     ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare
-    runs), named.""")
+    runs), named; ``e26`` of another setup than ``m`` (other gains, sigma or signal length).""")
 
 
 @_PARAMS("m")
@@ -99,6 +99,12 @@ def _is_primary(m: MechanismStudy, lab: str, e26: SignalStudy | None) -> bool:
     ``e26`` by every function of this module: TypeError naming it if it is neither None nor a SignalStudy)."""
     if e26 is not None:
         instance_of(e26, SignalStudy, "e26")
+        # fuzz 26d B: both studies record their setup; E2.6 read beside another one's numbers is refused
+        length = int(m.bias_curve.shape[-1])
+        if not (np.array_equal(e26.gains, m.gains) and np.array_equal(e26.sigma, m.sigma) and e26.length == length):
+            raise ValueError(f"e26 is a study of another setup than m: gains {e26.gains.tolist()}, sigma "
+                             f"{e26.sigma.tolist()}, length {e26.length}; m has gains {m.gains.tolist()}, sigma "
+                             f"{m.sigma.tolist()}, length {length}")
     if e26 is None or m.kind != PRIMARY[0]:
         return False
     cfg = m.configs[m.labels.index(lab)]

@@ -259,7 +259,9 @@ def evidence(st: Mapping[str, ChapterStudy] | None = None, seed: int | None = No
     ----------
     st : mapping of str to study, optional
         The studies, keys :data:`STUDIES` (any run counts; those of ``m26``, ``v26`` and ``g1`` at least
-        ``sg``'s). Required without ``seed``.
+        ``sg``'s). Required without ``seed``. They need not share a seed (fuzz 26d DB4, documented): every reading
+        pairs the runs of one study, none pairs runs across studies, so each reading's evidence is that of its own
+        study, at its seed (the chapter's are all :data:`SEED`).
     seed : int, optional
 
     Returns
@@ -281,7 +283,8 @@ def ledger_values(st: Mapping[str, ChapterStudy]) -> GlueValues:
     Parameters
     ----------
     st : mapping of str to study
-        The chapter's studies, keys :data:`STUDIES`.
+        The chapter's studies, keys :data:`STUDIES`; of any seeds, as in :func:`evidence` (each value is read from
+        its own study).
 
     Returns
     -------

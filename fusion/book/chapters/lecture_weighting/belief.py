@@ -19,6 +19,7 @@ from matplotlib.figure import Figure
 from fusion._docstrings import ParameterDocs
 from fusion._results import ResultSpec, array, flag, integer, number, validated_post_init
 from fusion._validation import count
+from fusion._limits import written_as
 from fusion.book.chapters.lecture import _holds, _key, _lec_glue, _r, legend_below, sci
 from fusion.book.tables import roundoff
 from fusion.book.glue import GlueValues
@@ -430,7 +431,8 @@ def table_belief_grids(s: BeliefParameterStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : BeliefParameterStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study` (its ``params`` must hold every grid value).
+        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study` (its ``params`` must hold every grid value: a
+        ValueError naming ``s`` otherwise).
 
     Returns
     -------
@@ -441,6 +443,8 @@ def table_belief_grids(s: BeliefParameterStudy) -> pd.DataFrame:
         checked (:func:`belief_objectivity`).
     """
     instance_of(s, BeliefParameterStudy, "s")
+    _holds(s.params.tolist(), sorted({v for g in BELIEF_GRIDS for grid in g for v in grid}), "s", "params",
+           "table_belief_grids (every grid of BELIEF_GRIDS)")   # named s, not belief_objectivity's grid (fuzz 26d W2)
     rows = []
     for g in BELIEF_GRIDS:
         row: dict[str, str] = {"s grid": _grid_text(g[0]), "ε grid": _grid_text(g[1])}
@@ -462,7 +466,8 @@ def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : BeliefParameterStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`, with the limit grids.
+        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`, with the limit grids (its
+        ``params`` must hold every value of :data:`LIMIT_GRIDS`: a ValueError naming ``s`` otherwise).
 
     Returns
     -------
@@ -472,6 +477,8 @@ def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
         (ε on the same grid), each with its 95 % CI (negative: the truncated belief moves less).
     """
     instance_of(s, BeliefParameterStudy, "s")
+    _holds(s.params.tolist(), sorted({v for g in LIMIT_GRIDS for v in g}), "s", "params",
+           "table_belief_limit (every grid of LIMIT_GRIDS)")   # named s, not belief_accuracy's values (fuzz 26d W1)
     rows = []
     for g in LIMIT_GRIDS:
         acc = belief_accuracy(s, K.FUZZY_LIMIT, g)
@@ -590,7 +597,8 @@ def table_shift_weight(s: ShiftWeightDraws, at: tuple[float, ...] = (0.0, 1.0, 2
     s : ShiftWeightDraws
         Result of :func:`shift_weight_draws`.
     at : tuple of float
-        Shifts Δ (°C) on the grid of ``s.deltas``.
+        Shifts Δ (°C) on the grid of ``s.deltas``, up to round-off: a grid point as written down (a float32 0.3,
+        ``0.1 * 3``; the rule of ``fusion._limits.written_as``, PublishedValues' too) is that point.
 
     Returns
     -------
@@ -609,7 +617,9 @@ def table_shift_weight(s: ShiftWeightDraws, at: tuple[float, ...] = (0.0, 1.0, 2
     for i, a in enumerate(sequence(at, "at", minimum=1, what="shift")):
         a = scalar(a, f"at[{i}]")
         j = int(np.argmin(np.abs(s.deltas - a)))
-        if abs(s.deltas[j] - a) > 1e-9 * max(1.0, abs(a)):
+        # a grid point up to round-off, or as written down (fusion._limits.written_as: a float32 0.3 is 0.3, as in
+        # PublishedValues; fuzz 26d DB7)
+        if abs(s.deltas[j] - a) > 1e-9 * max(1.0, abs(a)) and not written_as(a, float(np.round(s.deltas[j], 9))):
             raise ValueError(f"at[{i}] = {shown(a)} is not a shift of the grid of s.deltas ({s.deltas[0]:g} to "
                              f"{s.deltas[-1]:g} in steps of {s.deltas[1] - s.deltas[0]:g})")
         idx.append(j)

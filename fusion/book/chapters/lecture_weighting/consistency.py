@@ -68,8 +68,8 @@ def figure_23(s: ConsistencyStudy) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
-        Left: the RMS error (°C, log) of five methods against sample k, the fault's samples shaded; right: P(sensor 3
-        rejected) against its bias / ε at one instant.
+        Left: the RMS error (°C, log) of five methods against sample k, the fault's samples shaded; right: P(the faulty
+        sensor rejected) against its bias / ε at one instant (the sensor named by ``s.fault_sensor``).
     """
     instance_of(s, ConsistencyStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
@@ -85,10 +85,11 @@ def figure_23(s: ConsistencyStudy) -> Figure:
     axes[0].set_yscale("log")
     axes[0].set_xlabel("sample k")
     axes[0].set_ylabel("RMS error (°C)")
-    axes[0].set_title(f"sensor 3 +{s.bias:g} °C on samples {s.window[0] + 1}-{s.window[1]} (shaded)")
+    faulty = f"sensor {s.fault_sensor + 1}"   # the study's faulty sensor (1-based), not the default's (fuzz 26d F2)
+    axes[0].set_title(f"{faulty} +{s.bias:g} °C on samples {s.window[0] + 1}-{s.window[1]} (shaded)")
     axes[1].plot(s.ratio, s.pdet, color=color("check_awf"))
-    axes[1].set_xlabel("bias of sensor 3 / ε")
-    axes[1].set_ylabel("P(sensor 3 rejected)")
+    axes[1].set_xlabel(f"bias of {faulty} / ε")
+    axes[1].set_ylabel(f"P({faulty} rejected)")
     axes[1].set_title(f"one instant, ε = {s.eps:.2f} °C")
     legend_below(fig, ncol=3)
     return fig

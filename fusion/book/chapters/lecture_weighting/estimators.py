@@ -134,8 +134,9 @@ def figure_21a(s: AwfStudy) -> Figure:
         ax.set_xscale("log")
         ax.set_xlabel("samples k")
         ax.set_title(f"X = {X:g}")
-        ax.set_ylim(-2.5, 3.0)
-    axes[0].set_ylabel("estimate of σ₁² (σ₁² = 0.25)")
+        # the study's σ₁², not the default's (fuzz 26d F1): the limits scale with it ((-2.5, 3) at σ₁² = 0.25)
+        ax.set_ylim(-10.0 * s.variances[0], 12.0 * s.variances[0])
+    axes[0].set_ylabel(f"estimate of σ₁² (σ₁² = {s.variances[0]:g})")
     legend_below(fig, ncol=3)
     return fig
 

@@ -266,7 +266,9 @@ def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 
     Parameters
     ----------
     log_ranges : tuple of float
-        Half-widths a (> 0); the largest variance ratio in a set is at most e^(2a).
+        Half-widths a (> 0, at most ``MAX_LOG_RANGE`` of ``fusion.scenarios.lecture_weighting.learning``, about 345:
+        the variances e^u stay within the package's numeric range); the largest variance ratio in a set is at most
+        e^(2a).
     draws : int
         Variance sets per n.
     seed : int
@@ -282,12 +284,12 @@ def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 
     TypeError
         ``log_ranges`` not a sequence of numbers, ``draws`` or ``seed`` not an integer.
     ValueError
-        ``log_ranges`` empty (no row to show) or an entry not finite and positive.
+        ``log_ranges`` empty (no row to show) or an entry not finite and positive, or beyond ``MAX_LOG_RANGE``.
     """
     seed = check_seed(seed)
     from fusion.scenarios import lecture_weighting as sc
 
-    ranges = [scalar(a, f"log_ranges[{i}]", lo=0.0, lo_open=True)
+    ranges = [scalar(a, f"log_ranges[{i}]", lo=0.0, lo_open=True, hi=sc.learning.MAX_LOG_RANGE)
               for i, a in enumerate(sequence(log_ranges, "log_ranges", minimum=1, what="half-width"))]
     rows = []
     for a in ranges:

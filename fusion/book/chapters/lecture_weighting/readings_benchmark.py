@@ -67,8 +67,9 @@ def table_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> p
     Returns
     -------
     pandas.DataFrame
-        Index the methods; per scenario a column "MSE ± SE" at the first seed (4 decimals) and one of the rank range
-        over the seeds ("2–3").
+        Index the methods; per scenario a column "MSE ± SE" at the first seed (4 decimals; "± n/a" for a benchmark
+        of one run, which has no standard error) and one of the rank range over the seeds ("2–3"). The index names
+        ``samples`` as given (the results do not record it).
 
     Raises
     ------
@@ -80,8 +81,13 @@ def table_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> p
     samples = count(samples, "samples")
     s0, methods = stab.seeds[0], stab.methods
     runs = next(iter(results.values()))[methods[0]].size
-    tab = pd.DataFrame({_scen_name(sc): [f"{results[(s0, *sc)][m].mean():.4f} ± {results[(s0, *sc)][m].std() / np.sqrt(runs):.4f}"
-                                        for m in methods] for sc in stab.scenarios}, index=[METHOD_LABELS[m] for m in methods])
+
+    def cell(v: np.ndarray) -> str:
+        # one run has no standard error (fuzz 26d DB2: it printed "± 0.0000"): the cell shows the MSE alone
+        return f"{v.mean():.4f} ± {v.std() / np.sqrt(runs):.4f}" if runs >= 2 else f"{v.mean():.4f} ± n/a"
+
+    tab = pd.DataFrame({_scen_name(sc): [cell(results[(s0, *sc)][m]) for m in methods] for sc in stab.scenarios},
+                       index=[METHOD_LABELS[m] for m in methods])
     for sc in stab.scenarios:
         r = stab.ranks[sc]
         tab[f"rank {_scen_name(sc)} ({len(stab.seeds)} seeds)"] = [
@@ -206,6 +212,12 @@ def glue_offset(results: dict) -> GlueValues:
     GlueValues
         ``lec_bo_<key>`` (MSE, 2 decimals) and ``lec_bo_<key>_se`` (its standard error) for every method of
         :data:`OFFSET_METHODS`; ``lec_bo_runs``, ``lec_bo_seed``, ``lec_bo_level``.
+
+    Raises
+    ------
+    ValueError
+        ``results`` not a benchmark's output, not one faulty setup, without a method of :data:`OFFSET_METHODS`, or
+        of one run (a standard error needs two; glue is never NaN).
     """
     results = _benchmark_results(results)  # the benchmark's one check, entry by entry (fuzz 22b K2-6: "x" gave an IndexError)
     keys = [k for k in results if k[2]]
@@ -216,7 +228,11 @@ def glue_offset(results: dict) -> GlueValues:
     lacking = [name for name in OFFSET_METHODS if name not in r]
     if lacking:
         raise ValueError(f"results[{shown(keys[0])}] lacks the methods {[str(m) for m in lacking]} of OFFSET_METHODS")
-    out: GlueValues = {"lec_bo_runs": int(next(iter(r.values())).size), "lec_bo_seed": int(seed),
+    runs = int(next(iter(r.values())).size)
+    if runs < 2:  # fuzz 26d C1: the standard error of one run is NaN, and glue is never NaN
+        raise ValueError(f"results holds {runs} run per method: the glued standard errors need at least 2 runs "
+                         "(benchmark(runs=...))")
+    out: GlueValues = {"lec_bo_runs": runs, "lec_bo_seed": int(seed),
                            "lec_bo_level": f"{level:g}"}
     for name, key in OFFSET_METHODS.items():
         v = np.asarray(r[name], dtype=float)

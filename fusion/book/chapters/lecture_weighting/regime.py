@@ -55,6 +55,12 @@ def _label(key: str) -> str:
     own label)."""
     return METHOD_LABELS.get(key, str(key))
 
+
+def _scenario_label(s: RegimeStudy, scen: RegimeScenario) -> str:
+    """Display label of scenario ``scen`` of study ``s``: the level scenario at the study's level (fuzz 26d F4: its
+    registered label says 900, the default ``level``, whatever level the study ran)."""
+    return f"slow sine at {s.level:g}" if scen == _S.SINE_LEVEL else _label(scen)
+
 #: The curves of F2.1c: (method, the style key of its colour and legend label, line style).
 _REGIME_PLOT = ((_R.ORACLE, "oracle", ":"), (_R.MEAN, "mean", ":"), (_R.SAMPLE_GROWING, "sample_variance", "-"),
                 (_R.LECTURE_GROWING, "memory_growing", "-"), (_R.CENTRED_FORGETTING, "memory_forgetting", "-"),
@@ -96,7 +102,7 @@ def regime_comparisons(s: RegimeStudy) -> dict[str, Comparison]:
 
     def c(scen: RegimeScenario, a: RegimeMethod, b: RegimeMethod) -> Comparison:
         return Comparison(sq[scen][a], sq[scen][b], METHOD_LABELS[a], METHOD_LABELS[b], "less",
-                          f"{win}, {_label(scen)}", seed=seed)
+                          f"{win}, {_scenario_label(s, scen)}", seed=seed)
 
     awf = _R.AWF_AS_WRITTEN
     return {
@@ -139,7 +145,7 @@ def table_regime(s: RegimeStudy) -> pd.DataFrame:
         "—" where a method is not run (the per-sample accumulation estimates a constant X).
     """
     instance_of(s, RegimeStudy, "s")
-    tab = pd.DataFrame({_label(scen): {METHOD_LABELS[m]: (f"{float(np.mean(s.sq[scen][m])):#.4g}" if m in s.sq[scen] else "—")
+    tab = pd.DataFrame({_scenario_label(s, scen): {METHOD_LABELS[m]: (f"{float(np.mean(s.sq[scen][m])):#.4g}" if m in s.sq[scen] else "—")
                                for m in s.methods} for scen in s.scenarios})
     tab.index.name = f"MSE, samples {s.change_at + 1}-{s.samples} ({s.runs} runs)"
     return tab   # 4 significant digits, trailing zeros kept: 12.10, 0.0006608
@@ -180,7 +186,7 @@ def figure_regime(s: RegimeStudy, scenario: str = RegimeScenario.SINE_SWAP, smoo
     axes[0].set_yscale("log")
     axes[0].set_ylabel(f"MSE (trailing {smooth}-sample mean)")
     axes[1].set_ylabel("mean weight of sensor 1")
-    axes[0].set_title(_label(scenario))
+    axes[0].set_title(_scenario_label(s, scenario))
     axes[1].set_title(f"σ₁ = {np.sqrt(s.variances[0]):g} → {np.sqrt(s.swapped[0]):g} at k = {s.change_at + 1}")
     legend_below(fig, ncol=3)
     return fig

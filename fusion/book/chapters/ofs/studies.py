@@ -5,6 +5,8 @@ Each is cached per (seed, runs); the shares of the set's members are computed on
 
 from __future__ import annotations
 
+import inspect
+
 from fusion._validation import instance_of
 
 from collections.abc import Mapping
@@ -28,7 +30,7 @@ from fusion.book.chapters.ofs.readings import alpha_methods, family_mae, weight_
 from fusion.book.chapters.ofs.settings import METHODS, NOISE, FailureCase, _noise_key
 from fusion.book.glue import GlueValues
 from fusion._docstrings import ParameterDocs
-from fusion._counts import count
+from fusion._counts import allocation, count
 
 __all__ = [
     "FaultyMembership",
@@ -47,6 +49,19 @@ __all__ = [
     "WeightStudy",
     "weight_study",
 ]
+
+#: Samples and sensors of the chapter's draws (``thermocouples.simulate``'s defaults): a run is one such array.
+_RUN_SHAPE = (100, 10)
+
+
+def _runs(runs: object) -> int:
+    """``runs`` as a count, refused by name when its draws (``runs`` x 100 samples x 10 sensors) are beyond the memory
+    budget (fuzz 26d W4): the studies' callees (``thermocouples.simulate``, ``paired_study``) would name their own
+    arguments (``n_runs, n_samples and n_sensors``), not this module's ``runs``."""
+    runs = count(runs, "runs")
+    allocation((runs, *_RUN_SHAPE), "runs")
+    return runs
+
 
 #: The parameters of this module's studies, documented once.
 _PARAMS = ParameterDocs({"seed, runs": "int\n    As in :func:`study` (the same seed gives the same draws).",
@@ -78,7 +93,7 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", 
         The absolute errors (°C) of every method per run and sample, without and with the failure, on the same draws.
     """
     seed = check_seed(seed)
-    runs = count(runs, "runs")
+    runs = _runs(runs)
     failure = one_of(failure, thermocouples.FAILURE_MODES, "failure")
     return _study(seed, runs, _noise_key(noise), str(failure), flag(include_self, "include_self"))
 
@@ -103,7 +118,7 @@ def alpha_study(seed: int, runs: int) -> PairedStudy:
         One method per α (:func:`~fusion.book.chapters.ofs.alpha_methods`), on the draws of :func:`study` at the same seed.
     """
     seed = check_seed(seed)
-    runs = count(runs, "runs")
+    runs = _runs(runs)
     return _alpha_study(seed, runs)
 
 
@@ -158,7 +173,7 @@ def membership_study(seed: int, runs: int) -> MembershipStudy:
         Without and with the failure: the MAE by scale, by family and with equal weights.
     """
     seed = check_seed(seed)
-    runs = count(runs, "runs")
+    runs = _runs(runs)
     return _membership_study(seed, runs)
 
 
@@ -186,7 +201,8 @@ def fair(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
         (sweep, value) -> method -> per-run mean absolute error (°C), over the default sweeps.
     """
     seed = check_seed(seed)
-    runs = count(runs, "runs")
+    runs = _runs(runs)
+    ofs_fair._budget((runs, *_RUN_SHAPE), sum(_FAIR_POINTS.values()), len(ofs_fair.FAIR_METHODS), ("runs", "runs"))
     return _fair(seed, runs)
 
 
@@ -194,6 +210,10 @@ def fair(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
 def _fair(seed: int, runs: int) -> ofs_fair.FairStudy:
     return ofs_fair.fair_study(seed, n_runs=runs)
 
+
+#: The points of :func:`fair`'s default sweeps, by sweep argument of ``ofs_fair.fair_study`` (its work budget).
+_FAIR_POINTS = {k: len(inspect.signature(ofs_fair.fair_study).parameters[k].default)
+                for k in ("sizes", "counts", "spreads", "opposite")}
 
 #: The methods the ledger's fair-study readings compare (``ev_weights_reasonable``): eqs. 6-11's weights and equal weights.
 _WEIGHT_METHODS = ("optimal_fusion_set", "uniform_set")
@@ -213,7 +233,9 @@ def fair_weights(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
         Only ``"optimal_fusion_set"`` and ``"uniform_set"``, at the fault-size, fault-count and spread sweeps.
     """
     seed = check_seed(seed)
-    runs = count(runs, "runs")
+    runs = _runs(runs)
+    ofs_fair._budget((runs, *_RUN_SHAPE), sum(_FAIR_POINTS.values()) - _FAIR_POINTS["opposite"], len(_WEIGHT_METHODS),
+                     ("runs", "runs"))
     return _fair_weights(seed, runs)
 
 
@@ -259,7 +281,7 @@ def weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy
         member.
     """
     seed = check_seed(seed)
-    runs = count(runs, "runs")
+    runs = _runs(runs)
     return _weight_study(seed, runs, flag(include_self, "include_self"))
 
 
@@ -288,7 +310,7 @@ def not_neighbourhood_share(seed: int, runs: int, noise: str = "unequal") -> flo
         The fraction, in [0, 1], of all epochs at which a dropped reading lies nearer 900 °C than a kept one.
     """
     seed = check_seed(seed)
-    runs = count(runs, "runs")
+    runs = _runs(runs)
     rng = np.random.default_rng(seed)
     z = thermocouples.simulate(rng, sigma=NOISE[_noise_key(noise)], n_runs=runs).reshape(-1, 10)
     m = rd.fuse_epochs(z, "optimal_fusion_set").members
@@ -341,7 +363,7 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
         share of the epochs 50-80 that are faulty.
     """
     seed = check_seed(seed)
-    runs = count(runs, "runs")
+    runs = _runs(runs)
     failure = one_of(failure, thermocouples.FAILURE_MODES, "failure")
     sig = np.broadcast_to(np.asarray(NOISE[_noise_key(noise)], float), (10,))
     rng = np.random.default_rng(seed)
@@ -442,7 +464,7 @@ def healthy_dropped_share(seed: int, runs: int, noise: str = "unequal") -> dict[
         epochs 50-80; ``"epochs"``: number of epochs judged.
     """
     seed = check_seed(seed)
-    runs = count(runs, "runs")
+    runs = _runs(runs)
     rng = np.random.default_rng(seed)
     z = thermocouples.simulate(rng, sigma=NOISE[_noise_key(noise)], n_runs=runs)
     zf = thermocouples.random_failure(z, rng, "fixed")

@@ -143,6 +143,16 @@ def _robust_relation(values: Mapping[str, Any], cls: str) -> None:
     if not want <= set(values["robust"]):
         raise ValueError(f"{cls}.robust must hold the runs of every robustness reading, misses "
                          f"{shown(sorted(want - set(values['robust'])))}")
+    # each reading's runs hold the methods its readers compare, at the study's noise (fuzz 26d E1: a KeyError later)
+    methods = (*FIG4, RegMethod.LEAST_SQUARES)
+    for key, m in values["robust"].items():
+        lacking = [str(x) for x in methods if x not in m.per_run]
+        if lacking:
+            raise ValueError(f"{cls}.robust[{shown(key)}] must hold the runs of {[str(x) for x in methods]}, "
+                             f"lacks {lacking}")
+        if m.sigma != values["sigma"]:
+            raise ValueError(f"{cls}.robust[{shown(key)}] holds runs at sigma = {m.sigma:g}, not the study's "
+                             f"{cls}.sigma = {values['sigma']:g}")
 
 
 # the robustness tables take this study; their module cannot import it (this module imports the chapter module, which
@@ -151,6 +161,7 @@ from fusion.book.chapters import time_registration_robustness as _robustness  # 
 from fusion._counts import seed as check_seed
 from fusion._counts import count
 from fusion._validation import std_scalar
+from fusion._limits import work
 
 _robustness.RegistrationStudy = RegistrationStudy  # type: ignore[attr-defined]
 
@@ -200,6 +211,11 @@ def _key(s: float) -> str:
     return "sigma-" + f"{s:g}".replace(".", "-")
 
 
+#: The work of :func:`study` in Monte Carlos of every method of ``STUDY_METHODS`` on the scenario's samples (rule 17):
+#: measured 10.4 CPU-s for the study at 1e5 runs against 0.56 s for one such Monte Carlo, about 19 of them.
+_STUDY_CALLS = 19
+
+
 def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> RegistrationStudy:
     """Every Monte-Carlo study the ledger needs, each reading at the primary's ``runs`` (rule R4).
 
@@ -231,7 +247,8 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
         onto these), ``t2`` of fewer than three instants (the start-up reading scores ``t2[2:]``) or with fewer
         than two of those samples in the least-squares window before an instant, times so far from the flight's
         start that the positions lose the precision (about 6e4 s), ``sigma`` not a valid standard deviation,
-        ``runs`` below 1, ``seed`` negative.
+        ``runs`` below 1 or beyond the work budget (``fusion._limits.MAX_WORK``: about 1.7e5 runs), ``seed``
+        negative.
     """
     seed = check_seed(seed)
     # the arguments read before any run (an unchecked one escaped as numpy's error, or was stored as given)
@@ -240,6 +257,10 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
     # monte_carlo's names): three instants within their record, two samples in each least-squares window
     _least_squares_windows(sc.instants()[0], _scenario_instants(t2, 3, "the start-up reading scores from the third"))
     sigma, runs = std_scalar(sigma, "sigma"), count(runs, "runs")
+    # rule 17 for the whole study, before its first run (fuzz 26d DB6: each Monte Carlo within the budget, the study
+    # ran minutes): measured as _STUDY_CALLS Monte Carlos of every study method (10.4 CPU-s at 1e5 runs, one of them
+    # 0.56 s), refused from about 1.7e5 runs (the chapter runs 1,000)
+    work((runs, sc.instants()[0].size, len(STUDY_METHODS), _STUDY_CALLS), "runs")
     names = list(STUDY_METHODS)
     fig4 = list(FIG4) + [RegMethod.LEAST_SQUARES]
     return RegistrationStudy(

@@ -350,12 +350,16 @@ def noise_gain_by_instant(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
     t1, t2 : array_like
         Sensor 1's sample times and the registration instants (s), as for
         :func:`~fusion.book.chapters.time_registration_ledger.cost_count`: the instants within the record
-        ``[t1[0], t1[-1]]``, and the gains those of interpolation on ``t1`` itself.
+        ``[t1[0], t1[-1]]``, and the gains those of interpolation on ``t1`` itself. Times before the flight's
+        start (negative) are accepted (fuzz 26d DB5, documented): the gains depend on the times' differences only,
+        so a record shifted in time has the same gains.
 
     Returns
     -------
     DataFrame
-        Index: instant (s); columns: whether it is a sample time, the two gains and three-point's excess (%).
+        Index: instant (s); columns: whether it is a sample time (exactly one of ``t1``, as given: an instant a
+        few ulps from a sample is flagged False, its gains within round-off of 1; fuzz 26d DB8, documented), the
+        two gains and three-point's excess (%).
     """
     t1, t2 = _record_times(t1, t2)  # increasing, the instants within the record: named
     # the samples are t1's (they were the scenario's default whatever t1 was: a plausible wrong gain, fuzz 17)
