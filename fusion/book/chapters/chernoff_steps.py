@@ -81,7 +81,7 @@ def __getattr__(name: str) -> Any:
     if name in _STEP_H:
         from fusion.book.chapters import chernoff_snis
         return getattr(chernoff_snis, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    raise AttributeError(f"module {__name__} has no attribute {shown(name)}")
 
 
 def __dir__() -> list[str]:

@@ -227,7 +227,7 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
         of range (a count beyond ``n_sensors``, a spread below 1, a size not finite), ``sizes`` or ``opposite``
         given points with fewer than two sensors (each of their points biases two), ``methods`` empty, unknown or
         repeated; the draws beyond the memory budget (naming ``n_runs, n_samples and n_sensors``) or the study
-        beyond the work budget (``fusion._limits.MAX_WORK``, :data:`FAIR_WORK` units a reading, method and point),
+        beyond the work budget (``fusion._limits.MAX_WORK``, ``FAIR_WORK`` units a reading, method and point),
         refused before anything is drawn.
     """
     seed = check_seed(seed)
