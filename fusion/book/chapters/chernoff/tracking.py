@@ -211,7 +211,8 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
         columns ``"RMSE from frame 5 (m)"`` (root of the squared position error averaged over runs
         and frames 5-K; for the CRB the root mean square of ``crb_pos`` over the same frames),
         ``"RMSE, no guard (m)"`` (with ``plain``), ``"NEES, frames 1-4"`` and ``"mean NEES (4-D), frames 5-K"`` (K the
-        study's last frame, 30 in the chapter; ``"frame 5"`` when K = 5; NaN for the mean of local means, which has no covariance, and for the CRB row; NaN, shown "—", also for a
+        study's last frame, 30 in the chapter; ``"frame 5"`` when K = 5; NaN for the mean of local means, which has
+        no covariance, and for the CRB row; NaN, shown "—", also for a
         method whose covariance is singular to working precision in some run and frame of the window, where its
         NEES is undefined: the other columns and methods keep their values); 2 decimals.
 
@@ -274,7 +275,8 @@ def table_values(table: pd.DataFrame) -> GlueValues:
     Parameters
     ----------
     table : DataFrame
-        The table of :func:`method_table` (rows labelled by :data:`fusion.book.style.METHOD_LABELS` plus the CRB row).
+        The table of :func:`method_table` (rows labelled by :data:`fusion.book.style.METHOD_LABELS` plus the CRB row;
+        the naive product's row and the late NEES column named by the study's nodes and frames, as it names them).
 
     Returns
     -------
@@ -433,7 +435,8 @@ def per_run_nees(runs: list[TrackingRun], key: str, frames: slice = LATE) -> Flo
     return _window_nees(runs, key, frames)
 
 
-def _window_nees(runs: list[TrackingRun], key: str, frames: slice, name: str = "runs", method: str = "key") -> FloatArray:
+def _window_nees(runs: list[TrackingRun], key: str, frames: slice, name: str = "runs",
+                 method: str = "key") -> FloatArray:
     """:func:`per_run_nees`: the NEES of :func:`_defined_nees` (method_table's rule: undefined where the covariance
     is singular to working precision) averaged over ``frames``; where it is undefined in the window a per-run mean
     has no value, so ValueError naming ``name`` (the runs), ``method`` (the argument holding ``key``), the run and
