@@ -225,7 +225,9 @@ def registry() -> dict[str, dict[str, A]]:
                                     sc=_sc(o), thresholds=A((0.01, 0.05), ("str", ("nan", (np.nan,)), ("negative", (-0.1,)), ("one", (1.0,)))))
     # no other thresholds is valid (documented: "empty: none"), so an empty tuple is not refused
     R[c + "design_study"] = dict(sc=A(o["sc"], ("str", ("None", None))), seed=A(1, SEED), runs=A(2, CNT),
-                                 n_initial=A(200, CNT + (("beyond the memory budget", 10**7), ("not above sc.n_particles", 60))), workers=A(1, CNT))
+                                 n_initial=A(200, COUNT + (("bool", True), ("beyond the memory budget", 10**7),
+                                                             ("not above sc.n_particles", 60))),  # None: the default
+                                 workers=A(1, CNT))
     R[c + "design"] = dict(seed=A(1, SEED), runs=A(2, CNT), sc=A(o["sc"], ("str",)))
     # ---- swarm, figures
     R[c + "eps_figure"] = dict(runs=_runs(o), sc=_sc(o), show=A(0, ("neg", "frac", "str", ("beyond", 3), ("bool", True))))

@@ -218,8 +218,8 @@ def test_ev_premise_settings_refused_before_the_study(settings_: dict[str, str],
     {"network": "unequal", "a": "chernoff_pso", "b": "nominal", "test": "over"},
 ])
 def test_ev_premise_valid_settings_reach_the_study(settings_: dict[str, str], no_study: None) -> None:
-    with pytest.raises(_StudyRan):
-        chc.ev_premise(settings_, seed=3, runs=2)
+    with pytest.raises(_StudyRan):  # 100 runs: fewer are refused before the study (rule R4, fuzz 27b B4)
+        chc.ev_premise(settings_, seed=3, runs=100)
 
 
 # --------------------------------------------------------------------------- D2: the grid's resolution of a KL

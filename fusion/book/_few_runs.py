@@ -35,6 +35,30 @@ class FewRunsError(ValueError):
         self.minimum = minimum
 
 
+def few_runs(name: str, runs: int, minimum: int, how: str) -> FewRunsError:
+    """Rule R4's refusal of paired comparisons of ``runs`` runs, fewer than ``minimum``, naming the caller's argument
+    ``name`` (the one message of :func:`runs_named`; a caller that knows its comparisons' run count raises it before
+    any study, fuzz 27b B4).
+
+    Parameters
+    ----------
+    name : str
+        The caller's argument that sets the run count (``"runs"``).
+    runs, minimum : int
+        The comparisons' run count and the rule's minimum.
+    how : str
+        How the caller gives more runs (``"the argument runs"``), ended into the message.
+
+    Returns
+    -------
+    FewRunsError
+        The refusal, to raise.
+    """
+    return FewRunsError(f"{name} gives paired comparisons of {runs} runs, fewer than the {minimum} rule R4 asks "
+                        f"without a reason (this function takes none): give at least {minimum} runs ({how})",
+                        runs, minimum)
+
+
 @contextlib.contextmanager
 def runs_named(name: str, how: str) -> Iterator[None]:
     """Re-raise rule R4's refusal inside the block as a ValueError naming ``name`` and the minimum.
@@ -51,9 +75,7 @@ def runs_named(name: str, how: str) -> Iterator[None]:
     except FewRunsError as e:
         # still a FewRunsError (a ValueError): a caller further out that names its own argument renames it, so the
         # message names the argument of the function the user called (glue_21(s) calls awf_log_comparison(s21))
-        raise FewRunsError(f"{name} gives paired comparisons of {e.runs} runs, fewer than the {e.minimum} rule R4 "
-                           f"asks without a reason (this function takes none): give at least {e.minimum} runs "
-                           f"({how})", e.runs, e.minimum) from e
+        raise few_runs(name, e.runs, e.minimum, how) from e  # type: ignore[arg-type]
 
 
 def study_runs_named(name: str) -> Callable[[_F], _F]:

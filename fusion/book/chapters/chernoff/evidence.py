@@ -11,7 +11,8 @@ from typing import Any, TypeVar
 import numpy as np
 
 from fusion._docstrings import with_sections
-from fusion.book.ledger import Comparison, Conjunction, Proposition, Unverifiable, fmt
+from fusion.book._few_runs import few_runs
+from fusion.book.ledger import MIN_RUNS, Comparison, Conjunction, Proposition, Unverifiable, fmt
 from fusion.book.tables import roundoff
 from fusion.optimise.swarm import particle_swarm
 from fusion.book.style import METHOD_LABELS
@@ -22,10 +23,10 @@ from fusion.book.chapters.chernoff.compare import (NEES_CONSISTENT, _NEES, _equi
                                                    _window_text)
 from fusion.book.chapters.chernoff.premise import (PREMISE_NETWORKS, _MINERR, _PMSE, _POVER, _network_scenarios,
                                                    _oracle_ready, _pcmp, oracle_exponents)
-from fusion.book.chapters.chernoff.tracking import (any_collapsed, central_collapsed, collapsed, per_run_nees,
+from fusion.book.chapters.chernoff.tracking import (_window_nees, any_collapsed, central_collapsed, collapsed,
                                                     readings_values)
-from fusion.book.chapters.chernoff.studies import (checks_study, common_study, design, isv_study, premise_study,
-                                                   tracking_study)
+from fusion.book.chapters.chernoff.studies import (_premise_more, checks_study, common_study, design, isv_study,
+                                                   premise_study, tracking_study)
 from fusion.book.chapters.chernoff.guard import guard_usability
 from fusion.book.chapters.chernoff.importance import is_replicates
 from fusion.book.chapters.chernoff.peers import stonesoup_check
@@ -130,8 +131,9 @@ def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
     frames = _WINDOWS[s["window"]]
     if s["metric"] == "mse":
         return _mse_comparison(rs, s["a"], s["b"], s["claim"], seed, frames)
-    vals = {k: (np.full(len(rs), NEES_CONSISTENT) if k == "consistent" else per_run_nees(rs, k, frames))
-            for k in (s["a"], s["b"])}
+    # per_run_nees' rule (method_table's undefined NEES refused), named by the setting (fuzz 27b B3)
+    vals = {s[ab]: (np.full(len(rs), NEES_CONSISTENT) if s[ab] == "consistent"
+                    else _window_nees(rs, s[ab], frames, method=f"settings[{shown(ab)}]")) for ab in ("a", "b")}
     name = {k: "a consistent estimator (NEES 4)" if k == "consistent" else METHOD_LABELS[k] for k in vals}
     return Comparison(vals[s["a"]], vals[s["b"]], name[s["a"]], name[s["b"]], s["claim"],
                       _NEES.replace("from frame 5 on", _window_text(frames)), seed=seed, reason=_reason(len(rs)))
@@ -146,6 +148,8 @@ def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
                            stagnation rule's within ±5 %), ``"nodes"`` (ten nodes instead of three: random Gaussian
                            problems of :func:`fusion.book.chapters.chernoff_scaling.swarm_within_se`, every problem
                            within Ĵ's standard error of SLSQP).""",
+               seed_runs="""The study's root seed and run count (:func:`tracking_study`); at least 2 (paired runs)
+                            for ``"within-se-and-cost"``, ``"gap-mse"``, ``"literal-mse"`` and ``"nodes"``.""",
                returns="""For ``"within-se"``, ``"fixed-tolerance"``, ``"literal"``, ``"nodes"``: the yes/no and the
                          gaps it counted (nats); for ``"within-se-and-cost"``: that and the ±5 % MSE comparison;
                          for ``"gap-mse"``, ``"literal-mse"``: whether the two per-run MSEs agree within ±5 %.""")
@@ -155,6 +159,8 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
     seed = check_seed(seed)
     s = _settings(settings, {"check": ("within-se", "within-se-and-cost", "fixed-tolerance", "literal", "gap-mse",
                                        "literal-mse", "nodes")}, {})
+    if s["check"] in ("within-se-and-cost", "gap-mse", "literal-mse"):  # paired MSE comparisons (fuzz 27b B5)
+        runs = _paired_count(runs)
     if s["check"] == "nodes":  # random Gaussian problems with ten nodes, the swarm at its defaults against SLSQP
         from fusion.book.chapters.chernoff_scaling import swarm_within_se
         gap, se_n = swarm_within_se(seed, 10, runs)
@@ -321,6 +327,9 @@ def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
                            ``"plain"``, ``"more"`` (first update only), ``"study-plain"`` (every frame of the study,
                            plain filters), ``"runs"`` (the rule first fixed: the repaired runs' local NEES and fused
                            MSE against the untouched runs').""",
+               seed_runs="""The study's root seed and run count (:func:`tracking_study`, :func:`design`); for
+                            ``"guard"`` and ``"runs"`` at least 2, and at least 2 runs in which the guard did not act
+                            (the repaired runs are placed among them).""",
                returns="""For ``"plain"``, ``"more"``, ``"study-plain"``, ``"runs"``: the yes/no with the collapse or
                          NEES counts; for ``"guard"``: no collapse and the repaired filters usable, both.""")
 def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
@@ -328,21 +337,31 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
     """Record chf-filter-design: collapses of the local filters under each design, and the repaired runs' use."""
     seed = check_seed(seed)
     s = _settings(settings, {"reading": ("guard", "plain", "more", "study-plain", "runs")}, {})
+    # the readings placing repaired runs among the untouched ones need two of them (fuzz 27b B5: refused by
+    # guard_usability's "guarded"); counted before any study
+    runs = _paired_count(runs) if s["reading"] in ("guard", "runs") else count(runs, "runs")
     sc_ = study_scenario() if sc is None else sc
-    g = design(seed, runs, sc).glue()
-    plain, rs = tracking_study(seed, runs, sc)
-    first = {k: Proposition(g[f"chf_design_{k}_collapsed"] == 0,
-                            f"{g[f'chf_design_{k}_collapsed']} of {g['chf_design_runs']} runs below "
-                            f"{COLLAPSE_FRACTION * sc_.n_particles:g} effective particles at the first update (worst "
-                            f"node {g[f'chf_design_{k}_min']:.1f}; {g[f'chf_design_{k}_cost']:.0f} particle-likelihoods "
-                            "per node)", runs=int(g["chf_design_runs"])) for k in ("plain", "more", "guard")}
+
+    def first(k: str) -> Proposition:  # the first update under design k: the design study, built only when read
+        g = design(seed, runs, sc).glue()
+        return Proposition(g[f"chf_design_{k}_collapsed"] == 0,
+                           f"{g[f'chf_design_{k}_collapsed']} of {g['chf_design_runs']} runs below "
+                           f"{COLLAPSE_FRACTION * sc_.n_particles:g} effective particles at the first update (worst "
+                           f"node {g[f'chf_design_{k}_min']:.1f}; {g[f'chf_design_{k}_cost']:.0f} particle-likelihoods "
+                           "per node)", runs=int(g["chf_design_runs"]))
     if s["reading"] in ("plain", "more"):
-        return first[s["reading"]]
+        return first(s["reading"])
+    plain, rs = tracking_study(seed, runs, sc)
     if s["reading"] == "study-plain":
         return Proposition(not bool(any_collapsed(plain, sc_).any()),
                            f"a node collapses in {int(collapsed(plain, sc_.n_particles).sum())} runs, the centralised "
                            f"filter in {int(central_collapsed(plain, sc_.n_central).sum())}; with the guard in "
                            f"{int(any_collapsed(rs, sc_).sum())}", runs=len(plain))
+    untouched = sum(not r.guarded for r in rs)
+    if untouched < 2:  # guard_usability places the repaired runs among at least two others
+        raise ValueError(f"runs = {runs}: the guard acted in {runs - untouched} of them, leaving {untouched} untouched "
+                         f"run{'s' if untouched != 1 else ''} (at least 2 are needed to place the repaired ones "
+                         f"among): give more runs")
     u = guard_usability(rs, plain, sc_)
     if s["reading"] == "runs" and not u["chf_gu_runs"]:  # guard_usability has no value of a repaired run then
         return Proposition(True, "0 repaired runs: the guard acted in no run, nothing to place", runs=len(rs))
@@ -359,7 +378,7 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
             n_col == 0, f"{n_col} of {len(rs)} runs with a filter below its collapse threshold, {COLLAPSE_FRACTION * 100:g} % of "
             f"its particles ({COLLAPSE_FRACTION * sc_.n_particles:g} effective particles for a node, "
             f"{COLLAPSE_FRACTION * sc_.n_central:g} for the centralised filter), at any frame with the guard (first "
-            f"update alone: {first['guard'].ours})", runs=len(rs))),
+            f"update alone: {first('guard').ours})", runs=len(rs))),
         ("the repaired filters usable", Proposition(
             u["chf_gu_own_usable"], f"{u['chf_gu_own_n']} repaired filters: own mean NEES at most "
             f"{u['chf_gu_own_ratio_max']:.2f} times the same filter's 95th percentile in the untouched runs (a post-hoc "
@@ -392,7 +411,8 @@ _NET_METHODS = (*NETWORK_METHODS, "nominal", "oracle")
                            every run) and ``test``: ``"mse"`` (default; per-run MSE, "a less than b"), ``"losses"``
                            (the indicator that a is *not* more accurate than b, against one half: a sign test) or
                            ``"over"`` (share of overconfident nodes, "a greater than b").""",
-               seed_runs="The chapter's root seed and runs per network (:func:`premise_study`).",
+               seed_runs="""The chapter's root seed and runs per network (:func:`premise_study`): at least
+                            :data:`~fusion.book.ledger.MIN_RUNS` (the comparisons take no reason, rule R4).""",
                scenarios=("dict, optional", "Other networks (tests)."),
                returns="""Per-run values of ``a`` and ``b`` in the network (MSE, loss indicator or share of
                          overconfident nodes), their labels, the claimed direction and the metric's text.""")
@@ -409,6 +429,10 @@ def ev_premise(settings: dict[str, Any], *, seed: int, runs: int,
         refused["oracle"] = (f"its exponents need a network with one exchange and full connectivity, not "
                              f"settings['network'] = {shown(s['network'])}")
     _pair(s, refused)
+    runs = count(runs, "runs")
+    n = _premise_more(runs).get(s["network"], runs)
+    if n < MIN_RUNS:  # every comparison here takes no reason: rule R4, named by runs before the study (fuzz 27b B4)
+        raise few_runs("runs", n, MIN_RUNS, "the argument runs")
     st = premise_study(seed, runs, scenarios)[s["network"]]
     a, b = s["a"], s["b"]
     if s["test"] == "over":

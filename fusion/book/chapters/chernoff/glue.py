@@ -24,9 +24,9 @@ from fusion.book.chapters.chernoff.premise import _PMSE, _check_scenarios, oracl
 from fusion.book.chapters.chernoff.evidence import _is_region_counts
 from fusion.book.chapters.chernoff.compare import _word
 from fusion.book.chapters.chernoff.tracking import any_collapsed
-from fusion.book.chapters.chernoff.studies import design, premise_study, tracking_study
+from fusion.book.chapters.chernoff.studies import premise_study, tracking_study
 from fusion.book.chapters.chernoff.review import double_count_values
-from fusion.book.chapters.chernoff.guard import guard_usability
+from fusion.book.chapters.chernoff.guard import _default_n_initial, guard_usability
 from fusion.book.chapters.chernoff.mixture import toy
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
@@ -147,7 +147,7 @@ def claim_values(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario 
     t = toy(seed)
     return ({"chf_runs": len(rs), "chf_r": sc_.n_samples, "chf_w_exact": t.w_exact,
              "chf_w_exact_off": abs(t.w_exact - 0.5), "chf_n_any_collapsed": int(any_collapsed(plain, sc_).sum()),
-             "chf_r_toy": t.r, "chf_design_n0": design(seed, runs, sc).n_initial,
+             "chf_r_toy": t.r, "chf_design_n0": _default_n_initial(sc_),
              "chf_pr_runs": nets[Network.UNEQUAL].runs, "chf_pr_non_gaussian_runs": nets[Network.NON_GAUSSIAN].runs,
              "chf_pr_relay_runs": nets[Network.RELAY].runs}
             | {f"chf_pr_{k}_oracle_eps": ", ".join(f"{x:.2f}" for x in oracle_exponents(nets[k])[0])

@@ -262,7 +262,19 @@ class DesignStudy:
         return v
 
 
-def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_initial: int = 10_000,
+#: Particles of the "more particles" design's first update at the chapter's 2,000 particles per node, and the
+#: multiple of ``sc.n_particles`` it follows for a scenario of more (:func:`design_study`'s default ``n_initial``).
+_N_INITIAL, _N_INITIAL_FACTOR = 10_000, 5
+
+
+def _default_n_initial(sc: RangeBearingScenario) -> int:
+    """:func:`design_study`'s default ``n_initial`` for ``sc``: the larger of 10,000 and 5 × ``sc.n_particles``,
+    so above ``sc.n_particles`` for every scenario (fuzz 27b B1: a fixed 10,000 refused a scenario of 10,000
+    particles); 10,000 at the chapter's 2,000."""
+    return max(_N_INITIAL, _N_INITIAL_FACTOR * int(sc.n_particles))
+
+
+def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_initial: int | None = None,
                  workers: int = STUDY_WORKERS) -> DesignStudy:
     """Three designs of the local filters on the first update of the same runs: which one avoids collapse, at what cost.
 
@@ -280,9 +292,10 @@ def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_
     seed : int
         Root seed (every design uses the same runs).
     runs : int
-    n_initial : int
+    n_initial : int, optional
         Particles of the "more particles" design's first update: more than ``sc.n_particles`` (the filter draws
-        the larger of the two, so a smaller count would repeat the plain design).
+        the larger of the two, so a smaller count would repeat the plain design). Default the larger of 10,000 and
+        5 × ``sc.n_particles`` (10,000 at the chapter's 2,000 particles), above ``sc.n_particles`` for every scenario.
     workers : int
         Processes (results do not depend on it).
 
@@ -298,13 +311,14 @@ def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_
         ``sc`` not a RangeBearingScenario; ``seed``, ``runs``, ``n_initial`` or ``workers`` not an integer.
     ValueError
         ``seed`` negative; ``runs``, ``n_initial`` or ``workers`` below 1; ``n_initial`` not above
-        ``sc.n_particles``; ``runs`` and ``n_initial`` beyond the memory budget (the particle clouds of a block of
-        runs).
+        ``sc.n_particles``; ``runs`` and ``n_initial`` (by default ``sc.n_particles``) beyond the memory budget (the
+        particle clouds of a block of runs).
     """
     instance_of(sc, RangeBearingScenario, "sc")
     seed = check_seed(seed)
     runs = count(runs, "runs")
-    n_initial = count(n_initial, "n_initial")
+    given = n_initial is not None
+    n_initial = count(n_initial, "n_initial") if given else _default_n_initial(sc)
     if n_initial <= sc.n_particles:  # fuzz 26b DS: the pipeline draws max(n_initial, n_particles) at the first update
         raise ValueError(f"n_initial must exceed sc.n_particles = {sc.n_particles} (the 'more particles' design draws "
                          f"max(n_initial, sc.n_particles) at the first update: {n_initial} would run the plain "
@@ -315,7 +329,8 @@ def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_
     one = dataclasses.replace(sc, frames=1, variants=False, readings=False, n_samples=50, n_central=50, em_iterations=1)
     # the "more particles" design's first update holds n_initial particles per node of a block of runs: refused by
     # the tracking's memory rule before any run, naming this function's arguments (fuzz 24b SZ2: MemoryError)
-    _block_allocation(dataclasses.replace(one, n_initial=n_initial), runs, "runs, sc.sensors and n_initial")
+    _block_allocation(dataclasses.replace(one, n_initial=n_initial), runs,
+                      f"runs, sc.sensors and {'n_initial' if given else 'sc.n_particles (n_initial by default)'}")
     designs = {"plain": one, "more particles": dataclasses.replace(one, n_initial=n_initial),
                "guard": dataclasses.replace(one, guard=COLLAPSE_FRACTION)}
     ess, weighted = {}, {}

@@ -69,6 +69,9 @@ def _design(seed: int, runs: int, sc: RangeBearingScenario) -> DesignStudy:
 def design(seed: int, runs: int = STUDY_RUNS, sc: RangeBearingScenario | None = None) -> DesignStudy:
     """:func:`design_study` of the study's scenario (or ``sc``), cached.
 
+    Its "more particles" design draws the default ``n_initial`` of :func:`design_study` (the larger of 10,000 and
+    5 × ``sc.n_particles``), so every valid scenario has a design.
+
     Parameters
     ----------
     seed, runs : int
@@ -140,10 +143,14 @@ def isv_study(seed: int) -> IsVarianceStudy:
     return is_variance_study(np.random.default_rng(seed + 3))
 
 
+def _premise_more(runs: int) -> dict[str, int]:
+    """The networks :func:`premise_study` runs more often at ``runs`` runs per network -> their runs."""
+    return {k: n * runs // STUDY_RUNS for k, n in PREMISE_MORE_RUNS.items()}
+
+
 @study_cache(maxsize=2)
 def _premise(seed: int, runs: int, scenarios: tuple[tuple[str, Any], ...] | None) -> dict[str, NetworkStudy]:
-    more = {k: n * runs // STUDY_RUNS for k, n in PREMISE_MORE_RUNS.items()}
-    return premise_studies(seed + 10, runs, None if scenarios is None else dict(scenarios), more=more)
+    return premise_studies(seed + 10, runs, None if scenarios is None else dict(scenarios), more=_premise_more(runs))
 
 
 def premise_study(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any] | None = None) -> dict[str, NetworkStudy]:

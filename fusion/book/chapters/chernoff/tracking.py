@@ -12,6 +12,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._validation import FloatArray, count, frame_slice, instance_of
+from fusion._shown import shown
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.filtering.kalman import nees
 from fusion.book.tables import _cell_number, _frame, rounded
@@ -205,11 +206,13 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
     Returns
     -------
     DataFrame
-        One row per method (indexed by its display label, :data:`fusion.book.style.METHOD_LABELS`) plus ``"posterior CRB (floor)"``;
+        One row per method (indexed by its display label, :data:`fusion.book.style.METHOD_LABELS`, the naive
+        product's ε one 1 per node of the study) plus ``"posterior CRB (floor)"``;
         columns ``"RMSE from frame 5 (m)"`` (root of the squared position error averaged over runs
         and frames 5-K; for the CRB the root mean square of ``crb_pos`` over the same frames),
-        ``"RMSE, no guard (m)"`` (with ``plain``), ``"NEES, frames 1-4"`` and ``"mean NEES (4-D), frames 5-30"`` (frames
-        5-K; NaN for the mean of local means, which has no covariance, and for the CRB row; NaN, shown "—", also for a
+        ``"RMSE, no guard (m)"`` (with ``plain``), ``"NEES, frames 1-4"`` and ``"mean NEES (4-D), frames 5-K"`` (K the
+        study's last frame, 30 in the chapter; ``"frame 5"`` when K = 5; NaN for the mean of local means, which has
+        no covariance, and for the CRB row; NaN, shown "—", also for a
         method whose covariance is singular to working precision in some run and frame of the window, where its
         NEES is undefined: the other columns and methods keep their values); 2 decimals.
 
@@ -227,9 +230,10 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
     if plain is not None:
         plain = _check_study(plain, name="plain", like=runs, variants=True)
     crb_pos = _check_crb(crb_pos, runs)
+    n_nodes, late_nees = int(np.shape(runs[0].gm_loglik)[-1]), _late_nees(int(np.shape(runs[0].truth)[0]))
     rows = {}
     for key in METHODS:
-        label = METHOD_LABELS[key]
+        label = _row_label(key, n_nodes)
         if key not in runs[0].estimates:  # a reading not computed (RangeBearingScenario.readings)
             continue
         has_cov = key != "mean_of_local_means"
@@ -238,15 +242,31 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
             rows[label]["RMSE, no guard (m)"] = np.sqrt(position_sq_errors(plain, key)[:, LATE].mean())
         nees_k = _defined_nees(runs, key) if has_cov else None
         rows[label]["NEES, frames 1-4"] = nees_k[:, EARLY].mean() if nees_k is not None else np.nan
-        rows[label]["mean NEES (4-D), frames 5-30"] = nees_k[:, LATE].mean() if nees_k is not None else np.nan
+        rows[label][late_nees] = nees_k[:, LATE].mean() if nees_k is not None else np.nan
     rows[CRB_ROW] = {k: np.nan for k in next(iter(rows.values()))}
     rows[CRB_ROW][RMSE_LATE] = np.sqrt(np.mean(crb_pos[LATE] ** 2))
     return pd.DataFrame(rows).T.round(2)
 
 
-#: The NEES column :func:`table_values` reads, and the methods whose NEES it glues.
+#: The NEES column :func:`table_values` reads at the chapter's 30 frames, and the methods whose NEES it glues.
 _NEES_LATE = "mean NEES (4-D), frames 5-30"
 _NEES_KEYS = ("naive_product", "chernoff_pso", "ci_gaussian", "centralised_pf", "local1", "first_order_uniform")
+
+
+def _late_nees(k: int) -> str:
+    """:func:`method_table`'s column of the mean NEES over :data:`LATE` for runs of ``k`` frames, named by the
+    study's frames (fuzz 27b D3: "frames 5-30" whatever the study): ``_NEES_LATE`` at the chapter's 30."""
+    first = LATE.start + 1
+    return f"mean NEES (4-D), frames {first}-{k}" if k > first else f"mean NEES (4-D), frame {first}"
+
+
+def _row_label(key: str, n_nodes: int) -> str:
+    """:func:`method_table`'s row of the method ``key`` in a study of ``n_nodes`` nodes: its
+    :data:`~fusion.book.style.METHOD_LABELS` label, the naive product's exponents one per node (fuzz 27b D3:
+    "ε = (1, 1, 1)" whatever the study; the label itself at the chapter's 3 nodes)."""
+    if key == "naive_product":
+        return f"naive product, ε = ({', '.join(['1'] * n_nodes)})"
+    return METHOD_LABELS[key]
 
 
 def table_values(table: pd.DataFrame) -> GlueValues:
@@ -255,7 +275,8 @@ def table_values(table: pd.DataFrame) -> GlueValues:
     Parameters
     ----------
     table : DataFrame
-        The table of :func:`method_table` (rows labelled by :data:`fusion.book.style.METHOD_LABELS` plus the CRB row).
+        The table of :func:`method_table` (rows labelled by :data:`fusion.book.style.METHOD_LABELS` plus the CRB row;
+        the naive product's row and the late NEES column named by the study's nodes and frames, as it names them).
 
     Returns
     -------
@@ -275,22 +296,29 @@ def table_values(table: pd.DataFrame) -> GlueValues:
         ``table`` lacks a row or column of :func:`method_table` that it reads, holds one twice, or a cell read is not
         a finite positive number (an RMSE or a NEES: 0 or a negative one is impossible for a noisy filter).
     """
-    _frame(table, "table", (RMSE_LATE, _NEES_LATE), maker="method_table")
-    rows = [CRB_ROW, *(METHOD_LABELS[k] for k in ("chernoff_pso", "centralised_pf", "local1", *_NEES_KEYS))]
+    # the study's NEES column and naive row (method_table names them by its frames and nodes: _late_nees, _row_label)
+    late = next((c for c in (table.columns if isinstance(table, pd.DataFrame) else ())
+                 if isinstance(c, str) and c.startswith("mean NEES (4-D), frame")), _NEES_LATE)
+    _frame(table, "table", (RMSE_LATE, late), maker="method_table")
+    n_nodes = sum(METHOD_LABELS[k] in table.index for k in METHODS if k.startswith("local"))
+
+    def label(key: str) -> str:
+        return _row_label(key, n_nodes)
+    rows = [CRB_ROW, *(label(k) for k in ("chernoff_pso", "centralised_pf", "local1", *_NEES_KEYS))]
     missing = [r for r in rows if r not in table.index]
     if missing:
         raise ValueError(f"table lacks the rows {missing} (a result of method_table holds them)")
 
     def t(key: str, col: str = RMSE_LATE) -> float:
-        return _cell_number(table, METHOD_LABELS[key], col, "table", positive=True)
-    v: dict[str, float] = {f"chf_rmse_{k}": rounded(t(k)) for k in METHODS if METHOD_LABELS[k] in table.index}
+        return _cell_number(table, label(key), col, "table", positive=True)
+    v: dict[str, float] = {f"chf_rmse_{k}": rounded(t(k)) for k in METHODS if label(k) in table.index}
     v["chf_rmse_crb"] = rounded(_cell_number(table, CRB_ROW, RMSE_LATE, "table", positive=True))
     v["chf_ratio_local"] = rounded(t("local1") / t("chernoff_pso"))
     v["chf_ratio_local_min"] = rounded(min(t(k) for k in METHODS if k.startswith("local") and METHOD_LABELS[k] in table.index)
                                        / t("chernoff_pso"))
     v["chf_pct_central"] = rounded(100 * (t("chernoff_pso") / t("centralised_pf") - 1))
     for k in _NEES_KEYS:
-        v[f"chf_nees_{k}"] = rounded(t(k, _NEES_LATE))
+        v[f"chf_nees_{k}"] = rounded(t(k, late))
     v["chf_nees_first_order"] = v.pop("chf_nees_first_order_uniform")
     return v
 
@@ -400,11 +428,31 @@ def per_run_nees(runs: list[TrackingRun], key: str, frames: slice = LATE) -> Flo
     TypeError
         ``frames`` not a slice.
     ValueError
-        ``key`` is not a method with a covariance, ``runs`` is empty, or ``frames`` of step 0 or selecting no frame.
+        ``key`` is not a method with a covariance, ``runs`` is empty, ``frames`` of step 0 or selecting no frame,
+        or the method's covariance is singular to working precision in a run and frame of the window (its NEES is
+        undefined there, as :func:`method_table` shows it).
     """
-    nees = nees_per_frame(runs, key)
+    return _window_nees(runs, key, frames)
+
+
+def _window_nees(runs: list[TrackingRun], key: str, frames: slice, name: str = "runs",
+                 method: str = "key") -> FloatArray:
+    """:func:`per_run_nees`: the NEES of :func:`_defined_nees` (method_table's rule: undefined where the covariance
+    is singular to working precision) averaged over ``frames``; where it is undefined in the window a per-run mean
+    has no value, so ValueError naming ``name`` (the runs), ``method`` (the argument holding ``key``), the run and
+    the frame (fuzz 27b B3: per_run_nees and ev_tracking raised the NEES's own "covariances must be positive
+    definite")."""
+    nees = _defined_nees(runs, key)
     frame_slice(frames, "frames", nees.shape[1])
-    return np.round(nees[:, frames].mean(axis=1), 4)  # see per_run_mse
+    window = nees[:, frames]
+    bad = np.argwhere(np.isnan(window))
+    if bad.size:
+        j, i = (int(x) for x in bad[0])
+        k = range(nees.shape[1])[frames][i]
+        raise ValueError(f"{name}[{j}]: the covariance of {method} = {shown(key)} is singular to working precision at "
+                         f"frame {k + 1}, so its NEES is undefined there ({len(bad)} run-frames of the window; "
+                         "method_table shows '—'): no per-run mean NEES over the window")
+    return np.round(window.mean(axis=1), 4)  # see per_run_mse
 
 
 def gain_values(runs: list[TrackingRun]) -> GlueValues:

@@ -111,10 +111,15 @@ def _sensor_noises(R1: object, R2: object, names: tuple[str, str] = ("R1", "R2")
 def _period_key(value: object) -> object:
     """The chapter's one rule for a period or weight that keys a table row or a dict entry (fuzz 26c q2): a float
     narrower than float64 (float32, float16) is read as the number it prints as, its shortest decimal
-    (``np.float32(0.02)`` is 0.02 s, not 0.019999999552965164, which no reader of the row 0.02 finds); any other
+    (``np.float32(0.02)`` is 0.02 s, not 0.019999999552965164, which no reader of the row 0.02 finds), alone or
+    as an entry of an array, list or tuple of them (fuzz 27b B2: a list's float32 entries were kept); any other
     value unchanged (checked by its reader)."""
     if isinstance(value, np.floating) and value.dtype.itemsize < 8:
         return float(str(value))
+    if isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.dtype.itemsize < 8:
+        return np.array([float(str(v)) for v in value.ravel()]).reshape(value.shape)
+    if isinstance(value, (list, tuple)):
+        return (list if isinstance(value, list) else tuple)(_period_key(v) for v in value)
     return value
 
 
@@ -122,8 +127,7 @@ def _periods(periods: object, name: str = "periods") -> FloatArray:
     """Sampling periods, one table row each (fuzz 19's debatable empties): a non-empty 1-d array of distinct,
     finite, positive numbers (a scalar is one period), float32 ones read as they print (:func:`_period_key`);
     TypeError/ValueError naming ``name``."""
-    if isinstance(periods, (np.ndarray, np.floating)) and periods.dtype.kind == "f" and periods.dtype.itemsize < 8:
-        periods = np.array([_period_key(p) for p in np.atleast_1d(periods).ravel()]).reshape(np.shape(periods))
+    periods = _period_key(periods)
     arr = as_array(periods, name, ndim=(0, 1))
     arr = np.atleast_1d(arr)
     if (arr <= 0).any():

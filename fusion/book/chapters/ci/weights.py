@@ -29,8 +29,8 @@ from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
 from fusion.book.chapters.ci.text import _glue_doc, _sig3, excess_text, readable
-from fusion.book.chapters.ci.checks import (_entries, _frame, _indices, _optima_of, _per_step, _results, _same_search,
-                                            _sensor_noises, _step_index, _study_of)
+from fusion.book.chapters.ci.checks import (_entries, _frame, _indices, _optima_of, _per_step, _period_key, _results,
+                                            _same_search, _sensor_noises, _step_index, _study_of)
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
@@ -682,7 +682,7 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
     runs : int
         Monte-Carlo runs of the scenario.
     T : float
-        Sampling period (s).
+        Sampling period (s); a float32 one is the decimal it prints as (``_period_key``).
 
     Returns
     -------
@@ -706,7 +706,8 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
 
     batch_budget(len(fly), 30, 200, "fruit_fly_seeds")   # fruit_fly_over_seeds' printed 30 x 200 per seed
     _sensor_noises(R1, R2)
-    sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)
+    sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs,
+                                        T=_period_key(T))  # type: ignore[arg-type]  # the chapter's period rule
     a, b = sc.tracks
     k = _step_index(k, "k", a.gains.P.shape[0])
     P1, P2 = a.gains.P[k], b.gains.P[k]
