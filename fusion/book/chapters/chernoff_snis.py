@@ -367,7 +367,8 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
         table's rows are keyed by ω), and one whose :math:`\int p_\omega^2/g` is finite and resolved: for the
         chapter's proposal the integral is infinite below ω ≈ 0.103 (along the vertical, :math:`p_\omega^2` then
         decays slower than g: the delta method's c and V do not exist), finite but reaching beyond the widest
-        quadrature grid just above it (0.11, 0.12 are refused), and finite up to ω = 1, where its mass lies far
+        quadrature grid from there to ω ≈ 0.138 (every exponent in (0.103, 0.1385): 0.11, 0.13, 0.138 are
+        refused; 0.1385, 0.14 accepted), and finite up to ω = 1, where its mass lies far
         out (``|c|`` ≈ 2.6e29 at ω = 1, on a grid of half-width 36: the terms are computed on grids widened from the
         reference grid until two successive ones agree to 1e-8, relative).
 
