@@ -124,3 +124,16 @@ def test_n2_a_collapsed_particle_cloud_is_refused_naming_sc():
                               em_iterations=2)
     with pytest.raises(ValueError, match=r"^sc: .*sc.n_particles"):
         run_tracking(sc, np.random.SeedSequence(1), swarm_options=SwarmOptions(iterations=3))
+
+
+# --- D7 ---------------------------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("a, b", [(100.0, 100.0000001), (5.0, 5.0)])
+@pytest.mark.parametrize("claim", ["equal", "less", "greater"])
+def test_d7_exact_and_monte_carlo_agree_on_a_tie_at_margin_zero(a, b, claim):
+    from fusion.book.exact import ExactComparison
+    from fusion.book.ledger import Comparison
+    exact = ExactComparison(a, b, "A", "B", claim, "m", margin=0)
+    runs = Comparison(np.full(100, a), np.full(100, b), "A", "B", claim, "m", seed=1, margin=0)
+    assert exact.status() == runs.status()
+    assert exact.region() == runs.judgement().region
