@@ -137,3 +137,19 @@ def test_d7_exact_and_monte_carlo_agree_on_a_tie_at_margin_zero(a, b, claim):
     runs = Comparison(np.full(100, a), np.full(100, b), "A", "B", claim, "m", seed=1, margin=0)
     assert exact.status() == runs.status()
     assert exact.region() == runs.judgement().region
+
+
+# --- D5 ---------------------------------------------------------------------------------------------------------------
+
+def test_d5_the_producer_never_emits_a_bearing_of_minus_pi(monkeypatch):
+    import fusion.scenarios.range_bearing_scenario as rbs
+    from fusion.scenarios.range_bearing import RangeBearingScenario
+    sc = RangeBearingScenario(frames=2)
+    real = np.angle
+    monkeypatch.setattr(rbs.np, "angle", lambda z: np.full(np.shape(z), -np.pi))  # the wrap's own output at -pi
+    try:
+        t = rbs.simulate_target(sc, np.random.default_rng(1))
+    finally:
+        monkeypatch.setattr(rbs.np, "angle", real)
+    assert np.all(t.z[..., 1] == np.pi)
+    dataclasses.replace(t, z=t.z.copy())  # the producer's target rebuilds under its spec
