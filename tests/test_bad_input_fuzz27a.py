@@ -153,3 +153,17 @@ def test_d5_the_producer_never_emits_a_bearing_of_minus_pi(monkeypatch):
         monkeypatch.setattr(rbs.np, "angle", real)
     assert np.all(t.z[..., 1] == np.pi)
     dataclasses.replace(t, z=t.z.copy())  # the producer's target rebuilds under its spec
+
+
+# --- D6 ---------------------------------------------------------------------------------------------------------------
+
+def test_d6_a_short_study_inside_a_read_only_mapping_is_named_by_its_field():
+    import types
+    from fusion.book._few_runs import _short_fields
+
+    @dataclasses.dataclass(frozen=True)
+    class Record:
+        studies: object
+
+    short = types.SimpleNamespace(runs=2)
+    assert _short_fields(Record(types.MappingProxyType({"a": short})), 10) == ["studies"]
