@@ -230,6 +230,19 @@ def seeds(values: object, name: str = "seeds") -> list[int]:
     return [seed(v, f"{name}[{i}]") for i, v in enumerate(items)]
 
 
+def seed_array(values: object, name: str = "seeds") -> np.ndarray:
+    """:func:`seeds` as an array that holds each seed exactly: int64 when every seed fits, else dtype object of
+    ints (fuzz 27a F3). ``np.array`` of a list mixing an int in [2**63, 2**64) with a small one is float64,
+    which rounds the seed (2**63 + 1 would run the generator of 2**63); no seed is ever converted to float."""
+    s = seeds(values, name)
+    lo, hi = np.iinfo(np.int64).min, np.iinfo(np.int64).max
+    if all(lo <= v <= hi for v in s):
+        return np.array(s, dtype=np.int64)
+    out = np.empty(len(s), dtype=object)
+    out[:] = s
+    return out
+
+
 def _is_nan(v: object) -> bool:
     """``v`` a real or complex float NaN (not equal to itself)."""
     return isinstance(v, (float, complex, np.floating, np.complexfloating)) and v != v

@@ -36,6 +36,33 @@ def _pivot_floor(n: int) -> float:
     return SINGULAR_MARGIN * n * _EPS
 
 
+def column_rank_deficient(H: FloatArray) -> bool:
+    """Whether the observation matrix ``H`` (m, d) lacks full column rank to working precision: the rule of
+    :data:`SINGULAR_MARGIN` for an ``H`` (fuzz 27a N1). Its columns are scaled to unit norm first (the units of each
+    state component), then its smallest singular value within ``SINGULAR_MARGIN * max(m, d) * eps`` of its
+    largest is rank deficiency; a zero column or fewer rows than columns is too. ``np.linalg.matrix_rank(H)``
+    decided by the units: ``diag(1, 1e16)`` was refused."""
+    m, d = H.shape
+    if m < d:
+        return True
+    top = np.max(np.abs(H), axis=0)
+    if not np.all(top > 0):
+        return True
+    Hs = H / top  # no overflow in the norms
+    Hs = Hs / np.linalg.norm(Hs, axis=0)
+    s = np.linalg.svd(Hs, compute_uv=False)
+    return not bool(s[-1] > SINGULAR_MARGIN * max(m, d) * _EPS * s[0])
+
+
+def information_singular(A: FloatArray) -> bool:
+    """Whether an information matrix ``A`` (d, d; a sum of ``H^T R^-1 H``) is singular to working precision: the
+    rule of :data:`SINGULAR_MARGIN` (its correlation matrix, so the units of the state do not decide it; fuzz 27a
+    N1). A non-positive diagonal entry (a state component no reading sees) is singular."""
+    if not np.all(np.diagonal(A) > 0) or not np.all(np.isfinite(A)):
+        return True
+    return bool(singular_mask(A))
+
+
 def singular_mask(arr: FloatArray, factor: FloatArray | None = None) -> np.ndarray:
     """Which matrices of a stack (..., n, n) that passed a Cholesky factorisation are singular to working precision.
 

@@ -38,7 +38,8 @@ CLAIMS = ("less", "greater", "equal")
 def test_e_one_ulp_at_margin_zero_is_a_tie(claim, a):
     tie = EC(1.0, 1.0, "A", "B", claim, "exact mse", margin=0.0)
     e = EC(a, 1.0, "A", "B", claim, "exact mse", margin=0.0)
-    assert (e.status(), e.region(), e.to_dict()["region"]) == (tie.status(), "equivalent", "equivalent")
+    # a tie at margin 0 is undecided, as Comparison judges tied runs (fuzz 27a D7): never "lower"/"higher"
+    assert (e.status(), e.region(), e.to_dict()["region"]) == (tie.status(), "undecided", "undecided")
 
 
 @settings(max_examples=150, deadline=None)
@@ -63,7 +64,7 @@ def test_e_a_difference_beyond_the_tie_rule_still_decides_at_margin_zero(scale):
 def test_e_the_tie_rule_is_the_rulebooks_one_rule():
     b = 3.0
     inside, outside = b * (1 + 0.9 * ROUND_OFF_TIE), b * (1 + 1.1 * ROUND_OFF_TIE)
-    assert EC(inside, b, "A", "B", "greater", "x", margin=0.0).region() == "equivalent"
+    assert EC(inside, b, "A", "B", "greater", "x", margin=0.0).region() == "undecided"  # a tie (fuzz 27a D7)
     assert EC(outside, b, "A", "B", "greater", "x", margin=0.0).region() == "higher"
     # judge_paired reads the same pairs as a tie / not a tie (its runs' round-off rule)
     assert R.judge_paired([inside] * 3, [b] * 3, "greater", 0.0).estimate == 0.0

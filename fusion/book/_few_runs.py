@@ -12,7 +12,7 @@ import contextlib
 import functools
 import inspect
 import numbers
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from typing import Any, TypeVar
 
 _F = TypeVar("_F", bound=Callable[..., Any])
@@ -143,7 +143,8 @@ def _renamed(fn: _F, rename: Callable[[dict[str, Any], FewRunsError], None]) -> 
 
 def _short_fields(record: object, minimum: int | None) -> list[str]:
     """The fields of the result record ``record`` (a dataclass) holding a study of fewer than ``minimum`` runs: a
-    field whose value, or an entry of it (a tuple of studies, a mapping of them), has an integer ``runs`` below it."""
+    field whose value, or an entry of it (a tuple of studies, a mapping of them: a dict or the read-only mapping a
+    record stores, fuzz 27a D6), has an integer ``runs`` below it."""
     import dataclasses
 
     if minimum is None or not dataclasses.is_dataclass(record):
@@ -151,7 +152,7 @@ def _short_fields(record: object, minimum: int | None) -> list[str]:
     short = []
     for f in dataclasses.fields(record):
         value = getattr(record, f.name, None)
-        parts = (list(value.values()) if isinstance(value, dict) else list(value) if isinstance(value, (tuple, list))
+        parts = (list(value.values()) if isinstance(value, Mapping) else list(value) if isinstance(value, (tuple, list))
                  else [value])
         if any(isinstance(getattr(p, "runs", None), numbers.Integral) and p.runs < minimum for p in parts):
             short.append(f.name)

@@ -7,7 +7,8 @@ zero and the record's practical margin :math:`m`. "A is lower" is reproduced whe
 distinguishable when :math:`|d| \le m`, contradicted when :math:`d > m`; "no effect" is reproduced when
 :math:`|d| \le m`. Round-off never decides (R2's one tie rule, ``fusion._limits.ROUND_OFF_TIE``): a difference
 within :math:`10^{-9} \max(|A|, |B|)` of zero is a tie, :math:`d = 0`, whatever the margin (at :math:`m = 0`
-too: one ulp between two closed forms is not "lower"). The same margin that decides a Monte-Carlo comparison of the quantity decides its
+too: one ulp between two closed forms is not "lower"), judged as R2 judges a tie of Monte-Carlo runs: equivalent
+for a positive margin, undecided at :math:`m = 0` (no interval is wholly inside :math:`\pm 0`; fuzz 27a D7). The same margin that decides a Monte-Carlo comparison of the quantity decides its
 exact value, so a gain of :math:`10^{-6}` is not "better" in one record while a 4 % gain is "no
 difference" in another.
 """
@@ -133,11 +134,13 @@ class ExactComparison:
         r"""``"lower"``, ``"higher"``, ``"equivalent"`` or ``"undecided"`` (R2 with a zero-width interval).
 
         A tie, :math:`|A - B| \le 10^{-9} \max(|A|, |B|)` (R2's one tie rule, as :func:`fusion.book.rulebook.judge_paired`
-        applies it to a run), is ``"equivalent"`` whatever the margin, 0 included.
+        applies it to a run), is :math:`d = 0`: ``"equivalent"`` for a positive margin, ``"undecided"`` at margin 0,
+        as :func:`fusion.book.rulebook.judge_paired` judges runs that all tie (R2: equivalent is wholly inside
+        :math:`\pm m`; fuzz 27a D7).
         """
         d = self.difference
         if R._round_off(d, max(abs(self.a), abs(self.b))):  # R2's one tie rule: round-off never decides
-            return "equivalent"  # a tie is no effect, even with no margin
+            d = 0.0  # a tie is d = 0, judged as judge_paired judges tied runs (fuzz 27a D7)
         return R.region(d, d, self.margin)
 
     def status(self) -> str:

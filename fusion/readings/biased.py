@@ -41,6 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.stats import norm
 
+from fusion._covariances import column_rank_deficient, information_singular
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import allocation, work
@@ -115,7 +116,7 @@ def ridge(H: ArrayLike, y: ArrayLike, k: float) -> FloatArray:
     Ha, ya = _Hy(H, y)
     kk = _k(k)
     A = Ha.T @ Ha + kk * np.eye(Ha.shape[1])
-    if np.linalg.matrix_rank(A) < A.shape[0]:
+    if column_rank_deficient(Ha) if kk == 0.0 else np.linalg.matrix_rank(A) < A.shape[0]:  # fuzz 27a N1
         raise ValueError("H^T H + k I is singular: H is rank-deficient and k = 0")
     return np.linalg.solve(A, Ha.T @ ya)
 
@@ -194,7 +195,7 @@ def ridge_centralised(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequ
     for H, R, y in blocks:
         A += H.T @ np.linalg.solve(R, H)
         b += H.T @ np.linalg.solve(R, y)
-    if kk == 0.0 and np.linalg.matrix_rank(A) < A.shape[0]:
+    if kk == 0.0 and information_singular(A):
         raise ValueError("sum of H_i^T R_i^-1 H_i + k I is singular: the stacked Hs are rank-deficient and k = 0")
     return solve(A, b, "Hs (with k = 0)")
 
@@ -231,7 +232,7 @@ def ridge_distributed(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequ
     b = np.zeros(d)
     for i, (H, R, y) in enumerate(blocks):
         info = H.T @ np.linalg.solve(R, H)
-        if np.linalg.matrix_rank(info) < d:
+        if information_singular(info):
             raise ValueError(f"sensor {i}: H_i has no full column rank, no local estimate exists")
         P = np.linalg.inv(info)
         xi = P @ (H.T @ np.linalg.solve(R, y))
@@ -451,7 +452,7 @@ def plugin_ridge(H: ArrayLike, y: ArrayLike, sigma: float | None = None) -> Ridg
     Y = ya[:, None] if one else ya
     m, d = Ha.shape
     A = Ha.T @ Ha
-    if np.linalg.matrix_rank(A) < d:
+    if column_rank_deficient(Ha):  # whatever the units of the state (fuzz 27a N1)
         raise ValueError("H must have full column rank")
     x_ls = np.linalg.solve(A, Ha.T @ Y)
     if sigma is None:
@@ -543,7 +544,7 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
         As.append(Ha.T @ RiH)
         bs.append(RiH.T @ Y)
     A, b = sum(As), sum(bs)
-    if np.linalg.matrix_rank(A) < d:
+    if information_singular(A):
         raise ValueError("Hs: the total information is singular, no least-squares estimate exists")
     if where == ShrinkAt.CENTRALISED:
         x_ls = np.linalg.solve(A, b)
@@ -554,7 +555,7 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
         acc = np.zeros((d, runs))
         ks = []
         for i, (Ai, bi) in enumerate(zip(As, bs)):
-            if np.linalg.matrix_rank(Ai) < d:
+            if information_singular(Ai):
                 raise ValueError(f"Hs[{i}] has no full column rank: the sensor has no local estimate to shrink")
             xi_ls = np.linalg.solve(Ai, bi)
             nrm = np.sum(xi_ls**2, axis=0)

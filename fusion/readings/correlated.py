@@ -45,6 +45,7 @@ from numpy.typing import ArrayLike
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
 from fusion._frozen import frozen_arrays
+from fusion._covariances import column_rank_deficient
 from fusion._validation import derived_inputs
 from fusion._validation import inverse, solve, FloatArray, as_array, as_covariance, check_invertible, count
 
@@ -60,7 +61,7 @@ def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatA
     if za.shape[0] != Ha.shape[0]:
         raise ValueError(f"z must be ({Ha.shape[0]},) or ({Ha.shape[0]}, runs) to match H, got shape {za.shape}")
     Ra = as_covariance(R, dim=Ha.shape[0], name="R")
-    if np.linalg.matrix_rank(Ha) < Ha.shape[1]:
+    if column_rank_deficient(Ha):  # whatever the units of the state (fuzz 27a N1)
         raise ValueError("H must have full column rank")
     return Ha, Ra, za
 
@@ -334,7 +335,7 @@ def gls_weights(H: ArrayLike, R: ArrayLike) -> FloatArray:
     """
     Ha = as_array(H, "H", ndim=2)
     Ra = as_covariance(R, dim=Ha.shape[0], name="R")
-    if np.linalg.matrix_rank(Ha) < Ha.shape[1]:
+    if column_rank_deficient(Ha):  # whatever the units of the state (fuzz 27a N1)
         raise ValueError("H must have full column rank")
     c = cho_factor(Ra, lower=True)
     RiH = cho_solve(c, Ha)
@@ -505,7 +506,7 @@ def lagrange_weights(H: ArrayLike, R: ArrayLike) -> FloatArray:
     """
     Ha = as_array(H, "H", ndim=2)
     Ra = as_covariance(R, dim=Ha.shape[0], name="R")
-    if np.linalg.matrix_rank(Ha) < Ha.shape[1]:
+    if column_rank_deficient(Ha):  # whatever the units of the state (fuzz 27a N1)
         raise ValueError("H must have full column rank")
     N, d = Ha.shape
     K = np.block([[Ra, Ha], [Ha.T, np.zeros((d, d))]])
@@ -606,7 +607,7 @@ def gls_low_rank(H: ArrayLike, D: ArrayLike, U: ArrayLike, z: ArrayLike) -> Line
     za = as_array(z, "z", ndim=(1, 2))
     if za.shape[0] != Ha.shape[0]:
         raise ValueError(f"z must be ({Ha.shape[0]},) or ({Ha.shape[0]}, runs) to match H, got shape {za.shape}")
-    if np.linalg.matrix_rank(Ha) < Ha.shape[1]:
+    if column_rank_deficient(Ha):  # whatever the units of the state (fuzz 27a N1)
         raise ValueError("H must have full column rank")
     one = za.ndim == 1
     Z = za[:, None] if one else za

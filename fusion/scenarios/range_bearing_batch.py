@@ -438,7 +438,14 @@ class _Batch:
         means = np.stack([est[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
         covs = np.stack([cov[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
         est["mean_of_local_means"][:, k] = means.mean(axis=1)
-        infos, logdets = np.linalg.inv(covs), np.linalg.slogdet(2 * np.pi * covs)[1]
+        try:
+            infos = np.linalg.inv(covs)
+        except np.linalg.LinAlgError:  # fuzz 27a N2: a collapsed particle cloud, refused by name, not numpy's error
+            raise ValueError(f"sc: a local posterior's covariance at frame {k} is singular (its particles collapsed "
+                             f"onto too few points): sc.n_particles = {self.sc.n_particles} particles cannot resolve a "
+                             f"likelihood this narrow (sc.sigma_theta = {self.sc.sigma_theta:g}, sc.sigma_r = "
+                             f"{self.sc.sigma_r:g}); use more particles or less precise sensors") from None
+        logdets = np.linalg.slogdet(2 * np.pi * covs)[1]
         nx, nP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], np.ones((B, N)))
         est["naive_product"][:, k], cov["naive_product"][:, k] = nx[:, 0], nP[:, 0]
         e_ci = _gaussian_chernoff_batch(means, infos, logdets)

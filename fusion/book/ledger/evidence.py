@@ -38,16 +38,37 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- evidence
-def _extra_decimal(p: float, d: int) -> bool:
-    """Whether the published value ``p`` has more than ``d`` decimals (R1; fuzz 24a D5, fuzz 26a D1).
+#: Float32/float16 ulps a published value of that dtype may lie from its printed decimal (``0.789 * 100`` in float32
+#: is one float32 ulp from 78.9, fuzz 27a F1).
+_SHORT_ULPS = 2
 
-    ``p`` has at most ``d`` decimals when it is the printed decimal ``q = round(p, d)`` up to the binary round-off
-    of writing it down: the float32 nearest ``q`` (``np.float32(0.3)``, a table read as float32), or within a few
-    float64 ulps of ``q`` (``0.1 * 3``, ``12.3 / 100``). The allowance is bound by the value's magnitude through
-    its own precision, never a fixed relative share: a relative 2⁻²³ of 1234567.85 is 0.15, which let an extra
-    decimal through above about 4e5.
+
+def _decimal_fault(p: float, d: int, dtype: np.dtype) -> str | None:
+    """Why the published value ``p`` (of ``dtype``) is not a decimal of ``d`` decimals (R1), or None when it is.
+
+    The rule (fuzz 24a D5, fuzz 26a D1, fuzz 27a F1/F5): ``p`` is the printed decimal ``q = round(p, d)`` up to the
+    round-off of its own dtype, never a fixed relative share (a relative 2⁻²³ of 1234567.85 is 0.15, which let an
+    extra decimal through above about 4e5).
+
+    * A float32 or float16 value (an array or Series of that dtype) may lie ``_SHORT_ULPS`` ulps of its dtype from
+      ``q`` (a value computed in float32 is the decimal it prints at float32 precision). When another printed
+      decimal lies as close, the dtype cannot hold the value at ``d`` decimals (float32 98765.4321 is 98765.4297,
+      8e-3 apart from its neighbours) and the value is refused by name: "cannot hold".
+    * A float64 value may lie a few float64 ulps from ``q`` (``0.1 * 3``, ``12.3 / 100``), be the float32 nearest
+      ``q`` (``float(np.float32(0.3))``), or be a float32 number that the float32 rule accepts (a float32 product
+      converted to float); anything else is "extra" (an extra decimal).
     """
-    return not written_as(p, round(p, d))   # the package's one rule (fusion._limits.written_as)
+    q = round(p, d)
+    if dtype.kind == "f" and dtype.itemsize < 8:
+        allowance = _SHORT_ULPS * float(np.spacing(abs(dtype.type(p))))
+        if 10.0 ** -d - abs(p - q) <= allowance:
+            return "cannot hold"
+        return None if abs(p - q) <= allowance else "extra"
+    if written_as(p, q):   # the package's one rule for float64 (fusion._limits.written_as)
+        return None
+    if float(np.float32(p)) == p and _decimal_fault(p, d, np.dtype(np.float32)) is None:
+        return None
+    return "extra"
 
 
 def _run_count(runs: Any) -> int | None:
@@ -113,7 +134,9 @@ class PublishedValues:
         down, the float32 nearest that decimal or a few float64 ulps from it (so that a float32, ``0.1 * 3`` or
         ``12.3 / 100`` is the decimal it prints to). ``1.25`` with 1 decimal is refused, since R1 would then compare
         ours with a rounding of the published value (1.2) and a slip in ``decimals`` would decide the status; so is
-        ``1234567.85`` with 1 decimal (a float32 of 1234567.9 is 1234567.875, accepted: it is that decimal).
+        ``1234567.85`` with 1 decimal (the float 1234567.875, float32 of 1234567.9, is accepted: it is that decimal).
+        A float32 or float16 published array is held to its own precision (``_decimal_fault``): a few ulps of its
+        dtype, and a value its dtype cannot hold at ``decimals`` (float32 98765.4321 at 4 decimals) is refused.
     unit : str
     runs : int or None
         Monte-Carlo runs our values were computed from (keyword; ``None``, the default, for an exact
@@ -123,7 +146,8 @@ class PublishedValues:
     ------
     ValueError
         ``published`` empty, not 1-D or not finite; ``ours`` of another shape or infinite; ``decimals`` neither
-        one count nor one per value, or fewer than a published value's decimals; ``runs`` below 1.
+        one count nor one per value, or fewer than a published value's decimals, or more than its float32/float16
+        dtype holds; ``runs`` below 1.
     TypeError
         ``published`` or ``ours`` not numbers; ``decimals`` not integers; ``unit`` not a str.
     """
@@ -153,9 +177,14 @@ class PublishedValues:
         _text(unit, "unit")
         dec = np.broadcast_to(np.array(dec_l, dtype=int), pub.shape)
         # a real extra decimal, not the binary round-off of the printed decimal (float32, 0.1 * 3, 12.3 / 100: fuzz 24e F1)
-        longer = [i for i, (p, d) in enumerate(zip(pub.tolist(), dec.tolist())) if _extra_decimal(p, d)]
-        if longer:  # R1 would compare ours with the published value rounded (fuzz 24a D5)
-            i = longer[0]
+        dtype = np.asarray(published).dtype
+        faults = [_decimal_fault(p, d, dtype) for p, d in zip(pub.tolist(), dec.tolist())]
+        bad = [i for i, why in enumerate(faults) if why]
+        if bad:  # R1 would compare ours with the published value rounded (fuzz 24a D5)
+            i = bad[0]
+            if faults[i] == "cannot hold":
+                raise ValueError(f"published[{i}] = {shown(float(pub[i]))} is a {dtype} that cannot hold "
+                                 f"decimals[{i}] = {int(dec[i])} decimals (another printed value lies as close)")
             raise ValueError(f"published[{i}] = {shown(float(pub[i]))} has more decimals than decimals[{i}] = "
                              f"{int(dec[i])} (a published value has at most its printed decimals)")
         object.__setattr__(self, "published", tuple(float(v) for v in pub))

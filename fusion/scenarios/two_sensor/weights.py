@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._results import NONNEGATIVE, ResultSpec, array, integers, number, validated_post_init
-from fusion._validation import seed as check_seed, seeds as check_seeds
+from fusion._validation import seed as check_seed, seed_array
 from fusion._validation import LOOP_STEP, distinct, loop_work
 from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_semidefinite, count, instance_of,
                                 nonnegative_scalar)
@@ -135,7 +135,7 @@ class FruitFlySeeds:
 def _seeds_and_budget(seeds: ArrayLike, n_grid: int, grid_minimum: int, population: int, iterations: int, n: int,
                       rtol: float) -> tuple[np.ndarray, int, int, int, float]:
     """Checked seeds, grid size, swarm size and tolerance of a FOA-over-seeds study on an n x n objective."""
-    s = np.array(check_seeds(seeds, "seeds"))  # integers of any size (rule 11): a float array would round 2**53 + 1
+    s = seed_array(seeds, "seeds")  # integers of any size (rule 11), never a float array (2**63 + 1 would round)
     n_grid = count(n_grid, "n_grid", minimum=grid_minimum)
     population = count(population, "population")
     iterations = count(iterations, "iterations")
