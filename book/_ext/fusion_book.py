@@ -218,12 +218,12 @@ def _short(text: str, words: int = _BRIEF_WORDS) -> str:
 
 
 def _stability(v: dict) -> str:
-    """"stable in k of K reseeds", and whether the status changes at the scaled run count.
+    """"stable in k/K reseeds", and whether the status changes at the scaled run count.
 
     A stable record (not flagged: every reseed and the scaled run agree, up to R5's qualifier) gets the short form;
     a record that moves gets the scaled run's status, named as the primary reading's.
     """
-    text = f"stable in {v['k']} of {v['K']} reseeds"
+    text = f"stable in {v['k']}/{v['K']} reseeds"   # k/K: one word, on every stochastic row of the Verdicts page
     if not v["flag"]:
         return text + (f" and at {v['runs_factor']}× runs" if v["scaled"] is not None else "")
     if v["scaled"] is not None:

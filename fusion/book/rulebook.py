@@ -218,8 +218,8 @@ RULES: tuple[Rule, ...] = (
          f"the differences below {HEAVY_TAIL_INDEX:g}, or {DOMINANCE_SHARE:.0%} of the runs carrying half of "
          f"Σ|A − B|; tested from {HEAVY_TAIL_MIN_RUNS} runs up) is shown beside the status with the median "
          "difference and the share of runs in which A lies on the claimed side, and the reseeding sweep "
-         "re-derives the status at ten times the runs. A tail estimated from finite draws cannot show an "
-         "infinite variance: it never changes the statistic that decides."),
+         "re-derives the status at ten times the runs. A tail estimate never changes the statistic that decides "
+         "(finite draws cannot show an infinite variance)."),
     Rule("R4", "power",
          f"Every reading of a stochastic record runs at least as many runs as its primary reading and at least "
          f"{MIN_RUNS}; a reading with fewer is marked underpowered and not counted."),

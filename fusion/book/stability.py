@@ -17,7 +17,7 @@ results, and makes the run exit non-zero: never silently dropped.
 
 Results go to ``book/ledger/stability.json``: the date, root seed, K, run counts, package versions,
 the commit of the evidence code, and every record's status under every reseed and at 10× runs. The
-Verdicts page shows "stable in k of K reseeds" for each stochastic record and flags a record whose
+Verdicts page shows "stable in k/K reseeds" for each stochastic record and flags a record whose
 status changes; ``tests/test_stability.py`` fails when the stored results do not cover exactly the
 current stochastic records and readings.
 """

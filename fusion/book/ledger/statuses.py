@@ -58,10 +58,9 @@ STATUS_DEFINITIONS: dict[str, str] = constant({
                     "the mathematical claim is false (R9)",
     "not distinguishable": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval contains zero, or lies wholly "
                            "inside the practical margin for a claimed difference (too small to matter) (R2, R3)",
-    "cannot be checked": "the source gives too little to compute anything, or compares with a method it never "
-                         "defines; the record says why (R7, R9); or the evidence cannot decide the claim: a "
-                         "statistic that is undefined, or infinite without a side of zero (R3), or a member of a "
-                         "group that cannot be checked (R9)",
+    "cannot be checked": "the source gives too little to compute, or compares with a method it never defines "
+                         "(R7, R9); or the evidence cannot decide: a statistic undefined, or infinite without a side "
+                         "of zero (R3), or a member of a group that cannot be checked (R9); the record says why",
 })
 
 
