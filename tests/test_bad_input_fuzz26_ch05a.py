@@ -21,9 +21,7 @@ Each reproducer of ``/work/tmp/fuzz26c/report.md`` for these classes must raise 
 
 from __future__ import annotations
 
-import copy
 import sys
-from functools import cache
 from pathlib import Path
 from typing import Any
 
@@ -41,22 +39,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import test_bad_input_calls_ch05 as reg  # noqa: E402
 
 
-@cache
-def valid(name: str) -> dict[str, Any]:
-    """The registry's valid call of ``ci.<name>``."""
-    return {k: a.value for k, a in reg.registry()["fusion.book.chapters.ci." + name].items()}
-
-
-def kwargs(name: str, **over: Any) -> dict[str, Any]:
-    return {**{k: copy.copy(v) for k, v in valid(name).items()}, **over}
-
-
-def refused(fn: Any, arg: str, kind: Any = ValueError) -> str:
-    with pytest.raises((ValueError, TypeError)) as e:
-        fn()
-    assert isinstance(e.value, kind), f"{type(e.value).__name__}: {e.value}"
-    assert arg in str(e.value), str(e.value)
-    return str(e.value)
+# the registry's valid calls and the refusal check, shared with fuzz 24c's file (one cache of the registry per worker)
+from test_bad_input_fuzz24_ch05a import kwargs, refused, valid  # noqa: E402, F401
 
 
 # ------------------------------------------------------------------------------------------------ A1

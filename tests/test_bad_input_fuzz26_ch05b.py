@@ -29,19 +29,8 @@ from hypothesis import strategies as st
 import test_bad_input_calls_ch05 as T
 
 
-@pytest.fixture(scope="module")
-def o() -> dict[str, Any]:
-    return T._objects()
-
-
-def _valid(name: str) -> dict[str, Any]:
-    return {k: a.value for k, a in T.registry()["fusion.book.chapters.ci." + name].items()}
-
-
-def _ci() -> Any:
-    from fusion.book.chapters import ci
-
-    return ci
+# the chapter's objects (a module fixture), the registry's valid calls and the chapter, as fuzz 24c's file has them
+from test_bad_input_fuzz24_ch05b import _ci, _valid, o  # noqa: E402, F401
 
 
 # --- B1/q7: the two weight pairs, by the noises (and step, period) they record ---
