@@ -93,6 +93,7 @@ def count_ceiling(name: str) -> int:
 
 def _integer(value: object, name: str) -> int:
     """``value`` as an int when it is an integer type (rule 13); TypeError naming ``name`` otherwise."""
+    not_masked(value, name)   # a masked 0-d array or scalar: its value under the mask would be used
     if isinstance(value, (bool, np.bool_)) or value is None or isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must be an integer, got {shown(value)}")
     if isinstance(value, (complex, np.complexfloating)):
@@ -178,8 +179,10 @@ _PLAIN_INTEGERS = frozenset({int, np.int8, np.int16, np.int32, np.int64, np.uint
 
 
 def _integer_array(value: object) -> bool:
-    """Whether ``value`` is a 1-D ndarray of a plain integer dtype (its entries checked at once)."""
-    return isinstance(value, np.ndarray) and value.ndim == 1 and value.dtype.type in _PLAIN_INTEGERS
+    """Whether ``value`` is a 1-D ndarray of a plain integer dtype (its entries checked at once); a masked array is
+    not (it goes through :func:`sequence`, which refuses it: :func:`not_masked`)."""
+    return (isinstance(value, np.ndarray) and not isinstance(value, np.ma.MaskedArray) and value.ndim == 1
+            and value.dtype.type in _PLAIN_INTEGERS)
 
 
 def _plain_integers(items: list | np.ndarray, minimum: int, maximum: int | None) -> list[int] | None:

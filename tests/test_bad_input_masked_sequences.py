@@ -24,11 +24,26 @@ SEQUENCE_ARGS = [(n, a) for n in NAMES for a, k in KIND[n].items()
 
 def _masked_like(value: object) -> np.ma.MaskedArray:
     """``value`` as a masked array with its last item masked and a wild value under the mask."""
-    a = np.array(value, dtype=float, copy=True)
+    a = np.array(value, copy=True)   # its own dtype: integer seeds and counts take another path than floats
+    a = a.astype(float) if a.dtype.kind not in "iu" else a
     mask = np.zeros(a.shape, bool)
     mask.reshape(-1)[-1] = True
-    a.reshape(-1)[-1] = 1e6   # what a dropped mask would let through
+    a.reshape(-1)[-1] = 10**6   # what a dropped mask would let through
     return np.ma.masked_array(a, mask=mask)
+
+
+def test_integer_rules_refuse_masked_arrays() -> None:
+    """Fuzz 28a C2: a masked integer array took the integer fast path (its masked entry became None), and a masked
+    0-d count its value under the mask."""
+    from fusion._counts import count, counts, seeds
+
+    with pytest.raises(TypeError, match="^seeds must be a plain array"):
+        seeds(np.ma.array([1, 2], mask=[0, 1]), "seeds")
+    with pytest.raises(TypeError, match="^ns must be a plain array"):
+        counts(np.ma.array([1, 2]), "ns")
+    with pytest.raises(TypeError, match="^runs must be a plain array"):
+        count(np.ma.array(5, mask=True), "runs")
+    assert seeds(np.array([1, 2]), "seeds") == [1, 2] and count(np.int64(5), "runs") == 5
 
 
 def test_sequence_refuses_a_masked_array_and_keeps_plain_arrays() -> None:
