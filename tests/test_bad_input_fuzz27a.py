@@ -167,3 +167,19 @@ def test_d6_a_short_study_inside_a_read_only_mapping_is_named_by_its_field():
 
     short = types.SimpleNamespace(runs=2)
     assert _short_fields(Record(types.MappingProxyType({"a": short})), 10) == ["studies"]
+
+
+def test_c1_fuzz28a_ridge_decides_singularity_without_units_at_every_k():
+    """Fuzz 28a C1: at k > 0 ridge kept matrix_rank's absolute tolerance, so diag(1, 1e16) was refused (with a
+    message saying k = 0) where k = 0 and least_squares gave [1, 1]; a rank-deficient H is still refused at a k too
+    small to make up for it, and solved at a k that does."""
+    from fusion.readings.biased import ridge
+
+    for k in (1e-10, 1e-300):   # a ridge this small leaves the exact solution [1, 1] (k = 1 gives [0.5, 1])
+        np.testing.assert_allclose(ridge(np.diag([1.0, 1e16]), [1.0, 1e16], k), [1.0, 1.0], rtol=1e-9)
+    np.testing.assert_allclose(ridge(np.diag([1.0, 1e16]), [1.0, 1e16], 1.0), [0.5, 1.0], rtol=1e-9)
+    H = np.ones((2, 2))
+    for k in (0.0, 1e-300):
+        with pytest.raises(ValueError, match="rank-deficient"):
+            ridge(H, [1.0, 1.0], k)
+    np.testing.assert_allclose(ridge(H, [1.0, 1.0], 1.0), [0.4, 0.4])

@@ -116,8 +116,10 @@ def ridge(H: ArrayLike, y: ArrayLike, k: float) -> FloatArray:
     Ha, ya = _Hy(H, y)
     kk = _k(k)
     A = Ha.T @ Ha + kk * np.eye(Ha.shape[1])
-    if column_rank_deficient(Ha) if kk == 0.0 else np.linalg.matrix_rank(A) < A.shape[0]:  # fuzz 27a N1
-        raise ValueError("H^T H + k I is singular: H is rank-deficient and k = 0")
+    # unit-free at every k (fuzz 27a N1, fuzz 28a C1: matrix_rank's absolute tolerance refused diag(1, 1e16) at k > 0)
+    if column_rank_deficient(Ha) if kk == 0.0 else information_singular(A):
+        raise ValueError("H^T H + k I is singular to working precision: H is rank-deficient and k is 0 or too small "
+                         "to make up for it")
     return np.linalg.solve(A, Ha.T @ ya)
 
 
