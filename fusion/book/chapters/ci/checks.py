@@ -108,18 +108,29 @@ def _sensor_noises(R1: object, R2: object, names: tuple[str, str] = ("R1", "R2")
         diagonal_covariance(R, 2, name)
 
 
+def _narrow(value: object) -> bool:
+    """``value`` a float narrower than float64 that ``_period_key`` reads as it prints: a NumPy scalar or a plain
+    array (never a masked one, whose mask a rebuild would drop: it goes to its reader unchanged, which refuses it
+    by the masked-array rule, ``fusion._counts.not_masked``; fuzz 28b C1)."""
+    if isinstance(value, np.floating):
+        return value.dtype.itemsize < 8
+    return (isinstance(value, np.ndarray) and not isinstance(value, np.ma.MaskedArray) and value.dtype.kind == "f"
+            and value.dtype.itemsize < 8)
+
+
 def _period_key(value: object) -> object:
     """The chapter's one rule for a period or weight that keys a table row or a dict entry (fuzz 26c q2): a float
     narrower than float64 (float32, float16) is read as the number it prints as, its shortest decimal
     (``np.float32(0.02)`` is 0.02 s, not 0.019999999552965164, which no reader of the row 0.02 finds), alone or
-    as an entry of an array, list or tuple of them (fuzz 27b B2: a list's float32 entries were kept); any other
-    value unchanged (checked by its reader)."""
-    if isinstance(value, np.floating) and value.dtype.itemsize < 8:
+    as an entry of an array, list or tuple of them (fuzz 27b B2: a list's float32 entries were kept); any
+    other value unchanged, checked by its reader: a masked array (fuzz 28b C1) and a nested list (one level only:
+    fuzz 28b C2, a deep one recursed) reach the reader's rules as the caller gave them."""
+    if isinstance(value, np.floating) and _narrow(value):
         return float(str(value))
-    if isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.dtype.itemsize < 8:
+    if isinstance(value, np.ndarray) and _narrow(value):
         return np.array([float(str(v)) for v in value.ravel()]).reshape(value.shape)
-    if isinstance(value, (list, tuple)):
-        return (list if isinstance(value, list) else tuple)(_period_key(v) for v in value)
+    if isinstance(value, (list, tuple)) and any(_narrow(v) for v in value):
+        return (list if isinstance(value, list) else tuple)(_period_key(v) if _narrow(v) else v for v in value)
     return value
 
 

@@ -1,0 +1,90 @@
+"""Fuzz 28b's bad input of chapter 05, cases C1, C2, C3 and the debatable D1 (issue 35); D2 of chapter 06.
+
+* C1: ``_period_key`` (the chapter's float32 period rule) rebuilt a masked float32 array or scalar, dropping its
+  mask (or failing on ``'--'`` with a message naming nothing): a masked value now reaches its reader unchanged,
+  which refuses it by the masked-array rule (``fusion._counts.not_masked``), naming ``periods`` or ``T``;
+* C2: it recursed into nested lists (a RecursionError); it now reads one level only (a flat list's entries), and
+  a nested list reaches the reader, which refuses it by name;
+* C3, D1: ``ledger(r, values)`` requires each value of ``values`` to be of the type class of ``ledger_values(r)``'s
+  (a text, an integer, a real float): a 1-element array, a complex, a Decimal, a bool or 2.0 for the count 2
+  compare equal but the texts would quote them otherwise; a TypeError naming ``values[key]``;
+* D2: ``snis_bias_study``'s docstring states the code's rule for the unresolved far exponents, not a typed edge.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from fusion.book.chapters import ci
+from fusion.book.chapters.ci.checks import _period_key, _periods
+
+
+def refused(fn: Any, arg: str, kind: Any = ValueError) -> str:
+    with pytest.raises((ValueError, TypeError)) as e:
+        fn()
+    assert isinstance(e.value, kind), f"{type(e.value).__name__}: {e.value}"
+    assert arg in str(e.value), str(e.value)
+    return str(e.value)
+
+
+# ------------------------------------------------------------------------------------------------ C1: masked periods
+
+@settings(max_examples=25, deadline=None)
+@given(dtype=st.sampled_from([np.float16, np.float32, np.float64]),
+       mask=st.lists(st.booleans(), min_size=1, max_size=4))
+def test_c1_a_masked_periods_array_is_refused_by_name_whatever_its_dtype_and_mask(dtype: Any, mask: list) -> None:
+    """Masked (or all-unmasked) float16/32/64 periods: the masked-array rule's TypeError, never the mask dropped."""
+    periods = np.ma.masked_array((np.arange(len(mask)) + 1.0).astype(dtype) / 4, mask=mask)
+    msg = refused(lambda: _periods(periods), "periods", TypeError)
+    assert "masked" in msg
+
+
+def test_c1_the_chapter_tables_refuse_a_masked_float32_periods_array() -> None:
+    m32 = np.ma.masked_array(np.array([1.0, 0.02, 0.001], dtype=np.float32), mask=[0, 1, 0])
+    refused(lambda: ci.pcrb_table(m32, 150.0, 10.0), "periods", TypeError)
+    refused(lambda: ci.pcrb_table(np.ma.masked_array(m32.data), 150.0, 10.0), "periods", TypeError)
+    s32 = np.ma.masked_array(np.array([0.1, 0.5], dtype=np.float32), mask=[0, 1])
+    refused(lambda: ci.sensitivity_table(s32, 1, 2, duration=3.0, t_min=1.0), "periods", TypeError)
+
+
+@pytest.mark.parametrize("masked", [True, False])
+def test_c1_a_masked_float32_value_is_passed_on_unchanged(masked: bool) -> None:
+    """A masked float32 scalar (T of weight_pair) reaches its reader as given: its rule refuses it by name."""
+    T = np.ma.masked_array(np.float32(8.0), mask=masked)
+    assert _period_key(T) is T
+    entry = [1.0, T]
+    assert _period_key(entry) is entry   # a list holding no plain narrow float is the caller's own
+    refused(lambda: ci.weight_pair(np.eye(2), np.eye(2) / 9, np.eye(4) * 0.01, 2, seed=1, search_seed=2,
+                                   fruit_fly_seeds=[3], runs=2, T=T), "T", TypeError)
+
+
+def test_c1_float32_periods_are_still_read_as_they_print() -> None:
+    """The rule of fuzz 26c q2 / 27b B2 stays: float32 periods alone, in an array, a list or a tuple."""
+    assert _period_key(np.float32(0.02)) == 0.02
+    assert _periods(np.array([1.0, 0.02], dtype=np.float32)).tolist() == [1.0, 0.02]
+    assert _periods([np.float32(1.0), np.float32(0.02), 0.5]).tolist() == [1.0, 0.02, 0.5]
+    assert _periods((np.float16(0.5), np.float32(0.02))).tolist() == [0.5, 0.02]
+    assert list(ci.pcrb_table([np.float32(1.0), np.float32(0.02)], 150.0, 10.0).index[:2]) == [1.0, 0.02]
+
+
+# ------------------------------------------------------------------------------------------------ C2: nested lists
+
+@settings(max_examples=12, deadline=None)
+@given(depth=st.sampled_from([2, 3, 64, 500, 1200]), narrow=st.booleans())
+def test_c2_a_nested_periods_list_is_refused_by_name_without_recursion(depth: int, narrow: bool) -> None:
+    x: Any = np.float32(0.5) if narrow else 0.5
+    for _ in range(depth):
+        x = [x]
+    refused(lambda: _periods(x), "periods", (TypeError, ValueError))
+
+
+def test_c2_the_chapter_tables_refuse_a_deeply_nested_list() -> None:
+    x: Any = [0.5]
+    for _ in range(500):
+        x = [x]
+    refused(lambda: ci.pcrb_table(x, 150.0, 10.0), "periods", TypeError)
+    refused(lambda: ci.sensitivity_table(x, 1, 2, duration=3.0, t_min=1.0), "periods", TypeError)
