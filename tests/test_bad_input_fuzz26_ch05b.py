@@ -131,7 +131,8 @@ def test_ledger_refuses_any_edited_number(key: int, delta: float) -> None:
     values = ci.ledger_values(r)
     numeric = sorted(k for k, v in values.items() if isinstance(v, (int, float)) and not isinstance(v, bool))
     k = numeric[key % len(numeric)]
-    with pytest.raises(ValueError, match=rf"values\['{k}'\]"):
+    # an integer count edited by a float delta is a float: refused by its type class (fuzz 28b D1)
+    with pytest.raises(TypeError if isinstance(values[k], int) else ValueError, match=rf"values\['{k}'\]"):
         ci.ledger(r, {**values, k: values[k] + delta})
 
 

@@ -13,6 +13,7 @@
 
 from __future__ import annotations
 
+import decimal
 from typing import Any
 
 import numpy as np
@@ -21,6 +22,7 @@ from hypothesis import given, settings, strategies as st
 
 from fusion.book.chapters import ci
 from fusion.book.chapters.ci.checks import _period_key, _periods
+from fusion.book.chapters.ci.claim_evidence import _values_of
 
 
 def refused(fn: Any, arg: str, kind: Any = ValueError) -> str:
@@ -88,3 +90,41 @@ def test_c2_the_chapter_tables_refuse_a_deeply_nested_list() -> None:
         x = [x]
     refused(lambda: ci.pcrb_table(x, 150.0, 10.0), "periods", TypeError)
     refused(lambda: ci.sensitivity_table(x, 1, 2, duration=3.0, t_min=1.0), "periods", TypeError)
+
+
+# ------------------------------------------------------------------------------------------------ C3, D1: values
+
+EXPECTED = {"ci_lg_runs": 2, "ci_lg_fig6_lo": 0.11, "ci_lg_nan": float("nan"), "ci_lg_text": "1.07 × 10⁶"}
+
+
+def _edited(key: str, value: Any) -> dict:
+    return {**EXPECTED, key: value}
+
+
+def test_c3_ledger_values_of_their_own_type_class_are_accepted() -> None:
+    _values_of(dict(EXPECTED), EXPECTED)
+    _values_of(_edited("ci_lg_runs", np.int64(2)), EXPECTED)          # a NumPy integer is an integer
+    _values_of(_edited("ci_lg_fig6_lo", np.float64(0.11)), EXPECTED)  # a NumPy float is a real float
+    _values_of(_edited("ci_lg_nan", np.float64("nan")), EXPECTED)     # NaN equal to NaN
+
+
+@pytest.mark.parametrize("key, value", [
+    ("ci_lg_runs", np.array([2])), ("ci_lg_runs", np.array(2)), ("ci_lg_runs", 2.0), ("ci_lg_runs", True),
+    ("ci_lg_runs", decimal.Decimal(2)), ("ci_lg_runs", complex(2, 0)), ("ci_lg_runs", np.float64(2.0)),
+    ("ci_lg_fig6_lo", complex(0.11, 0)), ("ci_lg_fig6_lo", np.array([0.11])), ("ci_lg_fig6_lo", np.array([[0.11]])),
+    ("ci_lg_fig6_lo", decimal.Decimal("0.11")), ("ci_lg_fig6_lo", np.complex128(0.11)),
+    ("ci_lg_nan", np.array([np.nan])), ("ci_lg_nan", complex("nan")), ("ci_lg_text", 1.07e6)])
+def test_c3_d1_a_value_of_another_type_class_is_refused_by_its_key(key: str, value: Any) -> None:
+    """Values equal to ledger_values(r)'s but of another type class (the texts would quote ``[2]``, ``2.0``,
+    ``(0.11+0j)``): a TypeError naming values[key]."""
+    refused(lambda: _values_of(_edited(key, value), EXPECTED), f"values['{key}']", TypeError)
+
+
+@settings(max_examples=20, deadline=None)
+@given(value=st.one_of(st.integers(-5, 5), st.floats(allow_nan=False, width=64), st.text(max_size=3)))
+def test_c3_a_value_of_its_class_but_another_number_is_a_value_error(value: Any) -> None:
+    key = {int: "ci_lg_runs", float: "ci_lg_fig6_lo", str: "ci_lg_text"}[type(value)]
+    if value == EXPECTED[key]:
+        _values_of(_edited(key, value), EXPECTED)
+    else:
+        refused(lambda: _values_of(_edited(key, value), EXPECTED), f"values['{key}']")

@@ -605,7 +605,9 @@ def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
     Raises
     ------
     TypeError
-        ``values`` not a mapping.
+        ``values`` not a mapping, or a value not of the type class of ``ledger_values(r)``'s (a text, an integer,
+        a real float; fuzz 28b C3/D1: ``2.0`` for the integer 2, a 1-element array, a complex or a Decimal compare
+        equal but the texts would quote them as ``2.0``, ``[2]``, ``(0.11+0j)``).
     ValueError
         ``values`` not ``ledger_values(r)``: a key missing or extra, or a value that differs (fuzz 26c B3: another
         study's numbers, or an edited one, would be quoted beside the evidence of ``r``).
@@ -615,9 +617,17 @@ def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
     return build_ledger(BIBKEY, None, evidence(r), values=values, claims=claim_file())
 
 
+#: The type class of each value of :func:`ledger_values` (fuzz 28b C3/D1): a value of ``values`` must be of its
+#: class, so that the texts quote it as ``ledger_values(r)`` prints (``2``, not ``2.0``, ``[2]`` or ``(2+0j)``).
+_VALUE_CLASSES: tuple[tuple[tuple[type, ...], str], ...] = (
+    ((str,), "a text"), ((int, np.integer), "an integer"), ((float, np.floating), "a real float"))
+
+
 def _values_of(values: object, expected: Mapping[str, Any]) -> None:
-    """``values`` is ``expected`` (:func:`ledger_values` of the ledger's inputs): the same keys, each value equal
-    (NaN equal to NaN); TypeError/ValueError naming ``values``."""
+    """``values`` is ``expected`` (:func:`ledger_values` of the ledger's inputs): the same keys, each value of the
+    same type class (a text, an integer, or a real float: not a bool, an array, a complex or a Decimal, which
+    compare equal and print otherwise; fuzz 28b C3/D1) and equal (NaN equal to NaN); TypeError/ValueError naming
+    ``values``."""
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping (ledger_values(r)), got {type(values).__name__}")
     missing = [k for k in expected if k not in values]
@@ -627,12 +637,12 @@ def _values_of(values: object, expected: Mapping[str, Any]) -> None:
                          f"keys {shown(extra, 120)}")
     for k, want in expected.items():
         got = values[k]
-        try:   # a number equals its float (np.float64, an int); a text only the same text
-            same = isinstance(got, str) == isinstance(want, str) and bool(got == want)
-        except (TypeError, ValueError):   # an array's truth value
-            same = False
-        if not same and isinstance(want, float) and np.isnan(want):
-            same = isinstance(got, (float, np.floating)) and bool(np.isnan(got))
+        for accepted, what in _VALUE_CLASSES:
+            if isinstance(want, accepted) and not isinstance(want, (bool, np.bool_)) and (
+                    not isinstance(got, accepted) or isinstance(got, (bool, np.bool_))):
+                raise TypeError(f"values[{shown(k)}] must be {what}, as ledger_values(r) gives, got "
+                                f"{type(got).__name__}")
+        same = bool(got == want) or (isinstance(want, float) and bool(np.isnan(want) and np.isnan(got)))
         if not same:
             raise ValueError(f"values must be ledger_values(r): values[{shown(k)}] = {shown(got)} differs from "
                              f"{shown(want)}, the value r gives (the claim texts would quote it beside r's evidence)")
