@@ -26,11 +26,13 @@ from fusion.book.chapters.ci.claim_evidence import _values_of
 
 
 def refused(fn: Any, arg: str, kind: Any = ValueError) -> str:
-    with pytest.raises((ValueError, TypeError)) as e:
+    """The refusal's message: ``fn()`` raises ``kind`` (a TypeError or ValueError) naming ``arg``."""
+    try:
         fn()
-    assert isinstance(e.value, kind), f"{type(e.value).__name__}: {e.value}"
-    assert arg in str(e.value), str(e.value)
-    return str(e.value)
+    except (TypeError, ValueError) as e:
+        assert isinstance(e, kind) and arg in str(e), f"{type(e).__name__}: {e}"
+        return str(e)
+    raise AssertionError(f"accepted: expected a refusal naming {arg}")
 
 
 # ------------------------------------------------------------------------------------------------ C1: masked periods
@@ -128,3 +130,32 @@ def test_c3_a_value_of_its_class_but_another_number_is_a_value_error(value: Any)
         _values_of(_edited(key, value), EXPECTED)
     else:
         refused(lambda: _values_of(_edited(key, value), EXPECTED), f"values['{key}']")
+
+
+# ------------------------------------------------------------------------------------------------ D2: the far exponent
+
+def test_d2_the_finite_edge_is_the_tails_rule_of_the_docstring() -> None:
+    """∫p²/g infinite below ω ≈ 0.1034, finite above (the Gaussian tails' margin changes sign there)."""
+    from fusion.book.chapters.chernoff_snis import _tail_margin
+    from fusion.book.chapters.chernoff_steps import toy_reference
+
+    ref = toy_reference()
+    assert _tail_margin(ref.gms, np.array([0.1033, 0.8967]), ref.proposal)[0] < 0
+    assert _tail_margin(ref.gms, np.array([0.1035, 0.8965]), ref.proposal)[0] > 0
+
+
+def test_d2_the_docstring_states_the_code_s_rule_for_a_resolved_exponent() -> None:
+    """The resolved rule's grids and tolerance as the docstring states them are the code's (computed from its
+    constants: a widening or tolerance changed in the code fails here), and no edge typed by hand beside them.
+    (The edge it gives, ω ≈ 0.1381, costs 3 CPU-s to bracket: measured in fuzz 28b D2, not here.)"""
+    from fusion.book.chapters import chernoff_snis as cs
+    from fusion.book.chapters.chernoff_steps import toy_reference
+
+    doc = " ".join((cs.snis_bias_study.__doc__ or "").split())
+    half = float(np.unique(toy_reference().points[:, 0])[-1])
+    times = [f"{2 ** k}" for k in range(1, cs._DELTA_WIDENINGS + 1)]
+    assert f"the reference grid (half-width {half:g}) and on grids of {', '.join(times[:-1])} and {times[-1]} " \
+           "times its half-width" in doc
+    assert f"confirms to {cs._DELTA_RTOL:g}, relative".replace("e-0", "e-") + " (``_DELTA_RTOL``)" in doc
+    assert f"half-widths {2 * half:g} and {4 * half:g} first agree" in doc
+    assert "0.1385" not in doc and "0.138 " not in doc

@@ -173,9 +173,14 @@ def _snis_relation(values: dict[str, Any], cls: str) -> None:
 
 #: The delta-method terms of an exponent are kept when a grid twice as wide gives them to this relative tolerance:
 #: the quadrature's truncation is what a wider grid changes. The wider grids have 1201 nodes per axis (spacings
-#: 0.03, 0.06, 0.12 at half-widths 18, 36, 72), whose own discretisation error on the toy's terms is at most about
-#: 4e-9 (0.12 against 0.06, measured), below this tolerance; the reference grid (601 nodes on [-9, 9]², spacing
-#: 0.03) and the first wider one differ by truncation alone.
+#: 0.03, 0.06, 0.12 at half-widths 18, 36, 72), whose own discretisation error on the toy's terms is below this
+#: tolerance at the chapter's exponents (3e-14 on V at ω = 0.7, 0.12 against 0.06) but not near the edge of the
+#: resolved ones (2e-5 at ω = 0.14, where the half-width-72 grid of 2401 nodes agrees with the half-width-36 one to
+#: 1e-16: fuzz 28b D2; so near that edge the grids of half-widths 18 and 36 decide, and the accepted exponents start
+#: at ω ≈ 0.1381, where V's change from 18 to 36 falls below this tolerance, though scipy.integrate.nquad resolves
+#: the terms on [-30, 30]² below it (unchanged on [-60, 60]²): |c| = 98.763 at ω = 0.12, 2.7154 at 0.138, and
+#: 2.5989, 1.7474, 1.6091 at 0.1382, 0.14, 0.15, where the grid's terms agree with it to 1e-7); the reference grid
+#: (601 nodes on [-9, 9]², spacing 0.03) and the first wider one differ by truncation alone.
 _DELTA_RTOL = 1e-8
 #: How often the reference grid's half-width is doubled before an exponent's ∫p²/g counts as unresolved (9 -> 72).
 _DELTA_WIDENINGS = 3
@@ -219,7 +224,8 @@ def _toy_delta(w: float, name: str) -> SnisDelta:
     ------
     ValueError
         ``name`` (the exponent) where :math:`\int p^2/g` is infinite (:func:`_tail_margin`: the delta method does not
-        apply) or reaches beyond the widest grid.
+        apply) or not resolved (no two successive grids agree: its mass reaches far out, or, near the divergence,
+        the widest grid's spacing is too coarse; fuzz 28b D2).
     """
     ref = toy_reference()
     e = np.array([w, 1 - w])
@@ -245,9 +251,10 @@ def _toy_delta(w: float, name: str) -> SnisDelta:
             return previous
         previous = dt
     limit = float(axis0[-1]) * 2.0**_DELTA_WIDENINGS
-    raise ValueError(f"{name} = {shown(w)}: ∫p²/g is finite but its mass reaches beyond the widest quadrature grid "
-                     f"[-{limit:g}, {limit:g}]² (the terms change by more than {_DELTA_RTOL:g} when it is widened), so "
-                     "the delta method's c and V are not resolved; choose an exponent nearer the proposal's 1/2")
+    raise ValueError(f"{name} = {shown(w)}: ∫p²/g is finite but no two successive quadrature grids up to "
+                     f"[-{limit:g}, {limit:g}]² agree on its terms to {_DELTA_RTOL:g} (its mass reaches far out, or the "
+                     "widest grid is too coarse for it), so the delta method's c and V are not resolved; choose an "
+                     "exponent nearer the proposal's 1/2")
 
 
 def _delta_agree(a: SnisDelta, b: SnisDelta) -> bool:
@@ -364,13 +371,18 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
     ----------
     far_omega : float
         The second exponent of A, in [0, 1], other than the exact :math:`\omega^*` at the table's 4 decimals (the
-        table's rows are keyed by ω), and one whose :math:`\int p_\omega^2/g` is finite and resolved: for the
-        chapter's proposal the integral is infinite below ω ≈ 0.103 (along the vertical, :math:`p_\omega^2` then
-        decays slower than g: the delta method's c and V do not exist), finite but reaching beyond the widest
-        quadrature grid from there to ω ≈ 0.138 (every exponent in (0.103, 0.1385): 0.11, 0.13, 0.138 are
-        refused; 0.1385, 0.14 accepted), and finite up to ω = 1, where its mass lies far
-        out (``|c|`` ≈ 2.6e29 at ω = 1, on a grid of half-width 36: the terms are computed on grids widened from the
-        reference grid until two successive ones agree to 1e-8, relative).
+        table's rows are keyed by ω), and one whose :math:`\int p_\omega^2/g` is finite and resolved, by two
+        rules the code computes (``_toy_delta``; fuzz 28b D2). Finite: the Gaussian components' tails decide
+        (``_tail_margin``); for the chapter's proposal the integral is infinite below ω ≈ 0.1034 (along the
+        vertical, :math:`p_\omega^2` then decays slower than g: the delta method's c and V do not exist).
+        Resolved: the terms are computed on the reference grid (half-width 9) and on grids of 2, 4 and 8 times its
+        half-width (1201 nodes per axis), and kept from the first grid that the next one confirms to 1e-8,
+        relative (``_DELTA_RTOL``). Just above the first edge this second rule refuses exponents whose integral
+        is finite (a limit of the grids, not of the integral: near the edge the widest grid's spacing is too
+        coarse to confirm the others, so the edge is where the grids of half-widths 18 and 36 first agree; the
+        terms it accepts there agree with an independent quadrature, and ``|c|`` rises steeply toward the
+        divergence). At ω = 1 the integral's mass lies far out (``|c|`` ≈ 2.6e29, kept
+        on the half-width-36 grid).
 
     Returns
     -------
@@ -384,8 +396,9 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
         ``rng`` not a Generator, ``rs``, ``total`` not integers, ``far_omega`` not a real number.
     ValueError
         ``rs`` or ``total`` as the pool refuses them; ``far_omega`` outside [0, 1], equal to ω* at 4 decimals, or
-        one whose :math:`\int p^2/g` is infinite (decided from the Gaussian components' tails) or reaches beyond
-        the quadrature grid of half-width 72 (checked before any sample is drawn).
+        one whose :math:`\int p^2/g` is infinite (decided from the Gaussian components' tails) or not resolved by
+        the quadrature grids up to half-width 72 (no two successive ones agree; checked before any sample is
+        drawn).
     """
     total, rs = _pool_blocks(rng, rs, total)
     far_omega = unit_scalar(far_omega, "far_omega")
