@@ -39,6 +39,16 @@ def as_mask(value: object, name: str) -> NDArray[np.bool_]:
     return m
 
 
+def _slice_bounds(value: slice, name: str) -> None:
+    """Refuse, naming ``name``, a slice bound (start, stop or step) that is neither None nor an integer (rule 13,
+    :func:`fusion._validation.is_integer`): the one rule of every slice argument, so that a bool (``slice(True,
+    None)``, which Python reads as 1) or a float is a TypeError wherever a slice is validated (fuzz 28b D4)."""
+    for part in ("start", "stop", "step"):
+        b = getattr(value, part)
+        if b is not None and not is_integer(b):
+            raise TypeError(f"{name} must be a slice of integer bounds, got {part} = {shown(b)}")
+
+
 def selection(value: object, name: str, n: int) -> slice | NDArray[np.bool_]:
     """A selection of ``n`` paired entries (runs, snapshots): a :class:`slice` of integer (or ``None``) bounds and a
     non-zero step, or a boolean mask of length ``n`` (:func:`as_mask`). An integer index array is refused: a
@@ -58,10 +68,7 @@ def selection(value: object, name: str, n: int) -> slice | NDArray[np.bool_]:
         A mask of another length or shape, or a zero step; naming ``name``.
     """
     if isinstance(value, slice):
-        for part in ("start", "stop", "step"):
-            b = getattr(value, part)
-            if b is not None and not is_integer(b):
-                raise TypeError(f"{name} must be a slice of integer bounds, got {part} = {shown(b)}")
+        _slice_bounds(value, name)
         if value.step is not None and int(value.step) == 0:
             raise ValueError(f"{name} must be a slice of non-zero step, got {shown(value)}")
         return value
@@ -138,12 +145,13 @@ def frame_slice(value: object, name: str, length: int) -> range:
     Raises
     ------
     TypeError
-        Not a slice, or bounds that are not integers.
+        Not a slice, or bounds that are not integers (a bool bound included).
     ValueError
         A step of 0, or no frame selected.
     """
     if not isinstance(value, slice):
         raise TypeError(f"{name} must be a slice of frames, got {type(value).__name__} {shown(value, 60)}")
+    _slice_bounds(value, name)  # a bool bound is not a frame number (fuzz 28b D4: slice(True, None) read as 1)
     try:
         frames = range(length)[value]
     except TypeError:

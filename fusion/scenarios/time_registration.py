@@ -14,6 +14,7 @@ per-run MSEs can be compared, paired, with the exact expectation of :func:`expec
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
@@ -27,7 +28,7 @@ from fusion._frozen import constant
 from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, number, validated_post_init
 from fusion import registration as reg
 from fusion.registration import methods as _methods
-from fusion._limits import work
+from fusion._limits import LOOP_STEP, work
 from fusion._validation import derived_inputs
 from fusion._validation import shown
 from fusion._validation import text
@@ -202,6 +203,26 @@ _ON_STATES: dict[RegMethod, RegMethod | None] = {
 #: The methods built on the Kalman filter (its filtered, smoothed or lagged states); the others have fixed weights.
 FILTER_METHODS: frozenset[RegMethod] = frozenset(_ON_STATES)
 _KALMAN = FILTER_METHODS
+#: The methods whose registration is a Python loop over the instants (a fit per instant, ~12 us each here).
+_PER_INSTANT = frozenset({RegMethod.LEAST_SQUARES, RegMethod.QLS_NEXT, RegMethod.QLS_CAUSAL, RegMethod.LOCAL_QLS})
+
+
+def _registration_work(names: Sequence[str], n_src: int, n_dst: int, calls: int, what: str) -> int:
+    """Refuse (rule 17, :func:`fusion._limits.work`), naming the caller's ``what``, ``calls`` registrations of
+    ``n_dst`` instants onto ``n_src`` samples by each method of ``names``, before any work; return the units.
+
+    The one work rule of chapter 07's functions whose cost grows with a length the caller gives (times, instants, a
+    list of levels or periods; fuzz 28b C4-C7, D3). A registration weighs ``10 * LOOP_STEP`` (a call of
+    :func:`register`, ~100 us here), plus per instant least squares' own step (``10 * LOOP_STEP + 4 * n_src``,
+    :func:`fusion.registration.methods.least_squares`) for a method that fits each instant (``_PER_INSTANT``),
+    ``LOOP_STEP`` per filter step (sample or instant) for a Kalman method, ``n_src + n_dst`` for a vectorised one:
+    at least each inner budget of the call, so that an inner name is never the refusal's (measured 2 to 20 ns per
+    unit on the scenario's record).
+    """
+    step = LOOP_STEP
+    one = sum(10 * step + (n_dst * (10 * step + 4 * n_src) if n in _PER_INSTANT else
+                           (n_src + n_dst) * step if n in _KALMAN else n_src + n_dst) for n in names)
+    return work((int(calls), int(one)), what)
 
 
 def truth(t: ArrayLike) -> FloatArray:
@@ -528,7 +549,8 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
         Measurement-noise standard deviation (m), > 0.
     t_src, t_dst : array_like, optional
         Sample times and instants (s); default :func:`instants`. Refused, named, so far from the flight's start
-        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s).
+        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s). Their
+        sizes are held to the work budget, refused by name before any work (``_registration_work``).
     q_v, q_a : float
         Kalman tuning.
     kf : mapping, optional
@@ -563,6 +585,8 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     _precise_times(t1, t2)
+    _check_name(name)
+    _registration_work([name], t1.size, t2.size, t1.size + 1, "t_src and t_dst")  # rule 17: n1 + 1 registrations
     if delay != 0.0:
         lo, hi = _delay_bounds(t1, t2)
         if not lo <= delay <= hi:
@@ -583,7 +607,8 @@ def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike |
         A key of :data:`METHODS`.
     t_src, t_dst : array_like, optional
         Sample times and instants (s); default :func:`instants`. Refused, named, so far from the flight's start
-        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s).
+        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s). Their
+        sizes are held to the work budget, refused by name before any work (``_registration_work``).
     sigma : float
         Noise standard deviation the Kalman methods assume (m); unused by the others.
     q_v, q_a : float
@@ -601,6 +626,7 @@ def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike |
     t2 = d2 if t_dst is None else as_times(t_dst, "t_dst")
     sigma, q_v, q_a = _check_args(t1, t2, sigma, q_v, q_a)
     _precise_times(t1, t2)
+    _registration_work([name], t1.size, t2.size, 1, "t_src and t_dst")  # rule 17, named here
     est = register(name, t1, truth(t1), t2, sigma, q_v, q_a)
     return float(np.mean((est - truth(t2)) ** 2))
 
@@ -729,6 +755,24 @@ def _registered_runs(name: str, t_src: FloatArray, xs: FloatArray, t_dst: FloatA
     return xs[:, :, 0] @ _weights(base, t_src, t_dst, None).T
 
 
+def _exact_work(names: Sequence[str], n_dsts: Sequence[int], what: str) -> int:
+    """Refuse (rule 17), naming ``what``, the exact MSEs (:func:`expected`: ``n1 + 1`` registrations on the scenario's
+    ``n1`` samples) of every method of ``names`` at each count of instants of ``n_dsts``, their sum, before any work
+    (a sweep of levels, latencies or periods; fuzz 28b C7, D3)."""
+    n1 = instants()[0].size
+    return work((sum(_registration_work(names, n1, n, (n1 + 1) * c, what) for n, c in Counter(n_dsts).items()),), what)
+
+
+def _monte_carlo_work(names: Sequence[str], runs: int, n_src: int, n_dst: int, what: str, times: str) -> None:
+    """Refuse (rule 17) a :func:`monte_carlo` of ``runs`` runs of ``names`` on ``n_src`` samples and ``n_dst``
+    instants before any draw, naming ``what`` (its runs) or ``times`` (its weight matrices): a run of one method over
+    one sample or instant is about one unit (27 ns: 15 methods x 20 samples x 3e5 runs in 2.4 CPU-s, fuzz 26d DB6),
+    and each weight matrix is ``n_src`` registrations (:func:`_registration_work`; fuzz 28b C4: ``t_dst`` was not
+    counted and 20,000 instants ran unbounded)."""
+    work((int(runs), n_src + n_dst, len(names)), what)
+    _registration_work(names, n_src, n_dst, n_src, times)
+
+
 @derived_inputs()
 def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
                 t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
@@ -755,7 +799,8 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     seed : int
     t_src, t_dst : array_like, optional
         Sample times and instants (s); default :func:`instants`. Refused, named, so far from the flight's start
-        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s).
+        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s). Their
+        sizes are held to the work budget, refused by name before any work (``_registration_work``).
     q_v, q_a : float
         Kalman tuning.
     kf : mapping, optional
@@ -776,8 +821,9 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     -------
     MonteCarlo
         ``per_run``: method name → its per-run registration MSE (m², shape (runs,)), with ``sigma``, ``runs`` and
-        ``seed``. ``runs`` x samples x methods is held to the work budget (``fusion._limits.MAX_WORK``, refused
-        by name before any draw).
+        ``seed``. ``runs`` x (samples + instants) x methods, and the weight matrices (a registration per sample by
+        each method, ``_registration_work``), are held to the work budget (``fusion._limits.MAX_WORK``, refused by
+        name before any draw: a ``t_dst`` of 2,000 instants with the four least-squares methods, ~2 s, is refused).
     """
     if isinstance(names, (str, bytes)):
         raise TypeError(f"names must be a sequence of method names, got the string {shown(names)}")
@@ -795,9 +841,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     _precise_times(t1, t2)
-    # rule 17 before any draw (fuzz 26d DB6: no budget was applied): a run of one method over one sample is about one
-    # unit (measured 27 ns: 15 methods x 20 samples x 3e5 runs in 2.4 CPU-s), the budget about half a minute
-    work((runs, t1.size, len(names)), "runs, names and t_src")
+    _monte_carlo_work(names, runs, t1.size, t2.size, "runs, names, t_src and t_dst", "names, t_src and t_dst")
     window = _options(kf, window, t2)
     rng = np.random.default_rng(seed)
     z = manoeuvre_truth(t1 - delay, a_after, t_change) + sigma * rng.standard_normal((int(runs), t1.size))
@@ -833,7 +877,8 @@ def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | No
         Noise level the Kalman methods assume (m), > 0; unused by the others.
     t_src, t_dst : array_like, optional
         Sample times and instants (s); default :func:`instants`. Refused, named, so far from the flight's start
-        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s).
+        (t = 0) that the true positions lose the precision of the errors (``_precise_times``: about 6e4 s). Their
+        sizes are held to the work budget, refused by name before any work (``_registration_work``).
     q_v, q_a : float
         Kalman tuning.
     kf : mapping, optional
@@ -851,6 +896,7 @@ def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | No
     t2 = d2 if t_dst is None else as_times(t_dst, "t_dst")
     sf, q_v, q_a = _check_args(t1, t2, sf, q_v, q_a)
     _precise_times(t1, t2)
+    _registration_work([name], t1.size, t2.size, t1.size + 1, "t_src and t_dst")  # rule 17: n1 + 1 registrations
     dec = reg.affine_decomposition(registrar(name, t1, t2, sf, q_v, q_a, kf=kf), truth(t1))
     return float(np.mean((dec.f0 - truth(t2)) ** 2)), float(np.mean(np.sum(dec.A**2, axis=1)))
 

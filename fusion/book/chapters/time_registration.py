@@ -20,8 +20,8 @@ from numpy.typing import ArrayLike
 from fusion._frozen import constant
 from fusion._counts import seed as check_seed
 from fusion import data
-from fusion._validation import (as_array, as_times, distinct, instance_of, one_of, record, scalar, sequence,
-                                shown, std_scalar, text)
+from fusion._validation import (as_array, as_times, distinct, grid_points, instance_of, one_of, record, scalar,
+                                sequence, shown, std_scalar, text)
 from fusion._validation import template as format_template
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues, _glued_cell
@@ -315,12 +315,14 @@ def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
         ``t1`` holds fewer than three samples, or the times are not finite and strictly increasing; an instant of
         ``t2`` lies outside the record of ``t1`` (an extrapolation, refused as by
         :func:`~fusion.book.chapters.time_registration_ledger.cost_count`) or has fewer
-        than two samples of ``t1`` in the least-squares window before it.
+        than two samples of ``t1`` in the least-squares window before it; records beyond the work budget
+        (``fusion._limits.MAX_WORK``, chapter 07's rule ``_registration_work``: 30,000 instants on 30,000 samples).
     """
     t1, t2 = _record_times(t1, t2)    # sample times, the instants within the record: named
     _least_squares_windows(t1, t2)
-    x1, x2 = sc.truth(t1), sc.truth(t2)
     methods = (TWO, RegMethod.LEAST_SQUARES, RegMethod.THREE_POINT)
+    sc._registration_work(methods, t1.size, t2.size, 1, "t1 and t2")  # rule 17 (fuzz 28b C6: named t_query and t)
+    x1, x2 = sc.truth(t1), sc.truth(t2)
     table = pd.DataFrame({n: sc.register(n, t1, x1, t2, 1.0) - x2 for n in methods},
                          index=pd.Index(t2, name="sensor-2 instant (s)")).round(3) + 0.0
     table["derived two-point error"] = sc.two_point_remainder(t1, t2)
@@ -518,8 +520,15 @@ def sigma_sweep(sigmas: Sequence[float], names: Sequence[str]) -> pd.DataFrame:
     -------
     pandas.DataFrame
         Index the noise levels σ (m), one column per method of ``names``: the exact expected MSE (m²).
+
+    Raises
+    ------
+    ValueError
+        An entry empty, repeated or invalid, or the sweep beyond the work budget (``fusion._limits.MAX_WORK``, rule
+        ``_registration_work``: about 70 levels of all fifteen methods, 4,700 of two-point alone).
     """
     _noise_levels(sigmas, "sigmas"), _method_names(names, "names")
+    sc._exact_work(names, [sc.instants()[1].size] * len(sigmas), "sigmas and names")  # rule 17 (fuzz 28b D3)
     return pd.DataFrame({n: [sc.expected(n, s) for s in sigmas] for n in names},
                         index=pd.Index(np.asarray(sigmas, dtype=float), name="σ (m)"))
 
@@ -583,7 +592,9 @@ def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) ->
         ``periods`` or ``names`` is not a sequence, or ``sigma`` not a number.
     ValueError
         ``periods`` is empty, repeats a period (its rows are keyed by the period) or holds one that is not finite
-        and positive; ``names`` is empty, repeats a method or holds an unknown one; ``sigma`` is not a valid
+        and positive, or its instants are too many for a record (below about 4e-6 s) or beyond the work budget
+        (``fusion._limits.MAX_WORK``, chapter 07's rule ``_registration_work``: with least squares, below about
+        0.008 s); ``names`` is empty, repeats a method or holds an unknown one; ``sigma`` is not a valid
         standard deviation.
     """
     items = sequence(periods, "periods")
@@ -592,6 +603,8 @@ def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) ->
     items = [scalar(p, f"periods[{i}]", lo=0.0, lo_open=True) for i, p in enumerate(items)]  # floats (fuzz 22b, FR)
     distinct(items, "periods")
     sigma, names = std_scalar(sigma, "sigma"), _method_names(names, "names")
+    span = float(sc.SCENARIO["duration"] - sc.SCENARIO["on_2"])  # rule 17 before any work (fuzz 28b C7: period_2)
+    sc._exact_work(names, [grid_points(span, p, f"periods[{i}]") for i, p in enumerate(items)], "periods")
     rows = {}
     for p2 in items:
         t1, t2 = sc.instants(p2)
@@ -745,11 +758,15 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
     TypeError
         ``sigmas`` is not a sequence of numbers, ``runs`` or ``seed`` not an integer.
     ValueError
-        ``sigmas`` is empty or holds a level that is not a valid standard deviation; ``runs`` below 1.
+        ``sigmas`` is empty or holds a level that is not a valid standard deviation; ``runs`` below 1; the two
+        beyond the work budget (``fusion._limits.MAX_WORK``, chapter 07's rule ``_registration_work``).
     """
     seed = check_seed(seed)
     sigmas = _noise_levels(sigmas, "sigmas")
     count(runs, "runs")
+    k = len(sigmas) * len(TUNING_READINGS)  # rule 17 before any run: per level and reading a Monte Carlo, 2 exact
+    sc._monte_carlo_work([IMPROVED, TWO] * k, runs, *(t.size for t in sc.instants()), "sigmas and runs", "sigmas")
+    sc._exact_work((IMPROVED, TWO), [sc.instants()[1].size] * k, "sigmas")
     rows = {}
     for s in sigmas:
         s = float(s)

@@ -45,6 +45,8 @@ def _levels(sigmas: Sequence[float], runs: int, seed: int, axis_max: float):  # 
     sigmas = _noise_levels(sigmas, "sigmas")
     axis_max = scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     t1, t2 = sc.instants()
+    # rule 17 before the first level (fuzz 28b: runs x levels had no budget): per level, runs of two methods
+    sc._monte_carlo_work([IMPROVED, TWO] * len(sigmas), runs, t1.size, t2.size, "sigmas and runs", "sigmas")
     x1, x2 = sc.truth(t1), sc.truth(t2)
     for i, s in enumerate(sigmas):
         rng = np.random.default_rng(seed + i)
@@ -72,7 +74,8 @@ def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     sigmas : sequence of float
         Noise levels (m).
     runs : int
-        Runs per level.
+        Runs per level; ``runs`` x levels is held to the work budget (``fusion._limits.MAX_WORK``, refused by
+        name, ``sigmas and runs``, before the first level).
     seed : int
         Seed of the first level (``seed + i`` for the i-th).
     axis_max : float
@@ -120,7 +123,8 @@ def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     sigmas : sequence of float
         Noise levels (m).
     runs : int
-        Runs per level for readings (i)-(ii).
+        Runs per level for readings (i)-(ii); ``runs`` x levels is held to the work budget
+        (``fusion._limits.MAX_WORK``, refused by name, ``sigmas and runs``, before the first level).
     seed : int
         Seed of the first level.
     axis_max : float

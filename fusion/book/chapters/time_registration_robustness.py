@@ -138,8 +138,9 @@ def delay_table(delays: Sequence[float], sigmas: Sequence[float]) -> pd.DataFram
         ``delays`` or ``sigmas`` is not a sequence of numbers.
     ValueError
         ``delays`` or ``sigmas`` is empty or repeats an entry (the table is keyed by them: a repeat would merge into
-        one row or column), a latency is not finite or outside the flight, or a noise level is not a valid standard
-        deviation.
+        one row or column), a latency is not finite or outside the flight, a noise level is not a valid standard
+        deviation, or the table is beyond the work budget (``fusion._limits.MAX_WORK``, chapter 07's rule
+        ``_registration_work``: about 1,000 cells, latencies x levels).
     """
     from fusion._validation import distinct, scalar, sequence, std_scalar
 
@@ -149,6 +150,8 @@ def delay_table(delays: Sequence[float], sigmas: Sequence[float]) -> pd.DataFram
         if not items:
             raise ValueError(f"{name} is empty")
         distinct([float(check(v, f"{name}[{i}]")) for i, v in enumerate(items)], name)
+    # rule 17 before any work (fuzz 28b D3): two exact MSEs per cell
+    sc._exact_work((IMPROVED, TWO), [sc.instants()[1].size] * (len(delays) * len(sigmas)), "delays and sigmas")
     rows = {round(1e3 * float(d), 6): {f"σ_x = {s:g} m": sc.expected(IMPROVED, float(s), delay=float(d))
                              - sc.expected(TWO, float(s), delay=float(d)) for s in sigmas} for d in delays}
     out = pd.DataFrame(rows).T

@@ -153,10 +153,12 @@ def cost_values(t1: ArrayLike, t2: ArrayLike, t2_ratio: ArrayLike, sigma: float)
     ValueError
         ``t1``, ``t2`` or ``t2_ratio`` is not strictly increasing and finite (``t1``: three samples at least),
         ``t2_ratio`` holds an instant whose 6 s window holds fewer than two of the scenario's sensor-1 samples
-        (named ``t2_ratio``), or ``sigma`` is not a valid standard deviation.
+        (named ``t2_ratio``) or is beyond the work budget (``fusion._limits.MAX_WORK``, chapter 07's rule
+        ``_registration_work``: some 4,700 instants), or ``sigma`` is not a valid standard deviation.
     """
     t1, t2 = as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # strictly increasing times, named
     t2_ratio, sigma = as_times(t2_ratio, "t2_ratio"), std_scalar(sigma, "sigma")
+    sc._exact_work((EXTRAP, RegMethod.LEAST_SQUARES), [t2_ratio.size], "t2_ratio")  # rule 17 (fuzz 28b D3)
     cc = cost_count(t1, t2)
     stale = sc.truth(t2) - sc.truth(t1[np.searchsorted(t1, t2, side="right") - 1])
     with derived("t2_ratio", "an instant"):  # the registration refuses its own t_query

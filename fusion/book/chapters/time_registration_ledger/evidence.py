@@ -110,7 +110,8 @@ def figs23_fits(a: float, end: float, direction: str = "fast onto slow") -> dict
         ``a`` is not finite or gives positions beyond the representable range; ``end`` is not finite, not above
         4 s (fast onto slow: a sensor-2 instant, 3 s, with two sensor-1 samples in its window) or 9 s (slow onto
         fast: two sensor-2 samples, 3 s and 8 s, and a sensor-1 time after them), or asks for more samples than a
-        record may hold; ``direction`` is not one of the two.
+        record may hold or a fit beyond the work budget (``fusion._limits.MAX_WORK``: from about 5e4 s);
+        ``direction`` is not one of the two.
     """
     from fusion.registration import least_squares, two_point
     from fusion._validation import as_array, grid_points, one_of, scalar
@@ -122,6 +123,8 @@ def figs23_fits(a: float, end: float, direction: str = "fast onto slow") -> dict
     t1, t2 = np.arange(1.0, end, 2.0), np.arange(3.0, end - 1.0, 5.0)
     x1, x2 = t1 + a * t1**2 / 2, t2 + a * t2**2 / 2
     as_array(x1, "a and end (the positions they give)")
+    fast = direction == "fast onto slow"  # rule 17 by the chapter's rule, named end (fuzz 28b C7: t_query and t)
+    sc._registration_work([RegMethod.LEAST_SQUARES], *((t1.size, t2.size) if fast else (t2.size, t1.size)), 1, "end")
     after3 = (least_squares(t1, x1, t2, 5.0) if direction == "fast onto slow"
               else least_squares(t2, x2, t1[t1 >= t2[1]], 10.0))
     top = {"fig2_before_y": x1.max(), "fig2_after_y": two_point(t1, x1, t2).max(),

@@ -360,8 +360,17 @@ def noise_gain_by_instant(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
         Index: instant (s); columns: whether it is a sample time (exactly one of ``t1``, as given: an instant a
         few ulps from a sample is flagged False, its gains within round-off of 1; fuzz 26d DB8, documented), the
         two gains and three-point's excess (%).
+
+    Raises
+    ------
+    ValueError
+        As :func:`~fusion.book.chapters.time_registration_ledger.cost_count` for the times, or ``t1`` and ``t2``
+        beyond the work budget (``fusion._limits.MAX_WORK``, chapter 07's rule ``_registration_work``: 1,000
+        samples and 1,000 instants are refused, 1,000 and 30 accepted).
     """
     t1, t2 = _record_times(t1, t2)  # increasing, the instants within the record: named
+    # rule 17 (fuzz 28b C5: no budget, ~0.12 ms x len(t1) x len(t2)): per instant, each gain n1 + 1 registrations
+    sc._registration_work((RegMethod.THREE_POINT, TWO), t1.size, 1, t2.size * (t1.size + 1), "t1 and t2")
     # the samples are t1's (they were the scenario's default whatever t1 was: a plausible wrong gain, fuzz 17)
     g = {n: [sc.mse_coefficients(n, 1.0, t_src=t1, t_dst=[t])[1] for t in t2] for n in (RegMethod.THREE_POINT, TWO)}
     out = pd.DataFrame({"sample time": np.isin(t2, t1), "g three-point": g[RegMethod.THREE_POINT],
