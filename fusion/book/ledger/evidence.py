@@ -364,7 +364,8 @@ class Comparison:
         return j.estimate, j.low, j.high
 
     def within_margin(self) -> bool:
-        """``True`` if the whole 95 % interval lies inside (-margin, margin)."""
+        """``True`` if the whole 95 % interval lies inside the closed [-margin, margin] (rule R2: region "equivalent",
+        an end within round-off of the margin counted as the margin; never at margin 0)."""
         return self.judgement().region == "equivalent"
 
     def status(self) -> str:
