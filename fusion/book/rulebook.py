@@ -101,6 +101,7 @@ from scipy import stats
 from fusion._validation import _numeric, _real_number, check_magnitude, count, scalar, sequence, shown
 from fusion._validation import flag, one_of, text
 from fusion._limits import ROUND_OFF_TIE
+from fusion.book.tables import sci
 
 __all__ = [
     "STATUSES",
@@ -208,7 +209,7 @@ RULES: tuple[Rule, ...] = (
          "is lower (below zero, not wholly inside ±m), higher (above zero, not wholly inside ±m), equivalent (wholly "
          "inside ±m, its ends included: the margin is the largest difference that is practically none; never at "
          "m = 0) or undecided. Round-off never decides, at zero as at ±m: differences all within round-off of zero "
-         f"({ROUND_OFF_TIE:g} of the values' magnitude) are a tie, and an interval end within round-off of ±m is "
+         f"({sci(ROUND_OFF_TIE)} of the values' magnitude) are a tie, and an interval end within round-off of ±m is "
          "the margin. \"A is lower\" is reproduced when lower, contradicted when higher, not "
          "distinguishable when equivalent or undecided; \"A is higher\" mirrors it; \"no effect\" is reproduced when "
          "equivalent, contradicted when lower or higher, not distinguishable when undecided. The same margin decides "
