@@ -136,3 +136,34 @@ def written_as(p: float, q: float) -> bool:
     """
     return bool(p == q or abs(q - p) <= F64_ROUND_OFF * abs(p) or p == float(np.float32(q)))
 
+
+
+def inexact_integer(values: object) -> int | None:
+    """The index of the first integer of ``values`` that float64 cannot hold exactly, or None.
+
+    The integers' counterpart of "a value its dtype cannot hold" (``PublishedValues``' float32/float16 rule, fuzz 27a
+    F5): an integer beyond 2**53 in magnitude that is not a multiple of a large enough power of two (``2**53 + 1``)
+    becomes another number as a float64, so a comparison at printed decimals (R1) would compare another number
+    (9007199254740993 as ...992, fuzz 29a C6). Every integer up to 2**53 in magnitude is held.
+
+    Parameters
+    ----------
+    values : array_like
+        Numbers: an int64/uint64 array, or a sequence holding Python ints (any other values are skipped).
+
+    Returns
+    -------
+    int or None
+        The flat index of the first integer whose float64 conversion is another number (or overflows).
+    """
+    a = np.atleast_1d(np.asarray(values))
+    if a.dtype.kind not in "iuO" or (a.dtype.kind in "iu" and a.dtype.itemsize < 8):  # int32 and narrower: all held
+        return None
+    for i, v in enumerate(a.ravel().tolist()):
+        if isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_)):
+            try:
+                if float(v) != int(v):
+                    return i
+            except OverflowError:
+                return i
+    return None

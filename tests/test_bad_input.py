@@ -887,7 +887,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[rb + "hill_tail_index"] = dict(x=A(ab[0], ("nan", "inf", "empty", "str")))
     R[rb + "median_interval"] = dict(d=A(ab[0], ("nan", "empty", "str")), level=A(0.95, UNIT))
     R[rb + "share_interval"] = dict(wins=A(40, ("neg", "frac", "str")), runs=A(100, COUNT), level=A(0.95, UNIT))
-    R[rb + "region"] = dict(low=A(-1.0, ("nan_s", "str")), high=A(1.0, ("nan_s", "str")), margin=A(0.5, NONNEG))
+    R[rb + "region"] = dict(low=A(-1.0, ("nan_s", "str")), high=A(1.0, ("nan_s", "str")), margin=A(0.5, NONNEG),
+                            scale=A(2.0, NONNEG))
     R[rb + "status_from_region"] = dict(where=A("lower", OPT + ("notstr",)), direction=A("less", OPT + ("notstr",)))
     R[rb + "judge_paired"] = dict(a=A(ab[0], ("nan", "empty", "less", "str")), b=A(ab[1], ("nan", "empty", "less", "str")),
                                   direction=A("less", OPT + ("notstr",)), margin=A(0.1, NONNEG))

@@ -228,7 +228,8 @@ def _rederive(ev: dict) -> str:
         return "reproduced" if ev["holds"] else "contradicted"
     if kind == "exact comparison":
         d = ev["a"] - ev["b"]
-        where = "equivalent" if d == 0.0 and ev["margin"] == 0.0 else R.region(d, d, ev["margin"])
+        scale = max(abs(ev["a"]), abs(ev["b"]))  # R2's scale: an end within round-off of +-m is the margin
+        where = "equivalent" if d == 0.0 and ev["margin"] == 0.0 else R.region(d, d, ev["margin"], scale=scale)
         assert where == ev["region"]
         return R.status_from_region(where, ev["claim"])
     if kind == "conjunction":

@@ -39,14 +39,16 @@ def test_r2_regions_partition_the_line(centre: float, half: float, m: float) -> 
     lo, hi = centre - half, centre + half
     where = R.region(lo, hi, m)
     assert where in ("lower", "higher", "equivalent", "undecided")
-    if where == "equivalent":
-        assert -m < lo and hi < m
+    tie = 1e-9 * m  # R2: an end within round-off of +-m is the margin (scale S at least m)
+    if where == "equivalent":  # wholly inside the closed [-m, m], up to round-off of m
+        assert m > 0 and -m - tie <= lo and hi <= m + tie
     elif where == "lower":
-        assert hi < 0 and not (-m < lo)
+        assert hi < 0 and not (-m - tie <= lo and hi <= m + tie)
     elif where == "higher":
-        assert lo > 0 and not (hi < m)
+        assert lo > 0 and not (-m - tie <= lo and hi <= m + tie)
     else:
         assert lo <= 0 <= hi
+        assert m == 0 or lo < -m - tie or hi > m + tie
 
 
 @pytest.mark.parametrize("where,less,greater,equal", [

@@ -50,6 +50,7 @@ import inspect
 import os
 import re
 import string
+import unicodedata
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -148,10 +149,31 @@ _PLAIN_SCHEMA: dict[str, Any] = {
 SCHEMA: Mapping[str, Any] = constant(_PLAIN_SCHEMA)
 
 
-def _nonempty(value: object, name: str) -> str:
-    """A text field that must say something: TypeError naming ``name`` for a non-str, ValueError for ""."""
-    if not text(value, name).strip():
-        raise ValueError(f"{name} must not be empty")
+#: Unicode categories of characters that show nothing by themselves: controls, format characters (zero-width
+#: space and joiner, direction marks and overrides, the BOM), separators (spaces) and combining marks.
+_INVISIBLE = ("Cc", "Cf", "Cs", "Co", "Cn", "Zs", "Zl", "Zp", "Mn", "Me")
+
+
+def _text_problem(value: str, required: bool = True) -> str | None:
+    """What makes ``value`` not a text of a claim file, or None (fuzz 29a D1): the one rule for every text of a claim
+    file. A text holds no control or format character (Unicode category Cc or Cf: a NUL, a right-to-left override
+    that reverses the displayed text, a zero-width space that makes ``mae\u200b`` another key printed as ``mae``;
+    a tab and a line break are whitespace, allowed), and a text that must say something holds a visible character
+    (not only spaces, invisible characters or combining marks)."""
+    bad = next((c for c in value if c not in "\t\n" and unicodedata.category(c) in ("Cc", "Cf")), None)
+    if bad is not None:
+        return f"holds the invisible control or format character U+{ord(bad):04X} (write the text without it)"
+    if required and all(unicodedata.category(c) in _INVISIBLE for c in value):
+        return "must not be empty (it holds no visible character)"
+    return None
+
+
+def _nonempty(value: object, name: str, required: bool = True) -> str:
+    """A text field: TypeError naming ``name`` for a non-str, ValueError for a text :func:`_text_problem` refuses
+    (one without a visible character when ``required``)."""
+    problem = _text_problem(text(value, name), required)
+    if problem is not None:
+        raise ValueError(f"{name} {problem}")
     return value  # type: ignore[return-value]
 
 
@@ -206,7 +228,7 @@ class ReadingSpec:
             raise ValueError(f"key must be lower-case letters, digits and '-' (the pattern {_KEY} of a claim file), "
                              f"got {shown(self.key)}")
         for name in ("choice", "reading"):  # "" for a record's implicit primary reading
-            _format_text(text(getattr(self, name), name), name)
+            _format_text(_nonempty(getattr(self, name), name, required=False), name)
         one_of(self.kind, R.READING_KINDS, "kind")
         instance_of(self.settings, Mapping, "settings")
         for k in self.settings:
@@ -248,7 +270,9 @@ class ClaimSpec:
         ``name``, ``reason`` or ``stand_in`` not a str or its ``defined`` not a bool;
         ``critiques`` or ``assumptions`` not a tuple of str; ``readings`` not a tuple of ReadingSpec.
     ValueError
-        An empty ``id``, ``chapter``, ``where``, ``claim``, ``published`` or ``link``; ``claimant``, ``test``
+        An ``id``, ``chapter``, ``where``, ``claim``, ``published``, ``link``, critique or assumption without a visible
+        character; any text holding a control or format character (Unicode Cc or Cf: NUL, a direction override, a
+        zero-width space; tab and line break allowed, ``_text_problem``); ``claimant``, ``test``
         or ``direction`` outside its vocabulary; a margin not ``{"relative": r}`` or ``{"absolute": x}`` with
         a finite value in [0, 1e150]; a ``baseline`` without ``name`` and ``defined`` or with another key; a
         repeated critique label; ``evidence`` not ``module:function`` (the file's pattern); and
@@ -292,7 +316,7 @@ class ClaimSpec:
         one_of(self.claimant, R.CLAIMANTS, "claimant")
         one_of(self.test, R.TESTS, "test")
         for name in ("quantity", "bound", "reason", "evidence"):
-            text(getattr(self, name), name)
+            _nonempty(getattr(self, name), name, required=False)
         one_of(self.direction, ("", "less", "greater", "equal"), "direction")
         object.__setattr__(self, "headline", flag(self.headline, "headline"))  # a NumPy bool stored as a bool
         for name in ("margin", "baseline"):
@@ -314,6 +338,8 @@ class ClaimSpec:
             v = getattr(self, name)
             if not (isinstance(v, tuple) and all(isinstance(x, str) for x in v)):
                 raise TypeError(f"{name} must be a tuple of str, got {shown(v)}")
+            for i, x in enumerate(v):
+                _nonempty(x, f"{name}[{i}]")
         for name, what in (("critiques", "a label"), ("assumptions", "an assumption")):  # as Claim's own check
             if len(set(getattr(self, name))) != len(getattr(self, name)):
                 raise ValueError(f"{name} must not repeat {what}, got {shown(getattr(self, name))}")
@@ -555,6 +581,8 @@ def _check_baseline(baseline: Mapping[str, Any]) -> dict[str, Any]:
     for k in ("name", "reason", "stand_in"):
         if k in baseline and not isinstance(baseline[k], str):
             raise TypeError(f"baseline.{k} must be a str, got {shown(baseline[k])}")
+        if k in baseline:
+            _nonempty(baseline[k], f"baseline.{k}")
     return {**baseline, "defined": flag(baseline["defined"], "baseline.defined")}
 
 
@@ -650,14 +678,16 @@ def _file_rules(cf: ClaimsFile) -> None:
     src = SOURCES[cf.source]
     for q, entry in cf.quantities.items():
         where = f"{name}: quantity {q if isinstance(q, str) else shown(q)}"
-        if not isinstance(q, str) or not q.strip():
-            raise ClaimsFileError(f"{where}: a quantity key must be a non-empty text")
+        if not isinstance(q, str) or _text_problem(q) is not None:  # one rule for every text (fuzz 29a D1)
+            raise ClaimsFileError(f"{where}: a quantity key must be a non-empty text of visible characters")
         if not isinstance(entry, Mapping) or not {"label", "margin"} <= set(entry) <= {"label", "margin", "why"}:
             raise ClaimsFileError(f"{where}: must be a mapping of 'label', 'margin' and optionally 'why', got "
                                   f"{shown(entry)}")
         for k in ("label", "why"):
-            if k in entry and not (isinstance(entry[k], str) and entry[k].strip()):
-                raise ClaimsFileError(f"{where}, field {k}: must be a non-empty text, got {shown(entry[k])}")
+            v = entry.get(k, "-")
+            problem = _text_problem(v) if isinstance(v, str) else f"must be a non-empty text, got {shown(v)}"
+            if problem is not None:
+                raise ClaimsFileError(f"{where}, field {k}: {problem}")
         m = entry["margin"]
         if not isinstance(m, Mapping) or set(m) not in ({"relative"}, {"absolute"}):
             raise ClaimsFileError(f"{where}, field margin: must be {{'relative': r}} or {{'absolute': x}}, got "

@@ -8,7 +8,9 @@ distinguishable when :math:`|d| \le m`, contradicted when :math:`d > m`; "no eff
 :math:`|d| \le m`. Round-off never decides (R2's one tie rule, ``fusion._limits.ROUND_OFF_TIE``): a difference
 within :math:`10^{-9} \max(|A|, |B|)` of zero is a tie, :math:`d = 0`, whatever the margin (at :math:`m = 0`
 too: one ulp between two closed forms is not "lower"), judged as R2 judges a tie of Monte-Carlo runs: equivalent
-for a positive margin, undecided at :math:`m = 0` (no interval is wholly inside :math:`\pm 0`; fuzz 27a D7). The same margin that decides a Monte-Carlo comparison of the quantity decides its
+for a positive margin, undecided at :math:`m = 0` (no interval is wholly inside :math:`\pm 0`; fuzz 27a D7).
+At the margin's edge likewise: a difference within :math:`10^{-9} \max(|A|, |B|, m)` of :math:`\pm m` is the
+margin, :math:`|d| = m`, equivalent (R2, :func:`fusion.book.rulebook.region`). The same margin that decides a Monte-Carlo comparison of the quantity decides its
 exact value, so a gain of :math:`10^{-6}` is not "better" in one record while a 4 % gain is "no
 difference" in another.
 """
@@ -136,12 +138,14 @@ class ExactComparison:
         A tie, :math:`|A - B| \le 10^{-9} \max(|A|, |B|)` (R2's one tie rule, as :func:`fusion.book.rulebook.judge_paired`
         applies it to a run), is :math:`d = 0`: ``"equivalent"`` for a positive margin, ``"undecided"`` at margin 0,
         as :func:`fusion.book.rulebook.judge_paired` judges runs that all tie (R2: equivalent is wholly inside
-        :math:`\pm m`; fuzz 27a D7).
+        :math:`\pm m`; fuzz 27a D7). At the margin's edge likewise: a difference within :math:`10^{-9} \max(|A|, |B|, m)`
+        of :math:`\pm m` is :math:`\pm m`, and :math:`|d| \le m` is ``"equivalent"`` (:func:`fusion.book.rulebook.region`),
+        so 0.3 against 0.2 and 1.3 against 1.2 with a margin of 0.1 get one region.
         """
-        d = self.difference
-        if R._round_off(d, max(abs(self.a), abs(self.b))):  # R2's one tie rule: round-off never decides
+        d, scale = self.difference, max(abs(self.a), abs(self.b))
+        if R._round_off(d, scale):  # R2's one tie rule: round-off never decides
             d = 0.0  # a tie is d = 0, judged as judge_paired judges tied runs (fuzz 27a D7)
-        return R.region(d, d, self.margin)
+        return R.region(d, d, self.margin, scale=scale)  # and a d within round-off of +-m is the margin (R2)
 
     def status(self) -> str:
         return R.status_from_region(self.region(), self.claim)  # type: ignore[arg-type]

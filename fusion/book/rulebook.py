@@ -16,8 +16,12 @@ R2 paired comparison
     Per-run values of A and B on the same runs; the 95 % interval of the mean paired difference
     A − B (Student's t) is placed against zero and the record's practical margin m (one margin per
     quantity, :data:`DEFAULT_RELATIVE_MARGIN` of the baseline's mean unless the claim data declares
-    another): *lower* if the interval lies below zero and not wholly inside (−m, m), *higher* if above
-    zero and not wholly inside, *equivalent* if wholly inside (−m, m), *undecided* otherwise. "A lower
+    another): *lower* if the interval lies below zero and not wholly inside [−m, m], *higher* if above
+    zero and not wholly inside, *equivalent* if wholly inside the closed [−m, m] (m > 0: the margin is the
+    largest difference that is practically none; at m = 0 no interval is equivalent), *undecided* otherwise.
+    Round-off never decides, at zero as at the margin's edge: differences all within round-off of zero
+    (1e-9 of the values' magnitude S, ``fusion._limits.ROUND_OFF_TIE``) are a tie, and an interval end within
+    round-off of ±m (1e-9 S, S at least m) is the margin. "A lower
     than B" is reproduced when lower, contradicted when higher, not distinguishable when equivalent
     or undecided; "A higher" mirrors it; "no effect" is reproduced when equivalent, contradicted when
     lower or higher, not distinguishable when undecided. The same margin decides "better", "worse"
@@ -97,6 +101,7 @@ from scipy import stats
 from fusion._validation import _numeric, _real_number, check_magnitude, count, scalar, sequence, shown
 from fusion._validation import flag, one_of, text
 from fusion._limits import ROUND_OFF_TIE
+from fusion.book.tables import sci
 
 __all__ = [
     "STATUSES",
@@ -202,7 +207,10 @@ RULES: tuple[Rule, ...] = (
          "placed against zero and the record's practical margin m (one margin per quantity: "
          f"{DEFAULT_RELATIVE_MARGIN:.0%} of the baseline's mean unless the claim data states another). The interval "
          "is lower (below zero, not wholly inside ±m), higher (above zero, not wholly inside ±m), equivalent (wholly "
-         "inside ±m) or undecided. \"A is lower\" is reproduced when lower, contradicted when higher, not "
+         "inside ±m, its ends included: the margin is the largest difference that is practically none; never at "
+         "m = 0) or undecided. Round-off never decides, at zero as at ±m: differences all within round-off of zero "
+         f"({sci(ROUND_OFF_TIE)} of the values' magnitude) are a tie, and an interval end within round-off of ±m is "
+         "the margin. \"A is lower\" is reproduced when lower, contradicted when higher, not "
          "distinguishable when equivalent or undecided; \"A is higher\" mirrors it; \"no effect\" is reproduced when "
          "equivalent, contradicted when lower or higher, not distinguishable when undecided. The same margin decides "
          "\"better\", \"worse\" and \"no effect\"."),
@@ -468,8 +476,16 @@ def _clopper_pearson(wins: int, runs: int, level: float) -> tuple[float, float]:
     return float(ci.low), float(ci.high)
 
 
-def region(low: float, high: float, margin: float) -> Region:
+def region(low: float, high: float, margin: float, *, scale: float = 0.0) -> Region:
     """Where an interval lies against zero and the practical margin (R2).
+
+    Round-off never decides (R2), at the margin's edge as at zero: an interval end within round-off of
+    ``+margin`` or ``-margin`` (``|end -/+ m| <= 1e-9 S``, ``fusion._limits.ROUND_OFF_TIE``, with S the comparison's
+    scale: ``scale``, at least ``margin``) is the margin and is snapped to it. Then the margin is the largest
+    difference that is practically none: for a positive margin an interval wholly inside the closed [−m, m] is
+    ``"equivalent"`` (an end exactly at ±m included). At margin 0 no interval is ``"equivalent"`` and no end is
+    snapped (a tie at zero is the caller's rule: :func:`judge_paired` and
+    :meth:`fusion.book.exact.ExactComparison.region` judge it ``"undecided"``).
 
     Parameters
     ----------
@@ -477,19 +493,27 @@ def region(low: float, high: float, margin: float) -> Region:
         The interval, low <= high (infinite ends allowed).
     margin : float
         m >= 0.
+    scale : float
+        The magnitude S >= 0 of the values compared (keyword; :func:`judge_paired` passes the largest finite
+        magnitude of its runs, :class:`~fusion.book.exact.ExactComparison` ``max(|A|, |B|)``); S is taken as at least
+        ``margin``, so the default 0 snaps the ends within a relative 1e-9 of the margin itself.
 
     Returns
     -------
     {"lower", "higher", "equivalent", "undecided"}
-        ``"equivalent"`` inside (−margin, margin) for a positive margin, ``"lower"`` below 0, ``"higher"`` above 0, else
-        ``"undecided"``.
+        ``"equivalent"`` inside the closed [−margin, margin] for a positive margin (after the snap), ``"lower"`` below
+        0, ``"higher"`` above 0, else ``"undecided"``.
     """
     low, high = (float(a) if a.ndim == 0 else math.nan for a in (_numeric(low, "low"), _numeric(high, "high")))
     margin = scalar(margin, "margin", 0.0)
+    scale = scalar(scale, "scale", 0.0)
     if not (low <= high):
         raise ValueError(f"low and high must be numbers with low <= high, got [{low}, {high}]")
-    if margin > 0 and -margin < low and high < margin:
-        return "equivalent"
+    if margin > 0:
+        tie = _TIE * max(scale, margin)  # R2: round-off never decides, at the margin's edge as at zero
+        low, high = (math.copysign(margin, x) if abs(abs(x) - margin) <= tie else x for x in (low, high))
+        if -margin <= low and high <= margin:
+            return "equivalent"
     if high < 0:
         return "lower"
     if low > 0:
@@ -655,7 +679,10 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     S, so scaling ``a``, ``b`` and ``margin`` by one factor scales the estimate and interval and leaves the
     status and region unchanged (exactly for a power of two). S is the values' magnitude, not the differences':
     the round-off of A − B grows with ``|A|`` and ``|B|``, so a common offset of ``a`` and ``b`` (differences unchanged
-    mathematically) can make differences spread by less than 1e-9 S constant (zero-width interval).
+    mathematically) can make differences spread by less than 1e-9 S constant (zero-width interval). At the margin's
+    edge as at zero: an interval end within round-off of ``+margin`` or ``-margin`` (``|end -/+ m| <= 1e-9 S``, S at
+    least m) is the margin, and an interval wholly inside the closed [-m, m] is "equivalent" (:func:`region`), so
+    ``0.3 - 0.2`` and ``1.3 - 1.2`` against a margin of 0.1 get one status.
 
     Parameters
     ----------
@@ -707,17 +734,17 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
         where: Region = "higher" if inf_a else "lower"
         est = math.inf if inf_a else -math.inf
         return out(status_from_region(where, direction), "R3", "infinite mean", est, est, est, where, True)
+    scale_all = float(np.max(scale)) if scale.size else 0.0  # S: the largest finite magnitude of the runs
     if inf_a and inf_b:  # R3: both means infinite: the median and its distribution-free interval decide
         defined = np.sort(d[~both])
         if defined.size < 6 or _median_undefined(defined):  # R3: an undefined statistic is never "not distinguishable"
             return out("cannot be checked", "R3", "median", math.nan, math.nan, math.nan, "undecided", True)
         med, lo, hi = median_interval(defined)
-        where = region(lo, hi, margin)
+        where = region(lo, hi, margin, scale=scale_all)
         if (math.isinf(med) or (math.isinf(lo) and math.isinf(hi))) and where not in ("lower", "higher"):
             # R3: an infinite median decides only a sign its interval shows; [-inf, inf] decides nothing
             return out("cannot be checked", "R3", "median", med, lo, hi, "undecided", True)
         return out(status_from_region(where, direction), "R3", "median", med, lo, hi, where, True)
-    scale_all = float(np.max(scale)) if scale.size else 0.0
     if np.all(_round_off(d, scale_all)):  # identical to round-off: a tie
         where = region(0.0, 0.0, margin) if margin > 0 else "undecided"
         return out(status_from_region(where, direction), "R2", "mean", 0.0, 0.0, 0.0, where, False)
@@ -729,7 +756,7 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     else:
         ci = stats.ttest_1samp(d, 0.0).confidence_interval(CONFIDENCE_LEVEL)
         lo, hi = float(ci.low), float(ci.high)
-    where = region(lo, hi, margin)
+    where = region(lo, hi, margin, scale=scale_all)  # R2: an end within round-off of +-m is the margin
     return out(status_from_region(where, direction), "R2", "mean", mean, lo, hi, where, heavy)
 
 

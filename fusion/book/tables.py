@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from fusion._limits import inexact_integer
 from fusion._validation import integer, is_integer
 from fusion._validation import text as text_argument
 from fusion._validation import _real_number, as_array, count, distinct, sequence
@@ -146,12 +147,18 @@ def side_by_side(
         ``name`` or ``index_name`` not a string, or a row label unhashable.
     ValueError
         ``published``, ``reproduced`` and ``index`` of different lengths, or not 1-D; a row label repeated (a row
-        must be found by its label); ``published`` or ``reproduced`` holding NaN or an infinity. A row without a
+        must be found by its label); ``published`` or ``reproduced`` holding NaN or an infinity, or an integer that
+        float64 cannot hold exactly (beyond 2**53 in magnitude, as R1 refuses it). A row without a
         published value has no difference to show: leave it out of the table (:func:`mismatches` and
         :func:`highlight_mismatches` skip a missing published value in a table built otherwise).
     """
     pub = as_array(published, "published", ndim=1)
     rep = as_array(reproduced, "reproduced", ndim=1)
+    for arg, given in (("published", published), ("reproduced", reproduced)):  # R1's rule (fuzz 29a C6)
+        i = inexact_integer(given)
+        if i is not None:
+            raise ValueError(f"{arg}[{i}] is an integer that float64 cannot hold exactly (beyond 2**53 in magnitude): "
+                             "the table would show another number")
     decimals = count(decimals, "decimals", minimum=0)
     text_argument(name, "name")
     text_argument(index_name, "index_name")

@@ -34,8 +34,9 @@ Rules
   interval of the mean paired difference A - B is Student's t interval of
   :func:`scipy.stats.ttest_rel`; the claim is "A is lower than B" (``claim="less"``) or "higher"
   (``claim="greater"``). With a practical ``margin`` m > 0 (tied by the record to the claimed effect),
-  an interval wholly inside (-m, m) is *not distinguishable* (an equivalence region, as in two one-sided
-  tests); an interval not wholly inside it keeps the rule above (rule R2).
+  an interval wholly inside the closed [-m, m] is *not distinguishable* (an equivalence region, as in two one-sided
+  tests; an end within round-off of ±m is the margin); an interval not wholly inside it keeps the rule above
+  (rule R2).
 * :class:`Proposition` — a computed yes/no (reproduced or contradicted).
 * :class:`Conjunction` — a claim about every member of a group ("every sensor"): one comparison
   or proposition per member; contradicted if any member's is, otherwise cannot be checked if any

@@ -16,7 +16,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._limits import written_as
+from fusion._limits import inexact_integer, written_as
 from fusion._validation import integer
 from fusion._validation import _numeric, _real_number, count, counts, seed as check_seed
 from fusion._validation import one_of, shown
@@ -137,6 +137,8 @@ class PublishedValues:
         ``1234567.85`` with 1 decimal (the float 1234567.875, float32 of 1234567.9, is accepted: it is that decimal).
         A float32 or float16 published array is held to its own precision (``_decimal_fault``): a few ulps of its
         dtype, and a value its dtype cannot hold at ``decimals`` (float32 98765.4321 at 4 decimals) is refused.
+        Likewise an integer that float64 cannot hold exactly (beyond 2**53 in magnitude, ``2**53 + 1``), in
+        ``published`` or ``ours``, is refused: R1 would compare another number.
     unit : str
     runs : int or None
         Monte-Carlo runs our values were computed from (keyword; ``None``, the default, for an exact
@@ -147,7 +149,7 @@ class PublishedValues:
     ValueError
         ``published`` empty, not 1-D or not finite; ``ours`` of another shape or infinite; ``decimals`` neither
         one count nor one per value, or fewer than a published value's decimals, or more than its float32/float16
-        dtype holds; ``runs`` below 1.
+        dtype holds; an integer in ``published`` or ``ours`` that float64 cannot hold exactly; ``runs`` below 1.
     TypeError
         ``published`` or ``ours`` not numbers; ``decimals`` not integers; ``unit`` not a str.
     """
@@ -169,6 +171,11 @@ class PublishedValues:
             raise ValueError(f"ours has shape {our.shape}, published {pub.shape}")
         if np.any(np.isinf(our)):
             raise ValueError("ours must not be infinite (NaN marks a value that cannot be computed)")
+        for name, given in (("published", published), ("ours", ours)):  # integers beyond float64 (fuzz 29a C6)
+            i = inexact_integer(given)
+            if i is not None:
+                raise ValueError(f"{name}[{i}] is an integer that float64 cannot hold exactly (beyond 2**53 in "
+                                 "magnitude): R1 would compare another number")
         # integers >= 0 up to the ceiling of a number of decimals (a float, even 2.0, is refused: rule 13)
         one = isinstance(decimals, (str, bytes)) or not hasattr(decimals, "__len__") or np.ndim(decimals) == 0
         dec_l = [count(decimals, "decimals", minimum=0)] if one else counts(decimals, "decimals", minimum=0)
@@ -364,7 +371,8 @@ class Comparison:
         return j.estimate, j.low, j.high
 
     def within_margin(self) -> bool:
-        """``True`` if the whole 95 % interval lies inside (-margin, margin)."""
+        """``True`` if the whole 95 % interval lies inside the closed [-margin, margin] (rule R2: region "equivalent",
+        an end within round-off of the margin counted as the margin; never at margin 0)."""
         return self.judgement().region == "equivalent"
 
     def status(self) -> str:

@@ -139,7 +139,8 @@ def fusion_study(sc: Scenario, w_fruit_fly: ArrayLike | None = None, w_grid: Arr
     w_fruit_fly, w_grid : array_like, shape (K,), optional
         Per-step CI weights (:func:`per_step_weights`); the rules that use them are skipped if ``None``.
     published_omega : float, optional
-        A fixed CI weight (the source's published FOA optimum); skipped if ``None``.
+        A fixed CI weight in [0, 1] (the source's published FOA optimum); skipped if ``None``. A non-zero weight
+        below 1e-150 is refused, as :func:`fusion.filtering.tracks.fuse_tracks` refuses it as ``omega``.
     t_steady : float
         Start of the steady-state window (s).
 
@@ -159,7 +160,9 @@ def fusion_study(sc: Scenario, w_fruit_fly: ArrayLike | None = None, w_grid: Arr
             if np.any(w_arr < 0) or np.any(w_arr > 1):
                 raise ValueError(f"{w_name} must lie in [0, 1]")
     if published_omega is not None:
-        published_omega = scalar(published_omega, "published_omega", 0.0, 1.0)  # the floats read (fuzz 22b, FR)
+        # the floats read (fuzz 22b, FR); rule 2 of the omega it becomes (fuse_tracks: an array entry, a tiny
+        # non-zero weight refused), checked here so that the message names published_omega (fuzz 29a C4)
+        published_omega = scalar(published_omega, "published_omega", 0.0, 1.0, tiny=False)
     t_steady = nonnegative_scalar(t_steady, "t_steady")
     a, b = sc.tracks
     M = StudyMethod

@@ -402,7 +402,8 @@ def mean_only_status(a: np.ndarray, b: np.ndarray, relative_margin: float = R.DE
         raise ValueError("a and b must be finite paired runs of the same length >= 2")
     ci = stats.ttest_1samp(d, 0.0).confidence_interval(R.CONFIDENCE_LEVEL)
     margin = relative_margin * abs(float(np.mean(b)))
-    return R.status_from_region(R.region(float(ci.low), float(ci.high), margin), "less")
+    scale = float(max(np.max(np.abs(a_arr)), np.max(np.abs(b_arr))))  # R2's scale: the runs' largest magnitude
+    return R.status_from_region(R.region(float(ci.low), float(ci.high), margin, scale=scale), "less")
 
 
 def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValues:
