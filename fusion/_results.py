@@ -67,6 +67,8 @@ converted values without storing them, so either the base or :func:`validated_po
 from __future__ import annotations
 
 import dataclasses
+import os
+import sys
 from collections.abc import Callable, Mapping
 from typing import Any
 
@@ -358,17 +360,63 @@ def check_fields(obj: object) -> dict[str, Any]:
     ValueError
         A field that is not finite, of the wrong shape or inconsistent with another field, a covariance
         that is not symmetric positive semidefinite, times not increasing, a value out of its bounds, a table
-        without a column its consumers read, a failed relation: the message starts with ``Class.field``.
+        without a column its consumers read, a failed relation: the message starts with ``Class.field`` when the
+        caller builds the result, with the caller's arguments when a public function of the package does
+        (:func:`_producer_arguments`).
     """
     cls = type(obj)
     spec: ResultSpec = cls.__result_spec__  # type: ignore[attr-defined]
     bound: dict[str, tuple[Any, str]] = {}
     values: dict[str, Any] = {}
-    for name, fs in spec.fields.items():
-        values[name] = _check(fs, getattr(obj, name), f"{cls.__name__}.{name}", bound)
-    for relation in spec.relations:
-        relation(values, cls.__name__)
+    try:
+        for name, fs in spec.fields.items():
+            values[name] = _check(fs, getattr(obj, name), f"{cls.__name__}.{name}", bound)
+        for relation in spec.relations:
+            relation(values, cls.__name__)
+    except ValueError as exc:
+        who = _producer_arguments()
+        if who is None:
+            raise
+        verb = "gives" if " and " not in who and ", " not in who else "give"
+        raise ValueError(f"{who} {verb} a result that is refused: {exc}") from None
     return values
+
+
+_PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
+#: Modules whose frames only pass a call through (the result machinery, the guards' wrappers).
+_PASS_THROUGH = frozenset({"_results.py", "_frozen.py", "_guards.py", "_structures.py"})
+
+
+def _producer_arguments() -> str | None:
+    """The arguments of the public function of the package whose result a spec refuses, or None when the caller
+    built the result itself (its fields are then the caller's arguments, and the message names them).
+
+    A result spec's refusal of what a public function computed from valid-looking arguments (``linearised_errors``
+    at tiny noise: ``LinearisedErrors.rmse_central contains NaN``) named a field of the result, not what the caller
+    gave (fuzz 28a C6). The one rule for every producer, on the error path only: the entry is the outermost frame
+    of the package below the caller (the guards' wrappers and the dataclass ``__init__`` passed through), and its
+    parameters that hold a quantity are named (not a bool, None or a string: a switch or a label selects a
+    computation; all of them if none is left). A private entry (a worker process's kernel) names nothing.
+    """
+    frame = sys._getframe(2)
+    entry = None
+    while frame is not None:
+        path = frame.f_code.co_filename
+        if path.startswith(_PACKAGE):
+            if os.path.basename(path) not in _PASS_THROUGH:
+                entry = frame
+        elif path != "<string>":  # the caller's frame (dataclass-generated __init__ frames are "<string>")
+            break
+        frame = frame.f_back
+    if entry is None or entry.f_code.co_name.startswith("_"):
+        return None
+    code = entry.f_code
+    params = [p for p in code.co_varnames[:code.co_argcount + code.co_kwonlyargcount] if p not in ("self", "cls")]
+    quantities = [p for p in params if not isinstance(entry.f_locals.get(p), (bool, str, type(None)))]
+    names = quantities or params
+    if not names:
+        return None
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
 def _in_bounds(arr: Any, label: str, bounds: tuple[float, float] | None) -> None:

@@ -624,7 +624,8 @@ def sums_to_one(w: FloatArray, given: object, axis: int = -1, floor: float = 1e-
     The tolerance is ``floor`` (the check's own, for float64 weights) or ``2 n`` times the machine epsilon of the
     caller's ``given`` weights (:func:`input_eps`), whichever is larger, but never more than ``SIMPLEX_TOL_CAP``
     (1e-2): weights normalised in float32 or float16 (``0.4f + 0.6f``) sum to one in their own precision and are
-    accepted as given, while weights that sum to 0.06 or 1.9 are refused at every n.
+    accepted, while weights that sum to 0.06 or 1.9 are refused at every n; accepted short floats are then used
+    divided by their sum (:func:`renormalised`, at every caller of this rule).
 
     The floors differ by what the weights come from, and each is kept: 1e-9 for weights a caller states
     (``GaussianMixture``, the fused mixtures, grid normalisers), 1e-8 for a simplex an optimiser returns
@@ -634,6 +635,19 @@ def sums_to_one(w: FloatArray, given: object, axis: int = -1, floor: float = 1e-
     """
     tol = max(floor, min(2.0 * w.shape[axis] * input_eps(given), SIMPLEX_TOL_CAP))
     return bool(np.all(np.abs(w.sum(axis=axis) - 1.0) <= tol))
+
+
+def renormalised(w: FloatArray, given: object, axis: int = -1) -> FloatArray:
+    """The weights ``w`` (floats that :func:`sums_to_one` accepted) as they are used: divided by their sum along
+    ``axis`` (in float64) when the caller gave them in float32 or float16, as given otherwise.
+
+    The simplex rule's second half (fuzz 28a C3, D1): a short float's sum is one only within its own precision
+    (up to ``SIMPLEX_TOL_CAP``, 1 % for float16), and weights used as given would carry that error into what
+    they weigh (an effective sample size above the particle count, a fused information 1 % small); float64
+    weights are within the check's own floor and are used as the caller gave them (unchanged results)."""
+    if input_eps(given) > _F64_EPS:
+        return w / w.sum(axis=axis, keepdims=True)
+    return w
 
 
 def in_given_precision(a: FloatArray, given: object) -> FloatArray:

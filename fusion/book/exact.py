@@ -27,7 +27,7 @@ from fusion._validation import shown
 from fusion._validation import text
 from fusion.book import rulebook as R
 from fusion.book._json import JSONObject
-from fusion.book.tables import ROUNDOFF_EXPONENT, roundoff
+from fusion.book.tables import roundoff
 
 __all__ = ["ExactComparison"]
 
@@ -159,16 +159,19 @@ class ExactComparison:
         """One line for the ledger: the two values, their difference (its size only, when it is round-off) and the
         margin.
 
-        A difference of at most :math:`10^{-12}` of the larger value's magnitude
-        (:data:`fusion.book.tables.ROUNDOFF_EXPONENT`), zero included, is round-off: its digits move with the BLAS
-        kernel, so the text gives the bound, not the digits (``"difference less than 10⁻¹² relative
-        (round-off)"``); two zeros give ``"difference 0"``. The difference as a share of B reads ``+4.0%`` below
+        A tie (R2's one tie rule, ``fusion._limits.ROUND_OFF_TIE``, as :meth:`region` applies it: at most
+        :math:`10^{-9}` of the larger value's magnitude, zero included) is round-off, and says so: its relative size
+        is printed by the book's round-off rule (:func:`fusion.book.tables.roundoff`: below :math:`10^{-12}`,
+        :data:`fusion.book.tables.ROUNDOFF_EXPONENT`, its digits move with the BLAS kernel, so the text gives the
+        bound, ``"difference less than 10⁻¹² relative (round-off)"``; a tie of ``5e-10`` reads ``"difference
+        5×10⁻¹⁰ relative (round-off)"``; fuzz 28a D4: the note used its own ``1e-12`` and a tie of ``5e-10`` read
+        as a difference against a margin of 0); two zeros give ``"difference 0"``. The difference as a share of B reads ``+4.0%`` below
         10⁸ %, and beyond that in the ledger's number format (``+1×10^162%`` for A = 1 against B = 1e-160).
         """
         d, scale = self.difference, max(abs(self.a), abs(self.b))
         if scale == 0.0:
             diff = "difference 0"
-        elif abs(d) <= 10.0 ** ROUNDOFF_EXPONENT * scale:
+        elif R._round_off(d, scale):  # the tie rule of region(): one rule for the note and the judgement
             diff = f"difference {roundoff(d / scale)} relative (round-off)"
         else:
             diff = f"difference {self._t(d)}" + (f" ({_percent(d / self.b)} of B)" if self.b != 0 else "")

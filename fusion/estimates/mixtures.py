@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
-from fusion._validation import axis_of, in_given_precision, sequence, sums_to_one, work
+from fusion._validation import axis_of, renormalised, sequence, sums_to_one, work
 from fusion._frozen import frozen_arrays, restore_frozen
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
@@ -115,8 +115,8 @@ class GaussianMixture:
             raise ValueError(f"covs must have shape (S, {m.shape[1]}, {m.shape[1]}), got {c.shape}")
         if np.any(w < 0) or not sums_to_one(w, self.weights):   # within 1e-9, or float32 weights' precision
             raise ValueError("weights must be non-negative and sum to one")
-        if in_given_precision(w, self.weights) is not w:   # float32/float16 weights: stored renormalised in float64,
-            w = w / w.sum()                                # so that the record rebuilds (dataclasses.replace)
+        w = renormalised(w, self.weights)  # float32/float16 weights: stored renormalised in float64, so that the
+                                           # record rebuilds (dataclasses.replace)
         if not np.allclose(c, np.swapaxes(c, 1, 2)):
             raise ValueError("covs must be symmetric")
         try:

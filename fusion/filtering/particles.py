@@ -25,7 +25,7 @@ import numpy as np
 from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._validation import axis_of, sums_to_one
+from fusion._validation import axis_of, renormalised, sums_to_one
 from fusion._frozen import frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
                                 positive_scalar, psd_factor, std_scalar, step_scalar)
@@ -190,11 +190,12 @@ def _log_likelihood(x: FloatArray, z: FloatArray, sensor: FloatArray, sigma_r: f
 
 def _normalised(weights: ArrayLike, name: str = "weights") -> FloatArray:
     """Finite, non-negative 1-D weights summing to one (within 1e-6, or 2 n times the machine epsilon of a float32 or
-    float16 input: normalised in the caller's precision), kept as given."""
+    float16 input: normalised in the caller's precision), float64 ones as given, short floats divided by their sum
+    in float64 (``fusion._validation.renormalised``, fuzz 28a C3)."""
     w = as_weights(weights, name)
     if not sums_to_one(w, weights, floor=1e-6):
         raise ValueError(f"{name} must be normalised (sum to one), got sum {shown(w.sum())}")
-    return w
+    return renormalised(w, weights)
 
 
 def systematic_resample(weights: ArrayLike, rng: np.random.Generator) -> FloatArray:
@@ -345,7 +346,11 @@ def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatAr
     Returns
     -------
     float or ndarray
-        Between 1 (one particle holds all the weight) and Q (equal weights); a float for 1-D input.
+        Between 1 (one particle holds all the weight) and Q (equal weights); a float for 1-D input. Float32 or
+        float16 weights (one only in their own precision) are divided by their sum in float64 first
+        (``fusion._validation.renormalised``), and the result is clipped to [1, Q]: float64 weights are accepted
+        within 1e-6 of one and used as given (the filters' inline :math:`1/\sum_i w_i^2`, digit for digit), which
+        would otherwise exceed Q by up to 2e-6 of it (fuzz 28a C3: float16 weights gave 1008.8 of 1000).
 
     References
     ----------
@@ -359,7 +364,8 @@ def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatAr
         raise ValueError(f"weights must have a non-empty particle axis, got shape {w.shape}")
     if np.any(w < 0) or not sums_to_one(w, weights, axis=axis, floor=1e-6):  # float32/float16: their own precision
         raise ValueError("weights must be non-negative and sum to one along axis")
-    ess = 1.0 / np.sum(w**2, axis=axis)
+    w = renormalised(w, weights, axis=axis)
+    ess = np.clip(1.0 / np.sum(w**2, axis=axis), 1.0, w.shape[axis])
     return float(ess) if np.ndim(ess) == 0 else ess
 
 

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
-from fusion._validation import sums_to_one, text, tolerance
+from fusion._validation import renormalised, sums_to_one, text, tolerance
 from fusion._validation import _numeric, FloatArray, as_callable, count, finite_optimum, objective_values
 from fusion.optimise.result import OptimumResult
 
@@ -35,9 +35,11 @@ def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> Fl
     r"""Validate exponent weights: finite, non-negative, summing to one (and of length n).
 
     Checks :math:`\varepsilon \in \Delta = \{\varepsilon_i \ge 0, \sum_i \varepsilon_i = 1\}`.
-    Entries within 1e-12 below zero are clipped to zero; the sum must be one within 1e-8, or within n times the
-    machine epsilon of a float32 or float16 input (weights normalised in the caller's precision; their values are
-    kept as given).
+    Entries within 1e-12 below zero are clipped to zero; the sum must be one within 1e-8, or within 2 n times the
+    machine epsilon of a float32 or float16 input (weights normalised in the caller's precision, at most
+    ``fusion._validation.SIMPLEX_TOL_CAP`` off one), and such weights are then divided by their sum in float64
+    (``fusion._validation.renormalised``: a fusion at float16 exponents summing to 0.99 would scale the fused
+    information by 0.99; fuzz 28a D1). Float64 weights are returned as given.
 
     Parameters
     ----------
@@ -51,7 +53,7 @@ def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> Fl
     Returns
     -------
     ndarray, shape (n,)
-        The weights as floats, tiny negative round-off clipped to zero.
+        The weights as floats, tiny negative round-off clipped to zero (float32 or float16 weights renormalised).
 
     Raises
     ------
@@ -67,7 +69,7 @@ def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> Fl
     # float32 or float16 weights: one in their own precision (the one simplex rule, fusion._validation.sums_to_one)
     if not np.all(np.isfinite(e)) or np.any(e < -1e-12) or not sums_to_one(e, eps, floor=1e-8):
         raise ValueError(f"{name} must lie on the simplex (non-negative, summing to one), got {e}")
-    return np.clip(e, 0.0, None)
+    return renormalised(np.clip(e, 0.0, None), eps)
 
 
 def minimise_on_simplex(

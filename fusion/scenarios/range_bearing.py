@@ -78,7 +78,9 @@ def run_tracking(
     seed : numpy.random.SeedSequence
         The run's streams are spawned from it, which advances its spawn counter (numpy semantics): a
         second call with the same object gives other streams. To repeat a run, pass a fresh
-        ``SeedSequence`` of the same entropy.
+        ``SeedSequence`` of the same entropy. The package's one rule for random state (fuzz 28a D5): a
+        ``SeedSequence`` or ``Generator`` object is state the call advances, as a ``Generator`` passed to any
+        function is; an integer seed (``monte_carlo``'s ``seed``) repeats its runs.
     all_nodes : bool
         Also let every node compute the patent's fusion with its own random stream (they all
         hold the same mixtures under full connectivity), recording ``node_estimates``.

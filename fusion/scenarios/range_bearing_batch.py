@@ -13,6 +13,7 @@ from collections.abc import Callable, Mapping
 
 import numpy as np
 
+from fusion._covariances import singular_mask
 from fusion._results import trusted
 from fusion._timing import LapTimer
 from fusion._validation import FloatArray
@@ -438,13 +439,20 @@ class _Batch:
         means = np.stack([est[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
         covs = np.stack([cov[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
         est["mean_of_local_means"][:, k] = means.mean(axis=1)
-        try:
-            infos = np.linalg.inv(covs)
-        except np.linalg.LinAlgError:  # fuzz 27a N2: a collapsed particle cloud, refused by name, not numpy's error
-            raise ValueError(f"sc: a local posterior's covariance at frame {k} is singular (its particles collapsed "
-                             f"onto too few points): sc.n_particles = {self.sc.n_particles} particles cannot resolve a "
-                             f"likelihood this narrow (sc.sigma_theta = {self.sc.sigma_theta:g}, sc.sigma_r = "
-                             f"{self.sc.sigma_r:g}); use more particles or less precise sensors") from None
+        # fuzz 27a N2, fuzz 28a C5: a collapsed particle cloud, refused by name by the package's singularity rule
+        # (SINGULAR_MARGIN), not by whether LAPACK's inverse happens to fail (a cloud near a sensor passed inv and
+        # the covariance intersection's Newton steps then raised numpy's LinAlgError)
+        bad = singular_mask(covs)
+        if bad.any():
+            i = int(np.argwhere(bad)[0][1])
+            s = self.sc.sensor_array[i]
+            raise ValueError(f"sc: node {i + 1}'s local posterior covariance at frame {k} is singular to working "
+                             f"precision (its particles collapsed onto too few points): sc.n_particles = "
+                             f"{self.sc.n_particles} particles cannot resolve a likelihood this narrow (sc.sigma_theta "
+                             f"= {self.sc.sigma_theta:g}, sc.sigma_r = {self.sc.sigma_r:g}), or the target is near "
+                             f"sensor {i + 1} at ({s[0]:g}, {s[1]:g}), where the bearing turns across the cloud; use "
+                             "more particles, less precise sensors or a target away from the sensors")
+        infos = np.linalg.inv(covs)
         logdets = np.linalg.slogdet(2 * np.pi * covs)[1]
         nx, nP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], np.ones((B, N)))
         est["naive_product"][:, k], cov["naive_product"][:, k] = nx[:, 0], nP[:, 0]

@@ -20,7 +20,7 @@ from fusion._results import NONNEGATIVE, ResultSpec, array, validated_post_init
 from fusion._validation import FloatArray, as_array, instance_of
 from fusion._validation import flag
 from fusion.filtering.particles import ncv_model
-from fusion.scenarios.range_bearing_scenario import RangeBearingScenario
+from fusion.scenarios.range_bearing_scenario import RangeBearingScenario, refuse_on_sensor
 
 __all__ = ["posterior_crb", "LinearisedErrors", "linearised_errors"]
 
@@ -70,10 +70,7 @@ def posterior_crb(sc: RangeBearingScenario, truths: ArrayLike) -> FloatArray:
     X = as_array(truths, "truths")
     if X.ndim != 3 or X.shape[2] != 4:
         raise ValueError(f"truths must be (runs, K, 4), got {X.shape}")
-    for i, s in enumerate(sc.sensor_array):
-        if np.any((X[..., 0] == s[0]) & (X[..., 2] == s[1])):
-            raise ValueError(f"truths: a true position coincides with sensor {i + 1}; the bearing and its "
-                             "Jacobian are undefined there, so the bound does not exist")
+    refuse_on_sensor(sc, X[..., [0, 2]], "truths", "a true position", "so the bound does not exist")
     model = ncv_model(sc.T, sc.q)
     F, Q = model.F, model.Q
     Rinv = np.diag([sc.sigma_r**-2, sc.sigma_theta**-2])
@@ -164,6 +161,10 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
     ------
     TypeError
         ``sc`` not a :class:`RangeBearingScenario`, or a switch not a bool.
+    ValueError
+        ``sc``: its nominal trajectory reaches a sensor (range 0: no bearing, no linearisation; fuzz 28a C5), or the
+        filters' covariances at its noise levels are not representable (a non-finite record, refused naming ``sc``,
+        fuzz 28a C6: ``sigma_r = 1e-3`` m loses the centralised covariance's positivity to round-off).
 
     References
     ----------
@@ -189,6 +190,8 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
     rhs = np.vstack([np.zeros((4 * n, 4)), eye])
     for k in range(sc.frames):
         x = F @ x
+        refuse_on_sensor(sc, x[[0, 2]], "sc", f"the nominal trajectory from sc.x0 at frame {k}",
+                         "so the filters cannot be linearised")
         Pp = np.einsum("ab,ijbc,dc->ijad", F, P, F) + Qx
         dx, dy = x[0] - S[:, 0], x[2] - S[:, 1]
         r2 = dx**2 + dy**2
@@ -219,9 +222,10 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
         big = P.transpose(0, 2, 1, 3).reshape(4 * n, 4 * n)
         kkt = np.block([[big, stack], [stack.T, np.zeros((4, 4))]])
         Cb = -np.linalg.solve(kkt, rhs)[4 * n:]
-        out["ru"][k] = np.sqrt(C[0, 0] + C[2, 2])
-        out["rb"][k] = np.sqrt(Cb[0, 0] + Cb[2, 2])
-        out["rc"][k] = np.sqrt(Pc[0, 0] + Pc[2, 2])
+        with np.errstate(invalid="ignore"):  # a negative variance (round-off at tiny noise): refused by the record
+            out["ru"][k] = np.sqrt(C[0, 0] + C[2, 2])
+            out["rb"][k] = np.sqrt(Cb[0, 0] + Cb[2, 2])
+            out["rc"][k] = np.sqrt(Pc[0, 0] + Pc[2, 2])
     return LinearisedErrors(out["nees"], out["cp"], out["cv"], out["ru"], out["rb"], out["rc"])
 
 

@@ -339,6 +339,21 @@ class SimulatedTarget:
     __post_init__ = validated_post_init
 
 
+def refuse_on_sensor(sc: RangeBearingScenario, positions: FloatArray, name: str, what: str, why: str) -> None:
+    """The scenario's one rule for a position on a sensor (fuzz 28a C5): at range 0 the bearing and its Jacobian are
+    undefined, so a position (..., 2) that coincides with a sensor is refused, naming ``name`` and saying ``what``
+    coincides with which sensor and ``why`` that is refused. Used by every entry that evaluates the measurement
+    function at given or computed positions: ``posterior_crb`` (its truths), ``linearised_errors`` (the nominal
+    trajectory from ``sc.x0``) and :func:`simulate_target` (the simulated truth of ``run_tracking``,
+    ``run_tracking_batch`` and ``monte_carlo``)."""
+    P = np.asarray(positions, dtype=float)
+    for i, s in enumerate(sc.sensor_array):
+        hit = (P[..., 0] == s[0]) & (P[..., 1] == s[1])
+        if np.any(hit):
+            raise ValueError(f"{name}: {what} coincides with sensor {i + 1} at ({shown(float(s[0]))}, "
+                             f"{shown(float(s[1]))}); the bearing and its Jacobian are undefined there, {why}")
+
+
 def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> SimulatedTarget:
     """Truth, measurements and the shared prior mean of one run.
 
@@ -369,6 +384,7 @@ def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> Simul
     for k in range(sc.frames):
         x = F @ x + LQ @ rng.standard_normal(4)
         truth[k] = x
+    refuse_on_sensor(sc, truth[:, [0, 2]], "sc", "the simulated target from sc.x0", "so it has no reading")
     S = sc.sensor_array
     h = np.stack([range_bearing(truth, s) for s in S], axis=1)  # (K, N, 2)
     noise = rng.standard_normal(h.shape) * [sc.sigma_r, sc.sigma_theta]

@@ -51,19 +51,27 @@ def _decimal_fault(p: float, d: int, dtype: np.dtype) -> str | None:
     extra decimal through above about 4e5).
 
     * A float32 or float16 value (an array or Series of that dtype) may lie ``_SHORT_ULPS`` ulps of its dtype from
-      ``q`` (a value computed in float32 is the decimal it prints at float32 precision). When another printed
-      decimal lies as close, the dtype cannot hold the value at ``d`` decimals (float32 98765.4321 is 98765.4297,
-      8e-3 apart from its neighbours) and the value is refused by name: "cannot hold".
+      ``q`` (a value computed in float32 is the decimal it prints at float32 precision), but less than half a
+      printed step (a value halfway between two printed decimals has an extra decimal). The dtype "cannot hold" the
+      value at ``d`` decimals when its spacing there exceeds the printed step ``10**-d``: two neighbouring printed
+      decimals may then round to one value of the dtype (float32 98765.4321 is 98765.4297, spacing 7.8e-3 > 1e-4;
+      float16 2048, spacing 2, is also 2049 rounded), and the value is refused by name. An exact integer of the
+      dtype's integer range (float32 1e7, float16 1000: spacing at most 1) holds 0 decimals (fuzz 28a C4: an
+      allowance of 2 ulps reaching the neighbour refused them). At float16's largest value the spacing is infinite
+      (refused, without numpy's overflow warning: fuzz 28a D3).
     * A float64 value may lie a few float64 ulps from ``q`` (``0.1 * 3``, ``12.3 / 100``), be the float32 nearest
       ``q`` (``float(np.float32(0.3))``), or be a float32 number that the float32 rule accepts (a float32 product
       converted to float); anything else is "extra" (an extra decimal).
     """
     q = round(p, d)
     if dtype.kind == "f" and dtype.itemsize < 8:
-        allowance = _SHORT_ULPS * float(np.spacing(abs(dtype.type(p))))
-        if 10.0 ** -d - abs(p - q) <= allowance:
+        with np.errstate(over="ignore"):  # float16 65504: its spacing overflows to inf (refused below)
+            spacing = float(np.spacing(abs(dtype.type(p))))
+        step = 10.0 ** -d
+        if spacing > step:
             return "cannot hold"
-        return None if abs(p - q) <= allowance else "extra"
+        off = abs(p - q)
+        return None if off <= _SHORT_ULPS * spacing and off < step / 2 else "extra"
     if written_as(p, q):   # the package's one rule for float64 (fusion._limits.written_as)
         return None
     if float(np.float32(p)) == p and _decimal_fault(p, d, np.dtype(np.float32)) is None:
@@ -136,9 +144,10 @@ class PublishedValues:
         ours with a rounding of the published value (1.2) and a slip in ``decimals`` would decide the status; so is
         ``1234567.85`` with 1 decimal (the float 1234567.875, float32 of 1234567.9, is accepted: it is that decimal).
         A float32 or float16 published array is held to its own precision (``_decimal_fault``): a few ulps of its
-        dtype, and a value its dtype cannot hold at ``decimals`` (float32 98765.4321 at 4 decimals) is refused.
-        Likewise an integer that float64 cannot hold exactly (beyond 2**53 in magnitude, ``2**53 + 1``), in
-        ``published`` or ``ours``, is refused: R1 would compare another number.
+        dtype, and a value its dtype cannot hold at ``decimals`` (its spacing there exceeds the printed step:
+        float32 98765.4321 at 4 decimals) is refused; an exact integer of a float32 table below ``2**24`` (float16:
+        below ``2**11``) holds 0 decimals. Likewise an integer that float64 cannot hold exactly (beyond 2**53 in
+        magnitude, ``2**53 + 1``), in ``published`` or ``ours``, is refused: R1 would compare another number.
     unit : str
     runs : int or None
         Monte-Carlo runs our values were computed from (keyword; ``None``, the default, for an exact
@@ -191,7 +200,8 @@ class PublishedValues:
             i = bad[0]
             if faults[i] == "cannot hold":
                 raise ValueError(f"published[{i}] = {shown(float(pub[i]))} is a {dtype} that cannot hold "
-                                 f"decimals[{i}] = {int(dec[i])} decimals (another printed value lies as close)")
+                                 f"decimals[{i}] = {int(dec[i])} decimals (its spacing there exceeds the printed step: two "
+                                 "neighbouring printed values round to one value of the dtype)")
             raise ValueError(f"published[{i}] = {shown(float(pub[i]))} has more decimals than decimals[{i}] = "
                              f"{int(dec[i])} (a published value has at most its printed decimals)")
         object.__setattr__(self, "published", tuple(float(v) for v in pub))

@@ -30,7 +30,7 @@ from fusion._frozen import frozen_arrays
 from fusion._timing import LapTimer
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
                                 instance_of, one_of)
-from fusion._validation import flag, in_given_precision, refuse_singular, sums_to_one
+from fusion._validation import flag, in_given_precision, refuse_singular, renormalised, sums_to_one
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
@@ -733,6 +733,7 @@ def fuse_mixtures_batch(
                          f"{m.shape}, {c.shape}")
     if np.any(w < 0) or not sums_to_one(w, weights, axis=2):   # within 1e-9, or float32 weights' precision
         raise ValueError("weights must be non-negative and sum to one over each mixture's components")
+    w = renormalised(w, weights, axis=2)  # float32/float16 weights divided by their sums (the simplex rule)
     pos = w > 0
     cc = c[pos]
     if not np.allclose(cc, np.swapaxes(cc, -1, -2)):
