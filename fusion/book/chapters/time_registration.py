@@ -749,7 +749,7 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
     """
     seed = check_seed(seed)
     sigmas = _noise_levels(sigmas, "sigmas")
-    count(runs, "runs")
+    runs = count(runs, "runs")  # the int read (fuzz 29a C2)
     rows = {}
     for s in sigmas:
         s = float(s)
