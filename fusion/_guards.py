@@ -166,3 +166,26 @@ def derived_inputs(names: str | None = None) -> Callable[[Callable[..., object]]
                 raise ValueError(f"{who} {verb} a derived quantity that is refused: {inner}") from None
         return call
     return wrap
+
+
+def argument_copy(x: np.ndarray) -> np.ndarray:
+    """The array a caller's callable (an objective, a registration, a fitness) is given: a copy of the package's own.
+
+    One rule for every callable the package calls with an array it reads again afterwards (fuzz 29a C7): a callable
+    may change its argument in place (``s *= 10`` after using it), and, given the package's own candidates, it
+    would move the point the package then reads back (:func:`~fusion.optimise.scalar.grid_search` returned an
+    ``x`` outside ``[lo, hi]`` with the ``fun`` of another point). A copy costs a few microseconds for the
+    package's candidate arrays (hundreds to thousands of floats), far below one call of the callable.
+
+    Parameters
+    ----------
+    x : ndarray
+        The package's array.
+
+    Returns
+    -------
+    ndarray
+        A writeable copy (the callable may change it; nothing reads it afterwards).
+    """
+    return np.array(x, copy=True)
+
