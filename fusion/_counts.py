@@ -103,7 +103,7 @@ def _integer(value: object, name: str) -> int:
         raise TypeError(f"{name} must be an integer, got a date or duration {shown(value, 60)} (its value depends "
                         "on its unit)")
     try:
-        return operator.index(value)  # int, numpy integers, 0-d integer arrays; never a float or a Decimal
+        return int(operator.index(value))  # int, numpy integers, 0-d integer arrays, __index__: a plain int
     except TypeError:
         pass
     except MemoryError:

@@ -129,8 +129,9 @@ def frozen_value(value: object, copy: bool = False, _copies: dict[int, np.ndarra
         A field's value.
     copy : bool
         Copy the arrays before clearing their ``WRITEABLE`` flag (a caller's array is left writeable);
-        otherwise they are made read-only in place (the object's own arrays). An array held twice (a study's
-        default case also stored under its key) is copied once: the copies share as the originals did.
+        otherwise they are made read-only in place (the object's own arrays), but for a 0-d array, always copied
+        (a scalar field given as a caller's 0-d array is never stored aliased, fuzz 29a C1). An array held twice
+        (a study's default case also stored under its key) is copied once: the copies share as the originals did.
 
     Returns
     -------
@@ -139,7 +140,7 @@ def frozen_value(value: object, copy: bool = False, _copies: dict[int, np.ndarra
     """
     memo: dict[int, np.ndarray] = {} if _copies is None else _copies
     if isinstance(value, np.ndarray):
-        if copy:
+        if copy or value.ndim == 0:  # a 0-d array is a scalar's value: never kept by reference (fuzz 29a C1)
             if id(value) not in memo:
                 memo[id(value)] = np.array(value)
             value = memo[id(value)]

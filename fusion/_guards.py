@@ -166,3 +166,76 @@ def derived_inputs(names: str | None = None) -> Callable[[Callable[..., object]]
                 raise ValueError(f"{who} {verb} a derived quantity that is refused: {inner}") from None
         return call
     return wrap
+
+
+def argument_copy(x: np.ndarray) -> np.ndarray:
+    """The array a caller's callable (an objective, a registration, a fitness) is given: a copy of the package's own.
+
+    One rule for every callable the package calls with an array it reads again afterwards (fuzz 29a C7): a callable
+    may change its argument in place (``s *= 10`` after using it), and, given the package's own candidates, it
+    would move the point the package then reads back (:func:`~fusion.optimise.scalar.grid_search` returned an
+    ``x`` outside ``[lo, hi]`` with the ``fun`` of another point). A copy costs a few microseconds for the
+    package's candidate arrays (hundreds to thousands of floats), far below one call of the callable.
+
+    Parameters
+    ----------
+    x : ndarray
+        The package's array.
+
+    Returns
+    -------
+    ndarray
+        A writeable copy (the callable may change it; nothing reads it afterwards).
+    """
+    return np.array(x, copy=True)
+
+
+#: Arguments read as they are, any number of times: arrays (their subclasses too: a masked array is refused by the
+#: checks that follow, by name), lists, tuples, numbers, strings, None and mappings give the same values at each read.
+_STABLE = (np.ndarray, list, tuple, int, float, complex, np.generic, str, bytes, type(None), _Mapping)
+
+
+def read_once(x: object, name: str) -> object:
+    """An array-like argument converted once, at the entry of a function that reads it more than once (fuzz 29a C5).
+
+    A function that checks an argument through one function and computes with it in another converts it twice; an
+    object whose conversion is not a fixed value (an ``__array__`` that gives other numbers, or one entry more, at
+    each call; a buffer the caller changes between the reads) was then checked as one array and computed with as
+    another (NaN results, an ``IndexError``, an inner argument named). Any argument but those of ``_STABLE``
+    (an object with ``__array__``, a pandas object, a buffer) is converted here to the ndarray it gives, its dtype
+    kept, and that array is what the function's checks and computations read. Its shape is checked against the
+    input budget before the conversion (``fusion._validation.input_size``).
+
+    Parameters
+    ----------
+    x : object
+        The argument.
+    name : str
+        Its name, for the messages.
+
+    Returns
+    -------
+    object
+        ``x`` itself if it is of a ``_STABLE`` type (or not array-like: the checks refuse it by name), else the
+        ndarray it converts to.
+
+    Raises
+    ------
+    TypeError
+        The conversion raised (the argument's own exception, rule 15), naming ``name``.
+    ValueError
+        A shape beyond the input budget (rule 9), naming ``name``.
+    """
+    if isinstance(x, _STABLE) or not (hasattr(x, "__array__") or hasattr(x, "__array_interface__")
+                                      or hasattr(x, "__array_struct__") or isinstance(x, memoryview)):
+        return x
+    from fusion._validation import input_size  # (a cycle at import: fusion._validation imports this module)
+
+    input_size(x, name)
+    try:
+        return np.asarray(x)
+    except MemoryError:
+        raise
+    except Exception as exc:  # noqa: BLE001 (rule 15: the argument's own exception, named and chained)
+        raise TypeError(f"{name} could not be converted to an array: it raised {type(exc).__name__}: "
+                        f"{str(exc):.200}") from exc

@@ -659,6 +659,8 @@ def shared_post_init(self: object) -> None:
         c = checked.get(name)
         if isinstance(v, Mapping) and isinstance(c, Mapping) and any(a is not b for a, b in zip(c, v)):
             given[name] = dict(zip(c, v.values()))
+        elif type(c) in (int, float) and not isinstance(v, (int, float, np.integer, np.floating)):
+            given[name] = c  # a number or integer field: the number read, never a caller's 0-d array (fuzz 29a C1)
     _store(self, given, copy=False)
 
 

@@ -18,6 +18,7 @@ from scipy.optimize import brentq
 from fusion._validation import within, FloatArray, as_array, as_callable, as_readings, count, nonnegative_scalar, one_of, positive_scalar, scalar
 from fusion._validation import objective_values, pairwise, shown
 from fusion._validation import text
+from fusion._results import ResultSpec, integer, number, tuple_of, validated_post_init
 from fusion.readings._row_blocks import CUBIC, PAIRS
 from fusion.readings.fusion_set import METHODS, fuse_epochs
 
@@ -59,8 +60,8 @@ def in_convex_hull(x: ArrayLike, value: float, tol: float = 0.0) -> bool:
 class SubsetMatch:
     """A subset of readings whose fused value matches a target.
 
-    A result of :func:`matching_subsets`, which checks what it stores: the constructor checks nothing (a record
-    built by hand is the caller's; the package reads none back).
+    A result of :func:`matching_subsets`; the constructor checks its fields and stores what it read (plain ints
+    and a float, never a caller's 0-d array: fuzz 29a C1).
 
     Attributes
     ----------
@@ -68,10 +69,20 @@ class SubsetMatch:
         0-based indices of the readings in the subset.
     value : float
         Fused value of the subset.
+
+    Raises
+    ------
+    TypeError
+        ``members`` not a tuple (or list) of integers, ``value`` not a real number.
+    ValueError
+        A negative member, ``value`` not finite.
     """
 
     members: tuple[int, ...]
     value: float
+
+    __result_spec__ = ResultSpec({"members": tuple_of(integer(0)), "value": number(nonnegative=False)})
+    __post_init__ = validated_post_init
 
 
 def matching_subsets(

@@ -235,7 +235,7 @@ class ReadingSpec:
             if not isinstance(k, str):  # a claim file's keys are texts (load refuses any other)
                 raise TypeError(f"settings keys must be str, got {shown(k)}")
         if self.runs is not None:
-            count(self.runs, "runs")
+            object.__setattr__(self, "runs", count(self.runs, "runs"))  # the plain int (fuzz 29a C1/C2)
         freeze_arrays(self)  # settings stored as a read-only mapping (fuzz 19: a frozen result cannot change)
 
     __setstate__ = restore_frozen  # copies and unpickled objects keep it read-only

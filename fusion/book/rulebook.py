@@ -327,10 +327,13 @@ class Judgement:
         one_of(self.rule, ("R2", "R3"), "rule")
         one_of(self.statistic, ("mean", "median", "infinite mean"), "statistic")
         one_of(self.region, ("lower", "higher", "equivalent", "undecided"), "region")
-        count(self.runs, "runs", minimum=2)
+        values: dict[str, float] = {"runs": count(self.runs, "runs", minimum=2)}
         flag(self.heavy, "heavy")
-        values = {k: _real_number(getattr(self, k), k) for k in
-                  ("estimate", "low", "high", "margin", "share", "share_low", "share_high", "tail_index")}
+        values.update((k, _real_number(getattr(self, k), k)) for k in
+                      ("estimate", "low", "high", "margin", "share", "share_low", "share_high", "tail_index"))
+        for k, v in values.items():  # the plain int and floats read, never the caller's object (fuzz 29a C1: a 0-d
+            if type(getattr(self, k)) is not type(v):  # array was stored, aliased and writable after the checks)
+                object.__setattr__(self, k, v)
         if not (math.isfinite(values["margin"]) and values["margin"] >= 0):
             raise ValueError(f"margin must be a finite number >= 0, got {values['margin']}")
         for k in ("share", "share_low", "share_high"):

@@ -306,7 +306,7 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
     """
     runs_factor = count(runs_factor, "runs_factor")
     seed_list = distinct(check_seeds(seed_list, "seed_list"), "seed_list")
-    _readings(readings, runs_factor)
+    readings = _readings(readings, runs_factor)
     out = []
     for (src, rid), rs in sorted(readings.items()):
         for key, (kind, runs) in rs.items():
@@ -500,9 +500,10 @@ def run_batch(batch: Sequence[Task], root: str | None = None) -> list[TaskResult
     return out
 
 
-def _readings(readings: object, runs_factor: int) -> None:
+def _readings(readings: object, runs_factor: int) -> dict:
     """Check the mapping of :func:`stochastic_readings` (rule 12): ``(source, record) -> {reading: (kind, runs)}``."""
     instance_of(readings, Mapping, "readings")
+    checked: dict = {}
     for key, rs in readings.items():
         where = f"readings[{key!r}]"
         if not (isinstance(key, tuple) and len(key) == 2 and all(isinstance(x, str) for x in key)):
@@ -515,7 +516,8 @@ def _readings(readings: object, runs_factor: int) -> None:
                 raise TypeError(f"{where}[{shown(name)}] must be a (kind, runs) pair, got {shown(v)}")
             if v[0] not in R.READING_KINDS:
                 raise ValueError(f"{where}[{shown(name)}] kind must be one of {R.READING_KINDS}, got {shown(v[0])}")
-            count(v[1], f"{where}[{name!r}] runs")
+            checked.setdefault(key, {})[name] = (v[0], count(v[1], f"{where}[{name!r}] runs"))  # the int read
+    return checked
 
 
 def _tasks(task_list: object, name: str, cls: type = Task) -> list:

@@ -300,6 +300,7 @@ def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"
         ``uuid`` not an identifier: it is written into the page's HTML ids and CSS selectors, where a space loses
         the highlight and a quote or ``>`` writes markup (fuzz 22a H).
     """
+    decimals = count(decimals, "decimals", minimum=0)  # the int read: shown in the caption and the format
     mask = mismatches(table, decimals)
     text_argument(uuid, "uuid")   # a wrong type is a TypeError (issue 35)
     if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_-]*", uuid):

@@ -43,6 +43,7 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import chi2
 
 from fusion._frozen import frozen_arrays
+from fusion._validation import read_once
 from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, check_invertible,
                                 covariance_pair, one_of, scalar, singular_error, singular_system, unit_scalar)
 from fusion._validation import flag
@@ -192,6 +193,7 @@ def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike,
     * Wang, Z., & Tang, X. (2024). Research on multi-sensor data fusion based on covariance cross
       fusion. *Electronic Measurement Technology*.
     """
+    P1d, P1i, P2d, P2i = (read_once(P1d, "P1d"), read_once(P1i, "P1i"), read_once(P2d, "P2d"), read_once(P2i, "P2i"))
     flag(same_omega, "same_omega")
     first = as_array(P1d, "P1d", subnormal=True)  # covariances: the diagonal rule of as_semidefinite applies
     if first.ndim != 2:

@@ -28,6 +28,7 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import frozen_arrays
 from fusion._results import ResultSpec, array, nested, trusted, validated_post_init
+from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, _numeric, as_array, as_covariance, as_semidefinite, finite_result,
                                 instance_of, one_of, positive_scalar)
@@ -126,6 +127,7 @@ def local_track(
         ``z`` or ``x0`` of the wrong shape or not finite, or model matrices that are not
         valid covariances.
     """
+    z, F, H, Q, R = (read_once(z, "z"), read_once(F, "F"), read_once(H, "H"), read_once(Q, "Q"), read_once(R, "R"))
     F, H = _model(F, H)
     zz = as_array(z, "z", ndim=3)
     n, m = F.shape[0], H.shape[0]

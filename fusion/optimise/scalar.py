@@ -30,7 +30,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from fusion._validation import allocation, as_array, as_callable, as_rng, as_rngs, count, finite_optimum, objective_values, scalar
-from fusion._validation import flag, loop_work, tolerance
+from fusion._validation import argument_copy, flag, loop_work, tolerance
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
 
@@ -38,9 +38,10 @@ __all__ = ["fruit_fly", "fruit_fly_batch", "grid_search", "bounded_minimum"]
 
 
 def _values(f: Callable[[float], float], xs: np.ndarray, vectorized: bool) -> np.ndarray:
-    """Objective at every point of ``xs``: one call if ``vectorized``, else one call per point."""
+    """Objective at every point of ``xs``: one call if ``vectorized`` (on a copy: ``f`` may change its argument, the
+    candidates are read again), else one call per point."""
     if vectorized:
-        return objective_values(f(xs), xs.shape, "f")
+        return objective_values(f(argument_copy(xs)), xs.shape, "f")
     return objective_values([f(float(x)) for x in xs], xs.shape, "f")
 
 
@@ -99,7 +100,7 @@ def fruit_fly(
     vectorized : bool
         ``True`` if ``f`` takes an array of candidates and returns an array of values: the
         whole swarm is then scored in one call per generation (same result, same random
-        stream, far less interpreter overhead).
+        stream, far less interpreter overhead). The array is a copy: changing it in place does not change the search.
 
     Notes
     -----
@@ -196,7 +197,8 @@ def fruit_fly_batch(
     ----------
     f : callable
         Takes an array of candidates of shape (P, population), row :math:`p` for problem
-        :math:`p`, and returns their objective values, same shape.
+        :math:`p`, and returns their objective values, same shape. It is given a copy: changing it in place does
+        not change the search.
     rngs : sequence of numpy.random.Generator
         One generator per problem (P >= 1), each drawing its own stream (one Generator object given twice
         is refused: the two problems could not each give what the single call gives).
@@ -243,7 +245,7 @@ def fruit_fly_batch(
         ys = Y[:, None] + draws[:, start + population:start + 2 * population] * a + b
         with np.errstate(divide="ignore"):
             s = np.clip(1.0 / np.hypot(xs, ys), lo, hi)
-        smell = objective_values(f(s), s.shape, "f")
+        smell = objective_values(f(argument_copy(s)), s.shape, "f")  # a copy: s is read again (best_x)
         k = first_minimum_rows(smell)
         cand = smell[rows, k]
         better = improves_rows(cand, best_f)
@@ -274,7 +276,8 @@ def grid_search(
     lo, hi : float
         Search interval, ``lo < hi`` (finite).
     vectorized : bool
-        ``True``: ``f`` takes the whole grid (an array) and returns its values.
+        ``True``: ``f`` takes the whole grid (an array, a copy: changing it in place does not change the search)
+        and returns its values.
 
     Returns
     -------

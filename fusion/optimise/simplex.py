@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
-from fusion._validation import renormalised, sums_to_one, text, tolerance
+from fusion._validation import argument_copy, renormalised, sums_to_one, text, tolerance
 from fusion._validation import _numeric, FloatArray, as_callable, count, finite_optimum, objective_values
 from fusion.optimise.result import OptimumResult
 
@@ -115,7 +115,7 @@ def minimise_on_simplex(
     ftol = tolerance(ftol, "ftol")  # fuzz 24a U2: inf, NaN or a negative one returned the start as the minimum
 
     def value(e: FloatArray) -> float:  # issue 35, class 3: NaN, non-numbers and vectors refused, naming f
-        v = objective_values(f(e.copy()), (), "f")  # a copy: f writing into its argument cannot alter x
+        v = objective_values(f(argument_copy(e)), (), "f")  # a copy: f writing into its argument cannot alter x
         return float(v)
 
     if n == 1:

@@ -29,7 +29,7 @@ import numpy as np
 
 from fusion._validation import (as_rngs, FloatArray, as_callable, as_rng, count, finite_optimum, instance_of, nonnegative_scalar,
                                 objective_values, one_of, positive_scalar, scalar, work)
-from fusion._validation import flag, text, tolerance
+from fusion._validation import argument_copy, flag, text, tolerance
 from fusion._validation import LOOP_STEP, loop_work
 from fusion.optimise._ties import TIE_RTOL
 from fusion.optimise.result import OptimumResult, SwarmTrace
@@ -307,7 +307,8 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
         v[b] = rng.uniform(-vmax, vmax, (n_particles, dim))
 
     def score(active: np.ndarray, pos: FloatArray) -> FloatArray:
-        return objective_values(fitness(active, pos / pos.sum(axis=2, keepdims=True)), pos.shape[:2], "fitness", infeasible=-np.inf)
+        values = fitness(argument_copy(active), pos / pos.sum(axis=2, keepdims=True))  # a copy: act is read again
+        return objective_values(values, pos.shape[:2], "fitness", infeasible=-np.inf)
 
     act = np.arange(B)
     f = score(act, u)  # G2

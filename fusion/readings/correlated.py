@@ -46,6 +46,7 @@ from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
 from fusion._frozen import frozen_arrays
 from fusion._covariances import column_rank_deficient
+from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import inverse, solve, FloatArray, as_array, as_covariance, check_invertible, count
 
@@ -673,6 +674,7 @@ def gauss_markov_gap(H: ArrayLike, R: ArrayLike, rng: np.random.Generator, draws
     ValueError
         As :func:`gls`, or ``draws`` < 1.
     """
+    H, R = (read_once(H, "H"), read_once(R, "R"))  # converted once (fuzz 29a C5)
     if not isinstance(rng, np.random.Generator):
         raise TypeError(f"rng must be a numpy.random.Generator, got {type(rng).__name__}")
     draws = count(draws, "draws")

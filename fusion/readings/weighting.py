@@ -48,6 +48,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import read_once
 from fusion._validation import integer
 from fusion._frozen import frozen_arrays
 from fusion._results import BATCH, RTOL as _RTOL, ResultSpec, array, trusted, validated_post_init
@@ -511,6 +512,7 @@ def awf(X: ArrayLike, variance: Estimator = "lecture", guard: Guard = "floor") -
         After each sample: the fused ``value``, the ``weights``, the raw ``variances`` estimates and the running
         ``means``.
     """
+    X = read_once(X, "X")  # converted once, then checked and used (fuzz 29a C5)
     one_of(variance, ("lecture", "centred"), "variance")
     return _awf_result(running_variances(X, variance), running_means(X), guard)
 

@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import frozen_arrays
 from fusion._validation import (MAX_MAGNITUDE, FloatArray, _numeric, allocation, as_array, as_callable, finite_result,
-                                loop_work, nonnegative_scalar)
+                                argument_copy, loop_work, nonnegative_scalar)
 
 __all__ = ["AffineDecomposition", "affine_decomposition", "expected_mse"]
 
@@ -86,7 +86,7 @@ def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: Array
     as_callable(register, "register")
     base = as_array(z0, "z0", ndim=1)
     loop_work((base.size + 1,), base.size, "z0")  # rule 17: a call of register a sample, each on a copy of z0
-    f0 = _register_values(register(base), None)
+    f0 = _register_values(register(argument_copy(base)), None)  # a copy: base is read again (every e below)
     allocation((f0.size, base.size), "z0 and the values returned by register")  # rule 9: A
     A = np.empty((f0.size, base.size))
     for i in range(base.size):

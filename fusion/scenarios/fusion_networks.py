@@ -134,7 +134,7 @@ class NetworkNode:
         store_read(self, "sigma_theta", std_scalar(self.sigma_theta, "sigma_theta"))
         store_read(self, "model_scale", positive_scalar(self.model_scale, "model_scale"))
         if self.relay_of is not None:
-            count(self.relay_of, "relay_of", minimum=0)
+            store_read(self, "relay_of", count(self.relay_of, "relay_of", minimum=0))
 
 
 @dataclass(frozen=True)
@@ -207,7 +207,7 @@ class NetworkScenario:
                     raise ValueError(f"edges must be pairs of distinct node indices in [0, {len(self.nodes)}), got {shown(e)}")
         for name, least in (("frames", 1), ("rounds", 1), ("n_particles", 10), ("n_samples", 10), ("n_components", 1),
                             ("em_iterations", 1), ("stages", 1)):
-            count(getattr(self, name), name, minimum=least)
+            store_read(self, name, count(getattr(self, name), name, minimum=least))
         store_read(self, "prior_std", positive_scalar(self.prior_std, "prior_std"))
         t = _numeric(self.truth, "truth")
         if t.shape != (2,) or not np.all(np.isfinite(t)):

@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import constant
 from fusion._results import ResultSpec, array, nested, number, numbers, trusted, validated_post_init
+from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
                                 grid_points, positive_scalar, scalar, std_scalar, step_scalar, work)
@@ -573,6 +574,7 @@ def late_means(rmse: dict[str, FloatArray], t: ArrayLike, t_min: float = 2.0) ->
     dict of str to dict
         Per method: ``"azimuth (mrad)"``, ``"elevation (mrad)"``, ``"x (m)"``, ``"y (m)"``.
     """
+    rmse, t = (read_once(rmse, "rmse"), read_once(t, "t"))  # converted once (fuzz 29a C5)
     instance_of(rmse, Mapping, "rmse")
     tt = as_array(t, "t", ndim=1)
     t_min = scalar(t_min, "t_min")

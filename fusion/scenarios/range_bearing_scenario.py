@@ -159,8 +159,8 @@ class RangeBearingScenario:
         object.__setattr__(self, "p0_std", tuple(p0.tolist()))
         for name, least in (("frames", 1), ("n_particles", 2), ("n_components", 1), ("n_samples", 2),
                             ("n_central", 2), ("em_iterations", 1)):
-            count(getattr(self, name), name, minimum=least)
-        count(self.n_initial, "n_initial", minimum=0)
+            store_read(self, name, count(getattr(self, name), name, minimum=least))
+        store_read(self, "n_initial", count(self.n_initial, "n_initial", minimum=0))
         flag(self.regularised, "regularised")
         flag(self.variants, "variants")
         flag(self.readings, "readings")

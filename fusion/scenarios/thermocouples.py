@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 from fusion._frozen import constant
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, integer, number, same_keys, text, tuple_of,
                              validated_post_init)
+from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import distinct, loop_work, one_of
 from fusion._validation import allocation, record, seed as check_seed
@@ -563,6 +564,7 @@ def scale_sweep(
     ndarray, shape (k, n_runs)
         Mean absolute error over the samples (all, or ``window``) of each run, °C.
     """
+    scales = read_once(scales, "scales")  # converted once, then checked and used (fuzz 29a C5)
     as_array(scales, "scales", finite=False, nonempty=False)  # a TypeError naming scales for non-numbers
     instance_of(failure, (Mapping, type(None)), "failure")
     if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name

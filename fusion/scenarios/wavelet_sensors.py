@@ -345,9 +345,9 @@ def config_label(cfg: dict[str, Any]) -> str:
     for key in ("wavelet", "threshold", "mode", "transform"):
         if key in cfg and not isinstance(cfg[key], str):
             raise TypeError(f"cfg[{shown(key)}] must be a name (str), got {shown(cfg[key])}")
-    count(cfg["level"], "cfg['level']")
+    level = count(cfg["level"], "cfg['level']")
     ti = ", translation-invariant" if cfg.get("transform", "dwt") == "swt" else ""
-    return f"{cfg['wavelet']}, {cfg['level']} levels, {cfg['threshold']} {cfg['mode']}{ti}"
+    return f"{cfg['wavelet']}, {level} levels, {cfg['threshold']} {cfg['mode']}{ti}"
 
 
 def _kw(cfg: dict[str, Any]) -> dict[str, str | int]:
@@ -621,7 +621,8 @@ def signal_study(
     # at a few levels, ~20 vectorised operations per sample); "max" adds the fuse-first order
     n_gains = len(sequence(gains, "gains"))
     runs_, length_ = count(runs, "runs", minimum=2), count(length, "length")
-    count(level, "level")  # its ceiling before the work budget: a bad level is named whatever the counts
+    runs, length = runs_, length_  # the ints read, never the caller's objects (fuzz 29a C2)
+    level = count(level, "level")  # its ceiling before the work budget: a bad level is named whatever the counts
     loop_work((len(signals), len(modes), len(normalisers) + 1), 20 * runs_ * max(n_gains, 1) * length_,
               "signals, modes, normalisers, runs, gains and length")
     # every wavelet option (level against length included) checked on one noise-free signal, before the noise

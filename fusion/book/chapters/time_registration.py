@@ -763,7 +763,7 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
     """
     seed = check_seed(seed)
     sigmas = _noise_levels(sigmas, "sigmas")
-    count(runs, "runs")
+    runs = count(runs, "runs")  # the int read (fuzz 29a C2)
     k = len(sigmas) * len(TUNING_READINGS)  # rule 17 before any run: per level and reading a Monte Carlo, 2 exact
     sc._monte_carlo_work([IMPROVED, TWO] * k, runs, *(t.size for t in sc.instants()), "sigmas and runs", "sigmas")
     sc._exact_work((IMPROVED, TWO), [sc.instants()[1].size] * k, "sigmas")

@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike
 from fusion._limits import inexact_integer, written_as
 from fusion._validation import integer
 from fusion._validation import _numeric, _real_number, count, counts, seed as check_seed
-from fusion._validation import one_of, shown
+from fusion._validation import one_of, read_once, shown
 from fusion._validation import text
 from fusion.book import rulebook as R
 from fusion.book._few_runs import FewRunsError
@@ -172,6 +172,7 @@ class PublishedValues:
 
     def __init__(self, published: ArrayLike, ours: ArrayLike, decimals: int | Sequence[int], unit: str = "", *,
                  runs: int | None = None) -> None:
+        published, ours = read_once(published, "published"), read_once(ours, "ours")  # converted once (fuzz 29a C5)
         pub = np.atleast_1d(_numeric(published, "published"))
         our = np.atleast_1d(_numeric(ours, "ours"))
         if pub.ndim != 1 or pub.size == 0 or not np.all(np.isfinite(pub)):

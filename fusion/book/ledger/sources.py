@@ -55,7 +55,7 @@ class Source:
     def __post_init__(self) -> None:
         for name in ("key", "short", "title", "chapter"):
             _text(getattr(self, name), name)
-        count(self.order, "order")
+        object.__setattr__(self, "order", count(self.order, "order"))  # the plain int, never the caller's object
         if not isinstance(self.chapters, tuple):
             raise TypeError(f"chapters must be a tuple of str, got {type(self.chapters).__name__}")
         if not self.chapters:

@@ -25,6 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import frozen_arrays
+from fusion._validation import read_once
 from fusion._validation import (singular_system, _numeric, FloatArray, as_covariance, check_magnitude, gaussian_pair,
                                 one_of, unit_scalar)
 from fusion._validation import flag
@@ -274,6 +275,7 @@ def is_second_moment(means: ArrayLike, covs: ArrayLike, eps: ArrayLike, eps0: Ar
     * Owen, A. B. (2013). *Monte Carlo Theory, Methods and Examples*, chapter 9 (importance
       sampling). https://artowen.su.domains/mc/
     """
+    means, covs = (read_once(means, "means"), read_once(covs, "covs"))  # converted once (fuzz 29a C5)
     target = chernoff_fuse_gaussians(means, covs, eps)
     n = np.shape(target.eps)[0]
     e0 = check_simplex(eps0, n, name="eps0")

@@ -27,7 +27,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, instance, number, validated_post_init
+from fusion.estimates.chernoff._timings import FusionTimings
 from fusion._timing import LapTimer
+from fusion._validation import read_once
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
                                 instance_of, one_of)
 from fusion._validation import flag, in_given_precision, refuse_singular, renormalised, sums_to_one
@@ -120,10 +123,22 @@ class FirstOrderMixture:
         :math:`\\log\\sum_{m_f}\\tilde\\alpha_{m_f}`, which is :math:`\\ge \\log Z(\\varepsilon)`
         (subadditivity of :math:`t \\mapsto t^{\\varepsilon}`), with equality for
         single-component inputs (always the full weights, even when ``simplified``).
+
+    Raises
+    ------
+    TypeError
+        ``mixture`` not a :class:`~fusion.estimates.mixtures.GaussianMixture`, ``log_z_first_order`` not a real
+        number.
+    ValueError
+        ``log_z_first_order`` not finite. It is stored as a float (a 0-d array is read, never kept: fuzz 29a C1).
     """
 
     mixture: GaussianMixture
     log_z_first_order: float
+
+    __result_spec__ = ResultSpec({"mixture": instance(GaussianMixture),
+                                  "log_z_first_order": number(nonnegative=False)})
+    __post_init__ = validated_post_init
 
 
 def first_order_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool = False) -> FirstOrderMixture:
@@ -272,6 +287,7 @@ def log_densities(gms: Sequence[GaussianMixture], x: ArrayLike) -> FloatArray:
     ndarray, shape (R, N)
         Log densities in nats (per unit volume of the state).
     """
+    x = read_once(x, "x")  # converted once, then checked and used (fuzz 29a C5)
     _check_mixtures(gms)
     return np.column_stack([gm_logpdf(g, x) for g in gms])
 
@@ -458,42 +474,6 @@ def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> OptimumResult:
     Lm, lg = _L_logg(L, log_g)
     return minimise_on_simplex(lambda e: float(_is_objective(Lm, lg, e)), Lm.shape[1],
                                jac=lambda e: _is_gradient(Lm, lg, e), ftol=1e-10)
-
-
-@dataclass(frozen=True)
-class FusionTimings:
-    """Seconds spent per stage by one call of :func:`fuse_mixtures` or :func:`fuse_mixtures_batch` (``timed=True``).
-
-    Wall-clock times: not deterministic, for benchmarks only. A stage the call did not run takes 0.
-
-    Attributes
-    ----------
-    first_order : float
-        Step D, the first-order mixture :math:`g` (:func:`first_order_fusion`).
-    sampling : float
-        Step E, drawing the importance samples.
-    densities : float
-        Step F, :math:`\\log g` and the local mixture densities at the samples.
-    optimiser : float
-        Step G, the chosen optimiser.
-    weights : float
-        Steps H-I, the fused weights and moments.
-    reference : float
-        The SLSQP reference (``reference=True``).
-    redraw : float
-        The redrawn samples (``redraw=True``).
-    """
-
-    # the patent's steps D-G
-    first_order: float = 0.0
-    sampling: float = 0.0
-    densities: float = 0.0
-    optimiser: float = 0.0
-    # steps H-I
-    weights: float = 0.0
-    # what the caller asked for besides
-    reference: float = 0.0
-    redraw: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -298,7 +298,7 @@ def consistency_study(
     allocation((runs, samples, sig_chk.size), "runs, samples and sigma")
     x = scalar(x, "x")
     bias = scalar(bias, "bias")
-    _index(fault_sensor, sig_chk.size, "fault_sensor")
+    fault_sensor = _index(fault_sensor, sig_chk.size, "fault_sensor")
     window = check_window(window, "window", samples)  # not reversed, not empty (issue 35, class 4)
     seed = _seed(seed)
     seed_curve = _seed(seed_curve, "seed_curve")

@@ -172,7 +172,7 @@ def benchmark(
     bias = scalar(bias, "bias")
     sig_chk = _sigmas(sigma, minimum=3)
     allocation((runs, samples, sig_chk.size), "runs, samples and sigma")
-    _index(fault_sensor, sig_chk.size, "fault_sensor")
+    fault_sensor = _index(fault_sensor, sig_chk.size, "fault_sensor")
     fault_from = count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
     faults = [flag(f, f"faults[{i}]")  # fuzz 24a U8: one rule for a sequence argument, then for each flag
               for i, f in enumerate(sequence(faults, "faults", minimum=1, what="flag"))]

@@ -357,7 +357,7 @@ def regime_study(
     walk_seed = _seed(walk_seed, "walk_seed")
     forgetting, forgetting_alt = (_forgetting(v, name)
                                   for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))
-    _index(change_at, samples, "change_at")
+    change_at = _index(change_at, samples, "change_at")
     one_of(guard, wt.GUARDS, "guard")
     acc_guard = "abs" if guard == "none" else guard
     n, K = sig.size, samples
@@ -549,7 +549,7 @@ def variance_change_study(
         Per change and method the squared errors against k, with the SDs after the change.
     """
     sig, samples, runs, seed = _draws(sigma, samples, runs, seed)
-    _index(change_at, samples, "change_at")
+    change_at = _index(change_at, samples, "change_at")
     forgetting, forgetting_alt = (_forgetting(v, name)
                                   for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))
     sequence(changes, "changes")

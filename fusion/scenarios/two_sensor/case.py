@@ -11,6 +11,7 @@ from numpy.typing import ArrayLike
 
 from fusion._docstrings import ParameterDocs
 from fusion._results import ResultSpec, array, nested, trusted, validated_post_init
+from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 finite_result, grid_points, positive_scalar, psd_factor, std_scalar)
@@ -287,6 +288,7 @@ def two_sensor_scenario(
     ValueError
         ``runs`` not positive, ``velocity_sigma`` not positive, covariances not valid.
     """
+    R_a, R_b, Q = (read_once(R_a, "R_a"), read_once(R_b, "R_b"), read_once(Q, "Q"))  # converted once (fuzz 29a C5)
     as_rng(rng)
     runs = count(runs, "runs")
     traj, model = trajectory(T), cv_model(T)

@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike
 
 from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, mask, number, same_keys, validated_post_init
 from fusion._shown import shown
+from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, count, diagonal_covariance, index, instance_of,
                                 nonnegative_scalar, positive_scalar, scalar, std_scalar)
@@ -151,6 +152,7 @@ def fusion_study(sc: Scenario, w_fruit_fly: ArrayLike | None = None, w_grid: Arr
         (eqs. 5-12 read as split CI), the convex combination (eqs. 3-4), fuzzy clustering and the
         centralised Kalman filter.
     """
+    w_fruit_fly, w_grid = (read_once(w_fruit_fly, "w_fruit_fly"), read_once(w_grid, "w_grid"))
     instance_of(sc, Scenario, "sc")
     for w, w_name in ((w_fruit_fly, "w_fruit_fly"), (w_grid, "w_grid")):
         if w is not None:
@@ -206,6 +208,7 @@ def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int,
     ndarray, shape (runs,)
         Entry r: the RMS over the selected steps of run r's error in ``component``, rounded to ``decimals``.
     """
+    est, truth = (read_once(est, "est"), read_once(truth, "truth"))  # converted once (fuzz 29a C5)
     est_arr = as_array(est, "est", ndim=3)
     truth_arr = as_array(truth, "truth", ndim=(0, 1, 2, 3))
     try:
@@ -325,6 +328,7 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     NeesStudy
         Mean NEES of each rule over the steady-state steps (``mean_nees``) and the fused estimates (``est``).
     """
+    Q, R1, R2, x_start = (read_once(Q, "Q"), read_once(R1, "R1"), read_once(R2, "R2"), read_once(x_start, "x_start"))
     R1 = diagonal_covariance(R1, 2, "R1")
     R2 = diagonal_covariance(R2, 2, "R2")
     as_array(x_start, "x_start", shape=(4,))

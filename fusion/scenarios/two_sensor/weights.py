@@ -11,6 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._results import NONNEGATIVE, ResultSpec, array, integers, number, validated_post_init
+from fusion._validation import read_once
 from fusion._validation import seed as check_seed, seed_array
 from fusion._validation import LOOP_STEP, distinct, loop_work
 from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_semidefinite, count, instance_of,
@@ -231,6 +232,7 @@ def printed_fruit_fly_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike,
     ValueError
         Bad covariance parts, ``seeds`` empty or not integers, counts not positive, ``rtol`` negative.
     """
+    P1d, P1i, P2d, P2i = (read_once(P1d, "P1d"), read_once(P1i, "P1i"), read_once(P2d, "P2d"), read_once(P2i, "P2i"))
     first = as_array(P1d, "P1d", ndim=2)
     parts = [as_semidefinite(M, first.shape[0], name=nm) for M, nm in ((P1d, "P1d"), (P1i, "P1i"), (P2d, "P2d"), (P2i, "P2i"))]
     split_ci_objective(1.0, *parts, same_omega=True)   # validates the sums (positive definite)

@@ -74,8 +74,8 @@ def _keyed_records(records: object, prefix: str, keys: tuple[str, ...]) -> list[
         first[key] = i
         if "status" in r:
             one_of(r["status"], STATUSES, f"records[{i}]['status']")
-        if r.get("runs") is not None:
-            count(r["runs"], f"records[{i}]['runs']", maximum=None)
+        if r.get("runs") is not None:  # the int read, never the caller's object (fuzz 29a C2)
+            r = {**r, "runs": count(r["runs"], f"records[{i}]['runs']", maximum=None)}
         if r.get("robustness") is not None:
             text(r["robustness"], f"records[{i}]['robustness']")
         out.append((key, r))
