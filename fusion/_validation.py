@@ -100,6 +100,7 @@ from __future__ import annotations
 import dataclasses as _dataclasses
 import datetime as _dt
 import functools as _functools
+import importlib
 import inspect as _inspect
 import re as _re
 from math import isfinite as _isfinite
@@ -960,11 +961,21 @@ def step_scalar(value: float, name: str, power: int, *, zero: bool = False) -> f
     return v
 
 
-# The selection rules (masks, slices, windows) live in fusion._selections, which uses the rules above: imported last.
-from fusion._selections import as_mask, frame_slice, selection, window  # noqa: E402, F401 (re-exported)
+# The selection rules (masks, slices, windows) live in fusion._selections and the covariance rules in
+# fusion._covariances; both use the rules above and are re-exported here lazily (PEP 562), so that either module can
+# be imported first: an eager import here made ``import fusion._covariances`` (and every module importing it before
+# this one, e.g. fusion.scenarios.range_bearing_batch) fail on the import cycle.
+_REEXPORTED = {
+    "fusion._selections": ("as_mask", "frame_slice", "selection", "window"),
+    "fusion._covariances": ("_SMALL_PAIR", "_TINY", "_covariance_magnitude", "_finite_symmetric", "as_covariance",
+                            "as_covariances", "as_semidefinite", "check_invertible", "computed_part",
+                            "refuse_singular", "covariance_pair", "diagonal_covariance", "gaussian_pair"),
+}
 
-# The covariance rules live in fusion._covariances, which uses the rules above: imported last.
-from fusion._covariances import (  # noqa: E402, F401 (re-exported)
-    _SMALL_PAIR, _TINY, _covariance_magnitude, _finite_symmetric, as_covariance, as_covariances, as_semidefinite,
-    check_invertible, computed_part, refuse_singular,
-    covariance_pair, diagonal_covariance, gaussian_pair)
+
+def __getattr__(name: str) -> object:
+    """The selection and covariance rules, from the modules that define them (imported on first use)."""
+    for module, names in _REEXPORTED.items():
+        if name in names:
+            return getattr(importlib.import_module(module), name)
+    raise AttributeError(f"module 'fusion._validation' has no attribute '{name}'")
