@@ -104,7 +104,7 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
       example. *Knowledge-Based Systems*, 26, 69-74.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
-    count(seeds, "seeds")
+    seeds = count(seeds, "seeds")  # the int read: glued as "runs" (fuzz 29a C2)
     from fusion.optimise.scalar import batch_budget
 
     batch_budget(seeds, 30, 200, "seeds")   # each rule's batch of the printed 30 × 200, named here (fuzz 24c WN)

@@ -615,9 +615,8 @@ def published_numbers(period: float, runs: int) -> GlueValues:
     # checked; glued as the plain number given (an int stays an int; a Fraction, a Decimal, a numpy scalar or a
     # 0-d array as the float read: the glue holds plain numbers, fuzz 22b FR)
     T = given_number(period, "period", lo=0.0, lo_open=True)
-    count(runs, "runs")
+    RUNS = count(runs, "runs")
     SC = data.WANG2024_SCENARIO
-    RUNS = int(runs)
     pub_rmse, pub_fruit_fly, pub_times = data.WANG2024_RMSE.columns, data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     return {"ci_T": T, "ci_runs": RUNS, "ci_delta": SC["delta1"], "ci_pub_rmse": pub_rmse["improved"][0],
             "ci_pub_ci": pub_rmse["ci"][0], "ci_pub_mb": pub_rmse["multi_bayes"][0], "ci_pub_fuzzy": pub_rmse["fuzzy"][0],
