@@ -122,7 +122,7 @@ def frozen_value(value: object, copy: bool = False, _copies: dict[int, np.ndarra
 
     Recursive through mappings, lists and tuples (a named tuple keeps its type); anything else (a number, a nested
     result, which freezes itself) is returned as is. Every :class:`~collections.abc.Mapping` is copied into a
-    :class:`ReadOnlyMapping` of its items, not only a ``dict``: a caller's ``MappingProxyType``, ``ChainMap`` or
+    :class:`ReadOnlyMapping` of its items, not only a ``dict``: a caller's ``mappingproxy``, ``ChainMap`` or
     other mapping is a view of data it can still change (and a ``mappingproxy`` cannot be pickled).
 
     Parameters

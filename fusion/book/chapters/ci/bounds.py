@@ -71,8 +71,8 @@ def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
 def _check_rows(rows: object) -> dict[tuple[Any, Any], dict[Any, float]]:
     """Refuse, naming ``rows``, anything but a non-empty mapping of (period, reading) pairs to mappings of column
     names to finite non-negative numbers (RMSEs and floors, m); return them as the plain dict of dicts of floats
-    read, the one the callers use (fuzz 29b B5: pandas built no (period, reading) index from a ``MappingProxyType``
-    or a ``ChainMap``, whatever any mapping the docstrings allow)."""
+    read, the one the callers use (fuzz 29b B5: pandas built no (period, reading) index from a ``mappingproxy``
+    or a ``ChainMap``, mappings the docstrings allow)."""
     if not isinstance(rows, Mapping):
         raise TypeError(f"rows must be a mapping of (period, reading) -> values, got {type(rows).__name__}")
     if not rows:
