@@ -118,10 +118,12 @@ def protect_frames(cls: type, names: Any) -> None:
 
 
 def frozen_value(value: object, copy: bool = False, _copies: dict[int, np.ndarray] | None = None) -> object:
-    """``value`` with nothing mutable in place: arrays read-only, dicts :class:`ReadOnlyMapping`, lists tuples.
+    """``value`` with nothing mutable in place: arrays read-only, mappings :class:`ReadOnlyMapping`, lists tuples.
 
-    Recursive through dicts, lists and tuples (a named tuple keeps its type); anything else (a number, a nested
-    result, which freezes itself) is returned as is.
+    Recursive through mappings, lists and tuples (a named tuple keeps its type); anything else (a number, a nested
+    result, which freezes itself) is returned as is. Every :class:`~collections.abc.Mapping` is copied into a
+    :class:`ReadOnlyMapping` of its items, not only a ``dict``: a caller's ``mappingproxy``, ``ChainMap`` or
+    other mapping is a view of data it can still change (and a ``mappingproxy`` cannot be pickled).
 
     Parameters
     ----------
@@ -146,7 +148,7 @@ def frozen_value(value: object, copy: bool = False, _copies: dict[int, np.ndarra
             value = memo[id(value)]
         value.setflags(write=False)
         return value
-    if isinstance(value, (dict, ReadOnlyMapping)):
+    if isinstance(value, Mapping):  # every mapping, not only a dict: a caller's view is copied (fuzz 29b B2)
         return ReadOnlyMapping({k: frozen_value(v, copy, memo) for k, v in value.items()})
     if isinstance(value, list) or type(value) is tuple:
         return tuple(frozen_value(v, copy, memo) for v in value)

@@ -127,6 +127,7 @@ def O() -> dict[str, Any]:  # noqa: N802 - the objects
     o["mc"] = ofs.mc_table(o["studies"], o["sig"])
     o["mc_swapped"] = ofs.mc_table({"hs": o["eq"], "eq": o["hs"]}, o["sig"])  # another pairing of studies and SDs
     o["fair_few"] = of.fair_study(0, 2, 2, sizes=(0, 1), counts=(0, 1), spreads=(1, 2), opposite=())
+    o["shapes"], o["shapes_few"] = of.fault_shapes_study(0, 100), of.fault_shapes_study(0, 3)  # R4: 100 runs
     for k in lwr.STUDIES:  # each study at fewer runs than rule R4's 100
         o[f"{k}_few"] = lwr.study(k, 2601, 3)
     cf = load_claims(claims_dir() / "yang2012optimal.yaml")
@@ -142,6 +143,7 @@ def O() -> dict[str, Any]:  # noqa: N802 - the objects
     o["len64"] = wa.length_study(64, runs=100)
     o["len1024"] = wa.length_study(1024, runs=100)
     o["len128"] = wa.length_study(128, runs=100)
+    o["len64_few"] = wa.length_study(64, runs=3)
     from fusion.scenarios import wavelet_sensors as ws  # studies of three sensors (valid; no sensor 4: fuzz 26d A10)
 
     three = dict(gains=(1.0, 1.5, 0.8), sigma=(0.05, 0.1, 0.2))
@@ -278,6 +280,13 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
         n_sensors=A(10, RUNS),
         truth=A(900.0, REAL))
     add(of.figure_fair, study=A(o["fair"], res(o["hs"])))
+    add(of.fault_shapes_study, seed=A(0, SEED), n_runs=A(2, RUNS_DRAWN), sigma=A(1.0, POS + (("len", np.ones(4)),)),
+        truth=A(900.0, REAL))
+    add(of.fault_shapes_table, study=A(o["shapes"], OBJ + (NONE, ("empty", {}), ("few runs", o["shapes_few"]),
+                                                             ("a method less", {k: {m: v for m, v in e.items()
+                                                                                    if m != "mean"}
+                                                                                for k, e in o["shapes"].items()}))),
+        seed=A(None, SEED))
     add(of.information, method=A("mean", KEY))
     add(of.margin_sensitivity, ledger=A(o["ledger_json"], mapping(o["ledger_json"], "claims")), low=A(0.025, NONNEG),
         high=A(0.1, NONNEG + (("below low", 0.01),)))
@@ -306,7 +315,8 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
     add(wa.glue_typical, tab=A(tt, frame(tt, wa.BY_MEAN)))
     add(wa.length_study, length=A(64, RUNS + (("below 16", 15),)), seed=A(2601, SEED), runs=A(3, RUNS))
     add(wa.table_lengths, studies=A({64: o["len64"]}, mapping({64: 1}) + (("other length", {64: o["len128"]}),
-                                                                          ("other type", {64: M}))))
+                                                                          ("other type", {64: M}),
+                                                                          ("few runs", {64: o["len64_few"]}))))
     add(wa.table_typical, ev=A(ev_small, mapping(ev_small) + (("reading of an int", {"r": {"primary": 5}}),)))
     add(wa.typical_run, ev=A(cj, res(M)))
     add(e26.figure_26, e=A(E, res(M)), sensor=A(3, ("neg", "frac", "str", ("beyond", 4))),

@@ -726,7 +726,8 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     errors from inside, or one of the two read silently). ``unique``: the rows are keys (a method, a length, a
     record) and a repeated one is refused, naming ``name`` and the row (a row twice was counted twice, or drawn as a
     sequence). ``rows``: the row keys the maker gives (a collection, or a test of one key), described by
-    ``rows_are``; a row that is not one is refused, naming it (an unknown method was listed as a method)."""
+    ``rows_are``; a row that is not one is refused, naming it (an unknown method was listed as a method). A column of
+    non-native byte order (``'>f8'`` here) is refused, naming it: pandas does not read one (fuzz 29b D1)."""
     if not isinstance(tab, pd.DataFrame):
         raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
                         f"{type(tab).__name__}")
@@ -736,6 +737,10 @@ def _frame(tab: object, name: str, columns: Collection[str], index: Collection[s
     if tab.empty:
         raise ValueError(f"{name} is empty")
     made = f" (as {maker} makes it)" if maker else ""
+    foreign = next((c for c, d in tab.dtypes.items() if isinstance(d, np.dtype) and not d.isnative), None)
+    if foreign is not None:  # pandas reads native byte order only (fuzz 29b D1: its unnamed error, a false "differs")
+        raise ValueError(f"{name}[{shown(foreign)}] holds numbers of non-native byte order ({tab[foreign].dtype.str}), "
+                         f"which pandas does not read: give it in native order{made} (.astype(float))")
     twice = [c for c in dict.fromkeys((*columns, *finite, *texts, *nonnegative)) if c in tab.columns
              and isinstance(tab[c], pd.DataFrame)]
     if twice:

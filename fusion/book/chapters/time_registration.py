@@ -356,8 +356,8 @@ def axes_tables(t1: ArrayLike, t2: ArrayLike) -> tuple[pd.DataFrame, pd.DataFram
         ``t2`` lies outside the record of ``t1`` (an extrapolation, refused as by
         :func:`~fusion.book.chapters.time_registration_ledger.cost_count`).
     """
-    _record_times(t1, t2)    # sample times, the instants within the record: named
-    x1, x2 = sc.truth(np.asarray(t1, dtype=float)), sc.truth(np.asarray(t2, dtype=float))
+    t1, t2 = _record_times(t1, t2)    # sample times, the instants within the record: named
+    x1, x2 = sc.truth(t1), sc.truth(t2)
     ax = data.SHI2023_AXES.columns
     counts = pd.DataFrame({"published": np.asarray(data.SHI2023_CLAIMED_SAMPLES.values).round().astype(int),
                            "reproduced": [int(np.size(t1)), int(np.size(t2))]},

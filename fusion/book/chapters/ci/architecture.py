@@ -468,19 +468,20 @@ def architecture_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, seeds: Sequ
         If ``seeds`` does not hold two seeds (integers >= 0), ``w_pub`` or an entry of ``fixed_omegas`` is not in
         (0, 1], or an entry of ``fixed_omegas`` repeats ``w_pub`` or another entry.
     """
-    check_seeds(seeds, "seeds")
-    seeds = tuple(seeds)
-    scalar(w_pub, "w_pub", 0.0, 1.0, lo_open=True)
-    seen = {float(w_pub): "w_pub"}
+    seeds = tuple(check_seeds(seeds, "seeds"))
+    w_pub = scalar(w_pub, "w_pub", 0.0, 1.0, lo_open=True)
+    seen = {w_pub: "w_pub"}
+    fixed = []   # the floats read (fuzz 29b B1: a checked value is the one used)
     for i, w in enumerate(sequence(fixed_omegas, "fixed_omegas")):
         w = scalar(w, f"fixed_omegas[{i}]", 0.0, 1.0, lo_open=True)
         if w in seen:   # the studies are keyed by the weights
             raise ValueError(f"fixed_omegas[{i}] repeats {seen[w]} ({shown(w)}): every weight is run once")
         seen[w] = f"fixed_omegas[{i}]"
+        fixed.append(w)
     if len(seeds) != 2:
         raise ValueError(f"seeds must hold two seeds (identical sensors, anisotropic pair), got {shown(seeds)}")
     return {IDENTICAL_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[0]), R1, R2, Q, runs=runs,
-                                                           nees_runs=nees_runs, T=T, printed_omegas=(w_pub, *fixed_omegas),
+                                                           nees_runs=nees_runs, T=T, printed_omegas=(w_pub, *fixed),
                                                            placement_omegas=(w_pub,)),
             ANISO_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[1]), *ANISO_R, Q, runs=runs,
                                                        nees_runs=nees_runs, T=T, printed_omegas=(w_pub,))}

@@ -5,6 +5,7 @@ scaling.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -67,20 +68,23 @@ def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
     return rows_t.astype(float).round(2)
 
 
-def _check_rows(rows: object) -> None:
+def _check_rows(rows: object) -> dict[tuple[Any, Any], dict[Any, float]]:
     """Refuse, naming ``rows``, anything but a non-empty mapping of (period, reading) pairs to mappings of column
-    names to finite non-negative numbers (RMSEs and floors, m)."""
+    names to finite non-negative numbers (RMSEs and floors, m); return them as the plain dict of dicts of floats
+    read, the one the callers use (fuzz 29b B5: pandas built no (period, reading) index from a ``mappingproxy``
+    or a ``ChainMap``, mappings the docstrings allow)."""
     if not isinstance(rows, Mapping):
         raise TypeError(f"rows must be a mapping of (period, reading) -> values, got {type(rows).__name__}")
     if not rows:
         raise ValueError("rows is empty (it must be the result of fusion.scenarios.two_sensor.path_by_period)")
+    out = {}
     for key, value in rows.items():
         if not isinstance(key, tuple) or len(key) != 2:
             raise ValueError(f"rows must be keyed by (period, reading) pairs, got the key {shown(key, 80)}")
         if not isinstance(value, Mapping):
             raise TypeError(f"rows[{shown(key)}] must be a mapping of column -> value, got {type(value).__name__}")
-        for col, v in value.items():
-            scalar(v, f"rows[{shown(key)}][{shown(col)}]", 0.0, tiny=True)
+        out[key] = {col: scalar(v, f"rows[{shown(key)}][{shown(col)}]", 0.0, tiny=True) for col, v in value.items()}
+    return out
 
 
 def path_period_table(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> pd.DataFrame:
@@ -105,8 +109,7 @@ def path_period_table(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> 
     ValueError
         ``rows`` is empty, or a key is not a (period, reading) pair, or a value not finite and non-negative.
     """
-    _check_rows(rows)
-    t = pd.DataFrame(rows).T
+    t = pd.DataFrame(_check_rows(rows)).T
     t.index.names = ["sampling period T (s)", "reading of Q"]
     return t.astype(float).round(2)
 
@@ -131,7 +134,7 @@ def path_numbers(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> GlueV
     ValueError
         ``rows`` lacks a (period, reading) row or a column read here, or a value is not finite and non-negative.
     """
-    _check_rows(rows)
+    rows = _check_rows(rows)
     qp, qc = two_sensor.Q_READINGS[0], two_sensor.Q_READINGS[2]
     need = {(0.1, qp): (CI_AVERAGE, STRAIGHT_LEG_FLOOR, CAUSAL_FLOOR), (0.02, qp): (CI_AVERAGE, STRAIGHT_LEG_FLOOR,
             CAUSAL_FLOOR), (0.1, qc): (CI_AVERAGE,), (0.02, qc): (CI_AVERAGE,), (1.0, qp): (CI_AVERAGE, CENTRALISED_KF)}

@@ -22,7 +22,7 @@ from fusion.book.chapters.ci.paired import (_PAIRED_CLAIM_FIELDS, _REAL, _RUNS, 
                                             _runs_relation)
 from fusion.book.chapters.ci.printed import PrintedWeightFacts
 from fusion.book.chapters.ci.tracking import _LEG_FIELDS, LegClaimInputs
-from fusion.book.chapters.ci.weights import _WEIGHT_FIELDS, WeightClaimInputs
+from fusion.book.chapters.ci.weights import _WEIGHT_FIELDS, OMEGA_FOUND, TR_P, WeightClaimInputs, _hypothesis_table
 
 __all__ = ["ArchInputs", "PeriodRuns", "PairedInputs", "IrInputs", "LedgerStudies", "LedgerInputs", "LEDGER_INPUTS",
            "ledger_inputs"]
@@ -119,7 +119,7 @@ def _ir_period_relation(values: Mapping[str, Any], cls: str) -> None:
 _LEDGER_FIELDS = {
     "study": instance(FusionStudy), "model_rmse": dict_of(number(), required=("x", "y")), "nees": dict_of(number()),
     "nees_runs": integer(1), "eq2_error": number(), "eq6_asym": number(), "bench": dict_of(number()),
-    "bench_date": text(), "bench_per_step": dict_of(tuple_of(number())), "fig5_hyp": table(),
+    "bench_date": text(), "bench_per_step": dict_of(tuple_of(number())), "fig5_hyp": table(TR_P, OMEGA_FOUND),
     "rmse_variants": dict_of(_PAIR), "rmse_variants_all": dict_of(_PAIR), "ir_sens": _real_keyed(dict_of(number())),
     "ir_T": number(positive=True), "pcrb": dict_of(number(), required=("T1", "limit")), "q_scaling": instance(QScaling),
     "slip_all": dict_of(_PAIR), "slip_weights": _real_keyed(_PAIR),
@@ -274,7 +274,8 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
     bench_per_step : dict of str to list
         Its per-step timings and evaluation counts.
     fig5_hyp : pandas.DataFrame
-        :func:`fig5_hypotheses`.
+        :func:`fig5_hypotheses` (its five rows in its order, columns ``tr P`` and ``ω found``: the rows and columns
+        the ledger reads; another table is refused, naming the field).
     rmse_variants : dict of str to tuple
         Readings of eq. 13 -> (x, y) RMSE (m), over the steady steps.
     rmse_variants_all : dict of str to tuple
@@ -335,7 +336,11 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
                                                                 lambda v, cls: _ir_scaled_relation(v, cls),
                                                                 lambda v, cls: _ir_period_relation(v, cls),
                                                                 lambda v, cls: _arch_relation(v, cls),
-                                                                lambda v, cls: _foa_targets_relation(v, cls)))
+                                                                lambda v, cls: _foa_targets_relation(v, cls),
+                                                                # the rows and columns ev_fig5 reads (fuzz 29b B4)
+                                                                lambda v, cls: _hypothesis_table(
+                                                                    v["fig5_hyp"], f"{cls}.fig5_hyp",
+                                                                    (TR_P, OMEGA_FOUND))))
     __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 

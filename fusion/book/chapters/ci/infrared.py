@@ -209,7 +209,7 @@ def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -
     """
     _ir_methods(rmse, "rmse", ())
     t_read, arrays = _scan_times(t, rmse, "rmse")
-    _start_on(t_min, t_read)
+    t_min = _start_on(t_min, t_read)
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     table = pd.DataFrame(ir.late_means(arrays, t, t_min)).T
     table.index = [METHOD_LABELS[m] for m in table.index]

@@ -98,8 +98,8 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
         for k in read:
             _per_run(runs_by[k], f"{name}[{shown(k)}]", paired_runs)
     _per_run(paired_random, "paired_random", paired_runs)
-    scalar(ml_gap, "ml_gap", 0.0, tiny=True)
-    scalar(rmse_avg, "rmse_avg", 0.0, lo_open=True)
+    ml_gap = scalar(ml_gap, "ml_gap", 0.0, tiny=True)
+    rmse_avg = scalar(rmse_avg, "rmse_avg", 0.0, lo_open=True)
     w = as_array(omega_u, "omega_u", ndim=1, nonnegative=True)
     if (w > 1.0).any():
         raise ValueError(f"omega_u must hold CI weights in [0, 1], got {shown(float(w.max()))}")
@@ -357,8 +357,7 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     instance_of(aniso, WeightPair, "aniso")
     _pair_noises(unequal, aniso, ("unequal", "aniso"))   # by the noises they record, as weight_claim_inputs (fuzz 26c B1)
     _sensor_noises(R1, R2)
-    check_seeds(seeds, "seeds")
-    seeds = tuple(seeds)
+    seeds = tuple(check_seeds(seeds, "seeds"))
     weight_seed = check_seed(weight_seed, "weight_seed")
     weights = sequence(weights, "weights", 2)
     if len(seeds) != 3:

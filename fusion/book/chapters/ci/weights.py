@@ -905,6 +905,20 @@ _HYPOTHESIS_ROWS = ("exhaustive search, 1001 points", "exhaustive search on k/",
                     "the same grid k/")
 
 
+def _hypothesis_table(table: object, name: str, columns: tuple[str, ...]) -> None:
+    """The rule of every reader of :func:`fig5_hypotheses`' table (fuzz 29b B4: ``LedgerInputs.fig5_hyp`` took any
+    table, ``ev_fig5`` then a KeyError): a DataFrame holding ``columns`` and its five rows in its order, read by
+    position and told apart by their labels (q1); TypeError/ValueError naming ``name``."""
+    _frame(table, name, columns, maker="fig5_hypotheses")
+    if len(table) < 5:  # type: ignore[arg-type]
+        raise ValueError(f"{name} must be fig5_hypotheses' table (five rows or more, columns {list(columns)})")
+    for i, prefix in enumerate(_HYPOTHESIS_ROWS):
+        label = table.index[i]  # type: ignore[attr-defined]
+        if not isinstance(label, str) or not label.startswith(prefix) or (i == 3 and "as printed" in label):
+            raise ValueError(f"{name} must hold fig5_hypotheses' rows in its order: row {i} must be the hypothesis "
+                             f"{shown(prefix)}…, got {shown(label, 80)}")
+
+
 def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) -> GlueValues:
     """The numbers the prose quotes from :func:`fig5_hypotheses` (glue keys ``ci_h_*``).
 
@@ -933,14 +947,7 @@ def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) ->
         :func:`fig5_hypotheses` at its position (rows reordered).
     """
     evaluations = count(evaluations, "evaluations")
-    _frame(table, "table", (OMEGA_FOUND,), maker="fig5_hypotheses")
-    if len(table) < 5:
-        raise ValueError("table must be fig5_hypotheses' table (five rows or more, column 'ω found')")
-    for i, prefix in enumerate(_HYPOTHESIS_ROWS):   # the rows read by position, told apart by their labels (q1)
-        label = table.index[i]
-        if not isinstance(label, str) or not label.startswith(prefix) or (i == 3 and "as printed" in label):
-            raise ValueError(f"table must hold fig5_hypotheses' rows in its order: row {i} must be the hypothesis "
-                             f"{shown(prefix)}…, got {shown(label, 80)}")
+    _hypothesis_table(table, "table", (OMEGA_FOUND,))
     pub = data.WANG2024_FOA.columns
     per_eval = float(pub["foa_time_s"][0]) / evaluations
     # each ω read by the glue rule (fuzz 22b, V11): a weight, a finite number in [0, 1], named

@@ -10,6 +10,7 @@ import numpy as np
 import pandas as pd
 
 from fusion._validation import count, instance_of, mapping_of
+from fusion.book._few_runs import runs_named
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.rulebook import _runs_won
 from fusion.book.chapters.lecture_wavelets.records import N_RUNS, SEED, _ACCURACY
@@ -73,8 +74,11 @@ def _typical(ev: object, name: str) -> Comparison | Conjunction:
     if ev.claim not in ("less", "greater"):
         raise ValueError(f"{name}: a sign test needs a claim 'less' or 'greater', got {shown(ev.claim)}")
     won = _runs_won(np.asarray(ev.a, dtype=float), np.asarray(ev.b, dtype=float), ev.claim)  # a tie never wins
+    # the sign test reads the runs of ``ev``: its reason for fewer than rule R4's runs is theirs (fuzz 29b B6: refused
+    # as "a and b" without one, "the argument reason" that typical_run does not take)
     return Comparison(won.astype(float), np.full(won.size, 0.5), f"fraction of runs in which {ev.a_name} beats "
-                      f"{ev.b_name}", "one half", "greater", "fraction of runs won (sign test)", seed=ev.seed)
+                      f"{ev.b_name}", "one half", "greater", "fraction of runs won (sign test)", seed=ev.seed,
+                      reason=ev.reason)
 
 
 def _nonempty_mapping(value: object, name: str, what: str) -> None:
@@ -204,7 +208,8 @@ def table_lengths(studies: Mapping[int, SignalStudy]) -> pd.DataFrame:
     TypeError
         ``studies`` not a mapping, a key not an integer or a value not a SignalStudy.
     ValueError
-        ``studies`` empty, a study whose length is not its key I, or one without the primary case.
+        ``studies`` empty, a study whose length is not its key I, or one without the primary case; a study of
+        fewer runs than rule R4's 100 (its paired comparisons), naming it (``studies[64]``).
     """
     _nonempty_mapping(studies, "studies", "length")
     for n_, st in studies.items():  # every entry checked before any work (fuzz 18, D19 and E14)
@@ -218,9 +223,11 @@ def table_lengths(studies: Mapping[int, SignalStudy]) -> pd.DataFrame:
     rows = {}
     for n_, st in studies.items():
         r: dict[str, Any] = {"runs": int(st.runs)}
-        for rid, ((a, b, metric), _) in _ACCURACY.items():
-            r[rid] = status_text(_q(st, PRIMARY, a, b, metric))
-        helps = _q(st, PRIMARY, *_ACCURACY["lec-wavelet-fusion-helps"][0])
+        # rule R4 named by the entry that holds the runs (fuzz 29b B6: "a and b", "the argument reason", neither ours)
+        with runs_named(f"studies[{shown(n_)}]", f"length_study({int(n_)}, runs=...)"):
+            for rid, ((a, b, metric), _) in _ACCURACY.items():
+                r[rid] = status_text(_q(st, PRIMARY, a, b, metric))
+            helps = _q(st, PRIMARY, *_ACCURACY["lec-wavelet-fusion-helps"][0])
         r[HELPS_TYPICAL] = status_text(typical_run(helps))  # type: ignore[arg-type]
         ge = st.cases[PRIMARY]["gain_err"][:, -1]
         r[GAIN_ERROR_4] = round(float(np.sqrt(np.mean(ge ** 2))), 4)

@@ -13,6 +13,7 @@ from fusion.book.study_cache import study_cache
 from fusion._validation import count, instance_of, mapping_of, one_of
 from fusion.book import rulebook as R
 from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
+from fusion.book._few_runs import runs_named
 from fusion.book.ledger import Comparison, Conjunction, Evidence
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q
 from fusion.book.chapters.lecture_wavelets.variance import _vconj, _weighting
@@ -268,13 +269,21 @@ def evidence(st: Mapping[str, ChapterStudy] | None = None, seed: int | None = No
     -------
     dict
         Record id → {reading key → evidence}.
+
+    Raises
+    ------
+    TypeError
+        ``st`` not a mapping of studies, ``seed`` not an integer.
+    ValueError
+        ``st`` lacking a study, or one of fewer runs than rule R4's 100 (its paired comparisons), naming ``st``.
     """
     seed = None if seed is None else check_seed(seed)
     if seed is not None:
         return evidence_at({rid: N_RUNS for rid in EVIDENCE}, seed)
     _need(st or {})
     assert st is not None
-    return {rid: {k: _reading(rid, k, st.__getitem__) for k in _keys(rid)} for rid in EVIDENCE}
+    with runs_named("st", "study(key, seed, runs) at more runs"):   # fuzz 29b B6: named "a and b" and "reason"
+        return {rid: {k: _reading(rid, k, st.__getitem__) for k in _keys(rid)} for rid in EVIDENCE}
 
 
 def ledger_values(st: Mapping[str, ChapterStudy]) -> GlueValues:

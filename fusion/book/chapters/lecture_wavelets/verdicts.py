@@ -12,6 +12,7 @@ import numpy as np
 
 from fusion._results import ResultSpec, dict_of, instance, integer, trusted, validated_post_init
 from fusion._frozen import constant
+from fusion.book._few_runs import runs_named
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.rulebook import _runs_won
 from fusion.book.style import METHOD_SHORT_LABELS
@@ -56,7 +57,7 @@ TypeError
     ``a`` or ``b`` is not numeric, ``a_name`` or ``b_name``{metric} not a string, or ``seed`` not an integer.
 ValueError
     ``a`` or ``b`` is not a non-empty 2-D array of finite values, their shapes differ, or they hold fewer than
-    two sensors (columns){metric_value}."""
+    two sensors (columns) or fewer runs (rows) than rule R4's 100{metric_value}."""
 
 
 def _per_sensor(a: object, b: object, a_name: object, b_name: object, seed: int,
@@ -65,7 +66,9 @@ def _per_sensor(a: object, b: object, a_name: object, b_name: object, seed: int,
     ``part(j, a[:, j - 1], b[:, j - 1], seed)`` for each sensor j = 1, 2, ... joined as the Conjunction of
     ``"sensor j"`` parts."""
     a, b = _paired_metrics(a, b, a_name, b_name)
-    return Conjunction(tuple((f"sensor {j + 1}", part(j + 1, a[:, j], b[:, j], seed)) for j in range(a.shape[1])))
+    with runs_named("a and b", "a row of a and b per run"):   # no argument reason here (fuzz 29b B6)
+        return Conjunction(tuple((f"sensor {j + 1}", part(j + 1, a[:, j], b[:, j], seed))
+                                 for j in range(a.shape[1])))
 
 
 @with_sections(returns=_PER_SENSOR_RETURNS, raises=_PER_SENSOR_RAISES.format(

@@ -102,10 +102,15 @@ def glue_24(s: BeliefStudy) -> GlueValues:
     TypeError
         ``s`` not a BeliefStudy.
     ValueError
-        ``s`` of fewer than 4 sensors (``lec_bel_s4_offset`` is sensor 4's), named.
+        ``s`` of fewer than 4 sensors (``lec_bel_s4_offset`` is sensor 4's), or of fewer than rule R4's 100
+        snapshots, shifted or unshifted (the paired comparisons of :func:`eig_row_comparison`), named.
     """
     instance_of(s, BeliefStudy, "s")
     _holds(range(1, s.base.size + 1), (4,), "s", "sensor", "glue_24")
+    for what, n in (("shifted", int(np.sum(s.shifted))), ("unshifted", int(np.sum(~s.shifted)))):
+        if n < MIN_RUNS:   # named here, not as eig_row_comparison's select (fuzz 29b B6)
+            raise ValueError(f"s holds {n} {what} snapshots, fewer than the {MIN_RUNS} paired runs each comparison "
+                             "of glue_24 needs: give more snapshots (belief_study(snapshots=...))")
     W = s.W
     i_peak = int(np.argmax(W[:, 0]))
     i_dip = int(np.argmin(W[:i_peak + 1, 0]))

@@ -4,7 +4,7 @@ appendix's grid of thresholds and biases."""
 from __future__ import annotations
 
 from fusion.book._few_runs import study_runs_named
-from fusion._counts import sequence
+from fusion._counts import allocation, sequence
 from fusion._limits import work
 from fusion._validation import as_array, instance_of, scalar, std_scalar, window as check_window
 
@@ -248,8 +248,10 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
     TypeError
         A sequence argument not a sequence of numbers, or a count or ``seed`` not an integer.
     ValueError
-        ``eps_factors`` or ``biases`` empty (no cell to show), an entry out of range, fewer than 3 sensors, or
-        ``window`` outside the samples.
+        ``eps_factors`` or ``biases`` empty (no cell to show), an entry out of range, fewer than 3 sensors,
+        ``window`` outside the samples; the draws (``runs`` x ``samples`` x sensors) beyond the memory budget
+        (``fusion._counts.MAX_ELEMENTS``, 2 GiB) or the fusions of every cell beyond the work budget
+        (``fusion._limits.MAX_WORK``).
     """
     seed = check_seed(seed)
     from fusion.readings import consistency as cs
@@ -265,6 +267,9 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
     eps_factors = [scalar(f, f"eps_factors[{i}]", lo=0.0, lo_open=True)
                    for i, f in enumerate(sequence(eps_factors, "eps_factors", minimum=1, what="factor"))]
     biases = [scalar(b, f"biases[{i}]") for i, b in enumerate(sequence(biases, "biases", minimum=1, what="fault size"))]
+    # every run's draws at once, before anything is drawn (fuzz 29b B3: 3e6 runs x 100 samples x 3 sensors passed the
+    # work budget and drew 6.7 GiB); then the fusions of every cell
+    allocation((runs, samples, sig.size), "runs, samples and sigma")
     work((len(biases), len(eps_factors), runs, samples, sig.size), "biases, eps_factors, runs, samples and sigma")
     win = slice(*check_window(window, "window", samples))
     eps0 = 3 * np.sqrt(2) * sig.max()

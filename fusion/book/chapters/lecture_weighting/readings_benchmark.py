@@ -38,7 +38,8 @@ def _paired(results: object, stab: object, needs: dict[tuple[float, bool], tuple
         np.array_equal(ref.ranks[sc], stab.ranks[sc]) for sc in ref.scenarios)
     if not same:
         raise ValueError(f"stab must be seed_stability(results): it holds seeds {list(stab.seeds)} and scenarios "
-                         f"{list(stab.scenarios)}, results give {list(ref.seeds)} and {list(ref.scenarios)} (or other ranks)")
+                         f"{list(stab.scenarios)}, results give {list(ref.seeds)} and {list(ref.scenarios)} "
+                         "(or other ranks; in results' order, whose first seed is shown)")
     for sc, methods in (needs or {}).items():
         key = (ref.seeds[0], *sc)
         lacking = [str(m) for m in methods if key not in results or m not in results[key]]
@@ -75,7 +76,8 @@ def table_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> p
     ------
     ValueError
         ``results`` not a benchmark's output (checked entry by entry, naming the entry), ``stab`` not
-        ``seed_stability(results)`` (another benchmark's); ``samples`` below 1.
+        ``seed_stability(results)`` (another benchmark's, or of the same results in another key order: the seeds'
+        order is the results', whose first seed the table shows; fuzz 29b D2, deliberate); ``samples`` below 1.
     """
     results = _paired(results, stab)
     samples = count(samples, "samples")
@@ -158,7 +160,8 @@ def glue_benchmark(results: dict, stab: SeedStability) -> GlueValues:
     ------
     ValueError
         ``results`` not a benchmark's output (checked entry by entry, naming the entry), ``stab`` not
-        ``seed_stability(results)`` (another benchmark's), or ``results`` without the scenarios and methods it reads.
+        ``seed_stability(results)`` (another benchmark's, or of the same results in another key order, as
+        :func:`table_benchmark`), or ``results`` without the scenarios and methods it reads.
     """
     results = _paired(results, stab, _GLUED)
     s0 = stab.seeds[0]

@@ -334,7 +334,7 @@ def mc_numbers(mc: pd.DataFrame, studies: Mapping[str, PairedStudy], sigmas: Map
     ----------
     * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
-    instance_of(mc, pd.DataFrame, "mc")
+    _frame(mc, "mc", (), maker="mc_table")   # the readers' rule (a big-endian column named, fuzz 29b D1)
     studies = _studies(studies)
     if len(studies) != 2:
         raise ValueError(f"studies must hold two noise settings (unequal noise first, then equal), got {len(studies)}")

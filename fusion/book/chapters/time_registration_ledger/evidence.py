@@ -432,10 +432,16 @@ def ledger_evidence(seed: int, runs: int) -> dict[str, Evidence | dict[str, Evid
     -------
     dict
         Record id -> {reading key -> Evidence} (or one Evidence for a record without readings).
+
+    Raises
+    ------
+    ValueError
+        As :func:`cached_study`; ``runs`` below rule R4's 100 (the records' paired comparisons), named.
     """
     seed = check_seed(seed)
     st = cached_study(seed, runs)
-    return {rid: fn(st) for rid, fn in _RECORDS.items()}
+    with runs_named("runs", "the argument runs"):   # as _reading (fuzz 29b B6: "a and b", "the argument reason")
+        return {rid: fn(st) for rid, fn in _RECORDS.items()}
 
 
 def _reading(rid: str, settings: Mapping[str, object] | None, seed: int, runs: int) -> Evidence:
