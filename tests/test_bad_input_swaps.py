@@ -1,0 +1,65 @@
+"""Swaps of two same-shaped results for different roles (issue 35's class "swaps of two same-shaped results that no
+object records"): each producer's result records what tells its role apart, and the reader refuses a result in
+another's place (swapped, one twice, of other runs or settings), naming the argument.
+
+Small producers' calls only (the file stays under 3 CPU-s)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from fusion.book.chapters import ci
+
+STEPS, RUNS = 30, 3
+
+
+@pytest.fixture(scope="module")
+def nees_case():
+    Q, R1, R2 = ci.printed_covariances()
+    x0 = np.array([0.0, 10.0, 0.0, 5.0])
+    st = {s: ci.nees_per_step(np.random.default_rng(1), Q, R1, R2, x0, STEPS, RUNS, random_velocity=s)
+          for s in (False, True)}
+    return Q, R1, R2, x0, st, ci.split_ci_exactness(Q, R1, 1.0, STEPS)
+
+
+def _refused(name, f, *args):
+    with pytest.raises(ValueError, match=name):
+        f(*args)
+
+
+def test_nees_per_step_records_its_runs(nees_case):
+    Q, R1, R2, x0, st, ex = nees_case
+    assert st[False].random_velocity is False and st[True].random_velocity is True
+    assert st[False].runs == RUNS and st[False].stream == st[True].stream
+    assert isinstance(ex, ci.SplitExactness) and ex.n_steps == STEPS
+    # the pair of one study is read as before (a mapping of rule -> NEES per step)
+    assert ci.nees_start_numbers(st[False], st[True], RUNS, ex)["ci_nps_runs"] == RUNS
+    assert ci.nees_start_table(dict(st[False]), dict(st[True]), RUNS).shape[0] == len(st[False])
+
+
+def test_nees_starts_swapped_or_twice_refused(nees_case):
+    *_, st, ex = nees_case
+    _refused("true_start", ci.nees_start_numbers, st[True], st[False], RUNS, ex)
+    _refused("random_start", ci.nees_start_table, st[False], st[False], RUNS)
+    _refused("true_start", ci.nees_start_table, st[True], st[True], RUNS)
+
+
+def test_nees_runs_of_another_seed_or_setting_refused(nees_case):
+    Q, R1, R2, x0, st, ex = nees_case
+    other_seed = ci.nees_per_step(np.random.default_rng(2), Q, R1, R2, x0, STEPS, RUNS, random_velocity=True)
+    _refused("random_start", ci.nees_start_table, st[False], other_seed, RUNS)
+    other_r = ci.nees_per_step(np.random.default_rng(1), Q, R1, R2 / 9, x0, STEPS, RUNS, random_velocity=True)
+    _refused("random_start.*R2", ci.nees_start_numbers, st[False], other_r, RUNS, ex)
+    _refused("runs", ci.nees_start_table, st[False], st[True], RUNS + 1)
+    _refused("T", ci.nees_start_table, st[False], st[True], RUNS, 0.5)
+
+
+@pytest.mark.parametrize("case", [dict(T=2.0), dict(n_steps=STEPS + 1), dict(R=4.0), dict(Q=4.0), dict(t_steady=10.0)])
+def test_nees_exactness_of_another_case_refused(nees_case, case):
+    Q, R1, R2, x0, st, ex = nees_case
+    other = dataclasses.replace(ex, **{k: (getattr(ex, k) * v if k in ("R", "Q") else v) for k, v in case.items()})
+    _refused("exact", ci.nees_start_numbers, st[False], st[True], RUNS, other)
+
