@@ -137,6 +137,8 @@ FACTORIES: dict[str, Callable[[], Any]] = {
     "PeriodRuns": lambda: next(iter(_instance("LedgerStudies").fig6_periods.values())),
     "PairedClaimInputs": lambda: _part("PairedClaimInputs"),
     "PairedStudies": lambda: importlib.import_module("fusion.book.chapters.ci.studies").paired_study(runs=3),
+    "NeesPerStep": lambda: _ci().nees_per_step(_rng(), *_ci().printed_covariances(), np.zeros(4), 25, 2),
+    "SplitExactness": lambda: _ci().split_ci_exactness(*_ci().printed_covariances()[:2], 1.0, 25),
     "LegClaimInputs": lambda: _instance("StraightLeg").claim_inputs(),
     "StraightLeg": lambda: _straight_leg(),
     "WeightClaimInputs": lambda: _ci().weight_claim_inputs(   # the second pair at ANISO_R (fuzz 24c MM)
