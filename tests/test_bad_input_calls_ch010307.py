@@ -183,8 +183,9 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
     add(ofs.alpha_methods, alphas=A((0.1, 1.0), ARR + (("repeated", (1.0, 1.0)),)))
     add(ofs.alpha_study, seed=A(0, SEED), runs=A(2, RUNS_DRAWN))
     add(ofs.claim_values, seed=A(0, SEED), runs=A(100, RUNS_DRAWN))
-    # the two studies swapped are not refused: a PairedStudy does not record its noise levels (the caller's pairing)
-    add(ofs.closing_numbers, study_hs=A(o["hs"], res(o["ws"])), study_eq=A(o["eq"], res(o["ws"])),
+    # the two studies swapped are refused by the noise levels a PairedStudy records (issue 35, swaps)
+    add(ofs.closing_numbers, study_hs=A(o["hs"], res(o["ws"]) + (("swapped", o["eq"]),)),
+        study_eq=A(o["eq"], res(o["ws"]) + (("swapped", o["hs"]),)),
         weights=A(o["ws"], res(o["hs"])), judged=A(o["judged"], mapping(o["judged"])), relative_margin=A(0.05, UNIT))
     add(ofs.comparison_numbers, comparison=A(o["cmp"], res(o["hs"])), key=A("k", (("notstr", 3.0),)),
         fields=A(("a", "b"), (("unknown field", ("nope",)), ("notstr", (3.0,)))))

@@ -63,3 +63,33 @@ def test_nees_exactness_of_another_case_refused(nees_case, case):
     other = dataclasses.replace(ex, **{k: (getattr(ex, k) * v if k in ("R", "Q") else v) for k, v in case.items()})
     _refused("exact", ci.nees_start_numbers, st[False], st[True], RUNS, other)
 
+
+# --- chapter 01: closing_numbers' two studies, told apart by the noise levels a PairedStudy records ---
+
+@pytest.fixture(scope="module")
+def ofs_case():
+    from fusion.book.chapters import ofs
+    from fusion.book.ledger import Comparison
+
+    c = Comparison(np.arange(100.0), np.arange(100.0) + 1, "A", "B", "less", "m")
+    judged = {("yang-fig4-unaffected", "equal-noise"): c, ("yang-weights-reasonable", "primary"): c,
+              ("yang-weights-reasonable", "failure"): c, ("yang-membership-free", "scale"): c}
+    return ofs, ofs.study(0, 2), ofs.study(0, 2, "equal"), ofs.weight_study(0, 2), judged
+
+
+def test_paired_study_records_its_noise(ofs_case):
+    ofs, hs, eq, ws, judged = ofs_case
+    assert np.array_equal(hs.sigma, np.broadcast_to(np.asarray(ofs.NOISE["unequal"], float), (10,)))
+    assert np.array_equal(eq.sigma, np.ones(10))
+    from fusion.book.tables import rounded
+
+    assert ofs.closing_numbers(hs, eq, ws, judged, 0.05)["ofs_keep_hs"] == rounded(hs.set_size.mean(), 2)
+
+
+def test_closing_studies_swapped_or_twice_refused(ofs_case):
+    ofs, hs, eq, ws, judged = ofs_case
+    _refused("study_hs", ofs.closing_numbers, eq, hs, ws, judged, 0.05)
+    _refused("study_eq", ofs.closing_numbers, hs, hs, ws, judged, 0.05)
+    _refused("study_hs", ofs.closing_numbers, eq, eq, ws, judged, 0.05)
+    _refused("study_hs", ofs.closing_numbers, ofs.study(0, 2, "geometric-2"), eq, ws, judged, 0.05)
+
