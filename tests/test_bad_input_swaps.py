@@ -93,3 +93,32 @@ def test_closing_studies_swapped_or_twice_refused(ofs_case):
     _refused("study_hs", ofs.closing_numbers, eq, eq, ws, judged, 0.05)
     _refused("study_hs", ofs.closing_numbers, ofs.study(0, 2, "geometric-2"), eq, ws, judged, 0.05)
 
+
+# --- chapter 06: two one-exchange networks under each other's key, told apart by the scenario each study records ---
+
+def test_premise_networks_under_each_others_key_refused():
+    from fusion.book.chapters import chernoff as chc
+    from fusion.scenarios.fusion_networks import Network, premise_scenarios, redundancy_scenarios, run_network_study
+
+    designed = premise_scenarios() | redundancy_scenarios()
+    small = {k: dataclasses.replace(designed[k], n_particles=40, n_samples=40, n_components=2, em_iterations=2,
+                                    stages=1) for k in (Network.UNEQUAL, Network.RELAY)}
+    st = {k: run_network_study(sc, 3, 2) for k, sc in small.items()}
+    assert "chf_pr_unequal_mix_mean" in chc.premise_robust_values(st, "two runs: a test")
+    swapped = {Network.UNEQUAL: st[Network.RELAY], Network.RELAY: st[Network.UNEQUAL]}
+    for f in (chc.premise_robust_values, chc.premise_values):
+        _refused(r"studies\['unequal'\]", f, swapped, "two runs: a test")
+    _refused(r"studies\['relay'\]", chc.premise_robust_values, {Network.RELAY: st[Network.UNEQUAL]}, "a test")
+
+
+# --- chapter 06: guarded_runs' root seed, checked against the truth each run draws first from its own stream ---
+
+def test_guarded_runs_of_another_seed_or_order_refused():
+    from fusion.book.chapters import chernoff as chc
+    from fusion.scenarios import range_bearing as dist
+
+    sc = dist.RangeBearingScenario(frames=3, n_particles=40, n_samples=40, n_central=80, em_iterations=2)
+    runs = dist.monte_carlo(sc, 5, 2, workers=1)
+    assert len(chc.guarded_runs(runs, sc, 5, workers=1)) == 2
+    _refused("seed", chc.guarded_runs, runs, sc, 6, 1)
+    _refused("seed", chc.guarded_runs, runs[::-1], sc, 5, 1)
