@@ -122,3 +122,10 @@ def test_guarded_runs_of_another_seed_or_order_refused():
     assert len(chc.guarded_runs(runs, sc, 5, workers=1)) == 2
     _refused("seed", chc.guarded_runs, runs, sc, 6, 1)
     _refused("seed", chc.guarded_runs, runs[::-1], sc, 5, 1)
+
+
+# --- decided: documented, not recorded (the readers take plain mappings and a plain table) ---
+
+def test_unrecorded_roles_are_documented():
+    assert "two of them swapped is not detected" in ci.paired_numbers.__doc__
+    assert "records neither ``sigma`` nor ``delta0``" in ci.pcrb_numbers.__doc__

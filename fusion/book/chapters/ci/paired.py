@@ -51,7 +51,10 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
     ----------
     paired, paired_u, paired_a : mapping
         Method -> per-run RMSE (m) on identical sensors, with sensor 2 three times more precise (R₂ = R₁/9) and
-        on the anisotropic pair (``ANISO_R``), independent local filters.
+        on the anisotropic pair (``ANISO_R``), independent local filters. Plain mappings of the same methods and runs that record
+        neither their pair nor their seed: two of them swapped is not detected (issue 35's class of same-shaped
+        results that no object records), so pass those of one :class:`PairedStudies`, as
+        :meth:`PairedStudies.numbers` (the chapter's call) does.
     paired_random : ndarray
         Per-run RMSE (m) of CI with a weight drawn at random at every step.
     ai : ArchitectureStudy
