@@ -125,7 +125,8 @@ def O() -> dict[str, Any]:  # noqa: N802 - the objects
     o["sig"] = {"hs": thermocouples.DEFAULT_SIGMAS, "eq": 1.0}
     o["studies"] = {"hs": o["hs"], "eq": o["eq"]}
     o["mc"] = ofs.mc_table(o["studies"], o["sig"])
-    o["mc_swapped"] = ofs.mc_table({"hs": o["eq"], "eq": o["hs"]}, o["sig"])  # another pairing of studies and SDs
+    o["mc_swapped"] = ofs.mc_table({"hs": o["eq"], "eq": o["hs"]},   # the studies (and their SDs) under each other's label
+                                   {"hs": o["sig"]["eq"], "eq": o["sig"]["hs"]})
     o["fair_few"] = of.fair_study(0, 2, 2, sizes=(0, 1), counts=(0, 1), spreads=(1, 2), opposite=())
     for k in lwr.STUDIES:  # each study at fewer runs than rule R4's 100
         o[f"{k}_few"] = lwr.study(k, 2601, 3)
@@ -220,7 +221,8 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
         sigmas=A(o["sig"], mapping(o["sig"])), n_runs=A(2, RUNS + (("other", 3),)))
     add(ofs.mc_table,
         studies=A(o["studies"], mapping(o["studies"]) + (("other type", {"hs": o["ws"], "eq": o["eq"]}),)),
-        sigmas=A(o["sig"], mapping(o["sig"]) + (("negative", {"hs": -o["sig"]["hs"], "eq": 1.0}),)))
+        sigmas=A(o["sig"], mapping(o["sig"]) + (("negative", {"hs": -o["sig"]["hs"], "eq": 1.0}),
+                                                ("the SDs swapped", {"hs": o["sig"]["eq"], "eq": o["sig"]["hs"]}))))
     add(ofs.membership_study, seed=A(0, SEED), runs=A(2, RUNS_DRAWN))
     add(ofs.not_neighbourhood_share, seed=A(0, SEED), runs=A(2, RUNS_DRAWN), noise=A("equal", KEY))
     add(ofs.observation_numbers, tabs=A(o["tabs"], res(o["joint"])))

@@ -94,6 +94,14 @@ def test_closing_studies_swapped_or_twice_refused(ofs_case):
     _refused("study_hs", ofs.closing_numbers, ofs.study(0, 2, "geometric-2"), eq, ws, judged, 0.05)
 
 
+def test_mc_table_study_beside_another_noise_sds_refused(ofs_case):
+    ofs, hs, eq, *_ = ofs_case
+    sds = {"hs": np.asarray(ofs.NOISE["unequal"]), "eq": 1.0}
+    assert not ofs.mc_table({"hs": hs, "eq": eq}, sds).empty
+    _refused(r"sigmas\['hs'\]", ofs.mc_table, {"hs": eq, "eq": hs}, sds)
+    _refused(r"sigmas\['eq'\]", ofs.mc_table, {"hs": hs, "eq": eq}, {"hs": sds["hs"], "eq": 2.0})
+
+
 # --- chapter 06: two one-exchange networks under each other's key, told apart by the scenario each study records ---
 
 def test_premise_networks_under_each_others_key_refused():
