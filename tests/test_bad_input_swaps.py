@@ -132,8 +132,27 @@ def test_guarded_runs_of_another_seed_or_order_refused():
     _refused("seed", chc.guarded_runs, runs[::-1], sc, 5, 1)
 
 
-# --- decided: documented, not recorded (the readers take plain mappings and a plain table) ---
+# --- decided: documented, not recorded (the reader takes a plain table) ---
 
 def test_unrecorded_roles_are_documented():
-    assert "two of them swapped is not detected" in ci.paired_numbers.__doc__
     assert "records neither ``sigma`` nor ``delta0``" in ci.pcrb_numbers.__doc__
+
+
+# --- chapter 05: paired_numbers' three pairs, told apart by the pair each PairedStudies field records ---
+
+def test_paired_studies_fields_record_their_pair_and_swaps_are_refused():
+    from fusion.scenarios import two_sensor
+
+    Q, R1, R2 = ci.printed_covariances()
+    sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(0), runs=3, T=8.0)
+    runs = {m: np.full(3, 10.0 + i) for i, m in enumerate(two_sensor.StudyMethod)}
+    ps = ci.PairedStudies(runs=3, seeds=(1, 2, 3), sc=sc, paired=runs, paired_fig6={ci.W_PUB: np.ones(3),
+                          ci.W_GRID: np.ones(3)}, paired_random=np.ones(3), paired_u=runs, omega_u=(0.5,),
+                          paired_an=runs)
+    assert (ps.paired.role, ps.paired.seed, ps.paired_u.role, ps.paired_an.role) == ("identical", 1, "unequal", "aniso")
+    args = (np.ones(3), None, 0.0, 1.0, 3)
+    _refused("paired_u", ci.paired_numbers, ps.paired, ps.paired, *args, ps.paired_an, [0.5])
+    _refused("paired ", ci.paired_numbers, ps.paired_u, ps.paired, *args, ps.paired_an, [0.5])
+    _refused("paired_a", ci.paired_numbers, ps.paired, ps.paired_u, *args, ps.paired, [0.5])
+    with pytest.raises(TypeError, match="ai"):   # the pairs in their places: the next check (ai) is reached
+        ci.paired_numbers(ps.paired, ps.paired_u, *args, ps.paired_an, [0.5])

@@ -10,10 +10,13 @@ import hashlib
 
 import numpy as np
 
+from fusion._counts import seed as check_seed
+from fusion._frozen import ReadOnlyMapping
+from fusion._validation import one_of
 from fusion._results import ResultSpec, array, dict_of, flag, integer, keyed, number, text, validated_post_init
 from fusion._validation import FloatArray
 
-__all__ = ["NeesPerStep", "SplitExactness"]
+__all__ = ["NeesPerStep", "SplitExactness", "PairRuns"]
 
 
 def stream_of(rng: np.random.Generator) -> str:
@@ -117,3 +120,49 @@ class SplitExactness(_Values):
                                   "velocity_sigma": number(positive=True), "t_steady": number(), "n_steps": integer(1)})
     __post_init__ = validated_post_init
     _items = "numbers"
+
+
+#: The pairs of :class:`PairRuns` (``role``).
+_PAIRS = ("identical", "unequal", "aniso")
+
+
+class PairRuns(ReadOnlyMapping):
+    """A read-only mapping of method -> per-run RMSE (m) of one sensor pair of :class:`PairedStudies`, recording the
+    pair (``role``: ``"identical"``, ``"unequal"`` or ``"aniso"``) and the runs' seed (``seed``; None for the
+    anisotropic pair, whose runs are its WeightPair's), so that :func:`paired_numbers` refuses one pair's runs in
+    another's place. It compares equal to any mapping of the same items.
+
+    Parameters
+    ----------
+    items : mapping of str to ndarray
+        Method -> per-run RMSE (checked by the :class:`PairedStudies` that holds it).
+    role : {"identical", "unequal", "aniso"}
+        The pair.
+    seed : int or None
+        The runs' seed.
+
+    Raises
+    ------
+    TypeError
+        ``items`` not a mapping, ``role`` not a str, ``seed`` not an integer.
+    ValueError
+        ``role`` not a pair, ``seed`` negative.
+    """
+
+    __slots__ = ("role", "seed")
+
+    def __init__(self, items: Mapping[str, Any], role: str, seed: int | None) -> None:
+        if not isinstance(items, Mapping):
+            raise TypeError(f"items must be a mapping of method -> per-run RMSE, got {type(items).__name__}")
+        one_of(role, _PAIRS, "role")
+        if seed is not None:
+            seed = check_seed(seed, "seed")
+        super().__init__(items)
+        object.__setattr__(self, "role", role)
+        object.__setattr__(self, "seed", seed)
+
+    def __repr__(self) -> str:
+        return f"PairRuns({self._items!r}, role={self.role!r}, seed={self.seed!r})"
+
+    def __reduce__(self) -> tuple[type, tuple[Any, ...]]:  # type: ignore[override]
+        return (type(self), (self._items, self.role, self.seed))
