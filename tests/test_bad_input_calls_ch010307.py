@@ -125,7 +125,8 @@ def O() -> dict[str, Any]:  # noqa: N802 - the objects
     o["sig"] = {"hs": thermocouples.DEFAULT_SIGMAS, "eq": 1.0}
     o["studies"] = {"hs": o["hs"], "eq": o["eq"]}
     o["mc"] = ofs.mc_table(o["studies"], o["sig"])
-    o["mc_swapped"] = ofs.mc_table({"hs": o["eq"], "eq": o["hs"]}, o["sig"])  # another pairing of studies and SDs
+    o["mc_swapped"] = ofs.mc_table({"hs": o["eq"], "eq": o["hs"]},   # the studies (and their SDs) under each other's label
+                                   {"hs": o["sig"]["eq"], "eq": o["sig"]["hs"]})
     o["fair_few"] = of.fair_study(0, 2, 2, sizes=(0, 1), counts=(0, 1), spreads=(1, 2), opposite=())
     o["shapes"], o["shapes_few"] = of.fault_shapes_study(0, 100), of.fault_shapes_study(0, 3)  # R4: 100 runs
     for k in lwr.STUDIES:  # each study at fewer runs than rule R4's 100
@@ -185,8 +186,9 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
     add(ofs.alpha_methods, alphas=A((0.1, 1.0), ARR + (("repeated", (1.0, 1.0)),)))
     add(ofs.alpha_study, seed=A(0, SEED), runs=A(2, RUNS_DRAWN))
     add(ofs.claim_values, seed=A(0, SEED), runs=A(100, RUNS_DRAWN))
-    # the two studies swapped are not refused: a PairedStudy does not record its noise levels (the caller's pairing)
-    add(ofs.closing_numbers, study_hs=A(o["hs"], res(o["ws"])), study_eq=A(o["eq"], res(o["ws"])),
+    # the two studies swapped are refused by the noise levels a PairedStudy records (issue 35, swaps)
+    add(ofs.closing_numbers, study_hs=A(o["hs"], res(o["ws"]) + (("swapped", o["eq"]),)),
+        study_eq=A(o["eq"], res(o["ws"]) + (("swapped", o["hs"]),)),
         weights=A(o["ws"], res(o["hs"])), judged=A(o["judged"], mapping(o["judged"])), relative_margin=A(0.05, UNIT))
     add(ofs.comparison_numbers, comparison=A(o["cmp"], res(o["hs"])), key=A("k", (("notstr", 3.0),)),
         fields=A(("a", "b"), (("unknown field", ("nope",)), ("notstr", (3.0,)))))
@@ -221,7 +223,8 @@ def registry() -> dict[str, dict[str, A]]:  # noqa: C901 - one entry per functio
         sigmas=A(o["sig"], mapping(o["sig"])), n_runs=A(2, RUNS + (("other", 3),)))
     add(ofs.mc_table,
         studies=A(o["studies"], mapping(o["studies"]) + (("other type", {"hs": o["ws"], "eq": o["eq"]}),)),
-        sigmas=A(o["sig"], mapping(o["sig"]) + (("negative", {"hs": -o["sig"]["hs"], "eq": 1.0}),)))
+        sigmas=A(o["sig"], mapping(o["sig"]) + (("negative", {"hs": -o["sig"]["hs"], "eq": 1.0}),
+                                                ("the SDs swapped", {"hs": o["sig"]["eq"], "eq": o["sig"]["hs"]}))))
     add(ofs.membership_study, seed=A(0, SEED), runs=A(2, RUNS_DRAWN))
     add(ofs.not_neighbourhood_share, seed=A(0, SEED), runs=A(2, RUNS_DRAWN), noise=A("equal", KEY))
     add(ofs.observation_numbers, tabs=A(o["tabs"], res(o["joint"])))

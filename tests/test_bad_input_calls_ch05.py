@@ -315,10 +315,13 @@ def registry() -> dict[str, dict[str, A]]:
                                   velocity_sigma=A(100.0, NONNEG), random_velocity=A(False, (("int", 1), "str")))
     st, exact = o["nees_steps"], o["exact"]
     st_short = {k: v[:5] for k, v in st[True].items()}
-    R[c + "nees_start_table"] = dict(true_start=A(st[False], MAP_M + (("a key less", _drop_key(st[False])),) + _neg(st[False])),
-                                     random_start=A(st[True], MAP_M + (("fewer steps", st_short),)),
+    swap_t, swap_r = (("the random start (swapped)", st[True]),), (("the true start (swapped)", st[False]),)
+    R[c + "nees_start_table"] = dict(true_start=A(st[False], MAP_M + (("a key less", _drop_key(st[False])),) + _neg(st[False])
+                                                  + swap_t),
+                                     random_start=A(st[True], MAP_M + (("fewer steps", st_short),) + swap_r),
                                      runs=A(5, COUNT_M), T=A(TS, POS), t_steady=A(20.0, NONNEG + (("after the track", 1e6),)))
-    R[c + "nees_start_numbers"] = dict(true_start=A(st[False], MAP_M + _neg(st[False])), random_start=A(st[True], MAP_M + (("fewer steps", st_short),)),
+    R[c + "nees_start_numbers"] = dict(true_start=A(st[False], MAP_M + _neg(st[False]) + swap_t),
+                                       random_start=A(st[True], MAP_M + (("fewer steps", st_short),) + swap_r),
                                        runs=A(5, COUNT_M), exact=A(exact, MAP_M + (("a key less", _drop_key(exact)),) + _neg(exact)),
                                        T=A(TS, POS), t_steady=A(20.0, NONNEG + (("after the track", 1e6),)))
     R[c + "split_ci_exactness"] = dict(Q=A(Q, ARR + ("indef",)), R=A(R1, ARR + ("indef",)), T=A(TS, POS),

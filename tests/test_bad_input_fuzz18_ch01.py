@@ -68,7 +68,7 @@ def _mc_numbers(**change):
 
 def _swapped_mc():
     studies, sigmas = _two()
-    return ofs.mc_table({"hs": studies["eq"], "eq": studies["hs"]}, sigmas)
+    return ofs.mc_table({"hs": studies["eq"], "eq": studies["hs"]}, {"hs": sigmas["eq"], "eq": sigmas["hs"]})
 
 
 CASES = [

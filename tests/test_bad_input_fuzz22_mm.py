@@ -193,14 +193,15 @@ def test_q5_top_share_is_the_share_of_the_signed_sum(tiny_tracking) -> None:
     assert v["chf_top_share"] == pytest.approx(round(100 * d.max() / d.sum()), abs=0.5)
 
 
-def test_q8_guarded_runs_keeps_the_runs_it_does_not_redo_whatever_the_seed(tiny_tracking) -> None:
-    """Decided: documented. The runs do not record their seed: with another root seed the runs that are not
-    redone are the given ones, and only the redone ones follow the seed."""
+def test_q8_guarded_runs_refuses_another_root_seed(tiny_tracking) -> None:
+    """Decided: fixed (issue 35, swaps). Each run records its stream through its truth, so another root seed is
+    refused naming ``seed``; with the runs' own seed the runs that are not redone are the given ones."""
     chc, sc, runs, _ = tiny_tracking
     bad = chc.any_collapsed(runs, sc)
-    for seed in (5, 6):
-        out = chc.guarded_runs(runs, sc, seed)
-        assert all(o is r for o, r, b in zip(out, runs, bad) if not b)
+    out = chc.guarded_runs(runs, sc, 5)
+    assert all(o is r for o, r, b in zip(out, runs, bad) if not b)
+    with pytest.raises(ValueError, match="seed = 6"):
+        chc.guarded_runs(runs, sc, 6)
 
 
 @pytest.mark.parametrize("name", ["ev_fig2_fluctuation", "ev_membership_free", "ev_weights_stability",

@@ -191,12 +191,12 @@ def test_printed_weight_facts_refuses_a_pair_twice(o: dict[str, Any]) -> None:
             ci.printed_weight_facts(scs, 2, np.arange(2), n_grid=11)
 
 
-# --- q6: the NEES tables' pairing is documented as unrecorded ---
+# --- q6: the NEES tables' pairing, now recorded and checked (tests/test_bad_input_swaps.py); a plain mapping is not ---
 
-def test_nees_start_docstrings_say_the_pairing_is_not_recorded() -> None:
+def test_nees_start_docstrings_say_a_plain_mapping_is_not_checked() -> None:
     ci = _ci()
-    assert "record neither their seed" in ci.nees_start_table.__doc__
-    assert "its numbers record neither" in ci.nees_start_numbers.__doc__
+    assert "A plain mapping records" in ci.nees_start_table.__doc__
+    assert "A plain mapping is not" in ci.nees_start_numbers.__doc__
 
 
 def test_dataclass_replace_keeps_the_checks(o: dict[str, Any]) -> None:

@@ -365,6 +365,9 @@ class PairedStudy:
         among the methods).
     failure_mode : str
         The reading of the failure (:data:`FAILURE_MODES`).
+    sigma : ndarray, shape (n_sensors,), or None
+        Each sensor's noise standard deviation (°C) in the draws, which tells studies of other noise levels
+        apart (:func:`paired_study` records it; ``None``: not recorded).
     """
 
     clean: Mapping[str, FloatArray]
@@ -374,13 +377,14 @@ class PairedStudy:
     seed: int
     failed_member_share: tuple[float, ...] = ()
     failure_mode: str = "fixed"
+    sigma: FloatArray | None = None
 
     __result_spec__ = ResultSpec(
         {"clean": dict_of(array("runs", "samples", bounds=NONNEGATIVE)),
          "failed": dict_of(array("runs", "samples", bounds=NONNEGATIVE)),
          "set_size": array("runs", nan=True, bounds=NONNEGATIVE), "window": tuple_of(integer(1), integer(1)),
          "seed": integer(0), "failed_member_share": tuple_of(number(bounds=(0.0, 1.0))),
-         "failure_mode": text(*FAILURE_MODES)},
+         "failure_mode": text(*FAILURE_MODES), "sigma": array("sensors", optional=True, bounds=NONNEGATIVE)},
         relations=(same_keys("clean", "failed"), lambda v, cls: _window_relation(v, cls)))
     __post_init__ = validated_post_init
 
@@ -520,6 +524,7 @@ def paired_study(
         seed=seed,
         failed_member_share=share,
         failure_mode=failure_mode,
+        sigma=np.broadcast_to(np.asarray(sigma, dtype=float), z.shape[-1:]).copy(),   # as simulate read it
     )
 
 

@@ -15,6 +15,7 @@ from fusion._results import ResultSpec, array, dict_of, integer, number, validat
 from fusion._validation import FloatArray, scalar
 from fusion._counts import sequence
 from fusion.book.tables import rounded
+from fusion.scenarios.range_bearing_scenario import simulate_target
 from fusion.scenarios.range_bearing import (GUARD_STAGES, RangeBearingScenario, TrackingRun, min_local_ess,
                                             run_tracking_batch, _block_allocation)
 from fusion.book.chapters.chernoff.settings import (ALL_FRAMES, COLLAPSE_FRACTION, STUDY_RUNS, STUDY_WORKERS,
@@ -44,8 +45,9 @@ def guarded_runs(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int,
     sc : RangeBearingScenario
         Its scenario (without guard).
     seed : int
-        Its root seed. The runs do not record their seed, so another seed is not detected (fuzz 22b q8): the
-        redone runs then come from ``seed``'s streams and the kept ones stay the runs' own.
+        Its root seed. Each run records its stream through its truth (drawn first, from the run's own stream), so
+        runs of another seed, or in another order, are refused naming ``seed`` (fuzz 22b q8: the redone runs came
+        from ``seed``'s streams and the kept ones stayed the runs' own).
     workers : int
         Processes for the redone runs (results do not depend on it).
 
@@ -60,11 +62,12 @@ def guarded_runs(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int,
         ``runs`` not a sequence of TrackingRun, ``sc`` not a RangeBearingScenario, ``workers`` not an integer.
     ValueError
         ``runs`` empty, of several scenarios or holding a run twice, or ``sc`` not the runs' scenario (but for the guard); ``workers``
-        below 1 (checked whether or not a run is redone).
+        below 1 (checked whether or not a run is redone); ``seed`` not the runs' root seed.
     """
     seed = check_seed(seed)
     runs = _check_study(runs, sc)
     workers = check_workers(workers)  # checked whether or not a run is redone (issue 35: refused on every path)
+    _runs_of_seed(runs, sc, seed)
     bad = any_collapsed(runs, sc)
     seeds = np.random.SeedSequence(seed).spawn(len(runs))
     idx = np.flatnonzero(bad)
@@ -75,6 +78,17 @@ def guarded_runs(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int,
     for r, b in zip(runs, bad):
         out.append(next(it) if b else r)
     return out
+
+
+def _runs_of_seed(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int) -> None:
+    """Run ``j`` of ``monte_carlo(sc, seed, n)`` draws its truth first, from the first stream its seed spawns
+    (``SeedSequence(seed, spawn_key=(j, 0))``): each run's truth is its record of the seed and of its place (issue 35,
+    swaps; fuzz 22b q8). The truth costs a draw of the target's path per run, not a run."""
+    for j, r in enumerate(runs):
+        truth = simulate_target(sc, np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(j, 0)))).truth
+        if truth.shape != r.truth.shape or not np.array_equal(truth, r.truth):
+            raise ValueError(f"seed = {seed} is not the root seed of the runs: run {j} is not run {j} of "
+                             "monte_carlo(sc, seed, len(runs)) (its truth differs; runs of another seed, or reordered)")
 
 
 def guard_values(guarded: list[TrackingRun], sc: RangeBearingScenario) -> GlueValues:

@@ -334,7 +334,8 @@ reason : str
     ``studies`` not a mapping, or a value not a NetworkStudy; ``reason`` not a str.
 ValueError
     ``studies`` empty, a key not a network of :data:`PREMISE_LABELS`, a study under a key of
-    :data:`ORACLE_NETWORKS` not of one exchange and full connectivity, or a network of fewer than
+    :data:`ORACLE_NETWORKS` not of one exchange and full connectivity, a designed network's study (by the scenario
+    it records) under another network's key, or a network of fewer than
     :data:`~fusion.book.ledger.MIN_RUNS` runs without a ``reason`` (rule R4).""")
 
 
@@ -371,6 +372,26 @@ def _known_networks(studies: Mapping[str, Any], name: str = "studies") -> None:
                              f"oracle's), got the study of {shown(sc.name)}")
 
 
+def _own_keys(studies: Mapping[str, Any], name: str = "studies") -> None:
+    """Each designed network's study under its own key (issue 35, swaps): the premise readers glue and label each
+    study by its key (``chf_pr_<k>_*``, :data:`PREMISE_LABELS`), so two networks of one shape (the one-exchange
+    networks) under each other's key would be glued as each other; they are told apart by the designed scenario's
+    name each study records. A scenario of another name (a test's) is not checked; the criteria readers, whose
+    labels are the caller's, take a study under any key (fuzz 24b WN)."""
+    designed = _designed_names()
+    for k, st in studies.items():
+        sc_name = getattr(getattr(st, "scenario", None), "name", None)
+        if sc_name in designed and designed[sc_name] != k:
+            raise ValueError(f"{name}[{shown(str(k))}] holds the study of the network {shown(str(designed[sc_name]))} "
+                             f"({shown(sc_name)}): each study must be under its own network's key (two swapped?)")
+
+
+@functools.lru_cache(maxsize=1)
+def _designed_names() -> dict[str, Network]:
+    """The designed networks' scenario names -> their keys (:func:`premise_scenarios`, :func:`redundancy_scenarios`)."""
+    return {sc.name: k for k, sc in (premise_scenarios() | redundancy_scenarios()).items()}
+
+
 def _on_studies(fn: Callable[[dict[str, NetworkStudy], str], _R]) -> Callable[..., _R]:
     """A function of :func:`premise_studies`'s mapping: checked by the shared rule ``mapping_of`` (fuzz 19,
     D12-D14), its keys by :data:`PREMISE_LABELS` and its run counts by rule R4 (``_enough_runs``), before any
@@ -379,6 +400,7 @@ def _on_studies(fn: Callable[[dict[str, NetworkStudy], str], _R]) -> Callable[..
     def checked(studies: dict[str, NetworkStudy], reason: str = "") -> _R:
         mapping_of(studies, "studies", "network study", values=NetworkStudy, maker="premise_studies")
         _known_networks(studies)
+        _own_keys(studies)
         return fn(studies, _enough_runs(studies, reason))
     return _studies_doc(checked)
 

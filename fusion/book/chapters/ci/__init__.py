@@ -28,6 +28,7 @@ from fusion.book.chapters.ci import infrared as _infrared
 from fusion.book.chapters.ci import infrared_readings as _infrared_readings
 from fusion.book.chapters.ci import printed as _printed
 from fusion.book.chapters.ci import nees as _nees
+from fusion.book.chapters.ci import records as _records
 from fusion.book.chapters.ci import architecture as _architecture
 from fusion.book.chapters.ci import claim_inputs as _claim_inputs
 from fusion.book.chapters.ci import claim_evidence as _claim_evidence
@@ -43,6 +44,7 @@ from fusion.book.chapters.ci.infrared import *  # noqa: F401,F403
 from fusion.book.chapters.ci.infrared_readings import *  # noqa: F401,F403
 from fusion.book.chapters.ci.printed import *  # noqa: F401,F403
 from fusion.book.chapters.ci.nees import *  # noqa: F401,F403
+from fusion.book.chapters.ci.records import *  # noqa: F401,F403
 from fusion.book.chapters.ci.architecture import *  # noqa: F401,F403
 from fusion.book.chapters.ci.claim_inputs import *  # noqa: F401,F403
 from fusion.book.chapters.ci.claim_evidence import *  # noqa: F401,F403
@@ -120,7 +122,7 @@ LEDGER_INPUTS = _claim_inputs.LEDGER_INPUTS
 EVIDENCE_FUNCTIONS = _claim_evidence.EVIDENCE_FUNCTIONS
 
 __all__ = (_constants.__all__ + _text.__all__ + _fruit_fly_step.__all__ + _bounds.__all__ + _tracking.__all__ +
-           _infrared.__all__ + _infrared_readings.__all__ + _printed.__all__ + _nees.__all__ + _architecture.__all__ +
+           _infrared.__all__ + _infrared_readings.__all__ + _printed.__all__ + _nees.__all__ + _records.__all__ + _architecture.__all__ +
            _claim_inputs.__all__ + _claim_evidence.__all__ + _weights.__all__ + _paired.__all__ + _studies.__all__)
 
 name_by_package(globals())

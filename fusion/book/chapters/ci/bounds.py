@@ -161,7 +161,9 @@ def pcrb_numbers(pcrb: pd.DataFrame, q_printed: str) -> GlueValues:
     Parameters
     ----------
     pcrb : pandas.DataFrame
-        :func:`pcrb_table` (index: period or "T → 0"; columns: readings of Q).
+        :func:`pcrb_table` (index: period or "T → 0"; columns: readings of Q), of the chapter's printed noises: the
+        table records neither ``sigma`` nor ``delta0``, so one of another case is glued as given (issue 35's class
+        of results that no object records).
     q_printed : str
         The column of Q as printed.
 

@@ -22,6 +22,7 @@ from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import NeesRule
 from fusion.book.chapters.ci.text import nees_band
 from fusion.book.chapters.ci.checks import _entries
+from fusion.book.chapters.ci.records import NeesPerStep, SplitExactness, stream_of
 from fusion._shown import shown
 
 __all__ = ["nees_numbers", "nees_per_step", "nees_step_band", "nees_start_table", "nees_start_numbers", "nees_table",
@@ -69,7 +70,7 @@ def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> GlueValues:
 
 def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
                   n_steps: int, runs: int, T: float = 1.0, velocity_sigma: float = 100.0,
-                  random_velocity: bool = False) -> dict[str, np.ndarray]:
+                  random_velocity: bool = False) -> NeesPerStep:
     r"""Mean NEES at every step of the rules :func:`fusion.scenarios.two_sensor.nees_study` averages.
 
     The same targets, filters and draws as ``nees_study`` (process noise, then sensor 1's noise, then
@@ -98,14 +99,17 @@ def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: Arr
 
     Returns
     -------
-    dict of str to ndarray, shape (n_steps,)
-        Rule (the keys of ``nees_study``) -> NEES averaged over the runs at each step.
+    NeesPerStep
+        A mapping: rule (the keys of ``nees_study``) -> NEES averaged over the runs at each step, shape
+        (n_steps,); it records the start, the runs, the settings and the generator's state when the runs started,
+        which :func:`nees_start_table` and :func:`nees_start_numbers` check.
 
     References
     ----------
     * Bar-Shalom, Li & Kirubarajan (2001), *Estimation with Applications to Tracking and Navigation*, §5.4.2.
     """
     rng = as_rng(rng)
+    stream = stream_of(rng)   # before any draw: two runs of one seed record the same one
     R1, R2 = as_covariance(R1, 2, "R1"), as_covariance(R2, 2, "R2")
     Q = as_covariance(Q, 4, "Q")
     x_start = as_array(x_start, "x_start", shape=(4,))
@@ -138,7 +142,7 @@ def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: Arr
     for name, rule, w in two_sensor.NEES_RULES:
         f = fuse_tracks(tracks[0], tracks[1], rule, omega=w)
         out[name] = kalman_nees(f.est - Xm, f.P).mean(axis=0)
-    return out
+    return NeesPerStep(out, random_velocity, runs, T, velocity_sigma, Q, R1, R2, x_start, stream)
 
 
 def nees_step_band(runs: int, n: int = 4) -> tuple[float, float]:
@@ -163,6 +167,54 @@ def nees_step_band(runs: int, n: int = 4) -> tuple[float, float]:
     """
     runs, n = count(runs, "runs"), count(n, "n")
     return float(chi2.ppf(0.025, n * runs) / runs), nees_band(runs, n)
+
+
+def _same_runs(true_start: object, random_start: object, runs: int, T: float) -> None:
+    """Check what the results of :func:`nees_per_step` record (issue 35, swaps; fuzz 26c q6): ``true_start`` from
+    the true initial velocity, ``random_start`` from a drawn one, each averaging ``runs`` runs at the period ``T``,
+    and the two of the same settings and the same generator state (their noise is then the same draws). A plain
+    mapping records none of it and is not checked."""
+    recorded = [(name, d) for name, d in (("true_start", true_start), ("random_start", random_start))
+                if isinstance(d, NeesPerStep)]
+    for name, d in recorded:
+        want = name == "random_start"
+        if d.random_velocity != want:
+            raise ValueError(f"{name} must be the runs from {'a random' if want else 'the true'} initial velocity "
+                             f"(nees_per_step with random_velocity={want}), got those with random_velocity={not want}"
+                             " (true_start and random_start swapped, or one start twice?)")
+        if d.runs != runs:
+            raise ValueError(f"runs = {runs} must be the number of runs {name} averages ({d.runs})")
+        if not np.isclose(d.T, T, rtol=1e-12, atol=0.0):
+            raise ValueError(f"T = {T:g} s must be the sampling period of {name}'s runs ({d.T:g} s)")
+    if len(recorded) == 2:
+        a, b = true_start, random_start
+        assert isinstance(a, NeesPerStep) and isinstance(b, NeesPerStep)
+        for field in ("Q", "R1", "R2", "x_start", "velocity_sigma"):
+            if not np.array_equal(getattr(a, field), getattr(b, field)):
+                raise ValueError(f"random_start's runs have another {field} than true_start's: pass the two starts "
+                                 "of one study (nees_per_step with the same settings)")
+        if a.stream != b.stream:
+            raise ValueError("random_start's runs start from another generator state than true_start's (another "
+                             "seed, or a generator already drawn from): the two starts must share their draws "
+                             "(nees_per_step with two generators of one seed)")
+
+
+def _exact_case(exact: object, true_start: object, T: float, t_steady: float) -> None:
+    """Check that a :class:`SplitExactness` is of the runs' case: ``T``, ``t_steady``, their steps and, where
+    ``true_start`` records them, ``Q``, the prior and ``R`` (one of the runs' ``R1``, ``R2``)."""
+    if not isinstance(exact, SplitExactness):
+        return
+    steps = next(iter(true_start.values())).size if isinstance(true_start, NeesPerStep) else None
+    for what, mine, theirs in (("T", T, exact.T), ("t_steady", t_steady, exact.t_steady)):
+        if not np.isclose(mine, theirs, rtol=1e-12, atol=0.0):
+            raise ValueError(f"exact is split_ci_exactness at {what} = {theirs:g} s, the runs' is {what} = {mine:g} s")
+    if steps is not None and exact.n_steps != steps:
+        raise ValueError(f"exact is split_ci_exactness of {exact.n_steps} steps, the runs' are {steps}")
+    if isinstance(true_start, NeesPerStep):
+        if not np.array_equal(exact.Q, true_start.Q) or exact.velocity_sigma != true_start.velocity_sigma:
+            raise ValueError("exact is split_ci_exactness of another Q or velocity_sigma than the runs of true_start")
+        if not any(np.array_equal(exact.R, R) for R in (true_start.R1, true_start.R2)):
+            raise ValueError("exact is split_ci_exactness of an R that is neither sensor's of the runs (R1, R2)")
 
 
 def _per_step(true_start: object, random_start: object, T: float, t_steady: float) -> tuple[float, float]:
@@ -203,14 +255,14 @@ def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping
     ----------
     true_start, random_start : mapping of str to ndarray, shape (K,)
         Rule -> NEES averaged over the runs at each step (:func:`nees_per_step`), from the true
-        initial velocity and from one drawn from the filters' prior. Plain arrays record neither their seed, nor
-        their start, nor their runs: the two swapped, or one of other runs, is not detected (the known open class
-        of same-shaped results that no object records; fuzz 26c q6), so pass the two results of one study.
+        initial velocity and from one drawn from the filters' prior. The results of :func:`nees_per_step`
+        (:class:`NeesPerStep`) record their start, runs, settings and generator state, and are checked: the two
+        swapped, one start twice, or runs of other settings or of another seed are refused. A plain mapping records
+        none of it and is not checked.
     runs : int
-        Runs averaged at each step (sets the band, :func:`nees_step_band`); not checked against the arrays,
-        which do not record it.
+        Runs averaged at each step (sets the band, :func:`nees_step_band`); the runs the results record.
     T : float
-        Sampling period (s).
+        Sampling period (s), that of the results' runs.
     t_steady : float
         Start of the steady-state average (s).
 
@@ -226,9 +278,12 @@ def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping
         ``true_start`` or ``random_start`` not a mapping, or a value not an array of numbers.
     ValueError
         ``true_start`` or ``random_start`` empty, a key not a rule, their keys differ, their arrays not of one
-        length of finite values, or ``t_steady`` leaves no step before or after it.
+        length of finite values, or ``t_steady`` leaves no step before or after it; a :class:`NeesPerStep` of the
+        other start, of other runs, settings or generator state than the other one, or than ``runs`` and ``T``.
     """
     T, t_steady = _per_step(true_start, random_start, T, t_steady)
+    runs = count(runs, "runs")
+    _same_runs(true_start, random_start, runs, T)
     lo, hi = nees_step_band(runs)
     rows = {}
     for rule in true_start:
@@ -262,8 +317,10 @@ def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mappi
     runs : int
         Runs averaged at each step.
     exact : mapping of str to float
-        :func:`split_ci_exactness`, at the same ``T`` and noises as the runs (its numbers record neither: another
-        case's is not detected, fuzz 26c q6).
+        :func:`split_ci_exactness`, at the same ``T``, ``t_steady``, steps and noises as the runs: its result
+        (:class:`SplitExactness`) records them and is checked against ``T``, ``t_steady``, the steps and what
+        ``true_start`` records (``Q``, the prior, ``R`` one of the runs' ``R1`` and ``R2``). A plain mapping is not
+        checked.
     T, t_steady : float
         Sampling period and start of the steady-state average (s).
 
@@ -277,10 +334,13 @@ def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mappi
     TypeError
         As :func:`nees_start_table`; ``exact`` not a mapping.
     ValueError
-        As :func:`nees_start_table`; ``true_start`` lacks a rule read here, or ``exact`` a value read here.
+        As :func:`nees_start_table`; ``true_start`` lacks a rule read here, or ``exact`` a value read here, or
+        ``exact`` is a :class:`SplitExactness` of another case.
     """
     runs = count(runs, "runs")
     T, t_steady = _per_step(true_start, random_start, T, t_steady)
+    _same_runs(true_start, random_start, runs, T)
+    _exact_case(exact, true_start, T, t_steady)
     missing = [r for r in _START_READ if r not in true_start]
     if missing:
         raise ValueError(f"true_start lacks the rules {missing} (a result of nees_per_step holds them)")

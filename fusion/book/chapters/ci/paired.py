@@ -21,6 +21,7 @@ from fusion.estimates.ci import ci_weight
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, FusionStudy, Scenario, StudyMethod
+from fusion.book.chapters.ci.records import PairRuns
 from fusion.book.chapters.ci.checks import _entries, _identical_study, _period_key, _sensor_noises
 from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S, W_GRID, W_PUB
 from fusion.book.chapters.ci.text import _glue_doc, paired_text, readable
@@ -40,6 +41,20 @@ def _per_run(values: object, name: str, runs: int) -> None:
                          "must come from the same paired studies")
 
 
+#: The pair whose runs each argument of :func:`paired_numbers` must hold (``PairRuns.role``).
+_ROLES = {"paired": "identical", "paired_u": "unequal", "paired_a": "aniso"}
+
+
+def _pair_role(runs_by: object, name: str) -> None:
+    """A :class:`PairRuns` (a :class:`PairedStudies` field) records its pair: refuse another pair's runs under
+    ``name`` (issue 35, swaps). A plain mapping records none and is not checked."""
+    role = getattr(runs_by, "role", None) if isinstance(runs_by, PairRuns) else None
+    if role is not None and role != _ROLES[name]:
+        other = next(k for k, v in _ROLES.items() if v == role)
+        raise ValueError(f"{name} must be the runs of the {_ROLES[name]} pair, got those of the {role} pair (the "
+                         f"PairedStudies field of {other}: two swapped?)")
+
+
 @reads_results("ai")
 def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.ndarray], paired_random: np.ndarray,
                    ai: ArchitectureStudy, ml_gap: float, rmse_avg: float, paired_runs: int,
@@ -51,7 +66,9 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
     ----------
     paired, paired_u, paired_a : mapping
         Method -> per-run RMSE (m) on identical sensors, with sensor 2 three times more precise (R₂ = R₁/9) and
-        on the anisotropic pair (``ANISO_R``), independent local filters.
+        on the anisotropic pair (``ANISO_R``), independent local filters. The fields of a :class:`PairedStudies` (:class:`PairRuns`) record
+        their pair, and one pair's runs in another's place are refused; plain mappings record none and are not
+        checked.
     paired_random : ndarray
         Per-run RMSE (m) of CI with a weight drawn at random at every step.
     ai : ArchitectureStudy
@@ -83,8 +100,11 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
         makes on the identical sensors only); a mapping lacks a method (``paired_fig6`` a published weight) read
         here, or an array of per-run RMSE does
         not hold ``paired_runs`` finite values (the run count of another study); ``ml_gap`` negative, ``rmse_avg``
-        not positive, ``omega_u`` not weights in [0, 1] (each not finite).
+        not positive, ``omega_u`` not weights in [0, 1] (each not finite); ``paired``, ``paired_u`` or ``paired_a``
+        a :class:`PairRuns` of another pair.
     """
+    for name, runs_by in (("paired", paired), ("paired_u", paired_u), ("paired_a", paired_a)):
+        _pair_role(runs_by, name)   # first: one pair's runs in another's place, named before any other check
     instance_of(ai, ArchitectureStudy, "ai")
     _identical_study(ai, "ai")   # by the rules it records (fuzz 26c B2): not the anisotropic pair's study
     M = StudyMethod
@@ -234,8 +254,9 @@ class PairedStudies:
         Seeds of those two sets of runs and of the random weights.
     sc : Scenario
         The identical sensors' runs.
-    paired : dict of str to ndarray, shape (runs,)
-        Every rule of :func:`fusion.scenarios.two_sensor.fusion_study` on ``sc``.
+    paired : PairRuns of str to ndarray, shape (runs,)
+        Every rule of :func:`fusion.scenarios.two_sensor.fusion_study` on ``sc`` (a mapping recording its pair,
+        ``"identical"``, and seed; so are ``paired_u``, ``"unequal"``, and ``paired_an``, ``"aniso"``).
     paired_fig6 : dict of float to ndarray
         CI at each of the source's two published weights (Fig. 6), on ``sc``.
     paired_random : ndarray, shape (runs,)
@@ -264,7 +285,14 @@ class PairedStudies:
          "paired_u": dict_of(_RUNS), "omega_u": tuple_of(number(bounds=(0.0, 1.0))),
          "paired_an": dict_of(array("aniso_runs", bounds=(0.0, np.inf)))},
         relations=(lambda v, cls: _studies_relation(v, cls),))
-    __post_init__ = validated_post_init
+
+    def __post_init__(self) -> None:
+        validated_post_init(self)
+        for name, role, seed in (("paired", "identical", self.seeds[0]), ("paired_u", "unequal", self.seeds[1]),
+                                 ("paired_an", "aniso", None)):   # each pair's runs record the pair (issue 35, swaps)
+            object.__setattr__(self, name, PairRuns(getattr(self, name), role, seed))
+
+    __post_init__.__wrapped__ = validated_post_init  # type: ignore[attr-defined]  # the spec's checks, then the records
 
 
     def claim_inputs(self, levels: ArrayLike = (0.001, 0.05, 0.1)) -> PairedClaimInputs:

@@ -21,6 +21,7 @@ from fusion.filtering.kalman import cv_model, gain_sequence, split_covariances
 from fusion.scenarios.two_sensor import FruitFlySeeds
 from fusion.book.chapters.ci.text import readable
 from fusion.book.chapters.ci.checks import _entries
+from fusion.book.chapters.ci.records import SplitExactness
 
 __all__ = ["split_ci_exactness", "ml_vs_product", "printed_covariances", "printed_numbers", "printed_equation_checks",
            "printed_equation_numbers", "PrintedWeightFacts"]
@@ -109,7 +110,7 @@ def ml_vs_product(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) ->
 
 
 def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, velocity_sigma: float = 100.0,
-                       t_steady: float = 20.0) -> dict[str, float]:
+                       t_steady: float = 20.0) -> SplitExactness:
     r"""Is split CI exact with two identical sensors? Its reported covariance against the true one, in closed form.
 
     Two identical local filters (the set-up of :func:`fusion.scenarios.two_sensor.nees_study`: each starts at
@@ -142,8 +143,9 @@ def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, veloc
 
     Returns
     -------
-    dict of str to float
-        ``rel_diff_random``: largest :math:`\|P_k - \Sigma_k\|_F / \|\Sigma_k\|_F` over the steps, random start;
+    SplitExactness
+        A mapping of numbers, which records the case (``Q``, ``R``, ``T``, ``velocity_sigma``, ``t_steady``,
+        ``n_steps``) for :func:`~fusion.book.chapters.ci.nees_start_numbers` to check: ``rel_diff_random``: largest :math:`\|P_k - \Sigma_k\|_F / \|\Sigma_k\|_F` over the steps, random start;
         ``nees_random_min``/``nees_random_max``: the expected NEES over the steps, random start;
         ``nees_true_first``, ``nees_true_transient``, ``nees_true_steady``, ``nees_true_steady_min``: expected
         NEES from the true velocity at the first step, averaged before and after ``t_steady``, and its lowest
@@ -187,10 +189,11 @@ def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, veloc
         exp_true.append(np.trace(np.linalg.solve(r.P, sig[1])))
         dev.append(abs(r.omega - 0.5))
     er, et = np.array(exp_random), np.array(exp_true)
-    return {"rel_diff_random": float(max(rel)), "nees_random_min": float(er.min()), "nees_random_max": float(er.max()),
-            "nees_true_first": float(et[0]), "nees_true_transient": float(et[~steady].mean()),
-            "nees_true_steady": float(et[steady].mean()), "nees_true_steady_min": float(et[steady].min()),
-            "omega_dev_steady": float(np.array(dev)[steady].max())}
+    return SplitExactness(
+        {"rel_diff_random": float(max(rel)), "nees_random_min": float(er.min()), "nees_random_max": float(er.max()),
+         "nees_true_first": float(et[0]), "nees_true_transient": float(et[~steady].mean()),
+         "nees_true_steady": float(et[steady].mean()), "nees_true_steady_min": float(et[steady].min()),
+         "omega_dev_steady": float(np.array(dev)[steady].max())}, Q, R, T, velocity_sigma, t_steady, n_steps)
 
 
 def printed_covariances() -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -62,6 +62,11 @@ def _bounds(sigmas: object, studies: Mapping[str, PairedStudy]) -> dict[str, flo
         if sig.ndim == 1 and sig.size != _N_SENSORS:
             raise ValueError(f"{where} must hold one noise SD per sensor of the chapter's bank ({_N_SENSORS}) or one "
                              f"for all, got {sig.size}")
+        recorded = getattr(studies[label], "sigma", None)   # issue 35, swaps: the noise the study records
+        if recorded is not None and (recorded.shape != (_N_SENSORS,)
+                                     or not np.array_equal(np.broadcast_to(sig, (_N_SENSORS,)), recorded)):
+            raise ValueError(f"{where} must be the noise SDs of studies[{shown(label)}], which records others (the "
+                             "studies or the SDs under each other's label?)")
         with within(where):
             out[label] = thermocouples.best_linear_abs_error(sig)
     return out
@@ -185,7 +190,8 @@ def mc_table(studies: Mapping[str, PairedStudy], sigmas: Mapping[str, ArrayLike]
         ``studies`` not a mapping of :class:`~fusion.scenarios.thermocouples.PairedStudy`, or ``sigmas`` not a mapping.
     ValueError
         ``studies`` empty; ``sigmas`` not holding exactly the labels of ``studies``; a setting's SDs not one
-        finite positive number or one per sensor of the chapter's bank (ten), naming ``sigmas[label]``.
+        finite positive number or one per sensor of the chapter's bank (ten), or not the SDs the study of its label
+        records (a study and the SDs under each other's label), naming ``sigmas[label]``.
     """
     studies = _studies(studies)
     return _mc_frame(studies, _bounds(sigmas, studies))

@@ -385,6 +385,21 @@ _CLOSING_READINGS: dict[tuple[str, str], tuple[type, ...]] = {
     ("yang-weights-reasonable", "failure"): (Comparison,), ("yang-membership-free", "scale"): (Comparison, Conjunction)}
 
 
+def _closing_studies(study_hs: PairedStudy, study_eq: PairedStudy) -> None:
+    """The roles of :func:`closing_numbers`' studies by the noise levels they record (issue 35, swaps): ``study_hs``
+    at the primary levels (``NOISE["unequal"]``), ``study_eq`` at one level for every sensor. Their values are
+    glued side by side, not paired, so their seeds and runs may differ. A study that records no noise (``sigma``
+    None: built by hand) is not checked."""
+    primary = np.broadcast_to(np.asarray(NOISE["unequal"], dtype=float), (10,))
+    if study_hs.sigma is not None and (study_hs.sigma.shape != primary.shape or not np.array_equal(study_hs.sigma,
+                                                                                                    primary)):
+        raise ValueError("study_hs must be the study at the primary (unequal) noise levels, NOISE['unequal'], got one "
+                         "at other levels (study_hs and study_eq swapped, or another noise's study?)")
+    if study_eq.sigma is not None and np.ptp(study_eq.sigma) > 0.0:
+        raise ValueError("study_eq must be the study with equal noise (one level for every sensor), got one at "
+                         "unequal levels (study_hs and study_eq swapped, or another noise's study?)")
+
+
 def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: object,
                     judged: Mapping[tuple[str, str], Comparison], relative_margin: float) -> GlueValues:
     """The glue values of the chapter's verdict paragraphs that are not records' numbers (chapter bookkeeping).
@@ -392,7 +407,9 @@ def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: objec
     Parameters
     ----------
     study_hs, study_eq : PairedStudy
-        The failure study with the primary (unequal) noise levels and with equal noise.
+        The failure study with the primary (unequal) noise levels and with equal noise: each is checked by the
+        noise levels it records (``sigma``), so the two swapped, one twice or another noise's study are refused (a
+        study that records none, built by hand, is not checked).
     weights : WeightStudy
         :func:`weight_study` at the chapter's seed and runs (its ``member`` shares).
     judged : mapping
@@ -414,7 +431,7 @@ def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: objec
     ValueError
         ``judged`` lacking a (record, reading) the paragraphs quote, a study lacking
         the two failing sensors' shares or a method of :data:`METHODS`, or ``relative_margin`` not a finite
-        number in [0, 1].
+        number in [0, 1]; a study at the other role's noise levels (or at levels of neither role).
     """
     for name, st in (("study_hs", study_hs), ("study_eq", study_eq)):
         instance_of(st, PairedStudy, name)
@@ -430,6 +447,7 @@ def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: objec
     for k, types in _CLOSING_READINGS.items():
         instance_of(judged[k], types, f"judged[{shown(k)}]")
     relative_margin = scalar(relative_margin, "relative_margin", lo=0.0, hi=1.0)
+    _closing_studies(study_hs, study_eq)
     unaff = judged[("yang-fig4-unaffected", "equal-noise")]
     return {"ofs_margin": relative_margin,
             "ofs_member_s1": rounded(weights.member[0], 3), "ofs_member_s10": rounded(weights.member[-1], 3),
