@@ -265,7 +265,9 @@ class Comparison:
     ----------
     a, b : array_like, shape (runs,)
         Per-run metric of A and of B on the same runs (same seeds, same samples). ``+inf`` marks a run whose
-        statistic is infinite; NaN is refused.
+        statistic is infinite; NaN is refused. Runs given as float32 or float16 are judged with their own round-off
+        (R2's tie, as :func:`~fusion.book.rulebook.judge_paired`; kept by :meth:`with_margin`, while a record
+        rebuilt from the stored floats, ``dataclasses.replace``, is judged as float64 runs).
     a_name, b_name : str
     claim : {"less", "greater", "equal"}
         What the claim says of A against B ("equal": no effect, within the margin).
@@ -352,6 +354,7 @@ class Comparison:
                      ("margin", float(margin)), ("relative_margin", None if relative_margin is None else float(relative_margin)),
                      ("conditions", conditions), ("infinite_mean", inf_m), ("kind", "comparison")):
             object.__setattr__(self, k, v)
+        object.__setattr__(self, "_tie", R._tie_share(a, b))  # R2's tie, from the runs' dtype as given (fuzz 30a C3)
 
     def with_margin(self, margin: float | None = None, relative_margin: float | None = None) -> "Comparison":
         """The same comparison judged with another practical margin (absolute, or relative to B's mean).
@@ -367,8 +370,10 @@ class Comparison:
         -------
         Comparison
         """
-        return Comparison(self.a, self.b, self.a_name, self.b_name, self.claim, self.metric, self.seed, self.reason,
-                          margin, relative_margin, self.conditions, self.infinite_mean)
+        out = Comparison(self.a, self.b, self.a_name, self.b_name, self.claim, self.metric, self.seed, self.reason,
+                         margin, relative_margin, self.conditions, self.infinite_mean)
+        object.__setattr__(out, "_tie", self._tie)  # the runs' precision as first given (R2's tie)
+        return out
 
     @property
     def runs(self) -> int:
@@ -378,7 +383,8 @@ class Comparison:
         """The rulebook's judgement (R2, R3), computed once."""
         cached = self.__dict__.get("_judgement")
         if cached is None:
-            cached = R.judge_paired(self.a, self.b, self.claim, self.margin, self.infinite_mean)
+            cached = R._judge(np.array(self.a), np.array(self.b), self.claim, self.margin, self.infinite_mean,
+                              self.__dict__.get("_tie", R.ROUND_OFF_TIE))  # R2's tie of the runs as given
             object.__setattr__(self, "_judgement", cached)
         return cached
 
