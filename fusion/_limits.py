@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from decimal import Decimal
+from fractions import Fraction
+
 import numpy as np
 
 
@@ -138,32 +141,72 @@ def written_as(p: float, q: float) -> bool:
 
 
 
+def _entries(values: object) -> list[object]:
+    """The numbers of ``values`` in flat (C) order, as the caller gave them: the entries of a (nested) list or tuple
+    before any conversion (a list mixing ints and floats converts to float64, rounding the ints), an array's
+    ``tolist()`` (object arrays: their objects)."""
+    if not isinstance(values, (list, tuple)):
+        a = np.asarray(values)
+        return [] if a.dtype.kind not in "iuO" or (a.dtype.kind in "iu" and a.dtype.itemsize < 8) else a.ravel().tolist()
+    out: list[object] = []
+    stack = [iter(values)]
+    while stack:  # iterative, in order: a deeply nested list is read without recursion
+        for v in stack[-1]:
+            if isinstance(v, (list, tuple)):
+                stack.append(iter(v))
+                break
+            out.extend(_entries(v) if isinstance(v, np.ndarray) else [v])
+        else:
+            stack.pop()
+    return out
+
+
+def integer_entries(values: object, n: int) -> list[bool]:
+    """Per entry of the ``n`` numbers ``values``, whether it was given as an integer (a Python or numpy int, not a bool):
+    an exact number even where its list's array is float64 (``[0.5, 2**53]``)."""
+    if not isinstance(values, (list, tuple)):
+        return [np.asarray(values).dtype.kind in "iu"] * n
+    given = _entries(values)
+    if len(given) != n:
+        return [False] * n
+    return [isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_)) for v in given]
+
+
+def _inexact(v: object) -> bool:
+    """Whether ``v`` is an integer (a Python or numpy int, an integral Decimal or Fraction) that float64 does not
+    hold exactly."""
+    if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, np.integer, Decimal, Fraction)):
+        return False
+    if isinstance(v, Decimal) and not v.is_finite():
+        return False
+    iv = int(v)  # a Python int: compared with its float exactly (an np.int64 would compare as a float64)
+    try:
+        return iv == v and float(iv) != iv
+    except OverflowError:
+        return True
+
+
 def inexact_integer(values: object) -> int | None:
     """The index of the first integer of ``values`` that float64 cannot hold exactly, or None.
 
     The integers' counterpart of "a value its dtype cannot hold" (``PublishedValues``' float32/float16 rule, fuzz 27a
     F5): an integer beyond 2**53 in magnitude that is not a multiple of a large enough power of two (``2**53 + 1``)
     becomes another number as a float64, so a comparison at printed decimals (R1) would compare another number
-    (9007199254740993 as ...992, fuzz 29a C6). Every integer up to 2**53 in magnitude is held.
+    (9007199254740993 as ...992, fuzz 29a C6). Every integer up to 2**53 in magnitude is held. Each entry is
+    checked as given, before any conversion: an integer beside a float in a list (whose array is float64, the
+    integer already rounded), a numpy int scalar, an integral ``Decimal`` or ``Fraction`` (fuzz 30a C1).
 
     Parameters
     ----------
     values : array_like
-        Numbers: an int64/uint64 array, or a sequence holding Python ints (any other values are skipped).
+        Numbers: an array, or a (nested) sequence of numbers (entries that are not integers are skipped).
 
     Returns
     -------
     int or None
         The flat index of the first integer whose float64 conversion is another number (or overflows).
     """
-    a = np.atleast_1d(np.asarray(values))
-    if a.dtype.kind not in "iuO" or (a.dtype.kind in "iu" and a.dtype.itemsize < 8):  # int32 and narrower: all held
-        return None
-    for i, v in enumerate(a.ravel().tolist()):
-        if isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_)):
-            try:
-                if float(v) != int(v):
-                    return i
-            except OverflowError:
-                return i
+    for i, v in enumerate(_entries(values)):
+        if _inexact(v):
+            return i
     return None

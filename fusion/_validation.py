@@ -600,15 +600,42 @@ def unit_scalar(value: float, name: str) -> float:
 _F64_EPS = float(np.finfo(np.float64).eps)
 
 
+def given_dtype(x: object) -> np.dtype | None:
+    """The numpy dtype the caller's numbers ``x`` have, as their array would: an array's (or Series') own dtype, a
+    pandas extension dtype's numpy one (``"Float32"``: float32), a list or tuple's common dtype when every entry is
+    a numpy scalar (``[np.float32(0.1)] * 10``: float32, as ``np.asarray`` gives it; fuzz 30a C6, D1), else None
+    (Python numbers: float64). The entries are not converted (no ``__float__`` is called: read once, fuzz 29a C5)."""
+    dtype = getattr(x, "dtype", None)
+    if isinstance(dtype, np.dtype):
+        return dtype
+    if isinstance(getattr(dtype, "numpy_dtype", None), np.dtype):  # pandas masked extension dtypes
+        return dtype.numpy_dtype
+    if not isinstance(x, (list, tuple)):
+        return None
+    kinds: set[np.dtype] = set()
+    stack = [x]
+    while stack:  # iterative: a deeply nested list is read without recursion
+        for v in stack.pop():
+            if isinstance(v, (list, tuple)):
+                stack.append(v)
+            elif isinstance(v, (np.floating, np.integer)):
+                kinds.add(v.dtype)
+            else:  # a Python number (float64 in the array) or anything else: the float64 rule
+                return None
+    return np.result_type(*kinds) if kinds else None
+
+
 def input_eps(x: object) -> float:
     """The relative precision of the caller's numbers: the machine epsilon of a floating numpy input's dtype
     (``float16``: ``9.8e-4``, ``float32``: ``1.2e-7``), float64's (``2.2e-16``) for anything else.
 
-    A tolerance on a property of the values (a sum of weights equal to one) is at least ``n`` times this: weights
-    that sum to one in float32 (``0.4f + 0.6f``) are accepted, rounded as the caller gave them.
+    The dtype is :func:`given_dtype`'s: the container does not decide, its numbers do (a list of ``np.float32``
+    scalars is float32, as its array is; a pandas ``"Float32"`` Series too). A tolerance on a property of the values
+    (a sum of weights equal to one) is at least ``n`` times this: weights that sum to one in float32
+    (``0.4f + 0.6f``) are accepted, rounded as the caller gave them.
     """
-    dtype = getattr(x, "dtype", None)
-    if isinstance(dtype, np.dtype) and dtype.kind == "f" and dtype.itemsize < 8:
+    dtype = given_dtype(x)
+    if dtype is not None and dtype.kind == "f" and dtype.itemsize < 8:
         return float(np.finfo(dtype).eps)
     return _F64_EPS
 
@@ -657,7 +684,7 @@ def in_given_precision(a: FloatArray, given: object) -> FloatArray:
     of a converted array keep the caller's precision for :func:`sums_to_one` and
     ``fusion.optimise.simplex.check_simplex``."""
     if input_eps(given) > _F64_EPS:
-        return a.astype(getattr(given, "dtype"))
+        return a.astype(given_dtype(given))
     return a
 
 

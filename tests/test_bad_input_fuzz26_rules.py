@@ -200,7 +200,7 @@ def test_d1_an_extra_decimal_is_refused_at_every_magnitude(pub, d):
 
 
 @pytest.mark.parametrize("pub, d", [(0.1 * 3, 1), (12.3 / 100, 3), (float(np.float32(0.3)), 1),
-                                    (float(np.float32(1234567.9)), 1), (np.float32(419430.4), 1), (1e20, 0),
+                                    (float(np.float32(1234567.9)), 1), (np.float32(419430.4), 1), (10**20, 0),
                                     (float(np.float32(0.123)), 3)])
 def test_d1_the_round_off_of_writing_a_decimal_down_is_accepted(pub, d):
     assert L.PublishedValues([pub], [pub], d).status() == "reproduced"

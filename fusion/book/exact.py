@@ -122,11 +122,14 @@ class ExactComparison:
                      ("margin", float(m)), ("relative_margin", None if relative_margin is None else float(relative_margin)),
                      ("kind", "exact comparison")):
             object.__setattr__(self, k, v)
+        object.__setattr__(self, "_tie", R._tie_share(a, b))  # R2's tie, from the values' dtype as given (fuzz 30a C3)
 
     def with_margin(self, margin: float | None = None, relative_margin: float | None = None) -> ExactComparison:
         """The same values judged with another practical margin (absolute, or relative to :math:`|B|`)."""
-        return ExactComparison(self.a, self.b, self.a_name, self.b_name, self.claim, self.metric, margin,
-                               relative_margin)
+        out = ExactComparison(self.a, self.b, self.a_name, self.b_name, self.claim, self.metric, margin,
+                              relative_margin)
+        object.__setattr__(out, "_tie", self._tie)  # the values' precision as first given (R2's tie)
+        return out
 
     @property
     def difference(self) -> float:
@@ -140,12 +143,16 @@ class ExactComparison:
         as :func:`fusion.book.rulebook.judge_paired` judges runs that all tie (R2: equivalent is wholly inside
         :math:`\pm m`; fuzz 27a D7). At the margin's edge likewise: a difference within :math:`10^{-9} \max(|A|, |B|, m)`
         of :math:`\pm m` is :math:`\pm m`, and :math:`|d| \le m` is ``"equivalent"`` (:func:`fusion.book.rulebook.region`),
-        so 0.3 against 0.2 and 1.3 against 1.2 with a margin of 0.1 get one region.
+        so 0.3 against 0.2 and 1.3 against 1.2 with a margin of 0.1 get one region. Values given as float32 or
+        float16 are decided by their own round-off: the share :math:`10^{-9}` is then 4 epsilons of their dtype
+        (as in :func:`fusion.book.rulebook.judge_paired`; kept by :meth:`with_margin`, not by ``dataclasses.replace``,
+        which rebuilds from the stored floats).
         """
         d, scale = self.difference, max(abs(self.a), abs(self.b))
-        if R._round_off(d, scale):  # R2's one tie rule: round-off never decides
+        share = self.__dict__.get("_tie", R.ROUND_OFF_TIE)  # float32/float16 values: their own round-off (R2)
+        if R._round_off(d, scale, share):  # R2's one tie rule: round-off never decides
             d = 0.0  # a tie is d = 0, judged as judge_paired judges tied runs (fuzz 27a D7)
-        return R.region(d, d, self.margin, scale=scale)  # and a d within round-off of +-m is the margin (R2)
+        return R._region(d, d, self.margin, scale, share)  # and a d within round-off of +-m is the margin (R2)
 
     def status(self) -> str:
         return R.status_from_region(self.region(), self.claim)  # type: ignore[arg-type]
@@ -171,7 +178,7 @@ class ExactComparison:
         d, scale = self.difference, max(abs(self.a), abs(self.b))
         if scale == 0.0:
             diff = "difference 0"
-        elif R._round_off(d, scale):  # the tie rule of region(): one rule for the note and the judgement
+        elif R._round_off(d, scale, self.__dict__.get("_tie", R.ROUND_OFF_TIE)):  # region()'s tie: one rule
             diff = f"difference {roundoff(d / scale)} relative (round-off)"
         else:
             diff = f"difference {self._t(d)}" + (f" ({_percent(d / self.b)} of B)" if self.b != 0 else "")

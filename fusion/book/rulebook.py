@@ -20,8 +20,8 @@ R2 paired comparison
     zero and not wholly inside, *equivalent* if wholly inside the closed [−m, m] (m > 0: the margin is the
     largest difference that is practically none; at m = 0 no interval is equivalent), *undecided* otherwise.
     Round-off never decides, at zero as at the margin's edge: differences all within round-off of zero
-    (1e-9 of the values' magnitude S, ``fusion._limits.ROUND_OFF_TIE``) are a tie, and an interval end within
-    round-off of ±m (1e-9 S, S at least m) is the margin. "A lower
+    (1e-9 of the values' magnitude S, ``fusion._limits.ROUND_OFF_TIE``; 4 epsilons of float32 or float16 runs) are
+    a tie, and an interval end within round-off of ±m (the same share of S, S at least m) is the margin. "A lower
     than B" is reproduced when lower, contradicted when higher, not distinguishable when equivalent
     or undecided; "A higher" mirrors it; "no effect" is reproduced when equivalent, contradicted when
     lower or higher, not distinguishable when undecided. The same margin decides "better", "worse"
@@ -99,7 +99,7 @@ from numpy.typing import ArrayLike
 from scipy import stats
 
 from fusion._validation import _numeric, _real_number, check_magnitude, count, scalar, sequence, shown
-from fusion._validation import flag, one_of, text
+from fusion._validation import flag, input_eps, one_of, text
 from fusion._limits import ROUND_OFF_TIE
 from fusion.book.tables import sci
 
@@ -197,6 +197,9 @@ class Rule:
 _PCT = f"{CONFIDENCE_LEVEL * 100:.0f} %"
 
 #: Every rule, in the order the Verdicts page prints them.
+#: Round-off of runs given as float32 or float16, in epsilons of their dtype (R2: their own round-off never decides).
+_TIE_ULPS = 4
+
 RULES: tuple[Rule, ...] = (
     Rule("R1", "published values",
          "A published number is reproduced iff ours, rounded to the printed decimals, equals it (at an exact tie "
@@ -209,7 +212,8 @@ RULES: tuple[Rule, ...] = (
          "is lower (below zero, not wholly inside ±m), higher (above zero, not wholly inside ±m), equivalent (wholly "
          "inside ±m, its ends included: the margin is the largest difference that is practically none; never at "
          "m = 0) or undecided. Round-off never decides, at zero as at ±m: differences all within round-off of zero "
-         f"({sci(ROUND_OFF_TIE)} of the values' magnitude) are a tie, and an interval end within round-off of ±m is "
+         f"({sci(ROUND_OFF_TIE)} of the values' magnitude; "
+         f"{_TIE_ULPS} epsilons of float32/float16 runs) are a tie, and an interval end within round-off of ±m is "
          "the margin. \"A is lower\" is reproduced when lower, contradicted when higher, not "
          "distinguishable when equivalent or undecided; \"A is higher\" mirrors it; \"no effect\" is reproduced when "
          "equivalent, contradicted when lower or higher, not distinguishable when undecided. The same margin decides "
@@ -507,13 +511,18 @@ def region(low: float, high: float, margin: float, *, scale: float = 0.0) -> Reg
         ``"equivalent"`` inside the closed [−margin, margin] for a positive margin (after the snap), ``"lower"`` below
         0, ``"higher"`` above 0, else ``"undecided"``.
     """
+    return _region(low, high, margin, scale, _TIE)
+
+
+def _region(low: float, high: float, margin: float, scale: float, share: float) -> Region:
+    """:func:`region` with the tie ``share`` of S (:func:`_tie_share`: 1e-9, or a few epsilons of short floats)."""
     low, high = (float(a) if a.ndim == 0 else math.nan for a in (_numeric(low, "low"), _numeric(high, "high")))
     margin = scalar(margin, "margin", 0.0)
     scale = scalar(scale, "scale", 0.0)
     if not (low <= high):
         raise ValueError(f"low and high must be numbers with low <= high, got [{low}, {high}]")
     if margin > 0:
-        tie = _TIE * max(scale, margin)  # R2: round-off never decides, at the margin's edge as at zero
+        tie = share * max(scale, margin)  # R2: round-off never decides, at the margin's edge as at zero
         low, high = (math.copysign(margin, x) if abs(abs(x) - margin) <= tie else x for x in (low, high))
         if -margin <= low and high <= margin:
             return "equivalent"
@@ -642,23 +651,31 @@ def _differences(av: np.ndarray, bv: np.ndarray) -> tuple[np.ndarray, np.ndarray
 _TIE = ROUND_OFF_TIE  # fusion._limits: one tie rule for the rulebook and the rankings
 
 
-def _round_off(x: np.ndarray | float, scale: np.ndarray | float) -> np.ndarray | bool:
+def _tie_share(*given: object) -> float:
+    """R2's tie, as a share of the values' magnitude S: :data:`ROUND_OFF_TIE` (1e-9), or :data:`_TIE_ULPS` machine
+    epsilons of the coarsest float32/float16 dtype of the values as given (``fusion._validation.input_eps``: an array's
+    dtype, a list's numpy scalars'), whichever is larger, so that a one-ulp float32 difference is a tie (fuzz 30a C3).
+    Every float64 value keeps 1e-9."""
+    return max(_TIE, _TIE_ULPS * max(input_eps(g) for g in given))
+
+
+def _round_off(x: np.ndarray | float, scale: np.ndarray | float, share: float = _TIE) -> np.ndarray | bool:
     """Whether ``x`` is within round-off of zero for values of magnitude ``scale``: |x| <= 1e-9 scale (finite ``x``).
 
     The one tie rule of the rulebook, relative so that no judgement depends on the data's units: a run's tie
     (:func:`_runs_won`, its own scale), and in :func:`judge_paired` every run a tie and constant differences
     (the comparison's scale, the largest finite magnitude of its runs)."""
     x = np.asarray(x)
-    return np.isfinite(x) & (np.abs(x) <= _TIE * np.asarray(scale))
+    return np.isfinite(x) & (np.abs(x) <= share * np.asarray(scale))
 
 
-def _runs_won(av: np.ndarray, bv: np.ndarray, direction: str) -> np.ndarray:
+def _runs_won(av: np.ndarray, bv: np.ndarray, direction: str, share: float = _TIE) -> np.ndarray:
     """Per run, whether A lies on the claimed side of B (above for ``"greater"``, else below): the numerator of the
     share of runs won (R3). A tie is never a win: a run whose difference is within round-off of zero
     (|A − B| <= 1e-9 max(|A|, |B|), finite values, :func:`_round_off`) or undefined (both infinite). The one tie
     rule of :func:`judge_paired` and of the chapters' sign tests (``fusion.book.chapters.lecture_wavelets``)."""
     d, scale = _differences(av, bv)
-    tie = _round_off(d, scale)
+    tie = _round_off(d, scale, share)
     return ((d > 0) if direction == "greater" else (d < 0)) & ~tie
 
 
@@ -685,7 +702,9 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     mathematically) can make differences spread by less than 1e-9 S constant (zero-width interval). At the margin's
     edge as at zero: an interval end within round-off of ``+margin`` or ``-margin`` (``|end -/+ m| <= 1e-9 S``, S at
     least m) is the margin, and an interval wholly inside the closed [-m, m] is "equivalent" (:func:`region`), so
-    ``0.3 - 0.2`` and ``1.3 - 1.2`` against a margin of 0.1 get one status.
+    ``0.3 - 0.2`` and ``1.3 - 1.2`` against a margin of 0.1 get one status. Runs given as float32 or float16 (an
+    array, or a list of such numpy scalars) are decided by their own round-off: the tie share is then 4 epsilons of
+    their dtype (4.8e-7 for float32) where larger than 1e-9 (fuzz 30a C3); float64 runs keep 1e-9.
 
     Parameters
     ----------
@@ -715,6 +734,12 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
         ``direction`` is not a str; ``infinite_mean`` is not a sequence of str.
     """
     av, bv = _paired_runs(a, b)
+    return _judge(av, bv, direction, margin, infinite_mean, _tie_share(a, b))
+
+
+def _judge(av: np.ndarray, bv: np.ndarray, direction: Direction, margin: float, infinite_mean: Sequence[str],
+           tie: float) -> Judgement:
+    """:func:`judge_paired` of checked runs (:func:`_paired_runs`) with the tie share ``tie`` of their dtype as given."""
     margin = scalar(margin, "margin", 0.0)
     text(direction, "direction")
     if direction not in ("less", "greater", "equal"):
@@ -725,7 +750,7 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     inf_b = "b" in infinite_mean or bool(np.any(np.isinf(bv)))
     both = np.isinf(av) & np.isinf(bv)  # runs whose difference is undefined (inf - inf)
     d, scale = _differences(av, bv)
-    wins = int(np.sum(_runs_won(av, bv, direction)))
+    wins = int(np.sum(_runs_won(av, bv, direction, tie)))
     share, s_lo, s_hi = share_interval(wins, n)
     finite = np.isfinite(d)
     tail = hill_tail_index(d[finite]) if finite.sum() > 10 else math.inf
@@ -743,23 +768,23 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
         if defined.size < 6 or _median_undefined(defined):  # R3: an undefined statistic is never "not distinguishable"
             return out("cannot be checked", "R3", "median", math.nan, math.nan, math.nan, "undecided", True)
         med, lo, hi = median_interval(defined)
-        where = region(lo, hi, margin, scale=scale_all)
+        where = _region(lo, hi, margin, scale_all, tie)
         if (math.isinf(med) or (math.isinf(lo) and math.isinf(hi))) and where not in ("lower", "higher"):
             # R3: an infinite median decides only a sign its interval shows; [-inf, inf] decides nothing
             return out("cannot be checked", "R3", "median", med, lo, hi, "undecided", True)
         return out(status_from_region(where, direction), "R3", "median", med, lo, hi, where, True)
-    if np.all(_round_off(d, scale_all)):  # identical to round-off: a tie
+    if np.all(_round_off(d, scale_all, tie)):  # identical to round-off: a tie
         where = region(0.0, 0.0, margin) if margin > 0 else "undecided"
         return out(status_from_region(where, direction), "R2", "mean", 0.0, 0.0, 0.0, where, False)
     # R3: a heavy tail is reported (with the median and the share of runs won), never a switch of statistic
     heavy = n >= HEAVY_TAIL_MIN_RUNS and ((tail < HEAVY_TAIL_INDEX) or _dominated(d))
     mean = float(np.mean(d))
-    if _round_off(np.ptp(d), scale_all):  # differences equal to round-off: deterministic, a zero-width interval
+    if _round_off(np.ptp(d), scale_all, tie):  # differences equal to round-off: deterministic, a zero-width interval
         lo = hi = mean
     else:
         ci = stats.ttest_1samp(d, 0.0).confidence_interval(CONFIDENCE_LEVEL)
         lo, hi = float(ci.low), float(ci.high)
-    where = region(lo, hi, margin, scale=scale_all)  # R2: an end within round-off of +-m is the margin
+    where = _region(lo, hi, margin, scale_all, tie)  # R2: an end within round-off of +-m is the margin
     return out(status_from_region(where, direction), "R2", "mean", mean, lo, hi, where, heavy)
 
 

@@ -110,7 +110,8 @@ def grid_log_normaliser(
     gms : sequence of GaussianMixture, each of dimension 2
         The N densities :math:`\hat p_i`.
     eps : array_like, shape (N,) or (E, N)
-        Exponent vectors, each on the simplex.
+        Exponent vectors, each on the simplex (``fusion.optimise.simplex.check_simplex``: float32 or float16 rows
+        are divided by their sums before use).
     limit : float
         Half-width of the square grid (state units); the mass outside must be negligible.
     n : int
@@ -136,8 +137,8 @@ def grid_log_normaliser(
     n = count(n, "n", minimum=2)
     allocation((n, n, len(gms)), "n and gms")  # the n x n grid's log-densities, before they are computed
     E = np.atleast_2d(as_array(eps, "eps", ndim=(1, 2)))
-    for e in in_given_precision(E, eps):   # float32 eps: on the simplex in its own precision
-        check_simplex(e, len(gms))
+    # float32 eps: on the simplex in its own precision, and used as check_simplex returns it (renormalised)
+    E = np.stack([check_simplex(e, len(gms)) for e in in_given_precision(E, eps)])
     axis = np.linspace(-limit, limit, n)
     X, Y = np.meshgrid(axis, axis)
     L = log_densities(gms, np.column_stack([X.ravel(), Y.ravel()]))  # (n*n, N)

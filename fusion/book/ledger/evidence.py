@@ -16,7 +16,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._limits import inexact_integer, written_as
+from fusion._limits import inexact_integer, integer_entries, written_as
 from fusion._validation import integer
 from fusion._validation import _numeric, _real_number, count, counts, seed as check_seed
 from fusion._validation import one_of, read_once, shown
@@ -59,17 +59,20 @@ def _decimal_fault(p: float, d: int, dtype: np.dtype) -> str | None:
       dtype's integer range (float32 1e7, float16 1000: spacing at most 1) holds 0 decimals (fuzz 28a C4: an
       allowance of 2 ulps reaching the neighbour refused them). At float16's largest value the spacing is infinite
       (refused, without numpy's overflow warning: fuzz 28a D3).
-    * A float64 value may lie a few float64 ulps from ``q`` (``0.1 * 3``, ``12.3 / 100``), be the float32 nearest
-      ``q`` (``float(np.float32(0.3))``), or be a float32 number that the float32 rule accepts (a float32 product
-      converted to float); anything else is "extra" (an extra decimal).
+    * A float64 value (any dtype but an integer one) cannot hold ``d`` decimals by the same spacing rule
+      (``2.0**53`` at 1 decimal, spacing 2; fuzz 30a C2). Otherwise it may lie a few float64 ulps from ``q``
+      (``0.1 * 3``, ``12.3 / 100``), be the float32 nearest ``q`` (``float(np.float32(0.3))``), or be a float32
+      number that the float32 rule accepts (a float32 product converted to float); anything else is "extra".
     """
     q = round(p, d)
-    if dtype.kind == "f" and dtype.itemsize < 8:
+    short = dtype.kind == "f" and dtype.itemsize < 8
+    step = 10.0 ** -d
+    if dtype.kind not in "iu":  # an integer array's values are exact (those float64 cannot hold: refused before)
         with np.errstate(over="ignore"):  # float16 65504: its spacing overflows to inf (refused below)
-            spacing = float(np.spacing(abs(dtype.type(p))))
-        step = 10.0 ** -d
-        if spacing > step:
+            spacing = float(np.spacing(abs((dtype if short else np.dtype(np.float64)).type(p))))
+        if spacing > step:  # float64 too (fuzz 30a C2): 1234567890123456.78 at 2 decimals is ...456.75
             return "cannot hold"
+    if short:
         off = abs(p - q)
         return None if off <= _SHORT_ULPS * spacing and off < step / 2 else "extra"
     if written_as(p, q):   # the package's one rule for float64 (fusion._limits.written_as)
@@ -145,7 +148,7 @@ class PublishedValues:
         ``1234567.85`` with 1 decimal (the float 1234567.875, float32 of 1234567.9, is accepted: it is that decimal).
         A float32 or float16 published array is held to its own precision (``_decimal_fault``): a few ulps of its
         dtype, and a value its dtype cannot hold at ``decimals`` (its spacing there exceeds the printed step:
-        float32 98765.4321 at 4 decimals) is refused; an exact integer of a float32 table below ``2**24`` (float16:
+        float32 98765.4321 at 4 decimals; float64 1234567890123456.78 at 2) is refused; an exact integer of a float32 table below ``2**24`` (float16:
         below ``2**11``) holds 0 decimals. Likewise an integer that float64 cannot hold exactly (beyond 2**53 in
         magnitude, ``2**53 + 1``), in ``published`` or ``ours``, is refused: R1 would compare another number.
     unit : str
@@ -195,12 +198,15 @@ class PublishedValues:
         dec = np.broadcast_to(np.array(dec_l, dtype=int), pub.shape)
         # a real extra decimal, not the binary round-off of the printed decimal (float32, 0.1 * 3, 12.3 / 100: fuzz 24e F1)
         dtype = np.asarray(published).dtype
-        faults = [_decimal_fault(p, d, dtype) for p, d in zip(pub.tolist(), dec.tolist())]
+        exact = integer_entries(published, pub.size)  # an int given beside floats is exact (fuzz 30a C1/C2)
+        faults = [_decimal_fault(p, d, np.dtype(np.int64) if k else dtype)
+                  for p, d, k in zip(pub.tolist(), dec.tolist(), exact)]
         bad = [i for i, why in enumerate(faults) if why]
         if bad:  # R1 would compare ours with the published value rounded (fuzz 24a D5)
             i = bad[0]
             if faults[i] == "cannot hold":
-                raise ValueError(f"published[{i}] = {shown(float(pub[i]))} is a {dtype} that cannot hold "
+                held = dtype if dtype.kind == "f" and dtype.itemsize < 8 else "float64"
+                raise ValueError(f"published[{i}] = {shown(float(pub[i]))} is a {held} that cannot hold "
                                  f"decimals[{i}] = {int(dec[i])} decimals (its spacing there exceeds the printed step: two "
                                  "neighbouring printed values round to one value of the dtype)")
             raise ValueError(f"published[{i}] = {shown(float(pub[i]))} has more decimals than decimals[{i}] = "
@@ -259,7 +265,9 @@ class Comparison:
     ----------
     a, b : array_like, shape (runs,)
         Per-run metric of A and of B on the same runs (same seeds, same samples). ``+inf`` marks a run whose
-        statistic is infinite; NaN is refused.
+        statistic is infinite; NaN is refused. Runs given as float32 or float16 are judged with their own round-off
+        (R2's tie, as :func:`~fusion.book.rulebook.judge_paired`; kept by :meth:`with_margin`, while a record
+        rebuilt from the stored floats, ``dataclasses.replace``, is judged as float64 runs).
     a_name, b_name : str
     claim : {"less", "greater", "equal"}
         What the claim says of A against B ("equal": no effect, within the margin).
@@ -346,6 +354,7 @@ class Comparison:
                      ("margin", float(margin)), ("relative_margin", None if relative_margin is None else float(relative_margin)),
                      ("conditions", conditions), ("infinite_mean", inf_m), ("kind", "comparison")):
             object.__setattr__(self, k, v)
+        object.__setattr__(self, "_tie", R._tie_share(a, b))  # R2's tie, from the runs' dtype as given (fuzz 30a C3)
 
     def with_margin(self, margin: float | None = None, relative_margin: float | None = None) -> "Comparison":
         """The same comparison judged with another practical margin (absolute, or relative to B's mean).
@@ -361,8 +370,10 @@ class Comparison:
         -------
         Comparison
         """
-        return Comparison(self.a, self.b, self.a_name, self.b_name, self.claim, self.metric, self.seed, self.reason,
-                          margin, relative_margin, self.conditions, self.infinite_mean)
+        out = Comparison(self.a, self.b, self.a_name, self.b_name, self.claim, self.metric, self.seed, self.reason,
+                         margin, relative_margin, self.conditions, self.infinite_mean)
+        object.__setattr__(out, "_tie", self._tie)  # the runs' precision as first given (R2's tie)
+        return out
 
     @property
     def runs(self) -> int:
@@ -372,7 +383,8 @@ class Comparison:
         """The rulebook's judgement (R2, R3), computed once."""
         cached = self.__dict__.get("_judgement")
         if cached is None:
-            cached = R.judge_paired(self.a, self.b, self.claim, self.margin, self.infinite_mean)
+            cached = R._judge(np.array(self.a), np.array(self.b), self.claim, self.margin, self.infinite_mean,
+                              self.__dict__.get("_tie", R.ROUND_OFF_TIE))  # R2's tie of the runs as given
             object.__setattr__(self, "_judgement", cached)
         return cached
 
