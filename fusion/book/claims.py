@@ -212,8 +212,9 @@ class ReadingSpec:
     ValueError
         An empty ``key`` or one not of lower-case letters, digits and ``-`` (a claim file's pattern, matching the
         whole key: ``"typical-run\\n"`` is refused); ``kind`` not a reading kind; ``runs`` below 1; ``choice`` or
-        ``reading`` not a text :func:`build_ledger` can fill (see :class:`ClaimSpec`). (``choice`` and ``reading`` may be empty: a
-        record without readings has an implicit primary one.)
+        ``reading`` not a text :func:`build_ledger` can fill (see :class:`ClaimSpec`); ``settings`` holding a
+        container that contains itself, or containers nested more than 64 deep. (``choice`` and ``reading`` may be
+        empty: a record without readings has an implicit primary one.)
     """
 
     key: str
@@ -333,7 +334,7 @@ class ClaimSpec:
             object.__setattr__(self, "baseline", _check_baseline(self.baseline))
         for name in ("margin", "baseline"):  # stored read-only: a frozen record's margin cannot be edited (fuzz 20)
             if getattr(self, name) is not None:
-                object.__setattr__(self, name, frozen_value(getattr(self, name)))
+                object.__setattr__(self, name, frozen_value(getattr(self, name), name=name))
         for name in ("critiques", "assumptions"):
             v = getattr(self, name)
             if not (isinstance(v, tuple) and all(isinstance(x, str) for x in v)):
