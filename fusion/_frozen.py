@@ -8,6 +8,8 @@ from typing import Any, TypeVar
 
 import numpy as np
 
+from fusion._nesting import MAX_NESTING, nesting_error
+
 T = TypeVar("T")
 
 
@@ -117,13 +119,16 @@ def protect_frames(cls: type, names: Any) -> None:
         setattr(cls, name, FrameField(name, current))
 
 
-def frozen_value(value: object, copy: bool = False, _copies: dict[int, np.ndarray] | None = None) -> object:
+def frozen_value(value: object, copy: bool = False, _copies: dict[int, np.ndarray] | None = None, *,
+                 name: str = "value", _open: list[int] | None = None) -> object:
     """``value`` with nothing mutable in place: arrays read-only, mappings :class:`ReadOnlyMapping`, lists tuples.
 
     Recursive through mappings, lists and tuples (a named tuple keeps its type); anything else (a number, a nested
     result, which freezes itself) is returned as is. Every :class:`~collections.abc.Mapping` is copied into a
     :class:`ReadOnlyMapping` of its items, not only a ``dict``: a caller's ``mappingproxy``, ``ChainMap`` or
-    other mapping is a view of data it can still change (and a ``mappingproxy`` cannot be pickled).
+    other mapping is a view of data it can still change (and a ``mappingproxy`` cannot be pickled). A container
+    that contains itself, or containers nested more than ``fusion._nesting.MAX_NESTING`` (64) deep, are refused
+    naming ``name`` (fuzz 30a C8: a RecursionError before).
 
     Parameters
     ----------
@@ -134,11 +139,18 @@ def frozen_value(value: object, copy: bool = False, _copies: dict[int, np.ndarra
         otherwise they are made read-only in place (the object's own arrays), but for a 0-d array, always copied
         (a scalar field given as a caller's 0-d array is never stored aliased, fuzz 29a C1). An array held twice
         (a study's default case also stored under its key) is copied once: the copies share as the originals did.
+    name : str
+        The argument (field) that holds ``value``, named in the refusals.
 
     Returns
     -------
     object
         The frozen value.
+
+    Raises
+    ------
+    ValueError
+        A container holding itself, or nested more than 64 deep, naming ``name``.
     """
     memo: dict[int, np.ndarray] = {} if _copies is None else _copies
     if isinstance(value, np.ndarray):
@@ -148,13 +160,23 @@ def frozen_value(value: object, copy: bool = False, _copies: dict[int, np.ndarra
             value = memo[id(value)]
         value.setflags(write=False)
         return value
-    if isinstance(value, Mapping):  # every mapping, not only a dict: a caller's view is copied (fuzz 29b B2)
-        return ReadOnlyMapping({k: frozen_value(v, copy, memo) for k, v in value.items()})
-    if isinstance(value, list) or type(value) is tuple:
-        return tuple(frozen_value(v, copy, memo) for v in value)
-    if isinstance(value, tuple) and hasattr(value, "_fields"):
-        return type(value)(*(frozen_value(v, copy, memo) for v in value))
-    return value
+    if not isinstance(value, (Mapping, list, tuple)):
+        return value
+    open_ = [] if _open is None else _open  # the ids of the containers around value (fuzz 30a C8)
+    if id(value) in open_ or len(open_) >= MAX_NESTING:
+        raise nesting_error(name, itself=id(value) in open_)
+    open_.append(id(value))
+    try:
+        if isinstance(value, Mapping):  # every mapping, not only a dict: a caller's view is copied (fuzz 29b B2)
+            return ReadOnlyMapping({k: frozen_value(v, copy, memo, name=name, _open=open_) for k, v in value.items()})
+        frozen = (frozen_value(v, copy, memo, name=name, _open=open_) for v in value)
+        if isinstance(value, list) or type(value) is tuple:
+            return tuple(frozen)
+        if hasattr(value, "_fields"):  # a named tuple keeps its type
+            return type(value)(*frozen)
+        return value
+    finally:
+        open_.pop()
 
 
 #: Field values with nothing to freeze (:func:`freeze_arrays` skips them).
@@ -182,7 +204,7 @@ def freeze_arrays(obj: object) -> None:
                 frozen = copies[id(value)] = np.array(value)
                 frozen.flags.writeable = False
         else:
-            frozen = frozen_value(value, True, copies)
+            frozen = frozen_value(value, True, copies, name=name)
         if frozen is not value:
             object.__setattr__(obj, name, frozen)
 
@@ -199,7 +221,7 @@ def freeze_shared(obj: object) -> None:
     """
     for name in obj.__dataclass_fields__:  # type: ignore[attr-defined]
         value = getattr(obj, name)
-        frozen = frozen_value(value)
+        frozen = frozen_value(value, name=name)
         if frozen is not value:
             object.__setattr__(obj, name, frozen)
 

@@ -190,6 +190,29 @@ def argument_copy(x: np.ndarray) -> np.ndarray:
     return np.array(x, copy=True)
 
 
+def value_copy(v: object) -> object:
+    """What a caller's callable returned, kept as it was when returned: an array copied as it is received.
+
+    The sibling of :func:`argument_copy` for what the package keeps (fuzz 30a C5): a callable may return one
+    buffer it overwrites at each call (a 0-d array filled in place), and values collected call by call
+    (``[f(x) for x in xs]``, converted after the loop) were then all that buffer, the last value
+    (:func:`~fusion.optimise.scalar.grid_search` returned ``x = 0`` with the ``fun`` of ``x = 1``). Every
+    optimiser reads each objective value through this (or converts it at once, ``objective_values``).
+
+    Parameters
+    ----------
+    v : object
+        What the callable returned.
+
+    Returns
+    -------
+    object
+        A copy of ``v`` if it is an ndarray (its subclass kept: a masked array is refused afterwards by name),
+        else ``v`` itself (numbers are immutable; anything else is refused by the checks that follow).
+    """
+    return v.copy() if isinstance(v, np.ndarray) else v
+
+
 #: Arguments read as they are, any number of times: arrays (their subclasses too: a masked array is refused by the
 #: checks that follow, by name), lists, tuples, numbers, strings, None and mappings give the same values at each read.
 _STABLE = (np.ndarray, list, tuple, int, float, complex, np.generic, str, bytes, type(None), _Mapping)

@@ -633,7 +633,7 @@ def _store(obj: object, values: Mapping[str, Any], copy: bool) -> None:
                 v = np.array(v, dtype=v.dtype if v.dtype.kind in "biuO" else float)
             v.setflags(write=False)
         else:  # dicts become read-only mappings, lists tuples (check_fields already copied a dict's arrays)
-            v = frozen_value(v)
+            v = frozen_value(v, name=f"{type(obj).__name__}.{name}")
         object.__setattr__(obj, name, v)
 
 
@@ -644,7 +644,8 @@ def validated_post_init(self: object) -> None:
     _store(self, values, copy=True)
     for f in dataclasses.fields(self):  # type: ignore[arg-type]
         if f.name not in values:  # the fields the spec does not check: dicts and lists frozen too, arrays copied
-            object.__setattr__(self, f.name, frozen_value(getattr(self, f.name), copy=True))
+            object.__setattr__(self, f.name, frozen_value(getattr(self, f.name), copy=True,
+                                                          name=f"{type(self).__name__}.{f.name}"))
 
 
 def shared_post_init(self: object) -> None:

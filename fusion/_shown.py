@@ -16,8 +16,13 @@ MAX_SHOWN = 80
 
 def shown(value: object, limit: int = MAX_SHOWN) -> str:
     """``repr(value)`` for an error message, cut to ``limit`` characters (a cut repr ends with ``...`` and the
-    original length); ``"a <type name>"`` when the value's own ``__repr__`` raises."""
+    original length); ``"a <type name>"`` when the value's own ``__repr__`` raises (a RecursionError of a list
+    nested thousands deep too). A list or tuple of more than ``limit`` entries is shown by its first ``limit``
+    entries and its length (its whole repr is never built: fuzz 30a C8)."""
     try:
+        if type(value) in (list, tuple) and len(value) > limit:  # type: ignore[arg-type]
+            r = repr(type(value)(value[:limit]))  # type: ignore[index, call-arg]
+            return f"{r[:limit]}... ({len(value):,} entries)"  # type: ignore[arg-type]
         r = repr(value)
     except Exception:  # noqa: BLE001 - the caller's repr: any exception
         return f"a {type(value).__name__}"

@@ -56,7 +56,7 @@ def record(value: object, name: str, required: tuple[str, ...], optional: tuple[
     if not extra:
         unknown = [k for k in value if k not in required and k not in optional]
         if unknown:
-            raise ValueError(f"{name} has unknown keys {unknown} (allowed: {list(required) + list(optional)})")
+            raise ValueError(f"{name} has unknown keys {shown(unknown)} (allowed: {list(required) + list(optional)})")
     return value
 
 

@@ -117,10 +117,11 @@ from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, se
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, mapping_of, psd_factor, record, records_of, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
-from fusion._guards import argument_copy, read_once  # noqa: F401 (re-exported: what callables and checks are given)
+from fusion._guards import argument_copy, read_once, value_copy  # noqa: F401 (re-exported: what callables and checks are given)
 from fusion._limits import LOOP_STEP, MAX_INPUT_ELEMENTS, MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE  # noqa: F401
 from fusion._limits import loop_work, work  # noqa: F401
 from fusion._shown import MAX_SHOWN, shown  # noqa: F401 (re-exported: the echo of a bad value)
+from fusion._nesting import MAX_NESTING, is_ragged, ndim_of, ragged_error, shape_of  # noqa: F401 (re-exported)
 from fusion._options import (  # noqa: F401 (re-exported: rules 6, 18, 19)
     _plain_text, _safe_repr, flag, keywords, one_of, options, template, text)
 
@@ -187,6 +188,8 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
             raise
         if "complex" in str(exc):
             raise _complex_error(name) from None
+        if is_ragged(exc):  # numpy's message names nothing: the one rule of a ragged or self-containing list
+            raise ragged_error(name) from None
         raise TypeError(f"{name} must be numeric (array_like of numbers): {exc}") from None
     except MemoryError:
         raise

@@ -50,7 +50,6 @@ import inspect
 import os
 import re
 import string
-import unicodedata
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -59,6 +58,7 @@ from typing import Any
 import numpy as np
 import yaml
 
+from fusion.book._claim_text import text_problem as _text_problem  # the text rule (fuzz 29a D1, 30a C4/D3)
 from fusion._frozen import constant, freeze_arrays, frozen_value, restore_frozen
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
@@ -149,25 +149,6 @@ _PLAIN_SCHEMA: dict[str, Any] = {
 SCHEMA: Mapping[str, Any] = constant(_PLAIN_SCHEMA)
 
 
-#: Unicode categories of characters that show nothing by themselves: controls, format characters (zero-width
-#: space and joiner, direction marks and overrides, the BOM), separators (spaces) and combining marks.
-_INVISIBLE = ("Cc", "Cf", "Cs", "Co", "Cn", "Zs", "Zl", "Zp", "Mn", "Me")
-
-
-def _text_problem(value: str, required: bool = True) -> str | None:
-    """What makes ``value`` not a text of a claim file, or None (fuzz 29a D1): the one rule for every text of a claim
-    file. A text holds no control or format character (Unicode category Cc or Cf: a NUL, a right-to-left override
-    that reverses the displayed text, a zero-width space that makes ``mae\u200b`` another key printed as ``mae``;
-    a tab and a line break are whitespace, allowed), and a text that must say something holds a visible character
-    (not only spaces, invisible characters or combining marks)."""
-    bad = next((c for c in value if c not in "\t\n" and unicodedata.category(c) in ("Cc", "Cf")), None)
-    if bad is not None:
-        return f"holds the invisible control or format character U+{ord(bad):04X} (write the text without it)"
-    if required and all(unicodedata.category(c) in _INVISIBLE for c in value):
-        return "must not be empty (it holds no visible character)"
-    return None
-
-
 def _nonempty(value: object, name: str, required: bool = True) -> str:
     """A text field: TypeError naming ``name`` for a non-str, ValueError for a text :func:`_text_problem` refuses
     (one without a visible character when ``required``)."""
@@ -212,8 +193,9 @@ class ReadingSpec:
     ValueError
         An empty ``key`` or one not of lower-case letters, digits and ``-`` (a claim file's pattern, matching the
         whole key: ``"typical-run\\n"`` is refused); ``kind`` not a reading kind; ``runs`` below 1; ``choice`` or
-        ``reading`` not a text :func:`build_ledger` can fill (see :class:`ClaimSpec`). (``choice`` and ``reading`` may be empty: a
-        record without readings has an implicit primary one.)
+        ``reading`` not a text :func:`build_ledger` can fill (see :class:`ClaimSpec`); ``settings`` holding a
+        container that contains itself, or containers nested more than 64 deep. (``choice`` and ``reading`` may be
+        empty: a record without readings has an implicit primary one.)
     """
 
     key: str
@@ -271,8 +253,9 @@ class ClaimSpec:
         ``critiques`` or ``assumptions`` not a tuple of str; ``readings`` not a tuple of ReadingSpec.
     ValueError
         An ``id``, ``chapter``, ``where``, ``claim``, ``published``, ``link``, critique or assumption without a visible
-        character; any text holding a control or format character (Unicode Cc or Cf: NUL, a direction override, a
-        zero-width space; tab and line break allowed, ``_text_problem``); ``claimant``, ``test``
+        character (a Hangul filler or the braille blank is not one); any text holding a control or format character
+        (Unicode Cc or Cf: NUL, a direction override, a zero-width space or joiner; tab and line break allowed) or a
+        lone surrogate (Cs, which cannot be written as UTF-8; ``fusion.book._claim_text``); ``claimant``, ``test``
         or ``direction`` outside its vocabulary; a margin not ``{"relative": r}`` or ``{"absolute": x}`` with
         a finite value in [0, 1e150]; a ``baseline`` without ``name`` and ``defined`` or with another key; a
         repeated critique label; ``evidence`` not ``module:function`` (the file's pattern); and
@@ -333,7 +316,7 @@ class ClaimSpec:
             object.__setattr__(self, "baseline", _check_baseline(self.baseline))
         for name in ("margin", "baseline"):  # stored read-only: a frozen record's margin cannot be edited (fuzz 20)
             if getattr(self, name) is not None:
-                object.__setattr__(self, name, frozen_value(getattr(self, name)))
+                object.__setattr__(self, name, frozen_value(getattr(self, name), name=name))
         for name in ("critiques", "assumptions"):
             v = getattr(self, name)
             if not (isinstance(v, tuple) and all(isinstance(x, str) for x in v)):

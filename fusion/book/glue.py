@@ -19,6 +19,7 @@ from pandas.io.formats.style import Styler
 from fusion._validation import count
 from fusion.book.tables import rounded
 from fusion._shown import shown
+from fusion._nesting import MAX_NESTING, nesting_error
 
 # The type aliases below are importable but not in __all__: autodoc would file ``dict[...]`` under the module
 # ``builtins`` and the source listings would link to a page that does not exist.
@@ -117,10 +118,12 @@ def _finite(value: object, key: str = "key") -> bool:
         A value, or an entry of a container, of another type (:data:`_GLUE_LEAVES`, :data:`_GLUE_CONTAINERS`):
         a deque, ``array.array``, dict view, generator, masked array (whose text prints ``--``), ...,
         naming ``values[key]``.
+    ValueError
+        Containers nested more than ``fusion._nesting.MAX_NESTING`` (64) deep, naming ``values[key]``.
     """
-    todo, seen = [value], set()
+    todo, seen = [(value, 0)], set()  # each value with the number of containers around it
     while todo:
-        v = todo.pop()
+        v, depth = todo.pop()
         if v is pd.NA or v is pd.NaT:
             return False
         if isinstance(v, np.ma.MaskedArray) or not isinstance(v, _GLUE_LEAVES + _GLUE_CONTAINERS):
@@ -131,6 +134,9 @@ def _finite(value: object, key: str = "key") -> bool:
             if id(v) in seen:  # a container that holds itself
                 continue
             seen.add(id(v))
+            if depth >= MAX_NESTING:  # its text would recurse (fuzz 30a D4: a RecursionError in the kernel)
+                raise nesting_error(f"values[{shown(key)}]", itself=False)
+        inner = depth + 1
         if isinstance(v, Decimal):
             if not v.is_finite():
                 return False
@@ -138,14 +144,14 @@ def _finite(value: object, key: str = "key") -> bool:
             if np.isnat(v):
                 return False
         elif isinstance(v, (pd.Series, pd.Index)):
-            todo.append(v.to_numpy())
+            todo.append((v.to_numpy(), inner))
         elif isinstance(v, ExtensionArray):   # its entries as objects: pd.NA, NaN, NaT, as the Series shows them
-            todo.append(np.asarray(v, dtype=object))
+            todo.append((np.asarray(v, dtype=object), inner))
         elif isinstance(v, np.ndarray):
             if v.dtype.names:
-                todo += [v[n] for n in v.dtype.names]
+                todo += [(v[n], inner) for n in v.dtype.names]
             elif v.dtype.kind == "O":
-                todo += list(v.flat)
+                todo += [(e, inner) for e in v.flat]
             elif v.dtype.kind in "mM":
                 if np.isnat(v).any():
                     return False
@@ -155,9 +161,9 @@ def _finite(value: object, key: str = "key") -> bool:
             if not cmath.isfinite(v):
                 return False
         elif isinstance(v, Mapping):
-            todo += list(v.values())
+            todo += [(e, inner) for e in v.values()]
         elif isinstance(v, (list, tuple, set, frozenset)):
-            todo += list(v)
+            todo += [(e, inner) for e in v]
     return True
 
 
@@ -186,7 +192,9 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         infinite, or a missing value (``pd.NA``, ``pd.NaT``, a NumPy ``NaT``), also inside a list, tuple, set,
         mapping, Series, Index, pandas extension array (``pd.array``, Categorical, SparseArray), object or
         structured array (not a DataFrame or Styler, whose tables print a missing cell as a word), naming
-        ``values[key]``; checked for every value before any is glued, whatever ``decimals``.
+        ``values[key]``; checked for every value before any is glued, whatever ``decimals``. Containers nested
+        more than 64 deep (``fusion._nesting.MAX_NESTING``; their text recurses), naming ``values[key]``; a
+        container that holds itself is accepted (its text prints ``[...]`` there).
     """
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")

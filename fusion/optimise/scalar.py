@@ -30,7 +30,8 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from fusion._validation import allocation, as_array, as_callable, as_rng, as_rngs, count, finite_optimum, objective_values, scalar
-from fusion._validation import argument_copy, flag, loop_work, tolerance
+from fusion._validation import argument_copy, flag, loop_work, tolerance, value_copy
+from fusion._nesting import shape_of
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
 
@@ -42,12 +43,12 @@ def _values(f: Callable[[float], float], xs: np.ndarray, vectorized: bool) -> np
     candidates are read again), else one call per point."""
     if vectorized:
         return objective_values(f(argument_copy(xs)), xs.shape, "f")
-    return objective_values([f(float(x)) for x in xs], xs.shape, "f")
+    return objective_values([value_copy(f(float(x))) for x in xs], xs.shape, "f")  # a reused buffer (fuzz 30a C5)
 
 
 def _one_value(v: object) -> float:
     """One objective value as a float (TypeError naming ``f`` for a non-number or complex)."""
-    arr = objective_values(v, np.shape(v), "f")
+    arr = objective_values(v, shape_of(v, "the values returned by f"), "f")
     if arr.size != 1:
         raise ValueError(f"f must return one number per point, got shape {arr.shape}")
     return float(arr.reshape(-1)[0])

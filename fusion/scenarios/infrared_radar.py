@@ -504,7 +504,7 @@ def _rule_subset(rules: Sequence[str] | None) -> dict[IrMethod, str]:
         raise TypeError(f"rules must hold keys (strings) of RULES, got {shown(list(rules))}")
     unknown = [r for r in rules if r not in RULES]
     if unknown:
-        raise ValueError(f"rules must be keys of RULES ({sorted(map(str, RULES))}), got {unknown}")
+        raise ValueError(f"rules must be keys of RULES ({sorted(map(str, RULES))}), got {shown(unknown)}")
     return {IrMethod(name): RULES[IrMethod(name)] for name in rules}
 
 

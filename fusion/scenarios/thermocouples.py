@@ -25,6 +25,7 @@ from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, c
                                 scalar, sequence, window as check_window)
 from fusion.readings.fusion_set import fuse_epochs
 from fusion._shown import shown
+from fusion._nesting import ndim_of
 
 __all__ = [
     "DEFAULT_SIGMAS",
@@ -131,7 +132,7 @@ def inject_failure(
     sensors, biases = sequence(sensors, "sensors"), sequence(biases, "biases")  # their items (any 1-D array-like)
     if len(sensors) != len(biases):
         raise ValueError("sensors and biases must have the same length")
-    if isinstance(samples, (str, bytes)) or np.ndim(samples) != 1 or len(samples) != 2:
+    if isinstance(samples, (str, bytes)) or ndim_of(samples, "samples") != 1 or len(samples) != 2:
         raise TypeError(f"samples must be a pair (first, last) of sample numbers, got {shown(samples)}")
     first, last = count(samples[0], "samples[0]"), count(samples[1], "samples[1]")
     for nm, seq in (("sensors", sensors), ("biases", biases)):

@@ -838,7 +838,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     sequence(names, "names")
     unknown = [n for n in names if not isinstance(n, str) or n not in METHODS]
     if unknown:
-        raise ValueError(f"names must be keys of METHODS {sorted(METHODS)}; unknown: {unknown}")
+        raise ValueError(f"names must be keys of METHODS {sorted(METHODS)}; unknown: {shown(unknown)}")
     sigma = std_scalar(sigma, "sigma")
     sf = sigma if sigma_filter is None else std_scalar(sigma_filter, "sigma_filter")
     delay = scalar(delay, "delay")

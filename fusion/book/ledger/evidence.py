@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._limits import inexact_integer, integer_entries, written_as
+from fusion._nesting import ndim_of
 from fusion._validation import integer
 from fusion._validation import _numeric, _real_number, count, counts, seed as check_seed
 from fusion._validation import one_of, read_once, shown
@@ -190,7 +191,7 @@ class PublishedValues:
                 raise ValueError(f"{name}[{i}] is an integer that float64 cannot hold exactly (beyond 2**53 in "
                                  "magnitude): R1 would compare another number")
         # integers >= 0 up to the ceiling of a number of decimals (a float, even 2.0, is refused: rule 13)
-        one = isinstance(decimals, (str, bytes)) or not hasattr(decimals, "__len__") or np.ndim(decimals) == 0
+        one = isinstance(decimals, (str, bytes)) or not hasattr(decimals, "__len__") or ndim_of(decimals, "decimals") == 0
         dec_l = [count(decimals, "decimals", minimum=0)] if one else counts(decimals, "decimals", minimum=0)
         if len(dec_l) not in (1, pub.size):
             raise ValueError(f"decimals must hold one number or one per published value ({pub.size}), got {len(dec_l)}")

@@ -1,0 +1,44 @@
+r"""The one rule for every text of a claim file (``fusion.book.claims``: fuzz 29a D1, fuzz 30a C4/D3).
+
+Kept apart from ``fusion.book.claims`` (at the package's 1,000-line limit). A text holds no control or format
+character (Unicode category Cc or Cf: a NUL, a right-to-left override that reverses the displayed text, a
+zero-width space that makes ``mae\u200b`` another key printed as ``mae``; a tab and a line break are whitespace,
+allowed) and no lone surrogate (category Cs: not a character of any text, it cannot be written as UTF-8, and the
+ledger and the book are written as UTF-8); a text that must say something holds a visible character.
+
+Decided corner cases (fuzz 30a D3): the zero-width joiners ZWNJ (U+200C) and ZWJ (U+200D) are format characters
+and stay refused, even where a script or an emoji sequence uses them: the book's texts are English, and an
+invisible joiner makes two texts (two quantity keys) that print alike. The Hangul fillers (U+115F, U+1160,
+U+3164, U+FFA0) and the braille blank (U+2800) are letters and a symbol by category but print as blank space:
+they count as invisible, so a text of only those (and spaces) is refused as empty; beside visible characters
+they are accepted, as a space is.
+"""
+
+from __future__ import annotations
+
+import unicodedata
+
+__all__: list[str] = []  # private module
+
+#: Unicode categories of characters that show nothing by themselves: controls, format characters (zero-width
+#: space and joiner, direction marks and overrides, the BOM), surrogates, private-use and unassigned code points,
+#: separators (spaces) and combining marks.
+_INVISIBLE = ("Cc", "Cf", "Cs", "Co", "Cn", "Zs", "Zl", "Zp", "Mn", "Me")
+#: Characters of other categories that print as blank space: the Hangul fillers and the braille blank (D3).
+_BLANK = frozenset("\u115f\u1160\u3164\uffa0\u2800")
+
+
+def text_problem(value: str, required: bool = True) -> str | None:
+    """What makes ``value`` not a text of a claim file, or None: a control or format character (Cc, Cf; tab and
+    line break allowed) or a lone surrogate (Cs) anywhere, or, when ``required``, no visible character (only
+    spaces, invisible characters, combining marks, Hangul fillers or the braille blank)."""
+    for c in value:
+        cat = unicodedata.category(c)
+        if cat == "Cs":
+            return (f"holds the lone surrogate U+{ord(c):04X}, not a character (the text cannot be written as "
+                    "UTF-8; write the character it stands for)")
+        if cat in ("Cc", "Cf") and c not in "\t\n":
+            return f"holds the invisible control or format character U+{ord(c):04X} (write the text without it)"
+    if required and all(c in _BLANK or unicodedata.category(c) in _INVISIBLE for c in value):
+        return "must not be empty (it holds no visible character)"
+    return None
