@@ -18,7 +18,7 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
    computed values (``exp`` of a large negative number) that are numerically zero next to the
    others, and nothing divides by them.
 3. *Objectives*: optimisers refuse an objective that returns NaN, a non-number or the wrong
-   shape, and one that is infinite everywhere (:func:`objective_values`).
+   shape, and one that is infinite everywhere (``fusion._objectives.objective_values``).
 5. *Singular systems*: linear solves go through :func:`solve`, which names the argument
    whose matrix is singular instead of letting :class:`numpy.linalg.LinAlgError` escape.
 6. *Types and keys*: ``bool`` is not a number; options dicts are checked against the keys
@@ -859,62 +859,6 @@ def as_state(x: ArrayLike, name: str = "x") -> FloatArray:
     if arr.ndim != 1 or arr.size == 0:
         raise ValueError(f"{name} must be a non-empty 1-D vector, got shape {arr.shape}")
     return check_magnitude(arr, name)
-
-
-def objective_values(values: object, shape: tuple[int, ...], name: str, infeasible: float = np.inf) -> FloatArray:
-    """The values an objective ``name`` returned for candidates of ``shape``, checked (rule 3).
-
-    Parameters
-    ----------
-    values : object
-        What the objective returned.
-    shape : tuple of int
-        The shape it must have.
-    name : str
-        The objective's argument name (``"f"``, ``"fitness"``), named in the messages.
-    infeasible : float
-        The infinity that marks an infeasible point (``inf`` for a minimiser, ``-inf`` for a
-        maximiser); the other one would be an unbounded optimum and is refused.
-
-    Returns
-    -------
-    ndarray
-        The values as floats; ``infeasible`` is allowed, NaN and the opposite infinity are not.
-
-    Raises
-    ------
-    TypeError
-        Values that are not real numbers (strings, complex, ...).
-    ValueError
-        Wrong shape, or NaN.
-    """
-    what = f"the values returned by {name}"
-    v = _numeric(values, what)
-    if v.shape != shape:
-        raise ValueError(f"{name} returned values of shape {v.shape} for candidates of shape {shape}")
-    if np.isnan(v).any():
-        raise ValueError(f"{name} returned NaN")
-    if (v == -infeasible).any():
-        raise ValueError(f"{name} returned {-infeasible}: the optimum would be unbounded")
-    return v
-
-
-def finite_optimum(value: float, name: str) -> float:
-    """Refuse an optimum whose objective value is not finite (rule 3): ``name`` took no finite value.
-
-    Raises
-    ------
-    ValueError
-        If ``value`` is infinite or NaN, or beyond :data:`MAX_MAGNITUDE` in magnitude (the result could not hold
-        it): naming the objective ``name``, not the result's field (fuzz 24a T1).
-    """
-    if not _isfinite(value):
-        raise ValueError(f"{name} took no finite value at the points tried (best value {value}): "
-                         "the objective is infinite everywhere the optimiser looked")
-    if abs(value) > MAX_MAGNITUDE:
-        raise ValueError(f"{name} returned a value of magnitude {abs(value):.3g} at its best point, beyond the "
-                         f"representable range (at most {MAX_MAGNITUDE:g} in magnitude): rescale the objective")
-    return value
 
 
 #: Smallest standard deviation accepted by :func:`std_scalar`: its square, a variance, is at least

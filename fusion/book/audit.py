@@ -16,7 +16,8 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from fusion._validation import within, FloatArray, as_array, as_callable, as_readings, count, nonnegative_scalar, one_of, positive_scalar, scalar
-from fusion._validation import objective_values, pairwise, shown
+from fusion._validation import pairwise, shown
+from fusion._objectives import objective_values
 from fusion._validation import text
 from fusion._results import ResultSpec, integer, number, tuple_of, validated_post_init
 from fusion.readings._row_blocks import CUBIC, PAIRS

@@ -196,10 +196,10 @@ class Rule:
 
 _PCT = f"{CONFIDENCE_LEVEL * 100:.0f} %"
 
-#: Every rule, in the order the Verdicts page prints them.
 #: Round-off of runs given as float32 or float16, in epsilons of their dtype (R2: their own round-off never decides).
 _TIE_ULPS = 4
 
+#: Every rule, in the order the Verdicts page prints them.
 RULES: tuple[Rule, ...] = (
     Rule("R1", "published values",
          "A published number is reproduced iff ours, rounded to the printed decimals, equals it (at an exact tie "

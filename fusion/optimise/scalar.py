@@ -29,7 +29,8 @@ from collections.abc import Callable, Sequence
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from fusion._validation import allocation, as_array, as_callable, as_rng, as_rngs, count, finite_optimum, objective_values, scalar
+from fusion._validation import allocation, as_array, as_callable, as_rng, as_rngs, count, scalar
+from fusion._objectives import finite_optimum, objective_values
 from fusion._validation import argument_copy, flag, loop_work, tolerance, value_copy
 from fusion._nesting import shape_of
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows

@@ -22,7 +22,8 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
 from fusion._validation import argument_copy, renormalised, sums_to_one, text, tolerance
-from fusion._validation import _numeric, FloatArray, as_callable, count, finite_optimum, objective_values
+from fusion._validation import _numeric, FloatArray, as_callable, count
+from fusion._objectives import finite_optimum, objective_values
 from fusion.optimise.result import OptimumResult
 
 __all__ = [

@@ -27,8 +27,9 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from fusion._validation import (as_rngs, FloatArray, as_callable, as_rng, count, finite_optimum, instance_of, nonnegative_scalar,
-                                objective_values, one_of, positive_scalar, scalar, work)
+from fusion._validation import (as_rngs, FloatArray, as_callable, as_rng, count, instance_of, nonnegative_scalar,
+                                one_of, positive_scalar, scalar, work)
+from fusion._objectives import finite_optimum, objective_values
 from fusion._validation import argument_copy, flag, text, tolerance
 from fusion._validation import LOOP_STEP, loop_work
 from fusion.optimise._ties import TIE_RTOL

@@ -29,6 +29,7 @@ from fusion.scenarios.fusion_networks import (NETWORK_METHODS, Network, NetworkS
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
 from fusion.book.chapters.chernoff.compare import _word
 from fusion.book.glue import GlueValues
+from fusion.book.study_cache import process_cache
 from fusion._counts import count, seed as check_seed
 from fusion._shown import shown
 
@@ -386,7 +387,7 @@ def _own_keys(studies: Mapping[str, Any], name: str = "studies") -> None:
                              f"({shown(sc_name)}): each study must be under its own network's key (two swapped?)")
 
 
-@functools.lru_cache(maxsize=1)
+@process_cache(maxsize=1)
 def _designed_names() -> dict[str, Network]:
     """The designed networks' scenario names -> their keys (:func:`premise_scenarios`, :func:`redundancy_scenarios`)."""
     return {sc.name: k for k, sc in (premise_scenarios() | redundancy_scenarios()).items()}
