@@ -12,7 +12,7 @@ import itertools
 import operator
 import os
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 
 import numpy as np
 
@@ -279,6 +279,45 @@ def distinct(items: list, name: str) -> list:
         if key in first:
             raise ValueError(f"{name} must not repeat an entry: {name}[{first[key]}] and {name}[{i}] are both "
                              f"{shown(v if _is_nan(v) else key)} (the results are keyed by its entries)")
+        first[key] = i
+    return items
+
+
+def general(value: object) -> object:
+    """``value`` as most result keys print it: a real number as ``f"{value:g}"`` (6 significant digits), a tuple
+    entry by entry (``("strong direction", 3.0000001)`` prints as ``("strong direction", "3")``), anything else
+    unchanged."""
+    if isinstance(value, tuple):
+        return tuple(general(v) for v in value)
+    if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_)):
+        return f"{value:g}"
+    return value
+
+
+def distinct_printed(items: list, name: str, printed: Callable[[object], object] = general,
+                     what: str = "keys a result") -> list:
+    """``items`` when no two print the same under ``printed`` (fuzz 30b B1-B5): the rule of :func:`distinct`
+    for entries that key a result through a format (``f"{x:g}"``, ``round(x, 6)``). Two entries that differ but
+    print the same would share one key, the last silently replacing the other, so the ValueError names
+    ``name``, both positions and the shared key. Exact repeats are refused by :func:`distinct` first.
+
+    Returns
+    -------
+    list
+        ``items`` unchanged.
+
+    Raises
+    ------
+    ValueError
+        If two entries are equal, or print the same under ``printed``.
+    """
+    distinct(items, name)
+    first: dict = {}
+    for i, v in enumerate(items):
+        key = printed(v)
+        if key in first:
+            raise ValueError(f"{name} must differ in how its entries print (each {what}, printed as {shown(key)}): "
+                             f"{name}[{first[key]}] and {name}[{i}] print the same")
         first[key] = i
     return items
 
