@@ -186,13 +186,28 @@ def _label(key: object, template: str = "{}") -> object:
 def _label_template(template: object) -> str:
     """``template`` when it formats one method label: a str of the shared template rule
     (``fusion._validation.template``: a width of two digits at most, no other field) with exactly one replacement
-    field, ``{}`` (or ``{0}``); a ValueError naming ``template`` otherwise (a template without a field would give
-    every method the same label, ``{1}`` or ``{x}`` an IndexError/KeyError, ``{:>5000000}`` a 5 MB label)."""
+    field, ``{}`` (or ``{0}``), that gives every method a distinct label with a visible character and no control or
+    format character (the claim files' text rule); a ValueError naming ``template`` otherwise (a template without a
+    field would give every method the same label, ``{:.1}`` two of them, ``{1}`` or ``{x}`` an IndexError/KeyError,
+    ``{:>5000000}`` a 5 MB label)."""
     template = format_template(template, "template", "label")
     fields = [f for _, f, _, _ in string.Formatter().parse(template) if f is not None]
     if fields not in ([""], ["0"]):
         raise ValueError(f"template = {shown(template)} does not format a method label: it must hold exactly one "
                          f"replacement field, {{}}, for the label; got the fields {fields}")
+    # distinct as printed (fuzz 30b D3): a precision ("{:.1}") gave two methods one label, "{:.0}" every method ''
+    from fusion.book.claims import _text_problem  # the claim files' text rule: no Cc/Cf character, a visible one
+
+    seen = {METHOD_LABELS[k]: str(k) for k in (FUSION_ALONE, FUSION_UNREGISTERED, *BenchClass)}
+    for k in sc.METHODS:
+        label = template.format(METHOD_LABELS[k])
+        problem = _text_problem(label)
+        if problem is not None:
+            raise ValueError(f"template = {shown(template)} makes a label that {problem} (method {k})")
+        if label in seen:
+            raise ValueError(f"template = {shown(template)} gives two entries the same label {shown(label)} "
+                             f"({seen[label]} and {k}): each labels a row or column, which would merge")
+        seen[label] = str(k)
     return template
 
 
@@ -219,7 +234,9 @@ def labelled(table: pd.DataFrame, template: str = "{}") -> pd.DataFrame:
     ValueError
         If ``template`` does not hold exactly one replacement field ``{}`` (or ``{0}``) whose format applies to a
         str label (``"x"`` would give every method the same label), or its field holds a width above 99
-        (``{:>5000000}`` made 5 MB labels).
+        (``{:>5000000}`` made 5 MB labels), or two methods' labels are the same (``"{:.1}"``; or the same as a fixed
+        label of the module), or a label holds no visible character (``"{:.0}"``) or a control or format character
+        (NUL, a right-to-left override: the claim files' text rule).
     """
     if not isinstance(table, pd.DataFrame):
         raise TypeError(f"table must be a pandas DataFrame, got {type(table).__name__}")
