@@ -273,14 +273,23 @@ def distinct(items: list, name: str) -> list:
             return items
     except TypeError:  # unhashable entries: compared one by one below
         pass
-    first: dict = {}
-    for i, v in enumerate(items):
-        key = int(v) if isinstance(v, (int, np.integer)) else ("NaN",) if _is_nan(v) else v
-        if key in first:
-            raise ValueError(f"{name} must not repeat an entry: {name}[{first[key]}] and {name}[{i}] are both "
-                             f"{shown(v if _is_nan(v) else key)} (the results are keyed by its entries)")
-        first[key] = i
+    repeat = _first_repeat([int(v) if isinstance(v, (int, np.integer)) else ("NaN",) if _is_nan(v) else v
+                            for v in items])
+    if repeat is not None:
+        i, j, key = repeat
+        raise ValueError(f"{name} must not repeat an entry: {name}[{i}] and {name}[{j}] are both "
+                         f"{shown(items[j] if _is_nan(items[j]) else key)} (the results are keyed by its entries)")
     return items
+
+
+def _first_repeat(keys: Iterable[object]) -> tuple[int, int, object] | None:
+    """The positions of the first key equal to an earlier one, and that key; None when all differ."""
+    first: dict = {}
+    for j, key in enumerate(keys):
+        if key in first:
+            return first[key], j, key
+        first[key] = j
+    return None
 
 
 def general(value: object) -> object:
@@ -296,29 +305,18 @@ def general(value: object) -> object:
 
 def distinct_printed(items: list, name: str, printed: Callable[[object], object] = general,
                      what: str = "keys a result") -> list:
-    """``items`` when no two print the same under ``printed`` (fuzz 30b B1-B5): the rule of :func:`distinct`
-    for entries that key a result through a format (``f"{x:g}"``, ``round(x, 6)``). Two entries that differ but
-    print the same would share one key, the last silently replacing the other, so the ValueError names
-    ``name``, both positions and the shared key. Exact repeats are refused by :func:`distinct` first.
-
-    Returns
-    -------
-    list
-        ``items`` unchanged.
-
-    Raises
-    ------
-    ValueError
-        If two entries are equal, or print the same under ``printed``.
+    """Distinct as printed (fuzz 30b B1-B5): :func:`distinct`'s rule for entries that key a result through a
+    format (``f"{x:g}"``, ``round(x, 6)``; ``printed`` maps an entry to its key). Two entries that differ but print
+    the same would share one key, the last silently replacing the other: a ValueError names ``name``, both
+    positions and the shared key (``what`` says what each entry keys). Returns ``items`` unchanged; an exact repeat
+    is refused by :func:`distinct` first.
     """
     distinct(items, name)
-    first: dict = {}
-    for i, v in enumerate(items):
-        key = printed(v)
-        if key in first:
-            raise ValueError(f"{name} must differ in how its entries print (each {what}, printed as {shown(key)}): "
-                             f"{name}[{first[key]}] and {name}[{i}] print the same")
-        first[key] = i
+    repeat = _first_repeat(printed(v) for v in items)
+    if repeat is not None:
+        i, j, key = repeat
+        raise ValueError(f"{name} must differ in how its entries print (each {what}, printed as {shown(key)}): "
+                         f"{name}[{i}] and {name}[{j}] print the same")
     return items
 
 
