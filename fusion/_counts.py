@@ -12,7 +12,7 @@ import itertools
 import operator
 import os
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 
 import numpy as np
 
@@ -273,13 +273,50 @@ def distinct(items: list, name: str) -> list:
             return items
     except TypeError:  # unhashable entries: compared one by one below
         pass
+    repeat = _first_repeat([int(v) if isinstance(v, (int, np.integer)) else ("NaN",) if _is_nan(v) else v
+                            for v in items])
+    if repeat is not None:
+        i, j, key = repeat
+        raise ValueError(f"{name} must not repeat an entry: {name}[{i}] and {name}[{j}] are both "
+                         f"{shown(items[j] if _is_nan(items[j]) else key)} (the results are keyed by its entries)")
+    return items
+
+
+def _first_repeat(keys: Iterable[object]) -> tuple[int, int, object] | None:
+    """The positions of the first key equal to an earlier one, and that key; None when all differ."""
     first: dict = {}
-    for i, v in enumerate(items):
-        key = int(v) if isinstance(v, (int, np.integer)) else ("NaN",) if _is_nan(v) else v
+    for j, key in enumerate(keys):
         if key in first:
-            raise ValueError(f"{name} must not repeat an entry: {name}[{first[key]}] and {name}[{i}] are both "
-                             f"{shown(v if _is_nan(v) else key)} (the results are keyed by its entries)")
-        first[key] = i
+            return first[key], j, key
+        first[key] = j
+    return None
+
+
+def general(value: object) -> object:
+    """``value`` as most result keys print it: a real number as ``f"{value:g}"`` (6 significant digits), a tuple
+    entry by entry (``("strong direction", 3.0000001)`` prints as ``("strong direction", "3")``), anything else
+    unchanged."""
+    if isinstance(value, tuple):
+        return tuple(general(v) for v in value)
+    if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_)):
+        return f"{value:g}"
+    return value
+
+
+def distinct_printed(items: list, name: str, printed: Callable[[object], object] = general,
+                     what: str = "keys a result") -> list:
+    """Distinct as printed (fuzz 30b B1-B5): :func:`distinct`'s rule for entries that key a result through a
+    format (``f"{x:g}"``, ``round(x, 6)``; ``printed`` maps an entry to its key). Two entries that differ but print
+    the same would share one key, the last silently replacing the other: a ValueError names ``name``, both
+    positions and the shared key (``what`` says what each entry keys). Returns ``items`` unchanged; an exact repeat
+    is refused by :func:`distinct` first.
+    """
+    distinct(items, name)
+    repeat = _first_repeat(printed(v) for v in items)
+    if repeat is not None:
+        i, j, key = repeat
+        raise ValueError(f"{name} must differ in how its entries print (each {what}, printed as {shown(key)}): "
+                         f"{name}[{i}] and {name}[{j}] print the same")
     return items
 
 

@@ -287,7 +287,8 @@ def _work_cases() -> dict[str, tuple[Any, str]]:
         "lumv_study": (lambda o: E.lumv_study(k=100, runs=2 * int(np.ceil(o * W / 800)) + 2), "runs, k and sigma"),
         "tail_study": (lambda o: E.tail_study(k=100, runs=int(np.ceil(o * W / 400)) + 1), "runs, k and sigma"),
         "q_scaling_study": (lambda o: ts.q_scaling_study(np.random.default_rng(0), R, R, Q,
-                                                         (1.0,) * int(np.ceil(o * W / (2000 * 53))),
+                                                         # distinct scales (a repeat is refused first: fuzz 30b)
+                                                         tuple(1.0 + 1e-3 * np.arange(int(np.ceil(o * W / (2000 * 53))))),
                                                          runs=1000, nees_runs=1000, T=1.0),
                             "scales, runs, nees_runs and T"),
         "infrared_radar.simulate": (lambda o: ir.simulate(np.random.default_rng(0), runs=sq(o), T=0.01,

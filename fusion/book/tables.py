@@ -386,6 +386,23 @@ MISSING, INFINITE, YES, NO = "—", "∞", "yes", "no"
 NONFINITE_RULE = "NaN -> MISSING, ±inf -> ±INFINITE; text and other non-numbers: TypeError naming the argument"
 
 
+def _display_labels(labels: dict[str, str], name: str) -> None:
+    """Labels of a table for display, by what each labels (fuzz 30b D3): each a text of the claim files' rule
+    (``fusion.book.claims``: a visible character, no control or format character) and no two the same (their rows
+    or columns would merge, "distinct as printed"); a ValueError naming ``name`` otherwise."""
+    from fusion._counts import _first_repeat
+    from fusion.book.claims import _text_problem
+
+    for key, label in labels.items():
+        if _text_problem(label) is not None:
+            raise ValueError(f"{name} makes a label that {_text_problem(label)} (of {key})")
+    repeat = _first_repeat(labels.values())
+    if repeat is not None:
+        keys = list(labels)
+        raise ValueError(f"{name} gives {keys[repeat[0]]} and {keys[repeat[1]]} the same label {shown(repeat[2])} "
+                         "(each labels a row or column, which would merge)")
+
+
 def _nonfinite_word(x: float) -> str | None:
     """The book's word for a non-finite float (:data:`NONFINITE_RULE`), ``None`` for a finite one."""
     if math.isnan(x):

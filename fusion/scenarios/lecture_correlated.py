@@ -18,7 +18,7 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, 
 from fusion._validation import derived_inputs
 from fusion._validation import FloatArray, as_array, count, scalar, shown, std_scalar
 from fusion._validation import allocation
-from fusion._validation import LOOP_STEP, distinct, loop_work, work
+from fusion._validation import LOOP_STEP, distinct, distinct_printed, general, loop_work, work
 from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
@@ -208,7 +208,8 @@ def ridge_study(
     draws : int
         Monte-Carlo draws per (x, k, m).
     ks_fixed : sequence of float
-        Fixed ridge parameters (> 0) of the reliability check.
+        Fixed ridge parameters (> 0) of the reliability check, no two equal to 6 significant digits (their rows are
+        labelled ``f"k = {k:g}"``).
     x_far : float
         A true value far from the shrinkage target (0.5 °C expressed in kelvin), not one of ``xs`` (the rows of
         ``rel_k`` are keyed by x).
@@ -228,6 +229,7 @@ def ridge_study(
     ks_fixed = as_array(ks_fixed, "ks_fixed", ndim=1).tolist()  # fuzz 24a U7: numbers, at least one, each > 0
     if min(ks_fixed) <= 0:
         raise ValueError(f"ks_fixed must hold positive ridge parameters, got {shown(ks_fixed)}")
+    distinct_printed(ks_fixed, "ks_fixed", general)  # rel_k's rows are labelled f"k = {k:g}" (fuzz 30b)
     loop_work((len(xs) + 1, 3 + len(ks_fixed)), 501, "xs and ks_fixed", step=20 * LOOP_STEP)  # rule 17: ~100 us a row
     for i, x in enumerate(xs):
         _optimal_k_representable(x, sigma, f"xs[{i}]")

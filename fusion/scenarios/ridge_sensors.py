@@ -29,7 +29,7 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, 
                              validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import seed as check_seed
-from fusion._validation import distinct, loop_work
+from fusion._validation import distinct, distinct_printed, general, loop_work
 from fusion._validation import allocation, as_array, count, finite_result, positive_scalar, std_scalar
 from fusion.readings import biased as rg
 
@@ -48,6 +48,13 @@ PLUGIN_METHODS: tuple[str, str, str] = (LS, PLUGIN_KNOWN, PLUGIN_EST)
 
 #: The methods of :func:`vector_study`, in their order in its results.
 VECTOR_METHODS: tuple[str, str, str] = (LS, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED)
+
+
+def _glue_part(x: object) -> object:
+    """A true value or tolerance as chapter 04 prints it in glue keys and reading keys (``f"{x:g}"`` without its
+    point: 0.25 -> ``025``; ``fusion._counts.general`` for anything else): no two entries may print alike."""
+    g = general(x)
+    return g.replace(".", "") if isinstance(g, str) else g
 
 
 @dataclass(frozen=True)
@@ -89,9 +96,10 @@ class PluginStudy:
     xs: tuple[float, ...]
 
     __result_spec__ = ResultSpec(
-        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float),
+        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float, printed=_glue_part),
          "hit": dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float),
-         "hits": dict_of(dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float), key=float), "curve": array("C"),
+         "hits": dict_of(dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float), key=float, printed=_glue_part),
+         "curve": array("C"),
          "ratio_known": array("C", bounds=NONNEGATIVE), "ratio_est": array("C", bounds=NONNEGATIVE),
          "rel_curve": dict_of(array("C", bounds=(0.0, 1.0))),
          "m": integer(1), "sigma": number(positive=True), "runs": integer(1, dim="runs"), "seed": integer(0),
@@ -129,7 +137,8 @@ class VectorStudy:
     scales: tuple[float, ...]
 
     __result_spec__ = ResultSpec(
-        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=tuple), "x": dict_of(array(2), key=tuple),
+        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=tuple, printed=general),  # rows f"{scale:g}"
+         "x": dict_of(array(2), key=tuple),
          "A": array(2, 2, covariance=True), "cond": number(positive=True), "tr_ls": number(positive=True),
          "runs": integer(1, dim="runs"), "seed": integer(0), "scales": tuple_of(number(positive=True))},
         relations=(same_keys("sq", "x"),))
@@ -154,7 +163,8 @@ def plugin_study(
     Parameters
     ----------
     xs : sequence of float
-        True values of the paired comparisons (no two equal: the results are keyed by x).
+        True values of the paired comparisons (no two alike in their digits ``f"{x:g}"``, 1.5 and 15 included:
+        the results are keyed by x, chapter 04's glue values by those digits).
     m : int
         Readings per estimate (>= 2, so that σ can be estimated).
     sigma : float
@@ -167,7 +177,7 @@ def plugin_study(
         True values of the exact curves.
     deltas : sequence of float
         Tolerances of the reliability in standard errors :math:`\sigma/\sqrt m` (> 0); 1 must be among them, no
-        two equal.
+        two alike in their digits (as ``xs``).
 
     Returns
     -------
@@ -195,7 +205,8 @@ def plugin_study(
     dv = as_array(deltas, "deltas", ndim=1)
     if dv.size == 0 or np.any(dv <= 0) or not np.any(dv == 1.0):
         raise ValueError(f"deltas must hold positive tolerances, 1 among them, got {dv}")
-    distinct(xv.tolist(), "xs"), distinct(dv.tolist(), "deltas")  # the results are keyed by x and by delta
+    for name, vals in (("xs", xv), ("deltas", dv)):  # the results are keyed by x and by delta, glue values by
+        distinct_printed(vals.tolist(), name, _glue_part)  # their digits (fuzz 30b)
     loop_work((xv.size, dv.size + 3), m * runs, "xs, deltas, m and runs")  # rule 17: three estimates per x
     delta = sigma / np.sqrt(m)
     H = np.ones(m)
@@ -241,7 +252,8 @@ def vector_study(
     seed : int
         Seed of the noise.
     scales : sequence of float
-        Norms of the true x (> 0, no two equal: the results are keyed by scale).
+        Norms of the true x (> 0, no two equal to 6 significant digits: the results are keyed by scale and the
+        chapter's tables by ``f"{scale:g}"``).
     spread : float
         Collinearity parameter ε (> 0; smaller is worse conditioned).
     sigma : sequence of float
@@ -257,7 +269,7 @@ def vector_study(
     sc = as_array(scales, "scales", ndim=1)
     if sc.size == 0 or np.any(sc <= 0):
         raise ValueError(f"scales must hold positive norms, got {sc}")
-    distinct(sc.tolist(), "scales")  # the squared errors are keyed by (direction, scale)
+    distinct_printed(sc.tolist(), "scales", general)  # results keyed by (direction, scale), rows by f"{scale:g}"
     loop_work((sc.size, 2), 60 * runs, "scales and runs")  # rule 17: three fusions per scale and direction
     spread = positive_scalar(spread, "spread")
     sig = as_array(sigma, "sigma", ndim=1)

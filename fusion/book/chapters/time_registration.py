@@ -25,7 +25,7 @@ from fusion._validation import (as_array, as_times, distinct, grid_points, insta
 from fusion._validation import template as format_template
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues, _glued_cell
-from fusion.book.tables import _frame, integral_index
+from fusion.book.tables import _display_labels, _frame, integral_index
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 # the robustness studies (and the paired interval they share with the benchmark) live in their own module
@@ -184,15 +184,15 @@ def _label(key: object, template: str = "{}") -> object:
 
 
 def _label_template(template: object) -> str:
-    """``template`` when it formats one method label: a str of the shared template rule
-    (``fusion._validation.template``: a width of two digits at most, no other field) with exactly one replacement
-    field, ``{}`` (or ``{0}``); a ValueError naming ``template`` otherwise (a template without a field would give
-    every method the same label, ``{1}`` or ``{x}`` an IndexError/KeyError, ``{:>5000000}`` a 5 MB label)."""
+    """``template`` when it formats one method label (``fusion._validation.template``'s rule, one field ``{}`` or
+    ``{0}``, distinct visible labels: ``{:.1}`` gave two methods one label), else a ValueError naming it."""
     template = format_template(template, "template", "label")
     fields = [f for _, f, _, _ in string.Formatter().parse(template) if f is not None]
     if fields not in ([""], ["0"]):
         raise ValueError(f"template = {shown(template)} does not format a method label: it must hold exactly one "
                          f"replacement field, {{}}, for the label; got the fields {fields}")
+    _display_labels({k: _label(k, template) for k in (*sc.METHODS, FUSION_ALONE, FUSION_UNREGISTERED, *BenchClass)},
+                    "template")  # distinct visible labels (fuzz 30b D3)
     return template
 
 
@@ -217,9 +217,9 @@ def labelled(table: pd.DataFrame, template: str = "{}") -> pd.DataFrame:
     TypeError
         If ``table`` is not a DataFrame, or ``template`` not a str.
     ValueError
-        If ``template`` does not hold exactly one replacement field ``{}`` (or ``{0}``) whose format applies to a
-        str label (``"x"`` would give every method the same label), or its field holds a width above 99
-        (``{:>5000000}`` made 5 MB labels).
+        If ``template`` does not hold exactly one field ``{}`` (or ``{0}``) whose format applies to a str label
+        (``"x"``), holds a width above 99 (``{:>5000000}`` made 5 MB labels), or gives two labels alike (``"{:.1}"``),
+        an empty one (``"{:.0}"``) or one with a control or format character (NUL, a direction override).
     """
     if not isinstance(table, pd.DataFrame):
         raise TypeError(f"table must be a pandas DataFrame, got {type(table).__name__}")

@@ -113,6 +113,11 @@ def robustness_table(st: RegistrationStudy) -> pd.DataFrame:
     return out
 
 
+def _delay_row(d: float) -> float:
+    """The row label of latency ``d`` (s) in :func:`delay_table`: milliseconds to 6 decimals."""
+    return round(1e3 * d, 6)
+
+
 def delay_table(delays: Sequence[float], sigmas: Sequence[float]) -> pd.DataFrame:
     """Exact E[MSE] of the improved method minus two-point interpolation under a latency of sensor 1.
 
@@ -137,22 +142,25 @@ def delay_table(delays: Sequence[float], sigmas: Sequence[float]) -> pd.DataFram
     TypeError
         ``delays`` or ``sigmas`` is not a sequence of numbers.
     ValueError
-        ``delays`` or ``sigmas`` is empty or repeats an entry (the table is keyed by them: a repeat would merge into
-        one row or column), a latency is not finite or outside the flight, a noise level is not a valid standard
+        ``delays`` or ``sigmas`` is empty or repeats an entry, or two entries print the same label (δ in ms to 6
+        decimals, σ to 6 significant digits: the table is keyed by them, a repeat would merge into one row or
+        column), a latency is not finite or outside the flight, a noise level is not a valid standard
         deviation, or the table is beyond the work budget (``fusion._limits.MAX_WORK``, chapter 07's rule
         ``_registration_work``: about 1,000 cells, latencies x levels).
     """
-    from fusion._validation import distinct, scalar, sequence, std_scalar
+    from fusion._validation import distinct_printed, general, scalar, sequence, std_scalar
 
     lo, hi = sc._delay_bounds(*sc.instants())  # the true sample times in the flight (-1 s to 1 s)
-    for name, values, check in (("delays", delays, lambda v, n: scalar(v, n, lo, hi)), ("sigmas", sigmas, std_scalar)):
+    for name, values, check, printed in (("delays", delays, lambda v, n: scalar(v, n, lo, hi), _delay_row),
+                                         ("sigmas", sigmas, std_scalar, general)):
         items = sequence(values, name)
         if not items:
             raise ValueError(f"{name} is empty")
-        distinct([float(check(v, f"{name}[{i}]")) for i, v in enumerate(items)], name)
+        distinct_printed([float(check(v, f"{name}[{i}]")) for i, v in enumerate(items)], name, printed,
+                         "labels a row or column")
     # rule 17 before any work (fuzz 28b D3): two exact MSEs per cell
     sc._exact_work((IMPROVED, TWO), [sc.instants()[1].size] * (len(delays) * len(sigmas)), "delays and sigmas")
-    rows = {round(1e3 * float(d), 6): {f"σ_x = {s:g} m": sc.expected(IMPROVED, float(s), delay=float(d))
+    rows = {_delay_row(float(d)): {f"σ_x = {s:g} m": sc.expected(IMPROVED, float(s), delay=float(d))
                              - sc.expected(TWO, float(s), delay=float(d)) for s in sigmas} for d in delays}
     out = pd.DataFrame(rows).T
     out.index.name = "latency δ (ms)"

@@ -18,7 +18,7 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, arrays, dict_of, fl
 from fusion._frozen import constant
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
-from fusion._validation import distinct, loop_work
+from fusion._validation import distinct, distinct_printed, general, loop_work
 from fusion._validation import store_read
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
 from fusion._shown import shown
@@ -367,7 +367,8 @@ def belief_parameter_study(
     x : float
         True value.
     params : sequence of float
-        Every value of s, ε and m run (readings' unit), positive, no two equal (the spread is keyed by value).
+        Every value of s, ε and m run (readings' unit), positive, no two equal (the spread is keyed by value) nor
+        alike to 6 significant digits (the chapter's table labels a column ``f"{p:g}"``).
     snapshots : int
         Number of draws.
     shift : float
@@ -394,6 +395,7 @@ def belief_parameter_study(
         raise ValueError(f"grid must be a subset of params, got {tuple(g.tolist())}")
     snapshots = count(snapshots, "snapshots", minimum=2)
     distinct(vals.tolist(), "params"), distinct(g.tolist(), "grid")  # the spread is keyed by the params' values
+    distinct_printed(vals.tolist(), "params", general, "labels a column")  # the chapter's f"{p:g}" (fuzz 30b)
     # rule 17: a fusion per param (and per snapshot and deletion support) of sensors² belief degrees
     loop_work((vals.size, 3 + snapshots * len(DELETION_SUPPORT)), sig.size**2, "params and snapshots")
     shift = scalar(shift, "shift", lo=0.0)

@@ -14,7 +14,7 @@ from fusion._results import flag as flag_spec, validated_post_init  # flag: the 
 from fusion import readings as rd
 from fusion._validation import derived_inputs
 from fusion._validation import flag
-from fusion._validation import LOOP_STEP, distinct, loop_work, sequence
+from fusion._validation import LOOP_STEP, distinct, distinct_printed, general, loop_work, sequence
 from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import instance_of, record, seeds as check_seeds
 from fusion._validation import seed as check_seed
@@ -145,7 +145,7 @@ def benchmark(
     runs, samples : int
         Monte-Carlo runs and instants K per run.
     levels : sequence of float
-        True values (°C), no two equal.
+        True values (°C), no two equal to 6 significant digits (the chapter labels each ``f"X={X:g}"``).
     bias : float
         Fault bias (°C).
     fault_sensor : int
@@ -177,7 +177,8 @@ def benchmark(
     faults = [flag(f, f"faults[{i}]")  # fuzz 24a U8: one rule for a sequence argument, then for each flag
               for i, f in enumerate(sequence(faults, "faults", minimum=1, what="flag"))]
     # the results are keyed by (seed, level, fault): a repeated entry would collapse two of them
-    distinct(list(seeds), "seeds"), distinct(lv.tolist(), "levels"), distinct([bool(f) for f in faults], "faults")
+    distinct(list(seeds), "seeds"), distinct([bool(f) for f in faults], "faults")
+    distinct_printed(lv.tolist(), "levels", general, "labels a column")  # the chapter's f"X={X:g}" (fuzz 30b)
     loop_work((len(seeds), lv.size, len(faults)), runs * samples * sig_chk.size,
               "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP)  # rule 17: ~20 methods per key
     sig = np.asarray(sigma, dtype=float)
@@ -280,7 +281,9 @@ class SeedStability:
 
     __result_spec__ = ResultSpec(
         {"seeds": tuple_of(integer(0)), "scenarios": tuple_of(tuple_of(number(nonnegative=False), flag_spec())),
-         "methods": tuple_of(instance(str)), "ranks": dict_of(array("seeds", "methods", bounds=(1.0, np.inf)), key=tuple),
+         "methods": tuple_of(instance(str)),
+         # the chapter labels each scenario f"X={X:g}, fault": two printing alike would share a column (fuzz 30b)
+         "ranks": dict_of(array("seeds", "methods", bounds=(1.0, np.inf)), key=tuple, printed=general),
          "n_stable": integer(0), "n_sig": integer(0), "n_rev": integer(0)},
         relations=(same_keys("scenarios", "ranks"), lambda v, cls: _stability_relation(v, cls)))
     __post_init__ = validated_post_init

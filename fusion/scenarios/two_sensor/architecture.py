@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 
 from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, number, same_keys, tuple_of
 from fusion._results import validated_post_init
-from fusion._validation import check_magnitude, derived_inputs, distinct, loop_work
+from fusion._validation import check_magnitude, derived_inputs, distinct, distinct_printed, general, loop_work
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar, work)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees
@@ -353,7 +353,7 @@ class QScaling:
 
     __result_spec__ = ResultSpec(
         {"scales": tuple_of(number(positive=True)),
-         "run_rmse": dict_of(array("runs", bounds=NONNEGATIVE), key=float),
+         "run_rmse": dict_of(array("runs", bounds=NONNEGATIVE), key=float, printed=general),  # rows f"{c:g} Q"
          "model_rmse": dict_of(array("nees_runs", bounds=NONNEGATIVE), key=float),
          "nees": dict_of(number(), key=float), "runs": integer(1, dim="runs"),
          "nees_runs": integer(1, dim="nees_runs")},
@@ -380,7 +380,7 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     Q : array_like, shape (4, 4)
         The model's process noise (of the model targets; the filters run ``c Q``).
     scales : array_like of float, shape (S,)
-        Factors :math:`c > 0`.
+        Factors :math:`c > 0`, distinct to 6 significant digits.
 
     Returns
     -------
@@ -390,13 +390,14 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     Raises
     ------
     ValueError
-        Covariances not valid, counts or scales not positive, ``t_steady`` beyond the path.
+        Covariances not valid, counts or scales not positive, ``scales`` repeating an entry to 6 significant digits
+        (each keys a result and a table row, printed ``f"{c:g}"``), ``t_steady`` beyond the path.
     """
     sv = np.atleast_1d(as_array(scales, "scales", ndim=(0, 1)))
     if not np.all(sv > 0):  # one vectorised pass (10**6 scales are refused by the work budget at once)
         raise ValueError(f"scales must be positive, got {shown(float(sv[~(sv > 0)][0]))} at index {int(np.argmin(sv > 0))}")
     check_magnitude(sv, "scales")  # rule 2, as positive_scalar entry by entry
-    cs = tuple(sv.tolist())
+    cs = tuple(distinct_printed(sv.tolist(), "scales", general, "keys a result and a row"))  # f"{c:g} Q" (fuzz 30b)
     p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady, scales=len(cs))
     runs, nees_runs, R1, R2, Q, F, H, steady, z, truth = (p.runs, p.nees_runs, p.R1, p.R2, p.Q, p.F, p.H, p.steady,
                                                           p.z, p.truth)

@@ -13,9 +13,10 @@ from __future__ import annotations
 from collections.abc import Collection, Mapping
 
 import numpy as np
+import pandas as pd
 
 from fusion._shown import shown
-from fusion._validation import FloatArray, as_array, scalar
+from fusion._validation import FloatArray, as_array, distinct_printed, general, scalar
 from fusion.book.chapters.lecture import _frame  # noqa: F401 (the chapter's modules import it from here)
 
 __all__: list[str] = []   # nothing public: the chapter's functions document these checks in their Raises sections
@@ -122,11 +123,14 @@ def _period_key(value: object) -> object:
     """The chapter's one rule for a period or weight that keys a table row or a dict entry (fuzz 26c q2): a float
     narrower than float64 (float32, float16) is read as the number it prints as, its shortest decimal
     (``np.float32(0.02)`` is 0.02 s, not 0.019999999552965164, which no reader of the row 0.02 finds), alone or
-    as an entry of an array, list or tuple of them (fuzz 27b B2: a list's float32 entries were kept); any
+    as an entry of an array, list or tuple of them (fuzz 27b B2: a list's float32 entries were kept), or a pandas
+    Series or Index of float32/float16 (read as its array; fuzz 30b D1); any
     other value unchanged, checked by its reader: a masked array (fuzz 28b C1) and a nested list (one level only:
     fuzz 28b C2, a deep one recursed) reach the reader's rules as the caller gave them."""
     if isinstance(value, np.floating) and _narrow(value):
         return float(str(value))
+    if isinstance(value, (pd.Series, pd.Index)) and value.dtype.kind == "f" and value.dtype.itemsize < 8:
+        return _period_key(value.to_numpy())  # the book's usual container, read as its array (fuzz 30b D1)
     if isinstance(value, np.ndarray) and _narrow(value):
         return np.array([float(str(v)) for v in value.ravel()]).reshape(value.shape)
     if isinstance(value, (list, tuple)) and any(_narrow(v) for v in value):
@@ -136,7 +140,8 @@ def _period_key(value: object) -> object:
 
 def _periods(periods: object, name: str = "periods") -> FloatArray:
     """Sampling periods, one table row each (fuzz 19's debatable empties): a non-empty 1-d array of distinct,
-    finite, positive numbers (a scalar is one period), float32 ones read as they print (:func:`_period_key`);
+    finite, positive numbers (a scalar is one period), float32 ones read as they print (:func:`_period_key`), no
+    two alike to 6 significant digits (the ledger keys its readings by ``f"{T:g}"``: fuzz 30b B3);
     TypeError/ValueError naming ``name``."""
     periods = _period_key(periods)
     arr = as_array(periods, name, ndim=(0, 1))
@@ -145,6 +150,7 @@ def _periods(periods: object, name: str = "periods") -> FloatArray:
         raise ValueError(f"{name} must hold positive sampling periods (s), got {shown(arr.tolist(), 120)}")
     if np.unique(arr).size != arr.size:
         raise ValueError(f"{name} must hold distinct sampling periods (one row each), got {shown(arr.tolist(), 120)}")
+    distinct_printed(arr.tolist(), name, general, "keys a reading of the ledger")  # f"{T:g}" (fuzz 30b B3)
     return arr
 
 

@@ -13,7 +13,7 @@ from fusion._results import (ResultSpec, array, dict_of, instance, integer, numb
                              validated_post_init)
 from fusion import data
 from fusion._docstrings import reads_results
-from fusion._validation import as_array, count, instance_of, scalar
+from fusion._validation import as_array, count, general, instance_of, scalar
 from fusion._counts import seed as check_seed, seeds as check_seeds, sequence
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -171,8 +171,10 @@ _REAL = (float, int, np.number)
 
 def _real_keyed(value: Any, **kw: Any) -> Any:
     """Spec of a dict keyed by real numbers (periods, weights, levels), each key read by the chapter's one rule
-    (``_period_key``: a float32 key is the number it prints as, so that its readers find it; fuzz 26c q2)."""
-    return dict_of(value, key=_REAL, read_key=_period_key, **kw)
+    (``_period_key``: a float32 key is the number it prints as, so that its readers find it; fuzz 26c q2), no two
+    keys alike to 6 significant digits (the evidence keys its readings and glue values by ``f"{key:g}"``: two such
+    keys would share one reading, the last silently replacing the other; fuzz 30b B3)."""
+    return dict_of(value, key=_REAL, read_key=_period_key, printed=general, **kw)
 
 #: A per-run RMSE (m, or mrad): one non-negative value per run.
 _RUNS = array("runs", bounds=(0.0, np.inf))

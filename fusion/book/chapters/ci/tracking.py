@@ -19,7 +19,8 @@ from fusion._frozen import constant
 from fusion import data
 from fusion._docstrings import reads_results
 from fusion._counts import distinct, sequence
-from fusion._validation import as_array, count, given_number, record, scalar, std_scalar, instance_of
+from fusion._validation import (as_array, count, distinct_printed, general, given_number, record, scalar, std_scalar,
+                               instance_of)
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -323,7 +324,8 @@ def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dic
         ``sc`` is not a :class:`~fusion.scenarios.two_sensor.Scenario`, or ``levels`` or ``t_steady`` not numeric.
     ValueError
         ``levels`` is empty, not a number or 1-D, holds an entry outside (0, 1) (named by its position) or repeats one
-        (the result is keyed by level); ``t_steady`` is not finite, negative or after the last step.
+        to 6 significant digits (the result and the ledger's readings are keyed by level); ``t_steady`` is not
+        finite, negative or after the last step.
 
     References
     ----------
@@ -335,8 +337,9 @@ def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dic
     a, b = sc.tracks
     Ps = np.stack([a.gains.P, b.gains.P], axis=1)
     X = np.stack([a.est, b.est], axis=2)
-    lams = distinct([scalar(lam, f"levels[{i}]", 0.0, 1.0, lo_open=True, hi_open=True)
-                     for i, lam in enumerate(np.atleast_1d(as_array(levels, "levels", ndim=(0, 1))))], "levels")
+    lams = distinct_printed([scalar(lam, f"levels[{i}]", 0.0, 1.0, lo_open=True, hi_open=True)
+                             for i, lam in enumerate(np.atleast_1d(as_array(levels, "levels", ndim=(0, 1))))],
+                            "levels", general)   # the evidence keys each level's reading by f"{level:g}" (fuzz 30b B3)
     steady = sc.t >= scalar(t_steady, "t_steady", 0.0)
     if not steady.any():
         raise ValueError(f"t_steady = {shown(t_steady)} s is after the last step ({float(sc.t[-1]):g} s): "
@@ -372,12 +375,13 @@ def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = 
     TypeError
         ``sc`` or ``study`` of the wrong type, ``omegas`` not a sequence or an entry not a number.
     ValueError
-        ``omegas`` empty, an entry outside [0, 1] or repeated (the result is keyed by weight); ``study`` not
-        ``fusion_study`` of ``sc`` (its steps, truth or local tracks differ: another seed, runs or scenario).
+        ``omegas`` empty, an entry outside [0, 1] or repeated to 6 significant digits (the result is keyed by
+        weight); ``study`` not ``fusion_study`` of ``sc`` (its steps, truth or local tracks differ: another seed,
+        runs or scenario).
     """
     _study_of(sc, study)
-    ws = distinct([scalar(w, f"omegas[{i}]", 0.0, 1.0) for i, w in enumerate(sequence(omegas, "omegas", minimum=1,
-                                                                                        what="weight"))], "omegas")
+    ws = distinct_printed([scalar(w, f"omegas[{i}]", 0.0, 1.0) for i, w in enumerate(
+        sequence(omegas, "omegas", minimum=1, what="weight"))], "omegas", general)  # ledger keys print (fuzz 30b)
     a, b = sc.tracks
     every = np.ones(study.t.size, dtype=bool)
     out = {}

@@ -7,7 +7,7 @@ from fusion.book._few_runs import study_runs_named
 from fusion._counts import sequence
 from fusion._structures import within
 from fusion._limits import loop_work
-from fusion._validation import as_array, instance_of, scalar, selection, std_scalar
+from fusion._validation import as_array, distinct_printed, general, instance_of, scalar, selection, std_scalar
 
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -348,6 +348,7 @@ def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
         over the primary grid and the RMSE over it; the arithmetic mean's RMSE in the index name.
     """
     instance_of(s, BeliefParameterStudy, "s")
+    distinct_printed([float(p) for p in s.params], "s.params", general, "labels a column")  # rebuilt (fuzz 30b)
     rows = {}
     g = tuple(float(v) for v in s.grid)
     for k in s.fused:

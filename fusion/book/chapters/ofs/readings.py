@@ -13,7 +13,8 @@ from numpy.typing import ArrayLike
 from fusion._frozen import constant
 from fusion import readings as rd
 from fusion._counts import count, sequence
-from fusion._validation import FloatArray, as_array, instance_of, one_of, scalar, window as check_window
+from fusion._validation import FloatArray, as_array, distinct_printed, general, instance_of, one_of, scalar
+from fusion._validation import window as check_window
 from fusion.readings.robust import robust_fuse
 from fusion._docstrings import ParameterDocs
 from fusion._shown import shown
@@ -241,13 +242,10 @@ def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, str |
     items = sequence(alphas, "alphas")
     if not items:
         raise ValueError("alphas must hold at least one α (the support degree compared with the optimal fusion set)")
-    for i, a in enumerate(items):
-        a = scalar(a, f"alphas[{i}]", lo=0.0, lo_open=True)
-        key = f"support_degree_alpha_{a:g}"
-        if key in out:  # two alphas equal to 6 significant digits would share one method key
-            raise ValueError(f"alphas must differ in their first 6 significant digits (each keys a method, "
-                             f"{shown(key)}): alphas[{i}] = {shown(a)} repeats an earlier one")
-        out[key] = {"method": "support_degree", "alpha": a}
+    alphas = [scalar(a, f"alphas[{i}]", lo=0.0, lo_open=True) for i, a in enumerate(items)]
+    # two alphas equal to 6 significant digits would share one method key (the shared rule, fuzz 30b)
+    for a in distinct_printed(alphas, "alphas", general, "keys a method"):
+        out[f"support_degree_alpha_{a:g}"] = {"method": "support_degree", "alpha": a}
     return out
 
 

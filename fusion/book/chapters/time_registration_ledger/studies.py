@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._counts import general
 from fusion._frozen import constant
 from fusion._results import ResultSpec, array, dict_of, instance, number, validated_post_init
 from fusion._shown import shown
@@ -129,7 +130,9 @@ class RegistrationStudy:
     __result_spec__ = ResultSpec(
         {"t1": array("samples"), "t2": array("instants"), "sigma": number(positive=True),
          **{name: instance(sc.MonteCarlo) for name in ("mc", "s3_period", "realtime", "stress_tuned", "cv_integer")},
-         **{name: dict_of(instance(sc.MonteCarlo), key=(float, int, np.number)) for name in ("sweep", "s3_fair")},
+         # the evidence keys their readings by f"{s:g}" (_key): two levels printing alike would share one (fuzz 30b)
+         **{name: dict_of(instance(sc.MonteCarlo), key=(float, int, np.number), printed=general)
+            for name in ("sweep", "s3_fair")},
          **{name: dict_of(instance(sc.MonteCarlo)) for name in ("stress", "robust", "s3", "s3_pc")},
          "fusion": instance(sc.FusionRuns, optional=True)},
         relations=(lambda v, cls: _robust_relation(v, cls),))
@@ -206,6 +209,10 @@ def unregistered_runs(m: sc.MonteCarlo, t1: ArrayLike, t2: ArrayLike) -> np.ndar
     return np.round(np.mean((z[:, last] - sc.truth(t2)) ** 2, axis=1), 10)
 
 
+#: The noise level (m) of the fair §3 reading beside the study's own ``sigma``.
+_FAIR_SIGMA = 0.1
+
+
 def _key(s: float) -> str:
     """Reading key of a noise level: ``sigma-0-1`` for 0.1 m."""
     return "sigma-" + f"{s:g}".replace(".", "-")
@@ -246,7 +253,8 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
         ``t2`` outside the record of ``t1`` or of the scenario's sensor-1 samples (the readings register ``t2``
         onto these), ``t2`` of fewer than three instants (the start-up reading scores ``t2[2:]``) or with fewer
         than two of those samples in the least-squares window before an instant, times so far from the flight's
-        start that the positions lose the precision (about 6e4 s), ``sigma`` not a valid standard deviation,
+        start that the positions lose the precision (about 6e4 s), ``sigma`` not a valid standard deviation (or
+        within 6 significant digits of 0.1 m without being it: the fair reading's levels are keyed as printed),
         ``runs`` below 1 or beyond the work budget (``fusion._limits.MAX_WORK``: about 1.7e5 runs; ``t2``'s instants
         counted too, as :func:`~fusion.scenarios.time_registration.monte_carlo` counts its ``t_dst``: 2,000 instants
         are refused), ``seed`` negative.
@@ -258,6 +266,9 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
     # monte_carlo's names): three instants within their record, two samples in each least-squares window
     _least_squares_windows(sc.instants()[0], _scenario_instants(t2, 3, "the start-up reading scores from the third"))
     sigma, runs = std_scalar(sigma, "sigma"), count(runs, "runs")
+    if sigma != _FAIR_SIGMA and general(sigma) == general(_FAIR_SIGMA):  # s3_fair's readings keyed by _key (fuzz 30b)
+        raise ValueError(f"sigma must be {_FAIR_SIGMA:g} m or differ from it to 6 significant digits (the fair §3 "
+                         f"reading at {_FAIR_SIGMA:g} m and at sigma are keyed by the printed level)")
     # rule 17 for the whole study, before its first run (fuzz 26d DB6: each Monte Carlo within the budget, the study
     # ran minutes): measured as _STUDY_CALLS Monte Carlos of every study method (10.4 CPU-s at 1e5 runs, one of them
     # 0.56 s), refused from about 1.7e5 runs (the chapter runs 1,000)
@@ -280,7 +291,7 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
         s3={k: sc.monte_carlo([S3, EXTRAP], sigma, runs, seed + 140 + i, kf={**kw, **PC})
             for i, (k, _, _, kw) in enumerate(S3_READINGS) if k != "per-step-period-changed"},
         s3_fair={s: sc.monte_carlo(fair, s, runs, seed + 150 + i, t_dst=t2[1:], kf=PC)
-                 for i, s in enumerate((0.1, float(sigma)))},
+                 for i, s in enumerate((_FAIR_SIGMA, float(sigma)))},
         s3_period=sc.monte_carlo([S3], sigma, runs, seed, kf=PC),
         # §3 as the text describes it (period changed), on the very runs of the sweep and of the stress tests
         s3_pc={**{_key(s): sc.monte_carlo([S3, EXTRAP], s, runs, seed + 100 + i, kf=PC)
