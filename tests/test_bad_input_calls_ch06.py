@@ -81,7 +81,7 @@ def _o() -> dict[str, Any]:
     small = {k: _other(x, n_particles=40, n_samples=40, n_components=2, em_iterations=2, stages=1)
              for k, x in (premise_scenarios() | redundancy_scenarios()).items()}
     nets = chc.premise_studies(3, 4, small)
-    connected = {**small, Network.CHAIN: small[Network.UNEQUAL]}
+    connected = {**small, Network.CHAIN: _other(small[Network.UNEQUAL], name="test: fully connected")}
     fc = csc.frame_clouds(sc, 1, 3, run=0, frame=1)
     gms = cfo.random_two_mixtures(np.random.default_rng(5))
     table = chc.method_table(guarded, crb, plain)

@@ -156,3 +156,17 @@ def test_paired_studies_fields_record_their_pair_and_swaps_are_refused():
     _refused("paired_a", ci.paired_numbers, ps.paired, ps.paired_u, *args, ps.paired, [0.5])
     with pytest.raises(TypeError, match="ai"):   # the pairs in their places: the next check (ai) is reached
         ci.paired_numbers(ps.paired, ps.paired_u, *args, ps.paired_an, [0.5])
+
+
+def test_premise_studies_refuses_a_designed_network_under_another_key_as_its_readers_do():
+    """Fuzz 31b C2: the producer took a designed network's scenario under another network's key, and every premise
+    reader then refused its result; one rule now refuses it at the producer, naming ``scenarios[key]``."""
+    import dataclasses
+
+    from fusion.book.chapters import chernoff as chc
+    from fusion.scenarios.fusion_networks import Network, premise_scenarios, redundancy_scenarios
+    designed = premise_scenarios() | redundancy_scenarios()
+    with pytest.raises(ValueError, match=r"^scenarios\['chain'\] holds the network 'unequal'"):
+        chc.premise_studies(3, 2, {**designed, Network.CHAIN: designed[Network.UNEQUAL]})
+    renamed = dataclasses.replace(designed[Network.UNEQUAL], name="test: fully connected")
+    chc.premise._check_scenarios({**designed, Network.CHAIN: renamed})   # a test's own scenario: not checked

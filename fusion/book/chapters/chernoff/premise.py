@@ -305,6 +305,8 @@ def _check_scenarios(scenarios: object, name: str = "scenarios") -> Mapping[str,
     missing = [str(k) for k in PREMISE_NETWORKS if k not in scenarios]  # type: ignore[operator]
     if missing:
         raise ValueError(f"{name} lacks the networks {missing} (every one of PREMISE_NETWORKS is run)")
+    for k, sc in scenarios.items():  # type: ignore[union-attr]  # the readers' rule (_own_keys), at the producer
+        _misplaced(k, sc.name, name)
     return scenarios  # type: ignore[return-value]
 
 
@@ -379,12 +381,18 @@ def _own_keys(studies: Mapping[str, Any], name: str = "studies") -> None:
     networks) under each other's key would be glued as each other; they are told apart by the designed scenario's
     name each study records. A scenario of another name (a test's) is not checked; the criteria readers, whose
     labels are the caller's, take a study under any key (fuzz 24b WN)."""
-    designed = _designed_names()
     for k, st in studies.items():
-        sc_name = getattr(getattr(st, "scenario", None), "name", None)
-        if sc_name in designed and designed[sc_name] != k:
-            raise ValueError(f"{name}[{shown(str(k))}] holds the study of the network {shown(str(designed[sc_name]))} "
-                             f"({shown(sc_name)}): each study must be under its own network's key (two swapped?)")
+        _misplaced(k, getattr(getattr(st, "scenario", None), "name", None), name, "the study of ")
+
+
+def _misplaced(key: object, sc_name: object, name: str, what: str = "") -> None:
+    """Refuse a designed network's scenario (or study) under another network's key: one rule for
+    :func:`premise_studies`' ``scenarios`` and the readers' studies (fuzz 31b C2: the producer took what no reader
+    accepts)."""
+    designed = _designed_names()
+    if sc_name in designed and designed[sc_name] != key:
+        raise ValueError(f"{name}[{shown(str(key))}] holds {what}the network {shown(str(designed[sc_name]))} "
+                         f"({shown(sc_name)}): each network must be under its own key (two swapped?)")
 
 
 @process_cache(maxsize=1)

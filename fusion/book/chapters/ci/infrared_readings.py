@@ -266,6 +266,7 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     t_min, duration = _averaging_start(t_min, duration)
+    runs = count(runs, "runs")   # the int read (fuzz 31b C5: an __index__ object was used raw)
     _ir_budget(T, duration, runs)   # before the first simulation (fuzz 24c WN: runs = 10**6 refused after 7 s)
     _jackknife_budget(runs, "runs")   # the readings' ratios (ir_ratio_table), before any simulation (fuzz 26c A8)
     scaled_axes = tuple(sequence(scaled_axes, "scaled_axes", what="axes"))

@@ -436,6 +436,7 @@ def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValu
     """
     instance_of(e26, SignalStudy, "e26")
     key = _glue_prefix(key, "key")
+    block = count(block, "block", minimum=R.MIN_RUNS)  # the int read (fuzz 31b C5)
     rows = _seed_rows(e26, block)[:-1]
     st = [c.status() for _, c in rows]
     mx = _e26_case(e26, "max", "e26")

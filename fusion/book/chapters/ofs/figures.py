@@ -112,7 +112,7 @@ def figure_readings(readings: ArrayLike, highlight: Sequence[int] = (), window: 
     z = as_array(readings, "readings", ndim=2)
     hl = [count(h, f"highlight[{i}]", maximum=z.shape[1]) for i, h in enumerate(sequence(highlight, "highlight"))]
     if hl:
-        check_window(window, "window", z.shape[0], one_based=True)
+        window = check_window(window, "window", z.shape[0], one_based=True)  # the ints read (fuzz 31b C5)
     truth = scalar(truth, "truth")
     t = np.arange(1, z.shape[0] + 1)
     fig, ax = new_figure(figsize=(7.0, 3.4))
