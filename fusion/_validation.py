@@ -104,6 +104,7 @@ import importlib
 import inspect as _inspect
 import re as _re
 from math import isfinite as _isfinite
+from operator import index as _index
 
 import numpy as np
 from collections.abc import Callable, Sequence
@@ -364,7 +365,7 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
         v = float(value)  # type: ignore[arg-type]
         if _lost_in_cast(value, v):  # Decimal('1e400') or np.longdouble('1e4000') -> inf
             raise OverflowError
-        if v == 0.0 and not isinstance(value, (float, int)) and bool(value != 0):
+        if v == 0.0 and not isinstance(value, (float, int)) and _nonzero(value):
             # a Fraction, Decimal or longdouble below the float range (Fraction(1, 10**400)) would become an exact zero
             raise ValueError(f"{name} must be {what} of magnitude at least {MIN_MAGNITUDE:g} (or zero), got a non-zero "
                              f"value below the float range: {shown(value, 60)}")
@@ -380,6 +381,15 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
         raise
     except Exception as exc:  # rule 15: the argument's own exception (its __float__ raised)
         raise _conversion_error(name, exc) from exc
+
+
+def _nonzero(value: object) -> bool:
+    """Whether ``value``, which converts to the float 0.0, is not zero: an integer given by ``__index__`` is its
+    index (an object with only ``__index__`` compares by identity: fuzz 31b C6), any other number its ``!= 0``."""
+    try:
+        return _index(value) != 0
+    except TypeError:  # not an integer (a Fraction, a Decimal, a float array)
+        return bool(value != 0)
 
 
 def is_integer(value: object) -> bool:
