@@ -659,13 +659,31 @@ def shared_post_init(self: object) -> None:
     already read-only)."""
     checked = check_fields(self)
     given = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}  # type: ignore[arg-type]
-    for name, v in given.items():   # a dict's keys as its spec's ``read_key`` reads them, the values shared
-        c = checked.get(name)
-        if isinstance(v, Mapping) and isinstance(c, Mapping) and any(a is not b for a, b in zip(c, v)):
-            given[name] = dict(zip(c, v.values()))
-        elif type(c) in (int, float) and not isinstance(v, (int, float, np.integer, np.floating)):
-            given[name] = c  # a number or integer field: the number read, never a caller's 0-d array (fuzz 29a C1)
+    for name, v in given.items():
+        if name in checked:
+            given[name] = _shared(v, checked[name])
     _store(self, given, copy=False)
+
+
+def _shared(given: Any, checked: Any) -> Any:
+    """What a bundle stores of a field given as ``given`` and read by its spec as ``checked``: the given values
+    (shared, not copied), except that a number or integer is the number read, never a caller's 0-d array or
+    ``__index__`` object, also inside a tuple or a dict (fuzz 29a C1, 31b C7: ``arch_seeds`` kept the caller's
+    objects, which a later edit changed), and a dict's keys are the keys its spec's ``read_key`` reads."""
+    if type(checked) in (int, float):
+        return given if isinstance(given, (int, float, np.integer, np.floating)) else checked
+    if isinstance(checked, tuple) and isinstance(given, (tuple, list)) and len(given) == len(checked):
+        items = tuple(_shared(g, c) for g, c in zip(given, checked))
+        return given if all(a is b for a, b in zip(items, given)) else items
+    if isinstance(checked, Mapping) and isinstance(given, Mapping) and len(given) == len(checked):
+        read = list(checked)  # in the given order (a read_key keeps it), unless a spec of fixed keys reordered them
+        if not all(bool(a == b) for a, b in zip(read, given)) and all(k in checked for k in given):
+            read = list(given)
+        values = [_shared(g, checked[k]) for g, k in zip(given.values(), read)]
+        if all(a is b for a, b in zip(read, given)) and all(a is b for a, b in zip(values, given.values())):
+            return given
+        return dict(zip(read, values))
+    return given
 
 
 def trusted(cls: type, **fields: Any) -> Any:

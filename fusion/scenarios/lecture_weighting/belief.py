@@ -327,6 +327,7 @@ class BeliefParameterStudy:
         """Every field checked (``fusion._results``): a ValueError naming the field, e.g. ``BeliefParameterStudy.grid``."""
         store_read(self, "seed", _seed(self.seed, "BeliefParameterStudy.seed"))  # a plain int (rule 20)
         snapshots = count(self.snapshots, "BeliefParameterStudy.snapshots", minimum=2)
+        store_read(self, "snapshots", snapshots)  # the plain int read, never a caller's __index__ object (fuzz 31b C7)
         validated_post_init(self)
         if self.sq_mean.size != snapshots:
             raise ValueError(f"BeliefParameterStudy.snapshots ({snapshots}) must be the number of rows of its arrays "
