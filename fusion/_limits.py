@@ -45,6 +45,23 @@ LOOP_STEP = 10**3
 ROUND_OFF_TIE = 1e-9
 
 
+#: Relative tolerance of a parameter the caller gives against the one a study records (the swaps checks: the noise
+#: SDs, the sampling period of a study passed with its settings): the same value computed another way is off by
+#: round-off (``np.arange(3, 13) / 6`` is 1 ulp off the chapter's SDs; fuzz 31b D1), a swapped one by far more.
+RECORDED_RTOL = 1e-12
+
+
+def recorded_as(given: object, recorded: object) -> bool:
+    """Whether ``given`` is the value ``recorded`` to :data:`RECORDED_RTOL` (an array broadcast to ``recorded``'s
+    shape, a scalar for every entry; False for shapes that do not broadcast): the one rule of the swaps checks."""
+    r = np.asarray(recorded, dtype=float)
+    try:
+        g = np.broadcast_to(np.asarray(given, dtype=float), r.shape)
+    except ValueError:
+        return False
+    return bool(np.allclose(g, r, rtol=RECORDED_RTOL, atol=0.0))
+
+
 def work(shape: tuple[int, ...], names: str) -> int:
     """Refuse a call whose work, the product of the counts in ``shape``, is beyond :data:`MAX_WORK` (rule 17).
 

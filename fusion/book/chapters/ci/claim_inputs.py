@@ -12,6 +12,7 @@ import pandas as pd
 from fusion._results import (ResultSpec, array, dict_of, instance, integer, number, shared_post_init, table, text,
                              tuple_of, validated_post_init)
 from fusion._shown import shown
+from fusion._limits import recorded_as
 from fusion._validation import FloatArray
 from fusion.scenarios.two_sensor import ArchitectureStudy, NeesRule, FusionStudy, QScaling
 from fusion.book.chapters.ci.checks import _arch_pair
@@ -107,7 +108,7 @@ def _ir_period_relation(values: Mapping[str, Any], cls: str) -> None:
     the period, or the readings' own period compared as "another period"."""
     T = float(values["ir_T"])
     periods = [float(k) for k in values["ir_sens"]]
-    if not any(np.isclose(T, p, rtol=1e-12, atol=0.0) for p in periods):
+    if not any(recorded_as(T, p) for p in periods):
         raise ValueError(f"{cls}.ir_T = {shown(T)} must be a period of ir_sens (the readings' own period), got the "
                          f"periods {shown(sorted(periods), 120)}")
     for axis, sim in values["ir_readings"].sims.items():

@@ -10,6 +10,7 @@ import pandas as pd
 from scipy.stats import chi2
 from numpy.typing import ArrayLike
 
+from fusion._limits import recorded_as
 from fusion._structures import same_keys
 from fusion._validation import as_array, as_covariance, as_mask, as_rng, count, flag, scalar, shown
 from fusion.book.tables import rounded, roundoff
@@ -184,7 +185,7 @@ def _same_runs(true_start: object, random_start: object, runs: int, T: float) ->
                              " (true_start and random_start swapped, or one start twice?)")
         if d.runs != runs:
             raise ValueError(f"runs = {runs} must be the number of runs {name} averages ({d.runs})")
-        if not np.isclose(d.T, T, rtol=1e-12, atol=0.0):
+        if not recorded_as(T, d.T):
             raise ValueError(f"T = {T:g} s must be the sampling period of {name}'s runs ({d.T:g} s)")
     if len(recorded) == 2:
         a, b = true_start, random_start
@@ -206,7 +207,7 @@ def _exact_case(exact: object, true_start: object, T: float, t_steady: float) ->
         return
     steps = next(iter(true_start.values())).size if isinstance(true_start, NeesPerStep) else None
     for what, mine, theirs in (("T", T, exact.T), ("t_steady", t_steady, exact.t_steady)):
-        if not np.isclose(mine, theirs, rtol=1e-12, atol=0.0):
+        if not recorded_as(mine, theirs):
             raise ValueError(f"exact is split_ci_exactness at {what} = {theirs:g} s, the runs' is {what} = {mine:g} s")
     if steps is not None and exact.n_steps != steps:
         raise ValueError(f"exact is split_ci_exactness of {exact.n_steps} steps, the runs' are {steps}")

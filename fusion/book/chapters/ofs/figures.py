@@ -13,6 +13,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion._counts import count, sequence
+from fusion._limits import recorded_as
 from fusion._shown import shown
 from fusion._structures import same_keys, within
 from fusion._validation import as_array, instance_of, scalar, window as check_window
@@ -59,12 +60,11 @@ def _bounds(sigmas: object, studies: Mapping[str, PairedStudy]) -> dict[str, flo
     for label in studies:
         where = f"sigmas[{shown(label)}]"
         sig = as_array(sigmas[label], where, ndim=(0, 1))
-        if sig.ndim == 1 and sig.size != _N_SENSORS:
-            raise ValueError(f"{where} must hold one noise SD per sensor of the chapter's bank ({_N_SENSORS}) or one "
-                             f"for all, got {sig.size}")
+        if sig.ndim == 1 and sig.size != _N_SENSORS:  # one SD in a list is one sensor's, not all's (fuzz 31b D2)
+            raise ValueError(f"{where} must hold one noise SD per sensor of the chapter's bank ({_N_SENSORS}) or be "
+                             f"one number for all, got a sequence of {sig.size} SD{'' if sig.size == 1 else 's'}")
         recorded = getattr(studies[label], "sigma", None)   # issue 35, swaps: the noise the study records
-        if recorded is not None and (recorded.shape != (_N_SENSORS,)
-                                     or not np.array_equal(np.broadcast_to(sig, (_N_SENSORS,)), recorded)):
+        if recorded is not None and (recorded.shape != (_N_SENSORS,) or not recorded_as(sig, recorded)):
             raise ValueError(f"{where} must be the noise SDs of studies[{shown(label)}], which records others (the "
                              "studies or the SDs under each other's label?)")
         with within(where):
@@ -190,8 +190,10 @@ def mc_table(studies: Mapping[str, PairedStudy], sigmas: Mapping[str, ArrayLike]
         ``studies`` not a mapping of :class:`~fusion.scenarios.thermocouples.PairedStudy`, or ``sigmas`` not a mapping.
     ValueError
         ``studies`` empty; ``sigmas`` not holding exactly the labels of ``studies``; a setting's SDs not one
-        finite positive number or one per sensor of the chapter's bank (ten), or not the SDs the study of its label
-        records (a study and the SDs under each other's label), naming ``sigmas[label]``.
+        finite positive number or one per sensor of the chapter's bank (ten; a one-element sequence is refused: one
+        SD for all is a number), or not the SDs the study of its label records to a relative ``1e-12``
+        (``fusion._limits.RECORDED_RTOL``: the same SDs computed another way are accepted; a study and the SDs under
+        each other's label are refused), naming ``sigmas[label]``.
     """
     studies = _studies(studies)
     return _mc_frame(studies, _bounds(sigmas, studies))

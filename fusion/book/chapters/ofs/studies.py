@@ -31,6 +31,7 @@ from fusion.book.chapters.ofs.settings import METHODS, NOISE, FailureCase, _nois
 from fusion.book.glue import GlueValues
 from fusion._docstrings import ParameterDocs
 from fusion._counts import allocation, count
+from fusion._limits import recorded_as
 
 __all__ = [
     "FaultyMembership",
@@ -391,8 +392,8 @@ def _closing_studies(study_hs: PairedStudy, study_eq: PairedStudy) -> None:
     glued side by side, not paired, so their seeds and runs may differ. A study that records no noise (``sigma``
     None: built by hand) is not checked."""
     primary = np.broadcast_to(np.asarray(NOISE["unequal"], dtype=float), (10,))
-    if study_hs.sigma is not None and (study_hs.sigma.shape != primary.shape or not np.array_equal(study_hs.sigma,
-                                                                                                    primary)):
+    if study_hs.sigma is not None and (study_hs.sigma.shape != primary.shape or not recorded_as(primary,
+                                                                                                study_hs.sigma)):
         raise ValueError("study_hs must be the study at the primary (unequal) noise levels, NOISE['unequal'], got one "
                          "at other levels (study_hs and study_eq swapped, or another noise's study?)")
     if study_eq.sigma is not None and np.ptp(study_eq.sigma) > 0.0:
