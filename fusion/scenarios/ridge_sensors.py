@@ -29,7 +29,7 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, 
                              validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import seed as check_seed
-from fusion._validation import distinct, distinct_printed, general, loop_work
+from fusion._validation import distinct, distinct_printed, glue_part, loop_work
 from fusion._validation import allocation, as_array, count, finite_result, positive_scalar, std_scalar
 from fusion.readings import biased as rg
 
@@ -50,11 +50,14 @@ PLUGIN_METHODS: tuple[str, str, str] = (LS, PLUGIN_KNOWN, PLUGIN_EST)
 VECTOR_METHODS: tuple[str, str, str] = (LS, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED)
 
 
-def _glue_part(x: object) -> object:
-    """A true value or tolerance as chapter 04 prints it in glue keys and reading keys (``f"{x:g}"`` without its
-    point: 0.25 -> ``025``; ``fusion._counts.general`` for anything else): no two entries may print alike."""
-    g = general(x)
-    return g.replace(".", "") if isinstance(g, str) else g
+def _plugin_range(xs: np.ndarray, m: int, sigma: float, names: str) -> None:
+    """Refuse true values ``xs`` beyond ``PLUGIN_RANGE`` standard errors, naming ``names``: the exact risk at each x
+    (chapter 04's ``plugin_exact``) is not computed there (fuzz 31b C4: plugin_study accepted them, and its reader
+    refused the study naming its inner ``theta``)."""
+    big = float(np.abs(np.asarray(xs, dtype=float) * np.sqrt(m) / sigma).max())
+    if big > rg.PLUGIN_RANGE:
+        raise ValueError(f"{names} must give true values of at most {rg.PLUGIN_RANGE:g} standard errors "
+                         f"(sqrt(m) |x| / sigma), got {big:g}: beyond, the exact risk at x is not computed")
 
 
 @dataclass(frozen=True)
@@ -96,9 +99,9 @@ class PluginStudy:
     xs: tuple[float, ...]
 
     __result_spec__ = ResultSpec(
-        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float, printed=_glue_part),
+        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float, printed=glue_part),
          "hit": dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float),
-         "hits": dict_of(dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float), key=float, printed=_glue_part),
+         "hits": dict_of(dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float), key=float, printed=glue_part),
          "curve": array("C"),
          "ratio_known": array("C", bounds=NONNEGATIVE), "ratio_est": array("C", bounds=NONNEGATIVE),
          "rel_curve": dict_of(array("C", bounds=(0.0, 1.0))),
@@ -137,7 +140,7 @@ class VectorStudy:
     scales: tuple[float, ...]
 
     __result_spec__ = ResultSpec(
-        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=tuple, printed=general),  # rows f"{scale:g}"
+        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=tuple, printed=glue_part),  # glue keys, rows
          "x": dict_of(array(2), key=tuple),
          "A": array(2, 2, covariance=True), "cond": number(positive=True), "tr_ls": number(positive=True),
          "runs": integer(1, dim="runs"), "seed": integer(0), "scales": tuple_of(number(positive=True))},
@@ -164,7 +167,8 @@ def plugin_study(
     ----------
     xs : sequence of float
         True values of the paired comparisons (no two alike in their digits ``f"{x:g}"``, 1.5 and 15 included:
-        the results are keyed by x, chapter 04's glue values by those digits).
+        the results are keyed by x, chapter 04's glue values by those digits, ``fusion._counts.glue_part``: -1 as
+        ``m1``, 1e-05 as ``1em05``); ``sqrt(m) |x| / sigma`` at most ``fusion.readings.biased.PLUGIN_RANGE``.
     m : int
         Readings per estimate (>= 2, so that σ can be estimated).
     sigma : float
@@ -188,7 +192,8 @@ def plugin_study(
     ------
     ValueError
         Empty or non-finite ``xs`` or ``curve``, bad ``m``, ``sigma``, ``runs``, ``seed`` or ``deltas``; a ``curve``
-        so long that its exact quadratures are beyond the memory or work budget.
+        so long that its exact quadratures are beyond the memory or work budget; ``xs``, ``m`` and ``sigma`` giving a
+        true value beyond ``fusion.readings.biased.PLUGIN_RANGE`` standard errors (its exact risk is not computed).
     """
     xv = as_array(xs, "xs", ndim=1)
     if xv.size == 0:
@@ -206,7 +211,8 @@ def plugin_study(
     if dv.size == 0 or np.any(dv <= 0) or not np.any(dv == 1.0):
         raise ValueError(f"deltas must hold positive tolerances, 1 among them, got {dv}")
     for name, vals in (("xs", xv), ("deltas", dv)):  # the results are keyed by x and by delta, glue values by
-        distinct_printed(vals.tolist(), name, _glue_part)  # their digits (fuzz 30b)
+        distinct_printed(vals.tolist(), name, glue_part)  # their digits (fuzz 30b, 31b)
+    _plugin_range(xv, m, sigma, "xs, m and sigma")  # what the study's reader (plugin_exact) computes
     loop_work((xv.size, dv.size + 3), m * runs, "xs, deltas, m and runs")  # rule 17: three estimates per x
     delta = sigma / np.sqrt(m)
     H = np.ones(m)
@@ -252,8 +258,9 @@ def vector_study(
     seed : int
         Seed of the noise.
     scales : sequence of float
-        Norms of the true x (> 0, no two equal to 6 significant digits: the results are keyed by scale and the
-        chapter's tables by ``f"{scale:g}"``).
+        Norms of the true x (> 0, no two alike in their digits ``f"{scale:g}"``, 3.5 and 35 included: the results
+        are keyed by scale, the chapter's tables by ``f"{scale:g}"`` and its glue values by those digits,
+        ``fusion._counts.glue_part``).
     spread : float
         Collinearity parameter ε (> 0; smaller is worse conditioned).
     sigma : sequence of float
@@ -269,7 +276,7 @@ def vector_study(
     sc = as_array(scales, "scales", ndim=1)
     if sc.size == 0 or np.any(sc <= 0):
         raise ValueError(f"scales must hold positive norms, got {sc}")
-    distinct_printed(sc.tolist(), "scales", general)  # results keyed by (direction, scale), rows by f"{scale:g}"
+    distinct_printed(sc.tolist(), "scales", glue_part)  # results keyed by (direction, scale), glue keys by glue_part
     loop_work((sc.size, 2), 60 * runs, "scales and runs")  # rule 17: three fusions per scale and direction
     spread = positive_scalar(spread, "spread")
     sig = as_array(sigma, "sigma", ndim=1)

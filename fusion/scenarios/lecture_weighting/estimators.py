@@ -19,7 +19,7 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, flag, inst
 from fusion._frozen import constant
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
-from fusion._validation import LOOP_STEP, as_mask, distinct, distinct_printed, general, loop_work
+from fusion._validation import LOOP_STEP, as_mask, distinct, distinct_printed, glue_part, loop_work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 from fusion._shown import shown
@@ -256,7 +256,8 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     runs, seed, chunk : int
         Monte-Carlo runs (drawn in chunks of ``chunk``), seed.
     thresholds : sequence of float
-        The t (> 0), differing to 6 significant digits (each keys a glue value ``lec_tail_p_{t:g}``).
+        The t (> 0), no two alike in their digits ``f"{t:g}"``, 10.5 and 105 included (each keys a glue value
+        ``lec_tail_p_`` followed by those digits, ``fusion._counts.glue_part``: 10.5 as ``105``).
 
     Returns
     -------
@@ -275,7 +276,7 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     t = _values(thresholds, "thresholds")
     if np.any(t <= 0):
         raise ValueError("thresholds must be positive")
-    distinct_printed(t.tolist(), "thresholds", general, "keys a glue value")  # lec_tail_p_{t:g} (fuzz 30b B2)
+    distinct_printed(t.tolist(), "thresholds", glue_part, "keys a glue value")  # lec_tail_p_* (fuzz 30b B2, 31b D4)
     loop_work((t.size,), runs, "thresholds and runs", step=3 * LOOP_STEP)  # rule 17: a pass over the errors
     rng = np.random.default_rng(seed)
     errs, done = [], 0

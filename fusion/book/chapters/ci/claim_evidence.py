@@ -20,7 +20,7 @@ from fusion._docstrings import with_sections, reads_results
 from fusion.book._few_runs import inputs_runs_named
 from fusion._results import number, table, text
 from fusion._shown import shown
-from fusion._validation import instance_of
+from fusion._validation import glue_part, instance_of
 from fusion.book.claims import build_ledger
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Evidence, Ledger, Proposition, PublishedValues, Unverifiable, fmt
@@ -671,7 +671,7 @@ def ledger_values(r: LedgerInputs) -> GlueValues:
     mean = {k: float(np.mean(v)) for k, v in ai.run_rmse.items()}
     v = {
         "ci_lg_runs": int(study.est[IMP].shape[0]), "ci_lg_n_steps": n_all, "ci_lg_steady_steps": k_st,
-        **{f"ci_fig6_d_{_key(T).replace('-', '')}": paired_text(v.fruit_fly, v.grid, 3) for T, v in r.fig6_periods.items()},
+        **{f"ci_fig6_d_{glue_part(T)}": paired_text(v.fruit_fly, v.grid, 3) for T, v in r.fig6_periods.items()},
         "ci_fig6_d_step": paired_text(r.paired[StudyMethod.CI_FRUIT_FLY], r.paired[StudyMethod.CI_GRID], 3),
         **dict(zip(("ci_lg_fig6_lo", "ci_lg_fig6_hi"),
                    Comparison(r.paired_fig6[W_PUB], r.paired_fig6[W_GRID], "a", "b", "less", METRIC).interval()[1:])),
@@ -738,8 +738,8 @@ def _ledger_values_ir(r: LedgerInputs) -> GlueValues:
             "ci_lg_ir_ang_el": float(r.ir_means[IR_IMP][ELEVATION_MRAD]),
             "ci_lg_ir_cart_lo": float(ir_rms(rr[("x", cart_lo)][IR_IMP])[0]),
             "ci_lg_ir_cart_hi": float(ir_rms(rr[("x", cart_hi)][IR_IMP])[0]),
-            **{f"ci_lg_ir_sa_{_key(sa).replace('-', '')}_az": float(rd.sigma_rms[sa][0]) for sa in IR_SIGMA_A},
-            **{f"ci_lg_ir_sa_{_key(sa).replace('-', '')}_el": float(rd.sigma_rms[sa][1]) for sa in IR_SIGMA_A},
+            **{f"ci_lg_ir_sa_{glue_part(sa)}_az": float(rd.sigma_rms[sa][0]) for sa in IR_SIGMA_A},
+            **{f"ci_lg_ir_sa_{glue_part(sa)}_el": float(rd.sigma_rms[sa][1]) for sa in IR_SIGMA_A},
             **dict(zip(("ci_lg_ir_sa_lo", "ci_lg_ir_sa_hi"), rd.sigma_band)),
             "ci_lg_clear_x": (1 + CLEARLY) * float(irp["x_m"][0]), "ci_lg_clear_y": (1 + CLEARLY) * float(irp["y_m"][0]),
             "ci_lg_ratio_lo": lo_b, "ci_lg_ratio_hi": hi_b, "ci_lg_clearly_pct": round(100 * CLEARLY)}

@@ -13,7 +13,7 @@ from fusion._results import (ResultSpec, array, dict_of, instance, integer, numb
                              tuple_of, validated_post_init)
 from fusion._shown import shown
 from fusion._limits import recorded_as
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, glue_part
 from fusion.scenarios.two_sensor import ArchitectureStudy, NeesRule, FusionStudy, QScaling
 from fusion.book.chapters.ci.checks import _arch_pair
 from fusion.book.chapters.ci.fruit_fly_step import (CANDIDATES_ABOVE, CANDIDATES_BELOW, EXHAUSTIVE,
@@ -86,7 +86,7 @@ class PeriodRuns:
 #: Field specs of the ledger's inputs (fusion._results), by the class that declares the fields: every class that
 #: holds them (PairedInputs, IrInputs, LedgerStudies, LedgerInputs) checks them when built.
 _PAIRED_FIELDS = {**_PAIRED_CLAIM_FIELDS,
-                  "aniso_seed": integer(0), "fig6_periods": _real_keyed(instance(PeriodRuns)),
+                  "aniso_seed": integer(0), "fig6_periods": _real_keyed(instance(PeriodRuns), glue_part),
                   "flat_range": number(), "flat_pub_grid": tuple_of(number(positive=True), count=2)}
 _IR_FIELDS = {"ir_readings": instance(IrReadings), "ir_seed": integer(0),
               "ir_paired": dict_of(array("ir_runs", bounds=(0.0, np.inf))), "ir_means": dict_of(dict_of(number()))}
@@ -151,7 +151,8 @@ class PairedInputs(PairedClaimInputs):
     aniso_seed : int
         Seed of the anisotropic pair.
     fig6_periods : dict of float to PeriodRuns
-        :func:`fig6_periods`: period (s) -> the runs at the two published weights.
+        :func:`fig6_periods`: period (s) -> the runs at the two published weights (no two periods alike in their
+        digits, 1.5 and 15 included: each keys a glue value ``ci_fig6_d_*`` by them, ``fusion._counts.glue_part``).
     flat_range : float
         Range of tr P(ω) of the identical sensors at :data:`SEARCH_STEP` over 11 weights in [0, 1].
     flat_pub_grid : tuple of float

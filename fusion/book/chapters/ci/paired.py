@@ -169,12 +169,13 @@ def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> GlueValue
 _REAL = (float, int, np.number)
 
 
-def _real_keyed(value: Any, **kw: Any) -> Any:
+def _real_keyed(value: Any, printed: Any = general, **kw: Any) -> Any:
     """Spec of a dict keyed by real numbers (periods, weights, levels), each key read by the chapter's one rule
     (``_period_key``: a float32 key is the number it prints as, so that its readers find it; fuzz 26c q2), no two
-    keys alike to 6 significant digits (the evidence keys its readings and glue values by ``f"{key:g}"``: two such
-    keys would share one reading, the last silently replacing the other; fuzz 30b B3)."""
-    return dict_of(value, key=_REAL, read_key=_period_key, printed=general, **kw)
+    keys alike to 6 significant digits (the evidence keys its readings by ``f"{key:g}"``: two such keys would share
+    one reading, the last silently replacing the other; fuzz 30b B3); ``printed`` ``glue_part`` for a dict whose
+    keys also key glue values (no two alike in their digits: 1.5 and 15 share a glue key; fuzz 31b C1)."""
+    return dict_of(value, key=_REAL, read_key=_period_key, printed=printed, **kw)
 
 #: A per-run RMSE (m, or mrad): one non-negative value per run.
 _RUNS = array("runs", bounds=(0.0, np.inf))

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from fusion._results import ResultSpec, dict_of, instance, number, validated_post_init
 from fusion._shown import shown
-from fusion._validation import instance_of
+from fusion._validation import glue_part, instance_of
 
 from dataclasses import dataclass
 from collections.abc import Mapping
@@ -28,6 +28,7 @@ from fusion.scenarios.ridge_sensors import (
     RIDGE_DISTRIBUTED,
     PluginStudy,
     VectorStudy,
+    _plugin_range,
 )
 from fusion.book.glue import GlueValues
 from fusion._docstrings import ParameterDocs, reads_results
@@ -293,8 +294,15 @@ def plugin_exact(p: PluginStudy) -> PluginExact:
     -------
     PluginExact
         See the class's attributes.
+
+    Raises
+    ------
+    ValueError
+        A study whose true values are beyond ``fusion.readings.biased.PLUGIN_RANGE`` standard errors (a
+        ``dataclasses.replace`` of :func:`~fusion.scenarios.ridge_sensors.plugin_study`'s result, which refuses them).
     """
     instance_of(p, PluginStudy, "p")
+    _plugin_range(np.asarray(p.xs), p.m, p.sigma, "p.xs, p.m and p.sigma")
     m, sig = p.m, p.sigma
     known = {c: rg.plugin_crossings(c=c) for c in p.deltas}
     theta = {x: x * np.sqrt(m) / sig for x in p.xs}
@@ -421,7 +429,7 @@ def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> GlueValues:
     d: dict[str, tuple[float, int]] = {}
     mse_ls = p.sigma ** 2 / p.m
     for x in p.xs:
-        key = f"{x:g}".replace(".", "")
+        key = glue_part(x)
         for k, short in ((PLUGIN_KNOWN, "pk"), (PLUGIN_EST, "pe")):
             ex = x25.at[k, 1.0][x]
             d[f"rp_mse_{short}_{key}"] = (float(ex.mse_ratio) * mse_ls, 4)
@@ -431,7 +439,7 @@ def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> GlueValues:
         d[f"rp_ratio_exact_{key}"] = (x25.ratio_at[x], 4)
         d[f"rp_theta_{key}"] = (x25.theta_at[x], 2)
         for c in p.deltas:
-            ck = f"{c:g}".replace(".", "")
+            ck = glue_part(c)
             ex = x25.at[PLUGIN_KNOWN, c][x]
             d[f"rp_dd_c{ck}_{key}"] = (float(ex.reliability) - ex.reliability_ls, 4)
     k1, ke = x25.known[1.0], x25.estimated
@@ -442,13 +450,13 @@ def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> GlueValues:
     d["rp_est_ratio_max"] = (ke["peak_ratio"], 3)
     d["rp_est_cross_var"], d["rp_est_var_max"] = (ke["variance"], 2), (ke["var_peak_ratio"], 3)
     for c, cr in x25.known.items():
-        d[f"rp_cross_rel_c{f'{c:g}'.replace('.', '')}"] = (cr["reliability"], 2)
+        d[f"rp_cross_rel_c{glue_part(c)}"] = (cr["reliability"], 2)
     d["rp_rel_ls_exact"] = (float(p.rel_curve[LS][0]), 4)
     d["rp_cond"] = (v.cond, 0)
     d["rp_v_ls_exact"] = (v.tr_ls, 2)
     tv = table_vector(v)
     for (dname, s_) in v.sq:
-        key = f"{'s' if dname.startswith('strong') else 'w'}{s_:g}"
+        key = f"{'s' if dname.startswith('strong') else 'w'}{glue_part(s_)}"
         lab = f"{dname}, |x| = {s_:g}"
         for mk, short in ((LS, "ls"), (RIDGE_CENTRALISED, "cen"), (RIDGE_DISTRIBUTED, "dis")):
             d[f"rp_v_{short}_{key}"] = (tv.loc[lab, METHOD_SHORT_LABELS[mk]], 1)

@@ -7,7 +7,8 @@ from fusion.book._few_runs import study_runs_named
 from fusion._counts import sequence
 from fusion._structures import within
 from fusion._limits import loop_work
-from fusion._validation import as_array, distinct_printed, general, instance_of, scalar, selection, std_scalar
+from fusion._validation import (as_array, distinct_printed, general, glue_part, instance_of, scalar, selection,
+                                std_scalar)
 
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -143,8 +144,8 @@ def glue_24(s: BeliefStudy) -> GlueValues:
     out["lec_bel_pf_fuzzy_gap1"] = rounded(pf["fuzzy, s = 1"].min_gap, 4)
     out["lec_bel_pf_fuzzy_minw"] = rounded(pf["fuzzy, s = 1"].min_weight, 5)
     for e in (0.5, 1, 2, 4):
-        out[f"lec_bel_pf_bin_rep_{str(e).replace('.', '')}"] = rounded(100 * pf[f"binary, ε = {e:g}"].share_repeated, 1)
-        out[f"lec_bel_pf_bin_zero_{str(e).replace('.', '')}"] = rounded(100 * pf[f"binary, ε = {e:g}"].share_zero_weight, 1)
+        out[f"lec_bel_pf_bin_rep_{glue_part(e)}"] = rounded(100 * pf[f"binary, ε = {e:g}"].share_repeated, 1)
+        out[f"lec_bel_pf_bin_zero_{glue_part(e)}"] = rounded(100 * pf[f"binary, ε = {e:g}"].share_zero_weight, 1)
     for m in (1, 2, 4):
         out[f"lec_bel_pf_tr_rep_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"].share_repeated, 1)
         out[f"lec_bel_pf_tr_zero_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"].share_zero_weight, 1)

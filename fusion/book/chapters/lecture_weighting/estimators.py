@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from fusion.book._few_runs import study_runs_named
 from fusion._counts import sequence
-from fusion._validation import distinct, distinct_printed, general, instance_of, scalar, shown
+from fusion._validation import distinct, distinct_printed, glue_part, instance_of, scalar, shown
 
 from dataclasses import dataclass
 
@@ -678,7 +678,7 @@ def glue_tail(tl: TailStudy) -> GlueValues:
         Glue key → value.
     """
     instance_of(tl, TailStudy, "tl")
-    distinct_printed([float(t) for t in tl.t], "tl.t", general, "keys a glue value")  # a rebuilt study (fuzz 30b B2)
+    distinct_printed([float(t) for t in tl.t], "tl.t", glue_part, "keys a glue value")  # a rebuilt study (fuzz 30b B2)
     te = np.asarray(tl.t_exceed, dtype=float)
     out: GlueValues = {"lec_tail_runs": f"{tl.runs:,}", "lec_tail_lo": round(float(te.min()), 2),
                            "lec_tail_hi": round(float(te.max()), 2), "lec_tail_tmax": f"{tl.t.max():g}",
@@ -687,5 +687,5 @@ def glue_tail(tl: TailStudy) -> GlueValues:
                            "lec_tail_block_hi": sci(float(tl.block_mse.max()), 2),
                            "lec_tail_median_sq": round(float(tl.median_sq), 5)}
     for t, p in zip(tl.t, tl.exceed):
-        out[f"lec_tail_p_{t:g}"] = round(float(p), 5)
+        out[f"lec_tail_p_{glue_part(float(t))}"] = round(float(p), 5)  # an identifier (fuzz 31b D4: 10.5 gave 10.5)
     return out
