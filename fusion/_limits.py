@@ -26,11 +26,12 @@ MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
 MAX_INPUT_ELEMENTS = 2**25
 #: Work budget of one call (rule 17 of :mod:`fusion._validation`): the product of the counts that set a
 #: function's loops (runs x steps, problems x particles x iterations x dimension, ...), checked by :func:`work`
-#: before any work. One unit is one element of a vectorised numpy operation (1 to 10 ns on one core of this
-#: machine); a Python-level iteration of a loop costs :data:`LOOP_STEP` units on top of its vectorised work
-#: (:func:`loop_work`, heavier steps weighted by a multiple of it), so that the budget means about the same
-#: wall time everywhere: ``10**9`` units are seconds to a minute on this machine (a particle swarm of 33,000
-#: iterations, its largest accepted, ran 6 s here with other jobs), never hours. A sequence argument whose
+#: before any work. ``10**9`` units are at most about 10 CPU-s on one core of this machine: one unit is about
+#: 10 ns, one element of a vectorised numpy operation (1 to 10 ns); a Python-level iteration of a loop costs
+#: :data:`LOOP_STEP` units on top of its vectorised work (:func:`loop_work`, heavier steps weighted by a multiple
+#: of it), and a counted element that costs more weighs its measured cost in units (``weight`` of :func:`work`;
+#: chapter 07's table, ``fusion.scenarios._time_registration_work``, fuzz 30b D2), never hours. A particle swarm
+#: of 33,000 iterations, its largest accepted, ran 6 s here with other jobs. A sequence argument whose
 #: entries each run a loop body (seeds, sizes, grids of scales or periods) counts its length, or the sum of
 #: its entries when each entry is a size. The book's requests stay well inside (chapter 02's 20,000 runs x
 #: 100 samples x 4 sensors are 8e6 units; its belief study, 8 params x 803 loop steps, about 7e6).
@@ -62,12 +63,13 @@ def recorded_as(given: object, recorded: object) -> bool:
     return bool(np.allclose(g, r, rtol=RECORDED_RTOL, atol=0.0))
 
 
-def work(shape: tuple[int, ...], names: str) -> int:
-    """Refuse a call whose work, the product of the counts in ``shape``, is beyond :data:`MAX_WORK` (rule 17).
+def work(shape: tuple[int, ...], names: str, weight: int = 1) -> int:
+    """Refuse a call whose work, ``weight`` times the product of the counts in ``shape``, is beyond :data:`MAX_WORK`
+    (rule 17).
 
     The style of :func:`fusion._validation.allocation` for memory: a function whose loops grow as a product of
     counts calls this at its entry, once its counts are validated, so that a valid but huge request is refused
-    by name at once rather than running for minutes or hours.
+    by name at once rather than running for more than about 10 CPU-s (minutes or hours).
 
     Parameters
     ----------
@@ -75,24 +77,27 @@ def work(shape: tuple[int, ...], names: str) -> int:
         The counts whose product is the number of units of work (each at least 1).
     names : str
         The arguments setting them (``"runs, k and sigma"``), named in the message.
+    weight : int
+        The units of one counted element: its measured CPU time over the unit's (about 10 ns, :data:`MAX_WORK`),
+        rounded up; 1 for a vectorised element.
 
     Returns
     -------
     int
-        The product.
+        The units of work, ``weight`` times the product.
 
     Raises
     ------
     ValueError
         If the product is beyond :data:`MAX_WORK`, naming ``names`` and the budget.
     """
-    n = 1
+    n = int(weight)
     for s in shape:
         n *= int(s)
     if n > MAX_WORK:
-        dims = " x ".join(f"{int(d):,}" for d in shape)
+        dims = " x ".join(f"{int(d):,}" for d in shape) + (f", {int(weight):,} units each" if weight != 1 else "")
         raise ValueError(f"{names} ask for {n:.3g} units of work ({dims}), beyond the work budget "
-                         f"(at most {MAX_WORK:.0e}, fusion._validation.MAX_WORK): it would run for minutes or hours")
+                         f"(at most {MAX_WORK:.0e}, fusion._validation.MAX_WORK, about 10 CPU-s)")
     return n
 
 

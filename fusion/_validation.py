@@ -76,7 +76,7 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 17. *Work*: valid counts whose product is huge (runs x steps, problems x particles x iterations x
     dimension) fit in memory but would run for hours. A function whose loops grow as such a product
     calls :func:`work` at its entry with the counts, and a product beyond the work budget
-    :data:`MAX_WORK` (``10**9`` units of one vectorised element each, seconds to a minute; a Python-level
+    :data:`MAX_WORK` (``10**9`` units of about 10 ns each, at most about 10 CPU-s; a Python-level
     loop step weighs :data:`LOOP_STEP` units, :func:`loop_work`) is refused with a :class:`ValueError`
     naming the arguments and the budget, before any work. A loop over the entries of a sequence argument
     (seeds, sizes, a grid of scales) counts its length, or the sum of its entries when they are sizes.

@@ -14,7 +14,6 @@ per-run MSEs can be compared, paired, with the exact expectation of :func:`expec
 
 from __future__ import annotations
 
-from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
@@ -28,7 +27,7 @@ from fusion._frozen import constant
 from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, number, validated_post_init
 from fusion import registration as reg
 from fusion.registration import methods as _methods
-from fusion._limits import LOOP_STEP, work
+from fusion.scenarios._time_registration_work import _exact_work, _monte_carlo_work, _registration_work  # noqa: F401
 from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import shown
@@ -206,24 +205,6 @@ FILTER_METHODS: frozenset[RegMethod] = frozenset(_ON_STATES)
 _KALMAN = FILTER_METHODS
 #: The methods whose registration is a Python loop over the instants (a fit per instant, ~12 us each here).
 _PER_INSTANT = frozenset({RegMethod.LEAST_SQUARES, RegMethod.QLS_NEXT, RegMethod.QLS_CAUSAL, RegMethod.LOCAL_QLS})
-
-
-def _registration_work(names: Sequence[str], n_src: int, n_dst: int, calls: int, what: str) -> int:
-    """Refuse (rule 17, :func:`fusion._limits.work`), naming the caller's ``what``, ``calls`` registrations of
-    ``n_dst`` instants onto ``n_src`` samples by each method of ``names``, before any work; return the units.
-
-    The one work rule of chapter 07's functions whose cost grows with a length the caller gives (times, instants, a
-    list of levels or periods; fuzz 28b C4-C7, D3). A registration weighs ``10 * LOOP_STEP`` (a call of
-    :func:`register`, ~100 us here), plus per instant least squares' own step (``10 * LOOP_STEP + 4 * n_src``,
-    :func:`fusion.registration.methods.least_squares`) for a method that fits each instant (``_PER_INSTANT``),
-    ``LOOP_STEP`` per filter step (sample or instant) for a Kalman method, ``n_src + n_dst`` for a vectorised one:
-    at least each inner budget of the call, so that an inner name is never the refusal's (measured 2 to 20 ns per
-    unit on the scenario's record).
-    """
-    step = LOOP_STEP
-    one = sum(10 * step + (n_dst * (10 * step + 4 * n_src) if n in _PER_INSTANT else
-                           (n_src + n_dst) * step if n in _KALMAN else n_src + n_dst) for n in names)
-    return work((int(calls), int(one)), what)
 
 
 def truth(t: ArrayLike) -> FloatArray:
@@ -760,24 +741,6 @@ def _registered_runs(name: str, t_src: FloatArray, xs: FloatArray, t_dst: FloatA
         dt = t_dst - t_src[i]
         return xs[:, i, 0] + dt * xs[:, i, 1] + 0.5 * dt**2 * xs[:, i, 2]
     return xs[:, :, 0] @ _weights(base, t_src, t_dst, None).T
-
-
-def _exact_work(names: Sequence[str], n_dsts: Sequence[int], what: str) -> int:
-    """Refuse (rule 17), naming ``what``, the exact MSEs (:func:`expected`: ``n1 + 1`` registrations on the scenario's
-    ``n1`` samples) of every method of ``names`` at each count of instants of ``n_dsts``, their sum, before any work
-    (a sweep of levels, latencies or periods; fuzz 28b C7, D3)."""
-    n1 = instants()[0].size
-    return work((sum(_registration_work(names, n1, n, (n1 + 1) * c, what) for n, c in Counter(n_dsts).items()),), what)
-
-
-def _monte_carlo_work(names: Sequence[str], runs: int, n_src: int, n_dst: int, what: str, times: str) -> None:
-    """Refuse (rule 17) a :func:`monte_carlo` of ``runs`` runs of ``names`` on ``n_src`` samples and ``n_dst``
-    instants before any draw, naming ``what`` (its runs) or ``times`` (its weight matrices): a run of one method over
-    one sample or instant is about one unit (27 ns: 15 methods x 20 samples x 3e5 runs in 2.4 CPU-s, fuzz 26d DB6),
-    and each weight matrix is ``n_src`` registrations (:func:`_registration_work`; fuzz 28b C4: ``t_dst`` was not
-    counted and 20,000 instants ran unbounded)."""
-    work((int(runs), n_src + n_dst, len(names)), what)
-    _registration_work(names, n_src, n_dst, n_src, times)
 
 
 @derived_inputs()

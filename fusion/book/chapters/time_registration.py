@@ -525,7 +525,7 @@ def sigma_sweep(sigmas: Sequence[float], names: Sequence[str]) -> pd.DataFrame:
     ------
     ValueError
         An entry empty, repeated or invalid, or the sweep beyond the work budget (``fusion._limits.MAX_WORK``, rule
-        ``_registration_work``: about 70 levels of all fifteen methods, 4,700 of two-point alone).
+        ``_registration_work``: about 58 levels of all fifteen methods, 4,700 of two-point alone).
     """
     _noise_levels(sigmas, "sigmas"), _method_names(names, "names")
     sc._exact_work(names, [sc.instants()[1].size] * len(sigmas), "sigmas and names")  # rule 17 (fuzz 28b D3)

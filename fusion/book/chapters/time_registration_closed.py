@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 
 from fusion._shown import shown
+from fusion._limits import LOOP_STEP
 from fusion._validation import (as_array, as_times, distinct, instance_of, loop_work, one_of, scalar, sequence,
                                 std_scalar)
 from fusion.book.style import METHOD_LABELS
@@ -187,6 +188,9 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
 
 #: The Kalman methods of the source's §3 and §4 and their two-point ablation.
 KALMAN_METHODS: tuple[str, ...] = (RegMethod.KALMAN_PREDICT, RegMethod.KALMAN_TWO_POINT, IMPROVED)
+#: Units of one step of :func:`transient_table`'s decomposition (a method over the run at one sample, about 24 us
+#: measured; ``fusion._limits.MAX_WORK``: a unit is about 10 ns).
+_TRANSIENT_STEP = 3 * LOOP_STEP
 
 
 def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_METHODS) -> pd.DataFrame:
@@ -218,16 +222,18 @@ def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_
         ``horizon`` or ``sigma`` is not a number, or ``names`` not a sequence of strings.
     ValueError
         ``horizon`` below 5 s or so long that the exact decomposition (its work grows as the number of methods
-        times the square of the number of sensor-1 samples) is beyond the work budget (about 1,100 s for three
-        methods); ``sigma`` not a valid standard deviation; ``names`` empty or holding an unknown method.
+        times the square of the number of sensor-1 samples) is beyond the work budget (from about 667 s for three
+        methods, some 8 CPU-s); ``sigma`` not a valid standard deviation; ``names`` empty or holding an unknown
+        method.
     """
     horizon = scalar(horizon, "horizon", lo=5.0)
     sigma = std_scalar(sigma, "sigma")  # the float read (fuzz 22b, FR)
     names = _method_names(names, "names")
     # the decomposition runs each method once per sensor-1 sample over the whole run: (samples)**2 steps per
-    # method (measured: 0.19 CPU-s at 100 s, 2.8 CPU-s at 400 s, three methods), refused before the time grids
+    # method of about 24 us each (measured: 0.25 CPU-s at 100 s, 3.0 at 400 s, 4.4 at 500 s, three methods; fuzz
+    # 30b D2: 1,100 s was accepted at LOOP_STEP a step and ran some 35 CPU-s), refused before the time grids
     n1 = int((horizon - 1.0) // 2.0) + 1
-    loop_work((len(names), n1, n1), 0, "horizon and names")
+    loop_work((len(names), n1, n1), 0, "horizon and names", step=_TRANSIENT_STEP)
     t1 = np.arange(1.0, horizon + 1e-9, 2.0)
     t2 = np.arange(3.0, horizon + 1e-9, 5.0)
     from fusion import registration as reg

@@ -45,8 +45,10 @@ def _levels(sigmas: Sequence[float], runs: int, seed: int, axis_max: float):  # 
     sigmas = _noise_levels(sigmas, "sigmas")
     axis_max = scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     t1, t2 = sc.instants()
-    # rule 17 before the first level (fuzz 28b: runs x levels had no budget): per level, runs of two methods
-    sc._monte_carlo_work([IMPROVED, TWO] * len(sigmas), runs, t1.size, t2.size, "sigmas and runs", "sigmas")
+    # rule 17 before the first level (fuzz 28b: runs x levels had no budget): per level, runs of two methods, each
+    # through its weight matrix (no filter per run)
+    sc._monte_carlo_work([IMPROVED, TWO] * len(sigmas), runs, t1.size, t2.size, "sigmas and runs", "sigmas",
+                         filtered=False)
     x1, x2 = sc.truth(t1), sc.truth(t2)
     for i, s in enumerate(sigmas):
         rng = np.random.default_rng(seed + i)

@@ -146,7 +146,7 @@ def delay_table(delays: Sequence[float], sigmas: Sequence[float]) -> pd.DataFram
         decimals, σ to 6 significant digits: the table is keyed by them, a repeat would merge into one row or
         column), a latency is not finite or outside the flight, a noise level is not a valid standard
         deviation, or the table is beyond the work budget (``fusion._limits.MAX_WORK``, chapter 07's rule
-        ``_registration_work``: about 1,000 cells, latencies x levels).
+        ``_registration_work``: about 620 cells, latencies x levels).
     """
     from fusion._validation import distinct_printed, general, scalar, sequence, std_scalar
 

@@ -1,0 +1,85 @@
+"""Chapter 07's work budget (rule 17 of ``fusion._validation``): the one rule of every function of the chapter whose
+cost grows with a length the caller gives (times, instants, runs, a list of levels, latencies or periods).
+
+Each counted element weighs its measured cost in units of about 10 ns (:data:`fusion._limits.MAX_WORK`: ``10**9``
+units are at most about 10 CPU-s on one core). Measured with ``time.process_time`` and ``OPENBLAS_NUM_THREADS=1``
+at a few sizes each (fuzz 30b D2: ``transient_table(1100, 1)`` was accepted and ran some 35 CPU-s):
+
+* a registration (a call of ``register``, ~100 us): ``10 * LOOP_STEP``;
+* a Kalman method's filter step (sample or instant) in a registration: :data:`KALMAN_STEP` (``2 * LOOP_STEP``:
+  16.5 ns per unit at ``LOOP_STEP``, 17 us a step);
+* a least-squares fit per instant: its own inner budget (``10 * LOOP_STEP + 4 * n_src``,
+  ``fusion.registration.methods.least_squares``), which counts it above its cost (1 to 1.4 ns per unit);
+* a vectorised method's registration: ``n_src + n_dst``;
+* a Monte-Carlo run over one sample or instant: :data:`RUN_WEIGHT` by method (a fixed-weight method 9-10 ns, a
+  Kalman method 40-105 ns, the fixed-lag smoother about 200 ns), 1 for runs through each method's weight matrix;
+  a Kalman method's filter pass over the samples and instants, all runs at once: :data:`KALMAN_STEP` a step.
+
+Private: the functions are re-exported by ``fusion.scenarios.time_registration``, where the chapter calls them.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Sequence
+
+from fusion._limits import LOOP_STEP, work
+
+#: Units of one filter step (sample or instant) of a Kalman method's registration (17 us measured: 2 x LOOP_STEP).
+KALMAN_STEP = 2 * LOOP_STEP
+#: Units of one Monte-Carlo run of a method over one sample or instant, by method; a method not listed weighs 1
+#: (a fixed-weight method, 9-10 ns measured). The Kalman methods filter each run (40-105 ns), the fixed-lag
+#: smoother also smooths each window (about 200 ns).
+#: Keyed by the methods' values (``RegMethod`` is defined in the scenario's module, which imports this one).
+RUN_WEIGHT: dict[str, int] = {"reg_kalman_predict": 10, "reg_kalman_two_point": 10, "reg_improved": 10,
+                              "reg_causal_improved": 10, "reg_rts_smoother": 10, "reg_fixed_lag": 20}
+
+
+def _registration_work(names: Sequence[str], n_src: int, n_dst: int, calls: int, what: str) -> int:
+    """Refuse (rule 17, :func:`fusion._limits.work`), naming the caller's ``what``, ``calls`` registrations of
+    ``n_dst`` instants onto ``n_src`` samples by each method of ``names``, before any work; return the units.
+
+    The one work rule of chapter 07's functions whose cost grows with a length the caller gives (times, instants, a
+    list of levels or periods; fuzz 28b C4-C7, D3). A registration weighs ``10 * LOOP_STEP`` (a call of
+    ``register``, ~100 us here), plus per instant least squares' own step (``10 * LOOP_STEP + 4 * n_src``,
+    :func:`fusion.registration.methods.least_squares`) for a method that fits each instant (``_PER_INSTANT``),
+    :data:`KALMAN_STEP` per filter step (sample or instant) for a Kalman method, ``n_src + n_dst`` for a vectorised
+    one: at least each inner budget of the call, so that an inner name is never the refusal's (about 10 ns per
+    unit or less, the module's table).
+    """
+    from fusion.scenarios import time_registration as sc
+
+    one = sum(10 * LOOP_STEP + (n_dst * (10 * LOOP_STEP + 4 * n_src) if n in sc._PER_INSTANT else
+                                (n_src + n_dst) * KALMAN_STEP if n in sc._KALMAN else n_src + n_dst) for n in names)
+    return work((int(calls), int(one)), what)
+
+
+def _exact_work(names: Sequence[str], n_dsts: Sequence[int], what: str) -> int:
+    """Refuse (rule 17), naming ``what``, the exact MSEs (``expected``: ``n1 + 1`` registrations on the scenario's
+    ``n1`` samples) of every method of ``names`` at each count of instants of ``n_dsts``, their sum, before any work
+    (a sweep of levels, latencies or periods; fuzz 28b C7, D3)."""
+    from fusion.scenarios import time_registration as sc
+
+    n1 = sc.instants()[0].size
+    return work((sum(_registration_work(names, n1, n, (n1 + 1) * c, what) for n, c in Counter(n_dsts).items()),), what)
+
+
+def _monte_carlo_work(names: Sequence[str], runs: int, n_src: int, n_dst: int, what: str, times: str, *,
+                      filtered: bool = True) -> None:
+    """Refuse (rule 17) a ``monte_carlo`` of ``runs`` runs of ``names`` on ``n_src`` samples and ``n_dst``
+    instants before any draw, naming ``what`` (its runs) or ``times`` (its weight matrices and filter passes).
+
+    A run of one method over one sample or instant weighs the method's :data:`RUN_WEIGHT` (1 each when not
+    ``filtered``: the runs go through each method's weight matrix, as Fig. 4's levels). A fixed-weight method's
+    weight matrix is ``n_src`` registrations (:func:`_registration_work`; fuzz 28b C4: ``t_dst`` was not counted
+    and 20,000 instants ran unbounded), as is a filtered Kalman method's fixed-weight base; the filter itself
+    steps once through the samples and instants, :data:`KALMAN_STEP` a step, all runs at once.
+    """
+    from fusion.scenarios import time_registration as sc
+
+    weight = sum(RUN_WEIGHT.get(n, 1) for n in names) if filtered else len(names)
+    work((int(runs), n_src + n_dst, weight), what)
+    kalman = [n for n in names if filtered and n in sc._KALMAN]
+    matrices = [n for n in names if n not in kalman] + [sc._ON_STATES[n] for n in kalman if sc._ON_STATES[n]]
+    work((_registration_work(matrices, n_src, n_dst, n_src, times) + len(kalman) * (n_src + n_dst) * KALMAN_STEP,),
+         times)
