@@ -33,13 +33,14 @@ from fusion._timing import LapTimer
 from fusion._validation import read_once
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
                                 instance_of, one_of)
-from fusion._validation import flag, in_given_precision, refuse_singular, renormalised, sums_to_one
+from fusion._validation import flag, refuse_singular, renormalised, sums_to_one
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options, particle_swarm_batch
 from fusion.estimates.chernoff.gaussian import _chernoff_derivatives_prepare, _chernoff_derivatives_prepared, _product_combine, _product_prepare, _product_terms
-from fusion.optimise.simplex import _active_problems, _plane_newton_steps, _simplex_newton, check_simplex, minimise_on_simplex
+from fusion.optimise.simplex import (_active_problems, _plane_newton_steps, _simplex_newton, check_simplex,
+                                     minimise_on_simplex, simplex_row)
 
 __all__ = [
     "MixtureFusion",
@@ -732,7 +733,7 @@ def fuse_mixtures_batch(
         e = np.broadcast_to(e, (B, N)) if e.shape == (N,) else e
         if e.shape != (B, N):
             raise ValueError(f"eps0 must have shape ({B}, {N}) or ({N},), got {np.shape(eps0)}")
-        e0 = np.stack([check_simplex(row, N, name="eps0") for row in in_given_precision(e, eps0)])
+        e0 = np.stack([simplex_row(row, N, "eps0", eps0) for row in e])  # judged in eps0's precision
     with np.errstate(divide="ignore"):
         logw = np.where(pos, np.log(np.where(pos, w, 1.0)), -np.inf)
     c = np.where(pos[..., None, None], c, np.eye(d))
