@@ -117,7 +117,7 @@ from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, se
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, mapping_of, psd_factor, record, records_of, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
-from fusion._guards import argument_copy, read_once, value_copy  # noqa: F401 (re-exported: what callables and checks are given)
+from fusion._guards import argument_copy, read_mapping, read_once, value_copy  # noqa: F401 (re-exported: what callables and checks are given)
 from fusion._limits import LOOP_STEP, MAX_INPUT_ELEMENTS, MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE  # noqa: F401
 from fusion._limits import loop_work, work  # noqa: F401
 from fusion._shown import MAX_SHOWN, shown  # noqa: F401 (re-exported: the echo of a bad value)
