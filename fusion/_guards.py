@@ -170,6 +170,32 @@ def derived_inputs(names: str | None = None) -> Callable[[Callable[..., object]]
     return wrap
 
 
+def own_underflow(fn: Callable[..., object]) -> Callable[..., object]:
+    """Decorate a public entry whose numerics underflow by design: it runs under ``np.errstate(under="ignore")``.
+
+    numpy's default error state ignores underflow; a particle filter relies on it (the weight of a far particle,
+    ``exp`` of a log-weight thousands below the best, is an intended zero, and so are its products). A caller's
+    ``np.errstate(all="raise")`` turned that zero into a ``FloatingPointError`` (fuzz 31a D1: ``run_network_study``).
+    Such an entry sets its own underflow state for its whole call; overflow, division by zero and invalid
+    operations keep the caller's. Elsewhere the package runs under the caller's error state.
+
+    Parameters
+    ----------
+    fn : callable
+        The entry.
+
+    Returns
+    -------
+    callable
+        ``fn``, run under ``np.errstate(under="ignore")``.
+    """
+    @_functools.wraps(fn)
+    def call(*args: object, **kwargs: object) -> object:
+        with np.errstate(under="ignore"):
+            return fn(*args, **kwargs)
+    return call
+
+
 def argument_copy(x: np.ndarray) -> np.ndarray:
     """The array a caller's callable (an objective, a registration, a fitness) is given: a copy of the package's own.
 
