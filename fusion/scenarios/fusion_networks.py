@@ -539,6 +539,8 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
     full connectivity every node fuses the same densities, so each fusion is computed once per run
     (node 1's stream) and given to every node. The reference is the exact posterior (the prior times
     every likelihood of every frame), on a grid.
+    Runs under its own ``np.errstate(under="ignore")``, numpy's default: a far particle's weight underflows
+    to zero by design, whatever the caller's error state (overflow and invalid operations keep it).
 
     Parameters
     ----------

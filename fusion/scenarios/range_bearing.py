@@ -119,6 +119,8 @@ def run_tracking_batch(
     exactly what ``run_tracking(sc, seeds[r])`` gives, digit for digit (every per-run computation is
     elementwise or one small factorisation or product per run, reductions never mix runs; tested),
     whatever the other runs and the block size.
+    Runs under its own ``np.errstate(under="ignore")``, numpy's default: a far particle's weight underflows
+    to zero by design, whatever the caller's error state (overflow and invalid operations keep it).
 
     Parameters
     ----------
