@@ -264,3 +264,29 @@ def test_d1_network_study_under_a_raising_errstate():
         got = fnw.run_network_study(sc, 1, 2)
         assert np.geterr()["under"] == "raise"  # the caller's state is restored
     assert repr(got) == repr(want)
+
+
+def test_c3_every_mapping_checked_then_read_is_read_once():
+    from fusion.book.chapters.ofs.readings import FAMILIES, family_mae
+    from fusion.book.chapters.ofs_fair import fault_shapes_table
+    from fusion.scenarios.wavelet_sensors import CONFIGS, config_label
+
+    cfg = dict(CONFIGS[0] if isinstance(CONFIGS, (list, tuple)) else next(iter(CONFIGS.values())))
+    assert config_label(Flip(cfg)) == config_label(cfg)
+    z = np.random.default_rng(0).normal(900.0, 1.0, (2, 5, 12))
+    want = family_mae(z)
+    got = family_mae(z, Flip(dict(FAMILIES)))
+    assert list(got) == list(want) and all(np.array_equal(got[k], want[k]) for k in want)
+    rng = np.random.default_rng(1)
+    errs = {m: rng.normal(1.0, 0.1, 120) for m in ("optimal_fusion_set", "mean", "median", "ew_variance")}
+    table = fault_shapes_table({"s": errs}, seed=1)
+    assert fault_shapes_table(Flip({"s": Flip(errs)}), seed=1).equals(table)
+    assert fault_shapes_table({"s": {k: v.tolist() for k, v in errs.items()}}, seed=1).equals(table)  # C2: lists
+
+
+def test_c4_scenario_entries_read_a_sequence_once():
+    from fusion.scenarios.thermocouples import inject_failure
+
+    z = np.full((100, 10), 900.0)
+    want = inject_failure(z, [4, 10], (50, 80), (4.0, 8.0))
+    assert np.array_equal(inject_failure(z, [4, 10], FlipSeq([50, 80]), (4.0, 8.0)), want)

@@ -44,7 +44,7 @@ import numpy as np
 from fusion._frozen import constant
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, text,
                              tuple_of, validated_post_init)
-from fusion._validation import read_once
+from fusion._validation import read_mapping, read_once
 from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
@@ -342,7 +342,7 @@ def config_label(cfg: dict[str, Any]) -> str:
     ValueError
         A key is missing or unknown, or ``level`` is not a positive integer.
     """
-    record(cfg, "cfg", ("wavelet", "level", "threshold", "mode"), ("transform",))
+    cfg = record(read_mapping(cfg, "cfg"), "cfg", ("wavelet", "level", "threshold", "mode"), ("transform",))
     for key in ("wavelet", "threshold", "mode", "transform"):
         if key in cfg and not isinstance(cfg[key], str):
             raise TypeError(f"cfg[{shown(key)}] must be a name (str), got {shown(cfg[key])}")
