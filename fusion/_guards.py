@@ -7,7 +7,9 @@ Both are re-exported by :mod:`fusion._validation`, where the package imports the
 
 from __future__ import annotations
 
+import array as _array
 from collections.abc import Mapping as _Mapping
+from collections.abc import Sequence as _Sequence
 
 import dataclasses as _dataclasses
 import functools as _functools
@@ -168,6 +170,32 @@ def derived_inputs(names: str | None = None) -> Callable[[Callable[..., object]]
     return wrap
 
 
+def own_underflow(fn: Callable[..., object]) -> Callable[..., object]:
+    """Decorate a public entry whose numerics underflow by design: it runs under ``np.errstate(under="ignore")``.
+
+    numpy's default error state ignores underflow; a particle filter relies on it (the weight of a far particle,
+    ``exp`` of a log-weight thousands below the best, is an intended zero, and so are its products). A caller's
+    ``np.errstate(all="raise")`` turned that zero into a ``FloatingPointError`` (fuzz 31a D1: ``run_network_study``).
+    Such an entry sets its own underflow state for its whole call; overflow, division by zero and invalid
+    operations keep the caller's. Elsewhere the package runs under the caller's error state.
+
+    Parameters
+    ----------
+    fn : callable
+        The entry.
+
+    Returns
+    -------
+    callable
+        ``fn``, run under ``np.errstate(under="ignore")``.
+    """
+    @_functools.wraps(fn)
+    def call(*args: object, **kwargs: object) -> object:
+        with np.errstate(under="ignore"):
+            return fn(*args, **kwargs)
+    return call
+
+
 def argument_copy(x: np.ndarray) -> np.ndarray:
     """The array a caller's callable (an objective, a registration, a fitness) is given: a copy of the package's own.
 
@@ -215,7 +243,62 @@ def value_copy(v: object) -> object:
 
 #: Arguments read as they are, any number of times: arrays (their subclasses too: a masked array is refused by the
 #: checks that follow, by name), lists, tuples, numbers, strings, None and mappings give the same values at each read.
-_STABLE = (np.ndarray, list, tuple, int, float, complex, np.generic, str, bytes, type(None), _Mapping)
+_STABLE = (np.ndarray, list, tuple, int, float, complex, np.generic, str, bytes, bytearray, type(None), _Mapping)
+
+
+def _materialised(x: _Sequence, depth: int = 0) -> list:
+    """A sequence argument (not a list, tuple, array or text) as the list of its entries, read in one pass; its
+    entries that are such sequences too, likewise (down to ``fusion._nesting.MAX_NESTING`` levels; deeper ones are
+    left to the checks, which refuse them by name)."""
+    out = list(x)
+    if depth < 64:
+        for i, v in enumerate(out):
+            if isinstance(v, _Sequence) and not isinstance(v, _STABLE) and not _array_like(v):
+                out[i] = _materialised(v, depth + 1)
+    return out
+
+
+def _array_like(x: object) -> bool:
+    """Whether ``x`` converts through numpy's array protocols (``__array__``, the array interface, a buffer)."""
+    return (hasattr(x, "__array__") or hasattr(x, "__array_interface__") or hasattr(x, "__array_struct__")
+            or isinstance(x, (memoryview, _array.array)))
+
+
+def read_mapping(m: object, name: str) -> object:
+    """A mapping argument read once, at the entry of a function that checks its values and then reads them again
+    (fuzz 31a C2, C3): a ``collections.abc.Mapping`` that is not a plain ``dict`` becomes the plain dict of its
+    items, read in one pass, so that its values are checked and used as one read (a mapping whose ``__getitem__``
+    gives another value at each call made a function check one value and compute with another: NaN means, a NaN
+    glued). A plain ``dict`` (its values fixed) and anything that is not a mapping (refused by the function's own
+    checks, by name) are returned as they are. The values themselves are not converted: the function checks them
+    and computes with what its checks return.
+
+    Parameters
+    ----------
+    m : object
+        The argument.
+    name : str
+        Its name, for the message.
+
+    Returns
+    -------
+    object
+        ``m`` itself, or the dict of its items.
+
+    Raises
+    ------
+    TypeError
+        Reading its items raised (the argument's own exception, rule 15), naming ``name``.
+    """
+    if type(m) is dict or not isinstance(m, _Mapping):
+        return m
+    try:
+        return dict(list(m.items()))
+    except MemoryError:
+        raise
+    except Exception as exc:  # noqa: BLE001 (rule 15: the argument's own exception, named and chained)
+        raise TypeError(f"{name} could not be read as a mapping: it raised {type(exc).__name__}: "
+                        f"{str(exc):.200}") from exc
 
 
 def read_once(x: object, name: str) -> object:
@@ -225,9 +308,12 @@ def read_once(x: object, name: str) -> object:
     object whose conversion is not a fixed value (an ``__array__`` that gives other numbers, or one entry more, at
     each call; a buffer the caller changes between the reads) was then checked as one array and computed with as
     another (NaN results, an ``IndexError``, an inner argument named). Any argument but those of ``_STABLE``
-    (an object with ``__array__``, a pandas object, a buffer) is converted here to the ndarray it gives, its dtype
-    kept, and that array is what the function's checks and computations read. Its shape is checked against the
-    input budget before the conversion (``fusion._validation.input_size``).
+    (an object with ``__array__``, a pandas object, a buffer, an ``array.array``) is converted here to the ndarray
+    it gives, its dtype kept, and that array is what the function's checks and computations read. A
+    ``collections.abc.Sequence`` without those protocols (a ``range``, a ``deque``, a user's Sequence class; not a
+    list, tuple, text or array, which are read as they are at no cost) is read once into the list of its entries
+    (nested such sequences too), which the checks then convert like any list (fuzz 31a C4). Its shape (or length)
+    is checked against the input budget before the conversion (``fusion._validation.input_size``).
 
     Parameters
     ----------
@@ -239,8 +325,8 @@ def read_once(x: object, name: str) -> object:
     Returns
     -------
     object
-        ``x`` itself if it is of a ``_STABLE`` type (or not array-like: the checks refuse it by name), else the
-        ndarray it converts to.
+        ``x`` itself if it is of a ``_STABLE`` type (or neither array-like nor a sequence: the checks refuse it by
+        name), else the ndarray it converts to (the list of its entries for a sequence).
 
     Raises
     ------
@@ -249,16 +335,26 @@ def read_once(x: object, name: str) -> object:
     ValueError
         A shape beyond the input budget (rule 9), naming ``name``.
     """
-    if isinstance(x, _STABLE) or not (hasattr(x, "__array__") or hasattr(x, "__array_interface__")
-                                      or hasattr(x, "__array_struct__") or isinstance(x, memoryview)):
+    if isinstance(x, _STABLE):
         return x
+    array_like = _array_like(x)
+    if not array_like and not isinstance(x, _Sequence):
+        return x
+    from fusion._limits import MAX_INPUT_ELEMENTS
     from fusion._validation import input_size  # (a cycle at import: fusion._validation imports this module)
 
     input_size(x, name)
     try:
-        return np.asarray(x)
+        if not array_like:  # a sequence without numpy's protocols (a range, a deque, a Sequence class): its entries
+            n = len(x)      # read in one pass, as the list they make (fuzz 31a C4)
+            if n <= MAX_INPUT_ELEMENTS:
+                return _materialised(x)
+        else:
+            return np.asarray(x)
     except MemoryError:
         raise
     except Exception as exc:  # noqa: BLE001 (rule 15: the argument's own exception, named and chained)
         raise TypeError(f"{name} could not be converted to an array: it raised {type(exc).__name__}: "
                         f"{str(exc):.200}") from exc
+    raise ValueError(f"{name} has {n:.3g} entries, beyond the input budget (at most {MAX_INPUT_ELEMENTS:,}, "
+                     "fusion._validation.MAX_INPUT_ELEMENTS)")

@@ -194,6 +194,29 @@ def integer_entries(values: object, n: int) -> list[bool]:
     return [isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_)) for v in given]
 
 
+def entry_dtypes(values: object, n: int) -> list[np.dtype]:
+    """Per entry of the ``n`` numbers ``values``, the dtype whose precision it has: a numpy scalar's own (an
+    ``np.float16`` beside Python numbers is a float16 number, fuzz 31a C1), an array entry's, float64 for a Python
+    number; an array's dtype for every entry of an array. ``fusion._validation.given_dtype`` is the same rule for a
+    whole list (its least precise entry)."""
+    if not isinstance(values, (list, tuple)):
+        return [np.asarray(values).dtype] * n
+    out: list[np.dtype] = []
+    stack = [iter(values)]
+    while stack:  # iterative, in order, as _entries
+        for v in stack[-1]:
+            if isinstance(v, (list, tuple)):
+                stack.append(iter(v))
+                break
+            if isinstance(v, (np.generic, np.ndarray)):
+                out.extend([v.dtype] * int(np.size(v)))
+            else:
+                out.append(np.dtype(np.float64))
+        else:
+            stack.pop()
+    return out if len(out) == n else [np.asarray(values).dtype] * n
+
+
 def _inexact(v: object) -> bool:
     """Whether ``v`` is an integer (a Python or numpy int, an integral Decimal or Fraction) that float64 does not
     hold exactly."""

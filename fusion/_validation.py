@@ -118,7 +118,7 @@ from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, se
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, mapping_of, psd_factor, record, records_of, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
-from fusion._guards import argument_copy, read_once, value_copy  # noqa: F401 (re-exported: what callables and checks are given)
+from fusion._guards import argument_copy, read_mapping, read_once, value_copy  # noqa: F401 (re-exported: what callables and checks are given)
 from fusion._limits import LOOP_STEP, MAX_INPUT_ELEMENTS, MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE  # noqa: F401
 from fusion._limits import loop_work, work  # noqa: F401
 from fusion._shown import MAX_SHOWN, shown  # noqa: F401 (re-exported: the echo of a bad value)
@@ -614,10 +614,13 @@ _F64_EPS = float(np.finfo(np.float64).eps)
 
 
 def given_dtype(x: object) -> np.dtype | None:
-    """The numpy dtype the caller's numbers ``x`` have, as their array would: an array's (or Series') own dtype, a
-    pandas extension dtype's numpy one (``"Float32"``: float32), a list or tuple's common dtype when every entry is
-    a numpy scalar (``[np.float32(0.1)] * 10``: float32, as ``np.asarray`` gives it; fuzz 30a C6, D1), else None
-    (Python numbers: float64). The entries are not converted (no ``__float__`` is called: read once, fuzz 29a C5)."""
+    """The numpy dtype whose precision the caller's numbers ``x`` have: an array's (or Series') own dtype, a pandas
+    extension dtype's numpy one (``"Float32"``: float32); for a list or tuple, the least precise dtype among its
+    numpy float scalars (``[np.float32(0.1)] * 10``: float32, as ``np.asarray`` gives it; ``[np.float16(1/3), 1/3]``:
+    float16, although its array is float64: a number has its own dtype's precision and a list its least precise
+    entry's, fuzz 30a C6, D1, fuzz 31a C1), else the common dtype of its numpy scalars (integers), else None (Python
+    numbers only: float64). An entry that is neither a number nor a list gives None (the float64 rule). The entries
+    are not converted (no ``__float__`` is called: read once, fuzz 29a C5)."""
     dtype = getattr(x, "dtype", None)
     if isinstance(dtype, np.dtype):
         return dtype
@@ -626,6 +629,7 @@ def given_dtype(x: object) -> np.dtype | None:
     if not isinstance(x, (list, tuple)):
         return None
     kinds: set[np.dtype] = set()
+    python = False
     stack = [x]
     while stack:  # iterative: a deeply nested list is read without recursion
         for v in stack.pop():
@@ -633,9 +637,14 @@ def given_dtype(x: object) -> np.dtype | None:
                 stack.append(v)
             elif isinstance(v, (np.floating, np.integer)):
                 kinds.add(v.dtype)
-            else:  # a Python number (float64 in the array) or anything else: the float64 rule
+            elif type(v) in (int, float):  # a Python number: float64's precision, which a numpy float may lower
+                python = True
+            else:  # anything else: the float64 rule
                 return None
-    return np.result_type(*kinds) if kinds else None
+    floats = [k for k in kinds if k.kind == "f"]
+    if floats:  # the least precise float sets the precision of the whole (its entries' tolerance)
+        return max(floats, key=lambda k: float(np.finfo(k).eps))
+    return None if python or not kinds else np.result_type(*kinds)
 
 
 def input_eps(x: object) -> float:
@@ -690,15 +699,6 @@ def renormalised(w: FloatArray, given: object, axis: int = -1) -> FloatArray:
     if input_eps(given) > _F64_EPS:
         return w / w.sum(axis=axis, keepdims=True)
     return w
-
-
-def in_given_precision(a: FloatArray, given: object) -> FloatArray:
-    """``a`` (a float64 copy of ``given``) back in ``given``'s float32 or float16 dtype (exact), else ``a``: rows
-    of a converted array keep the caller's precision for :func:`sums_to_one` and
-    ``fusion.optimise.simplex.check_simplex``."""
-    if input_eps(given) > _F64_EPS:
-        return a.astype(given_dtype(given))
-    return a
 
 
 def solve(A: FloatArray, b: FloatArray, name: str, *, assume: str = "gen") -> FloatArray:

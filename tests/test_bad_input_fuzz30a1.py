@@ -144,9 +144,14 @@ def test_c6_a_list_of_short_float_scalars_is_its_array(dt):
     assert np.array_equal(g.weights, GaussianMixture(w, np.zeros((10, 1)), np.ones((10, 1, 1))).weights)
 
 
-def test_c6_a_list_with_a_python_float_is_float64():
+def test_c6_a_list_with_a_python_float_has_its_float32_entries_precision():
+    # fuzz 31a C1 revised this case: a list's precision is its least precise numpy float entry's (given_dtype), so
+    # [np.float32(0.1)] * 9 + [0.1000001] (1.1e-7 off one) is accepted at float32's tolerance (2 n eps = 2.4e-6)
+    assert check_simplex([np.float32(0.1)] * 9 + [0.1000001]).sum() == pytest.approx(1.0, abs=1e-15)
     with pytest.raises(ValueError, match="eps must lie on the simplex"):
-        check_simplex([np.float32(0.1)] * 9 + [0.1000001])  # np.asarray gives float64: float64's tolerance
+        check_simplex([np.float32(0.1)] * 9 + [0.1001])  # 1e-4 off: beyond float32's tolerance
+    with pytest.raises(ValueError, match="eps must lie on the simplex"):
+        check_simplex([0.1] * 9 + [0.1000001])  # Python floats only: float64's tolerance
 
 
 def test_d1_pandas_float32_weights_are_float32():

@@ -16,7 +16,7 @@ from pandas.api.extensions import ExtensionArray
 from matplotlib.figure import Figure
 from pandas.io.formats.style import Styler
 
-from fusion._validation import count
+from fusion._validation import count, read_mapping
 from fusion.book.tables import rounded
 from fusion._shown import shown
 from fusion._nesting import MAX_NESTING, nesting_error
@@ -198,6 +198,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     """
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")
+    values = read_mapping(values, "values")  # its values checked and glued as one read (fuzz 31a C3)
     if decimals is not None:
         decimals = count(decimals, "decimals", minimum=0)
     for key, value in values.items():  # every value checked before any is glued

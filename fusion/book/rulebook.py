@@ -99,7 +99,7 @@ from numpy.typing import ArrayLike
 from scipy import stats
 
 from fusion._validation import _numeric, _real_number, check_magnitude, count, scalar, sequence, shown
-from fusion._validation import flag, input_eps, one_of, text
+from fusion._validation import flag, input_eps, one_of, read_once, text
 from fusion._limits import ROUND_OFF_TIE
 from fusion.book.tables import sci
 
@@ -876,6 +876,7 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     text(primary, "primary")
     if primary not in STATUSES:
         raise ValueError(f"primary must be one of {STATUSES}, got {shown(primary)}")
+    readings = read_once(readings, "readings")  # a Sequence class read once, as a list (fuzz 31a C4)
     if isinstance(readings, (str, bytes)) or not all(isinstance(x, (tuple, list)) and len(x) == 3
                                                      for x in sequence(readings, "readings")):
         raise TypeError(f"readings must be a sequence of (kind, status, runs) tuples, got {shown(readings)}")

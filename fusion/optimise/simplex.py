@@ -64,13 +64,36 @@ def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> Fl
     name = text(name, "name")  # the label of every message below (fuzz 24a U: never checked)
     if n is not None:
         n = count(n, "n")
-    e = _numeric(eps, name)
+    return simplex_row(_numeric(eps, name), n, name, eps)
+
+
+def simplex_row(e: FloatArray, n: int | None, name: str, given: object) -> FloatArray:
+    """:func:`check_simplex` of the float array ``e`` (a row of the caller's ``given`` weights, converted), judged in
+    the precision of ``given`` (``fusion._validation.input_eps``): the rows of a float16 table, or of a list mixing
+    ``np.float16`` scalars with Python floats, are float16 weights whatever their converted copy's dtype (fuzz 31a C1).
+
+    Parameters
+    ----------
+    e : ndarray
+        The weights, converted.
+    n : int or None
+        Required length (checked by the caller), or ``None``.
+    name : str
+        The caller's argument, for the messages.
+    given : object
+        The caller's weights as given (their precision).
+
+    Returns
+    -------
+    ndarray
+        As :func:`check_simplex`.
+    """
     if e.ndim != 1 or e.size == 0 or (n is not None and e.size != n):
         raise ValueError(f"{name} must be a 1-D vector of length {n}, got shape {e.shape}")
     # float32 or float16 weights: one in their own precision (the one simplex rule, fusion._validation.sums_to_one)
-    if not np.all(np.isfinite(e)) or np.any(e < -1e-12) or not sums_to_one(e, eps, floor=1e-8):
+    if not np.all(np.isfinite(e)) or np.any(e < -1e-12) or not sums_to_one(e, given, floor=1e-8):
         raise ValueError(f"{name} must lie on the simplex (non-negative, summing to one), got {e}")
-    return renormalised(np.clip(e, 0.0, None), eps)
+    return renormalised(np.clip(e, 0.0, None), given)
 
 
 def minimise_on_simplex(

@@ -33,7 +33,7 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import constant
 from fusion._results import ResultSpec, array, nested, number, numbers, trusted, validated_post_init
-from fusion._validation import read_once
+from fusion._validation import read_mapping, read_once
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
                                 grid_points, positive_scalar, scalar, std_scalar, step_scalar, work)
@@ -574,19 +574,20 @@ def late_means(rmse: dict[str, FloatArray], t: ArrayLike, t_min: float = 2.0) ->
     dict of str to dict
         Per method: ``"azimuth (mrad)"``, ``"elevation (mrad)"``, ``"x (m)"``, ``"y (m)"``.
     """
-    rmse, t = (read_once(rmse, "rmse"), read_once(t, "t"))  # converted once (fuzz 29a C5)
+    rmse, t = (read_mapping(rmse, "rmse"), read_once(t, "t"))  # read once (fuzz 29a C5, fuzz 31a C3)
     instance_of(rmse, Mapping, "rmse")
     tt = as_array(t, "t", ndim=1)
     t_min = scalar(t_min, "t_min")
+    checked = {}  # the arrays the checks return are what the means read (fuzz 31a C2: a DataFrame, a list of lists)
     for name, r in rmse.items():
-        as_array(r, f"rmse[{name!r}]", shape=(None, 4))
-        if len(r) != tt.size:
-            raise ValueError(f"rmse[{shown(name)}] must have one row per scan time in t ({tt.size}), got {len(r)}")
-    late = np.asarray(t, dtype=float) >= t_min
+        checked[name] = a = as_array(r, f"rmse[{shown(name)}]", shape=(None, 4))
+        if len(a) != tt.size:
+            raise ValueError(f"rmse[{shown(name)}] must have one row per scan time in t ({tt.size}), got {len(a)}")
+    late = tt >= t_min
     if not late.any():
         raise ValueError(f"t has no scan at or after t_min = {t_min} (last scan at {float(tt.max()):g})")
     return {name: {AZIMUTH_MRAD: 1e3 * float(r[late, 0].mean()), ELEVATION_MRAD: 1e3 * float(r[late, 1].mean()),
-                   X_M: float(r[late, 2].mean()), Y_M: float(r[late, 3].mean())} for name, r in rmse.items()}
+                   X_M: float(r[late, 2].mean()), Y_M: float(r[late, 3].mean())} for name, r in checked.items()}
 
 
 #: Sensor sets of :func:`many_scan_bound`.

@@ -15,6 +15,7 @@ import numpy as np
 
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
                              validated_post_init)
+from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import FloatArray, as_array, count, scalar, shown, std_scalar
 from fusion._validation import allocation
@@ -338,6 +339,7 @@ def correlated_study(
         Errors, claimed covariances, MSE and NEES of GLS and the naive fusion, the LDLᵀ checks and the operation
         counts for ``sizes``.
     """
+    x = read_once(x, "x")  # a Sequence class read once (fuzz 31a C4)
     sig = _sigmas(sigma, minimum=1)
     sigma_env = std_scalar(sigma_env, "sigma_env")
     runs = count(runs, "runs", minimum=2)

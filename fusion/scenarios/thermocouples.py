@@ -125,6 +125,7 @@ def inject_failure(
     ndarray
         Same shape as ``z``.
     """
+    samples = read_once(samples, "samples")  # a Sequence class read once (fuzz 31a C4)
     out = np.array(as_array(z, "z"), dtype=float, copy=True)
     if out.ndim < 2:
         raise ValueError(f"z must have shape (..., n_samples, n_sensors), got {out.shape}")
@@ -194,6 +195,7 @@ def random_failure(
     ----------
     Yang G. N., Feng X. F., Fan L. J. (2012), section 2, Fig. 3.
     """
+    samples = read_once(samples, "samples")  # a Sequence class read once (fuzz 31a C4)
     rng = as_rng(rng)
     one_of(mode, FAILURE_MODES, "mode")   # TypeError for a non-str (issue 35)
     base = as_array(z, "z")
@@ -494,6 +496,7 @@ def paired_study(
         Each method's per-run absolute errors without (``clean``) and with the failure (``failed``), the set's size and
         the failure window.
     """
+    sigma = read_once(sigma, "sigma")  # a Sequence class read once (fuzz 31a C4)
     n_runs = count(n_runs, "n_runs")
     seed = check_seed(seed)
     _check_methods(methods)

@@ -17,10 +17,10 @@ from numpy.typing import ArrayLike
 
 from fusion._results import ResultSpec, array, instance, validated_post_init
 from fusion._validation import derived_inputs
-from fusion._validation import flag, in_given_precision
+from fusion._validation import flag
 from fusion._validation import FloatArray, allocation, as_array, count, positive_scalar
 from fusion.estimates.chernoff.mixture import _check_mixtures, log_densities
-from fusion.optimise.simplex import check_simplex
+from fusion.optimise.simplex import simplex_row
 from fusion.estimates.mixtures import GaussianMixture, logsumexp
 
 __all__ = ["GridLogNormaliser", "ToyMixtures", "toy_mixtures", "grid_log_normaliser"]
@@ -138,7 +138,7 @@ def grid_log_normaliser(
     allocation((n, n, len(gms)), "n and gms")  # the n x n grid's log-densities, before they are computed
     E = np.atleast_2d(as_array(eps, "eps", ndim=(1, 2)))
     # float32 eps: on the simplex in its own precision, and used as check_simplex returns it (renormalised)
-    E = np.stack([check_simplex(e, len(gms)) for e in in_given_precision(E, eps)])
+    E = np.stack([simplex_row(e, len(gms), "eps", eps) for e in E])
     axis = np.linspace(-limit, limit, n)
     X, Y = np.meshgrid(axis, axis)
     L = log_densities(gms, np.column_stack([X.ravel(), Y.ravel()]))  # (n*n, N)

@@ -44,6 +44,7 @@ import numpy as np
 from fusion._frozen import constant
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, text,
                              tuple_of, validated_post_init)
+from fusion._validation import read_mapping, read_once
 from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
@@ -341,7 +342,7 @@ def config_label(cfg: dict[str, Any]) -> str:
     ValueError
         A key is missing or unknown, or ``level`` is not a positive integer.
     """
-    record(cfg, "cfg", ("wavelet", "level", "threshold", "mode"), ("transform",))
+    cfg = record(read_mapping(cfg, "cfg"), "cfg", ("wavelet", "level", "threshold", "mode"), ("transform",))
     for key in ("wavelet", "threshold", "mode", "transform"):
         if key in cfg and not isinstance(cfg[key], str):
             raise TypeError(f"cfg[{shown(key)}] must be a name (str), got {shown(cfg[key])}")
@@ -607,6 +608,7 @@ def signal_study(
         Bad lengths, values or option names, or empty option lists; a study beyond the work budget
         (``fusion._validation.MAX_WORK``: signals x modes x (normalisers + 1) x runs x sensors x length x 20).
     """
+    gains = read_once(gains, "gains")  # a Sequence class read once (fuzz 31a C4)
     for nm, seq, allowed in (("signals", signals, _SIGNAL_KEYS), ("modes", modes, ("hard", "soft")),
                              ("normalisers", normalisers, wv.NORMALISERS)):
         items = sequence(seq, nm)   # a list, tuple or 1-D array: TypeError otherwise (an iterator, a str)

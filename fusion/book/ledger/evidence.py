@@ -16,7 +16,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._limits import inexact_integer, integer_entries, written_as
+from fusion._limits import entry_dtypes, inexact_integer, integer_entries, written_as
 from fusion._nesting import ndim_of
 from fusion._validation import integer
 from fusion._validation import _numeric, _real_number, count, counts, seed as check_seed
@@ -147,7 +147,8 @@ class PublishedValues:
         ``12.3 / 100`` is the decimal it prints to). ``1.25`` with 1 decimal is refused, since R1 would then compare
         ours with a rounding of the published value (1.2) and a slip in ``decimals`` would decide the status; so is
         ``1234567.85`` with 1 decimal (the float 1234567.875, float32 of 1234567.9, is accepted: it is that decimal).
-        A float32 or float16 published array is held to its own precision (``_decimal_fault``): a few ulps of its
+        A float32 or float16 published array is held to its own precision (``_decimal_fault``; in a list, each
+        ``np.float32``/``np.float16`` scalar to its own, a Python float beside it to float64's): a few ulps of its
         dtype, and a value its dtype cannot hold at ``decimals`` (its spacing there exceeds the printed step:
         float32 98765.4321 at 4 decimals; float64 1234567890123456.78 at 2) is refused; an exact integer of a float32 table below ``2**24`` (float16:
         below ``2**11``) holds 0 decimals. Likewise an integer that float64 cannot hold exactly (beyond 2**53 in
@@ -198,15 +199,15 @@ class PublishedValues:
         _text(unit, "unit")
         dec = np.broadcast_to(np.array(dec_l, dtype=int), pub.shape)
         # a real extra decimal, not the binary round-off of the printed decimal (float32, 0.1 * 3, 12.3 / 100: fuzz 24e F1)
-        dtype = np.asarray(published).dtype
         exact = integer_entries(published, pub.size)  # an int given beside floats is exact (fuzz 30a C1/C2)
-        faults = [_decimal_fault(p, d, np.dtype(np.int64) if k else dtype)
-                  for p, d, k in zip(pub.tolist(), dec.tolist(), exact)]
+        dtypes = entry_dtypes(published, pub.size)  # each entry its own dtype's precision (fuzz 31a C1)
+        faults = [_decimal_fault(p, d, np.dtype(np.int64) if k else dt)
+                  for p, d, k, dt in zip(pub.tolist(), dec.tolist(), exact, dtypes)]
         bad = [i for i, why in enumerate(faults) if why]
         if bad:  # R1 would compare ours with the published value rounded (fuzz 24a D5)
             i = bad[0]
             if faults[i] == "cannot hold":
-                held = dtype if dtype.kind == "f" and dtype.itemsize < 8 else "float64"
+                held = dtypes[i] if dtypes[i].kind == "f" and dtypes[i].itemsize < 8 else "float64"
                 raise ValueError(f"published[{i}] = {shown(float(pub[i]))} is a {held} that cannot hold "
                                  f"decimals[{i}] = {int(dec[i])} decimals (its spacing there exceeds the printed step: two "
                                  "neighbouring printed values round to one value of the dtype)")

@@ -30,16 +30,17 @@ from fusion._frozen import frozen_arrays
 from fusion._results import ResultSpec, instance, number, validated_post_init
 from fusion.estimates.chernoff._timings import FusionTimings
 from fusion._timing import LapTimer
-from fusion._validation import read_once
+from fusion._validation import MAX_MAGNITUDE, derived_inputs, read_once
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
                                 instance_of, one_of)
-from fusion._validation import flag, in_given_precision, refuse_singular, renormalised, sums_to_one
+from fusion._validation import flag, refuse_singular, renormalised, sums_to_one
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options, particle_swarm_batch
 from fusion.estimates.chernoff.gaussian import _chernoff_derivatives_prepare, _chernoff_derivatives_prepared, _product_combine, _product_prepare, _product_terms
-from fusion.optimise.simplex import _active_problems, _plane_newton_steps, _simplex_newton, check_simplex, minimise_on_simplex
+from fusion.optimise.simplex import (_active_problems, _plane_newton_steps, _simplex_newton, check_simplex,
+                                     minimise_on_simplex, simplex_row)
 
 __all__ = [
     "MixtureFusion",
@@ -567,6 +568,7 @@ class MixtureFusion:
     timings: FusionTimings | None = None
 
 
+@derived_inputs("gms")  # an objective beyond the range names the mixtures (fuzz 31a C5)
 def fuse_mixtures(
     gms: Sequence[GaussianMixture],
     rng: np.random.Generator,
@@ -614,6 +616,13 @@ def fuse_mixtures(
     MixtureFusion
         The fused mean ``x`` and covariance ``P`` at the optimised exponents ``eps``, the objective, the start and
         first-order fusions, ESS and search diagnostics.
+
+    Raises
+    ------
+    ValueError
+        As :func:`fuse_mixtures_batch`; mixtures whose components lie so far apart for their covariances (means
+        of 1e100 at unit variances) that the objective's log-densities leave the range (beyond
+        ``fusion._validation.MAX_MAGNITUDE``, 1e150, in magnitude) are refused naming ``gms``: rescale them.
     """
     flag(redraw, "redraw")
     flag(reference, "reference")
@@ -629,6 +638,7 @@ def fuse_mixtures(
                          swarm_options, bool(timed))[0]
 
 
+@derived_inputs("means and covs")  # an objective beyond the range names them (fuzz 31a C5)
 def fuse_mixtures_batch(
     weights: ArrayLike,
     means: ArrayLike,
@@ -689,7 +699,9 @@ def fuse_mixtures_batch(
     ------
     ValueError
         Shapes inconsistent, non-finite values, weights off the simplex, a covariance with positive
-        weight not symmetric positive definite, ``rngs`` of the wrong length, ``eps0`` off the simplex.
+        weight not symmetric positive definite, ``rngs`` of the wrong length, ``eps0`` off the simplex; means so far
+        apart for their covariances that the objective's log-densities leave the range (1e150 in magnitude),
+        naming ``means`` (or ``covs``, the one at an extreme magnitude).
 
     References
     ----------
@@ -732,7 +744,7 @@ def fuse_mixtures_batch(
         e = np.broadcast_to(e, (B, N)) if e.shape == (N,) else e
         if e.shape != (B, N):
             raise ValueError(f"eps0 must have shape ({B}, {N}) or ({N},), got {np.shape(eps0)}")
-        e0 = np.stack([check_simplex(row, N, name="eps0") for row in in_given_precision(e, eps0)])
+        e0 = np.stack([simplex_row(row, N, "eps0", eps0) for row in e])  # judged in eps0's precision
     with np.errstate(divide="ignore"):
         logw = np.where(pos, np.log(np.where(pos, w, 1.0)), -np.inf)
     c = np.where(pos[..., None, None], c, np.eye(d))
@@ -746,7 +758,7 @@ def _timed_fusion(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: l
     """:func:`_fuse_arrays`, its stage times as a :class:`FusionTimings` in every result when ``timed``."""
     seconds: dict[str, float] | None = {} if timed else None
     out = _fuse_arrays(logw, means, covs, rngs, n_samples, eps0, optimiser, redraw, reference, swarm_options, seconds,
-                       keep_samples)
+                       keep_samples, in_range=True)
     if seconds is None:
         return out
     t = FusionTimings(**seconds)
@@ -861,8 +873,8 @@ def _equal_kl(LT: FloatArray, lg: FloatArray, max_iter: int = 50) -> FloatArray:
 def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: list[np.random.Generator], n_samples: int,
                  eps0: FloatArray, optimiser: str, redraw: bool, reference: bool,
                  swarm_options: SwarmOptions | None, timings: dict[str, float] | None,
-                 keep_samples: bool = False, equal_kl: bool = False, literal_xtol: float | None = None
-                 ) -> list[MixtureFusion]:
+                 keep_samples: bool = False, equal_kl: bool = False, literal_xtol: float | None = None,
+                 in_range: bool = False) -> list[MixtureFusion]:
     """Kernel of :func:`fuse_mixtures` and :func:`fuse_mixtures_batch` on validated arrays (see the latter).
 
     ``swarm_options`` is checked here (:func:`~fusion.optimise.swarm.check_swarm_options`), whichever caller;
@@ -874,7 +886,8 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
     follow each swarm to its iteration limit (``trace=True``, the result unchanged) and also return what
     the patent's stopping rule as worded (positions converged to ``literal_xtol``) gives on the same
     samples (fields ``eps_literal``, ``objective_literal``, ``n_evaluations_literal``, ``x_literal``,
-    ``P_literal``; the trace in ``swarm.trace``).
+    ``P_literal``; the trace in ``swarm.trace``). ``in_range`` (the public entries): refuse log-densities beyond
+    the range (the filters' studies carry a diverged track's fusion on, unrefused).
     """
     swarm_options = check_swarm_options(swarm_options)
     B, N = eps0.shape
@@ -884,7 +897,11 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
     chol = np.linalg.cholesky(Pg)
     xs = np.stack([_sample_mixture(wg[b], mug[b], chol[b], rngs[b], n_samples) for b in range(B)])  # E
     clock.lap("sampling")
-    lg, LT = _proposal_densities(logw, means, covs, wg, mug, Pg, xs)  # F
+    with np.errstate(over="ignore", invalid="ignore"):  # far components: refused just below, without numpy's warnings
+        lg, LT = _proposal_densities(logw, means, covs, wg, mug, Pg, xs)  # F
+    if in_range and not max(np.abs(lg).max(), np.abs(LT).max()) <= MAX_MAGNITUDE:  # the public entries (fuzz 31a C5)
+        raise ValueError(f"the mixtures' log-densities at the samples leave the range (at most {MAX_MAGNITUDE:g} in "
+                         "magnitude): their components lie too far apart for their covariances; rescale them")
     clock.lap("densities")
     swarms: list[OptimumResult | None] = [None] * B
     if optimiser == "pso":  # G

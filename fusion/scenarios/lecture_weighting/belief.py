@@ -187,12 +187,12 @@ def belief_study(
         The weights against the shift Δ, the unit checks, eigenvector against row-sum weights with their MSE, and the
         Perron statistics.
     """
-    n_sig = _sigmas(sigma, minimum=2).size
+    sig = _sigmas(sigma, minimum=2)  # the checked array is what the study uses (fuzz 31a C4)
+    n_sig = sig.size
     x = scalar(x, "x")
     seeds = [_seed(sd, "seeds") for sd in sequence(seeds, "seeds", 3)]
     snapshots = count(snapshots, "snapshots", minimum=2)
     allocation((snapshots, n_sig, n_sig), "snapshots and sigma")
-    sig = np.asarray(sigma, dtype=float)
     base = x + np.random.default_rng(seeds[0]).normal(size=sig.size) * sig
     deltas = np.linspace(0, 20, 201)
     e1 = np.eye(sig.size)[0]

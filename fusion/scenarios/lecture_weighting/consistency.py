@@ -11,6 +11,7 @@ from numpy.typing import ArrayLike
 
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, mask, number, same_keys, text,
                              tuple_of, validated_post_init)
+from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, window as check_window, work
 from fusion.readings import consistency as cs
@@ -290,6 +291,7 @@ def consistency_study(
         Each method's outputs and squared errors with and without the fault, exclusion rates, and the detection curve
         against bias/ε.
     """
+    sigma = read_once(sigma, "sigma")  # a Sequence class read once (fuzz 31a C4)
     sig_chk = _sigmas(sigma, minimum=3)
     if sig_chk.max() <= 0:
         raise ValueError("sigma must have a positive entry")

@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, flag, instance, integer, number, same_keys, text,
                              tuple_of, validated_post_init)
 from fusion._frozen import constant
+from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
 from fusion._validation import LOOP_STEP, as_mask, distinct, distinct_printed, glue_part, loop_work
@@ -543,6 +544,7 @@ def awf_study(
     AwfStudy
         Per level and estimator the rows and bands of the variance estimates, and per level each method's MSE against k.
     """
+    sigma = read_once(sigma, "sigma")  # a Sequence class read once (fuzz 31a C4)
     n_sig = _sigmas(sigma, minimum=4).size
     lv = _values(levels, "levels")
     levels = levels if isinstance(levels, (list, tuple)) else lv.tolist()  # iterated below: any array-like

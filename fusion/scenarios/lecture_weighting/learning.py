@@ -10,6 +10,7 @@ import numpy as np
 
 from fusion._results import ResultSpec, array, dict_of, instance, integer, number, text, tuple_of, validated_post_init
 from fusion._shown import shown
+from fusion._validation import read_once
 from fusion._validation import as_array, derived_inputs
 from fusion._validation import count, scalar, sequence
 from fusion._validation import allocation
@@ -153,6 +154,7 @@ def learning_study(
         The table's rows per set of variances, the learned variances per set size and each run's mean error over the
         last epochs.
     """
+    r_sets = read_once(r_sets, "r_sets")  # a Sequence class read once (fuzz 31a C4)
     if isinstance(r_sets, (str, bytes)):
         raise TypeError("r_sets must be a sequence of variance tuples, got a string")
     epochs = count(epochs, "epochs")

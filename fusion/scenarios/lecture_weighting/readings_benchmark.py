@@ -12,6 +12,7 @@ import numpy as np
 from fusion._results import ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of
 from fusion._results import flag as flag_spec, validated_post_init  # flag: the argument check of _validation
 from fusion import readings as rd
+from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import flag
 from fusion._validation import LOOP_STEP, distinct, distinct_printed, general, loop_work, sequence
@@ -162,6 +163,7 @@ def benchmark(
     dict
         ``{(seed, level, fault): {method key (:class:`BenchMethod`): per-run squared error, shape (runs,)}}``.
     """
+    sigma = read_once(sigma, "sigma")  # a Sequence class read once (fuzz 31a C4)
     if isinstance(seeds, (str, bytes)):
         raise TypeError("seeds must be a sequence of ints, got a string")
     seeds = check_seeds(seeds, "seeds")

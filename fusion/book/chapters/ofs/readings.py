@@ -14,7 +14,7 @@ from fusion._frozen import constant
 from fusion import readings as rd
 from fusion._counts import count, sequence
 from fusion._validation import FloatArray, as_array, distinct_printed, general, instance_of, one_of, scalar
-from fusion._validation import window as check_window
+from fusion._validation import read_mapping, window as check_window
 from fusion.readings.robust import robust_fuse
 from fusion._docstrings import ParameterDocs
 from fusion._shown import shown
@@ -281,8 +281,8 @@ def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: floa
     instance_of(families, Mapping, "families")
     if not families:
         raise ValueError("families must be a non-empty mapping of label to family, got an empty mapping")
-    for label, fam in families.items():
-        one_of(fam, _FAMILY_NAMES, f"families[{shown(label)}]")
+    families = {label: one_of(fam, _FAMILY_NAMES, f"families[{shown(label)}]")  # read once, the checked names used
+                for label, fam in read_mapping(families, "families").items()}  # (fuzz 31a C3)
     if window is not None:   # only the window's epochs: each is fused on its own
         first, last = check_window(window, "window", arr.shape[1], one_based=True)
         arr = arr[:, first - 1:last]
