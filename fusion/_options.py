@@ -196,3 +196,28 @@ def one_of(value: str, allowed: tuple[str, ...], name: str) -> str:
     if not any(str.__eq__(plain, a) for a in allowed):
         raise ValueError(f"{name} must be one of {allowed}, got {shown(value)}")
     return _plain_text(value, name)
+
+
+def texts(value: object, name: str) -> tuple[str, ...]:
+    """A tuple (or list) of texts as a tuple of plain ``str`` (rule 19): each entry read by :func:`text` under its
+    path in the caller's argument (``name[0]``), so that a refused entry names the caller's argument.
+
+    Raises
+    ------
+    TypeError
+        ``value`` is a bare string (it would be split into characters) or not a tuple or list, or an entry is not a
+        string or a ``str`` subclass whose own comparison disagrees with its text, naming ``name`` (and the entry).
+    """
+    if isinstance(value, str) or not isinstance(value, (tuple, list)):
+        raise TypeError(f"{name} must be a tuple of str, got {type(value).__name__}")
+    return tuple(text(v, f"{name}[{i}]") for i, v in enumerate(value))
+
+
+def text_fields(obj: object, *names: str, among: tuple[str, ...] | None = None) -> None:
+    """Store in each field ``names`` of the frozen dataclass ``obj`` the plain ``str`` its text reads as (rule 19,
+    :func:`text`; :func:`one_of` when the text must be ``among`` given options): a record keeps, compares and prints
+    its texts, never the caller's ``str`` subclass (a ``(str, Enum)`` member formats as its name, ``'E.A'``)."""
+    for n in names:
+        value = getattr(obj, n)
+        object.__setattr__(obj, n, text(value, n) if among is None else one_of(value, among, n))
+

@@ -124,7 +124,7 @@ from fusion._limits import loop_work, work  # noqa: F401
 from fusion._shown import MAX_SHOWN, shown  # noqa: F401 (re-exported: the echo of a bad value)
 from fusion._nesting import MAX_NESTING, is_ragged, ndim_of, ragged_error, shape_of  # noqa: F401 (re-exported)
 from fusion._options import (  # noqa: F401 (re-exported: rules 6, 18, 19)
-    _plain_text, _safe_repr, flag, keywords, one_of, options, template, text)
+    _plain_text, _safe_repr, flag, keywords, one_of, options, template, text, text_fields, texts)
 
 FloatArray = NDArray[np.float64]
 

@@ -150,7 +150,7 @@ def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
         ``date``, ``machine`` or ``measurements``, or these are not two strings and a list of objects whose ``key``
         (where given) is a string and whose ``value`` (where given) is a finite number.
     """
-    text(name, "name")
+    name = text(name, "name")
     if not _STEM.fullmatch(name) or name.endswith(".json"):  # a short plain stem: no path, no NUL, no 10**6 characters
         raise ValueError(f"name must be a file stem such as 'ci' (letters, digits, '_', '-', '.'; at most 100 "
                          f"characters), got {shown(name, 80)}")

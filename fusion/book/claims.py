@@ -69,7 +69,7 @@ from fusion.book.ledger import (SOURCES, Alternative, Claim, Comparison, Conjunc
 from fusion._counts import COUNT_CEILINGS
 from fusion._paths import folder
 from fusion._shown import shown
-from fusion._validation import MAX_MAGNITUDE, count, flag, instance_of, one_of, text
+from fusion._validation import MAX_MAGNITUDE, count, flag, instance_of, one_of, text, text_fields
 
 __all__ = ["SCHEMA", "ClaimsFileError", "ReadingSpec", "ClaimSpec", "ClaimsFile", "claims_dir", "load",
            "load_all", "build_ledger", "evaluate"]
@@ -152,10 +152,10 @@ SCHEMA: Mapping[str, Any] = constant(_PLAIN_SCHEMA)
 def _nonempty(value: object, name: str, required: bool = True) -> str:
     """A text field: TypeError naming ``name`` for a non-str, ValueError for a text :func:`_text_problem` refuses
     (one without a visible character when ``required``)."""
-    problem = _text_problem(text(value, name), required)
+    problem = _text_problem(plain := text(value, name), required)
     if problem is not None:
         raise ValueError(f"{name} {problem}")
-    return value  # type: ignore[return-value]
+    return plain  # the plain str (rule 19)
 
 
 class ClaimsFileError(ValueError):
@@ -206,12 +206,12 @@ class ReadingSpec:
     runs: int | None = None
 
     def __post_init__(self) -> None:
-        if not re.fullmatch(_KEY, _nonempty(self.key, "key")):
+        if not re.fullmatch(_KEY, text_fields(self, "key") or _nonempty(self.key, "key")):
             raise ValueError(f"key must be lower-case letters, digits and '-' (the pattern {_KEY} of a claim file), "
                              f"got {shown(self.key)}")
         for name in ("choice", "reading"):  # "" for a record's implicit primary reading
-            _format_text(_nonempty(getattr(self, name), name, required=False), name)
-        one_of(self.kind, R.READING_KINDS, "kind")
+            object.__setattr__(self, name, _format_text(_nonempty(getattr(self, name), name, required=False), name))
+        text_fields(self, "kind", among=R.READING_KINDS)
         instance_of(self.settings, Mapping, "settings")
         for k in self.settings:
             if not isinstance(k, str):  # a claim file's keys are texts (load refuses any other)
@@ -295,12 +295,11 @@ class ClaimSpec:
 
     def __post_init__(self) -> None:
         for name in ("id", "chapter", "where", "claim", "published", "link"):
-            _nonempty(getattr(self, name), name)
-        one_of(self.claimant, R.CLAIMANTS, "claimant")
-        one_of(self.test, R.TESTS, "test")
+            object.__setattr__(self, name, _nonempty(getattr(self, name), name))  # plain texts (rule 19)
+        text_fields(self, "claimant", among=R.CLAIMANTS), text_fields(self, "test", among=R.TESTS)
         for name in ("quantity", "bound", "reason", "evidence"):
-            _nonempty(getattr(self, name), name, required=False)
-        one_of(self.direction, ("", "less", "greater", "equal"), "direction")
+            object.__setattr__(self, name, _nonempty(getattr(self, name), name, required=False))
+        text_fields(self, "direction", among=("", "less", "greater", "equal"))
         object.__setattr__(self, "headline", flag(self.headline, "headline"))  # a NumPy bool stored as a bool
         for name in ("margin", "baseline"):
             if getattr(self, name) is not None:
@@ -368,7 +367,7 @@ class ClaimsFile:
 
     def __post_init__(self) -> None:
         instance_of(self.path, Path, "path")
-        text(self.source, "source")
+        text_fields(self, "source")
         instance_of(self.quantities, Mapping, "quantities")
         if not (isinstance(self.records, (tuple, list)) and all(isinstance(r, ClaimSpec) for r in self.records)):
             raise TypeError(f"records must be a tuple of ClaimSpec, got {shown(self.records)}")
@@ -971,7 +970,7 @@ def evaluate(spec: ClaimSpec, reading: str, seed: int, runs: int) -> Evidence:
     from fusion._validation import seed as check_seed
 
     instance_of(spec, ClaimSpec, "spec")
-    text(reading, "reading")
+    reading = text(reading, "reading")
     seed, runs = check_seed(seed), count(runs, "runs")  # plain ints (a 0-d array is its integer)
     if not spec.evidence:
         raise ClaimsFileError(f"record {spec.id}: names no evidence function")

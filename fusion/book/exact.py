@@ -44,7 +44,7 @@ def _value(v: object, name: str) -> float:
 def _text(v: object, name: str) -> str:
     if not isinstance(v, str) or not v.strip():
         raise ValueError(f"{name} must be a non-empty string, got {shown(v)}")
-    return v
+    return text(v, name)  # the plain str (rule 19): stored, compared and printed as its text
 
 
 def _percent(share: float) -> str:
@@ -109,11 +109,11 @@ class ExactComparison:
     def __init__(self, a: float, b: float, a_name: str, b_name: str, claim: Literal["less", "greater", "equal"],
                  metric: str, margin: float | None = None, relative_margin: float | None = None) -> None:
         av, bv = _value(a, "a"), _value(b, "b")
-        for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric)):
-            _text(v, name)
+        a_name, b_name, metric = (_text(v, name) for name, v in (("a_name", a_name), ("b_name", b_name),
+                                                                  ("metric", metric)))
         R._two_methods(a_name, b_name)
         claim = text(claim, "claim")  # rule 19: matched and stored as its text (a 0-d array is not text)
-        one_of(claim, ("less", "greater", "equal"), "claim")
+        claim = one_of(claim, ("less", "greater", "equal"), "claim")
         R._margin_type(margin, "margin"), R._margin_type(relative_margin, "relative_margin")  # Comparison's rule
         margin = None if margin is None else scalar(margin, "margin", 0.0)
         relative_margin = None if relative_margin is None else scalar(relative_margin, "relative_margin", 0.0)

@@ -38,6 +38,7 @@ from matplotlib.text import Text
 from matplotlib.transforms import Bbox
 
 from fusion._shown import shown
+from fusion._validation import text
 from fusion.book import style
 
 __all__ = ["OKABE_ITO", "MIN_FONT_PT", "MAX_WIDTH_IN", "FigureStyleError", "allowed_colors",
@@ -295,6 +296,7 @@ def glue_figure(key: str, fig: Figure, alt: str | None = None) -> None:
     """
     if not isinstance(key, str):
         raise TypeError(f"key must be a str (a glue key), got {type(key).__name__} {shown(key, 40)}")
+    key = text(key, "key")  # the plain text (rule 19): glued and looked up as its text
     if not key:
         raise ValueError("key must be a non-empty string")
     if not isinstance(fig, Figure):

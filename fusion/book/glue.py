@@ -16,7 +16,7 @@ from pandas.api.extensions import ExtensionArray
 from matplotlib.figure import Figure
 from pandas.io.formats.style import Styler
 
-from fusion._validation import count, read_mapping
+from fusion._validation import count, read_mapping, text
 from fusion.book.tables import rounded
 from fusion._shown import shown
 from fusion._nesting import MAX_NESTING, nesting_error
@@ -201,15 +201,18 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     values = read_mapping(values, "values")  # its values checked and glued as one read (fuzz 31a C3)
     if decimals is not None:
         decimals = count(decimals, "decimals", minimum=0)
+    plain = {}  # keys and text values as their plain str (rule 19): a (str, Enum) member is glued as its text
     for key, value in values.items():  # every value checked before any is glued
         if not isinstance(key, str):
             raise TypeError(f"values must have str glue keys, got the key {shown(key, 60)}")
         _check_finite(key, value)
+        key = text(key, "values keys")
+        plain[key] = text(value, f"values[{shown(key)}]") if isinstance(value, str) else value
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 
     from fusion.book.figures import glue_figure
 
-    for key, value in values.items():
+    for key, value in plain.items():
         if isinstance(value, Figure):
             glue_figure(key, value)
             continue

@@ -16,7 +16,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
 from fusion.book.ledger import STATUSES
-from fusion._validation import text
+from fusion._validation import one_of, text, text_fields, texts
 from fusion._shown import shown
 
 __all__ = ["Evidence", "Recommendation", "RECOMMENDATIONS", "check"]
@@ -48,13 +48,14 @@ class Evidence:
         # value of the right type a ValueError (issue 35)
         if not isinstance(self.claim, str):
             raise TypeError(f"claim must be a ledger record id (a string), got {type(self.claim).__name__}")
+        text_fields(self, "claim", "role")  # plain str copies (rule 19): kept, compared and printed as their text
         if not self.claim.strip():  # a blank id names no record, as a blank role says nothing
             raise ValueError("claim must be a ledger record id (a non-empty string)")
-        text(self.role, "role")
         if not self.role.strip():
             raise ValueError("role must be a non-empty string")
         if not isinstance(self.expect, tuple):
             raise TypeError(f"expect must be a tuple of ledger statuses, got {type(self.expect).__name__}")
+        object.__setattr__(self, "expect", texts(self.expect, "expect"))
         bad = [s for s in self.expect if s not in STATUSES]
         if not self.expect or bad:
             raise ValueError(f"expect must be a non-empty tuple of ledger statuses, got {shown(self.expect)}")
@@ -91,9 +92,9 @@ class Recommendation:
     chapters: tuple[str, ...]
 
     def __post_init__(self) -> None:
+        text_fields(self, "task", "use", "why", "avoid", "avoid_why")  # plain str copies (rule 19)
         for name in ("task", "use", "why", "avoid", "avoid_why"):
             value = getattr(self, name)
-            text(value, name)
             if not value.strip():
                 raise ValueError(f"{name} must be a non-empty string")
         if not isinstance(self.evidence, tuple) or not all(isinstance(e, Evidence) for e in self.evidence):
@@ -102,6 +103,7 @@ class Recommendation:
             raise ValueError("evidence must be a non-empty tuple of Evidence")
         if not isinstance(self.chapters, tuple) or not all(isinstance(c, str) for c in self.chapters):
             raise TypeError(f"chapters must be a tuple of docnames (str), got {type(self.chapters).__name__}")
+        object.__setattr__(self, "chapters", texts(self.chapters, "chapters"))
 
 
 _R = ("reproduced", "reproduced under stated assumptions")
@@ -264,14 +266,15 @@ def check(records: Iterable[Mapping[str, object]],
     odd_id = [r["id"] for r in records if not isinstance(r["id"], str)]
     if odd_id:  # a ledger id is text: str() would make 5 and '5' one record
         raise TypeError(f"records: every id must be a string (as in book/ledger/*.json), got {shown(odd_id[0])}")
-    ids = [r["id"] for r in records]
+    ids = [text(r["id"], f"records[{i}]['id']") for i, r in enumerate(records)]  # plain str copies (rule 19)
     repeated = sorted(i for i, n in Counter(ids).items() if n > 1)  # linear: a count per id was quadratic (fuzz 22a Q1)
     if repeated:  # one id, two statuses: the check would keep the last without a word
         raise ValueError(f"records must not repeat an id, got {shown(repeated)} more than once")
-    odd = [r["status"] for r in records if not (isinstance(r["status"], str) and r["status"] in STATUSES)]
+    odd = [r["status"] for r in records if not isinstance(r["status"], str)]
     if odd:
         raise ValueError(f"records: every status must be one of {STATUSES}, got {shown(odd[0])}")
-    status = {r["id"]: str(r["status"]) for r in records}
+    statuses = [one_of(r["status"], STATUSES, f"records[{i}]['status']") for i, r in enumerate(records)]
+    status = dict(zip(ids, statuses))  # the plain texts (rule 19): an Enum's str() is its name
     problems: list[str] = []
     for rec in recommendations:
         for ev in rec.evidence:

@@ -99,7 +99,7 @@ from numpy.typing import ArrayLike
 from scipy import stats
 
 from fusion._validation import _numeric, _real_number, check_magnitude, count, scalar, sequence, shown
-from fusion._validation import flag, input_eps, one_of, read_once, text
+from fusion._validation import flag, input_eps, one_of, read_once, text, text_fields
 from fusion._limits import ROUND_OFF_TIE
 from fusion.book.tables import sci
 
@@ -327,10 +327,10 @@ class Judgement:
     heavy: bool
 
     def __post_init__(self) -> None:
-        one_of(self.status, STATUSES, "status")
-        one_of(self.rule, ("R2", "R3"), "rule")
-        one_of(self.statistic, ("mean", "median", "infinite mean"), "statistic")
-        one_of(self.region, ("lower", "higher", "equivalent", "undecided"), "region")
+        text_fields(self, "status", among=STATUSES)  # plain texts (rule 19)
+        text_fields(self, "rule", among=("R2", "R3"))
+        text_fields(self, "statistic", among=("mean", "median", "infinite mean"))
+        text_fields(self, "region", among=("lower", "higher", "equivalent", "undecided"))
         values: dict[str, float] = {"runs": count(self.runs, "runs", minimum=2)}
         flag(self.heavy, "heavy")
         values.update((k, _real_number(getattr(self, k), k)) for k in
@@ -547,8 +547,8 @@ def status_from_region(where: Region, direction: Direction) -> str:
         ``"reproduced"`` (the region the direction claims), ``"contradicted"`` (the opposite one) or
         ``"not distinguishable"``.
     """
-    text(where, "where")
-    text(direction, "direction")
+    where = text(where, "where")
+    direction = text(direction, "direction")
     if where not in ("lower", "higher", "equivalent", "undecided"):
         raise ValueError(f"where must be 'lower', 'higher', 'equivalent' or 'undecided', got {shown(where)}")
     if direction not in ("less", "greater", "equal"):
@@ -741,7 +741,7 @@ def _judge(av: np.ndarray, bv: np.ndarray, direction: Direction, margin: float, 
            tie: float) -> Judgement:
     """:func:`judge_paired` of checked runs (:func:`_paired_runs`) with the tie share ``tie`` of their dtype as given."""
     margin = scalar(margin, "margin", 0.0)
-    text(direction, "direction")
+    direction = text(direction, "direction")
     if direction not in ("less", "greater", "equal"):
         raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {shown(direction)}")
     infinite_mean = _infinite_mean(infinite_mean)
@@ -821,15 +821,15 @@ def counted(kind: str, runs: int | None, primary_runs: int | None, status: str |
     TypeError
         ``kind`` or ``status`` is not a str; ``runs`` or ``primary_runs`` is neither an integer nor None.
     """
-    text(kind, "kind")
+    kind = text(kind, "kind")  # the plain str (rule 19): matched and returned as its text
     if kind not in READING_KINDS or kind == "primary":
         raise ValueError(f"kind must be one of {READING_KINDS[1:]}, got {shown(kind)}")
     runs = None if runs is None else count(runs, "runs")
     primary_runs = _primary_runs(primary_runs)
     if status is not None:
-        one_of(status, STATUSES, "status")
+        status = one_of(status, STATUSES, "status")
     if kind not in COUNTED_KINDS:
-        return False, str(kind)  # a plain str (rule 19), also for an np.str_ kind
+        return False, kind
     if runs is not None and runs < max(MIN_RUNS, primary_runs or 0):
         return False, "underpowered"
     if status == "cannot be checked":
@@ -873,7 +873,7 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     """
     flag(assumptions, "assumptions")
     primary_runs = _primary_runs(primary_runs)
-    text(primary, "primary")
+    primary = text(primary, "primary")  # the plain str (rule 19): matched and returned as its text
     if primary not in STATUSES:
         raise ValueError(f"primary must be one of {STATUSES}, got {shown(primary)}")
     readings = read_once(readings, "readings")  # a Sequence class read once, as a list (fuzz 31a C4)
@@ -881,12 +881,15 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
                                                      for x in sequence(readings, "readings")):
         raise TypeError(f"readings must be a sequence of (kind, status, runs) tuples, got {shown(readings)}")
     readings = [tuple(x) for x in readings]  # a list triple is a triple (readings read back from JSON are lists)
-    if any(st not in STATUSES for _, st, _ in readings):
+    if any(not isinstance(st, str) or str.__str__(st) not in STATUSES for _, st, _ in readings):
         raise ValueError(f"readings: every status must be one of {STATUSES}")
+    # each text read as its plain str under its place in the caller's argument (rule 19; fuzz 32a C4)
+    readings = [(text(k, f"readings[{i}][0]"), one_of(st, STATUSES, f"readings[{i}][1]"), r)
+                for i, (k, st, r) in enumerate(readings)]
     good = ("reproduced", "reproduced under stated assumptions")
     flags = [counted(k, r, primary_runs, st)[0] for k, st, r in readings]
     total = sum(flags)
     agree = sum(f and s in good for f, (_, s, _) in zip(flags, readings))
     if primary == "reproduced" and (assumptions or agree < total):
         return "reproduced under stated assumptions", agree, total
-    return str(primary), agree, total  # a plain str (rule 19), also for an np.str_ primary
+    return primary, agree, total

@@ -96,7 +96,7 @@ def source_digest(package: Path | str = _PACKAGE) -> str:
         not a Python package (no ``__init__.py``): a folder such as ``/`` or ``''`` (the working directory) would
         be walked file by file, the whole file system in the worst case.
     """
-    path = folder(package, "package")
+    path = folder(text(package, "package") if isinstance(package, str) else package, "package")  # rule 19
     if not (path / "__init__.py").is_file():
         raise ValueError(f"package must be a Python package's folder (with an __init__.py), got {shown(package, 60)}")
     # resolved before the cache: a relative name read from another working directory is another folder
@@ -180,7 +180,7 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
         argument has no canonical encoding (a container that contains itself, or one nested deeper than the
         interpreter's recursion limit, has none; then the call bypasses the disk).
     """
-    text(qualname, "qualname")
+    qualname = text(qualname, "qualname")
     if not isinstance(arguments, dict):
         raise TypeError(f"arguments must be a dict, got {type(arguments).__name__}")
     encoded = []
@@ -304,6 +304,22 @@ def _stored(target: Path, key: str) -> tuple[Any] | None:
     if isinstance(loaded, tuple) and len(loaded) == 2 and loaded[0] == key:
         return (loaded[1],)
     return None
+
+
+def _environment() -> Path | None:
+    """The cache directory :data:`ENV` names (None when unset or empty), after checking the environment before any
+    work: ValueError naming the variable when :data:`ENV` holds only blanks or names something that is not a
+    directory, or (with a directory) :data:`LOG_ENV` names a directory or a file in a missing one (fuzz 32a D1: an OS error
+    named nothing, and came after the computation, whose result was lost)."""
+    root, log = os.environ.get(ENV), os.environ.get(LOG_ENV)
+    if root is not None and root and not root.strip():
+        raise ValueError(f"the environment variable {ENV} holds only blanks: set it to a directory or unset it")
+    if root and os.path.exists(root) and not os.path.isdir(root):
+        raise ValueError(f"the environment variable {ENV} must name a directory, got the file {shown(root)}")
+    if root and log and (os.path.isdir(log) or not os.path.isdir(os.path.dirname(os.path.abspath(log)))):
+        raise ValueError(f"the environment variable {LOG_ENV} must name a file in an existing directory, got "
+                         f"{shown(log)}")
+    return Path(root) if root else None
 
 
 def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any], compute: Callable[[], Any]) -> Any:
@@ -433,7 +449,10 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
     TypeError
         ``maxsize`` is not an integer type or ``None`` (a float, a Fraction, a duration, a bool).
     ValueError
-        ``maxsize`` is negative or beyond the ceiling of a count.
+        ``maxsize`` is negative or beyond the ceiling of a count. A call of the wrapped function, before any work,
+        when the environment is misconfigured: :data:`ENV` holding only blanks or naming a file, or (with
+        :data:`ENV` set) :data:`LOG_ENV` naming a directory or a file in a missing directory; the message names
+        the variable.
 
     Notes
     -----
@@ -441,6 +460,9 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
     run computes it, the others load a bitwise-equal copy. Its callers cannot change what a later call returns:
     the result's arrays are made read-only, and a result holding anything mutable (a list, dict, DataFrame,
     non-frozen dataclass) is deep-copied for each call, sharing its read-only arrays (see the module's docstring).
+    The arrays are made read-only in place: a function that returns (part of) an array argument freezes the
+    caller's own array too (the cached result is that array; copying every result would cost each study a copy).
+    A cached function should return arrays of its own, as the book's studies do.
     """
     if maxsize is not None:
         maxsize = count(maxsize, "maxsize", minimum=0)
@@ -472,8 +494,8 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
                     stats["hits"] += 1
                     return memo[key].get()
                 stats["misses"] += 1
-            root = os.environ.get(ENV)
-            result = _Shared(_through_disk(Path(root), key, qualname, arguments, lambda: fn(*args, **kwargs)) if root
+            root = _environment()
+            result = _Shared(_through_disk(root, key, qualname, arguments, lambda: fn(*args, **kwargs)) if root
                              else fn(*args, **kwargs))
             if maxsize == 0:
                 return result.value            # not kept: the caller's own

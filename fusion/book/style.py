@@ -17,7 +17,7 @@ from fusion._frozen import constant
 from fusion._validation import count, instance_of, keywords
 from fusion._validation import flag
 from fusion._validation import shown
-from fusion._validation import text
+from fusion._validation import _plain_text, text
 from fusion.book.tables import _SUPERSCRIPT
 
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES",
@@ -457,8 +457,7 @@ def color(method: str) -> str:
     str
         Hex colour, e.g. ``"#555555"``.
     """
-    instance_of(method, str, "method")
-    return METHOD_COLORS.get(method, "#555555")
+    return METHOD_COLORS.get(text(method, "method"), "#555555")  # matched as its plain text (rule 19)
 
 
 # Most panels along one side of a figure of new_figure.
@@ -635,7 +634,7 @@ def is_registered_label(label: str) -> bool:
     """
     import re
 
-    instance_of(label, str, "label")
+    label = text(label, "label")  # matched as its plain text (rule 19)
     if label in FIGURE_LABELS or label in _LABEL_SET:
         return True
     for pattern, _ in LABEL_PATTERNS:
@@ -719,6 +718,7 @@ def plain_math(text: str) -> str:
     import re
 
     instance_of(text, str, "text")
+    text = _plain_text(text, "text")  # its plain text (rule 19)
 
     greek = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "varepsilon": "ε",
              "lambda": "λ", "mu": "μ", "sigma": "σ", "omega": "ω", "theta": "θ", "tau": "τ", "pi": "π",

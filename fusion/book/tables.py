@@ -160,8 +160,8 @@ def side_by_side(
             raise ValueError(f"{arg}[{i}] is an integer that float64 cannot hold exactly (beyond 2**53 in magnitude): "
                              "the table would show another number")
     decimals = count(decimals, "decimals", minimum=0)
-    text_argument(name, "name")
-    text_argument(index_name, "index_name")
+    name = text_argument(name, "name")  # plain texts (rule 19): an Enum member prints its name
+    index_name = text_argument(index_name, "index_name")
     index = sequence(index, "index")  # row labels: any values, but a sequence of them
     for i, label in enumerate(index):
         try:
@@ -302,7 +302,7 @@ def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"
     """
     decimals = count(decimals, "decimals", minimum=0)  # the int read: shown in the caption and the format
     mask = mismatches(table, decimals)
-    text_argument(uuid, "uuid")   # a wrong type is a TypeError (issue 35)
+    uuid = text_argument(uuid, "uuid")   # a wrong type is a TypeError (issue 35)
     if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_-]*", uuid):
         raise ValueError(f"uuid must be an HTML id prefix (an ASCII letter, then letters, digits, '-' or '_'), "
                          f"got {shown(uuid)}")
@@ -451,6 +451,7 @@ def power_of_ten(mantissa: str, exponent: int) -> str:
                          f"ten), got {shown(exponent)}")
     if not isinstance(mantissa, str):
         raise TypeError(f"mantissa must be a str of digits, got {type(mantissa).__name__}")
+    mantissa = text_argument(mantissa, "mantissa")  # its plain text (rule 19)
     if not re.fullmatch(_MANTISSA, mantissa):
         raise ValueError(f"mantissa must be the digits of a finite number (e.g. '1.5' or '-2.952'), got {shown(mantissa)}")
     sup = str(int(exponent)).translate(_SUPERSCRIPT)
@@ -611,7 +612,7 @@ def cell_text(text: str) -> str:
         ``text`` with a whole-cell NaN, None, infinity, True or False replaced by the book's mark, and e-notation as
         powers of ten.
     """
-    text_argument(text, "text")
+    text = text_argument(text, "text")
     core = text.strip()
     whole = {"NaN": MISSING, "nan": MISSING, "<NA>": MISSING, "&lt;NA&gt;": MISSING, "None": MISSING,
              "NaT": MISSING, "inf": INFINITE, "Infinity": INFINITE, "-inf": "-" + INFINITE,
@@ -655,7 +656,7 @@ def tidy_table_html(html: str) -> str:
     str
         ``html`` with the text of every ``<td>`` and ``<th>`` cell passed through :func:`cell_text`; tags unchanged.
     """
-    text_argument(html, "html")
+    html = text_argument(html, "html")
     parts, pos = [], 0  # one pass (the regular expression <t[dh]...>(.*?)</t[dh]> was quadratic, fuzz 22a Q3)
     while (opening := _CELL_OPEN.search(html, pos)) is not None:
         end = html.find(">", opening.end())

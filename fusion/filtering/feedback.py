@@ -270,9 +270,9 @@ def fusion_loop(
     * Li, H., Nashashibi, F., & Yang, M. (2013). *IEEE Trans. ITS*, 14(4), 1860-1871.
     * Wang, Z., & Tang, X. (2024). *Electronic Measurement Technology* (Fig. 2, eqs. 5-12).
     """
-    one_of(rule, FEEDBACK_RULES, "rule")
-    one_of(feedback, ARCHITECTURES, "feedback")
-    one_of(process_noise, PROCESS_NOISE, "process_noise")
+    rule = one_of(rule, FEEDBACK_RULES, "rule")
+    feedback = one_of(feedback, ARCHITECTURES, "feedback")
+    process_noise = one_of(process_noise, PROCESS_NOISE, "process_noise")
     if rule == "lossless" and feedback == "none":
         raise ValueError("rule 'lossless' needs feedback: without it the fusion centre does not know the common prior")
     if omega is not None:

@@ -224,7 +224,7 @@ def fuse_tracks(
     >>> ci.est[0, :, 0]
     array([10., 10., 10.])
     """
-    one_of(rule, RULES, "rule")
+    rule = one_of(rule, RULES, "rule")
     instance_of(a, LocalTrack, "a")
     instance_of(b, LocalTrack, "b")
     if a.est.shape != b.est.shape:

@@ -230,7 +230,7 @@ def _swarm_one(fitness: Callable[[FloatArray], FloatArray], dim: int, rng: np.ra
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
     lo = scalar(lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True)
-    one_of(stop, ("stagnation", "positions"), "stop")
+    stop = one_of(stop, ("stagnation", "positions"), "stop")
     xtol = tolerance(xtol, "xtol")
     u = rng.uniform(lo, 1.0, (n_particles, dim))  # G1
     v = rng.uniform(-vmax, vmax, (n_particles, dim))
@@ -298,7 +298,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
     lo = scalar(lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True)
-    one_of(stop, ("stagnation", "positions"), "stop")
+    stop = one_of(stop, ("stagnation", "positions"), "stop")
     xtol = tolerance(xtol, "xtol")
     B = len(rngs)
     u = np.empty((B, n_particles, dim))

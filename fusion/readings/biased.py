@@ -521,7 +521,7 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
         symmetric positive definite, an unknown ``where``, a rank-deficient total information or
         (distributed) a sensor whose :math:`H_i` lacks full column rank.
     """
-    one_of(where, tuple(map(str, ShrinkAt)), "where")
+    where = one_of(where, tuple(map(str, ShrinkAt)), "where")
     for nm, seq in (("Hs", Hs), ("Rs", Rs), ("ys", ys)):
         if isinstance(seq, (str, bytes)) or not hasattr(seq, "__len__"):
             raise TypeError(f"{nm} must be a sequence of arrays, got {type(seq).__name__}")

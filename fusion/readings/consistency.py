@@ -72,7 +72,7 @@ def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "inde
         True for the readings of the kept (largest) cluster; with ``"index"`` the largest run of
         consecutive sensors (ties: the first).
     """
-    one_of(adjacent, ("sorted", "index"), "adjacent")
+    adjacent = one_of(adjacent, ("sorted", "index"), "adjacent")
     s = as_array(x, "x", nonempty=False)
     if s.ndim < 1 or s.shape[-1] == 0:
         raise ValueError(f"x must have a non-empty last axis of readings, got shape {s.shape}")
@@ -185,8 +185,8 @@ def consistency_awf(
     ConsistentAWF
         The fusion ``awf`` and the ``mask`` of kept readings.
     """
-    one_of(variance, ("lecture", "centred"), "variance")
-    one_of(guard, ("floor", "abs", "equal", "none"), "guard")
+    variance = one_of(variance, ("lecture", "centred"), "variance")
+    guard = one_of(guard, ("floor", "abs", "equal", "none"), "guard")
     A = _as_sample_array(X)
     mask = consistency_mask(A, eps, adjacent)
     n = A.shape[-1]

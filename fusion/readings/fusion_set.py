@@ -180,7 +180,7 @@ def mean_distances(x: ArrayLike, threshold: Threshold = "mean") -> MeanDistances
     MeanDistances
         ``d`` and ``d_bar``.
     """
-    one_of(threshold, ("mean", "sum"), "threshold")
+    threshold = one_of(threshold, ("mean", "sum"), "threshold")
     dis = distance_matrix(x)
     if threshold == "mean":
         d = dis.mean(axis=1)
@@ -241,7 +241,7 @@ def optimal_set_members(x: ArrayLike, threshold: Threshold = "mean") -> NDArray[
     ndarray of bool, shape (n,)
         True for the readings of the optimal fusion set, in the order of ``x``.
     """
-    one_of(threshold, ("mean", "sum"), "threshold")
+    threshold = one_of(threshold, ("mean", "sum"), "threshold")
     return _members_rows(as_readings(x, pairs=2)[None, :], threshold)[0]
 
 
@@ -330,7 +330,7 @@ def distribution_balance(
         decide eq. 11 at random.
     """
     flag(include_self, "include_self")
-    one_of(form, ("left", "right", "root"), "form")
+    form = one_of(form, ("left", "right", "root"), "form")
     C = _as_fusion_degree_matrix(C)
     m = C.shape[0]
     mu = C.mean(axis=1)

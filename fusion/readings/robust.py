@@ -236,7 +236,7 @@ def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None
         Unknown method, non-finite readings, ``sigma`` missing or of the wrong length, or an
         option out of range.
     """
-    one_of(method, tuple(ROBUST_METHODS), "method")
+    method = one_of(method, tuple(ROBUST_METHODS), "method")
     s = as_reading_rows(x)
     # every option is checked whatever the method (fuzz 24a D4): a bad value is the caller's mistake even where
     # this method ignores it

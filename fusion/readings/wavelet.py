@@ -123,9 +123,9 @@ def denoise(x: ArrayLike, wavelet: str = "db4", level: int = 4, mode: Literal["s
     * Coifman, R. R., & Donoho, D. L. (1995). Translation-invariant de-noising. In *Wavelets and
       Statistics* (Lecture Notes in Statistics 103), 125-150. Springer.
     """
-    one_of(mode, ("soft", "hard"), "mode")
-    one_of(threshold, ("universal", "bayes"), "threshold")
-    one_of(transform, ("dwt", "swt"), "transform")
+    mode = one_of(mode, ("soft", "hard"), "mode")
+    threshold = one_of(threshold, ("universal", "bayes"), "threshold")
+    transform = one_of(transform, ("dwt", "swt"), "transform")
     a = _numeric(x, "x")
     if a.ndim < 1 or a.shape[-1] < 8:
         raise ValueError(f"x must be finite with at least 8 samples on its last axis, got shape {a.shape}")
@@ -220,7 +220,7 @@ def variance_estimates(X: ArrayLike, Y: ArrayLike, norms: ArrayLike, variance: V
     """
     from fusion.readings.weighting import running_average
 
-    one_of(variance, VARIANCES, "variance")
+    variance = one_of(variance, VARIANCES, "variance")
     A = _signals(X)
     D = _numeric(Y, "Y")
     if D.shape != A.shape:
@@ -350,9 +350,9 @@ def reconstruct(
         Bad shapes, non-finite input, an unknown option, or a normaliser that is not positive
         (e.g. a signal whose maximum is <= 0).
     """
-    one_of(normaliser, NORMALISERS, "normaliser")
-    one_of(order, ("denoise-first", "fuse-first"), "order")
-    one_of(variance, VARIANCES, "variance")
+    normaliser = one_of(normaliser, NORMALISERS, "normaliser")
+    order = one_of(order, ("denoise-first", "fuse-first"), "order")
+    variance = one_of(variance, VARIANCES, "variance")
     window = count(window, "window", minimum=2)
     A = _signals(X)
     kw = {"wavelet": wavelet, "level": level, "normaliser": normaliser, "mode": mode, "threshold": threshold,
@@ -464,8 +464,8 @@ def fuse_denoised(X: ArrayLike, Y: ArrayLike, normaliser: Normaliser = "max", va
     ValueError
         Mismatched shapes, non-finite input, an unknown option, or a normaliser that is not positive.
     """
-    one_of(normaliser, NORMALISERS, "normaliser")
-    one_of(variance, VARIANCES, "variance")
+    normaliser = one_of(normaliser, NORMALISERS, "normaliser")
+    variance = one_of(variance, VARIANCES, "variance")
     window = count(window, "window", minimum=2)
     A = _signals(X)
     D = _numeric(Y, "Y")

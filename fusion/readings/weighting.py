@@ -182,7 +182,7 @@ def inverse_variance_weights(estimates: ArrayLike, floor: float = VARIANCE_FLOOR
         under ``"none"``, an estimate equal to zero or a row whose inverse estimates sum to zero
         (the literal weights are undefined).
     """
-    one_of(guard, GUARDS, "guard")
+    guard = one_of(guard, GUARDS, "guard")
     floor = positive_scalar(floor, "floor")
     v = as_array(estimates, "estimates", nonempty=False)
     if v.ndim < 1 or v.shape[-1] == 0 or v.size == 0:
@@ -386,7 +386,7 @@ def running_variances(X: ArrayLike, estimator: Estimator = "lecture") -> FloatAr
     ndarray, shape (..., K, n)
         Estimates in unit²; they can be negative (never clipped here).
     """
-    one_of(estimator, ("lecture", "centred"), "estimator")
+    estimator = one_of(estimator, ("lecture", "centred"), "estimator")
     A = _as_sample_array(X)
     k = np.arange(1, A.shape[-2] + 1, dtype=float)[:, None]
     return _moment_estimates(A, estimator, lambda Z: np.cumsum(Z, axis=-2) / k)
@@ -426,7 +426,7 @@ def variance_estimates(X: ArrayLike, estimator: Estimator = "lecture") -> FloatA
     ndarray, shape (..., n)
         Estimates in unit²; they can be negative (never clipped here).
     """
-    one_of(estimator, ("lecture", "centred"), "estimator")
+    estimator = one_of(estimator, ("lecture", "centred"), "estimator")
     A = _as_sample_array(X)
     return _moment_estimates(A, estimator, lambda Z: Z.mean(axis=-2, keepdims=True))[..., 0, :]
 
@@ -513,7 +513,7 @@ def awf(X: ArrayLike, variance: Estimator = "lecture", guard: Guard = "floor") -
         ``means``.
     """
     X = read_once(X, "X")  # converted once, then checked and used (fuzz 29a C5)
-    one_of(variance, ("lecture", "centred"), "variance")
+    variance = one_of(variance, ("lecture", "centred"), "variance")
     return _awf_result(running_variances(X, variance), running_means(X), guard)
 
 
@@ -718,7 +718,7 @@ def running_average(Z: ArrayLike, memory: Memory = "growing", forgetting: float 
     Ljung, L. & Söderström, T. (1983). *Theory and Practice of Recursive Identification*. MIT Press
     (forgetting factors).
     """
-    one_of(memory, MEMORIES, "memory")
+    memory = one_of(memory, MEMORIES, "memory")
     lam = scalar(forgetting, "forgetting")
     if not 0.0 < lam < 1.0:
         raise ValueError(f"forgetting must be in (0, 1), got {shown(forgetting)}")
@@ -784,7 +784,7 @@ def tracking_variances(X: ArrayLike, estimator: Literal["lecture", "centred", "s
     Grubbs, F. E. (1948). On estimating precision of measuring instruments and product
     variability. *Journal of the American Statistical Association*, 43(242), 243-264.
     """
-    one_of(estimator, ("lecture", "centred", "sample"), "estimator")
+    estimator = one_of(estimator, ("lecture", "centred", "sample"), "estimator")
     A = _as_sample_array(X)
     running_average(np.zeros((1, 1)), memory, forgetting, window, axis=0)  # validates the memory parameters
     return _moment_estimates(A, estimator, lambda Z: running_average(Z, memory, forgetting, window, axis=-2))
@@ -891,7 +891,7 @@ def difference_variances(X: ArrayLike, memory: Memory = "growing", forgetting: f
     the variance. *The Annals of Mathematical Statistics*, 12(4), 367-395.
     """
     A = _as_sample_array(X, min_sensors=1)
-    one_of(memory, MEMORIES, "memory")
+    memory = one_of(memory, MEMORIES, "memory")
     out = np.zeros_like(A)
     if A.shape[-2] > 1:
         half = 0.5 * np.diff(A, axis=-2) ** 2
@@ -956,8 +956,8 @@ def cumulative_fusion(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs",
     Aitken, A. C. (1936). On least squares and linear combination of observations.
     *Proceedings of the Royal Society of Edinburgh*, 55, 42-48.
     """
-    one_of(guard, ("floor", "abs", "equal"), "guard")
-    one_of(time_weights, TIME_WEIGHTS, "time_weights")
+    guard = one_of(guard, ("floor", "abs", "equal"), "guard")
+    time_weights = one_of(time_weights, TIME_WEIGHTS, "time_weights")
     if time_weights == "precision" and guard == "equal":
         raise ValueError("guard 'equal' has no precision to weigh the instants by: use time_weights='equal'")
     A = _as_sample_array(X)

@@ -34,6 +34,7 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, 
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
+from fusion._validation import text
 from fusion._validation import LOOP_STEP, counts, distinct, loop_work, work
 from fusion.readings import correlated as co
 from fusion._shown import shown
@@ -305,7 +306,7 @@ def _scenarios(scenarios: Mapping[str, Mapping[str, Any]] | None) -> Mapping[str
         record(case, path, ("own", "coupling", "env"))
         with within(path):
             covariance(case["own"], case["coupling"], case["env"])
-    return sc
+    return {text(name, "scenarios keys"): case for name, case in sc.items()}  # names as plain texts (rule 19)
 
 
 @derived_inputs()

@@ -54,7 +54,7 @@ import numpy as np
 from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, validated_post_init
 from fusion._validation import is_integer
 from fusion._guards import own_underflow
-from fusion._validation import sequence, store_read
+from fusion._validation import sequence, store_read, text_fields
 from fusion._validation import seed as check_seed
 from fusion._validation import (_numeric, FloatArray, allocation, check_magnitude, count, instance_of, one_of,
                                 positive_scalar, std_scalar)
@@ -188,7 +188,7 @@ class NetworkScenario:
     stages: int = 3
 
     def __post_init__(self) -> None:
-        instance_of(self.name, str, "name")
+        text_fields(self, "name")  # the plain str (rule 19)
         if not isinstance(self.nodes, tuple):
             raise TypeError(f"nodes must be a tuple of NetworkNode, got {type(self.nodes).__name__}")
         if len(self.nodes) < 2:
@@ -359,7 +359,7 @@ class NetworkStudy:
 
     def mse(self, method: str) -> FloatArray:
         """Per-run squared position error averaged over the nodes, m² (rounded to 1e-6 m²), shape (runs,)."""
-        one_of(method, tuple(NETWORK_METHODS), "method")
+        method = one_of(method, tuple(NETWORK_METHODS), "method")
         e = self.estimates[method] - self.truth
         return np.round(np.mean(np.sum(e**2, axis=-1), axis=-1), 6)
 
@@ -369,7 +369,7 @@ class NetworkStudy:
         ``inf`` for a run in which some node's covariance is singular (a fused particle set whose weight
         sits on one sample).
         """
-        one_of(method, tuple(NETWORK_METHODS), "method")
+        method = one_of(method, tuple(NETWORK_METHODS), "method")
         e = self.estimates[method] - self.truth
         lam, V = np.linalg.eigh(self.covariances[method])
         proj = np.einsum("...ji,...j->...i", V, e)
@@ -381,7 +381,7 @@ class NetworkStudy:
         """Per-run share of the nodes whose NEES exceeds ``quantile`` (default: the 95 % point of χ² with 2
         degrees of freedom), shape (runs,): 0.05 on average for a consistent estimator, robust to the few
         near-singular covariances that dominate a mean NEES."""
-        one_of(method, tuple(NETWORK_METHODS), "method")
+        method = one_of(method, tuple(NETWORK_METHODS), "method")
         e = self.estimates[method] - self.truth
         lam, V = np.linalg.eigh(self.covariances[method])
         proj = np.einsum("...ji,...j->...i", V, e)
@@ -391,7 +391,7 @@ class NetworkStudy:
 
     def degenerate(self, method: str) -> np.ndarray:
         """Runs in which some node's final covariance is singular or has an effective rank below 2, shape (runs,)."""
-        one_of(method, tuple(NETWORK_METHODS), "method")
+        method = one_of(method, tuple(NETWORK_METHODS), "method")
         lam = np.linalg.eigvalsh(self.covariances[method])
         return np.any(lam[..., 0] <= 1e-9 * np.maximum(lam[..., -1], 1e-300), axis=-1)
 

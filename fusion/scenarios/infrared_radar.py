@@ -39,7 +39,7 @@ from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of
                                 grid_points, positive_scalar, scalar, std_scalar, step_scalar, work)
 from fusion._counts import input_allocation
 from fusion._validation import LOOP_STEP, loop_work
-from fusion._validation import flag
+from fusion._validation import flag, text
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.filtering.kalman import cv_model
 from fusion._shown import shown
@@ -505,6 +505,7 @@ def _rule_subset(rules: Sequence[str] | None) -> dict[IrMethod, str]:
     unknown = [r for r in rules if r not in RULES]
     if unknown:
         raise ValueError(f"rules must be keys of RULES ({sorted(map(str, RULES))}), got {shown(unknown)}")
+    rules = [text(r, f"rules[{i}]") for i, r in enumerate(rules)]  # plain texts (rule 19): entries named
     return {IrMethod(name): RULES[IrMethod(name)] for name in rules}
 
 
@@ -665,7 +666,7 @@ def many_scan_bound(
       Tracking and Navigation*. Wiley.
     """
     instance_of(path, Truth, "path")
-    one_of(sensors, BOUND_SENSORS, "sensors")
+    sensors = one_of(sensors, BOUND_SENSORS, "sensors")
     flag(smoother, "smoother")
     s_ir = std_scalar(sigma_ir, "sigma_ir")
     s_a = std_scalar(sigma_angle, "sigma_angle")

@@ -336,7 +336,7 @@ def position_sq_errors(runs: list[TrackingRun], key: str) -> FloatArray:
         Entry (r, k): the method's squared position error in run r at frame k.
     """
     _check_runs(runs, nonempty=True)
-    one_of(key, tuple(sorted(METHODS)), "key")
+    key = one_of(key, tuple(sorted(METHODS)), "key")
     _computed(runs, key, "estimates")
     e = np.stack([r.estimates[key] - r.truth for r in runs])
     return e[..., 0] ** 2 + e[..., 2] ** 2
@@ -355,13 +355,27 @@ def nees_per_frame(runs: list[TrackingRun], key: str) -> FloatArray:
     -------
     ndarray, shape (runs, K); 4 on average for a consistent estimator
         Entry (r, k): the NEES of the method's 4-state estimate in run r at frame k.
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not a sequence of :class:`TrackingRun`; ``key`` not a str.
+    ValueError
+        ``runs`` empty, of several scenarios or without the method's estimates; ``key`` not such a key; a covariance of the method that
+        cannot be inverted, naming ``runs`` and ``key``: the runs of a :class:`RangeBearingScenario` with
+        ``n_central`` or ``n_samples`` at most the state dimension (4) hold singular sample covariances, which have
+        no NEES (fuzz 32a C6).
     """
     _check_runs(runs, nonempty=True)
-    one_of(key, tuple(sorted(k for k in METHODS if k != "mean_of_local_means")), "key")
+    key = one_of(key, tuple(sorted(k for k in METHODS if k != "mean_of_local_means")), "key")
     _computed(runs, key, "estimates")
     _computed(runs, key, "covariances")
     d = np.stack([r.estimates[key] - r.truth for r in runs])
-    return nees(d, np.stack([r.covariances[key] for r in runs]))
+    try:
+        return nees(d, np.stack([r.covariances[key] for r in runs]))
+    except ValueError as exc:  # the inner argument's name is not the caller's
+        raise ValueError(f"runs: the covariances of key {shown(key)} have no NEES ({exc}); a scenario with n_central "
+                         "or n_samples at most the state dimension (4) gives singular sample covariances") from None
 
 
 def min_local_ess(runs: list[TrackingRun]) -> FloatArray:

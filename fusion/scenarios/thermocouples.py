@@ -23,7 +23,8 @@ from fusion._validation import distinct, loop_work, one_of
 from fusion._validation import allocation, record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
-from fusion.readings.fusion_set import fuse_epochs
+from fusion.readings.fusion_set import METHODS as _METHODS, _check_options, fuse_epochs
+from fusion._validation import text as text_of, within
 from fusion._shown import shown
 from fusion._nesting import ndim_of
 
@@ -197,7 +198,7 @@ def random_failure(
     """
     samples = read_once(samples, "samples")  # a Sequence class read once (fuzz 31a C4)
     rng = as_rng(rng)
-    one_of(mode, FAILURE_MODES, "mode")   # TypeError for a non-str (issue 35)
+    mode = one_of(mode, FAILURE_MODES, "mode")   # TypeError for a non-str (issue 35)
     base = as_array(z, "z")
     sensors, biases = sequence(sensors, "sensors"), sequence(biases, "biases")  # their items (any 1-D array-like)
     if mode == "opposite signs":
@@ -217,15 +218,24 @@ def random_failure(
     return out
 
 
-def _check_methods(methods: object) -> None:
-    """``methods``: a dict label -> options dict with a string ``"method"`` key (issue 35, class 6)."""
+def _check_methods(methods: object) -> dict[str, dict[str, object]]:
+    """``methods``: a dict label -> options dict with a string ``"method"`` key (issue 35, class 6), returned with
+    its labels and method names as plain texts (rule 19) and each entry's options checked under its place in the
+    argument (``methods['mean']: ...``, fuzz 32a C5)."""
     if not isinstance(methods, Mapping):
         raise TypeError(f"methods must be a dict label -> options, got {type(methods).__name__}")
+    out: dict[str, dict[str, object]] = {}
     for label, spec in methods.items():
         if not isinstance(spec, Mapping):
             raise TypeError(f"methods[{shown(label)}] must be a dict of options, got {type(spec).__name__}")
         if not isinstance(spec.get("method"), str):
             raise ValueError(f"methods[{shown(label)}] must name its method as a string under the key 'method', got {shown(spec)}")
+        with within(f"methods[{shown(label)}]"):
+            key = text_of(label, "label") if isinstance(label, str) else label
+            options = dict(spec)
+            name = one_of(options.pop("method"), tuple(_METHODS), "method")
+            out[key] = {"method": name, **_check_options(name, options)}
+    return out
 
 
 def absolute_errors(
@@ -251,12 +261,12 @@ def absolute_errors(
     if arr.ndim < 1:
         raise ValueError(f"z must have a sensor axis, got shape {arr.shape}")
     truth = scalar(truth, "truth")
-    _check_methods(methods)
+    methods = _check_methods(methods)
     flat = as_reading_rows(arr.reshape(-1, arr.shape[-1]), "z")
     out: dict[str, FloatArray] = {}
     for label, spec in methods.items():
         spec = dict(spec)
-        name = str(spec.pop("method"))
+        name = spec.pop("method")
         values = fuse_epochs(flat, name, **spec).values
         out[label] = np.abs(values - truth).reshape(arr.shape[:-1])
     return out
@@ -441,7 +451,7 @@ def _paired_errors(z: FloatArray, z_fail: FloatArray, methods: dict[str, dict[st
     members = members_fail = None
     for label, spec in methods.items():
         options = dict(spec)
-        name = str(options.pop("method"))
+        name = options.pop("method")
         c = fuse_epochs(flat, name, **options)
         f = fuse_epochs(flat_fail[changed], name, **options) if changed.size else c   # (no epoch changed: c's)
         values = c.values.copy()
@@ -499,11 +509,11 @@ def paired_study(
     sigma = read_once(sigma, "sigma")  # a Sequence class read once (fuzz 31a C4)
     n_runs = count(n_runs, "n_runs")
     seed = check_seed(seed)
-    _check_methods(methods)
+    methods = _check_methods(methods)
     instance_of(failure, (Mapping, type(None)), "failure")
     if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name
         record(failure, "failure", (), ("sensors", "samples", "biases"))
-    one_of(failure_mode, FAILURE_MODES, "failure_mode")   # TypeError for a non-str (issue 35)
+    failure_mode = one_of(failure_mode, FAILURE_MODES, "failure_mode")   # TypeError for a non-str (issue 35)
     fail = dict(failure or {})
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)

@@ -28,6 +28,7 @@ from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, nu
 from fusion import registration as reg
 from fusion.registration import methods as _methods
 from fusion.scenarios._time_registration_work import _exact_work, _monte_carlo_work, _registration_work  # noqa: F401
+from fusion.scenarios import _time_registration_kf as _kf
 from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import shown
@@ -361,36 +362,19 @@ def _delay_bounds(t1: FloatArray, t2: FloatArray) -> tuple[float, float]:
     return float(t1[-1]) - end, float(t1[0])
 
 
-def _check_name(name: str, arg: str = "name") -> None:
+def _check_name(name: str, arg: str = "name") -> str:
+    """A method name of :data:`METHODS` as its plain text (rule 19), refused under ``arg`` (the caller's path)."""
     if not isinstance(name, str):
         raise TypeError(f"{arg} must be a method name (str), got {type(name).__name__}")
-    text(name, arg)  # rule 19: a str subclass whose own comparison disagrees with its text is refused
+    name = text(name, arg)  # rule 19: a str subclass whose own comparison disagrees with its text is refused
     if name not in METHODS:
         raise ValueError(f"{arg} must be a RegMethod key, one of {sorted(METHODS)}, got {shown(name)}")
+    return name
 
 
 def _kf_kwargs(kf: Mapping[str, Any] | None, t_dst: FloatArray) -> dict[str, Any]:
     """Translate the chapter's ``kf`` options into :func:`fusion.registration.methods.kalman_runs` keywords."""
-    if kf is None:
-        return {}
-    if not isinstance(kf, Mapping):
-        raise TypeError(f"kf must be a mapping of options, got {type(kf).__name__}")
-    bad = [k for k in kf if k not in KF_OPTIONS]
-    if bad:
-        raise ValueError(f"kf keys must be among {KF_OPTIONS}, got {bad}")
-    out = {k: v for k, v in kf.items() if k != "period_change"}
-    try:  # the values too, with messages that name kf (issue 35, class 6)
-        _methods._kf_options(1.0, 0.0, 0.0, out.get("q_model", "per-step"), out.get("init", "source"),
-                        out.get("p0", (100.0, 100.0)), out.get("period", 2.0))
-        if "smooth" in out and not isinstance(out["smooth"], (bool, np.bool_)):
-            raise TypeError(f"smooth must be a bool, got {type(out['smooth']).__name__}")
-        if not isinstance(kf.get("period_change", False), (bool, np.bool_)):
-            raise TypeError(f"period_change must be a bool, got {type(kf['period_change']).__name__}")
-    except (TypeError, ValueError) as exc:
-        raise type(exc)(f"kf: {exc}") from None
-    if kf.get("period_change", False):
-        out["t_extra"] = t_dst
-    return out
+    return _kf.kf_kwargs(kf, t_dst, KF_OPTIONS)
 
 
 def _filtered(names: Sequence[str], t_src: FloatArray, Z: FloatArray, t_dst: FloatArray, sigma: float,
@@ -460,7 +444,7 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
         Registered positions (m).
     """
     t_src, z, t_dst = (read_once(t_src, "t_src"), read_once(z, "z"), read_once(t_dst, "t_dst"))
-    _check_name(name)
+    name = _check_name(name)
     sigma, q_v, q_a = _check_args(t_src, t_dst, sigma, q_v, q_a)
     same_length(as_array(t_src, "t_src", ndim=1), "t_src", as_array(z, "z", ndim=1), "z")
     window = _options(kf, window, t_dst)
@@ -505,7 +489,7 @@ def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
         Unknown ``name``.
     """
     t_src, t_dst = (read_once(t_src, "t_src"), read_once(t_dst, "t_dst"))  # converted once (fuzz 29a C5)
-    _check_name(name)
+    name = _check_name(name)
     sigma, q_v, q_a = _check_args(t_src, t_dst, sigma, q_v, q_a)
     window = _options(kf, window, t_dst)
     return partial(_registrar_call, name, np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float),
@@ -572,7 +556,7 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     _precise_times(t1, t2)
-    _check_name(name)
+    name = _check_name(name)
     _registration_work([name], t1.size, t2.size, t1.size + 1, "t_src and t_dst")  # rule 17: n1 + 1 registrations
     if delay != 0.0:
         lo, hi = _delay_bounds(t1, t2)
@@ -607,7 +591,7 @@ def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike |
         :math:`\\frac1K\\sum_k b_k^2`, the MSE of Shi, Suo & Ma's (2023) simulations 1-2, which
         assume no observation error.
     """
-    _check_name(name)
+    name = _check_name(name)
     d1, d2 = instants()
     t1 = d1 if t_src is None else as_times(t_src, "t_src")
     t2 = d2 if t_dst is None else as_times(t_dst, "t_dst")
@@ -640,7 +624,7 @@ def noise_gain(name: str) -> float:
     ValueError
         A Kalman method (its gains depend on the noise level).
     """
-    _check_name(name)
+    name = _check_name(name)
     if name in _KALMAN:
         raise ValueError(f"name must be a fixed-weight method, got the Kalman method {shown(name)}")
     return expected(name, 1.0) - noise_free_mse(name)
@@ -662,8 +646,7 @@ def crossing_sigma(a: str, b: str) -> float:
     float
         The crossing :math:`\sigma` (m); ``nan`` when the curves never cross at a positive level.
     """
-    _check_name(a, "a")
-    _check_name(b, "b")
+    a, b = _check_name(a, "a"), _check_name(b, "b")
     db = noise_free_mse(b) - noise_free_mse(a)
     dg = noise_gain(a) - noise_gain(b)
     if dg == 0 or db / dg <= 0:
@@ -802,6 +785,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     unknown = [n for n in names if not isinstance(n, str) or n not in METHODS]
     if unknown:
         raise ValueError(f"names must be keys of METHODS {sorted(METHODS)}; unknown: {shown(unknown)}")
+    names = [_check_name(n, f"names[{i}]") for i, n in enumerate(names)]  # plain texts, entries named (fuzz 32a C4)
     sigma = std_scalar(sigma, "sigma")
     sf = sigma if sigma_filter is None else std_scalar(sigma_filter, "sigma_filter")
     delay = scalar(delay, "delay")
@@ -860,7 +844,7 @@ def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | No
     tuple of float
         ``(b, g)``: squared bias (m²) and noise gain (dimensionless).
     """
-    _check_name(name)
+    name = _check_name(name)
     sf = std_scalar(sigma_filter, "sigma_filter")
     d1, d2 = instants()
     t1 = d1 if t_src is None else as_times(t_src, "t_src")
@@ -933,8 +917,7 @@ def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> Fus
     if isinstance(names, (str, bytes)):
         raise TypeError(f"names must be a sequence of method names, got the string {shown(names)}")
     sequence(names, "names")
-    for n in names:
-        _check_name(n, "names")
+    names = [_check_name(n, f"names[{i}]") for i, n in enumerate(names)]  # plain texts, entries named (fuzz 32a C4)
     sigma = std_scalar(sigma, "sigma")
     runs = count(runs, "runs", minimum=2)
     seed = check_seed(seed)

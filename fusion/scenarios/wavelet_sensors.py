@@ -40,6 +40,7 @@ from functools import partial
 from typing import Any
 
 import numpy as np
+import pywt
 
 from fusion._frozen import constant
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, text,
@@ -340,20 +341,40 @@ def config_label(cfg: dict[str, Any]) -> str:
     TypeError
         ``cfg`` is not a mapping, or a value of the wrong type.
     ValueError
-        A key is missing or unknown, or ``level`` is not a positive integer.
+        A key is missing or unknown, ``level`` is not a positive integer, or an option is not one of ``denoise``'s
+        (:func:`fusion.readings.wavelet.denoise`).
     """
     cfg = record(read_mapping(cfg, "cfg"), "cfg", ("wavelet", "level", "threshold", "mode"), ("transform",))
     for key in ("wavelet", "threshold", "mode", "transform"):
         if key in cfg and not isinstance(cfg[key], str):
             raise TypeError(f"cfg[{shown(key)}] must be a name (str), got {shown(cfg[key])}")
+    kw = _kw(cfg)  # the plain texts (rule 19): a (str, Enum) member is labelled by its text, not its name
     level = count(cfg["level"], "cfg['level']")
-    ti = ", translation-invariant" if cfg.get("transform", "dwt") == "swt" else ""
-    return f"{cfg['wavelet']}, {level} levels, {cfg['threshold']} {cfg['mode']}{ti}"
+    ti = ", translation-invariant" if kw["transform"] == "swt" else ""
+    return f"{kw['wavelet']}, {level} levels, {kw['threshold']} {kw['mode']}{ti}"
+
+
+def _names(seq: object, nm: str, allowed: tuple[str, ...]) -> list[str]:
+    """A non-empty sequence argument ``nm`` of names among ``allowed``, as plain texts (rule 19), each entry named
+    by its place (``modes[0]``: fuzz 32a C4)."""
+    items = sequence(seq, nm)   # a list, tuple or 1-D array: TypeError otherwise (an iterator, a str)
+    if not items:
+        raise ValueError(f"{nm} must be a non-empty sequence of names")
+    for i, v in enumerate(items):
+        if not isinstance(v, str):
+            raise TypeError(f"{nm}[{i}] must be a name (a str), got {type(v).__name__}")
+        if v not in allowed:
+            raise ValueError(f"{nm} must be among {allowed}, got {shown(v)}")
+    return [one_of(v, allowed, f"{nm}[{i}]") for i, v in enumerate(items)]
 
 
 def _kw(cfg: dict[str, Any]) -> dict[str, str | int]:
-    return {"wavelet": cfg["wavelet"], "level": cfg["level"], "threshold": cfg["threshold"], "mode": cfg["mode"],
-            "transform": cfg.get("transform", "dwt")}
+    """``denoise``'s keywords of a configuration: plain texts (rule 19), options checked here (fuzz 32a C5)."""
+    wavelets = tuple(pywt.wavelist(kind="discrete"))
+    return {"wavelet": one_of(cfg["wavelet"], wavelets, "cfg['wavelet']"), "level": cfg["level"],
+            "threshold": one_of(cfg["threshold"], ("universal", "bayes"), "cfg['threshold']"),
+            "mode": one_of(cfg["mode"], ("soft", "hard"), "cfg['mode']"),
+            "transform": one_of(cfg.get("transform", "dwt"), ("dwt", "swt"), "cfg['transform']")}
 
 
 def measurand(kind: Signal | str = Signal.TWO_TONES, length: int = 1024) -> np.ndarray:
@@ -609,16 +630,8 @@ def signal_study(
         (``fusion._validation.MAX_WORK``: signals x modes x (normalisers + 1) x runs x sensors x length x 20).
     """
     gains = read_once(gains, "gains")  # a Sequence class read once (fuzz 31a C4)
-    for nm, seq, allowed in (("signals", signals, _SIGNAL_KEYS), ("modes", modes, ("hard", "soft")),
-                             ("normalisers", normalisers, wv.NORMALISERS)):
-        items = sequence(seq, nm)   # a list, tuple or 1-D array: TypeError otherwise (an iterator, a str)
-        if not items:
-            raise ValueError(f"{nm} must be a non-empty sequence of names")
-        for i, v in enumerate(items):
-            if not isinstance(v, str):
-                raise TypeError(f"{nm}[{i}] must be a name (a str), got {type(v).__name__}")
-            if v not in allowed:
-                raise ValueError(f"{nm} must be among {allowed}, got {shown(v)}")
+    _names(signals, "signals", _SIGNAL_KEYS)
+    modes, normalisers = _names(modes, "modes", ("hard", "soft")), _names(normalisers, "normalisers", wv.NORMALISERS)
     # rule 17, before any draw: every case denoises and fuses runs x sensors x samples (an undecimated transform
     # at a few levels, ~20 vectorised operations per sample); "max" adds the fuse-first order
     n_gains = len(sequence(gains, "gains"))
@@ -734,8 +747,8 @@ def seed_study(
     # rule 17: one signal_study per seed (a study of ~300 loop steps of numpy calls besides its runs)
     loop_work((len(sv),), per_seed, "seeds, runs, length and gains", step=300 * LOOP_STEP)
     kind = _signal(kind)
-    one_of(mode, ("hard", "soft"), "mode")
-    one_of(normaliser, wv.NORMALISERS, "normaliser")
+    mode = one_of(mode, ("hard", "soft"), "mode")
+    normaliser = one_of(normaliser, wv.NORMALISERS, "normaliser")
     cases = {v: signal_study(signals=(kind,), modes=(mode,), normalisers=(normaliser,), runs=runs, seed=v,
                              **kwargs).cases[kind, mode, normaliser] for v in sv}
     return SeedStudy(cases=cases, seeds=tuple(sv), runs=int(runs), kind=kind, mode=mode, normaliser=normaliser)
@@ -905,7 +918,8 @@ def mechanism_study(
         bias_spectrum=[(S.size / int(k), float(F[k])) for k in top],
         bias_share_period={p: float(F[S.size // p]) for p in (256, 64) if S.size % p == 0 and S.size // p < F.size},
         tone_bands={p: _band_shares(np.sin(2 * np.pi * n / p), cfg0["wavelet"], cfg0["level"]) for p in (256, 64)},
-        runs=int(runs), seed=int(seed), gains=g, sigma=sig, configs=[dict(c) for c in configs], kind=kind)
+        runs=int(runs), seed=int(seed), gains=g, sigma=sig, kind=kind,
+        configs=[{k: v if k == "level" else _kw(c)[k] for k, v in c.items()} for c in configs])  # plain texts
 
 
 def variance_study(
@@ -957,16 +971,8 @@ def variance_study(
     """
     g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed)
     window = count(window, "window", minimum=2)
-    one_of(mode, ("hard", "soft"), "mode")
-    one_of(normaliser, ("max", "max-raw"), "normaliser")
-    items = sequence(readings, "readings")   # a list, tuple or 1-D array: TypeError otherwise (an iterator, a str)
-    if not items:
-        raise ValueError("readings must be a non-empty sequence of names")
-    for i, r in enumerate(items):
-        if not isinstance(r, str):
-            raise TypeError(f"readings[{i}] must be a name (a str), got {type(r).__name__}")
-        if r not in wv.VARIANCES:
-            raise ValueError(f"readings must be among {wv.VARIANCES}, got {shown(r)}")
+    mode, normaliser = one_of(mode, ("hard", "soft"), "mode"), one_of(normaliser, ("max", "max-raw"), "normaliser")
+    readings = _names(readings, "readings", wv.VARIANCES)
     R_, n, size = noise.shape
     blocks = _blocks(R_, n * size)
     den = np.empty_like(noise)

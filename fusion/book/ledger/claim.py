@@ -15,7 +15,7 @@ from fusion.book.exact import ExactComparison
 from fusion.book.ledger.evidence import _KIND_OF_TEST, Comparison, EVIDENCE_TYPES, Evidence, Unverifiable
 from fusion.book.ledger.evidence import _runs, _test_of
 from fusion.book.ledger.sources import SOURCES
-from fusion.book.ledger.statuses import _text, _texts
+from fusion.book.ledger.statuses import _texts, text_fields
 
 __all__ = [
     "Alternative",
@@ -58,9 +58,7 @@ class Alternative:
     kind: str = "open-choice"
 
     def __post_init__(self) -> None:
-        _text(self.choice, "choice")
-        _text(self.reading, "reading")
-        _text(self.kind, "kind")
+        text_fields(self, "choice", "reading", "kind")  # plain str copies (rule 19)
         for name in ("choice", "reading"):
             if not getattr(self, name).strip():
                 raise ValueError(f"{name} must not be empty")
@@ -154,14 +152,13 @@ class Claim:
     test: str = ""
 
     def __post_init__(self) -> None:
-        for name in ("id", "source", "where", "claim", "published", "link", "bound", "claimant", "test"):
-            _text(getattr(self, name), name)
+        text_fields(self, "id", "source", "where", "claim", "published", "link", "bound", "claimant", "test")
         if not isinstance(self.evidence, EVIDENCE_TYPES):
             raise TypeError("evidence must be PublishedValues, Comparison, ExactComparison, Proposition, Conjunction "
                             f"or Unverifiable, got {type(self.evidence).__name__}")
         for name, what in (("assumptions", "an assumption"), ("critiques", "a label")):
-            items = getattr(self, name)
-            _texts(items, name)
+            items = _texts(getattr(self, name), name)
+            object.__setattr__(self, name, items)  # plain str copies (rule 19)
             blank = [i for i, v in enumerate(items) if not v.strip()]  # a claim file's schema: minLength 1
             if blank:
                 raise ValueError(f"{name}[{blank[0]}] must not be empty")

@@ -26,7 +26,7 @@ from fusion.book import rulebook as R
 from fusion.book._few_runs import FewRunsError
 from fusion.book._json import JSONObject
 from fusion.book.exact import ExactComparison
-from fusion.book.ledger.statuses import MIN_RUNS, _text, fmt
+from fusion.book.ledger.statuses import MIN_RUNS, _text, _texts, fmt, text_fields
 from fusion.book.tables import _roundings
 
 __all__ = [
@@ -196,7 +196,7 @@ class PublishedValues:
         dec_l = [count(decimals, "decimals", minimum=0)] if one else counts(decimals, "decimals", minimum=0)
         if len(dec_l) not in (1, pub.size):
             raise ValueError(f"decimals must hold one number or one per published value ({pub.size}), got {len(dec_l)}")
-        _text(unit, "unit")
+        unit = _text(unit, "unit")  # the plain str (rule 19)
         dec = np.broadcast_to(np.array(dec_l, dtype=int), pub.shape)
         # a real extra decimal, not the binary round-off of the printed decimal (float32, 0.1 * 3, 12.3 / 100: fuzz 24e F1)
         exact = integer_entries(published, pub.size)  # an int given beside floats is exact (fuzz 30a C1/C2)
@@ -324,8 +324,8 @@ class Comparison:
                  reason: str = "", margin: float | None = None, relative_margin: float | None = None,
                  conditions: tuple[str, str] = ("", ""), infinite_mean: Sequence[str] = ()) -> None:
         av, bv = R._paired_runs(a, b)  # the rulebook's one check of paired runs: 1-D, same length, finite or +inf
-        for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)):
-            _text(v, name)
+        a_name, b_name, metric, reason = (_text(v, name) for name, v in (  # plain str copies (rule 19)
+            ("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)))
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric)):
             if not v.strip():
                 raise ValueError(f"{name} must not be empty")
@@ -333,7 +333,7 @@ class Comparison:
         if seed is not None:
             seed = check_seed(seed, "seed")  # an integer (rule 11): 0.0 is not a seed; stored as a plain int
         claim = text(claim, "claim")  # rule 19: matched and stored as its text
-        one_of(claim, ("less", "greater", "equal"), "claim")
+        claim = one_of(claim, ("less", "greater", "equal"), "claim")
         if av.size < MIN_RUNS and not reason:
             raise FewRunsError(f"a and b hold {av.size} runs < {MIN_RUNS}: give more runs or a reason (the argument "
                                "reason: why fewer runs are enough)", av.size, MIN_RUNS)
@@ -341,6 +341,7 @@ class Comparison:
             conditions = tuple(conditions)             # tuples); so is any list-like (the one sequence rule)
         if not (isinstance(conditions, tuple) and len(conditions) == 2 and all(isinstance(c, str) for c in conditions)):
             raise TypeError(f"conditions must be a pair of str, got {shown(conditions)}")
+        conditions = _texts(conditions, "conditions")  # plain str copies (rule 19)
         if conditions[0] != conditions[1]:  # R6
             raise ValueError(f"conditions: A ran under {shown(conditions[0])} and B under {shown(conditions[1])}; a stress test "
                              "applied to one method must be applied to every compared method (rule R6)")
@@ -572,7 +573,7 @@ class Proposition:
     def __post_init__(self) -> None:
         if not isinstance(self.holds, (bool, np.bool_)):
             raise TypeError(f"holds must be a bool, got {type(self.holds).__name__}")
-        _text(self.ours, "ours")
+        text_fields(self, "ours")
         object.__setattr__(self, "holds", bool(self.holds))
         object.__setattr__(self, "runs", _run_count(self.runs))
 
@@ -635,7 +636,7 @@ class Conjunction:
             if not (isinstance(p, tuple) and len(p) == 2):
                 raise TypeError(f"parts must hold (label, evidence) pairs, got {shown(p)}")
             label, ev = p
-            _text(label, f"parts[{i}] label")  # the argument named, not the pair's field alone (fuzz 18, F18)
+            label = _text(label, f"parts[{i}] label")  # the argument named, not the pair's field alone (fuzz 18, F18)
             if not isinstance(ev, (Comparison, ExactComparison, Proposition)):
                 raise TypeError(f"parts[{i}] evidence must be a Comparison, an ExactComparison or a Proposition, "
                                 f"got {type(ev).__name__}")
@@ -726,7 +727,7 @@ class Unverifiable:
     kind: str = field(default="unverifiable", init=False)
 
     def __post_init__(self) -> None:
-        _text(self.reason, "reason")
+        text_fields(self, "reason")
         if not self.reason.strip():
             raise ValueError("reason must not be empty: say why the claim cannot be checked")
 

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from fusion._frozen import constant
 from fusion._validation import count
 from fusion._validation import shown
-from fusion.book.ledger.statuses import _text
+from fusion.book.ledger.statuses import _text, _texts, text_fields
 
 __all__ = [
     "Source",
@@ -53,15 +53,13 @@ class Source:
     chapters: tuple[str, ...] = ()  # every chapter on the source, in reading order
 
     def __post_init__(self) -> None:
-        for name in ("key", "short", "title", "chapter"):
-            _text(getattr(self, name), name)
+        text_fields(self, "key", "short", "title", "chapter")  # plain str copies (rule 19)
         object.__setattr__(self, "order", count(self.order, "order"))  # the plain int, never the caller's object
         if not isinstance(self.chapters, tuple):
             raise TypeError(f"chapters must be a tuple of str, got {type(self.chapters).__name__}")
         if not self.chapters:
             object.__setattr__(self, "chapters", (self.chapter,))
-        for c in self.chapters:
-            _text(c, "chapters")
+        object.__setattr__(self, "chapters", _texts(self.chapters, "chapters"))
         if self.chapters[0] != self.chapter or len(set(self.chapters)) != len(self.chapters):
             raise ValueError(f"chapters must start with chapter {shown(self.chapter)} and not repeat, got {shown(self.chapters)}")
         if len(self.chapters) > 1:  # each chapter's ledger file is <key>-<NN>.json: NN must exist and differ

@@ -11,6 +11,7 @@ from typing import Any
 from fusion._frozen import constant
 from fusion._validation import sequence, shown
 from fusion._validation import text as _text   # the shared rule (claim.py imports it from here)
+from fusion._validation import text_fields, texts as _shared_texts  # noqa: F401 (text_fields: for claim.py)
 from fusion.book import rulebook as R
 from fusion.book.tables import _significant
 
@@ -24,10 +25,12 @@ __all__ = [
 ]
 
 
-def _texts(value: Any, name: str) -> None:
-    """Check a tuple of strings (a bare string is refused: it would be split into characters)."""
+def _texts(value: Any, name: str) -> tuple[str, ...]:
+    """A tuple of strings as a tuple of plain ``str`` (a bare string is refused: it would be split into characters;
+    each entry read by the shared rule 19 under ``name[i]``)."""
     if isinstance(value, str) or not all(isinstance(v, str) for v in sequence(value, name)):
         raise TypeError(f"{name} must be a tuple of str, got {shown(value)}")
+    return _shared_texts(tuple(value), name)
 
 #: The closed status vocabulary, in display order (:data:`fusion.book.rulebook.STATUSES`).
 STATUSES: tuple[str, ...] = R.STATUSES

@@ -517,7 +517,7 @@ def covariance_intersection_weights(covs: ArrayLike, criterion: str = "det") -> 
     * Julier, S. J., & Uhlmann, J. K. (1997). A non-divergent estimation algorithm in the presence of
       unknown correlations. *Proceedings of the 1997 American Control Conference*.
     """
-    one_of(criterion, ("det", "trace"), "criterion")
+    criterion = one_of(criterion, ("det", "trace"), "criterion")
     c = _numeric(covs, "covs")
     if c.ndim != 3 or c.shape[1] != c.shape[2] or c.shape[0] < 1:
         raise ValueError(f"covs must have shape (N, d, d), got {c.shape}")

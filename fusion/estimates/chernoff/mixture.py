@@ -626,7 +626,7 @@ def fuse_mixtures(
     """
     flag(redraw, "redraw")
     flag(reference, "reference")
-    one_of(optimiser, ("pso", "slsqp"), "optimiser")
+    optimiser = one_of(optimiser, ("pso", "slsqp"), "optimiser")
     _check_mixtures(gms)
     as_rng(rng)
     n_samples = count(n_samples, "n_samples", minimum=2)
@@ -711,7 +711,7 @@ def fuse_mixtures_batch(
     """
     flag(redraw, "redraw")
     flag(reference, "reference")
-    one_of(optimiser, ("pso", "slsqp", "newton", "none"), "optimiser")
+    optimiser = one_of(optimiser, ("pso", "slsqp", "newton", "none"), "optimiser")
     flag(keep_samples, "keep_samples")
     flag(timed, "timed")
     w = as_array(weights, "weights", ndim=3, subnormal=True)

@@ -461,5 +461,5 @@ def belief_spread(s: BeliefParameterStudy, kind: BeliefKind, values: ArrayLike) 
         Spread of each snapshot's fused value (readings' unit).
     """
     instance_of(s, BeliefParameterStudy, "s")
-    one_of(kind, tuple(BELIEF_KINDS), "kind")
+    kind = one_of(kind, tuple(BELIEF_KINDS), "kind")
     return _spread(s.fused[kind], s.params, _values(values, "values"))

@@ -312,7 +312,7 @@ def consistency_study(
     n = sig_chk.size
     passes = 2 * (15 + sum(sorted(p) == list(range(n)) for p in INDEX_ORDERS))
     work((runs * samples * passes + curve_draws * _CURVE_RATIOS, n, n), "runs, samples, curve_draws and sigma")
-    one_of(index_guard, CC_GUARDS, "index_guard")
+    index_guard = one_of(index_guard, CC_GUARDS, "index_guard")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     clean = x + np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig

@@ -18,6 +18,7 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, 
                              tuple_of, validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, sequence
+from fusion._validation import text as text_of
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
 from fusion._shown import shown
@@ -358,7 +359,7 @@ def regime_study(
     forgetting, forgetting_alt = (_forgetting(v, name)
                                   for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))
     change_at = _index(change_at, samples, "change_at")
-    one_of(guard, wt.GUARDS, "guard")
+    guard = one_of(guard, wt.GUARDS, "guard")
     acc_guard = "abs" if guard == "none" else guard
     n, K = sig.size, samples
     k = np.arange(K)
@@ -564,7 +565,7 @@ def variance_change_study(
         new = sig.copy()
         for i, v in item[1].items():
             new[_index(i, n, "changes")] = v
-        after_sd[item[0]] = _sigmas(new, "changes", minimum=3)
+        after_sd[text_of(item[0], "changes names")] = _sigmas(new, "changes", minimum=3)  # plain texts (rule 19)
     after = np.arange(K) >= change_at
     z = np.random.default_rng(seed).normal(size=(runs, K, n))
     sq: dict[str, dict[RegimeMethod, np.ndarray]] = {}

@@ -116,7 +116,7 @@ def fixed_weight_rule(reading: str, omega: float) -> str:
     ValueError
         ``reading`` not ``"shared"`` or ``"own"``, ``omega`` outside (0, 1].
     """
-    one_of(reading, ("shared", "own"), "reading")
+    reading = one_of(reading, ("shared", "own"), "reading")  # the plain text (rule 19): an Enum prints its name
     return f"arch_printed_{reading}_w{scalar(omega, 'omega', 0.0, 1.0, lo_open=True):g}"
 
 

@@ -61,7 +61,7 @@ def process_noise(T: float, delta0: float, reading: str) -> FloatArray:
     """
     T = step_scalar(T, "T", 4)
     d2 = positive_scalar(delta0, "delta0") ** 2
-    one_of(reading, Q_READINGS, "reading")
+    reading = one_of(reading, Q_READINGS, "reading")
     if reading == Q_READINGS[0]:
         return d2 * np.eye(4)
     if reading == Q_READINGS[1]:
