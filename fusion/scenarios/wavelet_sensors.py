@@ -355,8 +355,7 @@ def config_label(cfg: dict[str, Any]) -> str:
 
 
 def _names(seq: object, nm: str, allowed: tuple[str, ...]) -> list[str]:
-    """A non-empty sequence argument ``nm`` of names among ``allowed``, as plain texts (rule 19), each entry named
-    by its place (``modes[0]``: fuzz 32a C4)."""
+    """A non-empty sequence ``nm`` of names among ``allowed``, as plain texts (rule 19), named by place (32a C4)."""
     items = sequence(seq, nm)   # a list, tuple or 1-D array: TypeError otherwise (an iterator, a str)
     if not items:
         raise ValueError(f"{nm} must be a non-empty sequence of names")
