@@ -373,9 +373,11 @@ def nees_per_frame(runs: list[TrackingRun], key: str) -> FloatArray:
     d = np.stack([r.estimates[key] - r.truth for r in runs])
     try:
         return nees(d, np.stack([r.covariances[key] for r in runs]))
-    except ValueError as exc:  # the inner argument's name is not the caller's
+    except ValueError as exc:  # the inner argument's name is not the caller's; chained: callers read the cause
+        if not str(exc).startswith("covariances must be positive definite"):
+            raise
         raise ValueError(f"runs: the covariances of key {shown(key)} have no NEES ({exc}); a scenario with n_central "
-                         "or n_samples at most the state dimension (4) gives singular sample covariances") from None
+                         "or n_samples at most the state dimension (4) gives singular sample covariances") from exc
 
 
 def min_local_ess(runs: list[TrackingRun]) -> FloatArray:
