@@ -7,7 +7,8 @@ A sweep of all 187 modules of the package, each imported first, found no other f
 
 One interpreter imports each module of :data:`FIRST` first in turn, every ``fusion`` module dropped from
 ``sys.modules`` before each (the package and its cycle are executed afresh; numpy and the other libraries stay
-loaded, and hold no ``fusion`` state): one start-up instead of one per module (1.2 CPU-s instead of 1.8, measured side by side).
+loaded, and hold no ``fusion`` state): one start-up instead of one per module (1.2 CPU-s instead of 1.8, measured
+side by side).
 """
 from __future__ import annotations
 
