@@ -178,7 +178,7 @@ def family_values(z: ArrayLike, family: str = "laplace", scale: float = 2.0) -> 
     ----------
     Yang G. N., Feng X. F., Fan L. J. (2012), eqs. 3-12.
     """
-    one_of(family, _FAMILY_NAMES, "family")
+    family = one_of(family, _FAMILY_NAMES, "family")
     s = np.atleast_2d(as_array(z, "z", ndim=(1, 2)))
     scale = scalar(scale, "scale", lo=0.0, lo_open=True)
     members = rd.fuse_epochs(s, "optimal_fusion_set").members
@@ -281,8 +281,7 @@ def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: floa
     instance_of(families, Mapping, "families")
     if not families:
         raise ValueError("families must be a non-empty mapping of label to family, got an empty mapping")
-    for label, fam in families.items():
-        one_of(fam, _FAMILY_NAMES, f"families[{shown(label)}]")
+    families = {label: one_of(fam, _FAMILY_NAMES, f"families[{shown(label)}]") for label, fam in families.items()}
     if window is not None:   # only the window's epochs: each is fused on its own
         first, last = check_window(window, "window", arr.shape[1], one_based=True)
         arr = arr[:, first - 1:last]
