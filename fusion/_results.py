@@ -272,6 +272,14 @@ def dict_of(value: FieldSpec, keys: tuple[Any, ...] | None = None, key: type | t
                               "read_key": read_key, "printed": printed, "check_key": check_key})
 
 
+def real_key(lo: float | None = None, hi: float | None = None, *, lo_open: bool = False,
+             hi_open: bool = False) -> Callable[[Any, str], float]:
+    """A :func:`dict_of` ``check_key`` for keys that are real numbers of a meaning (a period, a weight, a level, a
+    noise level): each key finite and within [``lo``, ``hi``] (open ends as flagged), read by
+    ``fusion._validation.scalar``; ValueError naming the field's key otherwise (fuzz 32b C2, D2)."""
+    return lambda k, name: _validation.scalar(k, name, lo, hi, lo_open=lo_open, hi_open=hi_open)
+
+
 def keyed(*dims: Dim, covariance: bool = False) -> KeyedSpec:
     """Spec of a dict of string keys (any set of them) whose values are finite arrays of the dimensions ``dims``."""
     return KeyedSpec(array(*dims, covariance=covariance))

@@ -10,11 +10,12 @@ naming the argument and its maker, never a ``KeyError``, ``AttributeError`` or `
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection, Mapping
+from collections.abc import Collection, Mapping
 
 import numpy as np
 import pandas as pd
 
+from fusion._results import real_key
 from fusion._shown import shown
 from fusion._validation import FloatArray, as_array, distinct_printed, general, scalar
 from fusion.book.chapters.lecture import _frame  # noqa: F401 (the chapter's modules import it from here)
@@ -138,18 +139,12 @@ def _period_key(value: object) -> object:
     return value
 
 
-#: What the keys of a real-keyed dict mean, as the bounds ``(lo, hi, lo_open, hi_open)`` of :func:`scalar` (fuzz
-#: 32b C2: a period NaN, inf or -1 s was glued under a valid-looking key, ``ci_fig6_d_1`` for -1 s): a period (s) is
-#: finite and > 0; a fixed CI weight ω is in [0, 1] (as ``slip_at_weights`` reads it); a λ-cut level in (0, 1)
-#: (as ``fuzzy_levels`` reads it).
-PERIOD_KEY, WEIGHT_KEY, LEVEL_KEY = (0.0, None, True, False), (0.0, 1.0, False, False), (0.0, 1.0, True, True)
-
-
-def _key_meaning(bounds: tuple[float, float | None, bool, bool]) -> Callable[[object, str], float]:
-    """The ``check_key`` of a dict whose keys mean the bounded quantity ``bounds`` (:data:`PERIOD_KEY`, ...):
-    a key outside it (NaN, infinite, out of range) is a ValueError naming the field's key."""
-    lo, hi, lo_open, hi_open = bounds
-    return lambda k, name: scalar(k, name, lo, hi, lo_open=lo_open, hi_open=hi_open)
+#: What the keys of a real-keyed dict mean, as its ``check_key`` (``fusion._results.real_key``; fuzz 32b C2: a period
+#: NaN, inf or -1 s was glued under a valid-looking key, ``ci_fig6_d_1`` for -1 s): a period (s) is finite and > 0;
+#: a fixed CI weight ω is in [0, 1] (as ``slip_at_weights`` reads it); a λ-cut level in (0, 1) (as ``fuzzy_levels``
+#: reads it).
+PERIOD_KEY, WEIGHT_KEY, LEVEL_KEY = real_key(0.0, lo_open=True), real_key(0.0, 1.0), real_key(0.0, 1.0, lo_open=True,
+                                                                                                hi_open=True)
 
 
 def _periods(periods: object, name: str = "periods") -> FloatArray:

@@ -22,8 +22,8 @@ from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.records import PairRuns
-from fusion.book.chapters.ci.checks import (LEVEL_KEY, PERIOD_KEY, WEIGHT_KEY, _entries, _identical_study, _key_meaning,
-                                            _period_key, _sensor_noises)
+from fusion.book.chapters.ci.checks import (LEVEL_KEY, PERIOD_KEY, WEIGHT_KEY, _entries, _identical_study, _period_key,
+                                            _sensor_noises)
 from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S, W_GRID, W_PUB
 from fusion.book.chapters.ci.text import _glue_doc, paired_text, readable
 from fusion.book.chapters.ci.tracking import fuzzy_levels
@@ -170,15 +170,14 @@ def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> GlueValue
 _REAL = (float, int, np.number)
 
 
-def _real_keyed(value: Any, printed: Any = general, *, meaning: tuple[float, float | None, bool, bool],
-                **kw: Any) -> Any:
-    """Spec of a dict keyed by real numbers (periods, weights, levels: ``meaning``, :data:`PERIOD_KEY`, ...,
+def _real_keyed(value: Any, printed: Any = general, *, meaning: Any, **kw: Any) -> Any:
+    """Spec of a dict keyed by real numbers (periods, weights, levels: ``meaning``, ``PERIOD_KEY``, ...,
     whose bounds each key must keep), each key read by the chapter's one rule
     (``_period_key``: a float32 key is the number it prints as, so that its readers find it; fuzz 26c q2), no two
     keys alike to 6 significant digits (the evidence keys its readings by ``f"{key:g}"``: two such keys would share
     one reading, the last silently replacing the other; fuzz 30b B3); ``printed`` ``glue_part`` for a dict whose
     keys also key glue values (no two alike in their digits: 1.5 and 15 share a glue key; fuzz 31b C1)."""
-    return dict_of(value, key=_REAL, read_key=_period_key, printed=printed, check_key=_key_meaning(meaning), **kw)
+    return dict_of(value, key=_REAL, read_key=_period_key, printed=printed, check_key=meaning, **kw)
 
 #: A per-run RMSE (m, or mrad): one non-negative value per run.
 _RUNS = array("runs", bounds=(0.0, np.inf))
