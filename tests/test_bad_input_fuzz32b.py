@@ -154,7 +154,8 @@ def test_path_period_table_refuses_a_row_of_a_bad_period(bad: float) -> None:
     ("fusion.book.chapters.time_registration_ledger.studies:RegistrationStudy", "sweep", 0.3, -1.0),
     ("fusion.book.chapters.time_registration_ledger.studies:RegistrationStudy", "s3_fair", 3.0, math.inf),
     ("fusion.book.chapters.lecture_correlated.ridge:PluginExact", "known", 1.0, 0.0),
-    ("fusion.book.chapters.lecture_correlated.ridge:PluginExact", "theta_at", 0.5, math.nan)])
+    ("fusion.book.chapters.lecture_correlated.ridge:PluginExact", "theta_at", 0.5, math.nan),
+    ("fusion.book.chapters.chernoff_snis:SnisBiasStudy", "delta", 0.7, -0.5)])
 def test_frozen_results_check_real_keys_by_the_producers_rule(cls: str, field: str, good: float, bad: float) -> None:
     """D2 (decided: fixed): a record rebuilt with ``dataclasses.replace`` accepted NaN, infinite or negative keys
     (a weight, a noise level σ > 0, a tolerance c > 0, a finite x). The field's key rule alone is probed here (its

@@ -250,7 +250,7 @@ class PluginExact:
          "estimated": dict_of(number(), required=_CROSSINGS),
          "ratio_at": dict_of(number(positive=True), key=_REAL, check_key=real_key()),
          "theta_at": dict_of(number(nonnegative=False), key=_REAL, check_key=real_key()),  # finite x (fuzz 32b D2)
-         "at": dict_of(dict_of(instance(rg.PluginRisk), key=_REAL), key=tuple)},
+         "at": dict_of(dict_of(instance(rg.PluginRisk), key=_REAL, check_key=real_key()), key=tuple)},
         relations=(lambda v, cls: _plugin_relation(v, cls),))
     __post_init__ = validated_post_init
 
