@@ -350,7 +350,7 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     Raises
     ------
     TypeError
-        ``settings`` neither a mapping nor None, ``rid`` not a string.
+        ``settings`` neither a mapping nor None, ``rid`` or ``settings['reading']`` not a string.
     ValueError
         If the record or the reading is unknown, or ``runs`` below the 100 runs rule R4 asks of a paired comparison.
     """
