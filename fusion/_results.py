@@ -259,14 +259,25 @@ def tuple_of(*items: FieldSpec, count: int | None = None) -> ValueSpec:
 
 def dict_of(value: FieldSpec, keys: tuple[Any, ...] | None = None, key: type | tuple[type, ...] = str,
             nonempty: bool = True, required: tuple[Any, ...] = (), read_key: Callable[[Any], Any] | None = None,
-            printed: Callable[[Any], Any] | None = None) -> ValueSpec:
+            printed: Callable[[Any], Any] | None = None, check_key: Callable[[Any, str], Any] | None = None
+            ) -> ValueSpec:
     """Spec of a dict field whose values each satisfy ``value``: exactly the keys ``keys`` if given, otherwise any
     keys of the type(s) ``key`` (at least one unless not ``nonempty``) among which every key of ``required`` (those
     its consumers read); each key stored as ``read_key`` reads it if given (two keys read alike refused); no two
     keys printing the same under ``printed`` if given (its readers key results by the printed key:
-    ``fusion._counts.distinct_printed``). Stored as a read-only mapping."""
+    ``fusion._counts.distinct_printed``); each read key passed to ``check_key(key, name)`` if given, which raises
+    naming ``name`` (the field's key) for a key outside its meaning (a period NaN or below 0: fuzz 32b C2). Stored
+    as a read-only mapping."""
     return ValueSpec("dict", {"value": value, "keys": keys, "key": key, "nonempty": nonempty, "required": required,
-                              "read_key": read_key, "printed": printed})
+                              "read_key": read_key, "printed": printed, "check_key": check_key})
+
+
+def real_key(lo: float | None = None, hi: float | None = None, *, lo_open: bool = False,
+             hi_open: bool = False) -> Callable[[Any, str], float]:
+    """A :func:`dict_of` ``check_key`` for keys that are real numbers of a meaning (a period, a weight, a level, a
+    noise level): each key finite and within [``lo``, ``hi``] (open ends as flagged), read by
+    ``fusion._validation.scalar``; ValueError naming the field's key otherwise (fuzz 32b C2, D2)."""
+    return lambda k, name: _validation.scalar(k, name, lo, hi, lo_open=lo_open, hi_open=hi_open)
 
 
 def keyed(*dims: Dim, covariance: bool = False) -> KeyedSpec:
@@ -606,6 +617,9 @@ def _value(fs: ValueSpec, value: Any, label: str, bound: dict[str, tuple[Any, st
             missing = [k for k in args["required"] if k not in value]
             if missing:
                 raise ValueError(f"{label} misses the keys {shown(missing, 200)} (its consumers read them)")
+            if args.get("check_key") is not None:  # the value each key means (fuzz 32b C2)
+                for k in value:
+                    args["check_key"](k, f"{label}'s key")
         if args.get("printed") is not None:  # keys that differ but print alike would share a result key (fuzz 30b)
             _validation.distinct_printed(list(value), label, args["printed"])
         out = {k: _check(args["value"], v, f"{label}[{shown(k)}]", bound) for k, v in value.items()}

@@ -131,7 +131,7 @@ def exponent_rule(rule: str, means: FloatArray, covs: FloatArray) -> FloatArray:
         beyond the magnitude rule; ``covs`` not (B, M, d, d) or a matrix of it not a valid covariance (named by
         its index).
     """
-    one_of(rule, GAUSSIAN_RULES, "rule")
+    rule = one_of(rule, GAUSSIAN_RULES, "rule")
     m = check_magnitude(_numeric(means, "means"), "means")
     if m.ndim != 3 or 0 in m.shape:
         raise ValueError(f"means must be (B, M, d) with B, M and d >= 1, got shape {m.shape}")
@@ -209,7 +209,7 @@ def gaussian_exchange(study: NetworkStudy, rule: str) -> tuple[FloatArray, Float
         densities, their sum on the first of them: ``_first_of_identical``).
     """
     sc = _one_frame(study)
-    one_of(rule, GAUSSIAN_RULES, "rule")
+    rule = one_of(rule, GAUSSIAN_RULES, "rule")
     mu, P = _inputs(study)
     B, N, _ = mu.shape
     nb, full = sc.neighbours, sc.edges is None
@@ -356,7 +356,7 @@ ValueError
 
 
 def _key(studies: dict[str, NetworkStudy], key: str) -> NetworkStudy:
-    one_of(key, tuple(map(str, CRITERIA_NETWORKS)), "network")
+    key = one_of(key, tuple(map(str, CRITERIA_NETWORKS)), "network")
     if key not in studies:
         raise ValueError(f"studies must hold the network {shown(key)}, got {sorted(studies)}")
     return studies[key]

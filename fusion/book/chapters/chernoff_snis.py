@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from fusion._results import ResultSpec, array, dict_of, instance, integer, number, table, validated_post_init
+from fusion._results import ResultSpec, array, dict_of, instance, integer, number, real_key, table, validated_post_init
 from typing import Any
 
 import numpy as np
@@ -289,7 +289,8 @@ class SnisBiasStudy:
 
     __result_spec__ = ResultSpec({"table": table("ω", "R", "blocks", C_NORM, ALONG, ALONG_LOW, ALONG_HIGH,
                                                  key=("ω", "R")),
-                                  "delta": dict_of(instance(SnisDelta), key=(float, int, np.number)),
+                                  "delta": dict_of(instance(SnisDelta), key=(float, int, np.number),
+                                                   check_key=real_key(0.0, 1.0)),  # exponents ω (fuzz 32b D2)
                                   "total": integer(1)},
                                  relations=(lambda v, cls: _snis_relation(v, cls),))
     __post_init__ = validated_post_init

@@ -143,7 +143,7 @@ def set_members(s: ArrayLike, rule: str = "averages, d_i < d̄ (the text)") -> N
         As :func:`fusion.readings.fusion_set.optimal_set_members` when no reading passes the test
         (every reading is kept); ties are judged with the package's relative tolerance.
     """
-    one_of(rule, tuple(SET_RULES), "rule")
+    rule = one_of(rule, tuple(SET_RULES), "rule")
     arr = as_array(s, "s")
     if arr.ndim < 1 or arr.shape[-1] < 2:
         raise ValueError(f"s must have at least two readings on its last axis, got shape {arr.shape}")
@@ -204,7 +204,7 @@ def run_program(t1: ArrayLike, program: str = "correct", rule: str = "averages, 
         ``t1`` not of the shapes above, ``program`` or ``rule`` unknown, ``order`` not of the shapes above or not a
         permutation of the observations.
     """
-    one_of(program, tuple(PROGRAMS), "program")
+    program = one_of(program, tuple(PROGRAMS), "program")
     arr = as_array(t1, "t1")
     single = arr.ndim == 2
     if single:
@@ -653,7 +653,7 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
         The best hypothesis of each (program, set rule, correction class, order class), the hypotheses that explain all
         26 printed values, the count scored.
     """
-    one_of(order_search, ("mean-consistent", "slips"), "order_search")
+    order_search = one_of(order_search, ("mean-consistent", "slips"), "order_search")
     window = _window(window)
     cors = corrections(window=window)
     tabs = _tables(cors)

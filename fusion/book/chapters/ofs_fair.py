@@ -63,7 +63,7 @@ def information(method: str) -> str:
         The information it uses: ``"readings only"``, or ``"readings and known noise standard deviations"`` for
         inverse-variance weights.
     """
-    one_of(method, FAIR_METHODS, "method")
+    method = one_of(method, FAIR_METHODS, "method")
     if method in ("optimal_fusion_set", "mean", "trimmed_mean_25"):
         return "readings only"
     return ROBUST_METHODS[method]
@@ -75,8 +75,7 @@ def _methods(methods: Sequence[str]) -> tuple[str, ...]:
     out = (methods,) if isinstance(methods, str) else tuple(sequence(methods, "methods"))
     if not out:
         raise ValueError("methods must name at least one method of FAIR_METHODS, got none")
-    for m in out:
-        one_of(m, FAIR_METHODS, "methods")
+    out = tuple(one_of(m, FAIR_METHODS, "methods") for m in out)
     return tuple(distinct(list(out), "methods"))
 
 
@@ -339,7 +338,7 @@ def verdicts(study: FairStudy, reference: str = "optimal_fusion_set") -> pd.Data
         reference's row.
     """
     _fair_study(study)
-    one_of(reference, FAIR_METHODS, "reference")
+    reference = one_of(reference, FAIR_METHODS, "reference")
     with runs_named("study", "fair_study's n_runs"):  # rule R4 named by the argument (fuzz 22b A2)
         return _verdicts(study, reference)
 

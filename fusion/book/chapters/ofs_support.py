@@ -65,8 +65,8 @@ def support_values(t1: ArrayLike, kernel: str, aggregation: str, alphas: ArrayLi
     ndarray, shape (k, n_obs)
         Fused values (°C).
     """
-    one_of(kernel, tuple(SUPPORT_KERNELS), "kernel")
-    one_of(aggregation, SUPPORT_AGGREGATIONS, "aggregation")
+    kernel = one_of(kernel, tuple(SUPPORT_KERNELS), "kernel")
+    aggregation = one_of(aggregation, SUPPORT_AGGREGATIONS, "aggregation")
     s = as_array(t1, "t1", ndim=(2,))
     a = as_array(alphas, "alphas", ndim=(1,))
     if np.any(a <= 0):

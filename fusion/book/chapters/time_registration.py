@@ -408,7 +408,7 @@ def registration_figure(t1: ArrayLike, t2: ArrayLike, method: str, label: str) -
         squares) has fewer than two samples of ``t1`` in the window before it; ``method`` is not a method.
     """
     t1, t2 = _record_times(t1, t2)
-    one_of(method, tuple(sc.METHODS), "method"), text(label, "label")
+    method, label = one_of(method, tuple(sc.METHODS), "method"), text(label, "label")
     if method == RegMethod.LEAST_SQUARES:
         _least_squares_windows(t1, t2)
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.6))

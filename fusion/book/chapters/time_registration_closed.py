@@ -39,8 +39,7 @@ def _method_names(names: object, name: str) -> list:
     items = sequence(names, name)
     if not items:
         raise ValueError(f"{name} is empty (it must hold at least one method)")
-    for i, n in enumerate(items):
-        one_of(n, tuple(sc.METHODS), f"{name}[{i}]")
+    items = [one_of(n, tuple(sc.METHODS), f"{name}[{i}]") for i, n in enumerate(items)]
     return distinct(items, name)
 
 

@@ -34,6 +34,7 @@ from fusion.book.chapters.chernoff.mixture import toy
 from fusion._counts import seed as check_seed
 from fusion._counts import count
 from fusion._shown import shown
+from fusion._options import one_of
 
 _F = TypeVar("_F", bound=Callable[..., Any])
 
@@ -42,7 +43,9 @@ __all__ = ["ev_tracking", "ev_pso", "ev_formulas", "ev_common_once", "ev_gaussia
 
 
 def _settings(settings: Any, allowed: dict[str, tuple[Any, ...]], defaults: dict[str, Any]) -> dict[str, Any]:
-    """Settings of a reading, checked against the allowed values (ValueError naming the setting)."""
+    """Settings of a reading, checked against the allowed values (ValueError naming the setting); a text option is
+    returned as the plain ``str`` its check gives (rule 19 of ``fusion._validation``, fuzz 32b C1: a ``(str, Enum)``
+    member would print as ``K.M`` in a glue key)."""
     if not isinstance(settings, Mapping):
         raise ValueError(f"settings must be a dict, got {type(settings).__name__}")
     extra = set(settings) - set(allowed)
@@ -52,7 +55,9 @@ def _settings(settings: Any, allowed: dict[str, tuple[Any, ...]], defaults: dict
     for k, ok in allowed.items():
         if k not in out:
             raise ValueError(f"settings: {shown(k)} is required")
-        if ok and out[k] not in ok:
+        if ok and isinstance(out[k], str) and all(isinstance(o, str) for o in ok):
+            out[k] = one_of(out[k], tuple(ok), f"settings[{shown(k)}]")
+        elif ok and out[k] not in ok:
             raise ValueError(f"settings[{shown(k)}] must be one of {list(ok)}, got {shown(out[k])}")
     return out
 

@@ -63,7 +63,8 @@ def rule_label(rule: str) -> str:
 
 def _rule_label(rule: str, name: str) -> str:
     """:func:`rule_label`, naming the argument ``name`` in its refusals."""
-    fixed = _FIXED_WEIGHT.fullmatch(text(rule, name))
+    rule = text(rule, name)  # its plain text (rule 19), the one looked up below
+    fixed = _FIXED_WEIGHT.fullmatch(rule)
     base = rule if fixed is None else fixed[1]
     if base not in METHOD_LABELS:
         raise ValueError(f"{name} must be a rule key of the architecture study (an ArchRule value or a fixed-weight "

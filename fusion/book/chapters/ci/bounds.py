@@ -18,7 +18,7 @@ from fusion.scenarios.two_sensor.bounds import CAUSAL_FLOOR, CENTRALISED_KF, CI_
 from fusion._shown import shown
 from fusion._structures import derived
 from fusion._validation import scalar
-from fusion.book.chapters.ci.checks import _frame, _periods
+from fusion.book.chapters.ci.checks import PERIOD_KEY, _frame, _periods
 
 __all__ = ["pcrb_numbers", "pcrb_table", "path_period_table", "path_numbers"]
 
@@ -81,6 +81,7 @@ def _check_rows(rows: object) -> dict[tuple[Any, Any], dict[Any, float]]:
     for key, value in rows.items():
         if not isinstance(key, tuple) or len(key) != 2:
             raise ValueError(f"rows must be keyed by (period, reading) pairs, got the key {shown(key, 80)}")
+        PERIOD_KEY(key[0], f"rows[{shown(key, 80)}]'s period")  # the chapter's rule (fuzz 32b C2)
         if not isinstance(value, Mapping):
             raise TypeError(f"rows[{shown(key)}] must be a mapping of column -> value, got {type(value).__name__}")
         out[key] = {col: scalar(v, f"rows[{shown(key)}][{shown(col)}]", 0.0, tiny=True) for col, v in value.items()}
@@ -107,7 +108,8 @@ def path_period_table(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> 
     TypeError
         ``rows`` is not a mapping, or an entry not a mapping, or a value not a number.
     ValueError
-        ``rows`` is empty, or a key is not a (period, reading) pair, or a value not finite and non-negative.
+        ``rows`` is empty, or a key is not a (period, reading) pair or its period not finite and > 0, or a value not
+        finite and non-negative.
     """
     t = pd.DataFrame(_check_rows(rows)).T
     t.index.names = ["sampling period T (s)", "reading of Q"]

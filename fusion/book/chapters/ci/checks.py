@@ -15,6 +15,7 @@ from collections.abc import Collection, Mapping
 import numpy as np
 import pandas as pd
 
+from fusion._results import real_key
 from fusion._shown import shown
 from fusion._validation import FloatArray, as_array, distinct_printed, general, scalar
 from fusion.book.chapters.lecture import _frame  # noqa: F401 (the chapter's modules import it from here)
@@ -136,6 +137,14 @@ def _period_key(value: object) -> object:
     if isinstance(value, (list, tuple)) and any(_narrow(v) for v in value):
         return (list if isinstance(value, list) else tuple)(_period_key(v) if _narrow(v) else v for v in value)
     return value
+
+
+#: What the keys of a real-keyed dict mean, as its ``check_key`` (``fusion._results.real_key``; fuzz 32b C2: a period
+#: NaN, inf or -1 s was glued under a valid-looking key, ``ci_fig6_d_1`` for -1 s): a period (s) is finite and > 0;
+#: a fixed CI weight ω is in [0, 1] (as ``slip_at_weights`` reads it); a λ-cut level in (0, 1) (as ``fuzzy_levels``
+#: reads it).
+PERIOD_KEY, WEIGHT_KEY, LEVEL_KEY = real_key(0.0, lo_open=True), real_key(0.0, 1.0), real_key(0.0, 1.0, lo_open=True,
+                                                                                                hi_open=True)
 
 
 def _periods(periods: object, name: str = "periods") -> FloatArray:

@@ -19,8 +19,8 @@ from fusion.book.chapters.ci.checks import _arch_pair
 from fusion.book.chapters.ci.fruit_fly_step import (CANDIDATES_ABOVE, CANDIDATES_BELOW, EXHAUSTIVE,
                                                      FRUIT_FLY_STEP_RULES, LARGEST_ERROR, MEDIAN_ERROR, RUNS_WITHIN)
 from fusion.book.chapters.ci.infrared_readings import IR_READINGS, IrReadings
-from fusion.book.chapters.ci.paired import (_PAIRED_CLAIM_FIELDS, _REAL, _RUNS, PairedClaimInputs, _real_keyed,
-                                            _runs_relation)
+from fusion.book.chapters.ci.paired import (_PAIRED_CLAIM_FIELDS, _REAL, _RUNS, PERIOD_KEY, WEIGHT_KEY, PairedClaimInputs,
+                                            _real_keyed, _runs_relation)
 from fusion.book.chapters.ci.printed import PrintedWeightFacts
 from fusion.book.chapters.ci.tracking import _LEG_FIELDS, LegClaimInputs
 from fusion.book.chapters.ci.weights import _WEIGHT_FIELDS, OMEGA_FOUND, TR_P, WeightClaimInputs, _hypothesis_table
@@ -86,7 +86,7 @@ class PeriodRuns:
 #: Field specs of the ledger's inputs (fusion._results), by the class that declares the fields: every class that
 #: holds them (PairedInputs, IrInputs, LedgerStudies, LedgerInputs) checks them when built.
 _PAIRED_FIELDS = {**_PAIRED_CLAIM_FIELDS,
-                  "aniso_seed": integer(0), "fig6_periods": _real_keyed(instance(PeriodRuns), glue_part),
+                  "aniso_seed": integer(0), "fig6_periods": _real_keyed(instance(PeriodRuns), glue_part, meaning=PERIOD_KEY),
                   "flat_range": number(), "flat_pub_grid": tuple_of(number(positive=True), count=2)}
 _IR_FIELDS = {"ir_readings": instance(IrReadings), "ir_seed": integer(0),
               "ir_paired": dict_of(array("ir_runs", bounds=(0.0, np.inf))), "ir_means": dict_of(dict_of(number()))}
@@ -121,9 +121,10 @@ _LEDGER_FIELDS = {
     "study": instance(FusionStudy), "model_rmse": dict_of(number(), required=("x", "y")), "nees": dict_of(number()),
     "nees_runs": integer(1), "eq2_error": number(), "eq6_asym": number(), "bench": dict_of(number()),
     "bench_date": text(), "bench_per_step": dict_of(tuple_of(number())), "fig5_hyp": table(TR_P, OMEGA_FOUND),
-    "rmse_variants": dict_of(_PAIR), "rmse_variants_all": dict_of(_PAIR), "ir_sens": _real_keyed(dict_of(number())),
+    "rmse_variants": dict_of(_PAIR), "rmse_variants_all": dict_of(_PAIR),
+    "ir_sens": _real_keyed(dict_of(number()), meaning=PERIOD_KEY),
     "ir_T": number(positive=True), "pcrb": dict_of(number(), required=("T1", "limit")), "q_scaling": instance(QScaling),
-    "slip_all": dict_of(_PAIR), "slip_weights": _real_keyed(_PAIR),
+    "slip_all": dict_of(_PAIR), "slip_weights": _real_keyed(_PAIR, meaning=WEIGHT_KEY),
     "slip_band": dict_of(tuple_of(integer(0), count=2)), "printed": instance(PrintedWeightFacts), "exact_rmse": _PAIR,
     "fruit_fly_step_study": table(*_FOA_STEP_COLUMNS, index=(*FRUIT_FLY_STEP_RULES, EXHAUSTIVE)),
     "fruit_fly_step_targets": table(*_FOA_STEP_COLUMNS)}

@@ -82,7 +82,7 @@ def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
     seed = check_seed(seed)   # an integer seed (rule 11), named
     from fusion._validation import one_of
 
-    one_of(azimuth_from, ("x", "y"), "azimuth_from")
+    azimuth_from = one_of(azimuth_from, ("x", "y"), "azimuth_from")
     T, duration, runs = _ir_budget(T, duration, runs)
     p = data.WANG2024_IR_RADAR
     sim = ir.simulate(np.random.default_rng(seed), runs=runs, T=T, duration=duration, sigma_ir=p["sigma_ir"],

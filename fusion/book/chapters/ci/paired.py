@@ -22,7 +22,8 @@ from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.records import PairRuns
-from fusion.book.chapters.ci.checks import _entries, _identical_study, _period_key, _sensor_noises
+from fusion.book.chapters.ci.checks import (LEVEL_KEY, PERIOD_KEY, WEIGHT_KEY, _entries, _identical_study, _period_key,
+                                            _sensor_noises)
 from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S, W_GRID, W_PUB
 from fusion.book.chapters.ci.text import _glue_doc, paired_text, readable
 from fusion.book.chapters.ci.tracking import fuzzy_levels
@@ -169,13 +170,14 @@ def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> GlueValue
 _REAL = (float, int, np.number)
 
 
-def _real_keyed(value: Any, printed: Any = general, **kw: Any) -> Any:
-    """Spec of a dict keyed by real numbers (periods, weights, levels), each key read by the chapter's one rule
+def _real_keyed(value: Any, printed: Any = general, *, meaning: Any, **kw: Any) -> Any:
+    """Spec of a dict keyed by real numbers (periods, weights, levels: ``meaning``, ``PERIOD_KEY``, ...,
+    whose bounds each key must keep), each key read by the chapter's one rule
     (``_period_key``: a float32 key is the number it prints as, so that its readers find it; fuzz 26c q2), no two
     keys alike to 6 significant digits (the evidence keys its readings by ``f"{key:g}"``: two such keys would share
     one reading, the last silently replacing the other; fuzz 30b B3); ``printed`` ``glue_part`` for a dict whose
     keys also key glue values (no two alike in their digits: 1.5 and 15 share a glue key; fuzz 31b C1)."""
-    return dict_of(value, key=_REAL, read_key=_period_key, printed=printed, **kw)
+    return dict_of(value, key=_REAL, read_key=_period_key, printed=printed, check_key=meaning, **kw)
 
 #: A per-run RMSE (m, or mrad): one non-negative value per run.
 _RUNS = array("runs", bounds=(0.0, np.inf))
@@ -184,7 +186,8 @@ _RUNS = array("runs", bounds=(0.0, np.inf))
 _PAIRED_CLAIM_FIELDS = {
     "paired": dict_of(_RUNS), "paired_runs": integer(1), "paired_seed": integer(0), "paired_unequal": dict_of(_RUNS),
     "unequal_seed": integer(0), "paired_random": _RUNS, "random_seed": integer(0), "paired_aniso": dict_of(_RUNS),
-    "paired_fig6": _real_keyed(_RUNS, required=(W_PUB, W_GRID)), "fuzzy_levels": _real_keyed(_RUNS)}
+    "paired_fig6": _real_keyed(_RUNS, meaning=WEIGHT_KEY, required=(W_PUB, W_GRID)),
+    "fuzzy_levels": _real_keyed(_RUNS, meaning=LEVEL_KEY)}
 
 
 def _runs_relation(values: Mapping[str, Any], cls: str) -> None:
@@ -284,7 +287,7 @@ class PairedStudies:
 
     __result_spec__ = ResultSpec(
         {"runs": integer(1), "seeds": tuple_of(integer(0), count=3), "sc": instance(Scenario), "paired": dict_of(_RUNS),
-         "paired_fig6": _real_keyed(_RUNS, required=(W_PUB, W_GRID)), "paired_random": _RUNS,
+         "paired_fig6": _real_keyed(_RUNS, meaning=WEIGHT_KEY, required=(W_PUB, W_GRID)), "paired_random": _RUNS,
          "paired_u": dict_of(_RUNS), "omega_u": tuple_of(number(bounds=(0.0, 1.0))),
          "paired_an": dict_of(array("aniso_runs", bounds=(0.0, np.inf)))},
         relations=(lambda v, cls: _studies_relation(v, cls),))

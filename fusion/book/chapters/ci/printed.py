@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike
 from fusion import data
 from fusion.data import as_printed
 from fusion._docstrings import reads_results
-from fusion._results import ResultSpec, dict_of, flag, instance, integer, number, validated_post_init
+from fusion._results import ResultSpec, dict_of, flag, instance, integer, number, real_key, validated_post_init
 from fusion._shown import shown
 from fusion._validation import LOOP_STEP, as_array, as_covariance, count, instance_of, loop_work, scalar
 from fusion.book.tables import rounded
@@ -55,7 +55,8 @@ class PrintedWeightFacts:
 
     __result_spec__ = ResultSpec({"ones": integer(0), "steps": integer(1), "fruit_fly": instance(FruitFlySeeds),
                                   "monotone": flag(), "trace_ratio": number(positive=True),
-                                  "trace": dict_of(number(positive=True), key=(float, int, np.number), nonempty=False)},
+                                  "trace": dict_of(number(positive=True), key=(float, int, np.number), nonempty=False,
+                                                   check_key=real_key(0.0, 1.0))},  # weights ω (fuzz 32b D2)
                                  relations=(lambda v, cls: _printed_relation(v, cls),))
     __post_init__ = validated_post_init
 

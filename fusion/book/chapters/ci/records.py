@@ -154,7 +154,7 @@ class PairRuns(ReadOnlyMapping):
     def __init__(self, items: Mapping[str, Any], role: str, seed: int | None) -> None:
         if not isinstance(items, Mapping):
             raise TypeError(f"items must be a mapping of method -> per-run RMSE, got {type(items).__name__}")
-        one_of(role, _PAIRS, "role")
+        role = one_of(role, _PAIRS, "role")
         if seed is not None:
             seed = check_seed(seed, "seed")
         super().__init__(items)

@@ -350,7 +350,7 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     Raises
     ------
     TypeError
-        ``settings`` neither a mapping nor None, ``rid`` not a string.
+        ``settings`` neither a mapping nor None, ``rid`` or ``settings['reading']`` not a string.
     ValueError
         If the record or the reading is unknown, or ``runs`` below the 100 runs rule R4 asks of a paired comparison.
     """
@@ -362,7 +362,7 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
         raise ValueError(f"rid: {shown(rid)} is not a stochastic record of the chapter; they are {sorted(_STOCHASTIC)}")
     with runs_named("runs", "the argument runs"):  # rule R4 named by the argument (fuzz 26c A5)
         ev = _record(rid, seed, count(runs, "runs"))
-    key = str(dict(settings or {}).get("reading", "primary"))
+    key = text(dict(settings or {}).get("reading", "primary"), "settings['reading']")
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")
     return ev[key]

@@ -77,7 +77,7 @@ def plugin_conjunction(p: PluginStudy, key: str = PLUGIN_KNOWN, c: float = 1.0,
         ``xs`` or a repeated one.
     """
     instance_of(p, PluginStudy, "p")
-    one_of(key, (PLUGIN_KNOWN, PLUGIN_EST), "key")
+    key = one_of(key, (PLUGIN_KNOWN, PLUGIN_EST), "key")
     c = scalar(c, "c", lo=0.0, lo_open=True)
     # one member per x: a Conjunction of at least two members with distinct labels (fuzz 18, F25)
     xs = distinct([scalar(x, f"xs[{i}]") for i, x in enumerate(sequence(xs, "xs", minimum=2, what="true values"))],

@@ -4,7 +4,7 @@ exact risks, the vector study.
 
 from __future__ import annotations
 
-from fusion._results import ResultSpec, dict_of, instance, number, validated_post_init
+from fusion._results import ResultSpec, dict_of, instance, number, real_key, validated_post_init
 from fusion._shown import shown
 from fusion._validation import glue_part, instance_of
 
@@ -245,10 +245,12 @@ class PluginExact:
     at: Mapping[tuple[str, float], Mapping[float, Any]]
 
     __result_spec__ = ResultSpec(
-        {"known": dict_of(dict_of(number(), required=_CROSSINGS), key=_REAL),
+        {"known": dict_of(dict_of(number(), required=_CROSSINGS), key=_REAL,  # tolerances c > 0 (fuzz 32b D2)
+                          check_key=real_key(0.0, lo_open=True)),
          "estimated": dict_of(number(), required=_CROSSINGS),
-         "ratio_at": dict_of(number(positive=True), key=_REAL), "theta_at": dict_of(number(nonnegative=False), key=_REAL),
-         "at": dict_of(dict_of(instance(rg.PluginRisk), key=_REAL), key=tuple)},
+         "ratio_at": dict_of(number(positive=True), key=_REAL, check_key=real_key()),
+         "theta_at": dict_of(number(nonnegative=False), key=_REAL, check_key=real_key()),  # finite x (fuzz 32b D2)
+         "at": dict_of(dict_of(instance(rg.PluginRisk), key=_REAL, check_key=real_key()), key=tuple)},
         relations=(lambda v, cls: _plugin_relation(v, cls),))
     __post_init__ = validated_post_init
 

@@ -20,6 +20,7 @@ from fusion.book.chapters.lecture_wavelets.verdicts import (
     PRIMARY,
     _METRIC,
     _e26_case,
+    _same_setup,
     sensor_conjunction,
     status_text,
 )
@@ -100,11 +101,7 @@ def _is_primary(m: MechanismStudy, lab: str, e26: SignalStudy | None) -> bool:
     if e26 is not None:
         instance_of(e26, SignalStudy, "e26")
         # fuzz 26d B: both studies record their setup; E2.6 read beside another one's numbers is refused
-        length = int(m.bias_curve.shape[-1])
-        if not (np.array_equal(e26.gains, m.gains) and np.array_equal(e26.sigma, m.sigma) and e26.length == length):
-            raise ValueError(f"e26 is a study of another setup than m: gains {e26.gains.tolist()}, sigma "
-                             f"{e26.sigma.tolist()}, length {e26.length}; m has gains {m.gains.tolist()}, sigma "
-                             f"{m.sigma.tolist()}, length {length}")
+        _same_setup(e26, m.gains, m.sigma, int(m.bias_curve.shape[-1]), "m")
     if e26 is None or m.kind != PRIMARY[0]:
         return False
     cfg = m.configs[m.labels.index(lab)]
@@ -199,7 +196,7 @@ def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None,
     tab["every sensor: lecture's order < fuse first"] = [status_text(_wconj(m, lab, "denoise-first", "fuse-first",
                                                                             e26=e26))
                                                          for lab in m.labels]
-    one_of(part, ("all", "numbers", "verdicts"), "part")
+    part = one_of(part, ("all", "numbers", "verdicts"), "part")
     num = list(_sensitivity(m, "table_sensitivity_display").columns)
     return tab if part == "all" else tab[num] if part == "numbers" else tab.drop(columns=num)
 

@@ -117,8 +117,8 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> ChapterStudy:
         with the same arguments: do not modify it).
     """
     seed = check_seed(seed)
-    one_of(key, tuple(RUNS), "key")
-    return _study(str(key), seed, int(RUNS[key] if runs is None else count(runs, "runs")))
+    key = one_of(key, tuple(RUNS), "key")
+    return _study(key, seed, int(RUNS[key] if runs is None else count(runs, "runs")))
 
 
 @study_cache(maxsize=12)

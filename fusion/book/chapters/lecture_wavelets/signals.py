@@ -24,7 +24,7 @@ _RAISES = with_sections(raises="""TypeError
     ``sg`` not a SignalStudy, ``e26`` neither None nor a SignalStudy.
 ValueError
     ``sg`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare
-    runs), named.""")
+    runs), named; ``e26`` of another setup than ``sg`` (other gains, sigma or signal length).""")
 
 
 #: The four questions of the signal table, one per record: (short id, column, A, B, metric).
@@ -53,8 +53,9 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
         and ``"median"`` among them; ``"max-raw"`` adds a column).
     e26 : SignalStudy, optional
         E2.6, the primary signal and rule with more runs: its row is taken from it (:func:`cell`). The two
-        studies are not compared beyond their types (fuzz 22b q4): given swapped, the row of the study passed as
-        ``e26`` is shown with its runs and the label "E2.6".
+        studies are compared by their setup only (gains, sigma, signal length: a study of another setup is refused,
+        fuzz 32b D3, as ``glue_mechanism`` refuses it), not by their roles (fuzz 22b q4): given swapped, the row of
+        the study passed as ``e26`` is shown with its runs and the label "E2.6".
     part : {"all", "verdicts", "normalisers"}
         Every column, or one of the two halves that fit the page: the runs and the questions of
         :data:`QUESTIONS`, or the columns about the normaliser and the spread over time.
@@ -87,7 +88,7 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
             rows[METHOD_LABELS[kind], mode] = r                        # the signal's label
     tab = pd.DataFrame(rows).T
     tab.index.names = ["signal", "threshold"]
-    one_of(part, ("all", "verdicts", "normalisers"), "part")
+    part = one_of(part, ("all", "verdicts", "normalisers"), "part")
     if part == "all":
         return tab
     norm = [c for c in _NORM_COLUMNS if c in tab.columns]

@@ -94,6 +94,7 @@ def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, m
     """
     sd = check_seed(seed)
     metric = template(metric, "metric", j=1)  # before any part is formatted (fuzz 21b, W)
+    a_name, b_name = text(a_name, "a_name"), text(b_name, "b_name")  # the plain text in the labels (rule 19)
     return _per_sensor(a, b, a_name, b_name, sd,
                        lambda j, aj, bj, sd: Comparison(aj, bj, f"{a_name} (sensor {j})", f"{b_name} (sensor {j})",
                                                         claim, metric.format(j=j), seed=sd))
@@ -144,6 +145,7 @@ def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, see
     seed : int
         Seed of the runs.
     """
+    a_name, b_name = text(a_name, "a_name"), text(b_name, "b_name")  # the plain text in the labels (rule 19)
     return _per_sensor(a, b, a_name, b_name, check_seed(seed),
                        lambda j, aj, bj, sd: Comparison(_runs_won(aj, bj, "less").astype(float),
                                                         np.full(aj.shape[0], 0.5),
@@ -184,6 +186,16 @@ def _holds(cases: Mapping[Any, Any], key: object) -> bool:
         return False
 
 
+def _same_setup(e26: SignalStudy, gains: np.ndarray, sigma: np.ndarray, length: int, other: str) -> None:
+    """Refuse E2.6 read beside the numbers of a study of another setup (fuzz 26d B; fuzz 32b D3: the signal table took
+    its primary cell from a study of equal gains): ValueError naming ``e26`` and ``other`` unless both have the same
+    gains, sigma and signal length. The one rule of every reader of ``e26`` (:func:`cell`, ``mechanism``'s)."""
+    if not (np.array_equal(e26.gains, gains) and np.array_equal(e26.sigma, sigma) and e26.length == length):
+        raise ValueError(f"e26 is a study of another setup than {other}: gains {e26.gains.tolist()}, sigma "
+                         f"{e26.sigma.tolist()}, length {e26.length}; {other} has gains {np.asarray(gains).tolist()}, "
+                         f"sigma {np.asarray(sigma).tolist()}, length {length}")
+
+
 def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[Signal, str, str]) -> Cell:
     """The case ``key`` = (signal, rule, normaliser): from E2.6 (more runs) when it holds it, else from ``sg``.
 
@@ -192,7 +204,8 @@ def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[Signal, str, str])
     sg : SignalStudy
         :func:`fusion.scenarios.wavelet_sensors.signal_study` over the signals and rules.
     e26 : SignalStudy or None
-        The same study for the primary signal and rule only, with more runs (E2.6).
+        The same study for the primary signal and rule only, with more runs (E2.6): the same setup as ``sg`` (gains,
+        sigma, signal length), else a ValueError naming both.
     key : (Signal, str, str)
 
     Returns
@@ -203,6 +216,7 @@ def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[Signal, str, str])
     instance_of(sg, SignalStudy, "sg")
     if e26 is not None:
         instance_of(e26, SignalStudy, "e26")
+        _same_setup(e26, sg.gains, sg.sigma, sg.length, "sg")
     key = tuple(sequence(key, "key", 3))  # a tuple or a list (fuzz 24e F2-F3: the package's sequence rule)
     src = e26 if e26 is not None and _holds(e26.cases, key) else sg
     if not _holds(src.cases, key):

@@ -171,7 +171,7 @@ def figure_regime(s: RegimeStudy, scenario: str = RegimeScenario.SINE_SWAP, smoo
     instance_of(s, RegimeStudy, "s")
     from fusion._validation import one_of
 
-    one_of(scenario, tuple(s.scenarios), "scenario")
+    scenario = one_of(scenario, tuple(s.scenarios), "scenario")
     smooth = count(smooth, "smooth", maximum=s.samples)  # a moving average of 1 to s.samples samples
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
     k = np.arange(1, s.samples + 1)

@@ -11,7 +11,7 @@ import numpy as np
 from fusion._frozen import constant
 from fusion._counts import seed as check_seed
 from fusion.book.study_cache import study_cache
-from fusion._validation import count
+from fusion._validation import count, one_of
 
 from fusion.scenarios.lecture_weighting import (AwfStudy, BenchMethod, BeliefParameterStudy, ConsistencyStudy,
                                                 RegimeStudy, VarianceChangeStudy)
@@ -95,9 +95,8 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> Study:
         The study's output (the same object on every call with the same arguments: do not modify it).
     """
     seed = check_seed(seed)
-    if key not in RUNS:
-        raise ValueError(f"key must be one of {tuple(RUNS)}, got {shown(key)}")
-    return _study(str(key), seed, int(RUNS[key] if runs is None else count(runs, "runs")))
+    key = one_of(key, tuple(RUNS), "key")
+    return _study(key, seed, int(RUNS[key] if runs is None else count(runs, "runs")))
 
 
 @study_cache(maxsize=16)

@@ -178,7 +178,7 @@ def family_values(z: ArrayLike, family: str = "laplace", scale: float = 2.0) -> 
     ----------
     Yang G. N., Feng X. F., Fan L. J. (2012), eqs. 3-12.
     """
-    one_of(family, _FAMILY_NAMES, "family")
+    family = one_of(family, _FAMILY_NAMES, "family")
     s = np.atleast_2d(as_array(z, "z", ndim=(1, 2)))
     scale = scalar(scale, "scale", lo=0.0, lo_open=True)
     members = rd.fuse_epochs(s, "optimal_fusion_set").members

@@ -25,7 +25,7 @@ from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
 from fusion.book.chapters.ofs.readings import ALPHAS, alpha_key, family_values
-from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, FailureCase, _case, _noise
+from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, FailureCase, _case, _failure, _noise, _setting
 from fusion.book.chapters.ofs.studies import (alpha_study, fair_weights, faulty_member_share, membership_study,
                                              not_neighbourhood_share, study, weight_study)
 from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint, table1_totals, tables
@@ -33,6 +33,7 @@ from fusion.book._few_runs import reader_runs_named
 from fusion.book.glue import GlueValues
 from fusion._counts import count
 from fusion._validation import instance_of
+from fusion._options import text
 from fusion._shown import shown
 
 __all__ = [
@@ -54,7 +55,7 @@ _BASE_TEXT = {"mean": "the mean", "support_degree": "the rebuilt support degree"
 def _pair(base: str, case: str, metric: str, settings: Mapping[str, object], seed: int, runs: int) -> Comparison:
     """The optimal set against ``base`` on the study the settings name (noise, failure reading, α)."""
     failure, window, where = _CASES[case]
-    mode = str(settings.get("failure", "fixed"))
+    mode = _failure(settings)
     if "alpha" in settings:
         if base != "support_degree":
             raise ValueError("settings['alpha'] applies to the support degree only")
@@ -103,7 +104,7 @@ ev_fig4_fluctuation_support = _pair_record("ev_fig4_fluctuation_support", "suppo
 def ev_fig4_unaffected(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: the optimal set's per-run MAE on samples 50-80 with the failure against without it ("equal")."""
     seed = check_seed(seed)
-    st = study(seed, runs, _noise(settings), str(settings.get("failure", "fixed")))
+    st = study(seed, runs, _noise(settings), _failure(settings))
     return Comparison(st.mae("optimal_fusion_set", True), st.mae("optimal_fusion_set", False, window=True),
                       "with failure", "without failure", "equal",
                       "optimal set's per-run mean absolute error on samples 50-80 (°C)", seed=seed)
@@ -113,7 +114,7 @@ def ev_fig4_unaffected(settings: Mapping[str, object], *, seed: int = SEED, runs
 def ev_fig4_robust(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: the rise of the per-run MAE on samples 50-80 due to the failure, optimal set against the mean."""
     seed = check_seed(seed)
-    st = study(seed, runs, _noise(settings), str(settings.get("failure", "fixed")))
+    st = study(seed, runs, _noise(settings), _failure(settings))
     rise = {m: st.mae(m, True) - st.mae(m, False, window=True) for m in ("optimal_fusion_set", "mean")}
     return Comparison(rise["optimal_fusion_set"], rise["mean"], METHOD_LABELS["optimal_fusion_set"],
                       METHOD_LABELS["mean"], "less",
@@ -125,8 +126,9 @@ def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, r
     """Weights of eqs. 6-11 against equal weights on the same set (settings: ``case``, or ``sweep`` and ``value``)."""
     seed = check_seed(seed)
     if "sweep" in settings:
-        e = fair_weights(seed, runs).mae[(str(settings["sweep"]), float(settings["value"]))]  # type: ignore[arg-type]
-        what = f"{settings['sweep']} = {float(settings['value']):g}"  # type: ignore[arg-type]
+        sweep = text(settings["sweep"], "settings['sweep']")  # its plain text (rule 19), never str() of it
+        e = fair_weights(seed, runs).mae[(sweep, float(settings["value"]))]  # type: ignore[arg-type]
+        what = f"{sweep} = {float(settings['value']):g}"  # type: ignore[arg-type]
     else:
         case = _case(settings)
         e = membership_study(seed, runs).ablation[case]
@@ -140,7 +142,7 @@ def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, r
 def ev_membership_free(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
     """Each other membership function against eq. 6, "equal" (settings ``vary``: family, scale or table1)."""
     seed = check_seed(seed)
-    vary = str(settings.get("vary", "family"))
+    vary = _setting(settings, "vary", "family", ("family", "scale", "table1"))
     if vary == "table1":
         t1 = data.YANG2012_TABLE1.values.T
         parts_t1 = []
@@ -211,9 +213,9 @@ def ev_set_rejects_faulty(settings: Mapping[str, object], *, seed: int = SEED, r
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
-    fm = faulty_member_share(seed, runs, _noise(settings), str(settings.get("failure", "fixed")))
+    fm = faulty_member_share(seed, runs, _noise(settings), _failure(settings))
     sh, al, fa = fm.share, fm.all_epochs, fm.faulty
-    extra = ("" if str(settings.get("failure", "fixed")) in ("fixed", "opposite signs") else
+    extra = ("" if _failure(settings) in ("fixed", "opposite signs") else
              f"; over all epochs 50-80, faulty or not, {al[0]:.1%} and {al[1]:.1%}")
     return Proposition(bool(max(sh) == 0.0), f"under the failure, sensor 4 is a member at {sh[0]:.1%} and sensor 10 "
                        f"at {sh[1]:.1%} of their faulty epochs 50-80 (bias above twice the sensor's σ: {fa[0]:.0%} and "
@@ -264,7 +266,8 @@ def ev_table3_support(settings: Mapping[str, object], *, seed: int = SEED, runs:
     if "kernel" not in settings:
         return PublishedValues(pub, tables().sup, 4, "°C")
     t1 = corrected_table1() if settings.get("data") == "corrected" else np.array(data.YANG2012_TABLE1.values, float)
-    v = ofs_audit.support_values(t1.T, str(settings["kernel"]), str(settings["weights"]), _ALPHA_GRID)
+    v = ofs_audit.support_values(t1.T, _setting(settings, "kernel", "", tuple(ofs_audit.SUPPORT_KERNELS)),
+                                  _setting(settings, "weights", "", ofs_audit.SUPPORT_AGGREGATIONS), _ALPHA_GRID)
     err = np.abs(v - pub)
     best = int(np.lexsort((err.max(axis=1), -(err < _TOL).sum(axis=1)))[0])
     return PublishedValues(pub, v[best], 4, "°C")
@@ -287,7 +290,7 @@ def ev_totals(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N
 def _ranking(a: str, b: str, settings: Mapping[str, object]) -> ExactComparison:
     t1 = corrected_table1() if settings.get("data") == "corrected" else data.YANG2012_TABLE1.values
     t = table1_totals(t1, float(settings.get("alpha", _ALPHA)), settings.get("guard") == "mean",  # type: ignore[arg-type]
-                      str(settings.get("rule", "averages")))
+                      _setting(settings, "rule", "averages", ("averages", "sums")))
     if settings.get("total") == "printed":
         t["support_degree"] = float(data.YANG2012_TOTALS.columns["reliability"][0])
     names = {"optimal_fusion_set": "optimal set", "mean": "mean", "support_degree": "support degree", "median": "median"}

@@ -268,7 +268,7 @@ def table1_totals(t1: ArrayLike, alpha: float = 0.25, guard: bool = False, rule:
     alpha = scalar(alpha, "alpha", lo=0.0, lo_open=True)
     guard = flag(guard, "guard")
     truth = data.YANG2012_TRUE_VALUE
-    one_of(rule, ("averages", "sums"), "rule")
+    rule = one_of(rule, ("averages", "sums"), "rule")
     ofs = (rd.fuse_epochs(x, "optimal_fusion_set", threshold="sum") if rule == "sums"
            else rd.fuse_epochs(x, "optimal_fusion_set"))
     vals = {"optimal_fusion_set": ofs.values, "mean": x.mean(axis=1), "median": np.median(x, axis=1),

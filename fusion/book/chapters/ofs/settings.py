@@ -75,6 +75,19 @@ def _noise(settings: Mapping[str, object]) -> str:
     return _noise_key(settings.get("noise", "unequal"), "settings['noise']")
 
 
+def _setting(settings: Mapping[str, object], key: str, default: str, allowed: tuple[str, ...]) -> str:
+    """The text option ``settings[key]`` (``default`` when absent), one of ``allowed``, as the plain ``str`` its check
+    returns (rule 19 of ``fusion._validation``; never ``str()`` of the caller's object: fuzz 32b C1, a ``(str, Enum)``
+    member prints as ``K.M``); TypeError/ValueError naming ``settings[key]``."""
+    return one_of(settings.get(key, default), allowed, f"settings['{key}']")
+
+
+def _failure(settings: Mapping[str, object]) -> str:
+    """The failure reading of a record's settings (``settings['failure']``, default ``"fixed"``), one of
+    :data:`fusion.scenarios.thermocouples.FAILURE_MODES`, by :func:`_setting`."""
+    return _setting(settings, "failure", "fixed", tuple(thermocouples.FAILURE_MODES))
+
+
 def _case(settings: Mapping[str, object]) -> FailureCase:
     """The case a reading names by its label (``settings['case']``, default no failure): the claim files keep the text."""
     by_label = {METHOD_LABELS[c]: c for c in FailureCase}

@@ -96,7 +96,7 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", 
     seed = check_seed(seed)
     runs = _runs(runs)
     failure = one_of(failure, thermocouples.FAILURE_MODES, "failure")
-    return _study(seed, runs, _noise_key(noise), str(failure), flag(include_self, "include_self"))
+    return _study(seed, runs, _noise_key(noise), failure, flag(include_self, "include_self"))
 
 
 @study_cache(maxsize=16)

@@ -14,7 +14,7 @@ from fusion._counts import sequence
 from fusion._shown import shown
 from fusion._validation import instance_of, text
 from fusion.book.ledger import Comparison, Ledger, Unverifiable
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glue_prefix
 from fusion.book.tables import rounded
 from fusion.book.chapters.ofs.settings import SOURCE
 
@@ -86,11 +86,12 @@ def ledger_numbers(ledger: Ledger, prefix: str = "ofs_",
         ``ledger`` not a :class:`~fusion.book.ledger.Ledger`, ``prefix`` not a string, ``fields`` not a mapping of
         sequences of strings.
     ValueError
-        ``ledger`` of another source than the chapter's (``ledger.source`` not :data:`SOURCE`), or ``fields``
-        naming a record not in the ledger or a number the ledger does not give.
+        ``ledger`` of another source than the chapter's (``ledger.source`` not :data:`SOURCE`), ``prefix`` not a glue
+        key prefix (letters, digits and underscores), or ``fields`` naming a record not in the ledger or a number
+        the ledger does not give.
     """
     _chapter_ledger(ledger)
-    text(prefix, "prefix")
+    prefix = _glue_prefix(text(prefix, "prefix"), "prefix")  # its plain text (rule 19), keeping keys identifiers
     if fields is not None:
         instance_of(fields, Mapping, "fields")
         fields = {rid: [text(f, f"fields[{shown(rid)}][{i}]")
@@ -142,11 +143,12 @@ def comparison_numbers(comparison: Comparison, key: str,
         ``comparison`` not a :class:`~fusion.book.ledger.Comparison` (a proposition or an exact comparison has no
         paired runs), ``key`` not a string, ``fields`` not a sequence of strings.
     ValueError
-        A field not among the suffixes above, or a kept number not finite (a run with an infinite error makes a
+        ``key`` not a glue key prefix (``<key>_a`` not an identifier: letters, digits and underscores), a field not
+        among the suffixes above, or a kept number not finite (a run with an infinite error makes a
         mean infinite: it cannot be printed), naming ``comparison``.
     """
     instance_of(comparison, Comparison, "comparison")
-    text(key, "key")
+    key = _glue_prefix(text(key, "key"), "key")  # the rule of every glue-key prefix (fuzz 32b D1: "k\n" was glued)
     want = list(_COMPARISON_FIELDS) if fields is None else [text(f, f"fields[{i}]")
                                                            for i, f in enumerate(sequence(fields, "fields"))]
     unknown = [f for f in want if f not in _COMPARISON_FIELDS]

@@ -116,7 +116,7 @@ def figs23_fits(a: float, end: float, direction: str = "fast onto slow") -> dict
     from fusion.registration import least_squares, two_point
     from fusion._validation import as_array, grid_points, one_of, scalar
 
-    one_of(direction, tuple(_FIGS23_MIN_END), "direction")
+    direction = one_of(direction, tuple(_FIGS23_MIN_END), "direction")
     # the floats the reader returns (fuzz 22b, FR6-7: a Decimal was used raw)
     a, end = scalar(a, "a"), scalar(end, "end", lo=_FIGS23_MIN_END[direction], lo_open=True)
     grid_points(end - 1.0, 2.0, "end")  # sensor 1's samples, counted before they are allocated

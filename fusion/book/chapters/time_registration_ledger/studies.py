@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 
 from fusion._counts import general
 from fusion._frozen import constant
-from fusion._results import ResultSpec, array, dict_of, instance, number, validated_post_init
+from fusion._results import ResultSpec, array, dict_of, instance, number, real_key, validated_post_init
 from fusion._shown import shown
 from fusion.book.study_cache import study_cache
 from fusion.book.chapters.time_registration import _least_squares_windows, _record_times, _scenario_instants
@@ -131,8 +131,9 @@ class RegistrationStudy:
         {"t1": array("samples"), "t2": array("instants"), "sigma": number(positive=True),
          **{name: instance(sc.MonteCarlo) for name in ("mc", "s3_period", "realtime", "stress_tuned", "cv_integer")},
          # the evidence keys their readings by f"{s:g}" (_key): two levels printing alike would share one (fuzz 30b)
-         **{name: dict_of(instance(sc.MonteCarlo), key=(float, int, np.number), printed=general)
-            for name in ("sweep", "s3_fair")},
+         # noise levels σ > 0, as the study's sigma (fuzz 32b D2: NaN, inf, -1 were accepted)
+         **{name: dict_of(instance(sc.MonteCarlo), key=(float, int, np.number), printed=general,
+                          check_key=real_key(0.0, lo_open=True)) for name in ("sweep", "s3_fair")},
          **{name: dict_of(instance(sc.MonteCarlo)) for name in ("stress", "robust", "s3", "s3_pc")},
          "fusion": instance(sc.FusionRuns, optional=True)},
         relations=(lambda v, cls: _robust_relation(v, cls),))
