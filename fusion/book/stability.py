@@ -51,6 +51,9 @@ from fusion.book.ledger import Comparison, Conjunction, Evidence, ledger_dir
 from fusion._shown import shown
 from fusion._paths import folder
 
+#: The command line's description (the docstring's first line; kept here, as ``python -OO`` strips docstrings).
+_DESCRIPTION = "Verdicts that survive reseeding: every stochastic record re-derived under fresh seeds, on Dask."
+
 __all__ = ["ROOT_SEED", "RESEEDS", "RUNS_FACTOR", "RETRIES", "Task", "TaskResult", "stochastic_readings", "seeds",
            "tasks", "run_task", "run_batch", "batches", "summarise", "sweep", "main", "STABILITY_FILE"]
 
@@ -602,7 +605,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     int
         0 when every task ran; 1 when a task failed (named on stderr and in the file).
     """
-    p = argparse.ArgumentParser(prog="python -m fusion.book.stability", description=__doc__.splitlines()[0])
+    p = argparse.ArgumentParser(prog="python -m fusion.book.stability", description=_DESCRIPTION)
     p.add_argument("--scheduler", help="address of an existing Dask scheduler (default: a LocalCluster here)")
     p.add_argument("--workers", type=int, default=2, help="local workers (default 2)")
     p.add_argument("--reseeds", type=int, default=RESEEDS, help=f"K, fresh seeds per reading (default {RESEEDS})")

@@ -49,6 +49,7 @@ import io
 import json
 import os
 import pickle
+import sys
 import tempfile
 import threading
 import time
@@ -113,22 +114,50 @@ def _source_digest(package: Path) -> str:
     return h.hexdigest()
 
 
-def _canonical(value: Any, _open: frozenset[int] = frozenset()) -> Any:
+def _type_name(kind: type, _unnamed: dict[int, type] | None = None) -> str:
+    """The name that determines ``kind`` in a key: a builtin's short name, else its module and qualified name.
+
+    A class that its module's namespace does not hold under that name (one made in a function, a second
+    ``namedtuple("P", ...)`` beside another ``P``) cannot be told apart from another of the same name by it (fuzz 33a C4:
+    two named tuples ``P`` shared a cached result, on disk too): TypeError (no canonical encoding; the call bypasses the
+    disk), or, with ``_unnamed`` (the in-process key), its name and ``id``, the class kept alive in ``_unnamed`` so
+    that its ``id`` is never reused.
+    """
+    if kind.__module__ == "builtins":
+        return kind.__qualname__
+    name = f"{kind.__module__}.{kind.__qualname__}"
+    found: Any = sys.modules.get(kind.__module__)
+    for part in kind.__qualname__.split("."):
+        found = getattr(found, part, None)
+    if found is kind:
+        return name
+    if _unnamed is None:
+        raise TypeError(f"value: the class {name} is not found under that name in its module (the key cannot tell it "
+                        "apart from another class of that name)")
+    _unnamed.setdefault(id(kind), kind)
+    return f"{name}#{id(kind)}"
+
+
+def _canonical(value: Any, _open: frozenset[int] = frozenset(), _unnamed: dict[int, type] | None = None) -> Any:
     """A JSON-able encoding of ``value`` that determines it (type included), or TypeError.
 
     ``_open`` holds the ids of the containers being encoded around ``value``: a container that
-    contains itself has no finite encoding (TypeError, not a RecursionError).
+    contains itself has no finite encoding (TypeError, not a RecursionError). Every class is named by
+    ``_type_name`` (``_unnamed``: see there).
     """
+    def name(v: Any) -> str:
+        return _type_name(type(v), _unnamed)
+
     if value is None or isinstance(value, (bool, str)):
-        return [type(value).__name__, value]
+        return [name(value), value]
     if isinstance(value, enum.Enum):
-        return ["enum", f"{type(value).__module__}.{type(value).__qualname__}", _canonical(value.value, _open)]
+        return ["enum", name(value), _canonical(value.value, _open, _unnamed)]
     if isinstance(value, (int, np.integer)):
-        return [f"{type(value).__module__}.{type(value).__qualname__}", int(value)]
+        return [name(value), int(value)]
     if isinstance(value, np.floating) and np.finfo(value.dtype).nmant > 52:   # longdouble: its own digits
-        return [f"{type(value).__module__}.{type(value).__qualname__}", np.format_float_scientific(value, unique=True)]
+        return [name(value), np.format_float_scientific(value, unique=True)]
     if isinstance(value, (float, np.floating)):
-        return [f"{type(value).__module__}.{type(value).__qualname__}", float(value).hex()]
+        return [name(value), float(value).hex()]
     if isinstance(value, bytes):
         return ["bytes", value.hex()]
     if isinstance(value, (tuple, list, frozenset, dict, ReadOnlyMapping)) or (dataclasses.is_dataclass(value)
@@ -138,21 +167,21 @@ def _canonical(value: Any, _open: frozenset[int] = frozenset()) -> Any:
                             "for the study cache)")
         _open = _open | {id(value)}
     if isinstance(value, (tuple, list)):
-        return [type(value).__name__, [_canonical(v, _open) for v in value]]
+        return [name(value), [_canonical(v, _open, _unnamed) for v in value]]
     if isinstance(value, frozenset):
-        return ["frozenset", sorted(json.dumps(_canonical(v, _open)) for v in value)]
+        return ["frozenset", sorted(json.dumps(_canonical(v, _open, _unnamed)) for v in value)]
     if isinstance(value, (dict, ReadOnlyMapping)):   # a frozen result's mapping field (fusion._frozen)
-        return [type(value).__name__, [[_canonical(k, _open), _canonical(v, _open)] for k, v in value.items()]]
+        return [name(value), [[_canonical(k, _open, _unnamed), _canonical(v, _open, _unnamed)] for k, v in value.items()]]
     if isinstance(value, np.ma.MaskedArray):   # its mask too: a masked array is not its data
-        return ["masked", _canonical(value.filled(0).view(np.ndarray), _open),
-                _canonical(np.ma.getmaskarray(value).view(np.ndarray), _open)]
+        return ["masked", _canonical(value.filled(0).view(np.ndarray), _open, _unnamed),
+                _canonical(np.ma.getmaskarray(value).view(np.ndarray), _open, _unnamed)]
     if isinstance(value, np.ndarray) and value.dtype.kind in "biufc":
         arr = np.ascontiguousarray(value)
-        kind = "ndarray" if type(value) is np.ndarray else f"{type(value).__module__}.{type(value).__qualname__}"
+        kind = "ndarray" if type(value) is np.ndarray else name(value)
         return [kind, arr.dtype.str, list(arr.shape), hashlib.sha256(arr.tobytes()).hexdigest()]
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return ["dataclass", f"{type(value).__module__}.{type(value).__qualname__}",
-                [[f.name, _canonical(getattr(value, f.name), _open)] for f in dataclasses.fields(value)]]
+        return ["dataclass", name(value),
+                [[f.name, _canonical(getattr(value, f.name), _open, _unnamed)] for f in dataclasses.fields(value)]]
     raise TypeError(f"value: {type(value).__qualname__} has no canonical encoding for the study cache")
 
 
@@ -180,7 +209,16 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
         argument has no canonical encoding (a container that contains itself, or one nested deeper than the
         interpreter's recursion limit, has none; then the call bypasses the disk).
     """
-    qualname = text(qualname, "qualname")
+    return _key(text(qualname, "qualname"), arguments, digest)
+
+
+#: The classes named by ``id`` in in-process keys (``_type_name``), kept alive so that no other class takes the ``id``.
+_UNNAMED: dict[int, type] = {}
+
+
+def _key(qualname: str, arguments: dict[str, Any], digest: str | None, unnamed: dict[int, type] | None = None) -> str:
+    """:func:`study_key`; with ``unnamed`` (an in-process key, never the disk's) a class not found under its name in
+    its module is named by its ``id`` (``_type_name``) instead of refused."""
     if not isinstance(arguments, dict):
         raise TypeError(f"arguments must be a dict, got {type(arguments).__name__}")
     encoded = []
@@ -188,7 +226,7 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
         if not isinstance(k, str):
             raise TypeError(f"arguments must have str keys (parameter names), got {type(k).__name__} {shown(k, 40)}")
         try:
-            encoded.append([k, _canonical(v)])
+            encoded.append([k, _canonical(v, _unnamed=unnamed)])
         except TypeError as exc:  # named by the argument it came from
             raise TypeError(f"arguments[{shown(k)}]: {str(exc).removeprefix('value: ')}") from None
         except RecursionError:   # nested deeper than the interpreter's stack: no encoding (the call bypasses the disk)
@@ -200,7 +238,7 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
     return hashlib.sha256(payload.encode()).hexdigest()
 
 
-#: Values with nothing in them that a caller can change (a numpy scalar included).
+#: Values with nothing in them that a caller can change (a numpy scalar included, except a ``np.void`` record: a view).
 _ATOMS = (type(None), bool, int, float, complex, str, bytes, range, enum.Enum, np.generic, type, Path)
 
 
@@ -214,6 +252,8 @@ def _frozen(value: Any, immutable: dict[int, Any], _open: frozenset[int] = froze
     Every immutable part found is recorded in ``immutable`` (id -> object): a per-caller copy shares them.
     A container that contains itself (``_open``: the ids of the containers around ``value``) is mutable.
     """
+    if isinstance(value, np.void):   # a structured array's record: a writable view (fuzz 33a C8), copied per caller
+        return False
     if isinstance(value, _ATOMS):
         return True
     if isinstance(value, np.ndarray):
@@ -306,16 +346,37 @@ def _stored(target: Path, key: str) -> tuple[Any] | None:
     return None
 
 
+#: The cache directories found usable in this process (``_usable``: tried once each).
+_USABLE: set[str] = set()
+
+
+def _usable(root: str) -> None:
+    """Create the directory ``root`` and a file in it once, or ValueError naming :data:`ENV` (fuzz 33a C6: a path
+    through a file or ``/proc/self`` gave an OS error from every cached call)."""
+    try:
+        Path(root).mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(dir=root, prefix=".probe.", suffix=".tmp")
+        os.close(fd)
+        os.remove(probe)
+    except OSError as exc:
+        raise ValueError(f"the environment variable {ENV} must name a directory in which files can be created, got "
+                         f"{shown(root)} ({type(exc).__name__}: {exc.strerror})") from None
+    _USABLE.add(root)
+
+
 def _environment() -> Path | None:
     """The cache directory :data:`ENV` names (None when unset or empty), after checking the environment before any
     work: ValueError naming the variable when :data:`ENV` holds only blanks or names something that is not a
-    directory, or (with a directory) :data:`LOG_ENV` names a directory or a file in a missing one (fuzz 32a D1: an OS error
+    directory or a directory in which no file can be created (tried once per process, ``_usable``), or (with a
+    directory) :data:`LOG_ENV` names a directory or a file in a missing one (fuzz 32a D1: an OS error
     named nothing, and came after the computation, whose result was lost)."""
     root, log = os.environ.get(ENV), os.environ.get(LOG_ENV)
     if root is not None and root and not root.strip():
         raise ValueError(f"the environment variable {ENV} holds only blanks: set it to a directory or unset it")
     if root and os.path.exists(root) and not os.path.isdir(root):
         raise ValueError(f"the environment variable {ENV} must name a directory, got the file {shown(root)}")
+    if root and root not in _USABLE:
+        _usable(root)
     if root and log and (os.path.isdir(log) or not os.path.isdir(os.path.dirname(os.path.abspath(log)))):
         raise ValueError(f"the environment variable {LOG_ENV} must name a file in an existing directory, got "
                          f"{shown(log)}")
@@ -450,7 +511,8 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
         ``maxsize`` is not an integer type or ``None`` (a float, a Fraction, a duration, a bool).
     ValueError
         ``maxsize`` is negative or beyond the ceiling of a count. A call of the wrapped function, before any work,
-        when the environment is misconfigured: :data:`ENV` holding only blanks or naming a file, or (with
+        when the environment is misconfigured: :data:`ENV` holding only blanks, naming a file, or naming a
+        directory that cannot be created or in which no file can be created (a path through a file), or (with
         :data:`ENV` set) :data:`LOG_ENV` naming a directory or a file in a missing directory; the message names
         the variable.
 
@@ -463,6 +525,12 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
     The arrays are made read-only in place: a function that returns (part of) an array argument freezes the
     caller's own array too (the cached result is that array; copying every result would cost each study a copy).
     A cached function should return arrays of its own, as the book's studies do.
+
+    A class is part of the key by its module and qualified name; a class its module does not hold under that name
+    (one made in a function, or a second ``namedtuple("P", ...)`` beside another ``P``) cannot be named on disk, so
+    a call with one is cached in the process only, keyed by that class's identity. A dataclass argument is keyed by
+    its type and fields, as its ``==`` compares it: state outside its fields (an attribute set in ``__post_init__``
+    or later) is not part of the key, so a study must not read such state of its arguments.
     """
     if maxsize is not None:
         maxsize = count(maxsize, "maxsize", minimum=0)
@@ -483,9 +551,12 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
             bound.apply_defaults()
             arguments = dict(bound.arguments)
             try:
-                key = study_key(qualname, arguments)
+                key, on_disk = study_key(qualname, arguments), True
             except TypeError:
-                return by_equality(*args, **kwargs)
+                try:   # a class the disk's key cannot name (fuzz 33a C4): keyed in the process by its id
+                    key, on_disk = _key(qualname, arguments, None, _UNNAMED), False
+                except TypeError:
+                    return by_equality(*args, **kwargs)
             # keyed by the canonical encoding, as on disk: 1, 1.0, True and Fraction(1), or 0.0 and -0.0, are different
             # calls (an equality-keyed cache gave a cached result to an argument the function refuses, fuzz 15)
             with lock:
@@ -494,7 +565,8 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
                     stats["hits"] += 1
                     return memo[key].get()
                 stats["misses"] += 1
-            root = _environment()
+            root = _environment()             # checked before any work, also for a call kept in the process
+            root = root if on_disk else None
             result = _Shared(_through_disk(root, key, qualname, arguments, lambda: fn(*args, **kwargs)) if root
                              else fn(*args, **kwargs))
             if maxsize == 0:

@@ -1,0 +1,104 @@
+"""Fuzz 33a (issue 35), the cases of fixer 33a2: the study cache's key and sharing rules (C4, C8, D2), its
+environment check (C6), method labels (C5), chapter 07's spline budget (C9) and ``python -OO`` (D1)."""
+
+from __future__ import annotations
+
+import collections
+import dataclasses
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from fusion.book import study_cache as sc
+
+_P = collections.namedtuple("_P", "x y")
+
+
+class _Other:
+    _P = collections.namedtuple("_P", "y x")   # the same class name, the fields the other way round
+
+
+def _fresh(fn):
+    """A study_cache-wrapped ``fn`` with an empty cache, without the disk (``ENV`` unset)."""
+    return sc.study_cache(8)(fn)
+
+
+def test_same_named_tuple_classes_get_their_own_results(monkeypatch: pytest.MonkeyPatch, tmp_path) -> None:
+    # C4: the key named a tuple's class by its short name: two named tuples "_P" shared one result, on disk too
+    for env in (None, str(tmp_path)):
+        if env is None:
+            monkeypatch.delenv(sc.ENV, raising=False)
+        else:
+            monkeypatch.setenv(sc.ENV, env)
+        first = _fresh(lambda p: p.x)
+        assert first(_P(1, 2)) == 1
+        assert first(_Other._P(1, 2)) == 2
+        inner = _fresh(lambda t: t[0].x)
+        assert inner((_P(1, 2),)) == 1 and inner((_Other._P(1, 2),)) == 2
+    local = collections.namedtuple("_P", "y x")    # not found under its name in this module: kept in the process
+    monkeypatch.setenv(sc.ENV, str(tmp_path))
+    inner = _fresh(lambda t: t[0].x)
+    assert inner((_P(1, 2),)) == 1 and inner((local(1, 2),)) == 2 and inner((local(1, 2),)) == 2
+    for other in (local, _Other._P):      # a named tuple's qualified name is its typename: both look like _P
+        with pytest.raises(TypeError, match="not found under that name"):
+            sc.study_key("m.f", {"p": (other(1, 2),)}, digest="d")
+    assert sc.study_key("m.f", {"p": _P(1, 2)}, digest="d") == sc.study_key("m.f", {"p": _P(1, 2)}, digest="d")
+
+
+def test_a_structured_record_is_not_shared() -> None:
+    # C8: a np.void taken from a structured array is a writable view: shared, one caller's edit reached the next
+    def record(n):
+        a = np.zeros(3, dtype=[("x", float), ("y", float)])
+        a["x"] = n
+        return a[0]
+
+    for cached in (sc.study_cache(4)(record), sc.process_cache(4)(lambda n: (record(n), n))):
+        got = cached(1)
+        (got if isinstance(got, np.void) else got[0])["x"] = 99.0
+        again = cached(1)
+        assert float((again if isinstance(again, np.void) else again[0])["x"]) == 1.0
+
+
+@dataclasses.dataclass(frozen=True)
+class _Scaled:
+    value: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "scale", 2.0)
+
+
+def test_a_dataclass_is_keyed_by_its_fields_only() -> None:
+    # D2 (decided, documented in study_cache's Notes): the key is the dataclass's fields, as its == compares
+    assert "outside its fields" in sc.study_cache.__doc__
+    calls = []
+    cached = _fresh(lambda s: calls.append(1) or s.value * s.scale)
+    a, b = _Scaled(1.0), _Scaled(1.0)
+    object.__setattr__(b, "scale", 3.0)
+    assert a == b and cached(a) == 2.0 and cached(b) == 2.0 and len(calls) == 1
+
+
+@pytest.mark.parametrize("where", ["file", "proc"])
+def test_an_unusable_cache_directory_is_named(where: str, monkeypatch: pytest.MonkeyPatch, tmp_path) -> None:
+    # C6: a path through a file, or a directory in which no file can be created, gave an OS error from every call
+    blocker = tmp_path / "f.txt"
+    blocker.write_text("x")
+    root = str(blocker / "sub") if where == "file" else "/proc/self"
+    monkeypatch.setenv(sc.ENV, root)
+    calls = []
+    with pytest.raises(ValueError, match=sc.ENV):
+        _fresh(lambda x: calls.append(x) or x)(3)
+    assert calls == []                       # refused before any work
+    monkeypatch.setenv(sc.ENV, str(tmp_path / "new" / "dir"))   # a missing directory is created
+    assert _fresh(lambda x: x * x)(3) == 9
+
+
+def test_stability_main_runs_without_docstrings() -> None:
+    # D1: python -OO strips docstrings; main(["--help"]) read the module's docstring for its description
+    code = "from fusion.book import stability\ntry:\n    stability.main(['--help'])\nexcept SystemExit as e:\n    print('exit', e.code)"
+    out = subprocess.run([sys.executable, "-OO", "-c", code], capture_output=True, text=True, timeout=120,
+                         env={**os.environ, "PYTHONPATH": os.path.dirname(os.path.dirname(os.path.abspath(__file__)))})
+    assert out.stdout.strip().endswith("exit 0"), out.stderr[-400:]
+
