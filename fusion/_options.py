@@ -213,6 +213,20 @@ def texts(value: object, name: str) -> tuple[str, ...]:
     return tuple(text(v, f"{name}[{i}]") for i, v in enumerate(value))
 
 
+def text_key(key: object, name: str) -> str:
+    """A key of the mapping argument ``name`` that labels a result (a method's label, a rule's name) as its plain
+    ``str`` (rule 19, :func:`text`): one rule for every such label (fuzz 33a C5: an int, ``None`` or NaN label was
+    kept as given, or refused naming the result's field).
+
+    Raises
+    ------
+    TypeError
+        ``key`` is not a string, or a ``str`` subclass whose own comparison disagrees with its text, naming
+        ``name``'s keys.
+    """
+    return text(key, f"{name} keys")
+
+
 def text_fields(obj: object, *names: str, among: tuple[str, ...] | None = None) -> None:
     """Store in each field ``names`` of the frozen dataclass ``obj`` the plain ``str`` its text reads as (rule 19,
     :func:`text`; :func:`one_of` when the text must be ``among`` given options): a record keeps, compares and prints

@@ -102,3 +102,33 @@ def test_stability_main_runs_without_docstrings() -> None:
                          env={**os.environ, "PYTHONPATH": os.path.dirname(os.path.dirname(os.path.abspath(__file__)))})
     assert out.stdout.strip().endswith("exit 0"), out.stderr[-400:]
 
+
+# --------------------------------------------------------------------------- C5: labels that key a result are text
+_NOT_TEXT = [1, None, float("nan"), b"mean", ("mean",), 1.5]
+
+
+@pytest.mark.parametrize("label", _NOT_TEXT, ids=repr)
+def test_a_method_label_must_be_text(label: object) -> None:
+    from fusion.scenarios import thermocouples as tc
+    z = np.full((2, 3), 900.0)
+    with pytest.raises(TypeError, match=r"^methods keys must be a string"):
+        tc.absolute_errors(z, {label: {"method": "mean"}})
+    with pytest.raises(TypeError, match=r"^methods keys must be a string"):
+        tc.monte_carlo(1, 1, {"mean": {"method": "mean"}, label: {"method": "mean"}}, n_samples=2)
+
+
+def test_paired_study_names_methods_not_its_result_field() -> None:
+    from fusion.scenarios import thermocouples as tc
+    methods = {1: {"method": "optimal_fusion_set"}, "mean": {"method": "mean"}}
+    with pytest.raises(TypeError, match=r"^methods keys must be a string"):
+        tc.paired_study(1, 2, methods, n_samples=90)
+
+
+def test_late_means_keys_are_text() -> None:
+    from fusion.scenarios import infrared_radar as ir
+    t, r = np.arange(4.0), np.ones((4, 4))
+    for label in _NOT_TEXT:
+        with pytest.raises(TypeError, match=r"^rmse keys must be a string"):
+            ir.late_means({label: r}, t)
+    got = ir.late_means({np.str_("kf"): r, next(iter(ir.IrMethod)): r}, t)
+    assert all(type(k) is str for k in got) and got["kf"][ir.X_M] == 1.0

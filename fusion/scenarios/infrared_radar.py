@@ -40,6 +40,7 @@ from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of
 from fusion._counts import input_allocation
 from fusion._validation import LOOP_STEP, loop_work
 from fusion._validation import flag, text
+from fusion._options import text_key
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.filtering.kalman import cv_model
 from fusion._shown import shown
@@ -581,6 +582,7 @@ def late_means(rmse: dict[str, FloatArray], t: ArrayLike, t_min: float = 2.0) ->
     t_min = scalar(t_min, "t_min")
     checked = {}  # the arrays the checks return are what the means read (fuzz 31a C2: a DataFrame, a list of lists)
     for name, r in rmse.items():
+        name = text_key(name, "rmse")   # a method's label keys the result: its text (fuzz 33a C5)
         checked[name] = a = as_array(r, f"rmse[{shown(name)}]", shape=(None, 4))
         if len(a) != tt.size:
             raise ValueError(f"rmse[{shown(name)}] must have one row per scan time in t ({tt.size}), got {len(a)}")

@@ -24,7 +24,8 @@ from fusion._validation import allocation, record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
 from fusion.readings.fusion_set import METHODS as _METHODS, _check_options, fuse_epochs
-from fusion._validation import text as text_of, within
+from fusion._validation import within
+from fusion._options import text_key
 from fusion._shown import shown
 from fusion._nesting import ndim_of
 
@@ -226,12 +227,12 @@ def _check_methods(methods: object) -> dict[str, dict[str, object]]:
         raise TypeError(f"methods must be a dict label -> options, got {type(methods).__name__}")
     out: dict[str, dict[str, object]] = {}
     for label, spec in methods.items():
+        key = text_key(label, "methods")   # a text label (fuzz 33a C5), refused by the caller's argument
         if not isinstance(spec, Mapping):
             raise TypeError(f"methods[{shown(label)}] must be a dict of options, got {type(spec).__name__}")
         if not isinstance(spec.get("method"), str):
             raise ValueError(f"methods[{shown(label)}] must name its method as a string under the key 'method', got {shown(spec)}")
         with within(f"methods[{shown(label)}]"):
-            key = text_of(label, "label") if isinstance(label, str) else label
             options = dict(spec)
             name = one_of(options.pop("method"), tuple(_METHODS), "method")
             out[key] = {"method": name, **_check_options(name, options)}
@@ -248,7 +249,7 @@ def absolute_errors(
     z : array_like, shape (..., n_sensors)
         Readings; all leading axes are epochs.
     methods : dict
-        Label -> ``{"method": name, **options}`` for :func:`fusion.readings.fusion_set.fuse_epochs`.
+        Text label -> ``{"method": name, **options}`` for :func:`fusion.readings.fusion_set.fuse_epochs`.
     truth : float
         True value, °C.
 
@@ -489,7 +490,7 @@ def paired_study(
     n_runs : int
         Number of independent runs (>= 1).
     methods : dict
-        Label -> ``{"method": name, **options}``; must contain ``"optimal_fusion_set"``
+        Text label -> ``{"method": name, **options}``; must contain ``"optimal_fusion_set"``
         only if :attr:`PairedStudy.set_size` is to be meaningful (else it is NaN).
     sigma, n_samples, truth, n_sensors
         As in :func:`simulate`.
