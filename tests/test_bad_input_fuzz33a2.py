@@ -132,3 +132,25 @@ def test_late_means_keys_are_text() -> None:
             ir.late_means({label: r}, t)
     got = ir.late_means({np.str_("kf"): r, next(iter(ir.IrMethod)): r}, t)
     assert all(type(k) is str for k in got) and got["kf"][ir.X_M] == 1.0
+
+
+# --------------------------------------------------------------------------- C9: the spline's registration cost
+def test_the_cubic_spline_is_weighed_by_its_cost() -> None:
+    # the largest accepted spline Monte Carlo (22,664 samples) ran 27-46 CPU-s; it weighs 5 units per sample and
+    # instant now (42-50 ns measured): 10,899 samples, 8.8 CPU-s, is the largest accepted
+    from fusion.scenarios import time_registration as tr
+    n = 10_900
+    t_src = np.arange(n) * 0.05 + 1.0
+    t_dst = np.arange(n // 2) * 0.1 + 1.03
+    t_dst = t_dst[t_dst < t_src[-1]]
+    with pytest.raises(ValueError, match="work budget"):      # the budget alone first: the old one let it run
+        tr._monte_carlo_work(["reg_cubic_spline"], 2, n, t_dst.size, "runs", "t_src")
+    tr._monte_carlo_work(["reg_two_point"], 2, n, t_dst.size, "runs", "t_src")   # a one-weight method: accepted
+    with pytest.raises(ValueError, match=r"t_src and t_dst ask for .* beyond the work budget"):
+        tr.monte_carlo(["reg_cubic_spline"], 2.0, 2, 1, t_src=t_src, t_dst=t_dst)
+    n = 15_000
+    t_src, t_dst = np.arange(n) * 0.05 + 1.0, np.arange(n // 2) * 0.1 + 1.03
+    for call in (lambda: tr.expected("reg_cubic_spline", 2.0, t_src=t_src, t_dst=t_dst),
+                 lambda: tr.mse_coefficients("reg_cubic_spline", 1.0, t_src=t_src, t_dst=t_dst)):
+        with pytest.raises(ValueError, match="work budget"):
+            call()

@@ -10,7 +10,8 @@ at a few sizes each (fuzz 30b D2: ``transient_table(1100, 1)`` was accepted and 
   16.5 ns per unit at ``LOOP_STEP``, 17 us a step);
 * a least-squares fit per instant: its own inner budget (``10 * LOOP_STEP + 4 * n_src``,
   ``fusion.registration.methods.least_squares``), which counts it above its cost (1 to 1.4 ns per unit);
-* a vectorised method's registration: ``n_src + n_dst``;
+* a vectorised method's registration: ``n_src + n_dst``, times its :data:`REGISTRATION_WEIGHT` (the cubic spline
+  solves for the whole record: 42-50 ns per unit in its weight matrix at 6,000-22,664 samples, fuzz 33a C9);
 * a Monte-Carlo run over one sample or instant: :data:`RUN_WEIGHT` by method (a fixed-weight method 9-10 ns, a
   Kalman method 40-105 ns, the fixed-lag smoother about 200 ns), 1 for runs through each method's weight matrix;
   a Kalman method's filter pass over the samples and instants, all runs at once: :data:`KALMAN_STEP` a step.
@@ -34,6 +35,11 @@ KALMAN_STEP = 2 * LOOP_STEP
 RUN_WEIGHT: dict[str, int] = {"reg_kalman_predict": 10, "reg_kalman_two_point": 10, "reg_improved": 10,
                               "reg_causal_improved": 10, "reg_rts_smoother": 10, "reg_fixed_lag": 20}
 
+#: Units of one vectorised registration per sample and instant (``n_src + n_dst``), by method; a method not listed
+#: weighs 1 (9-22 ns measured in a weight matrix). The cubic spline solves for the whole record each time: 42 ns
+#: at 6,000 and 12,000 samples, 34-50 ns at 22,664 (fuzz 33a C9: its largest accepted Monte Carlo ran 27-46 CPU-s).
+REGISTRATION_WEIGHT: dict[str, int] = {"reg_cubic_spline": 5}
+
 
 def _registration_work(names: Sequence[str], n_src: int, n_dst: int, calls: int, what: str) -> int:
     """Refuse (rule 17, :func:`fusion._limits.work`), naming the caller's ``what``, ``calls`` registrations of
@@ -43,14 +49,15 @@ def _registration_work(names: Sequence[str], n_src: int, n_dst: int, calls: int,
     list of levels or periods; fuzz 28b C4-C7, D3). A registration weighs ``10 * LOOP_STEP`` (a call of
     ``register``, ~100 us here), plus per instant least squares' own step (``10 * LOOP_STEP + 4 * n_src``,
     :func:`fusion.registration.methods.least_squares`) for a method that fits each instant (``_PER_INSTANT``),
-    :data:`KALMAN_STEP` per filter step (sample or instant) for a Kalman method, ``n_src + n_dst`` for a vectorised
-    one: at least each inner budget of the call, so that an inner name is never the refusal's (about 10 ns per
-    unit or less, the module's table).
+    :data:`KALMAN_STEP` per filter step (sample or instant) for a Kalman method, ``n_src + n_dst`` times its
+    :data:`REGISTRATION_WEIGHT` for a vectorised one: at least each inner budget of the call, so that an inner
+    name is never the refusal's (about 10 ns per unit or less, the module's table).
     """
     from fusion.scenarios import time_registration as sc
 
     one = sum(10 * LOOP_STEP + (n_dst * (10 * LOOP_STEP + 4 * n_src) if n in sc._PER_INSTANT else
-                                (n_src + n_dst) * KALMAN_STEP if n in sc._KALMAN else n_src + n_dst) for n in names)
+                                (n_src + n_dst) * KALMAN_STEP if n in sc._KALMAN else
+                                (n_src + n_dst) * REGISTRATION_WEIGHT.get(n, 1)) for n in names)
     return work((int(calls), int(one)), what)
 
 
