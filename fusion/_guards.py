@@ -246,15 +246,20 @@ def value_copy(v: object) -> object:
 _STABLE = (np.ndarray, list, tuple, int, float, complex, np.generic, str, bytes, bytearray, type(None), _Mapping)
 
 
-def _materialised(x: _Sequence, depth: int = 0) -> list:
+def _materialised(x: _Sequence, budget: list[int], depth: int = 0) -> list:
     """A sequence argument (not a list, tuple, array or text) as the list of its entries, read in one pass; its
     entries that are such sequences too, likewise (down to ``fusion._nesting.MAX_NESTING`` levels; deeper ones are
-    left to the checks, which refuse them by name)."""
+    left to the checks, which refuse them by name). ``budget`` (a one-entry list) is the number of entries that may
+    still be read: a nested sequence longer than what is left is not read (fuzz 33a C1: ``deque([range(10**7)] * 5)``),
+    and the input budget then refuses the whole by its lengths (``fusion._validation.input_size``)."""
     out = list(x)
-    if depth < 64:
-        for i, v in enumerate(out):
-            if isinstance(v, _Sequence) and not isinstance(v, _STABLE) and not _array_like(v):
-                out[i] = _materialised(v, depth + 1)
+    for i, v in enumerate(out):
+        if depth < 64 and isinstance(v, _Sequence) and not isinstance(v, _STABLE) and not _array_like(v):
+            if len(v) > budget[0]:  # beyond the budget with the entries read so far: left unread, refused by length
+                break
+            out[i] = _materialised(v, budget, depth + 1)
+        else:
+            budget[0] -= 1
     return out
 
 
@@ -348,7 +353,7 @@ def read_once(x: object, name: str) -> object:
         if not array_like:  # a sequence without numpy's protocols (a range, a deque, a Sequence class): its entries
             n = len(x)      # read in one pass, as the list they make (fuzz 31a C4)
             if n <= MAX_INPUT_ELEMENTS:
-                return _materialised(x)
+                out = _materialised(x, [MAX_INPUT_ELEMENTS])
         else:
             return np.asarray(x)
     except MemoryError:
@@ -356,5 +361,8 @@ def read_once(x: object, name: str) -> object:
     except Exception as exc:  # noqa: BLE001 (rule 15: the argument's own exception, named and chained)
         raise TypeError(f"{name} could not be converted to an array: it raised {type(exc).__name__}: "
                         f"{str(exc):.200}") from exc
+    if n <= MAX_INPUT_ELEMENTS:
+        input_size(out, name)  # its nested lengths, now read (fuzz 33a C1)
+        return out
     raise ValueError(f"{name} has {n:.3g} entries, beyond the input budget (at most {MAX_INPUT_ELEMENTS:,}, "
                      "fusion._validation.MAX_INPUT_ELEMENTS)")

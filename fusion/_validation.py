@@ -70,7 +70,9 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
     (``raise ... from exc``), in the shared scalar, count and array conversions.
 16. *Numeric dtypes only*: an array whose dtype has no numeric kind (structured or void records,
     text, anything but integers, floats and object arrays of numbers) is refused with a
-    :class:`TypeError` naming the argument: a one-field ``f8`` structured array is not read as its field.
+    :class:`TypeError` naming the argument: a one-field ``f8`` structured array is not read as its field. So is an
+    entry of a list that numpy would read as a number it is not (fuzz 33a C2, C3, D4): a date or a duration (as
+    its count in its unit: ``[np.datetime64("2026-01-01"), 4.0]``) or ``None`` (as NaN; NaN itself is a float).
     A float32 or float16 input is its values; a tolerance on them (weights summing to one) is at
     least ``2 n`` times its own machine epsilon (:func:`input_eps`).
 17. *Work*: valid counts whose product is huge (runs x steps, problems x particles x iterations x
@@ -123,6 +125,7 @@ from fusion._limits import LOOP_STEP, MAX_INPUT_ELEMENTS, MAX_MAGNITUDE, MAX_WOR
 from fusion._limits import loop_work, work  # noqa: F401
 from fusion._shown import MAX_SHOWN, shown  # noqa: F401 (re-exported: the echo of a bad value)
 from fusion._nesting import MAX_NESTING, is_ragged, ndim_of, ragged_error, shape_of  # noqa: F401 (re-exported)
+from fusion._entries import _F64_EPS, given_dtype, input_eps, non_number_entry, sequence_entries  # noqa: F401
 from fusion._options import (  # noqa: F401 (re-exported: rules 6, 18, 19)
     _plain_text, _safe_repr, flag, keywords, one_of, options, template, text, text_fields, texts)
 
@@ -136,6 +139,8 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
     is refused (its mask would be dropped and the values under it used), and so are dates and durations (their
     conversion to numbers depends on a unit the function cannot know).
     """
+    if not isinstance(x, (list, tuple, range, str, bytes, bytearray, np.ndarray)) and isinstance(x, Sequence):
+        x = read_once(x, name)  # a deque or a user's Sequence class: read once into a list, counted (fuzz 33a C1)
     input_size(x, name)  # rule 9: before any copy or conversion
     not_masked(x, name)
     if isinstance(x, np.ndarray) and type(x) is not np.ndarray:  # np.matrix and other subclasses: their indexing
@@ -165,6 +170,10 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
             raise _complex_error(name)  # convert with a ComplexWarning, dropping the imaginary part
         if a.dtype.kind in "mM":
             raise TypeError(f"{name} must be numeric, got {a.dtype} (convert dates or durations to seconds first)")
+        odd = non_number_entry(a) if a.dtype.kind == "O" else None  # numpy reads a date as its count, None as NaN
+        if odd is not None:
+            raise TypeError(f"{name} must be numeric (array_like of numbers), got an entry that is {odd}"
+                            + (" (convert dates or durations to seconds first)" if odd != "None" else ""))
         if a.dtype.kind == "b" or (a.dtype.kind == "O" and _holds_bool(a)) or (a is not x and _holds_bool(x)):
             raise _bool_error(name)
         if a.dtype.kind not in _NUMERIC_KINDS:
@@ -211,8 +220,10 @@ def input_size(x: object, name: str) -> None:
 
     Reads only the ``shape`` of an array or an array-like object (a pandas object, anything with an integer
     tuple ``shape``): nothing is copied or converted, so that a zero-stride view of ``10**10`` entries or an
-    honest stack of ``10**8`` rows is refused at once. Lists and other objects without a shape are left to the
-    conversion (a list of that size could not have been built).
+    honest stack of ``10**8`` rows is refused at once. A sequence (a list, a tuple, a lazy ``range`` or ``deque``, a
+    user's Sequence class) is measured by the lengths of its nested sequences before it is built
+    (``fusion._entries.sequence_entries``, fuzz 33a C1: ``range(10**10)``, or ``[range(10**9)]``, costs nothing to
+    build but converts to 80 GB).
 
     Parameters
     ----------
@@ -226,6 +237,12 @@ def input_size(x: object, name: str) -> None:
     ValueError
         If its shape holds more than :data:`MAX_INPUT_ELEMENTS` entries, naming ``name``.
     """
+    n = sequence_entries(x, MAX_INPUT_ELEMENTS)
+    if n is not None and n > MAX_INPUT_ELEMENTS:  # a lazy range, or a list holding one, counted before it is built
+        many = f"more than {MAX_INPUT_ELEMENTS:,}" if n == float("inf") else f"{n:.3g}" if n == int(n) else \
+            f"at least {int(n):.3g}"
+        raise ValueError(f"{name} has {many} entries, beyond the input budget (at most {MAX_INPUT_ELEMENTS:,}, "
+                         "fusion._validation.MAX_INPUT_ELEMENTS; counted from the lengths of its sequences)")
     try:
         shape = x.shape if isinstance(x, np.ndarray) else getattr(type(x), "shape", None) and x.shape
     except Exception:  # noqa: BLE001 (an object whose shape raises: the conversion names it)
@@ -608,58 +625,6 @@ def tolerance(value: float, name: str) -> float:
 def unit_scalar(value: float, name: str) -> float:
     """Return ``value`` as a finite float in the closed interval [0, 1]."""
     return scalar(value, name, lo=0.0, hi=1.0)
-
-
-_F64_EPS = float(np.finfo(np.float64).eps)
-
-
-def given_dtype(x: object) -> np.dtype | None:
-    """The numpy dtype whose precision the caller's numbers ``x`` have: an array's (or Series') own dtype, a pandas
-    extension dtype's numpy one (``"Float32"``: float32); for a list or tuple, the least precise dtype among its
-    numpy float scalars (``[np.float32(0.1)] * 10``: float32, as ``np.asarray`` gives it; ``[np.float16(1/3), 1/3]``:
-    float16, although its array is float64: a number has its own dtype's precision and a list its least precise
-    entry's, fuzz 30a C6, D1, fuzz 31a C1), else the common dtype of its numpy scalars (integers), else None (Python
-    numbers only: float64). An entry that is neither a number nor a list gives None (the float64 rule). The entries
-    are not converted (no ``__float__`` is called: read once, fuzz 29a C5)."""
-    dtype = getattr(x, "dtype", None)
-    if isinstance(dtype, np.dtype):
-        return dtype
-    if isinstance(getattr(dtype, "numpy_dtype", None), np.dtype):  # pandas masked extension dtypes
-        return dtype.numpy_dtype
-    if not isinstance(x, (list, tuple)):
-        return None
-    kinds: set[np.dtype] = set()
-    python = False
-    stack = [x]
-    while stack:  # iterative: a deeply nested list is read without recursion
-        for v in stack.pop():
-            if isinstance(v, (list, tuple)):
-                stack.append(v)
-            elif isinstance(v, (np.floating, np.integer)):
-                kinds.add(v.dtype)
-            elif type(v) in (int, float):  # a Python number: float64's precision, which a numpy float may lower
-                python = True
-            else:  # anything else: the float64 rule
-                return None
-    floats = [k for k in kinds if k.kind == "f"]
-    if floats:  # the least precise float sets the precision of the whole (its entries' tolerance)
-        return max(floats, key=lambda k: float(np.finfo(k).eps))
-    return None if python or not kinds else np.result_type(*kinds)
-
-
-def input_eps(x: object) -> float:
-    """The relative precision of the caller's numbers: the machine epsilon of a floating numpy input's dtype
-    (``float16``: ``9.8e-4``, ``float32``: ``1.2e-7``), float64's (``2.2e-16``) for anything else.
-
-    The dtype is :func:`given_dtype`'s: the container does not decide, its numbers do (a list of ``np.float32``
-    scalars is float32, as its array is; a pandas ``"Float32"`` Series too). A tolerance on a property of the values
-    (a sum of weights equal to one) is at least ``n`` times this: weights that sum to one in float32
-    (``0.4f + 0.6f``) are accepted, rounded as the caller gave them.
-    """
-    dtype = given_dtype(x)
-    if dtype is not None and dtype.kind == "f" and dtype.itemsize < 8:
-        return float(np.finfo(dtype).eps)
-    return _F64_EPS
 
 
 #: The largest tolerance :func:`sums_to_one` allows a short float's ``2 n eps`` to reach (fuzz 27a F4): ten float16

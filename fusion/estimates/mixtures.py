@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
-from fusion._validation import axis_of, renormalised, sequence, sums_to_one, work
+from fusion._validation import axis_of, read_once, renormalised, sequence, sums_to_one, work
 from fusion._frozen import frozen_arrays, restore_frozen
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
@@ -106,16 +106,17 @@ class GaussianMixture:
     __setstate__ = restore_frozen  # copies and unpickled objects keep read-only arrays
 
     def __post_init__(self) -> None:
-        w = as_array(self.weights, "weights", ndim=1, subnormal=True)
+        given = read_once(self.weights, "weights")  # converted once: checked, and its dtype read (fuzz 33a C7)
+        w = as_array(given, "weights", ndim=1, subnormal=True)
         m = as_array(self.means, "means", ndim=2)
         c = as_array(self.covs, "covs", ndim=3, subnormal=True)
         if not (w.size == m.shape[0] == c.shape[0]):
             raise ValueError(f"inconsistent shapes: weights {w.shape}, means {m.shape}, covs {c.shape}")
         if c.shape[1:] != (m.shape[1], m.shape[1]):
             raise ValueError(f"covs must have shape (S, {m.shape[1]}, {m.shape[1]}), got {c.shape}")
-        if np.any(w < 0) or not sums_to_one(w, self.weights):   # within 1e-9, or float32 weights' precision
+        if np.any(w < 0) or not sums_to_one(w, given):   # within 1e-9, or float32 weights' precision
             raise ValueError("weights must be non-negative and sum to one")
-        w = renormalised(w, self.weights)  # float32/float16 weights: stored renormalised in float64, so that the
+        w = renormalised(w, given)  # float32/float16 weights: stored renormalised in float64, so that the
                                            # record rebuilds (dataclasses.replace)
         if not np.allclose(c, np.swapaxes(c, 1, 2)):
             raise ValueError("covs must be symmetric")

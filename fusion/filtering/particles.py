@@ -25,7 +25,7 @@ import numpy as np
 from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._validation import axis_of, renormalised, sums_to_one
+from fusion._validation import axis_of, read_once, renormalised, sums_to_one
 from fusion._frozen import frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
                                 positive_scalar, psd_factor, std_scalar, step_scalar)
@@ -192,6 +192,7 @@ def _normalised(weights: ArrayLike, name: str = "weights") -> FloatArray:
     """Finite, non-negative 1-D weights summing to one (within 1e-6, or 2 n times the machine epsilon of a float32 or
     float16 input: normalised in the caller's precision), float64 ones as given, short floats divided by their sum
     in float64 (``fusion._validation.renormalised``, fuzz 28a C3)."""
+    weights = read_once(weights, name)  # converted once: checked, and its dtype read (fuzz 33a C7)
     w = as_weights(weights, name)
     if not sums_to_one(w, weights, floor=1e-6):
         raise ValueError(f"{name} must be normalised (sum to one), got sum {shown(w.sum())}")
@@ -358,6 +359,7 @@ def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatAr
     * Kong, A., Liu, J. S., & Wong, W. H. (1994). Sequential imputations and Bayesian missing
       data problems. *Journal of the American Statistical Association*, 89(425), 278-288.
     """
+    weights = read_once(weights, "weights")  # converted once: checked, and its dtype read (fuzz 33a C7)
     w = as_array(weights, "weights", nonempty=False, subnormal=True)
     axis = axis_of(axis, "axis", w.shape, "weights")
     if w.ndim < 1 or w.shape[axis] == 0:

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
-from fusion._validation import argument_copy, renormalised, sums_to_one, text, tolerance
+from fusion._validation import argument_copy, read_once, renormalised, sums_to_one, text, tolerance
 from fusion._validation import _numeric, FloatArray, as_callable, count
 from fusion._objectives import finite_optimum, objective_values
 from fusion.optimise.result import OptimumResult
@@ -64,6 +64,7 @@ def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> Fl
     name = text(name, "name")  # the label of every message below (fuzz 24a U: never checked)
     if n is not None:
         n = count(n, "n")
+    eps = read_once(eps, name)  # converted once: checked, and its dtype read (fuzz 33a C7)
     return simplex_row(_numeric(eps, name), n, name, eps)
 
 
@@ -89,7 +90,8 @@ def simplex_row(e: FloatArray, n: int | None, name: str, given: object) -> Float
         As :func:`check_simplex`.
     """
     if e.ndim != 1 or e.size == 0 or (n is not None and e.size != n):
-        raise ValueError(f"{name} must be a 1-D vector of length {n}, got shape {e.shape}")
+        length = "at least one" if n is None else n  # fuzz 33a D3: never "of length None"
+        raise ValueError(f"{name} must be a 1-D vector of length {length}, got shape {e.shape}")
     # float32 or float16 weights: one in their own precision (the one simplex rule, fusion._validation.sums_to_one)
     if not np.all(np.isfinite(e)) or np.any(e < -1e-12) or not sums_to_one(e, given, floor=1e-8):
         raise ValueError(f"{name} must lie on the simplex (non-negative, summing to one), got {e}")

@@ -137,8 +137,9 @@ class PublishedValues:
     Parameters
     ----------
     published, ours : sequence of float, same length
-        ``ours`` may hold NaN where no value can be computed (counts as a mismatch). A value of ours exactly
-        halfway between two printed values matches either (R1's tie rule: 1.5 matches a published 1 and 2).
+        ``ours`` may hold NaN where no value can be computed (counts as a mismatch); ``None`` is not NaN but no
+        number, refused with a TypeError naming ``ours`` (fuzz 33a D4: numpy would read it as NaN). A value of ours
+        exactly halfway between two printed values matches either (R1's tie rule: 1.5 matches a published 1 and 2).
     decimals : int or sequence of int
         Printed number of decimals of each published value: integers from 0 to 17 (the ceiling of a
         number of decimals, ``fusion._validation.COUNT_CEILINGS``), one or one per value. A published value
@@ -165,7 +166,8 @@ class PublishedValues:
         one count nor one per value, or fewer than a published value's decimals, or more than its float32/float16
         dtype holds; an integer in ``published`` or ``ours`` that float64 cannot hold exactly; ``runs`` below 1.
     TypeError
-        ``published`` or ``ours`` not numbers; ``decimals`` not integers; ``unit`` not a str.
+        ``published`` or ``ours`` not numbers (``None``, a date or a duration entry included); ``decimals`` not
+        integers; ``unit`` not a str.
     """
 
     published: tuple[float, ...]
@@ -323,6 +325,7 @@ class Comparison:
                  claim: Literal["less", "greater", "equal"], metric: str, seed: int | None = None,
                  reason: str = "", margin: float | None = None, relative_margin: float | None = None,
                  conditions: tuple[str, str] = ("", ""), infinite_mean: Sequence[str] = ()) -> None:
+        a, b = read_once(a, "a"), read_once(b, "b")  # converted once: checked, and their dtype read (fuzz 33a C7)
         av, bv = R._paired_runs(a, b)  # the rulebook's one check of paired runs: 1-D, same length, finite or +inf
         a_name, b_name, metric, reason = (_text(v, name) for name, v in (  # plain str copies (rule 19)
             ("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)))

@@ -33,7 +33,7 @@ from fusion._timing import LapTimer
 from fusion._validation import MAX_MAGNITUDE, derived_inputs, read_once
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
                                 instance_of, one_of)
-from fusion._validation import flag, refuse_singular, renormalised, sums_to_one
+from fusion._validation import flag, read_once, refuse_singular, renormalised, sums_to_one
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
@@ -714,6 +714,7 @@ def fuse_mixtures_batch(
     optimiser = one_of(optimiser, ("pso", "slsqp", "newton", "none"), "optimiser")
     flag(keep_samples, "keep_samples")
     flag(timed, "timed")
+    weights = read_once(weights, "weights")  # converted once: checked, and its dtype read (fuzz 33a C7)
     w = as_array(weights, "weights", ndim=3, subnormal=True)
     m = as_array(means, "means", ndim=4)
     c = as_array(covs, "covs", ndim=5, subnormal=True)

@@ -1,0 +1,201 @@
+"""The entries of a caller's array argument, read before its conversion (issue 35, fuzz 33a C1, C3, C7).
+
+Split from ``fusion._validation`` (the house limit of 1000 lines), which re-exports :func:`given_dtype` and
+:func:`input_eps`. Three rules of the shared conversion read what the caller gave, entry by entry, without converting
+it:
+
+* how many entries it holds (:func:`sequence_entries`, rule 9's input budget): a lazy ``range`` of ``10**10`` entries,
+  or a list holding one, costs nothing to build but converts to 80 GB;
+* whether an object array holds a date, a duration or ``None`` (:func:`non_number_entry`, rule 16): numpy reads
+  ``np.datetime64("2026-01-01")`` as its count of days and ``None`` as NaN;
+* the dtype whose precision its numbers have (:func:`given_dtype`, rule 16's tolerances): a float32 buffer, or a list
+  of 0-d float32 arrays, is float32 numbers.
+"""
+
+from __future__ import annotations
+
+import array as _array
+import datetime as _dt
+from collections import deque
+from itertools import chain as _chain
+from collections.abc import Sequence
+
+import numpy as np
+
+from fusion._nesting import MAX_NESTING
+
+__all__: list[str] = []  # private module
+
+#: Scalar types that are numbers (the fast path of :func:`sequence_entries`: a flat list of them counts its length).
+_SCALARS = frozenset({int, float, np.float64, np.float32, np.float16, np.int64, np.int32, bool, np.bool_})
+
+#: Row types of a nested list (the second fast path of :func:`sequence_entries`).
+_ROWS = frozenset({list, tuple})
+
+
+def _shaped(v: object) -> int | None:
+    """The number of entries of an array or an object with an integer tuple ``shape``, else None."""
+    try:
+        shape = v.shape if isinstance(v, np.ndarray) else getattr(type(v), "shape", None) and v.shape
+    except Exception:  # noqa: BLE001 (an object whose shape raises: the conversion names it)
+        return None
+    if not isinstance(shape, tuple) or not all(isinstance(d, (int, np.integer)) and not isinstance(d, bool)
+                                               for d in shape):
+        return None
+    n = 1
+    for d in shape:
+        n *= max(int(d), 0)
+    return n
+
+
+def sequence_entries(x: object, limit: int) -> float | None:
+    """The number of entries the sequence ``x`` converts to, counted up to just beyond ``limit`` before any
+    conversion (rule 9, fuzz 33a C1), or None if ``x`` is not a sequence (text is not).
+
+    ``len()`` of each ``collections.abc.Sequence`` (a list, a tuple, a ``range``, a ``deque``, a user's Sequence
+    class), and of the entries of a list, tuple or deque that are sequences too, recursively (down to
+    ``fusion._nesting.MAX_NESTING`` levels: deeper or self-containing ones are left to the conversion, which refuses
+    them by name); an entry with a ``shape`` counts its entries, anything else one. The count stops as soon as it
+    passes ``limit`` (its cost is at most about ``limit`` type checks, made in C for a flat list of numbers), the
+    count then ending in ``.5`` (at least its integer part), and a length beyond ``sys.maxsize``
+    (``range(10**20)``) counts as infinity. Only the entries of the built-in
+    containers are read here (their iteration runs no caller code); a user's Sequence class counts its length (at
+    least one entry each): the shared conversion reads it once into a list (``fusion._guards.read_once``), which is
+    then counted in full.
+    """
+    if isinstance(x, np.ndarray):
+        return None
+    if type(x) in _ROWS and set(map(type, x)) <= _SCALARS:  # the common case, first: a flat list of numbers
+        return len(x)
+    if not isinstance(x, Sequence) or isinstance(x, (str, bytes, bytearray, memoryview, _array.array)):
+        return None
+    total = 0
+    stack: list[tuple[Sequence, int]] = [(x, 0)]
+    while stack:
+        s, depth = stack.pop()
+        try:
+            n = len(s)
+        except OverflowError:
+            return float("inf")
+        except Exception:  # noqa: BLE001 (a length that raises: the conversion names the argument)
+            return total
+        if not isinstance(s, (list, tuple, deque)) or n + total > limit:  # a range's entries are numbers
+            total += n
+        else:
+            try:
+                types = set(map(type, s))
+                if types <= _SCALARS:  # a flat sequence of numbers: one pass in C
+                    total += n
+                    continue
+                if types <= _ROWS:  # rows of numbers (a 2-D list): two passes in C
+                    inner = sum(map(len, s))
+                    if total + inner <= limit and set(map(type, _chain.from_iterable(s))) <= _SCALARS:
+                        total += inner
+                        continue
+                for v in s:
+                    m = _shaped(v)
+                    if m is not None:
+                        total += m
+                    elif (isinstance(v, Sequence) and not isinstance(v, (str, bytes, bytearray))
+                          and depth < MAX_NESTING):
+                        stack.append((v, depth + 1))
+                    else:
+                        total += 1
+                    if total > limit:
+                        return total + 0.5  # stopped early: at least this many (marked by the half)
+            except MemoryError:
+                raise
+            except Exception:  # noqa: BLE001 (entries that raise when read: the conversion names the argument)
+                return total
+        if total > limit:
+            return total + (0.5 if stack else 0)  # entries left uncounted: at least this many
+    return total
+
+
+#: Entries of an object array that numpy would read as a number they are not: a date or a duration (its count in its
+#: unit) and ``None`` (NaN).
+_NON_NUMBERS = (np.datetime64, np.timedelta64, _dt.date, _dt.timedelta, type(None))
+
+
+def non_number_entry(a: np.ndarray) -> str | None:
+    """What the object array ``a`` holds that is not a number but would convert to one (rule 16, fuzz 33a C2, C3,
+    D4), in words ("a date or duration", "None"), or None: numpy reads ``[np.datetime64("2026-01-01"), 4.0]`` as
+    ``[20454.0, 4.0]`` (days since 1970: the unit is lost), ``[np.timedelta64(3, "D"), 0.5]`` as ``[3.0, 0.5]``,
+    and ``None`` as NaN. An entry that is a 0-d or larger date or duration array counts too."""
+    for e in a.flat:
+        if e is None:
+            return "None"
+        if isinstance(e, _NON_NUMBERS) or (isinstance(e, np.ndarray) and e.dtype.kind in "mM"):
+            return "a date or duration"
+    return None
+
+
+_F64_EPS = float(np.finfo(np.float64).eps)
+
+
+def _buffer_dtype(x: object) -> np.dtype | None:
+    """The dtype a buffer (a ``memoryview``, an ``array.array``, an object with the array interface) or an object with
+    ``__array__`` converts to, or None. A buffer's is read from the buffer (no copy); an ``__array__`` object is
+    converted (the callers of :func:`given_dtype` read such an argument once first, ``fusion._guards.read_once``, so
+    that they pass an array here)."""
+    try:
+        if isinstance(x, (memoryview, _array.array)):
+            return np.asarray(memoryview(x)).dtype
+        if hasattr(x, "__array__") or hasattr(x, "__array_interface__") or hasattr(x, "__array_struct__"):
+            return np.asarray(x).dtype
+    except MemoryError:
+        raise
+    except Exception:  # noqa: BLE001 (a conversion that raises: the caller's conversion names the argument)
+        return None
+    return None
+
+
+def given_dtype(x: object) -> np.dtype | None:
+    """The numpy dtype whose precision the caller's numbers ``x`` have: an array's (or Series') own dtype, a pandas
+    extension dtype's numpy one (``"Float32"``: float32), the dtype a buffer or an ``__array__`` object converts to
+    (``array.array("f", ...)``, a ``memoryview`` of float32: float32, fuzz 33a C7); for a list or tuple, the least
+    precise dtype among its numpy float scalars and arrays (0-d ones included: ``[np.array(0.1, np.float32)] * 10``
+    is float32, as ``[np.float32(0.1)] * 10`` and ``np.asarray`` of either give it; ``[np.float16(1/3), 1/3]``:
+    float16, although its array is float64: a number has its own dtype's precision and a list its least precise
+    entry's, fuzz 30a C6, D1, fuzz 31a C1, fuzz 33a C7), else the common dtype of its numpy integers, else None
+    (Python numbers only: float64). An entry that is neither a number, an array nor a list gives None (the float64
+    rule). The entries are not converted (no ``__float__`` is called: read once, fuzz 29a C5)."""
+    dtype = getattr(x, "dtype", None)
+    if isinstance(dtype, np.dtype):
+        return dtype
+    if isinstance(getattr(dtype, "numpy_dtype", None), np.dtype):  # pandas masked extension dtypes
+        return dtype.numpy_dtype
+    if not isinstance(x, (list, tuple)):
+        return _buffer_dtype(x)
+    kinds: set[np.dtype] = set()
+    python = False
+    stack = [x]
+    while stack:  # iterative: a deeply nested list is read without recursion
+        for v in stack.pop():
+            if isinstance(v, (list, tuple)):
+                stack.append(v)
+            elif isinstance(v, (np.floating, np.integer)) or (isinstance(v, np.ndarray) and v.dtype.kind in "fiu"):
+                kinds.add(v.dtype)
+            elif type(v) in (int, float):  # a Python number: float64's precision, which a numpy float may lower
+                python = True
+            else:  # anything else: the float64 rule
+                return None
+    floats = [k for k in kinds if k.kind == "f"]
+    if floats:  # the least precise float sets the precision of the whole (its entries' tolerance)
+        return max(floats, key=lambda k: float(np.finfo(k).eps))
+    return None if python or not kinds else np.result_type(*kinds)
+
+
+def input_eps(x: object) -> float:
+    """The relative precision of the caller's numbers: the machine epsilon of a floating numpy input's dtype
+    (``float16``: ``9.8e-4``, ``float32``: ``1.2e-7``), float64's (``2.2e-16``) for anything else.
+
+    The dtype is :func:`given_dtype`'s: the container does not decide, its numbers do (a list of ``np.float32``
+    scalars is float32, as its array is; a pandas ``"Float32"`` Series too). A tolerance on a property of the values
+    (a sum of weights equal to one) is at least ``n`` times this: weights that sum to one in float32
+    (``0.4f + 0.6f``) are accepted, rounded as the caller gave them.
+    """
+    dtype = given_dtype(x)
+    if dtype is not None and dtype.kind == "f" and dtype.itemsize < 8:
+        return float(np.finfo(dtype).eps)
+    return _F64_EPS
