@@ -531,8 +531,13 @@ def keep(store: GlueValues, values: Mapping[str, GlueValue]) -> GlueValues:
     ValueError
         As ``time_registration_ledger.keep`` (one rule): a key that is not an identifier or a number that is not
         finite; ``store`` is then left unchanged. A key kept again takes its new value (a re-run cell).
+
+    Notes
+    -----
+    ``values`` is read once (a mapping that is not a plain dict in one pass); a 0-d array is kept and returned as
+    its plain number (a later edit of the caller's array does not reach ``store``).
     """
-    _checked_keep(store, values)
+    values = _checked_keep(store, values)  # read once, 0-d arrays as numbers (fuzz 33b B4, D2)
     out = {k: v for k, v in values.items() if k in GLUED}
     store.update(out)
     return out
