@@ -39,6 +39,7 @@ from typing import Callable, Literal, TypeAlias
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from fusion._guards import own_underflow
 from fusion._frozen import constant, fresh, frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, flag, keywords,
                                 one_of, positive_scalar, scalar, shown, text)
@@ -245,6 +246,7 @@ def optimal_set_members(x: ArrayLike, threshold: Threshold = "mean") -> NDArray[
     return _members_rows(as_readings(x, pairs=2)[None, :], threshold)[0]
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def fusion_degree_matrix(x: ArrayLike, scale: float = 2.0) -> FloatArray:
     r"""Fusion-degree matrix :math:`C` (Yang, Feng & Fan (2012), eqs. 6-7).
 
@@ -380,6 +382,7 @@ def _set_weights(
     return out
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _set_weights_block(
     s: FloatArray, members: NDArray[np.bool_], scale: float, include_self: bool
 ) -> FloatArray:
@@ -442,6 +445,7 @@ def _support_weights(s: FloatArray, alpha: float = 0.25) -> tuple[FloatArray, ND
     return weights, np.ones(s.shape, dtype=bool)
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _support_block(s: FloatArray, alpha: float) -> FloatArray:
     """The support-degree weights of one block of rows."""
     R = np.exp(-alpha * (s[:, :, None] - s[:, None, :]) ** 2)
@@ -733,6 +737,7 @@ def _eps(binary_eps: float | None, name: str = "binary_eps") -> float | None:
     return scalar(binary_eps, name, lo=0.0)
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _belief_rows(s: FloatArray, scale: float, binary_eps: float | None, limit: float | None = None) -> FloatArray:
     d = np.abs(s[:, :, None] - s[:, None, :])
     if binary_eps is not None:
