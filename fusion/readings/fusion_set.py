@@ -43,7 +43,8 @@ from fusion._guards import own_underflow
 from fusion._frozen import constant, fresh, frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, flag, keywords,
                                 one_of, positive_scalar, scalar, shown, text)
-from fusion.readings._row_blocks import _BLOCK_ELEMENTS, CUBIC, PAIRS, _row_blocks  # noqa: F401 (the blocks of kernels)
+from fusion.readings._row_blocks import (_BLOCK_ELEMENTS, CUBIC, PAIRS, _belief_rows, _row_blocks,  # noqa: F401
+                                         _support_block)  # (the blocks of kernels)
 
 __all__ = [
     "binary_deletion",
@@ -445,14 +446,6 @@ def _support_weights(s: FloatArray, alpha: float = 0.25) -> tuple[FloatArray, ND
     return weights, np.ones(s.shape, dtype=bool)
 
 
-@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
-def _support_block(s: FloatArray, alpha: float) -> FloatArray:
-    """The support-degree weights of one block of rows."""
-    R = np.exp(-alpha * (s[:, :, None] - s[:, None, :]) ** 2)
-    total = R.sum(axis=2)  # >= 1 because r_ii = 1
-    return total / total.sum(axis=1, keepdims=True)
-
-
 _WeightRule = Callable[..., tuple[FloatArray, NDArray[np.bool_]]]
 
 #: Registered readings-level methods: name -> (weight rule, validated option names).
@@ -735,15 +728,6 @@ def _eps(binary_eps: float | None, name: str = "binary_eps") -> float | None:
     if binary_eps is None:
         return None
     return scalar(binary_eps, name, lo=0.0)
-
-
-@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
-def _belief_rows(s: FloatArray, scale: float, binary_eps: float | None, limit: float | None = None) -> FloatArray:
-    d = np.abs(s[:, :, None] - s[:, None, :])
-    if binary_eps is not None:
-        return (d <= binary_eps).astype(float)
-    B = np.exp(-d / (2.0 * scale))
-    return B if limit is None else np.where(d <= limit, B, 0.0)
 
 
 def row_sum_weights(B: ArrayLike) -> FloatArray:

@@ -30,6 +30,7 @@ from fusion._guards import own_underflow
 from fusion._frozen import frozen_arrays
 from fusion._results import ResultSpec, instance, number, validated_post_init
 from fusion.estimates.chernoff._timings import FusionTimings
+from fusion.estimates.chernoff._sampling import _mixture_mean, _moments_batch, _sample_mixture  # noqa: F401
 from fusion._timing import LapTimer
 from fusion._validation import MAX_MAGNITUDE, derived_inputs, read_once
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
@@ -774,27 +775,6 @@ def _timed_fusion(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: l
 
 #: Problems per block when scoring swarms (keeps the (E, R) arrays in cache; results do not depend on it).
 _SWARM_BLOCK = 4
-
-
-def _sample_mixture(w: FloatArray, mu: FloatArray, chol: FloatArray, rng: np.random.Generator, n: int) -> FloatArray:
-    """``n`` draws (n, d) from one mixture with weights ``w`` (M,) (zeros skipped), means, Cholesky factors."""
-    kept = np.flatnonzero(w > 0)
-    lab = kept[rng.choice(kept.size, size=n, p=w[kept])]
-    z = rng.standard_normal((n, mu.shape[-1]))
-    return mu[lab] + _matvec(chol[lab], z)
-
-
-def _mixture_mean(w: FloatArray, mu: FloatArray) -> FloatArray:
-    """Mean (B, d) of mixtures with weights (B, M) and means (B, M, d), summed in a fixed order."""
-    return _dot(np.swapaxes(mu, 1, 2), w[:, None, :])
-
-
-def _moments_batch(x: FloatArray, w: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """Weighted mean (B, d) and covariance (B, d, d) of points (B, R, d) with normalised weights (B, R)."""
-    mean = np.matmul(w[:, None, :], x)[:, 0]
-    dx = x - mean[:, None, :]
-    cov = np.matmul(np.swapaxes(dx, 1, 2), dx * w[..., None])
-    return mean, 0.5 * (cov + np.swapaxes(cov, 1, 2))
 
 
 def _proposal_densities(logw: FloatArray, means: FloatArray, covs: FloatArray, wg: FloatArray, mug: FloatArray,
