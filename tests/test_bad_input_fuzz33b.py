@@ -225,7 +225,8 @@ def test_chapter03_studies_checked_by_their_recorded_setup() -> None:
     m26 = ws.mechanism_study(length=64, runs=2, configs=ws.CONFIGS[:1])
     st = {"sg": sg, "m26": m26, "v26": v26, "g1": g1, "e26": e26, "v1": v1, "v1r": v1r}
     assert wr._need(st) == 2
-    for key, other in (("v26", v1), ("sg", g1), ("g1", sg), ("e26", sg), ("v1", v1r)):
+    assert wr._need({**st, "e26": ws.signal_study(normalisers=("max",), **one)}) == 2  # the normalisers it reads
+    for key, other in (("v26", v1), ("sg", g1), ("g1", sg), ("e26", g1), ("v1", v1r), ("v1r", v26)):
         with pytest.raises(ValueError, match=rf"^st\['{key}'\] must be study\('{key}'\)"):
             wr._need({**st, key: other})
 
