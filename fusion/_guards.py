@@ -171,13 +171,16 @@ def derived_inputs(names: str | None = None) -> Callable[[Callable[..., object]]
 
 
 def own_underflow(fn: Callable[..., object]) -> Callable[..., object]:
-    """Decorate a public entry whose numerics underflow by design: it runs under ``np.errstate(under="ignore")``.
+    """Decorate a function whose numerics underflow by design: it runs under ``np.errstate(under="ignore")``.
 
     numpy's default error state ignores underflow; a particle filter relies on it (the weight of a far particle,
     ``exp`` of a log-weight thousands below the best, is an intended zero, and so are its products). A caller's
     ``np.errstate(all="raise")`` turned that zero into a ``FloatingPointError`` (fuzz 31a D1: ``run_network_study``).
-    Such an entry sets its own underflow state for its whole call; overflow, division by zero and invalid
-    operations keep the caller's. Elsewhere the package runs under the caller's error state.
+    Such a function sets its own underflow state for its whole call; overflow, division by zero and invalid
+    operations keep the caller's. Elsewhere the package runs under the caller's error state. The rule (fuzz 33b
+    D6) marks every function that computes such an intended zero: a public entry, or the function where the
+    ``exp`` is (a log-sum-exp, normalised weights, a Gaussian or exponential kernel, a density on a grid), so
+    that every entry that reaches it is covered.
 
     Parameters
     ----------

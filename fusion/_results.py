@@ -234,13 +234,37 @@ def text(*choices: str) -> ValueSpec:
     return ValueSpec("text", {"choices": tuple(choices)})
 
 
-def table(*columns: Any, rows: Dim | None = None, key: tuple[Any, ...] = (), index: tuple[Any, ...] = ()) -> ValueSpec:
+def table(*columns: Any, rows: Dim | None = None, key: tuple[Any, ...] = (), index: tuple[Any, ...] = (),
+          cells: Mapping[Any, tuple[float, float, bool]] | None = None) -> ValueSpec:
     """Spec of a :class:`pandas.DataFrame` field holding at least ``columns`` (those its consumers read), its number
     of rows the named or fixed dimension ``rows`` if given. Rows read by key (fuzz 24b class DR): ``key``, the
     columns that identify a row (among ``columns``), no NaN there and no two rows with the same key (a repeated row
     would be counted twice); ``index``, the index labels its consumers read (``table.loc[label]``), each present and
-    no index label twice."""
-    return ValueSpec("table", {"columns": tuple(columns), "rows": rows, "key": tuple(key), "index": tuple(index)})
+    no index label twice. ``cells``: column -> ``(lo, hi, whole)``, the cells its producer makes there (fuzz 33b
+    B2: a table edited between producer and consumer), each a finite number of a numeric column in [lo, hi], a
+    whole number if ``whole``."""
+    return ValueSpec("table", {"columns": tuple(columns), "rows": rows, "key": tuple(key), "index": tuple(index),
+                               "cells": dict(cells or {})})
+
+
+def _table_cells(value: Any, label: str, cells: Mapping[Any, tuple[float, float, bool]]) -> None:
+    """The ``cells`` rule of :func:`table`: TypeError for a column that does not hold numbers, ValueError naming the
+    column and row of the first cell outside its range."""
+    for col, (lo, hi, whole) in cells.items():
+        where = f"{label}[{shown(col)}]"
+        column = value[col]
+        if getattr(column, "ndim", 1) != 1:
+            raise ValueError(f"{where} must be one column, got {column.shape[1]} columns of that name")
+        if column.dtype.kind not in "iuf":
+            raise TypeError(f"{where} must hold numbers, got a column of dtype {column.dtype}")
+        x = column.to_numpy(dtype=float)
+        with np.errstate(invalid="ignore"):
+            bad = ~np.isfinite(x) | (x < lo) | (x > hi) | ((x != np.round(x)) if whole else False)
+        if bad.any():
+            i = int(np.argmax(bad))
+            what = "whole numbers" if whole else "finite numbers"
+            raise ValueError(f"{where} must hold {what} in [{lo:g}, {hi:g}], got {shown(float(x[i]))} in the row "
+                             f"{shown(value.index[i], 80)}")
 
 
 def instance(*classes: type, optional: bool = False) -> ValueSpec:
@@ -584,6 +608,8 @@ def _value(fs: ValueSpec, value: Any, label: str, bound: dict[str, tuple[Any, st
             if missing:
                 raise ValueError(f"{label} must hold the rows {shown(list(args['index']))} (read by index), misses "
                                  f"{shown(missing)}")
+        if args.get("cells"):
+            _table_cells(value, label, args["cells"])
         return value
     if fs.kind == "instance":
         if value is None and args["optional"]:

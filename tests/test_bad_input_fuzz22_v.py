@@ -65,9 +65,13 @@ def test_manoeuvre_values_cells(bad, exc):
 
 
 def test_manoeuvre_values_valid_cells_are_floats():
-    g = tl.manoeuvre_values(_man(Decimal("0.5")), 1.0)
-    assert g["reg_man_impr"] == 0.5 and type(g["reg_man_impr"]) is float
-    assert tl.manoeuvre_values(_man(0.0), 1.0)["reg_man_impr"] == 0.0    # a zero MSE is valid
+    # the cells are the exact E[MSE] at sigma (fuzz 33b D4: numbers of another noise level are refused)
+    exact = {a: {n: trsc.expected(n, 1.0, a_after=a) for n in ((IMPROVED, TWO, THREE) if a == 0.0 else (IMPROVED,))}
+             for a in (0.0, -2.0)}
+    given = {**exact, 0.0: {**exact[0.0], IMPROVED: Decimal(repr(exact[0.0][IMPROVED]))}}
+    g = tl.manoeuvre_values(given, 1.0)
+    assert g["reg_man_impr"] == exact[0.0][IMPROVED] and type(g["reg_man_impr"]) is float
+    _refused(ValueError, "manoeuvre", tl.manoeuvre_values, _man(0.5), 1.0)    # not the exact E[MSE] at sigma
 
 
 @pytest.fixture(scope="module")

@@ -31,7 +31,7 @@ GlueValue: TypeAlias = Union[float, int, str, Figure, pd.DataFrame, Styler]
 GlueValues: TypeAlias = dict[str, GlueValue]
 
 
-def _checked_keep(store: object, values: object) -> None:
+def _checked_keep(store: object, values: object) -> dict[str, Any]:
     """The one rule of the chapters' ``keep(store, values)``, which store glue values for the claim texts.
 
     ``store`` a mutable mapping and ``values`` a mapping (TypeError naming them); every key a str (TypeError) that
@@ -39,12 +39,18 @@ def _checked_keep(store: object, values: object) -> None:
     naming ``values[key]``, also given as a 0-d array or a :class:`~decimal.Decimal`). A key kept again takes the
     new value: re-running a notebook's cell recomputes it, and the claim texts read the store when the ledger is
     built, after every cell. Checked before ``store`` changes.
+
+    Returns the values to keep, read once (``fusion._guards.read_mapping``: a mapping that is not a plain dict is
+    read in one pass, fuzz 33b B4) with a 0-d array as its plain number (fuzz 33b D2: the store held the caller's
+    array, which a later edit made NaN; the rule of fuzz 29a C1 for frozen records); ``values`` itself when it is a
+    plain dict holding no 0-d array.
     """
     from collections.abc import MutableMapping
 
     from fusion._validation import instance_of, scalar
 
     instance_of(store, MutableMapping, "store"), instance_of(values, Mapping, "values")
+    values = read_mapping(values, "values")
     for k, v in values.items():  # type: ignore[attr-defined]
         if not isinstance(k, str):
             raise TypeError(f"values must have str glue keys, got the key {shown(k, 60)}")
@@ -53,6 +59,10 @@ def _checked_keep(store: object, values: object) -> None:
         _check_finite(k, v)  # glue_all's rule, the same function (fuzz 22b, KP)
         if isinstance(v, (float, np.floating, Decimal)) or (isinstance(v, np.ndarray) and v.ndim == 0):
             scalar(v, f"values[{k!r}]", tiny=True)
+    if any(isinstance(v, np.ndarray) and v.ndim == 0 for v in values.values()):  # type: ignore[attr-defined]
+        values = {k: v.item() if isinstance(v, np.ndarray) and v.ndim == 0 else v
+                  for k, v in values.items()}  # type: ignore[attr-defined]
+    return values  # type: ignore[return-value]
 
 
 def _check_finite(key: str, value: object) -> None:

@@ -711,7 +711,10 @@ def use_book_tables(shell: object | None = None) -> None:
 
 
 def _plain(key: object) -> object:
-    """A row key as the caller wrote it: a numpy scalar as its Python value (``0``, not ``np.int64(0)``)."""
+    """A row key as the caller wrote it: a numpy scalar as its Python value (``0``, not ``np.int64(0)``), also
+    within a tuple (a MultiIndex row)."""
+    if isinstance(key, tuple):
+        return tuple(_plain(k) for k in key)
     return key.item() if isinstance(key, np.generic) else key
 
 

@@ -27,6 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
+from fusion._guards import own_underflow
 from fusion._validation import axis_of, read_once, renormalised, sequence, sums_to_one, work
 from fusion._frozen import frozen_arrays, restore_frozen
 from fusion._validation import derived_inputs
@@ -71,6 +72,7 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
     return _logsumexp(arr, axis_of(axis, "axis", arr.shape, "a"))
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _logsumexp(arr: FloatArray, axis: int) -> FloatArray:
     # C order first: numpy sums a row pairwise only when it is the contiguous axis, so a batched
     # array laid out otherwise would round differently from the same row alone
@@ -579,6 +581,7 @@ def _component_logpdf(coef: FloatArray, dead: np.ndarray, phi: FloatArray) -> Fl
     return out
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _lse_rows(a: FloatArray) -> FloatArray:
     r""":math:`\log\sum\exp` over the second-to-last axis of (..., M, Q), summed in a fixed order (M small).
 
@@ -614,6 +617,7 @@ def _mixture_logpdf_features(logw: FloatArray, means: FloatArray, covs: FloatArr
 _TINY, _HUGE = 1e-290, 1e290
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _mixture_logpdf_bounded(logw: FloatArray, means: FloatArray, covs: FloatArray, phi: FloatArray) -> FloatArray:
     r""":func:`_mixture_logpdf_features` shifted by a bound instead of each point's largest component: (B, ..., Q).
 
@@ -667,6 +671,7 @@ def _unpack_sym(v: FloatArray, d: int) -> FloatArray:
 _EM_BLOCK = 16
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Generator], max_iter: int, tol: float,
                floor: float, inits: Sequence[tuple[FloatArray, FloatArray, FloatArray] | None]
                ) -> tuple[FloatArray, FloatArray, FloatArray, list[list[float]]]:

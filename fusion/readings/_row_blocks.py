@@ -8,6 +8,9 @@ bit for bit (tests/test_fusion_set_blocks.py).
 
 from __future__ import annotations
 
+import numpy as np
+
+from fusion._guards import own_underflow
 from fusion._validation import FloatArray
 
 #: Elements of one (rows, n, n) block (8 MiB of float64 per temporary would leave the
@@ -29,3 +32,22 @@ def _row_blocks(s: FloatArray) -> list[slice]:
 PAIRS = {"mean": 0, "optimal_fusion_set": 2, "fusion_set_weights": 2, "support_degree": 2, "belief_degree": 3}
 #: The methods whose kernel decomposes each row's n x n matrix (n**3 work a row).
 CUBIC = frozenset({"belief_degree"})
+
+
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
+def _support_block(s: FloatArray, alpha: float) -> FloatArray:
+    """The support-degree weights of one block of rows of ``fusion.readings.fusion_set``'s readings."""
+    R = np.exp(-alpha * (s[:, :, None] - s[:, None, :]) ** 2)
+    total = R.sum(axis=2)  # >= 1 because r_ii = 1
+    return total / total.sum(axis=1, keepdims=True)
+
+
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
+def _belief_rows(s: FloatArray, scale: float, binary_eps: float | None, limit: float | None = None) -> FloatArray:
+    """The belief-degree kernel of rows ``s`` (N, n): ``exp(-|s_i - s_j| / (2 scale))``, 0 beyond ``limit``; the
+    binary degree ``|s_i - s_j| <= binary_eps`` if given."""
+    d = np.abs(s[:, :, None] - s[:, None, :])
+    if binary_eps is not None:
+        return (d <= binary_eps).astype(float)
+    B = np.exp(-d / (2.0 * scale))
+    return B if limit is None else np.where(d <= limit, B, 0.0)

@@ -39,10 +39,12 @@ from typing import Callable, Literal, TypeAlias
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from fusion._guards import own_underflow
 from fusion._frozen import constant, fresh, frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, flag, keywords,
                                 one_of, positive_scalar, scalar, shown, text)
-from fusion.readings._row_blocks import _BLOCK_ELEMENTS, CUBIC, PAIRS, _row_blocks  # noqa: F401 (the blocks of kernels)
+from fusion.readings._row_blocks import (_BLOCK_ELEMENTS, CUBIC, PAIRS, _belief_rows, _row_blocks,  # noqa: F401
+                                         _support_block)  # (the blocks of kernels)
 
 __all__ = [
     "binary_deletion",
@@ -245,6 +247,7 @@ def optimal_set_members(x: ArrayLike, threshold: Threshold = "mean") -> NDArray[
     return _members_rows(as_readings(x, pairs=2)[None, :], threshold)[0]
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def fusion_degree_matrix(x: ArrayLike, scale: float = 2.0) -> FloatArray:
     r"""Fusion-degree matrix :math:`C` (Yang, Feng & Fan (2012), eqs. 6-7).
 
@@ -380,6 +383,7 @@ def _set_weights(
     return out
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _set_weights_block(
     s: FloatArray, members: NDArray[np.bool_], scale: float, include_self: bool
 ) -> FloatArray:
@@ -440,13 +444,6 @@ def _support_weights(s: FloatArray, alpha: float = 0.25) -> tuple[FloatArray, ND
     for b in blocks:
         weights[b] = _support_block(s[b], alpha)
     return weights, np.ones(s.shape, dtype=bool)
-
-
-def _support_block(s: FloatArray, alpha: float) -> FloatArray:
-    """The support-degree weights of one block of rows."""
-    R = np.exp(-alpha * (s[:, :, None] - s[:, None, :]) ** 2)
-    total = R.sum(axis=2)  # >= 1 because r_ii = 1
-    return total / total.sum(axis=1, keepdims=True)
 
 
 _WeightRule = Callable[..., tuple[FloatArray, NDArray[np.bool_]]]
@@ -731,14 +728,6 @@ def _eps(binary_eps: float | None, name: str = "binary_eps") -> float | None:
     if binary_eps is None:
         return None
     return scalar(binary_eps, name, lo=0.0)
-
-
-def _belief_rows(s: FloatArray, scale: float, binary_eps: float | None, limit: float | None = None) -> FloatArray:
-    d = np.abs(s[:, :, None] - s[:, None, :])
-    if binary_eps is not None:
-        return (d <= binary_eps).astype(float)
-    B = np.exp(-d / (2.0 * scale))
-    return B if limit is None else np.where(d <= limit, B, 0.0)
 
 
 def row_sum_weights(B: ArrayLike) -> FloatArray:

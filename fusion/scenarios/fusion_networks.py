@@ -419,6 +419,7 @@ def _relay(X: FloatArray, w: FloatArray, sc: NetworkScenario) -> tuple[FloatArra
     return X, w
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _normalise(lw: FloatArray) -> FloatArray:
     w = np.exp(lw - lw.max(axis=-1, keepdims=True))
     return w / w.sum(axis=-1, keepdims=True)

@@ -13,6 +13,7 @@ from collections.abc import Callable, Mapping
 
 import numpy as np
 
+from fusion._guards import own_underflow
 from fusion._covariances import singular_mask
 from fusion._results import trusted
 from fusion._timing import LapTimer
@@ -360,6 +361,7 @@ class _Batch:
             self._resample_local(X, w, c_loc)
         clock.lap("centralised_pf")
 
+    @own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
     def _local_filters(self, k: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, bool]:
         """Step B: predict and weight every node's particles (collapse guard, moments, the n_initial cut).
 
@@ -534,6 +536,7 @@ class _Batch:
             for j, b in enumerate(rep):
                 self.nodes[b, k, j % N] = fn[j].x
 
+    @own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
     def _centralised(self, k: int) -> None:
         """The centralised bootstrap PF on all measurements: predict, weight, guard, moments, resample."""
         sc, N, B, F, LQ = self.sc, self.N, self.B, self.F, self.LQ
@@ -567,6 +570,7 @@ class _Batch:
             Xr = _regularise_batch(Xr, c_loc.reshape(B * N, 4, 4), [self.rng_nodes[b][i] for b, i in pairs])
         self.particles = Xr.reshape(X.shape)
 
+    @own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
     def _progressive_correction(self, x: FloatArray, k: int, b: int, i: int) -> tuple[FloatArray, FloatArray]:
         """Node ``i``'s update of run ``b`` at frame ``k`` in GUARD_STAGES tempering steps (Oudjane & Musso 2000).
 

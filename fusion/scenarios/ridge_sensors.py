@@ -60,6 +60,20 @@ def _plugin_range(xs: np.ndarray, m: int, sigma: float, names: str) -> None:
                          f"(sqrt(m) |x| / sigma), got {big:g}: beyond, the exact risk at x is not computed")
 
 
+#: The largest tolerance (standard errors) of :func:`plugin_study`'s ``deltas``: chapter 04's ``plugin_exact`` finds
+#: the known-σ plug-in's crossings (``fusion.readings.biased.plugin_crossings`` on θ up to 10) only up to c ≈ 8.29.
+_MAX_DELTA = 8.0
+
+
+def _plugin_deltas(deltas: np.ndarray, names: str) -> None:
+    """Refuse tolerances beyond ``_MAX_DELTA``, naming ``names`` (fuzz 33b B1: plugin_study accepted them, and its
+    reader refused the study naming the inner ``upper`` or ``c``)."""
+    big = float(np.max(deltas))
+    if big > _MAX_DELTA:
+        raise ValueError(f"{names} must hold tolerances of at most {_MAX_DELTA:g} standard errors, got {big:g}: "
+                         f"beyond, the plug-in's exact reliability crossing is not computed")
+
+
 @dataclass(frozen=True)
 class PluginStudy:
     r"""Scalar ridge with a plug-in parameter against least squares, by true value (:func:`plugin_study`).
@@ -180,8 +194,8 @@ def plugin_study(
     curve : sequence of float
         True values of the exact curves.
     deltas : sequence of float
-        Tolerances of the reliability in standard errors :math:`\sigma/\sqrt m` (> 0); 1 must be among them, no
-        two alike in their digits (as ``xs``).
+        Tolerances of the reliability in standard errors :math:`\sigma/\sqrt m` (> 0 and at most 8, where the
+        exact crossings are computed); 1 must be among them, no two alike in their digits (as ``xs``).
 
     Returns
     -------
@@ -193,7 +207,8 @@ def plugin_study(
     ValueError
         Empty or non-finite ``xs`` or ``curve``, bad ``m``, ``sigma``, ``runs``, ``seed`` or ``deltas``; a ``curve``
         so long that its exact quadratures are beyond the memory or work budget; ``xs``, ``m`` and ``sigma`` giving a
-        true value beyond ``fusion.readings.biased.PLUGIN_RANGE`` standard errors (its exact risk is not computed).
+        true value beyond ``fusion.readings.biased.PLUGIN_RANGE`` standard errors (its exact risk is not computed);
+        ``deltas`` above 8 (the exact crossings are not computed).
     """
     xv = as_array(xs, "xs", ndim=1)
     if xv.size == 0:
@@ -213,6 +228,7 @@ def plugin_study(
     for name, vals in (("xs", xv), ("deltas", dv)):  # the results are keyed by x and by delta, glue values by
         distinct_printed(vals.tolist(), name, glue_part)  # their digits (fuzz 30b, 31b)
     _plugin_range(xv, m, sigma, "xs, m and sigma")  # what the study's reader (plugin_exact) computes
+    _plugin_deltas(dv, "deltas")
     loop_work((xv.size, dv.size + 3), m * runs, "xs, deltas, m and runs")  # rule 17: three estimates per x
     delta = sigma / np.sqrt(m)
     H = np.ones(m)

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
+from fusion._guards import own_underflow
 from fusion._results import ResultSpec, instance, number, table, validated_post_init
 from fusion._validation import FloatArray, allocation, count, instance_of
 from fusion.book.tables import rounded
@@ -79,6 +80,7 @@ def _weighted_component_rows(g: mx.GaussianMixture, x: FloatArray, S: int) -> Fl
     return comp
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _sigma_point_fusion(gms: Sequence[mx.GaussianMixture], e: FloatArray,
                         component_rows: Callable[[mx.GaussianMixture, FloatArray, int], FloatArray]
                         ) -> ch.FirstOrderMixture:
@@ -183,6 +185,7 @@ class SigmaProblem:
 SAME_DENSITY_NATS = 1e-12
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: int = _SIGMA_GRID[1]) -> SigmaProblem:
     r"""Step D's first-order mixture and the sigma-point mixture against the exact answer, for two 2-D mixtures.
 

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from fusion._guards import own_underflow
 from fusion._results import ResultSpec, array, dict_of, instance, integer, number, real_key, table, validated_post_init
 from typing import Any
 
@@ -101,6 +102,7 @@ EXTRA_LOW = "extra, 95 % low"
 EXTRA_HIGH = "extra, 95 % high"
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def snis_delta_terms(points: ArrayLike, log_target: ArrayLike, log_proposal: ArrayLike, cell: float) -> SnisDelta:
     r"""Bias and variance coefficients of the self-normalised IS mean, by quadrature (see :class:`SnisDelta`).
 
@@ -435,6 +437,7 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
 # ---------------------------------------------------------------------------------------------- step H: ε* chosen
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _block_minimum(L: FloatArray, lg: FloatArray, iterations: int = 60) -> FloatArray:
     r"""The minimiser ω (K,) on [0, 1] of :math:`\hat J(\omega) = \log\sum_r e^{\omega L_{r1} + (1-\omega)L_{r2} - \log g_r}`
     of each block (L (K, R, 2), lg (K, R)), by bisection on its derivative :math:`\sum_r\tilde w_r(L_{r1} - L_{r2})`

@@ -32,6 +32,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 import dataclasses
 from dataclasses import dataclass
+from fusion._guards import own_underflow
 from fusion._results import ResultSpec, array, dict_of, instance, integer, nested, number, validated_post_init
 from fusion._frozen import constant
 from fusion.book.study_cache import study_cache
@@ -127,6 +128,7 @@ class ToyReference:
     __post_init__ = validated_post_init
 
 
+    @own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
     def fused_mean(self, omega: ArrayLike) -> FloatArray:
         """Exact mean (k, 2) of :math:`p_{(\\omega, 1-\\omega)}` for each ``omega`` (k,) in [0, 1]."""
         w = np.atleast_1d(as_array(omega, "omega"))
@@ -139,6 +141,7 @@ class ToyReference:
 
 
 @study_cache(maxsize=1)
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def toy_reference() -> ToyReference:
     """The two-mixture example's exact references (cached; do not modify).
 
@@ -419,12 +422,14 @@ def _log_densities(gms: list[mx.GaussianMixture], x: FloatArray) -> FloatArray:
     return np.column_stack([_logpdf(g, x) for g in gms])
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _ess(lw: FloatArray) -> FloatArray:
     """ESS / R of log weights (..., R)."""
     w = np.exp(lw - lw.max(axis=-1, keepdims=True))
     return w.sum(axis=-1) ** 2 / np.sum(w**2, axis=-1) / lw.shape[-1]
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _estimate(xs: FloatArray, lw: FloatArray) -> FloatArray:
     """Self-normalised weighted mean (..., d) of points (..., R, d) with log weights (..., R)."""
     w = np.exp(lw - lw.max(axis=-1, keepdims=True))

@@ -19,6 +19,7 @@ import pandas as pd
 from numpy.typing import ArrayLike
 from scipy import optimize
 
+from fusion._guards import own_underflow
 from fusion._frozen import constant
 from fusion import data
 from fusion._validation import FloatArray, as_array, one_of
@@ -41,6 +42,7 @@ SUPPORT_AGGREGATIONS: tuple[str, ...] = ("row sums", "principal eigenvector", "r
                                          "row sums × self-reliability")
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def support_values(t1: ArrayLike, kernel: str, aggregation: str, alphas: ArrayLike) -> FloatArray:
     """Support-degree fusion of every observation for every α (variants of Sun & Jing 2005).
 

@@ -26,9 +26,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._guards import own_underflow
 from fusion._frozen import frozen_arrays
 from fusion._results import ResultSpec, instance, number, validated_post_init
 from fusion.estimates.chernoff._timings import FusionTimings
+from fusion.estimates.chernoff._sampling import _mixture_mean, _moments_batch, _sample_mixture  # noqa: F401
 from fusion._timing import LapTimer
 from fusion._validation import MAX_MAGNITUDE, derived_inputs, read_once
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
@@ -87,6 +89,7 @@ def _first_order_derivatives_prepare(logw: FloatArray, means: FloatArray, covs: 
     return (dead_t, logpi_t) + tuple(a.reshape((B, M) + a.shape[1:]) for a in tuples)
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _first_order_derivatives_prepared(prep: tuple[FloatArray, ...], eps: FloatArray
                                       ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """:func:`_first_order_log_normaliser_derivatives` from :func:`_first_order_derivatives_prepare`'s arrays at
@@ -219,6 +222,7 @@ def _first_order_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, e
     return _first_order_from_prepared(_first_order_prepare(logw, means, covs), eps, simplified)
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _first_order_prepare(logw: FloatArray, means: FloatArray, covs: FloatArray) -> tuple[FloatArray, ...]:
     """The exponent-free part of :func:`_first_order_arrays` (tuples' log weights, dead mask, precisions, log-determinants and
     centred quadratic terms), all with the problems on the first axis: computed once for a search over the exponents,
@@ -247,6 +251,7 @@ def _first_order_from_prepared(prep: tuple[FloatArray, ...], eps: FloatArray, si
     return w, mu, P, log_z
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _first_order_weights(logpi_t: FloatArray, dead_t: np.ndarray, log_zm: FloatArray, eps: FloatArray,
                          simplified: bool) -> tuple[FloatArray, FloatArray]:
     """The weights of :math:`g_\\varepsilon`'s components (B, M), tiny ones set to zero and the rest renormalised,
@@ -360,6 +365,7 @@ def _is_bounds(LTg: FloatArray) -> FloatArray:
     return np.maximum.reduce(LTg[..., :N, :] + LTg[..., N:N + 1, :], axis=-1)
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _is_values(LTg: FloatArray, E: FloatArray, out: FloatArray | None = None, bounds: FloatArray | None = None
                ) -> FloatArray:
     r"""Ĵ at exponent rows ``E`` (..., m, N) from ``LTg`` (..., N + 2, R) = :math:`[L^\top; -\log g; 1]`: (..., m).
@@ -418,12 +424,14 @@ def _combine(L: FloatArray, E: FloatArray) -> FloatArray:
     return out
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _is_gradient(L: FloatArray, log_g: FloatArray, eps: FloatArray) -> FloatArray:
     lw = _combine(L, eps) - log_g
     w = np.exp(lw - _logsumexp(lw, 0))
     return np.sum(w[:, None] * L, axis=0)
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def fused_weights(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
     r"""Normalised weights of the importance samples under :math:`p_\varepsilon` (claim 2, rebuilt).
 
@@ -770,27 +778,6 @@ def _timed_fusion(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: l
 _SWARM_BLOCK = 4
 
 
-def _sample_mixture(w: FloatArray, mu: FloatArray, chol: FloatArray, rng: np.random.Generator, n: int) -> FloatArray:
-    """``n`` draws (n, d) from one mixture with weights ``w`` (M,) (zeros skipped), means, Cholesky factors."""
-    kept = np.flatnonzero(w > 0)
-    lab = kept[rng.choice(kept.size, size=n, p=w[kept])]
-    z = rng.standard_normal((n, mu.shape[-1]))
-    return mu[lab] + _matvec(chol[lab], z)
-
-
-def _mixture_mean(w: FloatArray, mu: FloatArray) -> FloatArray:
-    """Mean (B, d) of mixtures with weights (B, M) and means (B, M, d), summed in a fixed order."""
-    return _dot(np.swapaxes(mu, 1, 2), w[:, None, :])
-
-
-def _moments_batch(x: FloatArray, w: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """Weighted mean (B, d) and covariance (B, d, d) of points (B, R, d) with normalised weights (B, R)."""
-    mean = np.matmul(w[:, None, :], x)[:, 0]
-    dx = x - mean[:, None, :]
-    cov = np.matmul(np.swapaxes(dx, 1, 2), dx * w[..., None])
-    return mean, 0.5 * (cov + np.swapaxes(cov, 1, 2))
-
-
 def _proposal_densities(logw: FloatArray, means: FloatArray, covs: FloatArray, wg: FloatArray, mug: FloatArray,
                         Pg: FloatArray, xs: FloatArray) -> tuple[FloatArray, FloatArray]:
     """log g at the samples (B, R) and the nodes' log densities there, transposed (B, N, R)."""
@@ -806,6 +793,7 @@ def _proposal_densities(logw: FloatArray, means: FloatArray, covs: FloatArray, w
     return lg, _lse_rows(comp)
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _fused_weights_T(LT: FloatArray, lg: FloatArray, eps: FloatArray) -> FloatArray:
     """Normalised fused weights (B, R) at exponents ``eps`` (B, N) (kernel of :func:`fused_weights`)."""
     lw = np.multiply(eps[:, 0:1], LT[:, 0], order="C")

@@ -12,6 +12,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._guards import own_underflow
 from fusion import readings as rd
 from fusion._results import (NONNEGATIVE, ResultSpec, array, arrays, dict_of, flag, instance, mask, number, trusted,
                              tuple_of, validated_post_init)
@@ -156,6 +157,7 @@ class BeliefStudy:
 
 
 @derived_inputs()
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def belief_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fusion._guards import own_underflow
 from fusion._results import ResultSpec, integer, number, tuple_of, validated_post_init
 from fusion._validation import FloatArray, allocation, as_rng, count
 from fusion.book.tables import rounded
@@ -173,6 +174,7 @@ def criteria_example() -> GlueValues:
     }.items()}
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def common_information_check(rng: np.random.Generator, cases: int = 100) -> tuple[bool, float, float]:
     r"""Chernoff fusion counts common information once: exact checks on random Gaussians and on a grid.
 

@@ -5,6 +5,7 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from fusion._guards import own_underflow
 from fusion._results import ResultSpec, flag, integer, number, table, validated_post_init
 from fusion._counts import seed as check_seed
 from fusion.book.study_cache import study_cache
@@ -123,6 +124,7 @@ def _regions_relation(values: dict[str, Any], cls: str) -> None:
                          f"inside the variance's), got {lo}, {lo3}, {hi3}, {hi}")
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def is_variance_study(rng: np.random.Generator, R: int = 100, replicates: int = 20_000) -> IsVarianceStudy:
     """Check the bias of Ĵ and the finite-moment regions of the IS weights numerically (Gaussian pair).
 

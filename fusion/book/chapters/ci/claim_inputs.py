@@ -93,6 +93,11 @@ _IR_FIELDS = {"ir_readings": instance(IrReadings), "ir_seed": integer(0),
 _PAIR = tuple_of(number(), count=2)
 #: Columns of :func:`fruit_fly_step_study`'s and :func:`fruit_fly_step_targets`' tables that the ledger reads.
 _FOA_STEP_COLUMNS = (CANDIDATES_BELOW, CANDIDATES_ABOVE, MEDIAN_ERROR, LARGEST_ERROR, RUNS_WITHIN, "runs")
+#: The cells :func:`fruit_fly_step_study` makes there (fuzz 33b B2): shares and errors of ω in [0, 1], whole counts of
+#: runs (at least one run; floats in :func:`fruit_fly_step_targets`' transposed table).
+_FOA_STEP_CELLS = {CANDIDATES_BELOW: (0.0, 1.0, False), CANDIDATES_ABOVE: (0.0, 1.0, False),
+                   MEDIAN_ERROR: (0.0, 1.0, False), LARGEST_ERROR: (0.0, 1.0, False),
+                   RUNS_WITHIN: (0.0, np.inf, True), "runs": (1.0, np.inf, True)}
 
 
 def _ir_scaled_relation(values: Mapping[str, Any], cls: str) -> None:
@@ -117,17 +122,19 @@ def _ir_period_relation(values: Mapping[str, Any], cls: str) -> None:
                              f"{shown(float(sim.t[1] - sim.t[0]))} s)")
 
 
+#: The cells :func:`fig5_hypotheses` makes: tr P (m²) finite and positive, the weights ω found in [0, 1].
+_FIG5_CELLS = {TR_P: (0.0, np.inf, False), OMEGA_FOUND: (0.0, 1.0, False)}
 _LEDGER_FIELDS = {
     "study": instance(FusionStudy), "model_rmse": dict_of(number(), required=("x", "y")), "nees": dict_of(number()),
     "nees_runs": integer(1), "eq2_error": number(), "eq6_asym": number(), "bench": dict_of(number()),
-    "bench_date": text(), "bench_per_step": dict_of(tuple_of(number())), "fig5_hyp": table(TR_P, OMEGA_FOUND),
+    "bench_date": text(), "bench_per_step": dict_of(tuple_of(number())), "fig5_hyp": table(TR_P, OMEGA_FOUND, cells=_FIG5_CELLS),
     "rmse_variants": dict_of(_PAIR), "rmse_variants_all": dict_of(_PAIR),
     "ir_sens": _real_keyed(dict_of(number()), meaning=PERIOD_KEY),
     "ir_T": number(positive=True), "pcrb": dict_of(number(), required=("T1", "limit")), "q_scaling": instance(QScaling),
     "slip_all": dict_of(_PAIR), "slip_weights": _real_keyed(_PAIR, meaning=WEIGHT_KEY),
     "slip_band": dict_of(tuple_of(integer(0), count=2)), "printed": instance(PrintedWeightFacts), "exact_rmse": _PAIR,
-    "fruit_fly_step_study": table(*_FOA_STEP_COLUMNS, index=(*FRUIT_FLY_STEP_RULES, EXHAUSTIVE)),
-    "fruit_fly_step_targets": table(*_FOA_STEP_COLUMNS)}
+    "fruit_fly_step_study": table(*_FOA_STEP_COLUMNS, index=(*FRUIT_FLY_STEP_RULES, EXHAUSTIVE), cells=_FOA_STEP_CELLS),
+    "fruit_fly_step_targets": table(*_FOA_STEP_COLUMNS, cells=_FOA_STEP_CELLS)}
 
 
 def _foa_targets_relation(values: Mapping[str, Any], cls: str) -> None:
@@ -141,6 +148,12 @@ def _foa_targets_relation(values: Mapping[str, Any], cls: str) -> None:
     if not index.is_unique:
         raise ValueError(f"{cls}.fruit_fly_step_targets repeats a test minimum: "
                          f"{shown(list(index[index.duplicated()]), 80)}")
+    for name in ("fruit_fly_step_study", "fruit_fly_step_targets"):  # counts of runs (fuzz 33b B2)
+        t = values[name]
+        over = t[RUNS_WITHIN].to_numpy(dtype=float) > t["runs"].to_numpy(dtype=float)
+        if over.any():
+            raise ValueError(f"{cls}.{name} counts more runs within 0.05 than its runs in the row "
+                             f"{shown(t.index[int(np.argmax(over))], 80)}")
 
 
 @dataclass(frozen=True)

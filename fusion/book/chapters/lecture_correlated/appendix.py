@@ -128,9 +128,17 @@ def glue_sequential(tab: pd.DataFrame) -> GlueValues:
         ``lec_seq_same`` (sensors whose running estimate equals the batch GLS of the sensors so far to round-off),
         ``lec_seq_mult`` and ``lec_seq_full`` (multiplications of all pseudo-measurements, with M's zeros and with
         a full M).
+
+    Raises
+    ------
+    TypeError
+        ``tab`` not a DataFrame, or a cell read that is not a number (text in ``vs batch GLS``).
+    ValueError
+        ``tab`` without the columns of :func:`table_sequential`, empty, holding a sensor's row twice, or a
+        non-finite cell read.
     """
     _frame(tab, "tab", (M_LARGEST, VS_BATCH, "multiplications", FULL_M), maker="table_sequential",
-           finite=(M_LARGEST, "multiplications", FULL_M), texts=(VS_BATCH,))
+           finite=(M_LARGEST, "multiplications", FULL_M), texts=(VS_BATCH,), unique=True)  # a sensor counted once
     return {"lec_seq_n": len(tab), "lec_seq_zero": int((tab[M_LARGEST] == 0.0).sum()),
             "lec_seq_same": int(tab[VS_BATCH].str.startswith("less than").sum()),
             "lec_seq_mult": int(tab["multiplications"].sum()), "lec_seq_full": int(tab[FULL_M].sum())}
@@ -241,15 +249,20 @@ def glue_james_stein(tab: pd.DataFrame, runs: int | None = None) -> GlueValues:
     Raises
     ------
     TypeError
-        ``tab`` not a DataFrame or ``runs`` not an integer.
+        ``tab`` not a DataFrame, ``runs`` or ``tab.attrs["runs"]`` (when there) not an integer.
     ValueError
-        ``tab`` without the columns and index of :func:`table_james_stein` or empty, without a dimension d >= 3 or
+        ``tab.attrs["runs"]`` below ``MIN_RUNS``;
+        ``tab`` without the columns and index of :func:`table_james_stein` or empty, holding a row twice, without
+        a dimension d >= 3 or
         the row ‖x‖/σ = 0 of one, a non-finite exact value (or
         Monte-Carlo value at d >= 3); ``runs`` below ``MIN_RUNS``, not the
         draws the table records, or not given for a table that records none.
     """
-    _frame(tab, "tab", ("exact", MONTE_CARLO), ("d", "‖x‖/σ"), maker="table_james_stein", finite=("exact",))
+    _frame(tab, "tab", ("exact", MONTE_CARLO), ("d", "‖x‖/σ"), maker="table_james_stein", finite=("exact",),
+           unique=True)  # read by (d, ‖x‖/σ): a repeated row gave pandas' unnamed TypeError (fuzz 33b B3)
     made = tab.attrs.get("runs")
+    if made is not None:  # the table's record, named as such (fuzz 33b D1: a bad one was blamed on runs)
+        made = count(made, "tab.attrs['runs']", minimum=MIN_RUNS)
     if runs is None:
         if made is None:
             raise ValueError("runs must be given: tab does not record its Monte-Carlo draws (tab.attrs['runs'])")
@@ -331,9 +344,17 @@ def glue_shrunken(tab: pd.DataFrame) -> GlueValues:
         ``lec_sh_n`` (cases), ``lec_sh_ridge_wins`` (cases where the best ridge has the lower MSE),
         ``lec_sh_max_gap`` (the largest ratio best c·LS over best ridge) and ``lec_sh_min_ratio`` (the smallest
         best c·LS over LS: the most shrinking helps).
+
+    Raises
+    ------
+    TypeError
+        ``tab`` not a DataFrame, or a cell read that is not a number.
+    ValueError
+        ``tab`` without the columns of :func:`table_shrunken`, empty, holding a case's row twice, or a non-finite
+        cell read.
     """
     _frame(tab, "tab", (BEST_RIDGE, BEST_SCALED_LS, METHOD_SHORT_LABELS[LS]), maker="table_shrunken",
-           finite=(BEST_RIDGE, BEST_SCALED_LS, METHOD_SHORT_LABELS[LS]))
+           finite=(BEST_RIDGE, BEST_SCALED_LS, METHOD_SHORT_LABELS[LS]), unique=True)  # a case counted once
     return {"lec_sh_n": len(tab), "lec_sh_ridge_wins": int((tab[BEST_RIDGE] < tab[BEST_SCALED_LS]).sum()),
             "lec_sh_max_gap": round(float((tab[BEST_SCALED_LS] / tab[BEST_RIDGE]).max()), 2),
             "lec_sh_min_ratio": round(float((tab[BEST_SCALED_LS] / tab[METHOD_SHORT_LABELS[LS]]).min()), 3)}

@@ -40,6 +40,7 @@ from fusion.book.chapters.lecture_correlated.correlated import _lagrange_numbers
 from fusion.book.chapters.lecture import reading_of
 from fusion._counts import seed as check_seed
 from fusion._counts import count
+from fusion._shown import shown
 from fusion._validation import instance_of
 
 __all__ = [
@@ -368,7 +369,8 @@ class Studies:
     x25 : PluginExact
         Its exact risks (:func:`fusion.book.chapters.lecture_correlated.ridge.plugin_exact`).
     v25, v25_well : VectorStudy
-        The ill-conditioned and the well-conditioned vector case (:func:`fusion.scenarios.ridge_sensors.vector_study`).
+        The ill-conditioned and the well-conditioned vector case (:func:`fusion.scenarios.ridge_sensors.vector_study`;
+        ``v25``'s condition number above ``v25_well``'s, else a ValueError naming both).
     s27 : CorrelatedStudy
         E2.7, :func:`fusion.scenarios.lecture_correlated.correlated_study`.
     cpl, cpl_wide : CouplingStudy
@@ -390,8 +392,18 @@ class Studies:
     __result_spec__ = ResultSpec({"s25": instance(RidgeStudy), "p25": instance(PluginStudy), "x25": instance(PluginExact),
                                   "v25": instance(VectorStudy), "v25_well": instance(VectorStudy),
                                   "s27": instance(CorrelatedStudy), "cpl": instance(CouplingStudy),
-                                  "cpl_wide": instance(CouplingStudy), "est": instance(EstimatedCovarianceStudy)})
+                                  "cpl_wide": instance(CouplingStudy), "est": instance(EstimatedCovarianceStudy)},
+                                 relations=(lambda v, cls: _conditioning_relation(v, cls),))
     __post_init__ = validated_post_init
+
+
+def _conditioning_relation(values: Mapping[str, Any], cls: str) -> None:
+    """``v25`` is the ill-conditioned case and ``v25_well`` the well-conditioned one, by the condition number each
+    records (fuzz 33b D5: the well-conditioned study under ``v25`` changed two records)."""
+    ill, well = float(values["v25"].cond), float(values["v25_well"].cond)
+    if not ill > well:
+        raise ValueError(f"{cls}.v25 must be the ill-conditioned vector case and {cls}.v25_well the well-conditioned "
+                         f"one, got condition numbers {shown(ill)} and {shown(well)}")
 
 
 @study_cache(maxsize=2)
@@ -531,8 +543,13 @@ def keep(store: GlueValues, values: Mapping[str, GlueValue]) -> GlueValues:
     ValueError
         As ``time_registration_ledger.keep`` (one rule): a key that is not an identifier or a number that is not
         finite; ``store`` is then left unchanged. A key kept again takes its new value (a re-run cell).
+
+    Notes
+    -----
+    ``values`` is read once (a mapping that is not a plain dict in one pass); a 0-d array is kept and returned as
+    its plain number (a later edit of the caller's array does not reach ``store``).
     """
-    _checked_keep(store, values)
+    values = _checked_keep(store, values)  # read once, 0-d arrays as numbers (fuzz 33b B4, D2)
     out = {k: v for k, v in values.items() if k in GLUED}
     store.update(out)
     return out

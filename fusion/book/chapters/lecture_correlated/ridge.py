@@ -28,6 +28,7 @@ from fusion.scenarios.ridge_sensors import (
     RIDGE_DISTRIBUTED,
     PluginStudy,
     VectorStudy,
+    _plugin_deltas,
     _plugin_range,
 )
 from fusion.book.glue import GlueValues
@@ -301,10 +302,12 @@ def plugin_exact(p: PluginStudy) -> PluginExact:
     ------
     ValueError
         A study whose true values are beyond ``fusion.readings.biased.PLUGIN_RANGE`` standard errors (a
-        ``dataclasses.replace`` of :func:`~fusion.scenarios.ridge_sensors.plugin_study`'s result, which refuses them).
+        ``dataclasses.replace`` of :func:`~fusion.scenarios.ridge_sensors.plugin_study`'s result, which refuses them),
+        or tolerances ``p.deltas`` above 8 (likewise).
     """
     instance_of(p, PluginStudy, "p")
     _plugin_range(np.asarray(p.xs), p.m, p.sigma, "p.xs, p.m and p.sigma")
+    _plugin_deltas(np.asarray(p.deltas), "p.deltas")
     m, sig = p.m, p.sigma
     known = {c: rg.plugin_crossings(c=c) for c in p.deltas}
     theta = {x: x * np.sqrt(m) / sig for x in p.xs}

@@ -64,9 +64,26 @@ _STUDY_TYPES: dict[str, type] = {"sg": SignalStudy, "m26": MechanismStudy, "v26"
                                  "e26": SignalStudy, "v1": VarianceStudy, "v1r": VarianceStudy}
 
 
+#: The setup each key's study records that tells it from the same-type studies of the other keys (:func:`study`'s
+#: recipe): equal gains (``g1``, ``v1``, ``v1r``) or the scenario's unequal ones, and a variance study's normaliser
+#: (``v1`` and ``v1r`` differ there only). A signal study's normalisers are not compared: a reader takes one with
+#: those it reads (E2.6 with the maximum only).
+_SETUPS: dict[str, tuple[bool, str | None]] = {
+    "sg": (False, None), "g1": (True, None), "e26": (False, None), "v26": (False, "max"), "v1": (True, "max"),
+    "v1r": (True, "max-raw")}
+
+
+def _setup(s: ChapterStudy, normaliser: str | None) -> tuple[bool, str | None]:
+    """The setup ``s`` records, as :data:`_SETUPS` states it (its normaliser only where the key's is stated)."""
+    equal = bool(np.all(np.asarray(s.gains) == np.asarray(s.gains)[0]))
+    return equal, (None if normaliser is None else str(s.normaliser))
+
+
 def _need(st: Mapping[str, ChapterStudy]) -> int:
     """The common run count of the readings (that of the signal table); ValueError if a study is missing or has fewer,
-    TypeError (the shared rule ``mapping_of``) if ``st`` is not a mapping or a study not of its key's type."""
+    TypeError (the shared rule ``mapping_of``) if ``st`` is not a mapping or a study not of its key's type;
+    ValueError naming ``st[key]`` for a study whose recorded setup is not its key's (:data:`_SETUPS`; fuzz 33b D5:
+    the equal-gains study under ``v26`` changed four records)."""
     if not isinstance(st, Mapping) or st:  # an empty mapping is reported below by the studies it lacks
         mapping_of(st, "st", "study", maker="study")
     missing = [k for k in STUDIES if st.get(k) is None]
@@ -74,6 +91,12 @@ def _need(st: Mapping[str, ChapterStudy]) -> int:
         raise ValueError(f"st must hold the studies {missing}")
     for k in STUDIES:  # each key's study of its own type (another study's runs would be read silently)
         instance_of(st[k], _STUDY_TYPES[k], f"st[{k!r}]")
+    for k, want in _SETUPS.items():  # the swaps rule (decisions of the swaps work): the key's recorded setup
+        got = _setup(st[k], want[1])
+        if got != want:
+            def said(v: tuple[bool, str | None]) -> str:
+                return f"{'equal' if v[0] else 'unequal'} gains" + ("" if v[1] is None else f", normaliser {shown(v[1])}")
+            raise ValueError(f"st[{shown(k)}] must be study({shown(k)}) ({said(want)}), got a study of {said(got)}")
     runs = int(st["sg"].runs)
     short = [k for k in ("m26", "v26", "g1", "v1", "v1r") if int(st[k].runs) < runs]
     if short:

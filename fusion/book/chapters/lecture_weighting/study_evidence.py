@@ -15,6 +15,8 @@ import pandas as pd
 from fusion.book._few_runs import study_runs_named
 from fusion._docstrings import with_sections
 from fusion._validation import instance_of, mapping_of
+from fusion._shown import shown
+from fusion._limits import recorded_as
 from fusion.book.chapters.lecture import sci
 from fusion.book.tables import roundoff
 from fusion.book.ledger import Comparison, Proposition, Unverifiable
@@ -76,9 +78,22 @@ _STUDY_TYPES: dict[str, type | tuple[type, ...]] = {
     "schg": VarianceChangeStudy, "ssym": SymmetryStudy}
 
 
+#: The setup E2.3's two studies record (:func:`study`'s recipe): X = 900 for ``s23``, X = 0 for ``s23x0``; the
+#: other studies of :data:`STUDIES` are each the only one of their type.
+_X_SETUPS: dict[str, float] = {"s23": 900.0, "s23x0": 0.0}
+
+
+def _setup(s: Any, key: str) -> None:
+    """ValueError naming ``st[key]`` for an E2.3 study at another X than its key's (fuzz 33b D5: the X = 0 study under
+    ``s23`` glued ``lec_led_del_wins`` 100 for 0)."""
+    if key in _X_SETUPS and not recorded_as(s.x, _X_SETUPS[key]):
+        raise ValueError(f"st[{shown(key)}] must be study({shown(key)}), E2.3 at X = {_X_SETUPS[key]:g}, got a study "
+                         f"at X = {shown(float(s.x))}")
+
+
 def _need(st: Mapping[str, Any], *keys: str) -> None:
     """``st`` a mapping (the shared rule ``mapping_of``: a TypeError naming ``st``) holding the studies ``keys``, each
-    of its type (:data:`_STUDY_TYPES`: a TypeError naming ``st[key]``)."""
+    of its type (:data:`_STUDY_TYPES`: a TypeError naming ``st[key]``) and, for E2.3, of its key's X (ValueError)."""
     if not isinstance(st, Mapping) or st:  # an empty mapping is reported below by the studies it lacks
         mapping_of(st, "st", "study", maker="study")
     missing = [k for k in keys if st.get(k) is None]
@@ -86,6 +101,7 @@ def _need(st: Mapping[str, Any], *keys: str) -> None:
         raise ValueError(f"st must hold the studies {missing} (keys of STUDIES)")
     for k in keys:
         instance_of(st[k], _STUDY_TYPES[k], f"st[{k!r}]")
+        _setup(st[k], k)
 
 
 def _mse(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, seed: int,
@@ -282,6 +298,8 @@ def _ev_awf_adapts(st: Mapping[str, Any], part: str | None = None) -> dict[str, 
 def _level_x0(st: Mapping[str, Any]) -> ConsistencyStudy:
     """E2.3 at X = 0 on the same draws as ``st["s23"]``: from ``st`` when it holds ``s23x0``, else from :func:`study`."""
     if st.get("s23x0") is not None:
+        instance_of(st["s23x0"], ConsistencyStudy, "st['s23x0']")
+        _setup(st["s23x0"], "s23x0")
         return st["s23x0"]
     s23 = st["s23"]
     return study("s23x0", seed=int(s23.seed) - SEED_OFFSETS["s23"][0], runs=int(s23.runs))

@@ -10,6 +10,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._guards import own_underflow
 from fusion._frozen import constant
 from fusion import readings as rd
 from fusion._counts import count, sequence
@@ -137,6 +138,7 @@ FAMILIES: dict[str, str] = constant({
 _FAMILY_NAMES: tuple[str, ...] = tuple(sorted(set(FAMILIES.values())))
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _kernel(d: FloatArray, family: str, scale: float) -> FloatArray:
     if family == "laplace":
         return np.exp(-d / scale)

@@ -27,6 +27,7 @@ from fusion._counts import count
 from fusion._validation import as_times, instance_of, record, scalar, std_scalar
 from fusion.book.chapters.time_registration_closed import _method_names
 from fusion._shown import shown
+from fusion._limits import recorded_as
 from fusion.book.chapters.time_registration_ledger.costs import _record_times
 
 __all__ = [
@@ -55,7 +56,9 @@ def keep(store: GlueValues, values: GlueValues) -> GlueValues:
     Returns
     -------
     mapping
-        ``values``.
+        ``values`` (read once: a mapping that is not a plain dict, or one holding a 0-d array, as the plain dict
+        kept, each 0-d array as its plain number, so that a later edit of the caller's array does not reach
+        ``store``).
 
     Raises
     ------
@@ -66,7 +69,7 @@ def keep(store: GlueValues, values: GlueValues) -> GlueValues:
         finite (NaN or infinite, which the book would print), named ``values[key]``. ``store`` is then left
         unchanged. A key kept again takes its new value (a re-run cell).
     """
-    _checked_keep(store, values)
+    values = _checked_keep(store, values)  # read once, 0-d arrays as numbers (fuzz 33b B4, D2)
     store.update(values)
     return values
 
@@ -239,8 +242,10 @@ def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: floa
         ``manoeuvre`` is not a mapping of mappings, or ``sigma`` not a number.
     ValueError
         ``manoeuvre`` lacks the accelerations 0 and -2 m/s² or a method read here, or an MSE read here is not a
-        finite non-negative number (named ``manoeuvre[a][method]``; TypeError for a non-number), or ``sigma`` is not
-        a valid standard deviation.
+        finite non-negative number (named ``manoeuvre[a][method]``; TypeError for a non-number), or not the exact
+        E[MSE] at ``sigma`` (``fusion.scenarios.time_registration.expected``, to ``fusion._limits.RECORDED_RTOL``:
+        a ``manoeuvre`` computed at another noise level would be glued beside ``reg_man_impr_q`` at ``sigma``), or
+        ``sigma`` is not a valid standard deviation.
     """
     record(manoeuvre, "manoeuvre", (0.0, -2.0), extra=True)
     record(manoeuvre[0.0], "manoeuvre[0.0]", (IMPROVED, TWO, RegMethod.THREE_POINT), extra=True)
@@ -248,7 +253,13 @@ def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: floa
     sigma = std_scalar(sigma, "sigma")
 
     def mse(a: float, method: str) -> float:  # a glued MSE (fuzz 22b, V1): a finite number >= 0, as a float
-        return scalar(manoeuvre[a][method], f"manoeuvre[{a!r}][{shown(getattr(method, 'value', method))}]", lo=0.0)
+        name = f"manoeuvre[{a!r}][{shown(getattr(method, 'value', method))}]"
+        v = scalar(manoeuvre[a][method], name, lo=0.0)
+        exact = sc.expected(method, sigma, a_after=a)  # one noise level for the five numbers (fuzz 33b D4)
+        if not recorded_as(v, exact):
+            raise ValueError(f"{name} = {shown(v)} is not the exact E[MSE] at sigma = {shown(sigma)} ({shown(exact)}): "
+                             "manoeuvre must be computed at sigma (the paragraph's numbers are at one noise level)")
+        return v
 
     return {"reg_man_impr": mse(0.0, IMPROVED), "reg_man_two": mse(0.0, TWO),
             "reg_man_three": mse(0.0, RegMethod.THREE_POINT), "reg_man_impr_neg": mse(-2.0, IMPROVED),
