@@ -207,9 +207,9 @@ class MechanismStudy:
     bias_spectrum : tuple of (float, float)
         (period in samples, share of the energy) of the three largest frequency bins of sensor 1's bias curve.
     bias_share_period : mapping of int to float
-        Period → share at the periods 256 and 64.
+        Period → share at the periods 256 (when the length is a multiple of it) and 64 (always held).
     tone_bands : mapping of int to ndarray
-        Period → energy shares of a unit sine of that period in the bands (a_L, d_L, …, d_1) of the first
+        Period (256 and 64) → energy shares of a unit sine of that period in the bands (a_L, d_L, …, d_1) of the first
         config's transform.
     runs, seed : int
     gains, sigma : ndarray, shape (sensors,)
@@ -249,8 +249,8 @@ class MechanismStudy:
          "mean_offdiag_corr": number(nonnegative=False), "mean_offdiag_corr_random": number(nonnegative=False),
          "bias_curve": array("sensors", "I"), "rms_bias": array("sensors", bounds=NONNEGATIVE),
          "bias_spectrum": tuple_of(tuple_of(number(positive=True), number(bounds=(0.0, 1.0)))),
-         "bias_share_period": dict_of(number(bounds=(0.0, 1.0)), key=int),
-         "tone_bands": dict_of(array("bands", bounds=(0.0, 1.0)), key=int),
+         "bias_share_period": dict_of(number(bounds=(0.0, 1.0)), key=int, required=(64,)),  # read by the glue
+         "tone_bands": dict_of(array("bands", bounds=(0.0, 1.0)), key=int, required=(64, 256)),  # (fuzz 34b B5)
          "runs": integer(1, dim="runs"), "seed": integer(0), "gains": array("sensors", bounds=NONNEGATIVE),
          "sigma": array("sensors", bounds=NONNEGATIVE), "configs": tuple_of(instance(Mapping)),
          "kind": instance(Signal)},

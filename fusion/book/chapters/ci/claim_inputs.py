@@ -16,6 +16,7 @@ from fusion._limits import recorded_as
 from fusion._validation import FloatArray, glue_part
 from fusion.scenarios.two_sensor import ArchitectureStudy, NeesRule, FusionStudy, QScaling
 from fusion.book.chapters.ci.checks import _arch_pair
+from fusion.book.chapters.ci.constants import W_GRID, W_PUB
 from fusion.book.chapters.ci.fruit_fly_step import (CANDIDATES_ABOVE, CANDIDATES_BELOW, EXHAUSTIVE,
                                                      FRUIT_FLY_STEP_RULES, LARGEST_ERROR, MEDIAN_ERROR, RUNS_WITHIN)
 from fusion.book.chapters.ci.infrared_readings import IR_READINGS, IrReadings
@@ -131,7 +132,7 @@ _LEDGER_FIELDS = {
     "rmse_variants": dict_of(_PAIR), "rmse_variants_all": dict_of(_PAIR),
     "ir_sens": _real_keyed(dict_of(number()), meaning=PERIOD_KEY),
     "ir_T": number(positive=True), "pcrb": dict_of(number(), required=("T1", "limit")), "q_scaling": instance(QScaling),
-    "slip_all": dict_of(_PAIR), "slip_weights": _real_keyed(_PAIR, meaning=WEIGHT_KEY),
+    "slip_all": dict_of(_PAIR), "slip_weights": _real_keyed(_PAIR, meaning=WEIGHT_KEY, required=(W_PUB, W_GRID)),
     "slip_band": dict_of(tuple_of(integer(0), count=2)), "printed": instance(PrintedWeightFacts), "exact_rmse": _PAIR,
     "fruit_fly_step_study": table(*_FOA_STEP_COLUMNS, index=(*FRUIT_FLY_STEP_RULES, EXHAUSTIVE), cells=_FOA_STEP_CELLS),
     "fruit_fly_step_targets": table(*_FOA_STEP_COLUMNS, cells=_FOA_STEP_CELLS)}
@@ -308,7 +309,7 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
     slip_all : dict of str to tuple
         :func:`slip_all`.
     slip_weights : dict of float to tuple
-        :func:`slip_at_weights`.
+        :func:`slip_at_weights` at (at least) the published weights 0.0018 and 0.0033, which its readers read.
     slip_band : dict of str to tuple
         :func:`slip_band`.
     printed : PrintedWeightFacts

@@ -27,6 +27,7 @@ from fusion.book.chapters.ci.constants import IR_CVX, IR_FZ, IR_IMP
 from fusion._docstrings import with_sections, reads_results
 from fusion.book.chapters.ci.text import paired_text
 from fusion.book.chapters.ci.checks import _averaging_start, _entries
+from fusion.book.chapters.lecture import _holds
 
 from fusion.book.chapters.ci.infrared import IR_SHOWN, _ir_budget
 
@@ -541,7 +542,8 @@ def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[
     Parameters
     ----------
     readings : IrReadings
-        :func:`ir_readings`.
+        :func:`ir_readings` with the x axis among its ``scaled_axes`` (the default; the scaled readings of x are
+        quoted): other readings are refused naming ``readings``.
     sim : IrRadarRuns
         The chapter's main infrared + radar simulation (for the binding check of the figure): the primary
         simulation of ``readings`` (``readings.sims["x"]``); another (other period, seed or runs) is refused naming
@@ -557,8 +559,10 @@ def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[
     """
     instance_of(readings, IrReadings, "readings")
     instance_of(sim, ir.IrRadarRuns, "sim")
-    rmse = _ir_pair(readings, sim, rmse)
     prim, cart = list(IR_READINGS)[0], list(IR_READINGS)[3]
+    _holds(readings.run_rmse, [("x", label) for label in IR_READINGS] + [("y", prim), ("y", cart)], "readings",
+           "readings (axis, reading; its scaled_axes must include 'x')", "ir_reading_numbers")  # fuzz 34b B7
+    rmse = _ir_pair(readings, sim, rmse)
     q_lo, q_hi = list(IR_READINGS)[1], list(IR_READINGS)[2]
     c_lo, c_hi = list(IR_READINGS)[4], list(IR_READINGS)[5]
     imp, fz, rad = IR_IMP, IR_FZ, ir.IrMethod.RADAR_ALONE

@@ -226,7 +226,7 @@ class PluginExact:
     Attributes
     ----------
     known : dict of float to dict
-        For each tolerance c of the study's ``deltas``: the crossings of
+        For each tolerance c of the study's ``deltas`` (among them c = 1, which its readers read): the crossings of
         :func:`~fusion.readings.biased.plugin_crossings` with σ known (θ in standard errors; with the variance crossing).
     estimated : dict
         The same with σ estimated (c = 1).
@@ -247,7 +247,7 @@ class PluginExact:
 
     __result_spec__ = ResultSpec(
         {"known": dict_of(dict_of(number(), required=_CROSSINGS), key=_REAL,  # tolerances c > 0 (fuzz 32b D2)
-                          check_key=real_key(0.0, lo_open=True)),
+                          check_key=real_key(0.0, lo_open=True), required=(1.0,)),  # c = 1, which its readers read
          "estimated": dict_of(number(), required=_CROSSINGS),
          "ratio_at": dict_of(number(positive=True), key=_REAL, check_key=real_key()),
          "theta_at": dict_of(number(nonnegative=False), key=_REAL, check_key=real_key()),  # finite x (fuzz 32b D2)

@@ -46,7 +46,8 @@ _RAISES = with_sections(raises="""TypeError
     ``m`` not a MechanismStudy, ``e26`` neither None nor a SignalStudy.
 ValueError
     ``m`` or ``e26`` of fewer than :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4: the verdicts compare
-    runs), named; ``e26`` of another setup than ``m`` (other gains, sigma or signal length).""")
+    runs), named; ``e26`` of another setup than ``m`` (other gains, sigma or signal length); ``m`` without a
+    hard or a soft setting (its ``h`` keys hold the first hard one, its ``s`` keys the first soft one).""")
 
 
 @_PARAMS("m")
@@ -141,6 +142,15 @@ def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:
     return _sensitivity(m, "table_sensitivity")
 
 
+def _hard_soft(m: MechanismStudy, reader: str) -> tuple[int, int]:
+    """The places in ``m.configs`` of the first hard and the first soft setting, which ``reader`` draws or glues as
+    "hard" and "soft" (fuzz 34b B1, D1: keyed by the setting, not by its place; a study without one of them is
+    refused by name, never a StopIteration)."""
+    modes = [c["mode"] for c in m.configs]
+    _holds(dict.fromkeys(modes), ("hard", "soft"), "m", "threshold modes (m.configs)", reader)
+    return modes.index("hard"), modes.index("soft")
+
+
 def _sensitivity(m: MechanismStudy, reader: str, sensor4: bool = True) -> pd.DataFrame:
     """:func:`table_sensitivity` as read by ``reader``; without ``sensor4``, sensor 1's columns only (all that the
     figure and the glue read: a study of 3 sensors is theirs too)."""
@@ -207,8 +217,8 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
     Parameters
     ----------
     m : MechanismStudy
-        Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study` (its first setting and the
-        first soft one are drawn in the left panel).
+        Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study` (its first hard setting and its
+        first soft one are drawn in the left panel; a study without both is refused).
     shown : int
         Samples shown in the bias panel (1 to the study's signal length).
 
@@ -223,14 +233,14 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
     TypeError
         ``m`` not a MechanismStudy or ``shown`` not an integer.
     ValueError
-        ``shown`` below 1 or above the study's signal length.
+        ``shown`` below 1 or above the study's signal length; ``m`` without a hard or a soft setting.
     """
     instance_of(m, MechanismStudy, "m")
     shown = count(shown, "shown", maximum=int(m.stats[m.labels[0]]["bias_curve"].shape[1]))
+    hard, soft = (m.labels[i] for i in _hard_soft(m, "figure_mechanism"))
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.8))
-    soft = next(lab for lab, c in zip(m.labels, m.configs) if c["mode"] == "soft")
     for j in range(m.gains.size):
-        axes[0].plot(np.arange(shown), m.stats[m.labels[0]]["bias_curve"][j, :shown],
+        axes[0].plot(np.arange(shown), m.stats[hard]["bias_curve"][j, :shown],
                      color=color(f"sensor {j + 1}"), label=f"sensor {j + 1}")
         axes[0].plot(np.arange(shown), m.stats[soft]["bias_curve"][j, :shown], ":", lw=1,
                      color=color(f"sensor {j + 1}"))
@@ -265,8 +275,8 @@ def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueVal
     """
     instance_of(m, MechanismStudy, "m")
     d: dict[str, tuple[float, int]] = {}
-    soft = next(i for i, c in enumerate(m.configs) if c["mode"] == "soft")
-    for tag, i in (("h", 0), ("s", soft)):
+    hard, soft = _hard_soft(m, "glue_mechanism")
+    for tag, i in (("h", hard), ("s", soft)):
         st = m.stats[m.labels[i]]
         for j in range(m.gains.size):
             d[f"wm_{tag}_rms_bias_{j + 1}"] = (st["rms_bias"][j], 4)

@@ -17,7 +17,7 @@ from fusion._docstrings import with_sections
 from fusion._validation import instance_of, mapping_of
 from fusion._shown import shown
 from fusion._limits import recorded_as
-from fusion.book.chapters.lecture import sci
+from fusion.book.chapters.lecture import _holds, sci
 from fusion.book.tables import roundoff
 from fusion.book.ledger import Comparison, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS
@@ -185,7 +185,8 @@ def ev_awf_unbiased(st: Mapping[str, Any]) -> dict[str, Proposition]:
     Parameters
     ----------
     st : mapping
-        The chapter's studies, keys :data:`STUDIES`; it reads ``s21`` (the estimates' Monte-Carlo means and SDs).
+        The chapter's studies, keys :data:`STUDIES`; it reads ``s21`` (the estimates' Monte-Carlo means and SDs at
+        the levels X = 0 and 900, which its ``levels`` must hold: refused naming ``st['s21']`` otherwise).
 
     Returns
     -------
@@ -194,6 +195,8 @@ def ev_awf_unbiased(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """
     _need(st, "s21")
     s21 = st["s21"]
+    _holds(dict.fromkeys(X for X, _ in s21.mean_est), (0.0, 900.0), "st['s21']", "levels X (awf_study's levels)",
+           "ev_awf_unbiased")  # a study at other valid levels, refused by name (fuzz 34b B6)
     V, k = s21.variances, s21.k_compare
     mean_est = s21.mean_est[900.0, "lecture"]
     unb = bool(np.all(np.abs(mean_est - V) < 3 * wt.lecture_variance_sd(900.0, k, V) / np.sqrt(s21.runs)))
