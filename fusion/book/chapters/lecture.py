@@ -171,6 +171,16 @@ def _holds(held: Collection[Any], needed: Collection[Any], name: str, what: str,
                          f"{shown(held, 200)})")
 
 
+def _members(parts: Collection[tuple[str, Any]], name: str, what: str, reader: str) -> Conjunction:
+    """The Conjunction of ``parts`` that ``reader`` builds from the ``what`` of a study ``name`` (fuzz 34b B8): a
+    study at other valid settings with fewer than two of them is refused naming ``name`` and what it lacks, never
+    under the Conjunction's own ``parts``."""
+    if len(parts) < 2:
+        raise ValueError(f"{name} must hold at least two {what}, which {reader} reads as a conjunction, got "
+                         f"{len(parts)}")
+    return Conjunction(tuple(parts))
+
+
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 

@@ -14,7 +14,7 @@ from fusion._frozen import constant
 from fusion._results import ResultSpec, instance, validated_post_init
 from fusion.book._few_runs import runs_named
 from fusion.book.study_cache import study_cache
-from fusion.book.chapters.lecture import SOURCE, _holds, sci
+from fusion.book.chapters.lecture import SOURCE, _holds, _members, sci
 from fusion.book.tables import roundoff
 from fusion.book.claims import ClaimsFile
 from fusion.book.exact import ExactComparison
@@ -95,7 +95,8 @@ def _ev_ridge_variance(st: Studies) -> Readings:
     # k': some k fixed in advance reduces the variance by more than the margin; the largest k of the grid shows one
     # (any k > m(1/√0.95 − 1) does); every k of the grid is the reading every-k
     largest = max(range(len(grid)), key=lambda i: s25.ks_fixed[i])
-    out: Readings = {"primary": grid[largest][1], "every-k": Conjunction(grid)}
+    out: Readings = {"primary": grid[largest][1],
+                     "every-k": _members(grid, "st.s25", "fixed ridge parameters (ks_fixed)", "lec-ridge-variance")}
     for key, cr in (("plugin-known", x25.known[1.0]), ("plugin-estimated", x25.estimated)):
         out[key] = ExactComparison(float(cr["var_peak_ratio"]), 1.0, "plug-in ridge, at its peak over x", METHOD_SHORT_LABELS[LS], "less",
                                    f"exact variance in units of Var(LS) (above 1 from √m·x/σ = {cr['variance']:.2f})")
@@ -163,7 +164,7 @@ def _ev_ridge_fusion_better(st: Studies) -> Readings:
         parts.append((f"x = {x:g}σ", ExactComparison(best, ls, "ridge, k*", METHOD_SHORT_LABELS[LS], "less", "exact MSE")))
     return {"primary": _existence(st.v25, "ill-conditioned case"),
             "well-conditioned": _existence(st.v25_well, "well-conditioned case"),
-            "scalar": Conjunction(tuple(parts))}
+            "scalar": _members(parts, "st.p25", "positive true values x (xs)", "lec-ridge-fusion-better")}
 
 
 def _ev_ridge_fusion_plugin(st: Studies) -> Readings:
@@ -174,13 +175,14 @@ def _ev_ridge_fusion_plugin(st: Studies) -> Readings:
         e = study.sq[key]
         return Comparison(e[what], e[LS], METHOD_SHORT_LABELS[what], METHOD_SHORT_LABELS[LS], "less", _SQ, seed=study.seed)
 
-    def conj(study: VectorStudy, what: str) -> Conjunction:
-        return Conjunction(tuple((f"{d}, |x| = {s:g}", cmp(study, (d, s), what)) for d, s in study.sq))
+    def conj(study: VectorStudy, what: str, name: str = "st.v25") -> Conjunction:
+        return _members([(f"{d}, |x| = {s:g}", cmp(study, (d, s), what)) for d, s in study.sq], name,
+                        "cases (direction, scale)", "lec-ridge-fusion-plugin")
 
     out: Readings = {"primary": conj(v, RIDGE_CENTRALISED)}
     for d, s in v.sq:
         out[f"{d.split()[0]}-{s:g}"] = cmp(v, (d, s), RIDGE_CENTRALISED)
-    out["well-conditioned"] = conj(st.v25_well, RIDGE_CENTRALISED)
+    out["well-conditioned"] = conj(st.v25_well, RIDGE_CENTRALISED, "st.v25_well")
     out["distributed"] = conj(v, RIDGE_DISTRIBUTED)
     xs = [x for x in sorted(p.sq) if x > 0]
     far = []
@@ -188,7 +190,7 @@ def _ev_ridge_fusion_plugin(st: Studies) -> Readings:
         parts = [(f"x = {x:g}σ", ExactComparison(float(x25.at[key, 1.0][x].mse_ratio), 1.0, f"plug-in ridge, σ {short}",
                                                   METHOD_SHORT_LABELS[LS], "less", "exact MSE relative to LS"))
                  for x in xs]
-        out[f"scalar-{short}"] = Conjunction(tuple(parts))
+        out[f"scalar-{short}"] = _members(parts, "st.p25", "positive true values x (xs)", "lec-ridge-fusion-plugin")
         far.append((f"σ {short}, x = {xs[-1]:g}σ", parts[-1][1]))
     out["scalar-far"] = Conjunction(tuple(far))
     return out
@@ -345,7 +347,8 @@ def ledger_evidence(st: Studies) -> dict[str, Evidence | Readings]:
     ValueError
         A study of ``st`` without a case its record reads (``st.cpl`` without a case of
         ``fusion.scenarios.correlated_sensors.SCENARIOS`` but the equal coupling, ``st.cpl_wide`` without
-        ``WIDE``), named ``st.<field>``; fewer runs than rule R4's, named ``st``.
+        ``WIDE``; ``st.p25`` of fewer than two positive x, ``st.s25`` of fewer than two fixed k), named
+        ``st.<field>``; fewer runs than rule R4's, named ``st``.
     """
     instance_of(st, Studies, "st")
     with runs_named("st", "cached_studies' runs"):  # rule R4 named by the argument (fuzz 22b A2)
