@@ -307,11 +307,14 @@ def glue_part(value: object) -> object:
     """``value`` as a glue key's part: :func:`general`'s ``f"{value:g}"`` without its point, its minus signs as ``m``
     and its plus signs dropped (0.25 -> ``025``, 10.5 -> ``105``, -1 -> ``m1``, 1e-05 -> ``1em05``), so that every
     glue key built from a caller's number is an identifier (a claim text's ``{name}``; fuzz 31b C1, C3, D4: the
-    chapters printed it three ways, one without the point while its check kept it). The one printer of every glue
+    chapters printed it three ways, one without the point while its check kept it); a zero prints as ``0``, its sign
+    dropped (-0.0 equals 0.0). The one printer of every glue
     key part and of the check that no two entries print alike (:func:`distinct_printed`); a tuple entry by entry,
     anything else unchanged."""
     if isinstance(value, tuple):
         return tuple(glue_part(v) for v in value)
+    if isinstance(value, (float, np.floating)) and value == 0:
+        value = abs(value)  # -0.0 is 0.0, and keys the same glue value as ``0`` (fuzz 34b D3)
     g = general(value)
     return g.replace(".", "").replace("-", "m").replace("+", "") if isinstance(g, str) and g is not value else g
 
