@@ -7,6 +7,7 @@
 * B8: a conjunction a record builds from a study's cases names the study (``st.p25``, ``st.s25``) when it has fewer
   than two (``lecture._members``), not the Conjunction's inner ``parts``.
 * D1: ``glue_mechanism`` / ``figure_mechanism`` key the "hard" glue and the solid curves by the first hard setting.
+* D2 (decided: documented): a default argument a small study cannot serve is refused naming that parameter.
 * D3: ``glue_part(-0.0)`` is ``'0'``, as for 0.0.
 """
 
@@ -50,6 +51,16 @@ def test_glue_mechanism_keys_hard_by_the_first_hard_setting() -> None:
     for key in ("lec_wm_h_rms_bias_1", "lec_wm_s_rms_bias_1", "lec_wm_h_corr12"):
         assert g_sh[key] == g_hs[key]
     assert g_sh["lec_wm_h_rms_bias_1"] != g_sh["lec_wm_s_rms_bias_1"]
+
+
+def test_table_mechanism_default_labels_beyond_a_small_study_name_labels() -> None:
+    """D2 (decided: documented): a default the study cannot serve is refused naming that parameter and its bound."""
+    from fusion.book.chapters.lecture_wavelets import mechanism as mech
+
+    m = _mechanism((HARD, SOFT))
+    with pytest.raises(ValueError, match=r"^labels\[1\] must be an index below 2, got 6"):
+        mech.table_mechanism(m)
+    assert len(mech.table_mechanism(m, labels=(0, 1))) == 2 * m.gains.size
 
 
 # ----------------------------------------------------------------------------------------------------------- B2

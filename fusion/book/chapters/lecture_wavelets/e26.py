@@ -103,7 +103,8 @@ def figure_26(e: SignalStudy, sensor: int = 3, shown: int = 300) -> Figure:
     e : SignalStudy
         As :func:`table_26_display`.
     sensor : int
-        Sensor shown (0-based, below the study's sensors).
+        Sensor shown (0-based, below the study's sensors; the default 3 included: a study of 3 sensors needs
+        another ``sensor``, and its refusal names ``sensor`` with the bound).
     shown : int
         Number of samples shown (1 to the study's length).
 

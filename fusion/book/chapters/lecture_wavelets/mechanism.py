@@ -58,7 +58,8 @@ def table_mechanism(m: MechanismStudy, labels: tuple[int, ...] = (0, 6)) -> pd.D
     ----------
     labels : tuple of int
         Indices of the settings shown (default: the primary, hard, and the same with soft thresholding); at least
-        one, distinct, each below the study's settings.
+        one, distinct, each below the study's settings (the default included: a study of fewer than 7 settings
+        needs other ``labels``, and its refusal names ``labels[k]`` with the bound).
 
     Returns
     -------

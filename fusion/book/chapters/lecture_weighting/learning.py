@@ -89,7 +89,8 @@ def figure_22a(s: LearningStudy, n: int = 3) -> Figure:
     Parameters
     ----------
     n : int
-        Number of sensors of the setting shown.
+        Number of sensors of the setting shown; one of the study's settings (the default 3 included: a study
+        without a 3-sensor setting needs another ``n``, and its refusal names ``n`` with the settings it holds).
 
     Returns
     -------
