@@ -73,14 +73,19 @@ def _printed(trace):
     return PrintedWeightFacts(ones=1, steps=1, fruit_fly=ff, monotone=True, trace_ratio=2.0, trace=trace)
 
 
-def test_printed_trace_requires_the_weights_its_readers_read() -> None:
+def test_ledger_inputs_require_the_trace_weights_their_readers_read() -> None:
+    from fusion.book.chapters.ci import claim_inputs
+
     full = {0.0018: 1.07e6, 0.0033: 5.9e5, 1.0: 7553.0}
-    assert _printed(full).trace == full
+    assert _printed(full).trace == full and _printed({}).trace == {}  # the facts alone: any weights (printed_numbers)
+    claim_inputs._trace_relation({"printed": _printed(full)}, "LedgerInputs")
     for w in full:
-        with pytest.raises(ValueError, match=rf"^PrintedWeightFacts\.trace misses the keys \[{w:g}"):
-            _printed({k: v for k, v in full.items() if k != w})
+        with pytest.raises(ValueError, match=rf"^LedgerInputs\.printed\.trace misses the weights \[{w:g}"):
+            claim_inputs._trace_relation({"printed": _printed({k: v for k, v in full.items() if k != w})},
+                                         "LedgerInputs")
     pf = _printed({np.float32(k): v for k, v in full.items()})  # float32 weights read as they print
     assert pf.trace[0.0018] == full[0.0018] and all(type(k) is float for k in pf.trace)
+    claim_inputs._trace_relation({"printed": pf}, "LedgerInputs")
 
 
 # ----------------------------------------------------------------------------------------------------------- B3

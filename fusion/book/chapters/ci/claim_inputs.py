@@ -101,6 +101,13 @@ _FOA_STEP_CELLS = {CANDIDATES_BELOW: (0.0, 1.0, False), CANDIDATES_ABOVE: (0.0, 
                    RUNS_WITHIN: (0.0, np.inf, True), "runs": (1.0, np.inf, True)}
 
 
+def _trace_relation(values: Mapping[str, Any], cls: str) -> None:
+    """``printed.trace`` must hold the weights ``ledger_values`` and ``evidence`` read (fuzz 34b B2)."""
+    missing = [w for w in (W_PUB, W_GRID, 1.0) if w not in values["printed"].trace]
+    if missing:
+        raise ValueError(f"{cls}.printed.trace misses the weights {shown(missing)} (the ledger reads tr P there)")
+
+
 def _ir_scaled_relation(values: Mapping[str, Any], cls: str) -> None:
     """``ir_readings`` must hold the x axis's scaled readings (``ledger_values`` reads them; the default)."""
     missing = [("x", label) for label, (_, factor) in IR_READINGS.items()
@@ -313,7 +320,7 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
     slip_band : dict of str to tuple
         :func:`slip_band`.
     printed : PrintedWeightFacts
-        :func:`printed_weight_facts`.
+        :func:`printed_weight_facts` (its ``trace`` at least at the weights 0.0018, 0.0033 and 1, which are read).
     exact_rmse : tuple of float
         Exact RMSE of CI = the average on the path, (x, y) (m).
     fruit_fly_step_study : pandas.DataFrame
@@ -350,6 +357,7 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
 
     __result_spec__ = ResultSpec({**_ARCH_FIELDS, **_PAIRED_FIELDS, **_IR_FIELDS, **_WEIGHT_FIELDS, **_LEG_FIELDS,
                                   **_LEDGER_FIELDS}, relations=(lambda v, cls: _runs_relation(v, cls),
+                                                                lambda v, cls: _trace_relation(v, cls),
                                                                 lambda v, cls: _ir_scaled_relation(v, cls),
                                                                 lambda v, cls: _ir_period_relation(v, cls),
                                                                 lambda v, cls: _arch_relation(v, cls),

@@ -21,7 +21,6 @@ from fusion.filtering.kalman import cv_model, gain_sequence, split_covariances
 from fusion.scenarios.two_sensor import FruitFlySeeds
 from fusion.book.chapters.ci.text import readable
 from fusion.book.chapters.ci.checks import _entries, _period_key
-from fusion.book.chapters.ci.constants import W_GRID, W_PUB
 from fusion.book.chapters.ci.records import SplitExactness
 
 __all__ = ["split_ci_exactness", "ml_vs_product", "printed_covariances", "printed_numbers", "printed_equation_checks",
@@ -44,8 +43,8 @@ class PrintedWeightFacts:
     trace_ratio : float
         tr P at the weight published for plain CI (0.0018) over its minimum at ω = 1, at the searched step.
     trace : dict of float to float
-        tr P at a few weights there (m², m²/s²), by weight: at least the published weights 0.0018 and 0.0033 and
-        ω = 1, which its readers read (a float32 weight read as it prints).
+        tr P at a few weights there (m², m²/s²), by weight (a float32 weight read as it prints); the ledger's
+        inputs (``LedgerInputs.printed``) need the published weights 0.0018 and 0.0033 and ω = 1 among them.
     """
 
     ones: int
@@ -57,9 +56,8 @@ class PrintedWeightFacts:
 
     __result_spec__ = ResultSpec({"ones": integer(0), "steps": integer(1), "fruit_fly": instance(FruitFlySeeds),
                                   "monotone": flag(), "trace_ratio": number(positive=True),
-                                  "trace": dict_of(number(positive=True), key=(float, int, np.number),
+                                  "trace": dict_of(number(positive=True), key=(float, int, np.number), nonempty=False,
                                                    check_key=real_key(0.0, 1.0),  # weights ω (fuzz 32b D2)
-                                                   required=(W_PUB, W_GRID, 1.0),  # the weights its readers read
                                                    read_key=_period_key)},  # float32 as printed (fuzz 34b B2)
                                  relations=(lambda v, cls: _printed_relation(v, cls),))
     __post_init__ = validated_post_init
