@@ -738,10 +738,10 @@ def load(path: Path | str) -> ClaimsFile:
     path = Path(path)
     try:
         raw = path.read_text(encoding="utf-8")
-    except OSError as e:
-        raise ValueError(f"path {shown(str(path))} is not a readable file: {e.strerror or e}") from None
     except UnicodeDecodeError as e:
         raise ValueError(f"path {shown(str(path))} is not UTF-8 text ({e.reason} at byte {e.start})") from None
+    except (OSError, ValueError) as e:   # ValueError: a NUL byte in the path (fuzz 34a C5)
+        raise ValueError(f"path {shown(str(path))} is not a readable file: {getattr(e, 'strerror', None) or e}") from None
     try:
         doc = yaml.load(raw, Loader=_UniqueKeyLoader)  # noqa: S506 - a SafeLoader that refuses repeated keys
     except yaml.YAMLError as e:

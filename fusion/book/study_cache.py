@@ -114,28 +114,52 @@ def _source_digest(package: Path) -> str:
     return h.hexdigest()
 
 
-def _type_name(kind: type, _unnamed: dict[int, type] | None = None) -> str:
-    """The name that determines ``kind`` in a key: a builtin's short name, else its module and qualified name.
+def _fingerprint(kind: type) -> str:
+    """What tells two classes of one name apart on disk (fuzz 34a C1: a namedtuple or Enum re-bound under its name
+    shared a cached result): a named tuple's ``_fields``, an Enum's members and values, a dataclass's field names;
+    empty for other classes."""
+    if issubclass(kind, enum.Enum):
+        parts: Any = [[m.name, _member_value(m)] for m in kind]
+    elif issubclass(kind, tuple) and isinstance(getattr(kind, "_fields", None), tuple):
+        parts = ["fields", list(map(str, kind._fields))]
+    elif dataclasses.is_dataclass(kind):
+        parts = ["fields", [f.name for f in dataclasses.fields(kind)]]
+    else:
+        return ""
+    return "~" + hashlib.sha256(json.dumps(parts).encode()).hexdigest()[:16]
 
-    A class that its module's namespace does not hold under that name (one made in a function, a second
-    ``namedtuple("P", ...)`` beside another ``P``) cannot be told apart from another of the same name by it (fuzz 33a C4:
-    two named tuples ``P`` shared a cached result, on disk too): TypeError (no canonical encoding; the call bypasses the
-    disk), or, with ``_unnamed`` (the in-process key), its name and ``id``, the class kept alive in ``_unnamed`` so
-    that its ``id`` is never reused.
+
+def _member_value(member: enum.Enum) -> Any:
+    try:
+        return _canonical(member.value)
+    except (TypeError, RecursionError):   # no encoding: its text (this member's own value is refused where it is used)
+        return repr(member.value)
+
+
+def _type_name(kind: type, _unnamed: dict[int, type] | None = None) -> str:
+    """The name that determines ``kind`` in a key: a builtin's short name, else its module and qualified name and
+    ``_fingerprint``.
+
+    On disk (``_unnamed`` None) a class that its module's namespace does not hold as the same object under that name
+    (one made in a function, a second ``namedtuple("P", ...)`` beside another ``P``) cannot be told apart from another
+    of the same name by it (fuzz 33a C4: two named tuples ``P`` shared a cached result): TypeError (no canonical
+    encoding; the call bypasses the disk). In the process (``_unnamed`` given) every class is keyed by identity
+    (fuzz 34a C1: a class re-bound under its name shared the key): its name and ``id``, the class kept alive in
+    ``_unnamed`` so that its ``id`` is never reused.
     """
     if kind.__module__ == "builtins":
         return kind.__qualname__
-    name = f"{kind.__module__}.{kind.__qualname__}"
+    name = f"{kind.__module__}.{kind.__qualname__}{_fingerprint(kind)}"
+    if _unnamed is not None:
+        _unnamed.setdefault(id(kind), kind)
+        return f"{name}#{id(kind)}"
     found: Any = sys.modules.get(kind.__module__)
     for part in kind.__qualname__.split("."):
         found = getattr(found, part, None)
     if found is kind:
         return name
-    if _unnamed is None:
-        raise TypeError(f"value: the class {name} is not found under that name in its module (the key cannot tell it "
-                        "apart from another class of that name)")
-    _unnamed.setdefault(id(kind), kind)
-    return f"{name}#{id(kind)}"
+    raise TypeError(f"value: the class {kind.__module__}.{kind.__qualname__} is not found under that name in its "
+                    "module (the key cannot tell it apart from another class of that name)")
 
 
 def _canonical(value: Any, _open: frozenset[int] = frozenset(), _unnamed: dict[int, type] | None = None) -> Any:
@@ -151,7 +175,7 @@ def _canonical(value: Any, _open: frozenset[int] = frozenset(), _unnamed: dict[i
     if value is None or isinstance(value, (bool, str)):
         return [name(value), value]
     if isinstance(value, enum.Enum):
-        return ["enum", name(value), _canonical(value.value, _open, _unnamed)]
+        return ["enum", name(value), value.name, _canonical(value.value, _open, _unnamed)]
     if isinstance(value, (int, np.integer)):
         return [name(value), int(value)]
     if isinstance(value, np.floating) and np.finfo(value.dtype).nmant > 52:   # longdouble: its own digits
@@ -373,6 +397,12 @@ def _environment() -> Path | None:
     root, log = os.environ.get(ENV), os.environ.get(LOG_ENV)
     if root is not None and root and not root.strip():
         raise ValueError(f"the environment variable {ENV} holds only blanks: set it to a directory or unset it")
+    if root:   # resolved once here and used so (fuzz 34a C2: a relative name probed in one working directory was used
+        try:   # from another)
+            root = os.path.abspath(root)
+        except (OSError, ValueError) as exc:
+            raise ValueError(f"the environment variable {ENV} must name a directory, got {shown(root)} "
+                             f"({type(exc).__name__})") from None
     if root and os.path.exists(root) and not os.path.isdir(root):
         raise ValueError(f"the environment variable {ENV} must name a directory, got the file {shown(root)}")
     if root and root not in _USABLE:
@@ -385,7 +415,11 @@ def _environment() -> Path | None:
 
 def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any], compute: Callable[[], Any]) -> Any:
     """The stored result of ``key`` under ``root``, or ``compute()`` stored there; one process computes, others wait."""
-    root.mkdir(parents=True, exist_ok=True)
+    try:   # before the work: the folder may have become unusable since it was probed (fuzz 34a C2)
+        root.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ValueError(f"the environment variable {ENV} must name a directory in which files can be created, got "
+                         f"{shown(str(root))} ({type(exc).__name__}: {exc.strerror})") from None
     target = root / f"{key}.pkl"
     start = time.process_time()
     with open(root / f"{key}.lock", "w", encoding="utf-8") as lock:
@@ -550,13 +584,10 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
             bound = sig.bind(*args, **kwargs)
             bound.apply_defaults()
             arguments = dict(bound.arguments)
-            try:
-                key, on_disk = study_key(qualname, arguments), True
+            try:   # in the process every class by identity (fuzz 34a C1); the disk's key below
+                key = _key(qualname, arguments, None, _UNNAMED)
             except TypeError:
-                try:   # a class the disk's key cannot name (fuzz 33a C4): keyed in the process by its id
-                    key, on_disk = _key(qualname, arguments, None, _UNNAMED), False
-                except TypeError:
-                    return by_equality(*args, **kwargs)
+                return by_equality(*args, **kwargs)
             # keyed by the canonical encoding, as on disk: 1, 1.0, True and Fraction(1), or 0.0 and -0.0, are different
             # calls (an equality-keyed cache gave a cached result to an argument the function refuses, fuzz 15)
             with lock:
@@ -566,9 +597,14 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
                     return memo[key].get()
                 stats["misses"] += 1
             root = _environment()             # checked before any work, also for a call kept in the process
-            root = root if on_disk else None
-            result = _Shared(_through_disk(root, key, qualname, arguments, lambda: fn(*args, **kwargs)) if root
-                             else fn(*args, **kwargs))
+            disk_key = None
+            if root is not None:
+                try:
+                    disk_key = study_key(qualname, arguments)
+                except TypeError:   # a class the disk's key cannot name (fuzz 33a C4): kept in the process
+                    disk_key = None
+            result = _Shared(_through_disk(root, disk_key, qualname, arguments, lambda: fn(*args, **kwargs))
+                             if root is not None and disk_key is not None else fn(*args, **kwargs))
             if maxsize == 0:
                 return result.value            # not kept: the caller's own
             with lock:
