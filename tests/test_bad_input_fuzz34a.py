@@ -104,3 +104,18 @@ def test_claims_load_nul_names_path():
     from fusion.book import claims
     with pytest.raises(ValueError, match="^path "):
         claims.load("a\0b")
+
+
+def test_em_drops_a_component_collapsed_below_the_floor():
+    """C6: a component collapsed onto coincident light samples came out of the M-step indefinite (a raw
+    LinAlgError in run_network_study's batched EM): it is dropped, as a component whose weight vanished."""
+    from fusion.estimates.mixtures import weighted_em
+
+    for seed in (34, 36, 37):   # each refused ("Matrix is not positive definite") before the fix
+        r = np.random.default_rng(seed)
+        x = np.vstack([r.normal(0, 1, (10, 2)), np.tile(r.normal(300, 50, (1, 2)), (10, 1)) + r.normal(0, 1e-9, (10, 2))])
+        w = np.r_[np.ones(10), np.full(10, 1e-3)]
+        fit = weighted_em(x, w, 2, rng=np.random.default_rng(seed), floor=0.0)
+        assert np.all(np.linalg.eigvalsh(fit.mixture.covs) > 0)
+        assert np.all(np.isfinite(fit.loglik))
+        assert 1 <= fit.mixture.weights.size <= 2
