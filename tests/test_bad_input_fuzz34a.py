@@ -113,9 +113,72 @@ def test_em_drops_a_component_collapsed_below_the_floor():
 
     for seed in (34, 36, 37):   # each refused ("Matrix is not positive definite") before the fix
         r = np.random.default_rng(seed)
-        x = np.vstack([r.normal(0, 1, (10, 2)), np.tile(r.normal(300, 50, (1, 2)), (10, 1)) + r.normal(0, 1e-9, (10, 2))])
+        far = np.tile(r.normal(300, 50, (1, 2)), (10, 1)) + r.normal(0, 1e-9, (10, 2))
+        x = np.vstack([r.normal(0, 1, (10, 2)), far])
         w = np.r_[np.ones(10), np.full(10, 1e-3)]
         fit = weighted_em(x, w, 2, rng=np.random.default_rng(seed), floor=0.0)
         assert np.all(np.linalg.eigvalsh(fit.mixture.covs) > 0)
         assert np.all(np.isfinite(fit.loglik))
         assert 1 <= fit.mixture.weights.size <= 2
+
+
+def _special(tmp_path, kind, name):
+    path = tmp_path / name
+    if kind == "fifo":
+        os.mkfifo(path)
+    else:   # a sparse file above the size limit: no disk used
+        with open(path, "wb") as fh:
+            fh.truncate((16 << 20) + 1)
+    return path
+
+
+@pytest.mark.parametrize("kind", ["fifo", "huge"])
+def test_claim_readers_refuse_special_and_huge_files(tmp_path, kind):
+    """C3, C4: a FIFO (it hung) or a file above 16 MB (a MemoryError at 30 GB) is refused by name before reading."""
+    from fusion.book import claims
+    path = _special(tmp_path, kind, "a.yaml")
+    with pytest.raises(ValueError, match="^path .*not a readable file"):
+        claims.load(path)
+    with pytest.raises(ValueError, match="not a readable file"):
+        claims.load_all(tmp_path)
+
+
+def test_claims_load_refuses_a_device():
+    """C3: ``/dev/zero`` never ends."""
+    from fusion.book import claims
+    with pytest.raises(ValueError, match="^path .*not a regular file"):
+        claims.load("/dev/zero")
+
+
+@pytest.mark.parametrize("kind", ["fifo", "huge"])
+def test_source_digest_refuses_special_and_huge_sources(tmp_path, kind):
+    """C3, C4: a package holding a FIFO or a huge ``.py`` is refused naming ``package``."""
+    (tmp_path / "__init__.py").write_text("")
+    _special(tmp_path, kind, "m.py")
+    with pytest.raises(ValueError, match="^package: .*not a readable file"):
+        sc_mod.source_digest(tmp_path)
+
+
+def test_json_record_refuses_huge_file(tmp_path):
+    """C4: a benchmark result above the size limit is refused by name before reading."""
+    from fusion.book._json import read_object
+    path = _special(tmp_path, "huge", "ci.json")
+    with pytest.raises(ValueError, match="^benchmark result .*larger than"):
+        read_object(path, "benchmark result")
+
+
+@pytest.mark.parametrize("log", ["fifo", "/dev/full"])
+def test_log_variable_refuses_special_files_before_the_work(tmp_path, monkeypatch, log):
+    """C3: FUSION_STUDY_CACHE_LOG naming a FIFO hung every cached call; ``/dev/full`` failed after the work."""
+    monkeypatch.setenv(sc_mod.ENV, str(tmp_path / "c"))
+    monkeypatch.setenv(sc_mod.LOG_ENV, str(_special(tmp_path, "fifo", "log")) if log == "fifo" else log)
+    calls = []
+
+    @study_cache(0)
+    def double(x):
+        calls.append(x)
+        return 2 * x
+
+    with pytest.raises(ValueError, match=sc_mod.LOG_ENV):
+        double(1)
+    assert calls == []

@@ -62,7 +62,7 @@ import numpy as np
 from fusion._counts import count
 from fusion._frozen import ReadOnlyMapping
 from fusion._validation import text
-from fusion._paths import folder
+from fusion._paths import file_bytes, folder
 from fusion._shown import shown
 
 __all__ = ["ENV", "LOG_ENV", "process_cache", "study_cache", "study_key", "source_digest"]
@@ -95,7 +95,8 @@ def source_digest(package: Path | str = _PACKAGE) -> str:
     ValueError
         If ``package`` is not an existing folder (or the system cannot read it as a path: too long, a NUL byte), or
         not a Python package (no ``__init__.py``): a folder such as ``/`` or ``''`` (the working directory) would
-        be walked file by file, the whole file system in the worst case.
+        be walked file by file, the whole file system in the worst case; or if a source under it is not a regular
+        file (a FIFO, a device) or is larger than 16 MB (read whole, they would hang or exhaust memory).
     """
     path = folder(text(package, "package") if isinstance(package, str) else package, "package")  # rule 19
     if not (path / "__init__.py").is_file():
@@ -109,7 +110,7 @@ def _source_digest(package: Path) -> str:
     h = hashlib.sha256()
     for path in sorted(package.rglob("*.py")):
         rel = path.relative_to(package).as_posix().encode()
-        data = path.read_bytes()
+        data = file_bytes(path, f"package: the source {shown(rel.decode(), 60)}")   # fuzz 34a C3, C4
         h.update(len(rel).to_bytes(8, "little") + rel + len(data).to_bytes(8, "little") + data)
     return h.hexdigest()
 
@@ -392,8 +393,8 @@ def _environment() -> Path | None:
     """The cache directory :data:`ENV` names (None when unset or empty), after checking the environment before any
     work: ValueError naming the variable when :data:`ENV` holds only blanks or names something that is not a
     directory or a directory in which no file can be created (tried once per process, ``_usable``), or (with a
-    directory) :data:`LOG_ENV` names a directory or a file in a missing one (fuzz 32a D1: an OS error
-    named nothing, and came after the computation, whose result was lost)."""
+    directory) :data:`LOG_ENV` names a directory, a FIFO or a device, or a file in a missing one (fuzz 32a D1: an
+    OS error named nothing, and came after the computation, whose result was lost)."""
     root, log = os.environ.get(ENV), os.environ.get(LOG_ENV)
     if root is not None and root and not root.strip():
         raise ValueError(f"the environment variable {ENV} holds only blanks: set it to a directory or unset it")
@@ -407,8 +408,9 @@ def _environment() -> Path | None:
         raise ValueError(f"the environment variable {ENV} must name a directory, got the file {shown(root)}")
     if root and root not in _USABLE:
         _usable(root)
-    if root and log and (os.path.isdir(log) or not os.path.isdir(os.path.dirname(os.path.abspath(log)))):
-        raise ValueError(f"the environment variable {LOG_ENV} must name a file in an existing directory, got "
+    if root and log and (os.path.isdir(log) or not os.path.isdir(os.path.dirname(os.path.abspath(log)))
+                         or (os.path.exists(log) and not os.path.isfile(log))):   # a FIFO, a device (fuzz 34a C3)
+        raise ValueError(f"the environment variable {LOG_ENV} must name a regular file in an existing directory, got "
                          f"{shown(log)}")
     return Path(root) if root else None
 
