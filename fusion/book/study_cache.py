@@ -5,9 +5,10 @@ several processes of one build compute the same ones: chapter 06's networks in b
 ledger studies in the notebook and in its unit tests, and so on. :func:`study_cache` caches such a function in
 the process (least recently used dropped first, keyed as on disk but with every class by identity) and, when the
 environment variable :data:`ENV` names a directory, also on disk there: the first process to need a result
-computes it under a file lock and stores it (pickle, written atomically); a process that asks meanwhile waits for it instead of computing it a second time,
-and later ones load it. A stored file that cannot be read back (empty, truncated, corrupt) or does not hold its own
-key's result is a miss: the result is computed again and the file rewritten.
+computes it under a file lock and stores it (pickle, written atomically); a process that asks meanwhile waits for
+it instead of computing it a second time, and later ones load it. A stored file that cannot be read back (empty,
+truncated, corrupt) or does not hold its own key's result is a miss: the result is computed again and the file
+rewritten.
 
 The key of a result is the SHA-256 of the package's sources (every ``fusion/**/*.py``), numpy's version, the
 function's qualified name and its arguments bound to its parameters (defaults applied): any edit of the package
