@@ -9,6 +9,7 @@ naming the argument and showing at most 60 characters of the value (a 5000-chara
 from __future__ import annotations
 
 import os
+import stat
 from pathlib import Path
 
 from fusion._shown import shown
@@ -91,3 +92,31 @@ def file_in(directory: Path, filename: str, name: str) -> Path:
     if path.exists() and not path.is_file():
         raise ValueError(f"{name} holds {filename}, which is not a file")
     return path
+
+
+#: The largest file read whole (claim files, ledger and benchmark records, sources are kilobytes; fuzz 34a C4).
+MAX_FILE_BYTES = 16 << 20
+
+
+def file_bytes(path: Path, label: str, limit: int = MAX_FILE_BYTES) -> bytes:
+    """The bytes of the regular file ``path``, or ValueError ``"<label>: not a readable file (why)"`` before reading
+    (``label`` names the caller's argument): a path the system cannot open (missing, no permission, a NUL byte),
+    anything but a regular file (a FIFO, a device such as ``/dev/zero``, a folder: read whole, they hang or never end,
+    fuzz 34a C3), or a file larger than ``limit`` bytes (read whole, a MemoryError, fuzz 34a C4). Opened without
+    blocking (a FIFO without a writer would block the open itself)."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"{label}: not a readable file ({getattr(exc, 'strerror', None) or exc})") from None
+    st = os.fstat(fd)
+    if not stat.S_ISREG(st.st_mode) or st.st_size > limit:
+        os.close(fd)
+        why = (f"larger than {limit:,} bytes" if stat.S_ISREG(st.st_mode)
+               else "not a regular file: a folder, a FIFO or a device")
+        raise ValueError(f"{label}: not a readable file ({why})")
+    os.set_blocking(fd, True)
+    with os.fdopen(fd, "rb") as fh:
+        data = fh.read(limit + 1)
+    if len(data) > limit:   # grew since the check
+        raise ValueError(f"{label}: not a readable file (larger than {limit:,} bytes)")
+    return data

@@ -9,6 +9,8 @@ import os
 from pathlib import Path
 from typing import Any, ForwardRef, TypeAlias, Union
 
+from fusion._paths import file_bytes
+
 __all__ = ["JSONValue", "JSONObject"]
 
 #: The alias itself inside its containers, bound to this module so that ``typing.get_type_hints`` resolves it from any
@@ -59,11 +61,10 @@ def read_object(path: Path, what: str = "file") -> dict[str, Any]:
         The file is not a readable file (a folder, a dangling symlink, no permission) or not a JSON object as
         above, naming ``path``.
     """
+    # a regular file of at most MAX_FILE_BYTES (fuzz 34a C3, C4; a folder or a dangling symlink: fuzz 22a W)
+    data = file_bytes(path, f"{what} {path}")
     try:
-        record = json.loads(path.read_text(encoding="utf-8"), parse_constant=_no_constant,
-                            parse_float=_finite_float)
-    except OSError as exc:   # a folder or a dangling symlink of a JSON file's name (fuzz 22a W), no permission
-        raise ValueError(f"{what} {path}: not a readable file ({exc.strerror or type(exc).__name__})") from None
+        record = json.loads(data.decode("utf-8"), parse_constant=_no_constant, parse_float=_finite_float)
     except UnicodeDecodeError as exc:
         raise ValueError(f"{what} {path}: not UTF-8 text ({exc.reason} at byte {exc.start})") from exc
     except json.JSONDecodeError as exc:

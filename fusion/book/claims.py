@@ -67,7 +67,7 @@ from fusion.book.ledger.evidence import _KIND_OF_TEST
 from fusion.book.ledger import (SOURCES, Alternative, Claim, Comparison, Conjunction, Evidence, Ledger, Unverifiable,
                                 ledger_dir)
 from fusion._counts import COUNT_CEILINGS
-from fusion._paths import folder
+from fusion._paths import file_bytes, folder
 from fusion._shown import shown
 from fusion._validation import MAX_MAGNITUDE, count, flag, instance_of, one_of, text, text_fields
 
@@ -727,7 +727,8 @@ def load(path: Path | str) -> ClaimsFile:
     TypeError
         ``path`` is not a path.
     ValueError
-        ``path`` is not a readable file (missing, a directory, unreadable) or is not UTF-8 text.
+        ``path`` is not a readable file (missing, a directory, unreadable, a FIFO or a device, larger than 16 MB)
+        or is not UTF-8 text.
     ClaimsFileError
         The file is malformed: the message names the file, the record and the field.
     """
@@ -736,10 +737,9 @@ def load(path: Path | str) -> ClaimsFile:
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path must be a path (str or os.PathLike), got {type(path).__name__}")
     path = Path(path)
-    try:
-        raw = path.read_text(encoding="utf-8")
-    except OSError as e:
-        raise ValueError(f"path {shown(str(path))} is not a readable file: {e.strerror or e}") from None
+    try:   # a regular file of at most MAX_FILE_BYTES, by name before reading (fuzz 34a C3, C4, C5)
+        raw = file_bytes(path, f"path {shown(str(path))}").decode("utf-8")
+        raw = raw.replace("\r\n", "\n").replace("\r", "\n")   # universal newlines, as read_text
     except UnicodeDecodeError as e:
         raise ValueError(f"path {shown(str(path))} is not UTF-8 text ({e.reason} at byte {e.start})") from None
     try:

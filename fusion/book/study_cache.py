@@ -3,11 +3,12 @@
 The chapters' studies are pure functions of hashable arguments (seed, runs, a reading's key, a scenario), and
 several processes of one build compute the same ones: chapter 06's networks in both of its notebooks, chapter 05's
 ledger studies in the notebook and in its unit tests, and so on. :func:`study_cache` caches such a function in
-the process (least recently used dropped first, keyed as on disk) and, when the environment variable :data:`ENV` names a
-directory, also on disk there: the first process to need a result computes it under a file lock and stores it
-(pickle, written atomically); a process that asks meanwhile waits for it instead of computing it a second time,
-and later ones load it. A stored file that cannot be read back (empty, truncated, corrupt) or does not hold its own
-key's result is a miss: the result is computed again and the file rewritten.
+the process (least recently used dropped first, keyed as on disk but with every class by identity) and, when the
+environment variable :data:`ENV` names a directory, also on disk there: the first process to need a result
+computes it under a file lock and stores it (pickle, written atomically); a process that asks meanwhile waits for
+it instead of computing it a second time, and later ones load it. A stored file that cannot be read back (empty,
+truncated, corrupt) or does not hold its own key's result is a miss: the result is computed again and the file
+rewritten.
 
 The key of a result is the SHA-256 of the package's sources (every ``fusion/**/*.py``), numpy's version, the
 function's qualified name and its arguments bound to its parameters (defaults applied): any edit of the package
@@ -62,7 +63,7 @@ import numpy as np
 from fusion._counts import count
 from fusion._frozen import ReadOnlyMapping
 from fusion._validation import text
-from fusion._paths import folder
+from fusion._paths import file_bytes, folder
 from fusion._shown import shown
 
 __all__ = ["ENV", "LOG_ENV", "process_cache", "study_cache", "study_key", "source_digest"]
@@ -95,7 +96,8 @@ def source_digest(package: Path | str = _PACKAGE) -> str:
     ValueError
         If ``package`` is not an existing folder (or the system cannot read it as a path: too long, a NUL byte), or
         not a Python package (no ``__init__.py``): a folder such as ``/`` or ``''`` (the working directory) would
-        be walked file by file, the whole file system in the worst case.
+        be walked file by file, the whole file system in the worst case; or if a source under it is not a regular
+        file (a FIFO, a device) or is larger than 16 MB (read whole, they would hang or exhaust memory).
     """
     path = folder(text(package, "package") if isinstance(package, str) else package, "package")  # rule 19
     if not (path / "__init__.py").is_file():
@@ -109,33 +111,57 @@ def _source_digest(package: Path) -> str:
     h = hashlib.sha256()
     for path in sorted(package.rglob("*.py")):
         rel = path.relative_to(package).as_posix().encode()
-        data = path.read_bytes()
+        data = file_bytes(path, f"package: the source {shown(rel.decode(), 60)}")   # fuzz 34a C3, C4
         h.update(len(rel).to_bytes(8, "little") + rel + len(data).to_bytes(8, "little") + data)
     return h.hexdigest()
 
 
-def _type_name(kind: type, _unnamed: dict[int, type] | None = None) -> str:
-    """The name that determines ``kind`` in a key: a builtin's short name, else its module and qualified name.
+def _fingerprint(kind: type) -> str:
+    """What tells two classes of one name apart on disk (fuzz 34a C1: a namedtuple or Enum re-bound under its name
+    shared a cached result): a named tuple's ``_fields``, an Enum's members and values, a dataclass's field names;
+    empty for other classes."""
+    if issubclass(kind, enum.Enum):
+        parts: Any = [[m.name, _member_value(m)] for m in kind]
+    elif issubclass(kind, tuple) and isinstance(getattr(kind, "_fields", None), tuple):
+        parts = ["fields", list(map(str, kind._fields))]
+    elif dataclasses.is_dataclass(kind):
+        parts = ["fields", [f.name for f in dataclasses.fields(kind)]]
+    else:
+        return ""
+    return "~" + hashlib.sha256(json.dumps(parts).encode()).hexdigest()[:16]
 
-    A class that its module's namespace does not hold under that name (one made in a function, a second
-    ``namedtuple("P", ...)`` beside another ``P``) cannot be told apart from another of the same name by it (fuzz 33a C4:
-    two named tuples ``P`` shared a cached result, on disk too): TypeError (no canonical encoding; the call bypasses the
-    disk), or, with ``_unnamed`` (the in-process key), its name and ``id``, the class kept alive in ``_unnamed`` so
-    that its ``id`` is never reused.
+
+def _member_value(member: enum.Enum) -> Any:
+    try:
+        return _canonical(member.value)
+    except (TypeError, RecursionError):   # no encoding: its text (this member's own value is refused where it is used)
+        return repr(member.value)
+
+
+def _type_name(kind: type, _unnamed: dict[int, type] | None = None) -> str:
+    """The name that determines ``kind`` in a key: a builtin's short name, else its module and qualified name and
+    ``_fingerprint``.
+
+    On disk (``_unnamed`` None) a class that its module's namespace does not hold as the same object under that name
+    (one made in a function, a second ``namedtuple("P", ...)`` beside another ``P``) cannot be told apart from another
+    of the same name by it (fuzz 33a C4: two named tuples ``P`` shared a cached result): TypeError (no canonical
+    encoding; the call bypasses the disk). In the process (``_unnamed`` given) every class is keyed by identity
+    (fuzz 34a C1: a class re-bound under its name shared the key): its name and ``id``, the class kept alive in
+    ``_unnamed`` so that its ``id`` is never reused.
     """
     if kind.__module__ == "builtins":
         return kind.__qualname__
-    name = f"{kind.__module__}.{kind.__qualname__}"
+    name = f"{kind.__module__}.{kind.__qualname__}{_fingerprint(kind)}"
+    if _unnamed is not None:
+        _unnamed.setdefault(id(kind), kind)
+        return f"{name}#{id(kind)}"
     found: Any = sys.modules.get(kind.__module__)
     for part in kind.__qualname__.split("."):
         found = getattr(found, part, None)
     if found is kind:
         return name
-    if _unnamed is None:
-        raise TypeError(f"value: the class {name} is not found under that name in its module (the key cannot tell it "
-                        "apart from another class of that name)")
-    _unnamed.setdefault(id(kind), kind)
-    return f"{name}#{id(kind)}"
+    raise TypeError(f"value: the class {kind.__module__}.{kind.__qualname__} is not found under that name in its "
+                    "module (the key cannot tell it apart from another class of that name)")
 
 
 def _canonical(value: Any, _open: frozenset[int] = frozenset(), _unnamed: dict[int, type] | None = None) -> Any:
@@ -151,7 +177,7 @@ def _canonical(value: Any, _open: frozenset[int] = frozenset(), _unnamed: dict[i
     if value is None or isinstance(value, (bool, str)):
         return [name(value), value]
     if isinstance(value, enum.Enum):
-        return ["enum", name(value), _canonical(value.value, _open, _unnamed)]
+        return ["enum", name(value), value.name, _canonical(value.value, _open, _unnamed)]
     if isinstance(value, (int, np.integer)):
         return [name(value), int(value)]
     if isinstance(value, np.floating) and np.finfo(value.dtype).nmant > 52:   # longdouble: its own digits
@@ -368,24 +394,35 @@ def _environment() -> Path | None:
     """The cache directory :data:`ENV` names (None when unset or empty), after checking the environment before any
     work: ValueError naming the variable when :data:`ENV` holds only blanks or names something that is not a
     directory or a directory in which no file can be created (tried once per process, ``_usable``), or (with a
-    directory) :data:`LOG_ENV` names a directory or a file in a missing one (fuzz 32a D1: an OS error
-    named nothing, and came after the computation, whose result was lost)."""
+    directory) :data:`LOG_ENV` names a directory, a FIFO or a device, or a file in a missing one (fuzz 32a D1: an
+    OS error named nothing, and came after the computation, whose result was lost)."""
     root, log = os.environ.get(ENV), os.environ.get(LOG_ENV)
     if root is not None and root and not root.strip():
         raise ValueError(f"the environment variable {ENV} holds only blanks: set it to a directory or unset it")
+    if root:   # resolved once here and used so (fuzz 34a C2: a relative name probed in one working directory was used
+        try:   # from another)
+            root = os.path.abspath(root)
+        except (OSError, ValueError) as exc:
+            raise ValueError(f"the environment variable {ENV} must name a directory, got {shown(root)} "
+                             f"({type(exc).__name__})") from None
     if root and os.path.exists(root) and not os.path.isdir(root):
         raise ValueError(f"the environment variable {ENV} must name a directory, got the file {shown(root)}")
     if root and root not in _USABLE:
         _usable(root)
-    if root and log and (os.path.isdir(log) or not os.path.isdir(os.path.dirname(os.path.abspath(log)))):
-        raise ValueError(f"the environment variable {LOG_ENV} must name a file in an existing directory, got "
+    if root and log and (os.path.isdir(log) or not os.path.isdir(os.path.dirname(os.path.abspath(log)))
+                         or (os.path.exists(log) and not os.path.isfile(log))):   # a FIFO, a device (fuzz 34a C3)
+        raise ValueError(f"the environment variable {LOG_ENV} must name a regular file in an existing directory, got "
                          f"{shown(log)}")
     return Path(root) if root else None
 
 
 def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any], compute: Callable[[], Any]) -> Any:
     """The stored result of ``key`` under ``root``, or ``compute()`` stored there; one process computes, others wait."""
-    root.mkdir(parents=True, exist_ok=True)
+    try:   # before the work: the folder may have become unusable since it was probed (fuzz 34a C2)
+        root.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ValueError(f"the environment variable {ENV} must name a directory in which files can be created, got "
+                         f"{shown(str(root))} ({type(exc).__name__}: {exc.strerror})") from None
     target = root / f"{key}.pkl"
     start = time.process_time()
     with open(root / f"{key}.lock", "w", encoding="utf-8") as lock:
@@ -550,13 +587,10 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
             bound = sig.bind(*args, **kwargs)
             bound.apply_defaults()
             arguments = dict(bound.arguments)
-            try:
-                key, on_disk = study_key(qualname, arguments), True
+            try:   # in the process every class by identity (fuzz 34a C1); the disk's key below
+                key = _key(qualname, arguments, None, _UNNAMED)
             except TypeError:
-                try:   # a class the disk's key cannot name (fuzz 33a C4): keyed in the process by its id
-                    key, on_disk = _key(qualname, arguments, None, _UNNAMED), False
-                except TypeError:
-                    return by_equality(*args, **kwargs)
+                return by_equality(*args, **kwargs)
             # keyed by the canonical encoding, as on disk: 1, 1.0, True and Fraction(1), or 0.0 and -0.0, are different
             # calls (an equality-keyed cache gave a cached result to an argument the function refuses, fuzz 15)
             with lock:
@@ -566,9 +600,14 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
                     return memo[key].get()
                 stats["misses"] += 1
             root = _environment()             # checked before any work, also for a call kept in the process
-            root = root if on_disk else None
-            result = _Shared(_through_disk(root, key, qualname, arguments, lambda: fn(*args, **kwargs)) if root
-                             else fn(*args, **kwargs))
+            disk_key = None
+            if root is not None:
+                try:
+                    disk_key = study_key(qualname, arguments)
+                except TypeError:   # a class the disk's key cannot name (fuzz 33a C4): kept in the process
+                    disk_key = None
+            result = _Shared(_through_disk(root, disk_key, qualname, arguments, lambda: fn(*args, **kwargs))
+                             if root is not None and disk_key is not None else fn(*args, **kwargs))
             if maxsize == 0:
                 return result.value            # not kept: the caller's own
             with lock:

@@ -362,7 +362,10 @@ def weighted_em(
     Returns
     -------
     EmFit
-        The fitted ``mixture`` and the ``loglik`` trace.
+        The fitted ``mixture`` and the ``loglik`` trace. A component whose weight vanishes (below
+        :math:`10^{-12}`) or whose covariance comes out of an M-step not positive definite (collapsed onto
+        coincident samples beyond the floor's reach, e.g. ``floor=0`` or a weight-degenerate sample) is
+        dropped: the mixture may have fewer than ``n_components`` components.
 
     Raises
     ------
@@ -672,6 +675,27 @@ _EM_BLOCK = 16
 
 
 @own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
+def _positive_definite(covs: FloatArray, live: np.ndarray) -> np.ndarray:
+    """Which of the symmetric ``covs`` (..., d, d) of the ``live`` components are positive definite (the others: True).
+
+    A component that collapsed onto a few points far from the rest (a weight-degenerate particle cloud, whose floor
+    ``lambda diag(P_bar)`` is near 0) can come out of the M-step indefinite by round-off (fuzz 34a C6: a raw
+    LinAlgError in one run of 1,487); the EM drops it as it drops a component whose weight vanished.
+    """
+    test = np.where(live[..., None, None], covs, np.eye(covs.shape[-1]))
+    try:
+        np.linalg.cholesky(test)
+        return np.ones(live.shape, dtype=bool)
+    except np.linalg.LinAlgError:   # rare: find which ones
+        ok = np.ones(live.shape, dtype=bool)
+        for i in zip(*np.nonzero(live)):
+            try:
+                np.linalg.cholesky(test[i])
+            except np.linalg.LinAlgError:
+                ok[i] = False
+        return ok
+
+
 def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Generator], max_iter: int, tol: float,
                floor: float, inits: Sequence[tuple[FloatArray, FloatArray, FloatArray] | None]
                ) -> tuple[FloatArray, FloatArray, FloatArray, list[list[float]]]:
@@ -746,13 +770,14 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
             stats = np.matmul(gam, np.swapaxes(phi, -1, -2))  # (b, S, K): weights, first and second moments
             nk = stats[..., 0]
             keep = nk > 1e-12
-            p_new = np.where(keep, nk, 0.0)
-            pis[a] = p_new / p_new.sum(axis=1, keepdims=True)
             with np.errstate(divide="ignore", invalid="ignore"):  # dead components: computed, then discarded
                 m_c = stats[..., 1:1 + d] / nk[..., None]
                 c_new = (_unpack_sym(stats[..., 1 + d:], d) / nk[..., None, None]
                          - m_c[..., :, None] * m_c[..., None, :] + reg[a][:, None])
             c_new = 0.5 * (c_new + np.swapaxes(c_new, -1, -2))
+            keep &= _positive_definite(c_new, keep)  # collapsed below the floor: dead too (fuzz 34a C6)
+            p_new = np.where(keep, nk, 0.0)
+            pis[a] = p_new / p_new.sum(axis=1, keepdims=True)
             bi, si = np.nonzero(keep)
             means[a[bi], si] = m_c[bi, si] + mean_all[a[bi]]
             covs[a[bi], si] = c_new[bi, si]
