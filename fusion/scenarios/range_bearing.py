@@ -28,7 +28,7 @@ import numpy as np
 from fusion._validation import seed as check_seed, workers as check_workers
 from fusion._validation import flag
 from fusion._guards import own_underflow
-from fusion._validation import FloatArray, allocation, as_array, count, instance_of, one_of, sequence
+from fusion._validation import FloatArray, allocation, as_array, count, instance_of, one_of, sequence, work
 from fusion.filtering.kalman import nees
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options
 # the module is split by concept; its names (and the batch engine's private kernels) are re-exported here
@@ -158,6 +158,7 @@ def run_tracking_batch(
         raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
     swarm_options = check_swarm_options(swarm_options)
     _block_allocation(sc, len(seeds), "seeds, sc.sensors and sc.n_particles")
+    _tracking_work(sc, len(seeds), "seeds, sc.frames, sc.sensors and sc's particle and sample counts")
     if os.environ.get("PYTEST_XDIST_WORKER"):
         workers = 1  # the test runner's worker processes already share the cores
     # blocks of at most RUN_BLOCK runs, as many as a multiple of the workers and of equal sizes (within one),
@@ -190,6 +191,29 @@ def _block_allocation(sc: RangeBearingScenario, runs: int, names: str) -> None:
     n0, n_nodes = max(int(sc.n_initial), int(sc.n_particles)), len(sc.sensors)
     allocation((int(sc.frames), n_nodes, n0, 4), "sc.frames, sc.sensors and sc.n_particles")
     allocation((_BLOCK_HELD, min(int(runs), RUN_BLOCK), n_nodes, n0, 4), names)
+
+
+#: Units (about 10 ns each, ``fusion._validation.MAX_WORK``) of one frame of one run of :func:`run_tracking_batch`
+#: besides its particles: the per-run loops (resampling searches, SLSQP solves, the swarm's steps), measured 2.5 ms
+#: a run-frame with 60 particles (fuzz 34a C7: 0.40 CPU-s for 80 runs of 2 frames, OPENBLAS_NUM_THREADS=1).
+TRACK_STEP = 250_000
+#: Units of one particle-element of a run-frame (``_tracking_work``): a node's particle weighs ``1 + em_iterations x
+#: n_components`` elements, a fusion sample and a centralised particle one; 3 units each fits the default scenario's
+#: measured 14 ms a run-frame (6,000 particles over 3 nodes, 2,000 samples, 10,000 central particles).
+TRACK_ELEMENT = 3
+#: Work budget of a tracking study (``_tracking_work``): 20 x ``MAX_WORK``, about 200 CPU-s on one core. Larger than
+#: ``MAX_WORK``'s 10 CPU-s because the book's own study (chapter 06: 100 runs of the default 30-frame scenario, about
+#: 45 CPU-s, cached and shared by workers) costs more; a request of hours (8e6 runs) is refused at once.
+TRACK_WORK = 20 * 10**9
+
+
+def _tracking_work(sc: RangeBearingScenario, runs: int, names: str) -> int:
+    """Refuse (rule 17) a tracking study of ``runs`` runs of ``sc`` whose work is beyond :data:`TRACK_WORK`, before
+    any work: ``runs x sc.frames`` run-frames of :data:`TRACK_STEP` units plus :data:`TRACK_ELEMENT` units per
+    particle-element (``names`` are the caller's arguments setting them); returns the units."""
+    elements = (len(sc.sensors) * int(sc.n_particles) * (1 + int(sc.em_iterations) * int(sc.n_components))
+                + int(sc.n_samples) + int(sc.n_central))
+    return work((int(runs), int(sc.frames)), names, weight=TRACK_STEP + TRACK_ELEMENT * elements, limit=TRACK_WORK)
 
 
 # --------------------------------------------------------------------------- Monte-Carlo study
@@ -314,6 +338,7 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     # the covariances kept (per method, run and frame)
     _block_allocation(sc, runs, "runs, sc.sensors and sc.n_particles")
     allocation((runs, int(sc.frames), 4, 4), "runs and sc.frames")
+    _tracking_work(sc, runs, "runs, sc.frames, sc.sensors and sc's particle and sample counts")
     seed = check_seed(seed)
     flag(all_nodes_first, "all_nodes_first")
     seeds = np.random.SeedSequence(seed).spawn(int(runs))

@@ -1,0 +1,30 @@
+"""Work budgets of fuzz 34a (rule 17): the tracking study's is counted at entry and named by the caller's arguments."""
+import numpy as np
+import pytest
+
+
+def _small():
+    from fusion.scenarios import range_bearing as rb
+    return rb, rb.RangeBearingScenario(frames=2, n_particles=60, n_samples=60, n_central=100, em_iterations=2,
+                                       n_components=1)
+
+
+def test_monte_carlo_refuses_hours_of_runs_by_name():
+    # fuzz 34a C7: 8e6 runs (about 9 hours) were accepted; refused at entry, naming runs
+    rb, sc = _small()
+    with pytest.raises(ValueError, match="runs, sc.frames"):
+        rb.monte_carlo(sc, 1, 8_000_000)
+
+
+def test_run_tracking_batch_refuses_by_seeds():
+    rb, sc = _small()
+    seeds = [np.random.SeedSequence(1)] * 100_000
+    with pytest.raises(ValueError, match="seeds, sc.frames"):
+        rb.run_tracking_batch(sc, seeds)
+
+
+def test_book_tracking_study_stays_inside():
+    # chapter 06's study (100 runs of the default scenario) is well inside the budget: counted, not run
+    from fusion.scenarios import range_bearing as rb
+    from fusion.book.chapters.chernoff.settings import STUDY_RUNS
+    assert rb._tracking_work(rb.RangeBearingScenario(), STUDY_RUNS, "runs") < rb.TRACK_WORK / 3
