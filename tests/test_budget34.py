@@ -28,3 +28,13 @@ def test_book_tracking_study_stays_inside():
     from fusion.scenarios import range_bearing as rb
     from fusion.book.chapters.chernoff.settings import STUDY_RUNS
     assert rb._tracking_work(rb.RangeBearingScenario(), STUDY_RUNS, "runs") < rb.TRACK_WORK / 3
+
+
+def test_nees_study_step_weighs_its_measured_cost():
+    # fuzz 34a C9: 82,000 steps of 2 runs (about 40 CPU-s) were accepted; a step is ~0.58 ms, so ~17,000 is the edge
+    from fusion.scenarios.two_sensor.study import _nees_work
+    _nees_work(15_000, 2)
+    with pytest.raises(ValueError, match="runs and n_steps"):
+        _nees_work(25_000, 2, "runs and n_steps")
+    with pytest.raises(ValueError, match="n_steps and runs"):
+        _nees_work(4_000, 1_000)

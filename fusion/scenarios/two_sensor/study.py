@@ -287,12 +287,13 @@ class NeesStudy:
 
 def _nees_work(n_steps: int, runs: int, names: str = "n_steps and runs") -> None:
     """The work budget (rule 17) of NEES runs of the two local filters and every rule of ``NEES_RULES`` (split CI's
-    search among them) at each of ``n_steps`` steps over ``runs`` runs (fuzz 24c SZ): a step costs about 0.7 ms
-    plus 3 us per run on this machine (12 loop steps plus 48 units a run), so that 10**4 steps of 5 runs are
-    accepted (about 10 CPU-s) and 10**6 refused by name, never run for half an hour."""
+    search among them) at each of ``n_steps`` steps over ``runs`` runs (fuzz 24c SZ), weighed by its measured cost
+    (fuzz 34a C9, OPENBLAS_NUM_THREADS=1): a step costs about 0.58 ms plus 2 us per run (0.23 CPU-s for 400 steps of
+    2 runs, 0.40 for 400 of 200 runs, 0.50 for 200 of 1,000), so 58 loop steps plus 250 units a run: about 17,000
+    steps of 2 runs are accepted (about 10 CPU-s) and 10**5 refused by name, never run for minutes."""
     from fusion._validation import LOOP_STEP, loop_work
 
-    loop_work((n_steps,), 48 * runs, names, step=12 * LOOP_STEP)
+    loop_work((n_steps,), 250 * runs, names, step=58 * LOOP_STEP)
 
 
 @derived_inputs()
