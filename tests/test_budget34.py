@@ -38,3 +38,11 @@ def test_nees_study_step_weighs_its_measured_cost():
         _nees_work(25_000, 2, "runs and n_steps")
     with pytest.raises(ValueError, match="n_steps and runs"):
         _nees_work(4_000, 1_000)
+
+
+def test_run_network_study_counts_its_work_at_entry():
+    # fuzz 34a C8: 6,000 default runs worked 9.4 CPU-s, then the swarm's budget named its own arguments
+    import fusion.scenarios.fusion_networks as f
+    nodes = (f.NetworkNode((800.0, 700.0), "bearing"), f.NetworkNode((1000.0, 1050.0), "range"))
+    with pytest.raises(ValueError, match="^runs, sc.nodes"):
+        f.run_network_study(f.NetworkScenario("d", nodes), 1, 6000)

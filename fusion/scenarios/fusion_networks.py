@@ -54,7 +54,7 @@ import numpy as np
 from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, validated_post_init
 from fusion._validation import is_integer
 from fusion._guards import own_underflow
-from fusion._validation import sequence, store_read, text_fields
+from fusion._validation import sequence, store_read, text_fields, work
 from fusion._validation import seed as check_seed
 from fusion._validation import (_numeric, FloatArray, allocation, check_magnitude, count, instance_of, one_of,
                                 positive_scalar, std_scalar)
@@ -530,6 +530,13 @@ def _grid_posterior_blocks(m0: FloatArray, std: float, loglik: Callable[[FloatAr
     return tuple(np.concatenate(x) for x in zip(*parts))  # type: ignore[return-value]
 
 
+#: Units (about 10 ns, ``fusion._validation.MAX_WORK``) of one node of one run of :func:`run_network_study` besides its
+#: particles, and of one particle-element of a stage (a particle weighs ``1 + em_iterations x n_components``, a sample
+#: one): measured (fuzz 34a C8), so that about 3,000 runs of a default two-node network (about 9 CPU-s) are accepted.
+_NET_STEP = 80_000
+_NET_ELEMENT = 2
+
+
 @own_underflow  # a far particle's weight underflows to zero by design (fuzz 31a D1)
 def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy:
     """Run every pipeline of the network ``runs`` times (vectorised across runs and nodes).
@@ -574,6 +581,12 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
     runs = count(runs, "runs", minimum=2)
     B, N, Q, d = runs, len(sc.nodes), sc.n_particles, 2
     allocation((B, N, Q + sc.frames, d), "runs, sc.nodes, sc.n_particles and sc.frames")  # the particles and z
+    # the work (rule 17), counted before any (fuzz 34a C8: the swarm's inner budget refused after 9 CPU-s, by its
+    # own arguments): a run-node costs 0.87 ms at 30 particles and 1 stage, 1.4 ms at the default 400 and 3 stages
+    # (OPENBLAS_NUM_THREADS=1; 0.85 CPU-s for 300 default runs of 2 nodes, 1.56 for 900 tiny ones)
+    per = _NET_STEP + _NET_ELEMENT * int(sc.stages) * (Q * (1 + int(sc.em_iterations) * int(sc.n_components))
+                                                        + int(sc.n_samples))
+    work((B, N, int(sc.frames)), "runs, sc.nodes, sc.frames and sc's particle, sample and stage counts", weight=per)
     truth = np.asarray(sc.truth, dtype=float)
     pipes = _MIXTURES + _GAUSSIANS
     streams = []
