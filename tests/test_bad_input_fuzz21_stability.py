@@ -320,19 +320,25 @@ def test_source_digest_refuses_a_folder_that_is_not_a_package(package: str, tmp_
 # --- D14: the disk layer of study_cache
 
 
+_D14_CALLS: list = []
+
+
+@sc.study_cache(maxsize=2)
+def _d14_study(seed: int) -> float:
+    """Module-level: only a function its module holds under its name reaches the disk (fuzz 34a D2)."""
+    _D14_CALLS.append(seed)
+    return seed * 2.0
+
+
 @pytest.mark.parametrize("corrupt", [b"", b"\x80\x05\x95", b"not a pickle", "other key", "bare value"])
 def test_a_corrupt_or_foreign_cache_file_is_a_miss(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                                    corrupt: Any) -> None:
     """D14 (decided: a miss): an empty, truncated or corrupt ``<key>.pkl``, or one holding another key's result (or a
     bare value), is recomputed and rewritten instead of raising UnpicklingError/EOFError or being returned."""
     monkeypatch.setenv(sc.ENV, str(tmp_path))
-    calls = []
-
-    @sc.study_cache(maxsize=2)
-    def f(seed: int) -> float:
-        calls.append(seed)
-        return seed * 2.0
-
+    f, calls = _d14_study, _D14_CALLS
+    f.cache_clear()
+    calls.clear()
     assert f(3) == 6.0 and calls == [3]
     (target,) = tmp_path.glob("*.pkl")
     if corrupt == "other key":

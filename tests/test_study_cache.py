@@ -127,17 +127,25 @@ def test_the_source_digest_follows_every_source_file(tmp_path: Path) -> None:
     assert len({d0, d1, d2}) == 3 and sc._source_digest.__wrapped__(pkg) == d2
 
 
+_SUMMED: list = []
+
+
+@sc.study_cache(maxsize=4)
+def _summed(seed: int, runs: int = 100) -> int:
+    """Module-level: only a function its module holds under its name reaches the disk (fuzz 34a D2)."""
+    _SUMMED.append((seed, runs))
+    return seed + runs
+
+
 def test_defaults_and_keywords_share_one_entry(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv(sc.ENV, str(tmp_path))
-    calls = []
-
-    @sc.study_cache(maxsize=4)
-    def f(seed: int, runs: int = 100) -> int:
-        calls.append((seed, runs))
-        return seed + runs
-
+    f, calls = _summed, _SUMMED
+    f.cache_clear()
+    calls.clear()
     assert f(1) == f(1, 100) == f(seed=1, runs=100) == 101
-    assert calls == [(1, 100)]                                 # the later calls load the stored result
+    assert calls == [(1, 100)]                                 # one computation
+    f.cache_clear()
+    assert f(seed=1) == 101 and calls == [(1, 100)]            # loaded from the disk
     assert len(list(tmp_path.glob("*.pkl"))) == 1
 
 
@@ -163,7 +171,14 @@ _RACER = textwrap.dedent("""
     module = importlib.util.module_from_spec(spec)
     sys.modules[spec.name] = module
     spec.loader.exec_module(module)
-    study_cache = module.study_cache
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import racing                          # a module's function: a script's (__main__) is kept in the process only
+
+    print(json.dumps(racing.slow(7)))
+""")
+_RACING = textwrap.dedent("""
+    import os, sys, time
+    study_cache = sys.modules["fusion.book.study_cache"].study_cache   # the racer's, loaded by its path
 
     @study_cache(maxsize=1)
     def slow(seed: int) -> list:
@@ -171,8 +186,6 @@ _RACER = textwrap.dedent("""
             fh.write(f"{os.getpid()}\\n")
         time.sleep(1.0)
         return [seed, seed * 2]
-
-    print(json.dumps(slow(7)))
 """)
 
 
@@ -180,6 +193,7 @@ def test_two_processes_racing_compute_once(tmp_path: Path) -> None:
     """Two processes ask for one study at once: one computes it, the other waits and loads it."""
     script, marks, cache = tmp_path / "racer.py", tmp_path / "computed.txt", tmp_path / "cache"
     script.write_text(_RACER)
+    (tmp_path / "racing.py").write_text(_RACING)
     env = dict(os.environ, **{sc.ENV: str(cache)})
     procs = [subprocess.Popen([sys.executable, str(script), str(marks), sc.__file__], env=env, stdout=subprocess.PIPE, text=True)
              for _ in range(2)]
@@ -256,27 +270,36 @@ class _Frozen:
     table: dict[str, np.ndarray]
 
 
+# the studies of _edits at module level: only a function its module holds under its name reaches the disk (fuzz 34a D2)
+def _arr() -> np.ndarray:
+    return np.arange(4.0)
+
+
+def _dict_of_arrays() -> dict[str, np.ndarray]:
+    return {"mean": np.arange(4.0).reshape(2, 2)}
+
+
+def _list_of_arrays() -> list[np.ndarray]:
+    return [np.arange(3.0), np.ones(2)]
+
+
+def _frame() -> object:
+    import pandas as pd
+
+    return pd.DataFrame({"a": [1.0, 2.0], "b": ["u", "v"]})
+
+
+def _mutable() -> _Mutable:
+    return _Mutable(np.arange(3.0))
+
+
+def _frozen_with_dict() -> _Frozen:
+    return _Frozen(np.arange(3.0), {"k": np.zeros(2)})
+
+
 def _edits() -> dict[str, tuple[object, object]]:
     """Name -> (a study's result, an in-place edit of it that must not reach the next call: a callable)."""
     import pandas as pd
-
-    def arr() -> np.ndarray:
-        return np.arange(4.0)
-
-    def dict_of_arrays() -> dict[str, np.ndarray]:
-        return {"mean": np.arange(4.0).reshape(2, 2)}
-
-    def list_of_arrays() -> list[np.ndarray]:
-        return [np.arange(3.0), np.ones(2)]
-
-    def frame() -> pd.DataFrame:
-        return pd.DataFrame({"a": [1.0, 2.0], "b": ["u", "v"]})
-
-    def mutable() -> _Mutable:
-        return _Mutable(np.arange(3.0))
-
-    def frozen_with_dict() -> _Frozen:
-        return _Frozen(np.arange(3.0), {"k": np.zeros(2)})
 
     def set_array(a: np.ndarray) -> None:
         a[0] = -1.0
@@ -289,17 +312,17 @@ def _edits() -> dict[str, tuple[object, object]]:
         m.label = "edited"
         m.values = np.zeros(3)
 
-    return {"array": (arr, set_array),
-            "array, whole": (arr, lambda a: a.__setitem__(slice(None), -1.0)),
-            "dict of arrays, item": (dict_of_arrays, lambda d: set_array(d["mean"][0])),
-            "dict of arrays, key": (dict_of_arrays, lambda d: d.clear()),
-            "list, item": (list_of_arrays, lambda ls: set_array(ls[0])),
-            "list, append": (list_of_arrays, lambda ls: ls.append(np.ones(1))),
-            "DataFrame": (frame, frame_edit),
-            "mutable dataclass": (mutable, mutable_edit),
-            "mutable dataclass, array": (mutable, lambda m: set_array(m.values)),
-            "frozen dataclass, dict field": (frozen_with_dict, lambda f: f.table.clear()),
-            "frozen dataclass, array field": (frozen_with_dict, lambda f: set_array(f.values))}
+    return {"array": (_arr, set_array),
+            "array, whole": (_arr, lambda a: a.__setitem__(slice(None), -1.0)),
+            "dict of arrays, item": (_dict_of_arrays, lambda d: set_array(d["mean"][0])),
+            "dict of arrays, key": (_dict_of_arrays, lambda d: d.clear()),
+            "list, item": (_list_of_arrays, lambda ls: set_array(ls[0])),
+            "list, append": (_list_of_arrays, lambda ls: ls.append(np.ones(1))),
+            "DataFrame": (_frame, frame_edit),
+            "mutable dataclass": (_mutable, mutable_edit),
+            "mutable dataclass, array": (_mutable, lambda m: set_array(m.values)),
+            "frozen dataclass, dict field": (_frozen_with_dict, lambda f: f.table.clear()),
+            "frozen dataclass, array field": (_frozen_with_dict, lambda f: set_array(f.values))}
 
 
 def _equal(a: object, b: object) -> bool:

@@ -28,8 +28,15 @@ in-place edit reached every later call). When it is computed or loaded, its arra
 place (values and container types unchanged); if it then holds nothing mutable (atoms, read-only arrays, tuples,
 frozensets, read-only mappings and frozen dataclasses of those), every call returns the object itself; otherwise
 (a list, dict, set, DataFrame, non-frozen dataclass in it) each call returns a deep copy that shares the result's
-immutable parts (its read-only arrays are not copied). :func:`process_cache` applies the same rule to an in-process
+immutable parts (its read-only arrays are not copied). A result that holds something mutable and cannot be
+deep-copied (a memoryview, a generator, a lock in a dict) is not cached: it is returned to its caller, and each call
+computes it again, as without the cache (fuzz 34a D1). :func:`process_cache` applies the same rule to an in-process
 cache without the disk.
+
+Only a function that its module holds under its qualified name (a module-level ``def``, or a wrapper of one) is
+cached on disk: a function made in another function (closures of one factory share a name), a lambda, or a
+function of a script (``__main__``) cannot be told apart from another of its name by the key, and is cached in the
+process only (fuzz 34a D2).
 
 With ``FUSION_STUDY_CACHE_LOG`` naming a file, every call that reaches the disk layer appends one JSON line
 (qualified name, arguments, process id, CPU-seconds, ``"computed"`` or ``"loaded"``): which studies a run computes
@@ -310,21 +317,47 @@ def _frozen(value: Any, immutable: dict[int, Any], _open: frozenset[int] = froze
     return ok
 
 
-class _Shared:
-    """One cached result as every caller sees it: the object itself when nothing in it can be changed, else a
-    deep copy per caller that shares the result's immutable parts (its read-only arrays, frozen results)."""
+#: What ``copy.deepcopy`` raises for a value it cannot copy (a memoryview, a generator, a lock), as the disk layer
+#: catches for a value it cannot pickle.
+_UNCOPYABLE = (copy.Error, pickle.PicklingError, TypeError, AttributeError)
 
-    __slots__ = ("value", "immutable", "whole")
+
+class _Uncopyable(Exception):
+    """A result that holds something mutable and cannot be deep-copied (fuzz 34a D1): returned uncached."""
 
     def __init__(self, value: Any) -> None:
+        super().__init__("uncopyable result")
+        self.value = value
+
+
+class _Shared:
+    """One cached result as every caller sees it: the object itself when nothing in it can be changed, else a
+    deep copy per caller that shares the result's immutable parts (its read-only arrays, frozen results).
+
+    A result that is not wholly immutable is copied once when it is kept (the first caller's copy, ``_spare``): one
+    that cannot be deep-copied raises ``_Uncopyable`` carrying it, and is returned to its caller uncached (fuzz 34a
+    D1: a TypeError "cannot pickle" came after the computation, naming nothing)."""
+
+    __slots__ = ("value", "immutable", "whole", "_spare")
+
+    def __init__(self, value: Any, keep: bool = True) -> None:
         self.value = value
         self.immutable: dict[int, Any] = {}
         self.whole = _frozen(value, self.immutable)
+        self._spare: list[Any] = []
+        if keep and not self.whole:
+            try:
+                self._spare.append(copy.deepcopy(value, dict(self.immutable)))
+            except _UNCOPYABLE:
+                raise _Uncopyable(value) from None
 
     def get(self) -> Any:
         if self.whole:
             return self.value
-        return copy.deepcopy(self.value, dict(self.immutable))
+        try:
+            return self._spare.pop()            # atomic: one caller gets the copy made when the result was kept
+        except IndexError:
+            return copy.deepcopy(self.value, dict(self.immutable))
 
 
 def _readonly(arr: np.ndarray) -> np.ndarray:
@@ -479,7 +512,8 @@ def process_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], A
     For a function that reads a file or that the disk cannot key (a claim file, a private helper): a result in
     which nothing can be changed (see :func:`study_cache`) is shared by every call; its arrays of numbers are made
     read-only in place; any other result (a list, dict, DataFrame, non-frozen dataclass in it) is deep-copied for
-    each caller, its immutable parts shared. A caller's edit of a result never reaches another call.
+    each caller, its immutable parts shared. A caller's edit of a result never reaches another call. A result that
+    holds something mutable and cannot be deep-copied (a memoryview, a generator) is returned uncached.
 
     Calls are keyed as ``functools.lru_cache(typed=True)`` keys them: by equality, the type checked for each top-level
     argument only, so equal arguments share one result: ``f(-0.0)`` gets ``f(0.0)``'s and ``f((True,))`` gets
@@ -507,12 +541,14 @@ def process_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], A
         maxsize = count(maxsize, "maxsize", minimum=0)
 
     def decorate(fn: Callable[..., Any]) -> Any:
-        shared = functools.lru_cache(maxsize=maxsize, typed=True)(lambda *a, **k: _Shared(fn(*a, **k)))
+        shared = functools.lru_cache(maxsize=maxsize, typed=True)(lambda *a, **k: _Shared(fn(*a, **k), maxsize != 0))
 
         @functools.wraps(fn)
         def cached(*args: Any, **kwargs: Any) -> Any:
             try:
                 entry = shared(*args, **kwargs)
+            except _Uncopyable as uncached:   # not kept (lru_cache keeps no exception): the caller's own
+                return uncached.value
             except TypeError:
                 _name_unhashable(fn, args, kwargs)   # the cache hashes the arguments before fn's own checks
                 raise
@@ -523,6 +559,32 @@ def process_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], A
         return cached
 
     return decorate
+
+
+def _named(fn: Callable[..., Any], found: list[bool]) -> bool:
+    """Whether the disk may serve ``fn``: its module (not ``__main__``) holds it under its qualified name (itself, or a
+    wrapper whose ``__wrapped__`` chain reaches it); ``found`` keeps the answer once known.
+
+    A function made in a function (two closures of one factory share a name, ``make.<locals>.f``), a lambda, or a
+    script's function (``__main__``: two scripts' functions share a name) cannot be told apart from another of its name
+    by the key, as a class made in a function cannot (``_type_name``; fuzz 34a D2: ``make(3)(1)`` loaded
+    ``make(2)(1)``'s result): it is cached in the process only."""
+    if found:
+        return found[0]
+    if fn.__module__ == "__main__" or "<" in fn.__qualname__ or fn.__module__ not in sys.modules:
+        found.append(False)
+        return False
+    obj: Any = sys.modules[fn.__module__]
+    for part in fn.__qualname__.split("."):
+        obj = getattr(obj, part, None)
+    for _ in range(16):                         # a wrapper of a wrapper of fn (functools.wraps sets __wrapped__)
+        if obj is fn:
+            found.append(True)
+            return True
+        obj = getattr(obj, "__wrapped__", None)
+        if obj is None:
+            break
+    return False                                # not (yet) bound under its name: asked again at the next call
 
 
 def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any]:
@@ -561,7 +623,13 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
     non-frozen dataclass) is deep-copied for each call, sharing its read-only arrays (see the module's docstring).
     The arrays are made read-only in place: a function that returns (part of) an array argument freezes the
     caller's own array too (the cached result is that array; copying every result would cost each study a copy).
-    A cached function should return arrays of its own, as the book's studies do.
+    A cached function should return arrays of its own, as the book's studies do. A result that holds something
+    mutable and cannot be deep-copied (a memoryview, a generator, a lock in a dict) is returned to its caller
+    uncached: every call computes it, as without the cache.
+
+    The disk serves only a function that its module holds under its qualified name (a module-level ``def`` or a
+    wrapper of one, not in ``__main__``): a closure made by a factory (two closures of one factory share a name
+    but not their values), a lambda, or a script's function is cached in the process only.
 
     A class is part of the key by its module and qualified name; a class its module does not hold under that name
     (one made in a function, or a second ``namedtuple("P", ...)`` beside another ``P``) cannot be named on disk, so
@@ -579,6 +647,7 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
         # arguments without a canonical encoding (a callable, a generator) are cached by equality, typed, as before
         by_equality = process_cache(maxsize)(fn)
         memo: collections.OrderedDict[str, _Shared] = collections.OrderedDict()
+        named: list[bool] = []                 # ``_named``'s answer, found once
         lock = threading.Lock()
         stats = {"hits": 0, "misses": 0}
 
@@ -601,13 +670,17 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
                 stats["misses"] += 1
             root = _environment()             # checked before any work, also for a call kept in the process
             disk_key = None
-            if root is not None:
+            if root is not None and _named(fn, named):
                 try:
                     disk_key = study_key(qualname, arguments)
                 except TypeError:   # a class the disk's key cannot name (fuzz 33a C4): kept in the process
                     disk_key = None
-            result = _Shared(_through_disk(root, disk_key, qualname, arguments, lambda: fn(*args, **kwargs))
-                             if root is not None and disk_key is not None else fn(*args, **kwargs))
+            value = (_through_disk(root, disk_key, qualname, arguments, lambda: fn(*args, **kwargs))
+                     if root is not None and disk_key is not None else fn(*args, **kwargs))
+            try:
+                result = _Shared(value, maxsize != 0)
+            except _Uncopyable:                # not kept (fuzz 34a D1): the caller's own, as without the cache
+                return value
             if maxsize == 0:
                 return result.value            # not kept: the caller's own
             with lock:

