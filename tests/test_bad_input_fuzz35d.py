@@ -65,3 +65,19 @@ def test_closures_of_one_factory_are_kept_in_the_process(tmp_path, monkeypatch: 
     assert not list(tmp_path.glob("*.pkl"))
     _module_level.cache_clear()
     assert _module_level(1) == 2 and len(list(tmp_path.glob("*.pkl"))) == 1   # a module's function: on disk
+
+
+# --- 34a D3: Conjunction.with_margin checks the margins whatever its members (one check with Comparison's)
+
+
+@pytest.mark.parametrize("margin, relative, error", [
+    (float("nan"), None, ValueError), (-1.0, None, ValueError), (None, float("inf"), ValueError),
+    (10 ** 400, None, ValueError), ("x", None, TypeError), (None, [0.1], TypeError), (True, None, TypeError)])
+def test_conjunction_with_margin_checks_the_margins_whatever_its_members(margin, relative, error) -> None:
+    from fusion.book.ledger import Conjunction, Proposition
+
+    c = Conjunction([("a", Proposition(True, "holds")), ("b", Proposition(True, "holds"))])
+    name = "relative_margin" if margin is None else "margin"
+    with pytest.raises(error, match=rf"^{name} must be a finite number >= 0"):
+        c.with_margin(margin, relative)
+    assert c.with_margin(0.1).status() == c.status() and c.with_margin(None, 0.0).status() == c.status()

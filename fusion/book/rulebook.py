@@ -599,6 +599,22 @@ def _margin_type(value: object, name: str) -> None:
         raise TypeError(f"{name} must be a finite number >= 0, got {type(value).__name__} {shown(value, 60)}")
 
 
+def _margins(margin: object, relative_margin: object) -> None:
+    """One check of a comparison's ``margin`` and ``relative_margin`` (:class:`Comparison`, its ``with_margin``, and
+    ``Conjunction.with_margin`` whatever its members; fuzz 34a D3): ``_margin_type``, then a finite number >= 0 (an
+    int beyond the float range is not finite), else ValueError naming it."""
+    for name, v in (("margin", margin), ("relative_margin", relative_margin)):
+        _margin_type(v, name)  # a type (rule 6), one rule with ExactComparison's
+        if v is None:
+            continue
+        try:
+            f = float(v)  # type: ignore[arg-type]
+        except OverflowError:
+            f = math.inf
+        if not math.isfinite(f) or f < 0:
+            raise ValueError(f"{name} must be a finite number >= 0, got {shown(v, 60)}")
+
+
 def _two_methods(a_name: str, b_name: str) -> None:
     """A comparison's two names differ (:class:`Comparison`, ``ExactComparison``; fuzz 22a D4): its summary and
     verdict name A and B by them, and "A 0.0153 vs A 0.2153" says nothing of which is which."""

@@ -93,14 +93,6 @@ def _run_count(runs: Any) -> int | None:
     return int(runs)
 
 
-def _as_float(v: object) -> float:
-    """``float(v)``, or infinity for an int beyond the float range (then refused as not finite)."""
-    try:
-        return float(v)  # type: ignore[arg-type]
-    except OverflowError:
-        return math.inf
-
-
 def _stored(x: float) -> float | None:
     """``x`` for the ledger's JSON: ``None`` for NaN (an undefined statistic, R3), which JSON cannot hold."""
     return None if math.isnan(x) else x
@@ -349,10 +341,7 @@ class Comparison:
             raise ValueError(f"conditions: A ran under {shown(conditions[0])} and B under {shown(conditions[1])}; a stress test "
                              "applied to one method must be applied to every compared method (rule R6)")
         inf_m = R._infinite_mean(infinite_mean)
-        for name, v in (("margin", margin), ("relative_margin", relative_margin)):
-            R._margin_type(v, name)  # a type (rule 6), one rule with ExactComparison's
-            if v is not None and (not math.isfinite(_as_float(v)) or float(v) < 0):
-                raise ValueError(f"{name} must be a finite number >= 0, got {shown(v, 60)}")
+        R._margins(margin, relative_margin)  # one check with Conjunction.with_margin (fuzz 34a D3)
         ref = abs(float(np.mean(bv))) if np.all(np.isfinite(bv)) else abs(float(np.median(bv)))
         margin, relative_margin = R._practical_margin(margin, relative_margin, ref, "B's runs")
         for k, v in (("a", tuple(float(x) for x in av)), ("b", tuple(float(x) for x in bv)), ("a_name", a_name),
@@ -697,7 +686,29 @@ class Conjunction:
         return min(r) if r else None
 
     def with_margin(self, margin: float | None = None, relative_margin: float | None = None) -> "Conjunction":
-        """The same group with every member comparison judged with another margin (see :meth:`Comparison.with_margin`)."""
+        """The same group with every member comparison judged with another margin (see :meth:`Comparison.with_margin`).
+
+        Parameters
+        ----------
+        margin : float, optional
+            Absolute margin in each comparison's units.
+        relative_margin : float, optional
+            Share of each comparison's baseline (used when ``margin`` is None).
+
+        Returns
+        -------
+        Conjunction
+            Members that are not comparisons (a :class:`Proposition`, an :class:`Unverifiable`) unchanged.
+
+        Raises
+        ------
+        TypeError
+            ``margin`` or ``relative_margin`` is not a number or None.
+        ValueError
+            ``margin`` or ``relative_margin`` is not a finite number >= 0, whatever the members (fuzz 34a D3: a
+            conjunction of propositions took NaN silently); or a member comparison refuses them.
+        """
+        R._margins(margin, relative_margin)
         return Conjunction([(lab, ev.with_margin(margin, relative_margin)
                              if isinstance(ev, (Comparison, ExactComparison)) else ev)
                             for lab, ev in self.parts])
