@@ -81,3 +81,23 @@ def test_conjunction_with_margin_checks_the_margins_whatever_its_members(margin,
     with pytest.raises(error, match=rf"^{name} must be a finite number >= 0"):
         c.with_margin(margin, relative)
     assert c.with_margin(0.1).status() == c.status() and c.with_margin(None, 0.0).status() == c.status()
+
+
+# --- 34a D4: a figure matplotlib cannot render is the audit's own error
+
+
+@pytest.mark.parametrize("how", ["audit_figure", "glue_figure"])
+def test_a_figure_matplotlib_cannot_draw_is_a_figure_style_error(how: str) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from fusion.book import figures
+
+    fig, ax = plt.subplots(figsize=(3, 2))
+    ax.text(1e5, 0, "far", clip_on=False)        # FreeType's raster overflows: a RuntimeError naming nothing
+    try:
+        with pytest.raises(figures.FigureStyleError, match="figure cannot be drawn"):
+            figures.audit_figure(fig) if how == "audit_figure" else figures.glue_figure("x_far", fig)
+    finally:
+        plt.close(fig)

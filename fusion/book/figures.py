@@ -26,6 +26,9 @@ References
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 from matplotlib import colors as mcolors
 from matplotlib.axes import Axes
@@ -179,7 +182,9 @@ def audit_figure(fig: Figure) -> list[str]:
         Listing every breach: colour outside the palette, registered method in another colour,
         internal key as a label, text below :data:`MIN_FONT_PT`, width above :data:`MAX_WIDTH_IN`,
         legend covering data; a size or dpi outside :data:`fusion.book.style.FIGURE_SIDE_RANGE_IN` or
-        :data:`fusion.book.style.FIGURE_DPI_RANGE` is reported before drawing (the figure is then not drawn).
+        :data:`fusion.book.style.FIGURE_DPI_RANGE` is reported before drawing (the figure is then not drawn);
+        a figure matplotlib fails to render (a RuntimeError of its rasteriser: text placed far outside the
+        axes, at x = 1e5 say) is reported as not drawable.
 
     References
     ----------
@@ -195,9 +200,21 @@ def audit_figure(fig: Figure) -> list[str]:
                 if width > MAX_WIDTH_IN + 1e-9 else [])
         _raise_problems(wide + [f"figure not drawn: its {exc}"])
     _agg_canvas(fig)
-    fig.canvas.draw()
+    _drawn(fig.canvas.draw)
     _raise_problems(_problems(fig, fig.get_figwidth()))
     return []
+
+
+def _drawn(draw: Callable[[], Any]) -> Any:
+    """``draw()`` (a render of the figure), with matplotlib's own failure to render it (fuzz 34a D4: text at
+    x = 1e5 overflows FreeType's rasteriser, a RuntimeError naming nothing) raised as the audit's
+    :class:`FigureStyleError`."""
+    try:
+        return draw()
+    except (RuntimeError, OverflowError) as exc:
+        raise FigureStyleError("figure breaks the book's figure rules:\n  - figure cannot be drawn: matplotlib "
+                               f"fails to render it ({type(exc).__name__}: {str(exc)[:120]}); text or an artist "
+                               "placed far outside the axes can overflow its rasteriser") from exc
 
 
 def _agg_canvas(fig: Figure) -> None:
@@ -329,7 +346,7 @@ def glue_figure(key: str, fig: Figure, alt: str | None = None) -> None:
 
     cid = fig.canvas.mpl_connect("draw_event", audit_draw)
     try:
-        mimebundle, metadata = format_display_data(fig)  # what myst_nb.glue computes: the stored PNG
+        mimebundle, metadata = _drawn(lambda: format_display_data(fig))  # what myst_nb.glue computes: the PNG
     finally:
         fig.canvas.mpl_disconnect(cid)
     if found:
