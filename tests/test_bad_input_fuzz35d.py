@@ -3,6 +3,7 @@ undrawable figures, and refusals of a study at other settings naming the default
 
 from __future__ import annotations
 
+import re
 import threading
 
 import pytest
@@ -101,3 +102,46 @@ def test_a_figure_matplotlib_cannot_draw_is_a_figure_style_error(how: str) -> No
             figures.audit_figure(fig) if how == "audit_figure" else figures.glue_figure("x_far", fig)
     finally:
         plt.close(fig)
+
+
+# --- 34b D2: a default the caller did not pass that does not fit its study: the refusal names the study
+
+
+def test_a_default_that_does_not_fit_the_study_is_named_by_the_study() -> None:
+    from fusion.book.chapters.lecture_wavelets import e26, mechanism
+    from fusion.book.chapters.lecture_weighting import learning
+    from fusion.scenarios import lecture_weighting as lw
+    from fusion.scenarios import wavelet_sensors as ws
+
+    hard = {"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "hard"}
+    m = ws.mechanism_study(length=256, runs=100, configs=(hard,))                   # one setting
+    e = ws.signal_study(gains=(1.0, 1.5, 0.8), sigma=(0.05, 0.1, 0.2), length=256, runs=100)   # three sensors
+    s = lw.learning_study(r_sets=((1.0, 4.0),), epochs=300, runs=100, last=50)     # only n = 2
+    for call, study, default, passed, own in [
+            (mechanism.table_mechanism, m, "labels = (0, 6)", {"labels": (0, 6)}, r"labels\[1\] must be"),
+            (e26.figure_26, e, "sensor = 3", {"sensor": 3}, "sensor must be"),
+            (learning.figure_22a, s, "n = 3", {"n": 3}, "n must be")]:
+        name = {mechanism.table_mechanism: "m", e26.figure_26: "e", learning.figure_22a: "s"}[call]
+        with pytest.raises(ValueError, match=rf"^{name} does not fit {call.__name__}'s default {re.escape(default)}"):
+            call(study)
+        with pytest.raises(ValueError, match=rf"^{own}"):        # passed by the caller: named as passed
+            call(study, **passed)
+
+
+def test_study_defaults_names_only_a_default_left_in_place() -> None:
+    from fusion.book.chapters._defaults import study_defaults
+
+    @study_defaults("xs", "k")
+    def pick(xs: tuple, k: int = 5, j: int = 0) -> object:
+        if k >= len(xs):
+            raise ValueError(f"k must be an index below {len(xs)}, got {k}")
+        if j >= len(xs):
+            raise ValueError(f"j must be an index below {len(xs)}, got {j}")
+        return xs[k]
+
+    assert pick(tuple(range(9))) == 5
+    with pytest.raises(ValueError, match=r"^xs does not fit pick's default k = 5 \(k must be"):
+        pick((1, 2))
+    for kwargs in ({"k": 5}, {"k": 7}, {"k": 0, "j": 4}):   # the caller's own argument: its own refusal
+        with pytest.raises(ValueError, match=r"^[kj] must be"):
+            pick((1, 2), **kwargs)

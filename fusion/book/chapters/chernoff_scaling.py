@@ -27,6 +27,7 @@ from fusion.scenarios.range_bearing import RangeBearingScenario
 from fusion.book.chapters.chernoff_steps import paired_numbers
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = ['within_se_counts', 'gaussian_problems', 'SWARM_VARIANTS', 'SwarmStudy', 'swarm_study', 'swarm_within_se', 'box_corner', 'ScalingStudy', 'density_evaluations', 'cost_table', 'scaling_study', 'FrameClouds', 'frame_clouds', 'clouds_figure']
 
@@ -567,6 +568,7 @@ def _frames_relation(values: dict[str, Any], cls: str) -> None:
         raise ValueError(f"{cls}.truth must hold frame + 1 = {values['frame'] + 1} states, got {values['truth'].shape[0]}")
 
 
+@study_defaults("sc", "frame")  # a default the study does not fit, named by the study (fuzz 34b D2)
 def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, frame: int = 9) -> FrameClouds:
     """Run the study's run ``run`` (of ``runs``, root ``seed``) up to ``frame`` and keep the nodes' particles.
 

@@ -25,6 +25,7 @@ from fusion._docstrings import reads_results
 from fusion.book.chapters.ci.text import _glue_doc
 from fusion.book.chapters.ci.checks import _averaging_start, _entries, _frame, _periods, _start_on, _step_index
 from fusion.book.glue import _glued_cell
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = ["ir_flown_numbers", "ir_numbers", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table",
            "sensitivity_numbers", "IR_BOUND_LABEL", "IR_SHOWN"]
@@ -292,6 +293,7 @@ IR_BOUND_LABEL = "many-scan bound: both sensors, straight flight"
 
 
 @reads_results("sim")
+@study_defaults("sim", "run", "t_min")  # a default the study does not fit, named by the study (fuzz 34b D2)
 def fig11(sim: ir.IrRadarRuns, run: int = 0, t_min: float = 2.0) -> tuple[Figure, float]:
     """The panels of the source's Fig. 11 on the simulated case: one run of the improved CI and its ±2σ band.
 

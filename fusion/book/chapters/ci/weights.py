@@ -28,6 +28,7 @@ from fusion.optimise.scalar import bounded_minimum, fruit_fly, fruit_fly_batch, 
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
+from fusion.book.chapters._defaults import study_defaults
 from fusion.book.chapters.ci.text import _glue_doc, _sig3, excess_text, readable
 from fusion.book.chapters.ci.checks import (_entries, _frame, _indices, _optima_of, _per_step, _period_key, _results,
                                             _same_search, _sensor_noises, _step_index, _study_of)
@@ -545,6 +546,7 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fru
 
 
 @reads_results("sc", "study")
+@study_defaults("sc", "steps", "split_step")  # a default the study does not fit, named by the study (fuzz 34b D2)
 def weight_numbers(sc: Scenario, study: FusionStudy, w_fruit_fly: ArrayLike, w_grid: ArrayLike, rng: np.random.Generator,
                    steps: Sequence[int] = (30, 60, 120), split_step: int = 60) -> GlueValues:
     """The numbers the prose quotes on the per-step CI weights (glue keys ``ci_omega_trace``, ``ci_w_*``, ...).

@@ -27,6 +27,7 @@ from fusion.book.chapters.lecture_wavelets.verdicts import (
 from fusion.book.glue import GlueValues, _glue_prefix
 from fusion.book._few_runs import studies_runs_named
 from fusion._shown import shown
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = [
     "table_26_display", "figure_26", "glue_26", "glue_equal_gains", "table_seeds", "mean_only_status",
@@ -95,6 +96,7 @@ def table_26_display(e: SignalStudy) -> pd.DataFrame:
     return pd.DataFrame(out, index=tab.columns).T
 
 
+@study_defaults("e", "sensor", "shown")  # a default the study does not fit, named by the study (fuzz 34b D2)
 def figure_26(e: SignalStudy, sensor: int = 3, shown: int = 300) -> Figure:
     """F2.6: raw, denoised and reconstructed signal of one sensor (run 0); MSE per sensor.
 
@@ -103,8 +105,8 @@ def figure_26(e: SignalStudy, sensor: int = 3, shown: int = 300) -> Figure:
     e : SignalStudy
         As :func:`table_26_display`.
     sensor : int
-        Sensor shown (0-based, below the study's sensors; the default 3 included: a study of 3 sensors needs
-        another ``sensor``, and its refusal names ``sensor`` with the bound).
+        Sensor shown (0-based, below the study's sensors: a study of 3 sensors needs another ``sensor``; left at
+        the default, as ``shown``, the refusal names ``e`` and the default that does not fit it).
     shown : int
         Number of samples shown (1 to the study's length).
 

@@ -28,6 +28,7 @@ from fusion.scenarios.wavelet_sensors import MechanismStudy, SignalStudy
 from fusion.book.glue import GlueValues
 from fusion.book._few_runs import studies_runs_named
 from fusion._docstrings import ParameterDocs
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = ["table_mechanism", "table_sensitivity", "table_sensitivity_display", "figure_mechanism", "glue_mechanism"]
 
@@ -51,6 +52,7 @@ ValueError
 
 
 @_PARAMS("m")
+@study_defaults("m", "labels")  # a default the study does not fit, named by the study (fuzz 34b D2)
 def table_mechanism(m: MechanismStudy, labels: tuple[int, ...] = (0, 6)) -> pd.DataFrame:
     """Per sensor and setting: squared-bias share of the denoised and reconstructed errors, correlation with sensor 1.
 
@@ -58,8 +60,8 @@ def table_mechanism(m: MechanismStudy, labels: tuple[int, ...] = (0, 6)) -> pd.D
     ----------
     labels : tuple of int
         Indices of the settings shown (default: the primary, hard, and the same with soft thresholding); at least
-        one, distinct, each below the study's settings (the default included: a study of fewer than 7 settings
-        needs other ``labels``, and its refusal names ``labels[k]`` with the bound).
+        one, distinct, each below the study's settings (a study of fewer than 7 settings needs other ``labels``:
+        left at the default, the refusal names ``m`` and the default that does not fit it).
 
     Returns
     -------
@@ -212,6 +214,7 @@ def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None,
     return tab if part == "all" else tab[num] if part == "numbers" else tab.drop(columns=num)
 
 
+@study_defaults("m", "shown")  # a default the study does not fit, named by the study (fuzz 34b D2)
 def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
     """F2.6b: relative bias of each sensor's denoised signal (hard and soft); sensor 1's MSE under each setting.
 

@@ -19,6 +19,7 @@ from fusion.book.tables import rounded
 from fusion.readings import weighting as wt
 from fusion.scenarios.lecture_weighting.learning import LearnedLimitCheck, LearningStudy
 from fusion._counts import seed as check_seed
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = [
     "table_22",
@@ -83,14 +84,15 @@ def table_22_display(s: LearningStudy) -> pd.DataFrame:
 
 
 @_PARAMS("s")
+@study_defaults("s", "n")  # a default the study does not fit, named by the study (fuzz 34b D2)
 def figure_22a(s: LearningStudy, n: int = 3) -> Figure:
     """F2.2a: learned variances against m for the setting with ``n`` sensors, true and limit lines.
 
     Parameters
     ----------
     n : int
-        Number of sensors of the setting shown; one of the study's settings (the default 3 included: a study
-        without a 3-sensor setting needs another ``n``, and its refusal names ``n`` with the settings it holds).
+        Number of sensors of the setting shown; one of the study's settings (a study without a 3-sensor setting
+        needs another ``n``: left at the default, the refusal names ``s``, the default and the settings it holds).
 
     Returns
     -------

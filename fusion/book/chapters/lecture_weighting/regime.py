@@ -22,6 +22,7 @@ from fusion.book.glue import GlueValues
 from fusion.scenarios.lecture_weighting.regime import (RegimeMethod, RegimeScenario, RegimeStudy, VarianceChange,
                                                        VarianceChangeStudy)
 from fusion._shown import shown
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = [
     "regime_comparisons",
@@ -152,6 +153,7 @@ def table_regime(s: RegimeStudy) -> pd.DataFrame:
 
 
 @_PARAMS("s")
+@study_defaults("s", "scenario", "smooth")  # a default the study does not fit, named by the study (fuzz 34b D2)
 def figure_regime(s: RegimeStudy, scenario: str = RegimeScenario.SINE_SWAP, smooth: int = 25) -> Figure:
     """F2.1c: MSE against k and the weight of sensor 1 against k in one scenario of E2.1b.
 

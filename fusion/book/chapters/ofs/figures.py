@@ -23,6 +23,7 @@ from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
 from fusion.book.chapters.ofs.settings import METHODS, FailureCase
 from fusion.book.glue import GlueValues
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = [
     "mc_numbers",
@@ -88,6 +89,7 @@ def _mc_frame(studies: Mapping[str, PairedStudy], bounds: Mapping[str, float] | 
 
 
 # --------------------------------------------------------------------------- figures
+@study_defaults("readings", "window")  # a default the study does not fit, named by the study (fuzz 34b D2)
 def figure_readings(readings: ArrayLike, highlight: Sequence[int] = (), window: tuple[int, int] = (50, 80),
                     truth: float = 900.0) -> Figure:
     """The source's Figs. 1 and 3: every sensor's readings against the sample number.
