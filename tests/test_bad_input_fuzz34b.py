@@ -54,11 +54,12 @@ def test_glue_mechanism_keys_hard_by_the_first_hard_setting() -> None:
 
 
 def test_table_mechanism_default_labels_beyond_a_small_study_name_labels() -> None:
-    """D2 (decided: documented): a default the study cannot serve is refused naming that parameter and its bound."""
+    """D2 (fuzz 35d: fixed): a default the study cannot serve is refused naming the study, the default and its bound."""
     from fusion.book.chapters.lecture_wavelets import mechanism as mech
 
     m = _mechanism((HARD, SOFT))
-    with pytest.raises(ValueError, match=r"^labels\[1\] must be an index below 2, got 6"):
+    with pytest.raises(ValueError, match=r"^m does not fit table_mechanism's default labels = \(0, 6\) "
+                                         r"\(labels\[1\] must be an index below 2, got 6\)"):
         mech.table_mechanism(m)
     assert len(mech.table_mechanism(m, labels=(0, 1))) == 2 * m.gains.size
 

@@ -690,10 +690,8 @@ class Conjunction:
 
         Parameters
         ----------
-        margin : float, optional
-            Absolute margin in each comparison's units.
-        relative_margin : float, optional
-            Share of each comparison's baseline (used when ``margin`` is None).
+        margin, relative_margin : float, optional
+            As :meth:`Comparison.with_margin` takes them, given to each member comparison.
 
         Returns
         -------
