@@ -1,0 +1,78 @@
+"""Fuzz 34 follow-ups (issue 35): sites of already-fixed classes that the fixers named but had not converted.
+
+- a caller's mapping read once (``fusion._guards.read_mapping``, decision 31a C2);
+- frozen result specs with float keys check their keys by meaning when rebuilt (decision 32b, ``real_key``);
+- result tables refuse, when built, cells their readers cannot compute (decision 33b, ``_results.table(cells=)``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+
+import numpy as np
+import pytest
+
+
+class Later(Mapping):
+    """A mapping whose values are ``first`` on the first read of a key and ``later`` on every read after it."""
+
+    def __init__(self, first, later):
+        self.first, self.later, self.seen = dict(first), dict(later), set()
+
+    def __getitem__(self, k):
+        if k in self.seen:
+            return self.later[k]
+        self.seen.add(k)
+        return self.first[k]
+
+    def __iter__(self):
+        return iter(self.first)
+
+    def __len__(self):
+        return len(self.first)
+
+
+# --- a caller's mapping read once (31a C2) -----------------------------------------------------------------------
+
+def test_kf_options_are_read_once_for_register_and_monte_carlo():
+    """``kf`` was checked by one read and used by another: p0 given valid, then NaN, filtered with the NaN."""
+    from fusion.scenarios import time_registration as sc
+
+    t1, t2 = sc.instants()
+    t1, t2 = t1[:40], t2[t2 <= t1[-1]][:10]
+    z = sc.truth(t1) + np.random.default_rng(1).standard_normal(t1.size)
+    good = {"p0": (100.0, 100.0)}
+    flip = Later(good, {"p0": (np.nan, np.nan)})
+    want = sc.register(sc.RegMethod.IMPROVED, t1, z, t2, 1.0, kf=good)
+    np.testing.assert_array_equal(sc.register(sc.RegMethod.IMPROVED, t1, z, t2, 1.0, kf=flip), want)
+    kw = dict(t_src=t1, t_dst=t2)
+    want = sc.monte_carlo([sc.RegMethod.IMPROVED], 1.0, 3, 0, kf=good, **kw).per_run
+    got = sc.monte_carlo([sc.RegMethod.IMPROVED], 1.0, 3, 0, kf=Later(good, {"p0": (np.nan, np.nan)}), **kw).per_run
+    np.testing.assert_array_equal(got[sc.RegMethod.IMPROVED], want[sc.RegMethod.IMPROVED])
+    reg = sc.registrar(sc.RegMethod.IMPROVED, t1, t2, 1.0, kf=Later(good, {"p0": (np.nan, np.nan)}))
+    np.testing.assert_array_equal(reg(z), sc.register(sc.RegMethod.IMPROVED, t1, z, t2, 1.0, kf=good))
+
+
+def test_chapter07_tables_read_their_mappings_once():
+    """``noise_level_table``'s ``mcs`` and the ``exact`` of mc_table and its siblings are read once."""
+    from fusion.book.chapters import time_registration as ch
+    from fusion.scenarios import time_registration as sc
+
+    t1, t2 = sc.instants()
+    t1, t2 = t1[:40], t2[t2 <= t1[-1]][:10]
+    mc = sc.monte_carlo(list(ch.FIG4), 1.0, 4, 0, t_src=t1, t_dst=t2)
+    a, b = ch.FIG4
+    other = dataclasses.replace(mc, per_run={**mc.per_run, a: mc.per_run[b] * 1e3, b: mc.per_run[a] * 1e3})
+    want = ch.noise_level_table({1.0: mc}, 50.0, block=2)
+    got = ch.noise_level_table(Later({1.0: mc}, {1.0: other}), 50.0, block=2)
+    pd_equal(got, want)
+    exact = {n: 1.0 for n in mc.per_run}
+    want = ch.mc_table(mc, exact)
+    pd_equal(ch.mc_table(mc, Later(exact, {n: np.nan for n in exact})), want)
+
+
+def pd_equal(a, b):
+    import pandas as pd
+
+    pd.testing.assert_frame_equal(a, b)
