@@ -76,3 +76,49 @@ def pd_equal(a, b):
     import pandas as pd
 
     pd.testing.assert_frame_equal(a, b)
+
+
+# --- float keys of frozen result specs checked by meaning (32b) ---------------------------------------------------
+
+_RUNS = np.ones(3)
+# (module:class, field, an entry, keys the producer makes, a key outside the meaning)
+_REAL_KEYED = [
+    ("fusion.scenarios.lecture_weighting.estimators:AwfStudy", "sweep", {"m": _RUNS}, (0.0, 900.0), np.nan),
+    ("fusion.scenarios.lecture_weighting.estimators:AwfStudy", "mse", {"m": _RUNS}, (0.0, -3.0), np.inf),
+    ("fusion.scenarios.lecture_weighting.estimators:AwfStudy", "sq", {"m": _RUNS}, (0.0,), -np.inf),
+    ("fusion.scenarios.lecture_weighting.estimators:AwfStudy", "err", {"m": _RUNS}, (900.0,), np.nan),
+    ("fusion.scenarios.ridge_sensors:PluginStudy", "sq", {"m": _RUNS}, (0.0, -1.0), np.nan),
+    ("fusion.scenarios.ridge_sensors:PluginStudy", "hit", {"m": _RUNS}, (2.0,), np.inf),
+    ("fusion.scenarios.ridge_sensors:PluginStudy", "hits", {0.5: {"m": _RUNS}}, (1.0, 8.0), -1.0),
+    ("fusion.scenarios.ridge_sensors:PluginStudy", "hits", {0.5: {"m": _RUNS}}, (1.0,), 0.0),
+    ("fusion.scenarios.lecture_correlated:RidgeStudy", "mse", _RUNS, (0.5, -2.0), np.nan),
+    ("fusion.scenarios.lecture_correlated:RidgeStudy", "rel", _RUNS, (0.5,), np.inf),
+    ("fusion.scenarios.two_sensor.architecture:QScaling", "run_rmse", _RUNS, (0.5, 1.0), 0.0),
+    ("fusion.scenarios.two_sensor.architecture:QScaling", "model_rmse", _RUNS, (2.0,), -1.0),
+    ("fusion.scenarios.two_sensor.architecture:QScaling", "nees", 4.0, (1.0,), np.nan),
+]
+
+
+@pytest.mark.parametrize("cls, field, entry, good, bad", _REAL_KEYED)
+def test_scenario_results_check_their_float_keys_by_meaning(cls, field, entry, good, bad):
+    """A result rebuilt by ``dataclasses.replace`` took a NaN, infinite or (for a factor or a tolerance) non-positive
+    key: the field's spec refuses it by the field's name; the producer's keys still pass."""
+    import importlib
+
+    from fusion._results import _check
+
+    mod, name = cls.split(":")
+    spec = getattr(importlib.import_module(mod), name).__result_spec__.fields[field]
+    assert set(_check(spec, dict.fromkeys(good, entry), field, {})) == set(good)
+    with pytest.raises(ValueError, match=f"{field}'s key"):
+        _check(spec, {**dict.fromkeys(good, entry), bad: entry}, field, {})
+
+
+def test_plugin_study_inner_keys_checked():
+    """``PluginStudy.hits[c]`` is keyed by the true values x: a NaN there is refused by the field's name."""
+    from fusion._results import _check
+    from fusion.scenarios.ridge_sensors import PluginStudy
+
+    spec = PluginStudy.__result_spec__.fields["hits"]
+    with pytest.raises(ValueError, match=r"hits\[1.0\]'s key"):
+        _check(spec, {1.0: {0.5: {"m": _RUNS}, np.nan: {"m": _RUNS}}}, "hits", {})
