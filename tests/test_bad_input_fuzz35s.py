@@ -72,6 +72,18 @@ def test_chapter07_tables_read_their_mappings_once():
     pd_equal(ch.mc_table(mc, Later(exact, {n: np.nan for n in exact})), want)
 
 
+def test_manoeuvre_values_reads_its_mappings_once():
+    """``manoeuvre`` and its inner mappings were checked by one read (keys present) and glued from another."""
+    from fusion.book.chapters.time_registration_ledger.values import manoeuvre_values
+    from fusion.scenarios import time_registration as sc
+
+    M = sc.RegMethod
+    inner = {n: sc.expected(n, 1.0, a_after=0.0) for n in (M.IMPROVED, M.TWO_POINT, M.THREE_POINT)}
+    neg = {M.IMPROVED: sc.expected(M.IMPROVED, 1.0, a_after=-2.0)}
+    want = manoeuvre_values({0.0: inner, -2.0: neg}, 1.0)
+    assert manoeuvre_values(Later({0.0: inner, -2.0: neg}, {0.0: {}, -2.0: {}}), 1.0) == want
+
+
 def pd_equal(a, b):
     import pandas as pd
 
@@ -122,3 +134,67 @@ def test_plugin_study_inner_keys_checked():
     spec = PluginStudy.__result_spec__.fields["hits"]
     with pytest.raises(ValueError, match=r"hits\[1.0\]'s key"):
         _check(spec, {1.0: {0.5: {"m": _RUNS}, np.nan: {"m": _RUNS}}}, "hits", {})
+
+
+# --- result tables refuse, when built, cells their readers cannot compute (33b) ---------------------------------
+
+_TABLES = [("fusion.book.chapters.chernoff_snis:SnisBiasStudy", "table"),
+           ("fusion.book.chapters.chernoff_snis:ChosenBiasStudy", "table"),
+           ("fusion.book.chapters.chernoff_first_order:SigmaFirstOrderStudy", "runs"),
+           ("fusion.book.chapters.chernoff.importance:IsVarianceStudy", "table"),
+           ("fusion.book.chapters.ofs.reproduction:TableReproduction", "table2"),
+           ("fusion.book.chapters.ofs.reproduction:TableReproduction", "table3"),
+           ("fusion.book.chapters.ofs.reproduction:TableReproduction", "totals"),
+           ("fusion.book.chapters.ofs.reproduction:TableReproduction", "audit"),
+           ("fusion.book.chapters.ofs.reproduction:TableReproduction", "alpha"),
+           ("fusion.book.chapters.ofs_audit:AuditResult", "full")]
+
+
+def _frame(args):
+    """A table the field accepts: one row (the rows of its index if it names them), each cell inside its rule."""
+    import pandas as pd
+
+    cells = args["cells"]
+    index = list(args["index"]) or [1]
+    row = {c: (cells[c][0] if np.isfinite(cells[c][0]) else (cells[c][1] if np.isfinite(cells[c][1]) else 0.5))
+           if c in cells else "a" for c in args["columns"]}
+    frame = pd.DataFrame([row] * len(index), index=index)
+    if args["key"] and len(index) > 1:  # pragma: no cover - no keyed table here names index rows
+        raise AssertionError("a keyed table with several rows")
+    return frame
+
+
+@pytest.mark.parametrize("cls, field", _TABLES)
+def test_result_tables_refuse_cells_their_readers_cannot_compute(cls, field):
+    """A table rebuilt by ``dataclasses.replace`` took NaN, infinite or out-of-range cells (an R of 1.5, a count of
+    -1, an exponent of 2), which its glue or display then computed with: refused by the field's name and column."""
+    import importlib
+
+    from fusion._results import _check
+
+    mod, name = cls.split(":")
+    spec = getattr(importlib.import_module(mod), name).__result_spec__.fields[field]
+    cells = spec.args["cells"]
+    assert cells, f"{name}.{field} checks no cell"
+    good = _frame(spec.args)
+    _check(spec, good, f"{name}.{field}", {})
+    for col, (lo, hi, whole) in cells.items():
+        for bad in (np.nan, np.inf, lo - 1.0, hi + 1.0, lo + 0.5 if whole else None):
+            if bad is None or (np.isinf(lo) and bad == lo - 1.0) or (np.isinf(hi) and bad == hi + 1.0):
+                continue
+            frame = good.copy()
+            frame[col] = bad
+            with pytest.raises(ValueError, match=rf"{name}\.{field}[\[:]"):
+                _check(spec, frame, f"{name}.{field}", {})
+
+
+def test_an_empty_table_has_no_cells_to_refuse():
+    """``joint_audit`` keeps ``full``'s columns when no hypothesis explains all 26 values (dtype object, no row):
+    the cell rule does not refuse that valid table."""
+    import pandas as pd
+
+    from fusion._results import _check
+    from fusion.book.chapters.ofs_audit import _FULL_COLUMNS, AuditResult
+
+    spec = AuditResult.__result_spec__.fields["full"]
+    assert _check(spec, pd.DataFrame(columns=list(_FULL_COLUMNS)), "AuditResult.full", {}).empty
