@@ -8,29 +8,23 @@
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping
+from collections import UserDict
 
 import numpy as np
 import pytest
 
 
-class Later(Mapping):
-    """A mapping whose values are ``first`` on the first read of a key and ``later`` on every read after it."""
+class Later(UserDict):
+    """A mapping (not a dict) whose values are ``first`` on the first read of a key and ``later`` after it."""
 
     def __init__(self, first, later):
-        self.first, self.later, self.seen = dict(first), dict(later), set()
+        super().__init__(first)
+        self.later, self.seen = dict(later), set()
 
     def __getitem__(self, k):
-        if k in self.seen:
-            return self.later[k]
+        first = k not in self.seen
         self.seen.add(k)
-        return self.first[k]
-
-    def __iter__(self):
-        return iter(self.first)
-
-    def __len__(self):
-        return len(self.first)
+        return self.data[k] if first else self.later[k]
 
 
 # --- a caller's mapping read once (31a C2) -----------------------------------------------------------------------
