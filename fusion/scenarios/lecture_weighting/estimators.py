@@ -471,7 +471,9 @@ class AwfStudy:
     runs, k_max, seed : int
     sweep : mapping
         ``sweep[X][key]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard) and
-        the mean of means at every level of :data:`SWEEP_LEVELS`.
+        the mean of means at every level of :data:`SWEEP_LEVELS`. The levels X keying ``mse``, ``sq``, ``err`` and
+        ``sweep`` are finite numbers of any sign (as ``awf_study``'s ``levels``); a NaN or infinite key is refused by
+        the field's name, also in a result rebuilt by ``dataclasses.replace``.
     sd_pred_900 : float
         Predicted SD of σ̂₁² at X = 900, k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`).
     mean_est, sd_est, pneg_est : mapping
