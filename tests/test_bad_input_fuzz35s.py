@@ -78,6 +78,19 @@ def test_manoeuvre_values_reads_its_mappings_once():
     assert manoeuvre_values(Later({0.0: inner, -2.0: neg}, {0.0: {}, -2.0: {}}), 1.0) == want
 
 
+def test_chapter05_readers_read_a_mapping_once():
+    """Chapter 05's shared readers (``_entries``: nees_numbers and 20 others; ``_results``: the architecture and
+    weight-search tables) checked one read of a caller's mapping and computed with another."""
+    from fusion.book.chapters.ci import nees as ci_nees
+    from fusion.book.chapters.ci.checks import _results
+
+    nees = {k: 4.0 + i for i, k in enumerate(ci_nees._NEES_READ)}
+    want = ci_nees.nees_numbers(nees, 10)
+    assert ci_nees.nees_numbers(Later(nees, dict.fromkeys(nees, np.nan)), 10) == want
+    got = _results(Later({"a": 1.5}, {"a": "not a float"}), "res", float, "maker")
+    assert got["a"] == 1.5 and got["a"] == 1.5
+
+
 def pd_equal(a, b):
     import pandas as pd
 
