@@ -249,12 +249,15 @@ def table(*columns: Any, rows: Dim | None = None, key: tuple[Any, ...] = (), ind
 
 def _table_cells(value: Any, label: str, cells: Mapping[Any, tuple[float, float, bool]]) -> None:
     """The ``cells`` rule of :func:`table`: TypeError for a column that does not hold numbers, ValueError naming the
-    column and row of the first cell outside its range."""
+    column and row of the first cell outside its range. A table without rows has no cells to check (a producer's
+    empty table keeps its columns, of dtype object: ``AuditResult.full`` when no hypothesis explains all)."""
     for col, (lo, hi, whole) in cells.items():
         where = f"{label}[{shown(col)}]"
         column = value[col]
         if getattr(column, "ndim", 1) != 1:
             raise ValueError(f"{where} must be one column, got {column.shape[1]} columns of that name")
+        if len(column) == 0:
+            continue
         if column.dtype.kind not in "iuf":
             raise TypeError(f"{where} must hold numbers, got a column of dtype {column.dtype}")
         x = column.to_numpy(dtype=float)

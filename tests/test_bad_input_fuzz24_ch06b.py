@@ -176,7 +176,7 @@ def test_dr_rows_of_other_exponents_or_sizes_are_refused() -> None:
         dataclasses.replace(s, table=s.table.assign(**{"ω": 0.3}))
     for bad in (s.table.assign(**{"ω": s.table["ω"].where(s.table["ω"] != star, 0.3)}),
                 s.table.assign(**{"ω": -s.table["ω"]}), s.table[s.table["ω"] != star]):
-        with pytest.raises(ValueError, match=r"^SnisBiasStudy\.table must hold the rows of the exponents"):
+        with pytest.raises(ValueError, match=r"^SnisBiasStudy\.table( must hold the rows of the exponents|\['ω'\] must hold)"):
             dataclasses.replace(s, table=bad)
     t = s.table.copy()
     t.loc[t.index[-1], "R"] = 20

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
-                             validated_post_init)
+                             real_key, validated_post_init)
 from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import FloatArray, as_array, count, scalar, shown, std_scalar
@@ -92,8 +92,9 @@ class RidgeStudy:
     var_gap_min_eig: float
 
     __result_spec__ = ResultSpec(
-        {"kgrid": array("K", bounds=NONNEGATIVE), "mse": dict_of(array("K", bounds=NONNEGATIVE), key=float),
-         "rel": dict_of(array("K", bounds=(0.0, 1.0)), key=float),
+        {"kgrid": array("K", bounds=NONNEGATIVE), "mse": dict_of(array("K", bounds=NONNEGATIVE), key=float,
+                                                                          check_key=real_key()),  # true x, finite
+         "rel": dict_of(array("K", bounds=(0.0, 1.0)), key=float, check_key=real_key()),
          "rows": tuple_of(instance(Mapping)), "conv": dict_of(array("M", bounds=NONNEGATIVE), key=tuple),
          "m0": integer(1),
          "sigma": number(positive=True), "bound_k1": number(positive=True), "rel1_kelvin": number(bounds=(0.0, 1.0)),

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
-                             validated_post_init)
+                             real_key, validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._validation import seed as check_seed
 from fusion._validation import distinct, distinct_printed, glue_part, loop_work
@@ -113,9 +113,11 @@ class PluginStudy:
     xs: tuple[float, ...]
 
     __result_spec__ = ResultSpec(
-        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float, printed=glue_part),
-         "hit": dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float),
-         "hits": dict_of(dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float), key=float, printed=glue_part),
+        {"sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float, printed=glue_part,
+                       check_key=real_key()),  # true values x, finite (decision 32b)
+         "hit": dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float, check_key=real_key()),
+         "hits": dict_of(dict_of(dict_of(array("runs", bounds=(0.0, 1.0))), key=float, check_key=real_key()),
+                         key=float, printed=glue_part, check_key=real_key(0.0, lo_open=True)),  # tolerances c > 0
          "curve": array("C"),
          "ratio_known": array("C", bounds=NONNEGATIVE), "ratio_est": array("C", bounds=NONNEGATIVE),
          "rel_curve": dict_of(array("C", bounds=(0.0, 1.0))),

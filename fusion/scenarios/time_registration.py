@@ -29,7 +29,7 @@ from fusion import registration as reg
 from fusion.registration import methods as _methods
 from fusion.scenarios._time_registration_work import _exact_work, _monte_carlo_work, _registration_work  # noqa: F401
 from fusion.scenarios import _time_registration_kf as _kf
-from fusion._validation import read_once
+from fusion._validation import read_mapping, read_once
 from fusion._validation import derived_inputs
 from fusion._validation import shown
 from fusion._validation import text
@@ -391,11 +391,15 @@ def _filtered(names: Sequence[str], t_src: FloatArray, Z: FloatArray, t_dst: Flo
     return out
 
 
-def _options(kf: Mapping[str, Any] | None, window: float | None, t_dst: ArrayLike) -> float | None:
+def _options(kf: Mapping[str, Any] | None, window: float | None,
+             t_dst: ArrayLike) -> tuple[Mapping[str, Any] | None, float | None]:
     """Check the filter options and the least-squares window whatever the method (fuzz 24a D4: an option the
-    chosen method does not use is still the caller's, and a bad one is refused by name); the window as given."""
+    chosen method does not use is still the caller's, and a bad one is refused by name); ``kf`` read once (a
+    caller's mapping that is not a dict becomes the dict checked and used, ``fusion._guards.read_mapping``) and the
+    window as given."""
+    kf = read_mapping(kf, "kf")
     _kf_kwargs(kf, np.asarray(t_dst, dtype=float))
-    return None if window is None else positive_scalar(window, "window")
+    return kf, None if window is None else positive_scalar(window, "window")
 
 
 def _direct(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, window: float | None = None) -> FloatArray:
@@ -447,7 +451,7 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
     name = _check_name(name)
     sigma, q_v, q_a = _check_args(t_src, t_dst, sigma, q_v, q_a)
     same_length(as_array(t_src, "t_src", ndim=1), "t_src", as_array(z, "z", ndim=1), "z")
-    window = _options(kf, window, t_dst)
+    kf, window = _options(kf, window, t_dst)
     if name in _DIRECT:
         return _direct(name, t_src, z, t_dst, window)
     ts, td = np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float)
@@ -491,7 +495,7 @@ def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
     t_src, t_dst = (read_once(t_src, "t_src"), read_once(t_dst, "t_dst"))  # converted once (fuzz 29a C5)
     name = _check_name(name)
     sigma, q_v, q_a = _check_args(t_src, t_dst, sigma, q_v, q_a)
-    window = _options(kf, window, t_dst)
+    kf, window = _options(kf, window, t_dst)
     return partial(_registrar_call, name, np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float),
                    sigma, q_v, q_a, kf, window)
 
@@ -797,7 +801,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     _precise_times(t1, t2)
     _monte_carlo_work(names, runs, t1.size, t2.size, "runs, names, t_src and t_dst", "names, t_src and t_dst")
-    window = _options(kf, window, t2)
+    kf, window = _options(kf, window, t2)
     rng = np.random.default_rng(seed)
     z = manoeuvre_truth(t1 - delay, a_after, t_change) + sigma * rng.standard_normal((int(runs), t1.size))
     x2 = manoeuvre_truth(t2, a_after, t_change)

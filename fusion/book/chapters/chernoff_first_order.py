@@ -268,6 +268,13 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
     return SigmaProblem(**out)
 
 
+#: The cells of :attr:`SigmaFirstOrderStudy.runs`: the fields of :class:`SigmaProblem` by its own rules (exponents and
+#: total variations in [0, 1], normaliser errors finite), which the table's medians read (decision 33b).
+_SIGMA_CELLS = {**{f"omega_{k}": (0.0, 1.0, False) for k in ("exact", "first_order", "sp")},
+                **{f"tv_{k}": (0.0, 1.0, False) for k in ("first_order", "sp")},
+                **{f"logz_{k}": (-np.inf, np.inf, False) for k in ("first_order", "sp")}}
+
+
 @dataclass(frozen=True)
 class SigmaFirstOrderStudy:
     """Step D's first-order mixture against the sigma-point mixture: the two-mixture example and random problems.
@@ -286,7 +293,8 @@ class SigmaFirstOrderStudy:
 
     __result_spec__ = ResultSpec({"toy": instance(SigmaProblem),
                                   "runs": table(*(f.name for f in dataclasses.fields(SigmaProblem)),
-                                                key=tuple(f.name for f in dataclasses.fields(SigmaProblem)))})
+                                                key=tuple(f.name for f in dataclasses.fields(SigmaProblem)),
+                                                cells=_SIGMA_CELLS)})
     __post_init__ = validated_post_init
 
 

@@ -160,6 +160,16 @@ def snis_delta_terms(points: ArrayLike, log_target: ArrayLike, log_proposal: Arr
 # ---------------------------------------------------------------------------------------------- step H: SNIS bias
 
 
+#: The cells :func:`snis_bias_study` and :func:`chosen_bias_study` make, which their glue and display read (decision
+#: 33b: a table edited between producer and reader is refused by its field): block sizes R >= 2 and at least two
+#: blocks (whole numbers), exponents in [0, 1], ``|c|`` >= 0, the measured terms and their intervals finite.
+_BLOCKS = {"R": (2.0, np.inf, True), "blocks": (2.0, np.inf, True)}
+_SNIS_CELLS = {"ω": (0.0, 1.0, False), **_BLOCKS, C_NORM: (0.0, np.inf, False),
+               **{c: (-np.inf, np.inf, False) for c in (ALONG, ALONG_LOW, ALONG_HIGH)}}
+_CHOSEN_CELLS = {**_BLOCKS, **{c: (-np.inf, np.inf, False) for c in ("extra", EXTRA_LOW, EXTRA_HIGH)},
+                 "mean |ω − ω*|": (0.0, 1.0, False)}
+
+
 def _snis_relation(values: dict[str, Any], cls: str) -> None:
     """The table's rows are those of the exponents of ``delta`` (at the table's 4 decimals), each at the same sizes
     R: glue reads the rows of ω* and of the far exponent by key."""
@@ -290,7 +300,7 @@ class SnisBiasStudy:
     total: int
 
     __result_spec__ = ResultSpec({"table": table("ω", "R", "blocks", C_NORM, ALONG, ALONG_LOW, ALONG_HIGH,
-                                                 key=("ω", "R")),
+                                                 key=("ω", "R"), cells=_SNIS_CELLS),
                                   "delta": dict_of(instance(SnisDelta), key=(float, int, np.number),
                                                    check_key=real_key(0.0, 1.0)),  # exponents ω (fuzz 32b D2)
                                   "total": integer(1)},
@@ -476,7 +486,7 @@ class ChosenBiasStudy:
     total: int
 
     __result_spec__ = ResultSpec({"table": table("R", "blocks", "extra", EXTRA_LOW, EXTRA_HIGH, "mean |ω − ω*|",
-                                                 key=("R",)),
+                                                 key=("R",), cells=_CHOSEN_CELLS),
                                   "total": integer(1)})
     __post_init__ = validated_post_init
 

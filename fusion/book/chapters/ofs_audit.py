@@ -531,6 +531,8 @@ def _tables(cors: list[Correction]) -> FloatArray:
 _TABLE_COLUMNS = ("program", CORRECTION_CLASS, VALUES_EXPLAINED, OBSERVATION_ORDER, BEST_HYPOTHESIS, SET_RULE,
                   VALUES_MISSED)
 _FULL_COLUMNS = ("program", SET_RULE, OBSERVATION_ORDER, "sensor", "obs", "value", "kind", "correction")
+#: The cells of :attr:`AuditResult.full` that :func:`full_explanation` reads into a :class:`Correction` (decision 33b).
+_FULL_CELLS = {"sensor": (0.0, np.inf, True), "obs": (0.0, np.inf, True), "value": (-np.inf, np.inf, False)}
 
 
 @dataclass(frozen=True)
@@ -563,7 +565,7 @@ class AuditResult:
 
     # the counts joint_audit makes (fuzz 33b D3: an inf or 27 reached summary's table and the glue)
     __result_spec__ = ResultSpec({"table": table(*_TABLE_COLUMNS, cells={VALUES_EXPLAINED: (0.0, 26.0, True)}),
-                                  "full": table(*_FULL_COLUMNS),
+                                  "full": table(*_FULL_COLUMNS, cells=_FULL_CELLS),
                                   "n_hypotheses": integer(0), "same_sets": table()})
     __post_init__ = validated_post_init
 

@@ -21,7 +21,7 @@ from fusion._frozen import constant
 from fusion._counts import seed as check_seed
 from fusion import data
 from fusion._validation import (as_array, as_times, distinct, grid_points, instance_of, one_of, record, scalar,
-                                sequence, shown, std_scalar, text)
+                                read_mapping, sequence, shown, std_scalar, text)
 from fusion._validation import template as format_template
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues, _glued_cell
@@ -136,10 +136,10 @@ def _exact_mses(exact: object, name: str, methods: Sequence[str]) -> Mapping[str
     """A copy of ``exact``, its MSEs the floats read, when it maps each of ``methods`` to an exact expected MSE, a
     finite number >= 0 (m²): a mapping lacking one is a ValueError naming ``name`` (not a KeyError), a NaN or
     negative MSE is refused by ``name[method]`` (it would fill a table or a line with NaN)."""
-    record(exact, name, tuple(str(n) for n in methods), extra=True)
+    record(exact := read_mapping(exact, name), name, tuple(str(n) for n in methods), extra=True)  # read once
     out = dict(exact)  # type: ignore[call-overload]
     for n in methods:  # the floats read, which the caller computes with (fuzz 22b, FR)
-        out[n] = scalar(exact[n], f"{name}[{str(n)!r}]", lo=0.0)  # type: ignore[index]
+        out[n] = scalar(out[n], f"{name}[{str(n)!r}]", lo=0.0)
     return out
 
 
@@ -675,7 +675,7 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
         ``axis_max`` is not finite and positive, or ``block`` not a positive count or more than an entry's runs
         (no block of ``block`` runs: its probability would be 0/0).
     """
-    instance_of(mcs, Mapping, "mcs")
+    instance_of(mcs := read_mapping(mcs, "mcs"), Mapping, "mcs")  # read once (fuzz 31a C2)
     if not mcs:
         raise ValueError("mcs is empty (it must map noise levels to Monte-Carlo runs)")
     for k, v in mcs.items():

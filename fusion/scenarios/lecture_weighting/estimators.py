@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, flag, instance, integer, number, same_keys, text,
-                             tuple_of, validated_post_init)
+                             tuple_of, real_key, validated_post_init)
 from fusion._frozen import constant
 from fusion._validation import read_once
 from fusion._validation import derived_inputs
@@ -471,7 +471,9 @@ class AwfStudy:
     runs, k_max, seed : int
     sweep : mapping
         ``sweep[X][key]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard) and
-        the mean of means at every level of :data:`SWEEP_LEVELS`.
+        the mean of means at every level of :data:`SWEEP_LEVELS`. The levels X keying ``mse``, ``sq``, ``err`` and
+        ``sweep`` are finite numbers of any sign (as ``awf_study``'s ``levels``); a NaN or infinite key is refused by
+        the field's name, also in a result rebuilt by ``dataclasses.replace``.
     sd_pred_900 : float
         Predicted SD of σ̂₁² at X = 900, k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`).
     mean_est, sd_est, pneg_est : mapping
@@ -500,11 +502,12 @@ class AwfStudy:
         {"variances": array("n", bounds=NONNEGATIVE), "rows": tuple_of(instance(EstimatorRow)),
          "band": dict_of(tuple_of(array("k_max"), array("k_max", bounds=NONNEGATIVE)), key=tuple),
          "k_compare": integer(1), "i_compare": integer(0),
-         "mse": dict_of(dict_of(array("ks", bounds=NONNEGATIVE)), key=float),
-         "sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float),
-         "err": dict_of(dict_of(array("runs")), key=float), "runs": integer(1, dim="runs"),
+         "mse": dict_of(dict_of(array("ks", bounds=NONNEGATIVE)), key=float, check_key=real_key()),  # levels X
+         "sq": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float, check_key=real_key()),  # finite
+         "err": dict_of(dict_of(array("runs")), key=float, check_key=real_key()), "runs": integer(1, dim="runs"),
          "k_max": integer(1, dim="k_max"), "seed": integer(0),
-         "sweep": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float), "sd_pred_900": number(),
+         "sweep": dict_of(dict_of(array("runs", bounds=NONNEGATIVE)), key=float, check_key=real_key()),
+         "sd_pred_900": number(),
          "mean_est": dict_of(array("n"), key=tuple), "sd_est": dict_of(array("n", bounds=NONNEGATIVE), key=tuple),
          "pneg_est": dict_of(array("n", bounds=(0.0, 1.0)), key=tuple)},
         relations=(same_keys("mse", "sq", "err"), same_keys("mean_est", "sd_est", "pneg_est"),

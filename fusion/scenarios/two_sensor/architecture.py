@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, number, same_keys, tuple_of
-from fusion._results import validated_post_init
+from fusion._results import real_key, validated_post_init
 from fusion._validation import check_magnitude, derived_inputs, distinct, distinct_printed, general, loop_work
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar, work)
@@ -327,6 +327,10 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
                              nees_runs=nees_runs, local_gain=out_gain)
 
 
+#: The key rule of :class:`QScaling`'s dicts: a factor c > 0 of the filters' cQ (decision 32b).
+_SCALE = real_key(0.0, lo_open=True)
+
+
 @dataclass(frozen=True)
 class QScaling:
     r"""CI with local filters whose process noise is scaled, no split and no feedback (:func:`q_scaling_study`).
@@ -353,9 +357,10 @@ class QScaling:
 
     __result_spec__ = ResultSpec(
         {"scales": tuple_of(number(positive=True)),
-         "run_rmse": dict_of(array("runs", bounds=NONNEGATIVE), key=float, printed=general),  # rows f"{c:g} Q"
-         "model_rmse": dict_of(array("nees_runs", bounds=NONNEGATIVE), key=float),
-         "nees": dict_of(number(), key=float), "runs": integer(1, dim="runs"),
+         "run_rmse": dict_of(array("runs", bounds=NONNEGATIVE), key=float, printed=general,  # rows f"{c:g} Q"
+                             check_key=_SCALE),
+         "model_rmse": dict_of(array("nees_runs", bounds=NONNEGATIVE), key=float, check_key=_SCALE),
+         "nees": dict_of(number(), key=float, check_key=_SCALE), "runs": integer(1, dim="runs"),
          "nees_runs": integer(1, dim="nees_runs")},
         relations=(same_keys("scales", "run_rmse", "model_rmse", "nees"),))
     __post_init__ = validated_post_init

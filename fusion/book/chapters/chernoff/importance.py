@@ -51,6 +51,11 @@ def _moment_region(covs: list[FloatArray], e0: FloatArray, k: int) -> Any:
 #: The exponents whose rows :meth:`IsVarianceStudy.glue` reads (by index: the table must hold them once).
 _GLUED_OMEGAS = (0.2, 0.7, 0.8, 0.1)
 
+#: The cells :func:`is_variance_study` makes finite, which the glue reads (decision 33b): the sampled bias, its
+#: standard error (>= 0) and the median. ``rho`` (infinite outside the finite-variance interval) and the predicted
+#: bias (NaN there) have no cell rule: an infinite or NaN value is one the producer makes.
+_CELLS = {BIAS_SAMPLED: (-np.inf, np.inf, False), BIAS_SE: (0.0, np.inf, False), "median": (-np.inf, np.inf, False)}
+
 
 @dataclass(frozen=True)
 class IsVarianceStudy:
@@ -92,7 +97,7 @@ class IsVarianceStudy:
 
     __result_spec__ = ResultSpec(
         {"table": table("rho", "3rd moment finite", BIAS_PREDICTED, BIAS_SAMPLED, BIAS_SE, "median",
-                        index=_GLUED_OMEGAS),
+                        index=_GLUED_OMEGAS, cells=_CELLS),
          **{name: number(bounds=(0.0, 1.0)) for name in ("lo", "hi", "lo3", "hi3")}, "R": integer(1),
          "replicates": integer(2), "ok": flag(), "power": number()},
         relations=(lambda v, cls: _regions_relation(v, cls),))

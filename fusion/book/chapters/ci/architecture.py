@@ -173,7 +173,7 @@ def _mean_ci(x: np.ndarray) -> tuple[float, float]:
 def _studies(studies: object, name: str) -> Mapping[str, ArchitectureStudy]:
     """Architecture studies by label (fuzz 19, D17/F14/F15): a non-empty mapping of ArchitectureStudy, each
     holding the baseline rule (CI on independent filters)."""
-    _results(studies, name, ArchitectureStudy, "architecture_studies")
+    studies = _results(studies, name, ArchitectureStudy, "architecture_studies")  # read once (decision 31a C2)
     for label, st in studies.items():
         if _ARCH_BASE not in st.run_rmse:
             raise ValueError(f"{name}[{shown(label)}] lacks CI on independent filters, the baseline of the table")
@@ -202,7 +202,7 @@ def architecture_table(studies: Mapping[str, ArchitectureStudy]) -> pd.DataFrame
     ValueError
         ``studies`` empty, or a study without CI on independent filters (the baseline of the differences).
     """
-    _studies(studies, "studies")
+    studies = _studies(studies, "studies")
     cols = {}
     for label, st in studies.items():
         base = st.run_rmse[_ARCH_BASE]
@@ -251,7 +251,7 @@ def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
     ValueError
         ``studies`` empty, or a study without CI on independent filters.
     """
-    _studies(studies, "studies")
+    studies = _studies(studies, "studies")
     fig, axes = new_figure(1, len(studies), figsize=(7.5, 6.8), sharey=True, squeeze=False)
     first = next(iter(studies.values()))
     # the rules run on every pair (a reading run on one pair only, e.g. a fixed weight, is in the table only)
@@ -318,7 +318,7 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
         ``arch_table`` not :func:`architecture_table` of ``arch``; ``arch_runs`` not the studies' runs;
         ``k_steady`` not in 1 .. the path's steps.
     """
-    _studies(arch, "arch")
+    arch = _studies(arch, "arch")
     if list(arch) != [IDENTICAL_LABEL, ANISO_LABEL]:
         raise ValueError(f"arch must hold the two studies of architecture_studies, keyed {shown(IDENTICAL_LABEL)} then "
                          f"{shown(ANISO_LABEL)}, got the keys {shown(list(arch), 200)}")

@@ -17,7 +17,7 @@ import pandas as pd
 
 from fusion._results import real_key
 from fusion._shown import shown
-from fusion._validation import FloatArray, as_array, distinct_printed, general, scalar
+from fusion._validation import FloatArray, as_array, distinct_printed, general, read_mapping, scalar
 from fusion.book.chapters.lecture import _frame  # noqa: F401 (the chapter's modules import it from here)
 
 __all__: list[str] = []   # nothing public: the chapter's functions document these checks in their Raises sections
@@ -33,25 +33,27 @@ def _entries(value: object, name: str, keys: Collection[object], maker: str, *, 
     FR); not checked entries as given."""
     if not isinstance(value, Mapping):
         raise TypeError(f"{name} must be a mapping (the result of {maker}), got {type(value).__name__}")
+    value = read_mapping(value, name)  # read once: its entries checked and used as one read (decision 31a C2)
     missing = [k for k in keys if k not in value]
     if missing:
         raise ValueError(f"{name} lacks the keys {shown(missing, 200)} (a result of {maker} holds them)")
     out = dict(value)
     for k in keys if numbers else ():
         if width is None:
-            out[k] = scalar(value[k], f"{name}[{shown(k)}]", 0.0 if nonnegative else None, tiny=True)
+            out[k] = scalar(out[k], f"{name}[{shown(k)}]", 0.0 if nonnegative else None, tiny=True)
         else:
-            out[k] = as_array(value[k], f"{name}[{shown(k)}]", shape=(width,), subnormal=True,
+            out[k] = as_array(out[k], f"{name}[{shown(k)}]", shape=(width,), subnormal=True,
                               nonnegative=nonnegative)
     return out
 
 
 def _results(value: object, name: str, cls: type, maker: str) -> Mapping:
-    """``value`` when it is a non-empty mapping of labels to ``cls`` instances (the results of ``maker``);
-    TypeError/ValueError naming ``name``."""
+    """``value`` (a mapping that is not a dict read once into one) when it is a non-empty mapping of labels to ``cls``
+    instances (the results of ``maker``); TypeError/ValueError naming ``name``."""
     if not isinstance(value, Mapping):
         raise TypeError(f"{name} must be a mapping of labels to {cls.__name__} (from {maker}), got "
                         f"{type(value).__name__}")
+    value = read_mapping(value, name)  # the checked results are the ones returned (decision 31a C2)
     if not value:
         raise ValueError(f"{name} must hold at least one {cls.__name__} (from {maker}), got an empty mapping")
     for k, v in value.items():

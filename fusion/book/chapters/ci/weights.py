@@ -144,7 +144,7 @@ def fruit_fly_table(res: Mapping[str, OptimumResult]) -> pd.DataFrame:
     ValueError
         ``res`` is empty.
     """
-    _results(res, "res", OptimumResult, "weight_search")
+    res = _results(res, "res", OptimumResult, "weight_search")  # read once (decision 31a C2)
     t = pd.DataFrame({name: {"ω": r.x, "tr P (m², m²/s²)": r.fun, "evaluations": r.n_evaluations}
                       for name, r in res.items()}).T
     t["ω"] = t["ω"].astype(float).round(4)
@@ -237,7 +237,7 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
         a recorded tr P not that pair's objective at the recorded ω (relative 1e-9).
     """
     _covariance_pair(P1, P2)
-    _results(res, "res", OptimumResult, "weight_search")
+    res = _results(res, "res", OptimumResult, "weight_search")  # read once (decision 31a C2)
     m = _entries(m, "m", ("foa_vectorised", "grid_vectorised", "closed_form"), "timing_benchmark().measurements",
                  nonnegative=True)
     if seeds is not None:

@@ -51,6 +51,25 @@ def _fuse_subset(v: FloatArray) -> float:
     return rd.fusion_set_weights(v).value
 
 
+_ANY = (-np.inf, np.inf, False)
+
+
+def _side_by_side_cells(*groups: str) -> dict[tuple[str, str], tuple[float, float, bool]]:
+    """The cells of :func:`fusion.book.tables.side_by_side` tables concatenated under ``groups``: finite numbers."""
+    return {(g, c): _ANY for g in groups for c in ("published", "reproduced", "difference")}
+
+
+#: The numeric cells :func:`reproduce_tables` makes, all finite (decision 33b: a table edited between producer and
+#: reader is refused by its field when the result is rebuilt): temperatures and their differences (°C), totals of
+#: absolute errors (>= 0), the implied change of a sum.
+_CELLS = {"table2": _side_by_side_cells(f"{METHOD_LABELS['optimal_fusion_set']} (°C)", f"{METHOD_LABELS['mean']} (°C)"),
+          "table3": _side_by_side_cells("support degree (°C)"),
+          "totals": dict.fromkeys(("published total", "sum of published errors", "recomputed from Table 1"),
+                                  (0.0, np.inf, False))}
+_AUDIT_CELLS = dict.fromkeys(("published optimal set", "sum change implied by the published mean"), _ANY)
+_ALPHA_CELLS = dict.fromkeys(("published", "mean of readings", "ours (α = 0.25)"), _ANY)
+
+
 @dataclass(frozen=True)
 class TableReproduction:
     """Tables 2-3 of the source recomputed from its Table 1.
@@ -83,8 +102,9 @@ class TableReproduction:
     alpha: pd.DataFrame
 
     __result_spec__ = ResultSpec({**{name: array("obs") for name in ("ofs", "mean", "sup")},
-                                  **{name: table() for name in ("table2", "table3", "totals")},
-                                  "audit": table(rows="obs"), "alpha": table(rows="obs")},
+                                  **{name: table(*cells, cells=cells) for name, cells in _CELLS.items()},
+                                  "audit": table(*_AUDIT_CELLS, rows="obs", cells=_AUDIT_CELLS),
+                                  "alpha": table(*_ALPHA_CELLS, rows="obs", cells=_ALPHA_CELLS)},
                                  relations=(lambda v, cls: _one_per_observation(v["ofs"], f"{cls}.ofs"),))
     __post_init__ = validated_post_init
 

@@ -24,7 +24,7 @@ from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_ledger.studies import EXTRAP, FIXED_LAG, PC, S3, STRESS, STUDY_METHODS
 from fusion._counts import count
-from fusion._validation import as_times, instance_of, record, scalar, std_scalar
+from fusion._validation import as_times, instance_of, read_mapping, record, scalar, std_scalar
 from fusion.book.chapters.time_registration_closed import _method_names
 from fusion._shown import shown
 from fusion._limits import recorded_as
@@ -247,7 +247,8 @@ def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: floa
         a ``manoeuvre`` computed at another noise level would be glued beside ``reg_man_impr_q`` at ``sigma``), or
         ``sigma`` is not a valid standard deviation.
     """
-    record(manoeuvre, "manoeuvre", (0.0, -2.0), extra=True)
+    record(manoeuvre := read_mapping(manoeuvre, "manoeuvre"), "manoeuvre", (0.0, -2.0), extra=True)  # read once
+    manoeuvre = {a: read_mapping(manoeuvre[a], f"manoeuvre[{a!r}]") for a in (0.0, -2.0)}  # (fuzz 31a C2)
     record(manoeuvre[0.0], "manoeuvre[0.0]", (IMPROVED, TWO, RegMethod.THREE_POINT), extra=True)
     record(manoeuvre[-2.0], "manoeuvre[-2.0]", (IMPROVED,), extra=True)
     sigma = std_scalar(sigma, "sigma")
