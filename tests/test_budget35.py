@@ -1,0 +1,63 @@
+"""Work budgets weighed by their measured cost (budget35, rule 17): the edge of a count argument is about 10 CPU-s.
+
+Each test counts, never runs the work: the function's first step of work is replaced by one that raises
+:class:`Ran`, so a call the budget accepts raises it at once and a call it refuses raises a ValueError naming the
+caller's argument before it. The measured costs are in /work/tmp/budget35/table.md.
+"""
+import numpy as np
+import pytest
+
+
+class Ran(Exception):
+    """The call passed its budget and reached its work."""
+
+
+def _ran(*args, **kwargs):
+    raise Ran
+
+
+X5 = np.array([10.1, 10.3, 9.9, 10.0, 12.0])
+
+
+def test_parameters_matching_counts_a_fusion_per_grid_point(monkeypatch):
+    # ~23 us a grid point (a fusion call), counted 5 us: 2e6 points (about 45 CPU-s) were accepted
+    import fusion.book.audit as audit
+    monkeypatch.setattr(audit, "fuse_epochs", _ran)
+    with pytest.raises(ValueError, match="n_grid"):
+        audit.parameters_matching(X5, 10.2, "support_degree", "alpha", 1e-3, 10.0, n_grid=500_000)
+    with pytest.raises(Ran):  # the book's grid (400 points) and a 100,000-point one stay accepted
+        audit.parameters_matching(X5, 10.2, "support_degree", "alpha", 1e-3, 10.0, n_grid=100_000)
+
+
+def test_fruit_fly_counts_a_generation_and_a_call_per_candidate():
+    # ~22 us a generation: 978,000 generations (about 22 CPU-s) were accepted; ~0.2 us a candidate's own call
+    from fusion.optimise.scalar import fruit_fly
+    with pytest.raises(ValueError, match="population and iterations"):
+        fruit_fly(_ran, np.random.default_rng(0), population=5, iterations=400_000)
+    with pytest.raises(ValueError, match="population and iterations"):
+        fruit_fly(_ran, np.random.default_rng(0), population=1_000_000, iterations=50)
+    with pytest.raises(Ran):  # vectorised, the same candidates are 4 units each
+        fruit_fly(_ran, np.random.default_rng(0), population=1_000_000, iterations=50, vectorized=True)
+    with pytest.raises(Ran):  # the book's 30 x 200
+        fruit_fly(_ran, np.random.default_rng(0), population=30, iterations=200)
+
+
+def test_fruit_fly_batch_counts_a_generation():
+    # ~31 us a generation of two problems: 959,000 generations (about 30 CPU-s) were accepted
+    from fusion.optimise.scalar import batch_budget
+    rngs = [np.random.default_rng(0), np.random.default_rng(1)]
+    from fusion.optimise.scalar import fruit_fly_batch
+    with pytest.raises(ValueError, match="rngs, population and iterations"):
+        fruit_fly_batch(_ran, rngs, population=5, iterations=400_000)
+    batch_budget(1000, 30, 200, "seeds")  # the book's largest batches (30 x 200 a seed) stay accepted
+
+
+def test_benchmark_weighs_a_reading_by_its_methods(monkeypatch):
+    # ~0.43 us a reading (~20 methods): 1.5e6 runs (about 400 CPU-s) were accepted
+    from fusion.scenarios.lecture_weighting import readings_benchmark as rbm
+    monkeypatch.setattr(rbm, "_snapshot_errors", _ran)
+    kw = dict(seeds=(1, 2), samples=20, levels=(0.0, 900.0), sigma=(0.5, 1.0, 1.5, 2.0))
+    with pytest.raises(ValueError, match="^seeds, levels, faults, runs, samples and sigma"):
+        rbm.benchmark(runs=40_000, **kw)
+    with pytest.raises(Ran):  # the chapter's benchmark (3 seeds of 500 runs x 100 samples, 5 sensors)
+        rbm.benchmark()
