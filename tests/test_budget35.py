@@ -72,3 +72,18 @@ def test_regime_studies_have_a_work_budget(monkeypatch, study, runs):
         getattr(regime, study)(runs=runs, samples=1000, seed=1)
     with pytest.raises(Ran):  # the chapter's studies (200 and 100 runs x 1,000 samples x 4 sensors)
         getattr(regime, study)(runs=200, samples=1000, seed=1)
+
+
+def test_per_step_weights_weighs_its_objective(monkeypatch):
+    # ~0.45 us a candidate (a 4 x 4 inverse), counted 0.04 us: 160,000 iterations (about 60 CPU-s) were accepted,
+    # then refused by fruit_fly_batch's names (rngs)
+    from fusion.scenarios import two_sensor
+    from fusion.scenarios.two_sensor import weights
+    sc = two_sensor.two_sensor_scenario(np.eye(2) * 2500.0, np.eye(2) * 2500.0, np.diag([0.0, 1.0, 0.0, 1.0]),
+                                        np.random.default_rng(11), runs=2)
+    monkeypatch.setattr(weights, "fruit_fly_batch", _ran)
+    for kw in (dict(iterations=100_000, population=3), dict(iterations=3, population=3, n_grid=200_000)):
+        with pytest.raises(ValueError, match="^the steps of a, population, iterations and n_grid"):
+            weights.per_step_weights(*sc.tracks, 1, **kw)
+    with pytest.raises(Ran):  # the chapter's (30 x 200 and 1,001 grid points at each of the source's 261 steps)
+        weights.per_step_weights(*sc.tracks, 1)
