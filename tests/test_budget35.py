@@ -87,3 +87,20 @@ def test_per_step_weights_weighs_its_objective(monkeypatch):
             weights.per_step_weights(*sc.tracks, 1, **kw)
     with pytest.raises(Ran):  # the chapter's (30 x 200 and 1,001 grid points at each of the source's 261 steps)
         weights.per_step_weights(*sc.tracks, 1)
+
+
+@pytest.mark.parametrize("fn", ["fruit_fly_over_seeds", "printed_fruit_fly_over_seeds"])
+def test_fruit_fly_over_seeds_weighs_its_objective(monkeypatch, fn):
+    # ~70 us (250 us printed) an objective call a generation, counted 10 ns: 320,000 generations of the printed
+    # objective (about 85 CPU-s) were accepted; a grid of 10**7 of its points (about 24 CPU-s) too
+    from fusion.scenarios.two_sensor import weights
+    monkeypatch.setattr(weights, "_fly_over_seeds", _ran)
+    monkeypatch.setattr(weights, "grid_search", _ran)
+    P = np.diag([4.0, 1.0, 2.0, 0.5])
+    args = (P[:2, :2], 2 * P[:2, :2]) if fn == "fruit_fly_over_seeds" else (P, 0.5 * P, 2 * P, P)
+    grids = [dict(iterations=3, population=3, n_grid=9_000_000)] if fn.startswith("printed") else []
+    for kw in [dict(iterations=200_000, population=3)] + grids:
+        with pytest.raises(ValueError, match="^seeds, population, iterations and n_grid"):
+            getattr(weights, fn)(*args, seeds=[0, 1], **kw)
+    with pytest.raises(Ran):  # the chapter's 30 x 200 over 100 seeds (10 for the printed objective)
+        getattr(weights, fn)(*args, seeds=np.arange(100 if fn == "fruit_fly_over_seeds" else 10))

@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike
 from fusion._results import NONNEGATIVE, ResultSpec, array, integers, number, validated_post_init
 from fusion._validation import read_once
 from fusion._validation import seed as check_seed, seed_array
-from fusion._validation import LOOP_STEP, distinct, loop_work, work
+from fusion._validation import LOOP_STEP, distinct, work
 from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_semidefinite, count, instance_of,
                                 nonnegative_scalar)
 from fusion.estimates.ci import ci_objective, split_ci_objective
@@ -146,17 +146,27 @@ class FruitFlySeeds:
         return float(np.median((self.fruit_fly_fun - self.grid_fun) / abs(self.grid_fun)))
 
 
+#: Units of one call of the objective of :func:`fruit_fly_over_seeds` (``ci_objective``) and of each of its points,
+#: and the same of :func:`printed_fruit_fly_over_seeds` (``split_ci_objective``), measured (budget35, 2 x 2 and 4 x 4
+#: covariances): about 70 us a call and 0.3 us a point, 250 us and 1.9 us.
+_CI_COSTS, _SPLIT_CI_COSTS = (7 * LOOP_STEP, 30), (25 * LOOP_STEP, 190)
+
+
 def _seeds_and_budget(seeds: ArrayLike, n_grid: int, grid_minimum: int, population: int, iterations: int, n: int,
-                      rtol: float) -> tuple[np.ndarray, int, int, int, float]:
-    """Checked seeds, grid size, swarm size and tolerance of a FOA-over-seeds study on an n x n objective."""
+                      rtol: float, costs: tuple[int, int]) -> tuple[np.ndarray, int, int, int, float]:
+    """Checked seeds, grid size, swarm size and tolerance of a FOA-over-seeds study on an n x n objective whose call
+    costs ``costs[0]`` units and each of its points ``costs[1]`` more (measured, plus n**3 a point)."""
     s = seed_array(seeds, "seeds")  # integers of any size (rule 11), never a float array (2**63 + 1 would round)
     n_grid = count(n_grid, "n_grid", minimum=grid_minimum)
     population = count(population, "population")
     iterations = count(iterations, "iterations")
     allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
     distinct(s.tolist(), "seeds")  # a repeated seed would count one run twice among the seeds' outcomes
-    # rule 17: a generator and a swarm per seed (population x iterations evaluations of an n x n objective)
-    loop_work((len(s),), population * iterations * n ** 2, "seeds, population and iterations", step=10 * LOOP_STEP)
+    # rule 17: a generator per seed, an objective call a generation over every seed's swarm, each candidate and grid
+    # point at its measured cost (budget35: 320,000 generations, about 85 CPU-s, were accepted)
+    call, point = costs[0], costs[1] + n ** 3
+    work((len(s) * 10 * LOOP_STEP + iterations * (call + len(s) * population * point) + n_grid * point,),
+         "seeds, population, iterations and n_grid")
     return s, n_grid, population, iterations, nonnegative_scalar(rtol, "rtol")
 
 
@@ -198,14 +208,15 @@ def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid:
     Raises
     ------
     ValueError
-        ``seeds`` empty, repeated or not integers, ``rtol`` negative, seeds x population x iterations beyond
-        the work budget (``fusion._validation.MAX_WORK``).
+        ``seeds`` empty, repeated or not integers, ``rtol`` negative, ``seeds``, ``population``, ``iterations``
+        and ``n_grid`` beyond the work budget (``fusion._validation.MAX_WORK``, each candidate and grid point at
+        its measured cost).
     """
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
     if P1.shape != P2.shape:
         raise ValueError(f"P1 and P2 must have the same shape, got {P1.shape} and {P2.shape}")
     s, n_grid, population, iterations, rtol = _seeds_and_budget(seeds, n_grid, 2, population, iterations,
-                                                                P1.shape[0], rtol)
+                                                                P1.shape[0], rtol, _CI_COSTS)
 
     def objective(w: ArrayLike) -> FloatArray:
         return ci_objective(w, P1, P2)
@@ -243,14 +254,16 @@ def printed_fruit_fly_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike,
     Raises
     ------
     ValueError
-        Bad covariance parts, ``seeds`` empty or not integers, counts not positive, ``rtol`` negative.
+        Bad covariance parts, ``seeds`` empty or not integers, counts not positive, ``rtol`` negative;
+        ``seeds``, ``population``, ``iterations`` and ``n_grid`` beyond the work budget (as
+        :func:`fruit_fly_over_seeds`).
     """
     P1d, P1i, P2d, P2i = (read_once(P1d, "P1d"), read_once(P1i, "P1i"), read_once(P2d, "P2d"), read_once(P2i, "P2i"))
     first = as_array(P1d, "P1d", ndim=2)
     parts = [as_semidefinite(M, first.shape[0], name=nm) for M, nm in ((P1d, "P1d"), (P1i, "P1i"), (P2d, "P2d"), (P2i, "P2i"))]
     split_ci_objective(1.0, *parts, same_omega=True)   # validates the sums (positive definite)
     s, n_grid, population, iterations, rtol = _seeds_and_budget(seeds, n_grid, 3, population, iterations,
-                                                                first.shape[0], rtol)
+                                                                first.shape[0], rtol, _SPLIT_CI_COSTS)
 
     def objective(w: ArrayLike) -> FloatArray:
         return split_ci_objective(np.maximum(w, 1e-12), *parts, same_omega=True)   # FOA's 1/D is never 0
