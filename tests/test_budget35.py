@@ -104,3 +104,13 @@ def test_fruit_fly_over_seeds_weighs_its_objective(monkeypatch, fn):
             getattr(weights, fn)(*args, seeds=[0, 1], **kw)
     with pytest.raises(Ran):  # the chapter's 30 x 200 over 100 seeds (10 for the printed objective)
         getattr(weights, fn)(*args, seeds=np.arange(100 if fn == "fruit_fly_over_seeds" else 10))
+
+
+def test_belief_study_has_a_work_budget(monkeypatch):
+    # no work budget: 10**7 snapshots (some 260 CPU-s) were accepted; ~1.8 us a belief-matrix entry
+    from fusion.scenarios.lecture_weighting import belief
+    monkeypatch.setattr(belief.np.random, "default_rng", _ran)
+    with pytest.raises(ValueError, match="^snapshots and sigma ask for"):
+        belief.belief_study(sigma=(0.5, 1.0, 2.0, 4.0), snapshots=400_000)
+    with pytest.raises(Ran):  # the chapter's 5,000 snapshots of 4 sensors
+        belief.belief_study(sigma=(0.5, 1.0, 2.0, 4.0), snapshots=5000)
