@@ -114,3 +114,14 @@ def test_belief_study_has_a_work_budget(monkeypatch):
         belief.belief_study(sigma=(0.5, 1.0, 2.0, 4.0), snapshots=400_000)
     with pytest.raises(Ran):  # the chapter's 5,000 snapshots of 4 sensors
         belief.belief_study(sigma=(0.5, 1.0, 2.0, 4.0), snapshots=5000)
+
+
+def test_minimise_on_simplex_has_a_work_budget():
+    # no work budget: n = 50,000 was accepted (SLSQP's n**3 an iteration, hours); about 350 is the edge
+    from fusion.optimise.simplex import minimise_on_simplex
+    with pytest.raises(ValueError, match="^n ask for"):
+        minimise_on_simplex(_ran, 2_000)
+    with pytest.raises(ValueError, match="^n ask for"):
+        minimise_on_simplex(_ran, 400)
+    with pytest.raises(Ran):  # with its gradient, 380 weights stay accepted; the book's are 2 and 3
+        minimise_on_simplex(_ran, 380, jac=_ran)
