@@ -125,3 +125,13 @@ def test_minimise_on_simplex_has_a_work_budget():
         minimise_on_simplex(_ran, 400)
     with pytest.raises(Ran):  # with its gradient, 380 weights stay accepted; the book's are 2 and 3
         minimise_on_simplex(_ran, 380, jac=_ran)
+
+
+def test_symmetry_study_has_a_work_budget(monkeypatch):
+    # no work budget: 8.8e6 runs (some 640 CPU-s) were accepted; ~2.4 us a reading
+    from fusion.scenarios.lecture_weighting import estimators
+    monkeypatch.setattr(estimators.np.random, "default_rng", _ran)
+    with pytest.raises(ValueError, match="^runs, k and sigma ask for"):
+        estimators.symmetry_study(k=10, runs=200_000, sigma=(0.5, 1.0, 2.0))
+    with pytest.raises(Ran):  # the chapter's 200 runs x 100 samples x 4 sensors
+        estimators.symmetry_study(x=900.0, k=100, runs=200, seed=2108)
