@@ -135,3 +135,13 @@ def test_symmetry_study_has_a_work_budget(monkeypatch):
         estimators.symmetry_study(k=10, runs=200_000, sigma=(0.5, 1.0, 2.0))
     with pytest.raises(Ran):  # the chapter's 200 runs x 100 samples x 4 sensors
         estimators.symmetry_study(x=900.0, k=100, runs=200, seed=2108)
+
+
+def test_ar1_study_has_a_work_budget(monkeypatch):
+    # no work budget (memory only): 8.9e6 runs (some 35 CPU-s) were accepted; ~0.13 us a reading
+    from fusion.scenarios.lecture_weighting import estimators
+    monkeypatch.setattr(estimators.np.random, "default_rng", _ran)
+    with pytest.raises(ValueError, match="^runs, k and sigma ask for"):
+        estimators.ar1_study(k=10, runs=3_000_000, sigma=(0.5, 1.0, 2.0))
+    with pytest.raises(Ran):  # the appendix's 2,000 runs x 100 samples x 4 sensors
+        estimators.ar1_study(phi=0.8, k=100, runs=2000, seed=2110)
