@@ -145,3 +145,16 @@ def test_ar1_study_has_a_work_budget(monkeypatch):
         estimators.ar1_study(k=10, runs=3_000_000, sigma=(0.5, 1.0, 2.0))
     with pytest.raises(Ran):  # the appendix's 2,000 runs x 100 samples x 4 sensors
         estimators.ar1_study(phi=0.8, k=100, runs=2000, seed=2110)
+
+
+def test_architecture_study_weighs_its_runs(monkeypatch):
+    # ~13 us a model run's step, counted 0.5 us: 78,000 NEES runs (about 50 CPU-s) were accepted
+    from fusion.scenarios.two_sensor import architecture
+    monkeypatch.setattr(architecture, "_path_and_model_measurements", _ran)
+    R = np.diag([2500.0, 900.0])
+    Q = np.diag([0.0, 1.0, 0.0, 1.0])
+    with pytest.raises(ValueError, match="^runs, nees_runs and T ask for"):
+        architecture.architecture_study(np.random.default_rng(0), R, R, Q, runs=2, nees_runs=20_000, T=5.0)
+    with pytest.raises(Ran):  # the chapter's 200 + 200 runs at T = 1 s
+        architecture.architecture_study(np.random.default_rng(0), R, R, Q, runs=200, nees_runs=200, T=1.0,
+                                        printed_omegas=(0.5, 0.3), placement_omegas=(0.5,))
