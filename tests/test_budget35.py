@@ -158,3 +158,21 @@ def test_architecture_study_weighs_its_runs(monkeypatch):
     with pytest.raises(Ran):  # the chapter's 200 + 200 runs at T = 1 s
         architecture.architecture_study(np.random.default_rng(0), R, R, Q, runs=200, nees_runs=200, T=1.0,
                                         printed_omegas=(0.5, 0.3), placement_omegas=(0.5,))
+
+
+def test_two_sensor_case_weighs_its_steps(monkeypatch):
+    # model_truth: ~3.3 us a Python step, 10**7 steps (about 32 CPU-s) accepted; two_sensor_scenario: ~0.5 us a
+    # run-step, 250,000 runs (about 33 CPU-s) accepted with a memory budget only
+    from fusion.scenarios.two_sensor import case
+    F, Q = np.eye(4), np.diag([0.0, 1.0, 0.0, 1.0])
+    with pytest.raises(ValueError, match="^n_steps, runs and F ask for"):
+        case.model_truth(np.random.default_rng(0), F, Q, np.zeros(4), 5_000_000, 2)
+    monkeypatch.setattr(case, "psd_factor", _ran)
+    with pytest.raises(Ran):  # ~17,000 steps of 2 runs, the edge of nees_study, stay accepted
+        case.model_truth(np.random.default_rng(0), F, Q, np.zeros(4), 17_000, 2)
+    monkeypatch.setattr(case, "std_scalar", _ran)
+    R = np.eye(2) * 2500.0
+    with pytest.raises(ValueError, match="^runs and T ask for"):
+        case.two_sensor_scenario(R, R, Q, np.random.default_rng(0), runs=100_000)
+    with pytest.raises(Ran):  # the chapter's: 200 runs at T = 0.2 s (Fig. 6's shortest period)
+        case.two_sensor_scenario(R, R, Q, np.random.default_rng(0), runs=200, T=0.2)
