@@ -176,3 +176,13 @@ def test_two_sensor_case_weighs_its_steps(monkeypatch):
         case.two_sensor_scenario(R, R, Q, np.random.default_rng(0), runs=100_000)
     with pytest.raises(Ran):  # the chapter's: 200 runs at T = 0.2 s (Fig. 6's shortest period)
         case.two_sensor_scenario(R, R, Q, np.random.default_rng(0), runs=200, T=0.2)
+
+
+def test_awf_study_weighs_a_draw_by_its_measured_cost(monkeypatch):
+    # ~25 units a draw, counted 8: 78,000 runs (about 32 CPU-s) were accepted
+    from fusion.scenarios.lecture_weighting import estimators
+    monkeypatch.setattr(estimators.np.random, "default_rng", _ran)
+    with pytest.raises(ValueError, match="^levels, runs, k_max and sigma ask for"):
+        estimators.awf_study(levels=(0.0, 900.0), k_max=100, runs=30_000, ks=(3, 5, 10), k_compare=10)
+    with pytest.raises(Ran):  # the chapter's (5 levels, 300 runs x 1,000 samples x 4 sensors)
+        estimators.awf_study()
