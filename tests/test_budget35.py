@@ -186,3 +186,13 @@ def test_awf_study_weighs_a_draw_by_its_measured_cost(monkeypatch):
         estimators.awf_study(levels=(0.0, 900.0), k_max=100, runs=30_000, ks=(3, 5, 10), k_compare=10)
     with pytest.raises(Ran):  # the chapter's (5 levels, 300 runs x 1,000 samples x 4 sensors)
         estimators.awf_study()
+
+
+def test_wavelet_variance_study_has_a_work_budget(monkeypatch):
+    # no work budget: 690,000 runs (about 31 CPU-s) were accepted; ~0.2 us a sample, refused before the draws
+    from fusion.scenarios import wavelet_sensors as ws
+    monkeypatch.setattr(ws, "check_magnitude", _ran)
+    with pytest.raises(ValueError, match="^runs, gains and length ask for"):
+        ws.variance_study(length=128, runs=200_000, gains=(1.0, 2.0, 3.0), sigma=(1.0, 1.0, 1.0))
+    with pytest.raises(Ran):  # the chapter's (window 64, 300 runs of the default case)
+        ws.variance_study(window=64, runs=300)
