@@ -196,3 +196,13 @@ def test_wavelet_variance_study_has_a_work_budget(monkeypatch):
         ws.variance_study(length=128, runs=200_000, gains=(1.0, 2.0, 3.0), sigma=(1.0, 1.0, 1.0))
     with pytest.raises(Ran):  # the chapter's (window 64, 300 runs of the default case)
         ws.variance_study(window=64, runs=300)
+
+
+def test_consistency_study_weighs_a_pair_check(monkeypatch):
+    # ~2 units a pair-check, counted 1: 103,000 runs (about 23 CPU-s) were accepted
+    from fusion.scenarios.lecture_weighting import consistency
+    monkeypatch.setattr(consistency.np.random, "default_rng", _ran)
+    with pytest.raises(ValueError, match="^runs, samples, curve_draws and sigma ask for"):
+        consistency.consistency_study(runs=8_000, samples=100, curve_draws=100)
+    with pytest.raises(Ran):  # the chapter's (x = 900, bias 30: 100 runs of the default case), and 20 times more
+        consistency.consistency_study(x=900.0, bias=30.0, runs=2000)
