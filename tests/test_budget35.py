@@ -206,3 +206,13 @@ def test_consistency_study_weighs_a_pair_check(monkeypatch):
         consistency.consistency_study(runs=8_000, samples=100, curve_draws=100)
     with pytest.raises(Ran):  # the chapter's (x = 900, bias 30: 100 runs of the default case), and 20 times more
         consistency.consistency_study(x=900.0, bias=30.0, runs=2000)
+
+
+def test_lumv_study_weighs_a_reading(monkeypatch):
+    # ~0.12 us a reading, counted 10 ns: k = 10**7 of 6 runs (about 22 CPU-s) was accepted
+    from fusion.scenarios.lecture_weighting import estimators
+    monkeypatch.setattr(estimators.np.random, "default_rng", _ran)
+    with pytest.raises(ValueError, match="^runs, k and sigma ask for"):
+        estimators.lumv_study(k=5_000_000, runs=6, sigma=(0.5, 1.0, 2.0))
+    with pytest.raises(Ran):  # the chapter's 20,000 runs x 100 samples x 4 sensors
+        estimators.lumv_study(x=900.0, k=100, runs=20000, seed=2107)
