@@ -216,3 +216,19 @@ def test_lumv_study_weighs_a_reading(monkeypatch):
         estimators.lumv_study(k=5_000_000, runs=6, sigma=(0.5, 1.0, 2.0))
     with pytest.raises(Ran):  # the chapter's 20,000 runs x 100 samples x 4 sensors
         estimators.lumv_study(x=900.0, k=100, runs=20000, seed=2107)
+
+
+def test_study_work_is_twice_the_book_call_it_serves():
+    # budget35's one rule for a budget above MAX_WORK: twice the book's own call, rounded up to a whole MAX_WORK
+    # (range_bearing's was 20 x MAX_WORK, about 200 CPU-s, for a book study of about 45)
+    from fusion._limits import MAX_WORK, STUDY_WORK
+    from fusion.scenarios import range_bearing as rb
+    from fusion.book.chapters.chernoff.settings import STUDY_RUNS
+    book = {"chapter 06's tracking study (100 runs of the default range-bearing scenario)":
+            rb._tracking_work(rb.RangeBearingScenario(), STUDY_RUNS, "runs")}
+    assert set(book) == set(STUDY_WORK)
+    for key, units in book.items():
+        assert STUDY_WORK[key] == -(-2 * units // MAX_WORK) * MAX_WORK
+    assert rb.TRACK_WORK == STUDY_WORK[next(iter(book))]
+    with pytest.raises(ValueError, match="STUDY_WORK: chapter 06's tracking study"):
+        rb.monte_carlo(rb.RangeBearingScenario(), 1, 2 * STUDY_RUNS + 20)
