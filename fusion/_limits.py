@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from decimal import Decimal
-from types import MappingProxyType
 from fractions import Fraction
 
 import numpy as np
+
+from fusion._frozen import constant
 
 
 #: Largest magnitude accepted for a finite input entry: a product of two entries stays finite.
@@ -44,7 +45,7 @@ MAX_WORK = 10**9
 #: counts each book call against its entry. Chapter 06's tracking study (``range_bearing.monte_carlo`` of the default
 #: scenario, 100 runs of 30 frames) counts 4.15e9 units (about 45 CPU-s measured): 9 x ``MAX_WORK`` (about 90 CPU-s),
 #: so a request of hours is refused at once. A larger single ``MAX_WORK`` would loosen every other function's edge.
-STUDY_WORK: Mapping[str, int] = MappingProxyType(
+STUDY_WORK: Mapping[str, int] = constant(
     {"chapter 06's tracking study (100 runs of the default range-bearing scenario)": 9 * MAX_WORK})
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
