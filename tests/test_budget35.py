@@ -127,24 +127,6 @@ def test_minimise_on_simplex_has_a_work_budget():
         minimise_on_simplex(_ran, 380, jac=_ran)
 
 
-def test_symmetry_study_has_a_work_budget(monkeypatch):
-    # no work budget: 8.8e6 runs (some 640 CPU-s) were accepted; ~2.4 us a reading
-    from fusion.scenarios.lecture_weighting import estimators
-    monkeypatch.setattr(estimators.np.random, "default_rng", _ran)
-    with pytest.raises(ValueError, match="^runs, k and sigma ask for"):
-        estimators.symmetry_study(k=10, runs=200_000, sigma=(0.5, 1.0, 2.0))
-    with pytest.raises(Ran):  # the chapter's 200 runs x 100 samples x 4 sensors
-        estimators.symmetry_study(x=900.0, k=100, runs=200, seed=2108)
-
-
-def test_ar1_study_has_a_work_budget(monkeypatch):
-    # no work budget (memory only): 8.9e6 runs (some 35 CPU-s) were accepted; ~0.13 us a reading
-    from fusion.scenarios.lecture_weighting import estimators
-    monkeypatch.setattr(estimators.np.random, "default_rng", _ran)
-    with pytest.raises(ValueError, match="^runs, k and sigma ask for"):
-        estimators.ar1_study(k=10, runs=3_000_000, sigma=(0.5, 1.0, 2.0))
-    with pytest.raises(Ran):  # the appendix's 2,000 runs x 100 samples x 4 sensors
-        estimators.ar1_study(phi=0.8, k=100, runs=2000, seed=2110)
 
 
 def test_architecture_study_weighs_its_runs(monkeypatch):
@@ -208,15 +190,6 @@ def test_consistency_study_weighs_a_pair_check(monkeypatch):
         consistency.consistency_study(x=900.0, bias=30.0, runs=2000)
 
 
-def test_lumv_study_weighs_a_reading(monkeypatch):
-    # ~0.12 us a reading, counted 10 ns: k = 10**7 of 6 runs (about 22 CPU-s) was accepted
-    from fusion.scenarios.lecture_weighting import estimators
-    monkeypatch.setattr(estimators.np.random, "default_rng", _ran)
-    with pytest.raises(ValueError, match="^runs, k and sigma ask for"):
-        estimators.lumv_study(k=5_000_000, runs=6, sigma=(0.5, 1.0, 2.0))
-    with pytest.raises(Ran):  # the chapter's 20,000 runs x 100 samples x 4 sensors
-        estimators.lumv_study(x=900.0, k=100, runs=20000, seed=2107)
-
 
 def test_study_work_is_twice_the_book_call_it_serves():
     # budget35's one rule for a budget above MAX_WORK: twice the book's own call, rounded up to a whole MAX_WORK
@@ -232,3 +205,20 @@ def test_study_work_is_twice_the_book_call_it_serves():
     assert rb.TRACK_WORK == STUDY_WORK[next(iter(book))]
     with pytest.raises(ValueError, match="STUDY_WORK: chapter 06's tracking study"):
         rb.monte_carlo(rb.RangeBearingScenario(), 1, 2 * STUDY_RUNS + 20)
+
+
+@pytest.mark.parametrize("study, bad, book", [
+    # symmetry_study: no work budget, 8.8e6 runs (some 640 CPU-s) were accepted; ~2.4 us a reading (250 units)
+    ("symmetry_study", dict(k=10, runs=200_000), dict(x=900.0, k=100, runs=200, seed=2108)),
+    # ar1_study: a memory budget only, 8.9e6 runs (some 35 CPU-s) were accepted; ~0.13 us a reading (15 units)
+    ("ar1_study", dict(k=10, runs=3_000_000), dict(phi=0.8, k=100, runs=2000, seed=2110)),
+    # lumv_study: counted 10 ns a reading, ~0.12 us measured (12 units): k = 10**7 of 6 runs (~22 CPU-s) was accepted
+    ("lumv_study", dict(k=5_000_000, runs=6), dict(x=900.0, k=100, runs=20000, seed=2107)),
+])
+def test_estimator_studies_weigh_a_reading(monkeypatch, study, bad, book):
+    from fusion.scenarios.lecture_weighting import estimators
+    monkeypatch.setattr(estimators.np.random, "default_rng", _ran)
+    with pytest.raises(ValueError, match="^runs, k and sigma ask for"):
+        getattr(estimators, study)(sigma=(0.5, 1.0, 2.0), **bad)
+    with pytest.raises(Ran):  # the chapter's own call (4 sensors)
+        getattr(estimators, study)(**book)
