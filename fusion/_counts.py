@@ -383,7 +383,7 @@ def input_allocation(shape: tuple[int, ...], names: str) -> None:
 PAIR_WORK = 20
 
 
-def pairwise(n: int, name: str, arrays: int = 1, rows: int = 1, cubic: bool = False) -> int:
+def pairwise(n: int, name: str, arrays: int = 1, rows: int = 1, cubic: bool = False, step: int = 0) -> int:
     """Refuse ``n`` readings whose pairwise kernel is beyond the memory or the work budget (rules 9 and 17).
 
     A kernel on the n readings of a row (the distances, fusion degrees, beliefs and supports of
@@ -406,11 +406,15 @@ def pairwise(n: int, name: str, arrays: int = 1, rows: int = 1, cubic: bool = Fa
         The rows (epochs, or evaluations of the kernel) computed one after the other.
     cubic : bool
         The kernel also decomposes each row's n x n matrix (``numpy.linalg.eigh``: n**3 units a row).
+    step : int
+        The units of a row's own Python-level call on top of its pairs, for a kernel called once a row (its
+        validation and dispatch: ``fusion.book.audit.parameters_matching`` calls a fusion a grid point, about 20 us
+        measured, budget35); 0 for rows computed in one vectorised call.
 
     Returns
     -------
     int
-        The units of work, ``rows * n**2 * (PAIR_WORK + n if cubic else PAIR_WORK)``.
+        The units of work, ``rows * (step + n**2 * (PAIR_WORK + n if cubic else PAIR_WORK))``.
 
     Raises
     ------
@@ -419,7 +423,10 @@ def pairwise(n: int, name: str, arrays: int = 1, rows: int = 1, cubic: bool = Fa
     """
     what = f"{name} ({int(n):,} readings, a kernel of their n x n pairs)"
     allocation((arrays, n, n), what)
-    return work((rows, n, n, PAIR_WORK + (int(n) if cubic else 0)), what)
+    per_pair = PAIR_WORK + (int(n) if cubic else 0)
+    if step:
+        return work((rows, int(step) + int(n) * int(n) * per_pair), what)
+    return work((rows, n, n, per_pair), what)
 
 
 def machine_workers() -> int:

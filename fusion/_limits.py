@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from decimal import Decimal
 from fractions import Fraction
 
 import numpy as np
+
+from fusion._frozen import constant
 
 
 #: Largest magnitude accepted for a finite input entry: a product of two entries stays finite.
@@ -36,6 +39,14 @@ MAX_INPUT_ELEMENTS = 2**25
 #: its entries when each entry is a size. The book's requests stay well inside (chapter 02's 20,000 runs x
 #: 100 samples x 4 sensors are 8e6 units; its belief study, 8 params x 803 loop steps, about 7e6).
 MAX_WORK = 10**9
+#: The one rule for a budget above :data:`MAX_WORK` (budget35): only a function whose OWN book call counts more than
+#: ``MAX_WORK`` gets one, twice that call's count rounded up to a whole ``MAX_WORK``, kept here and named in the
+#: refusal (:func:`work`'s ``limit``): the book's request, the key, is what the entry serves. ``tests/test_budget35.py``
+#: counts each book call against its entry. Chapter 06's tracking study (``range_bearing.monte_carlo`` of the default
+#: scenario, 100 runs of 30 frames) counts 4.15e9 units (about 45 CPU-s measured): 9 x ``MAX_WORK`` (about 90 CPU-s),
+#: so a request of hours is refused at once. A larger single ``MAX_WORK`` would loosen every other function's edge.
+STUDY_WORK: Mapping[str, int] = constant(
+    {"chapter 06's tracking study (100 runs of the default range-bearing scenario)": 9 * MAX_WORK})
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
 #: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).
@@ -81,8 +92,8 @@ def work(shape: tuple[int, ...], names: str, weight: int = 1, limit: int = MAX_W
         The units of one counted element: its measured CPU time over the unit's (about 10 ns, :data:`MAX_WORK`),
         rounded up; 1 for a vectorised element.
     limit : int
-        The budget (:data:`MAX_WORK`; a larger one only where the book's own documented study costs more, as the
-        tracking study of ``fusion.scenarios.range_bearing``, named in the message).
+        The budget (:data:`MAX_WORK`; a larger one only from :data:`STUDY_WORK`, where the book's own call counts
+        more, as the tracking study of ``fusion.scenarios.range_bearing``, named in the message).
 
     Returns
     -------
@@ -99,8 +110,10 @@ def work(shape: tuple[int, ...], names: str, weight: int = 1, limit: int = MAX_W
         n *= int(s)
     if n > limit:
         dims = " x ".join(f"{int(d):,}" for d in shape) + (f", {int(weight):,} units each" if weight != 1 else "")
+        served = [k for k, v in STUDY_WORK.items() if v == limit]
         budget = ("fusion._validation.MAX_WORK, about 10 CPU-s" if limit == MAX_WORK
-                  else f"about {limit / MAX_WORK * 10:.0f} CPU-s")
+                  else f"about {limit / MAX_WORK * 10:.0f} CPU-s"
+                  + (f", fusion._limits.STUDY_WORK: {served[0]}" if served else ""))
         raise ValueError(f"{names} ask for {n:.3g} units of work ({dims}), beyond the work budget "
                          f"(at most {limit:.0e}, {budget})")
     return n

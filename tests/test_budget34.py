@@ -27,7 +27,7 @@ def test_book_tracking_study_stays_inside():
     # chapter 06's study (100 runs of the default scenario) is well inside the budget: counted, not run
     from fusion.scenarios import range_bearing as rb
     from fusion.book.chapters.chernoff.settings import STUDY_RUNS
-    assert rb._tracking_work(rb.RangeBearingScenario(), STUDY_RUNS, "runs") < rb.TRACK_WORK / 3
+    assert rb._tracking_work(rb.RangeBearingScenario(), STUDY_RUNS, "runs") <= rb.TRACK_WORK / 2  # budget35's rule
 
 
 def test_nees_study_step_weighs_its_measured_cost():

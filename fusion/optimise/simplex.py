@@ -22,7 +22,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
 from fusion._validation import argument_copy, read_once, renormalised, sums_to_one, text, tolerance
-from fusion._validation import _numeric, FloatArray, as_callable, count
+from fusion._validation import _numeric, FloatArray, LOOP_STEP, as_callable, count, work
 from fusion._objectives import finite_optimum, objective_values
 from fusion.optimise.result import OptimumResult
 
@@ -98,6 +98,11 @@ def simplex_row(e: FloatArray, n: int | None, name: str, given: object) -> Float
     return renormalised(np.clip(e, 0.0, None), given)
 
 
+#: SLSQP's iteration limit in :func:`minimise_on_simplex`, and the units of one finite-difference call of its
+#: objective (about 25 us measured, budget35).
+_SLSQP_ITERATIONS, _FD_CALL = 300, 2500
+
+
 def minimise_on_simplex(
     f: Callable[[FloatArray], float], n: int, jac: Callable[[FloatArray], FloatArray] | None = None,
     x0: ArrayLike | None = None, ftol: float = 1e-14,
@@ -132,12 +137,17 @@ def minimise_on_simplex(
     Raises
     ------
     ValueError
-        ``n < 1``, ``x0`` off the simplex, or ``ftol`` not positive and finite.
+        ``n < 1``, ``x0`` off the simplex, or ``ftol`` not positive and finite; ``n`` beyond the work budget
+        (``fusion._limits.MAX_WORK``, counting SLSQP's 300 iterations: about 350 weights without ``jac``, 390 with it).
     """
     as_callable(f, "f")
     n = count(n, "n")
     if jac is not None:
         as_callable(jac, "jac")
+    # rule 17: SLSQP's dense (n + 1)-row least squares an iteration (about 0.5 ns x n**3 measured, budget35: 0.1 s
+    # an iteration at n = 600) and, without jac, n finite-difference calls of f (about 25 us each); without a
+    # budget n = 50,000 was accepted (hours, and gigabytes of SLSQP workspace)
+    work((_SLSQP_ITERATIONS, n), "n", weight=n * n // 20 + (_FD_CALL if jac is None else 0) + LOOP_STEP)
     ftol = tolerance(ftol, "ftol")  # fuzz 24a U2: inf, NaN or a negative one returned the start as the minimum
 
     def value(e: FloatArray) -> float:  # issue 35, class 3: NaN, non-numbers and vectors refused, naming f
@@ -155,7 +165,7 @@ def minimise_on_simplex(
 
     res = minimize(lambda e: value(on_simplex(e)), start, jac=jac, method="SLSQP", bounds=[(0.0, 1.0)] * n,
                    constraints=[{"type": "eq", "fun": lambda e: e.sum() - 1.0, "jac": lambda e: np.ones_like(e)}],
-                   options={"ftol": ftol, "maxiter": 300})
+                   options={"ftol": ftol, "maxiter": _SLSQP_ITERATIONS})
     e = np.clip(res.x, 0.0, None)
     e = e / e.sum()
     return OptimumResult(x=e, fun=finite_optimum(value(e), "f"), n_evaluations=int(res.nfev))

@@ -308,10 +308,12 @@ def consistency_study(
     allocation((curve_draws, sig_chk.size), "curve_draws and sigma")
     # rule 17: every pass below checks each pair of sensors at every sample of every run: two data sets, each run
     # through 15 estimators and diagnostics and one checked AWF per sensor order; the detection curve checks every
-    # pair of each draw at each of its ratios
+    # pair of each draw at each of its ratios; a pair-check weighs 2 units, measured (budget35: 103,000 runs, about
+    # 23 CPU-s, were accepted at 1 unit)
     n = sig_chk.size
     passes = 2 * (15 + sum(sorted(p) == list(range(n)) for p in INDEX_ORDERS))
-    work((runs * samples * passes + curve_draws * _CURVE_RATIOS, n, n), "runs, samples, curve_draws and sigma")
+    work((runs * samples * passes + curve_draws * _CURVE_RATIOS, n, n), "runs, samples, curve_draws and sigma",
+         weight=2)
     index_guard = one_of(index_guard, CC_GUARDS, "index_guard")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()

@@ -38,6 +38,11 @@ __all__ = [
 # --------------------------------------------------------------------------- benchmark
 #: Noise SDs of the shared benchmark (°C).
 BENCH_SIGMA = (0.5, 1.0, 1.5, 2.0, 4.0)
+#: Units (about 10 ns, ``fusion._limits.MAX_WORK``) of one reading (run x sample x sensor) of one setup of
+#: :func:`benchmark`: its ~20 methods cost about 0.43 us a reading, measured (budget35, OPENBLAS_NUM_THREADS=1:
+#: 2.1 CPU-s for 8 setups of 7,679 runs x 20 samples x 4 sensors), so 45 units; the chapter's 12 setups of 500 x
+#: 100 x 5 readings count about 1.4e8 units (about 1.4 CPU-s).
+_BENCH_READING = 45
 
 
 class BenchMethod(StrEnum):
@@ -181,8 +186,10 @@ def benchmark(
     # the results are keyed by (seed, level, fault): a repeated entry would collapse two of them
     distinct(list(seeds), "seeds"), distinct([bool(f) for f in faults], "faults")
     distinct_printed(lv.tolist(), "levels", general, "labels a column")  # the chapter's f"X={X:g}" (fuzz 30b)
-    loop_work((len(seeds), lv.size, len(faults)), runs * samples * sig_chk.size,
-              "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP)  # rule 17: ~20 methods per key
+    # rule 17: ~20 methods per key, a reading weighing its measured cost (budget35: ~0.43 us, 45 units; 1.5e6 runs,
+    # about 400 CPU-s, were accepted), so the edge is about 10 CPU-s
+    loop_work((len(seeds), lv.size, len(faults)), _BENCH_READING * runs * samples * sig_chk.size,
+              "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP)
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     results = {}

@@ -17,7 +17,7 @@ from fusion._frozen import constant
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, text,
                              tuple_of, validated_post_init)
 from fusion._validation import derived_inputs
-from fusion._validation import allocation, count, one_of, scalar, sequence
+from fusion._validation import allocation, count, one_of, scalar, sequence, work
 from fusion._validation import text as text_of
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
@@ -138,12 +138,23 @@ REGIME_CONSTANT_ONLY: tuple[RegimeMethod, ...] = (_R.PER_SAMPLE_FORGETTING, _R.P
                                                   _R.PER_SAMPLE_BLUE)
 
 
-def _draws(sigma: Sequence[float], samples: int, runs: int, seed: int) -> tuple[np.ndarray, int, int, int]:
-    """The checked SDs (three or more), samples (20 or more), runs and seed of a study's (runs, samples, n) draws."""
+#: Units (about 10 ns, ``fusion._limits.MAX_WORK``) of one draw (run x sample x sensor) of :func:`regime_study`
+#: (six scenarios of a dozen variance trackers each) and of :func:`variance_change_study`, measured (budget35,
+#: OPENBLAS_NUM_THREADS=1): about 5 us and 0.75 us a draw (2.1 and 0.28 CPU-s for the default 100 runs x 1,000
+#: samples x 4 sensors), so that the edge is about 10 CPU-s (without a work budget, 10**7 samples of 2 runs, some
+#: 400 CPU-s, were accepted).
+_REGIME_DRAW, _CHANGE_DRAW = 500, 75
+
+
+def _draws(sigma: Sequence[float], samples: int, runs: int, seed: int,
+           weight: int) -> tuple[np.ndarray, int, int, int]:
+    """The checked SDs (three or more), samples (20 or more), runs and seed of a study's (runs, samples, n) draws,
+    within the memory budget and the work budget at ``weight`` units a draw (rule 17)."""
     sig = _sigmas(sigma, minimum=3)
     samples = count(samples, "samples", minimum=20)
     runs = count(runs, "runs")
     allocation((runs, samples, sig.size), "runs, samples and sigma")
+    work((runs, samples, sig.size), "runs, samples and sigma", weight=weight)
     return sig, samples, runs, _seed(seed)
 
 
@@ -348,7 +359,7 @@ def regime_study(
         Per scenario and method the squared errors, the MSE curve and the mean weight of sensor 1 against k; the final
         σ̂₁² per run.
     """
-    sig, samples, runs, seed = _draws(sigma, samples, runs, seed)
+    sig, samples, runs, seed = _draws(sigma, samples, runs, seed, _REGIME_DRAW)
     amplitude = scalar(amplitude, "amplitude")
     period, fast_period = (scalar(v, name, lo=0.0, lo_open=True)
                            for name, v in (("period", period), ("fast_period", fast_period)))
@@ -549,7 +560,7 @@ def variance_change_study(
     VarianceChangeStudy
         Per change and method the squared errors against k, with the SDs after the change.
     """
-    sig, samples, runs, seed = _draws(sigma, samples, runs, seed)
+    sig, samples, runs, seed = _draws(sigma, samples, runs, seed, _CHANGE_DRAW)
     change_at = _index(change_at, samples, "change_at")
     forgetting, forgetting_alt = (_forgetting(v, name)
                                   for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))

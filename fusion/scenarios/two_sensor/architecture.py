@@ -187,6 +187,12 @@ class _PairedRuns(NamedTuple):
     truth: FloatArray     # the true states of those runs
 
 
+#: Units (about 10 ns, ``fusion._limits.MAX_WORK``) of one step of one path run and of one model-following (NEES)
+#: run of :func:`architecture_study`, every architecture and rule: measured 6.9 and 12.6 us (budget35,
+#: OPENBLAS_NUM_THREADS=1: 0.73 and 1.33 CPU-s for 2,000 runs of 53 steps).
+_RUN_STEP, _NEES_RUN_STEP = 700, 1300
+
+
 #: Float64 values per run and step that the run studies hold at once at their peak (the measurements, truths, both
 #: local tracks, the fused track, its errors and the NEES's stacked factors): measured with ``tracemalloc`` at 38 and
 #: 53 (:func:`q_scaling_study`, path runs and model runs), 47 and 62 (:func:`architecture_study`), so that
@@ -195,7 +201,8 @@ _HELD = 64
 
 
 def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int, nees_runs: int,
-                 T: float, velocity_sigma: float, t_steady: float, scales: int | None = None) -> _PairedRuns:
+                 T: float, velocity_sigma: float, t_steady: float, scales: int | None = None,
+                 step_units: tuple[int, int] | None = None) -> _PairedRuns:
     """Validate the run studies' common arguments and draw their measurements on the path of :func:`trajectory`
     and on targets that follow the model (:func:`_path_and_model_measurements`); ``scales``: the number of filter
     banks the caller runs on them, checked against the work budget (rule 17) before anything is drawn."""
@@ -214,6 +221,10 @@ def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: Arra
     if scales is not None:
         # rule 17: one filter bank per scale, a loop step per sample over every run's 4-state filter
         loop_work((scales, t.size), 16 * (runs + nees_runs), "scales, runs, nees_runs and T")
+    if step_units is not None:
+        # rule 17: the study's architectures and rules at their measured cost a step of a path run and of a model
+        # run (``step_units``), before the draws
+        work((t.size, step_units[0] * runs + step_units[1] * nees_runs), "runs, nees_runs and T")
     z, Xm = _path_and_model_measurements(rng, X, model.F, Q, R1, R2, runs, nees_runs)
     truth = np.concatenate([np.broadcast_to(X, (runs, t.size, 4)), Xm])
     return _PairedRuns(runs, nees_runs, R1, R2, Q, model.F, model.H, np.diag([0.0, s2, 0.0, s2]), steady, z, truth)
@@ -265,14 +276,17 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     Raises
     ------
     ValueError
-        Covariances not valid, counts not positive, ``t_steady`` beyond the path, a weight outside (0, 1].
+        Covariances not valid, counts not positive, ``t_steady`` beyond the path, a weight outside (0, 1];
+        ``runs`` and ``nees_runs`` over the steps of ``T`` beyond the work budget (``fusion._limits.MAX_WORK``,
+        each run's step at its measured cost).
     """
     from fusion.filtering.feedback import fusion_loop
 
     omegas, placed = (_unit_weights(w, nm) for w, nm in ((printed_omegas, "printed_omegas"),
                                                           (placement_omegas, "placement_omegas")))
 
-    p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady)
+    p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady,
+                     step_units=(_RUN_STEP, _NEES_RUN_STEP))  # 78,000 NEES runs, ~50 CPU-s, were accepted (budget35)
     runs, nees_runs, R1, R2, Q, F, H, steady, z, truth = (p.runs, p.nees_runs, p.R1, p.R2, p.Q, p.F, p.H, p.steady,
                                                           p.z, p.truth)
     x0 = [np.column_stack([zj[:, 0, 0], np.zeros(runs + nees_runs), zj[:, 0, 1], np.zeros(runs + nees_runs)])

@@ -13,16 +13,21 @@ from numpy.typing import ArrayLike
 from fusion._results import NONNEGATIVE, ResultSpec, array, integers, number, validated_post_init
 from fusion._validation import read_once
 from fusion._validation import seed as check_seed, seed_array
-from fusion._validation import LOOP_STEP, distinct, loop_work
+from fusion._validation import LOOP_STEP, distinct, work
 from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_semidefinite, count, instance_of,
                                 nonnegative_scalar)
 from fusion.estimates.ci import ci_objective, split_ci_objective
 from fusion.scenarios.two_sensor.case import _PARAMS
 from fusion.filtering.tracks import LocalTrack
 from fusion.optimise.result import OptimumResult
-from fusion.optimise.scalar import fruit_fly_batch, grid_search
+from fusion.optimise.scalar import batch_budget, fruit_fly_batch, grid_search
 
 __all__ = ["per_step_weights", "FruitFlySeeds", "fruit_fly_over_seeds", "printed_fruit_fly_over_seeds"]
+
+
+#: Units (about 10 ns, ``fusion._limits.MAX_WORK``) of one FOA candidate and of one grid point of
+#: :func:`per_step_weights` (a CI objective: an information-matrix inverse), measured (budget35).
+_CANDIDATE, _GRID_POINT = 45, 35
 
 
 @_PARAMS("population, iterations")
@@ -54,7 +59,9 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     Raises
     ------
     ValueError
-        ``a`` and ``b`` of different shapes (runs, steps, state), naming both.
+        ``a`` and ``b`` of different shapes (runs, steps, state), naming both; the steps of ``a`` with
+        ``population``, ``iterations`` and ``n_grid`` beyond the work budget (``fusion._limits.MAX_WORK``, each
+        candidate and grid point at its measured cost), naming them.
     """
     instance_of(a, LocalTrack, "a")
     instance_of(b, LocalTrack, "b")
@@ -67,6 +74,12 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
         raise ValueError(f"a and b must be tracks of one simulation, of the same shape (runs, steps, state), got "
                          f"a.est {a.est.shape} and b.est {b.est.shape}")
     K = a.gains.P.shape[0]
+    # rule 17, at entry under this function's names (fuzz 24c WN): the swarm's generations and memory, then each
+    # candidate and grid point at its measured cost (budget35: 0.43-0.5 us a candidate, 0.34 us a grid point, for 4
+    # x 4 covariances; 160,000 iterations, about 60 CPU-s, were accepted), so the edge is about 10 CPU-s
+    names = "the steps of a, population, iterations and n_grid"
+    batch_budget(K, population, iterations, names)
+    work((K, _CANDIDATE * population * iterations + _GRID_POINT * n_grid + 10 * LOOP_STEP), names)
     P1s, P2s = np.asarray(a.gains.P, dtype=float), np.asarray(b.gains.P, dtype=float)
     I1s, I2s = np.linalg.inv(P1s), np.linalg.inv(P2s)
 
@@ -133,17 +146,27 @@ class FruitFlySeeds:
         return float(np.median((self.fruit_fly_fun - self.grid_fun) / abs(self.grid_fun)))
 
 
+#: Units of one call of the objective of :func:`fruit_fly_over_seeds` (``ci_objective``) and of each of its points,
+#: and the same of :func:`printed_fruit_fly_over_seeds` (``split_ci_objective``), measured (budget35, 2 x 2 and 4 x 4
+#: covariances): about 70 us a call and 0.3 us a point, 250 us and 1.9 us.
+_CI_COSTS, _SPLIT_CI_COSTS = (7 * LOOP_STEP, 30), (25 * LOOP_STEP, 190)
+
+
 def _seeds_and_budget(seeds: ArrayLike, n_grid: int, grid_minimum: int, population: int, iterations: int, n: int,
-                      rtol: float) -> tuple[np.ndarray, int, int, int, float]:
-    """Checked seeds, grid size, swarm size and tolerance of a FOA-over-seeds study on an n x n objective."""
+                      rtol: float, costs: tuple[int, int]) -> tuple[np.ndarray, int, int, int, float]:
+    """Checked seeds, grid size, swarm size and tolerance of a FOA-over-seeds study on an n x n objective whose call
+    costs ``costs[0]`` units and each of its points ``costs[1]`` more (measured, plus n**3 a point)."""
     s = seed_array(seeds, "seeds")  # integers of any size (rule 11), never a float array (2**63 + 1 would round)
     n_grid = count(n_grid, "n_grid", minimum=grid_minimum)
     population = count(population, "population")
     iterations = count(iterations, "iterations")
     allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
     distinct(s.tolist(), "seeds")  # a repeated seed would count one run twice among the seeds' outcomes
-    # rule 17: a generator and a swarm per seed (population x iterations evaluations of an n x n objective)
-    loop_work((len(s),), population * iterations * n ** 2, "seeds, population and iterations", step=10 * LOOP_STEP)
+    # rule 17: a generator per seed, an objective call a generation over every seed's swarm, each candidate and grid
+    # point at its measured cost (budget35: 320,000 generations, about 85 CPU-s, were accepted)
+    call, point = costs[0], costs[1] + n ** 3
+    work((len(s) * 10 * LOOP_STEP + iterations * (call + len(s) * population * point) + n_grid * point,),
+         "seeds, population, iterations and n_grid")
     return s, n_grid, population, iterations, nonnegative_scalar(rtol, "rtol")
 
 
@@ -185,14 +208,15 @@ def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid:
     Raises
     ------
     ValueError
-        ``seeds`` empty, repeated or not integers, ``rtol`` negative, seeds x population x iterations beyond
-        the work budget (``fusion._validation.MAX_WORK``).
+        ``seeds`` empty, repeated or not integers, ``rtol`` negative, ``seeds``, ``population``, ``iterations``
+        and ``n_grid`` beyond the work budget (``fusion._validation.MAX_WORK``, each candidate and grid point at
+        its measured cost).
     """
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
     if P1.shape != P2.shape:
         raise ValueError(f"P1 and P2 must have the same shape, got {P1.shape} and {P2.shape}")
     s, n_grid, population, iterations, rtol = _seeds_and_budget(seeds, n_grid, 2, population, iterations,
-                                                                P1.shape[0], rtol)
+                                                                P1.shape[0], rtol, _CI_COSTS)
 
     def objective(w: ArrayLike) -> FloatArray:
         return ci_objective(w, P1, P2)
@@ -230,14 +254,16 @@ def printed_fruit_fly_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike,
     Raises
     ------
     ValueError
-        Bad covariance parts, ``seeds`` empty or not integers, counts not positive, ``rtol`` negative.
+        Bad covariance parts, ``seeds`` empty or not integers, counts not positive, ``rtol`` negative;
+        ``seeds``, ``population``, ``iterations`` and ``n_grid`` beyond the work budget (as
+        :func:`fruit_fly_over_seeds`).
     """
     P1d, P1i, P2d, P2i = (read_once(P1d, "P1d"), read_once(P1i, "P1i"), read_once(P2d, "P2d"), read_once(P2i, "P2i"))
     first = as_array(P1d, "P1d", ndim=2)
     parts = [as_semidefinite(M, first.shape[0], name=nm) for M, nm in ((P1d, "P1d"), (P1i, "P1i"), (P2d, "P2d"), (P2i, "P2i"))]
     split_ci_objective(1.0, *parts, same_omega=True)   # validates the sums (positive definite)
     s, n_grid, population, iterations, rtol = _seeds_and_budget(seeds, n_grid, 3, population, iterations,
-                                                                first.shape[0], rtol)
+                                                                first.shape[0], rtol, _SPLIT_CI_COSTS)
 
     def objective(w: ArrayLike) -> FloatArray:
         return split_ci_objective(np.maximum(w, 1e-12), *parts, same_omega=True)   # FOA's 1/D is never 0
