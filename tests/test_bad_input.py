@@ -43,7 +43,13 @@ from fusion.optimise.swarm import SwarmOptions
 
 
 def public_callables() -> dict[str, Callable[..., Any]]:
-    """Every callable named in the ``__all__`` of a package or module of :mod:`fusion`."""
+    """Every callable named in the ``__all__`` of a package or module of :mod:`fusion` (a new dict on each call)."""
+    return dict(_public_callables())
+
+
+@functools.lru_cache(maxsize=1)
+def _public_callables() -> dict[str, Callable[..., Any]]:
+    """:func:`public_callables`, enumerated once per process (five registries ask for it at collection)."""
     out: dict[str, Callable[..., Any]] = {}
     names = ["fusion"] + [m.name for m in pkgutil.walk_packages(fusion.__path__, "fusion.")]
     for modname in names:
