@@ -2,12 +2,17 @@
 
 * C1/D2: a cached result never shares memory with anything a caller can write: an array that does not own its
   data (a view of an argument, a column of a local array) is kept as a read-only copy (in process and on disk).
+* C4: an object array (or object Series) of numbers has the precision of its entries read as a list
+  (``fusion._entries.given_dtype``; ``fusion._limits.entry_dtypes``/``integer_entries`` likewise).
 """
 
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from fusion.book import study_cache as sc_mod
 from fusion.book.study_cache import study_cache
@@ -53,3 +58,39 @@ def test_d2_the_base_of_a_returned_view_is_not_writeable_through_the_result(monk
                 if owner is not None and owner.flags.writeable:
                     owner.flat[0] = -1.0
         assert _first_col(3)["col"].tolist() == [0.0, 2.0, 4.0]
+
+
+# ---------------------------------------------------------------- C4: object arrays' numbers keep their own precision
+_SCALARS = st.lists(st.sampled_from([np.float16(1 / 3), np.float32(0.1), 0.25, np.float64(0.5), 3, np.int32(2)]),
+                    min_size=1, max_size=6)
+
+
+@settings(max_examples=40, deadline=None, derandomize=True)
+@given(_SCALARS)
+def test_c4_an_object_array_has_its_list_precision(entries):
+    from fusion._entries import given_dtype, input_eps
+
+    as_list = given_dtype(entries)
+    for boxed in (np.array(entries + [None], dtype=object)[:-1], pd.Series(entries, dtype=object)):
+        assert given_dtype(boxed) == as_list and input_eps(boxed) == input_eps(entries)
+
+
+@pytest.mark.parametrize("box", [lambda v: np.array(v, dtype=object), lambda v: pd.Series(v, dtype=object)])
+def test_c4_object_arrays_of_float32_judged_as_their_list(box):
+    from fusion.book.rulebook import judge_paired
+    from fusion.filtering.particles import effective_sample_size
+    from fusion.optimise.simplex import check_simplex
+
+    a, b = [np.float32(0.3)] * 100, [np.float32(0.2)] * 100
+    assert judge_paired(box(a), box(b), "equal", 0.1).status == judge_paired(a, b, "equal", 0.1).status == "reproduced"
+    assert np.allclose(np.asarray(check_simplex(box([np.float32(0.1)] * 10)), float), 0.1)
+    assert effective_sample_size(box([np.float16(1 / 3)] * 3)) == pytest.approx(3.0)
+
+
+def test_c4_published_entries_of_an_object_array_keep_their_dtypes():
+    from fusion._limits import entry_dtypes, integer_entries
+
+    given = np.array([np.float32(0.1), 0.1, 3], dtype=object)
+    assert entry_dtypes(given, 3) == [np.dtype(np.float32), np.dtype(np.float64), np.dtype(np.float64)]
+    assert integer_entries(given, 3) == [False, False, True]
+
