@@ -2,6 +2,7 @@
 
 * C1/D2: a cached result never shares memory with anything a caller can write: an array that does not own its
   data (a view of an argument, a column of a local array) is kept as a read-only copy (in process and on disk).
+* C5: a SwarmOptions subclass is read by the fields SwarmOptions declares (check_swarm_options, keywords).
 * C4: an object array (or object Series) of numbers has the precision of its entries read as a list
   (``fusion._entries.given_dtype``; ``fusion._limits.entry_dtypes``/``integer_entries`` likewise).
 """
@@ -93,4 +94,37 @@ def test_c4_published_entries_of_an_object_array_keep_their_dtypes():
     given = np.array([np.float32(0.1), 0.1, 3], dtype=object)
     assert entry_dtypes(given, 3) == [np.dtype(np.float32), np.dtype(np.float64), np.dtype(np.float64)]
     assert integer_entries(given, 3) == [False, False, True]
+
+
+# ---------------------------------------------------------------- C5: a SwarmOptions subclass is read by its declared fields
+def _mixtures():
+    from fusion.estimates.mixtures import GaussianMixture
+
+    gA = GaussianMixture(np.array([0.4, 0.6]), np.array([[0.0, 0.0], [1.0, 1.0]]), np.stack([np.eye(2)] * 2))
+    gB = GaussianMixture(np.array([1.0]), np.array([[0.5, 0.0]]), np.eye(2)[None] * 1.5)
+    return [gA, gB]
+
+
+def test_c5_a_subclass_with_an_extra_field_is_read_by_the_declared_fields():
+    import dataclasses
+
+    from fusion.estimates.chernoff import fuse_mixtures
+    from fusion.optimise.swarm import SwarmOptions, check_swarm_options
+
+    @dataclasses.dataclass(frozen=True)
+    class MyOptions(SwarmOptions):
+        note: str = "tuned"
+
+    @dataclasses.dataclass(frozen=True)
+    class Lax(SwarmOptions):   # skips the checks of its base
+        def __post_init__(self) -> None:
+            pass
+
+    mine = MyOptions(n_particles=4, iterations=2)
+    assert check_swarm_options(mine) == SwarmOptions(n_particles=4, iterations=2)
+    assert "note" not in mine.keywords()
+    fu = fuse_mixtures(_mixtures(), np.random.default_rng(0), 40, optimiser="pso", swarm_options=mine)
+    assert np.isfinite(fu.eps).all() and fu.swarm is not None
+    with pytest.raises(ValueError, match=r"^swarm_options\.iterations"):
+        check_swarm_options(Lax(iterations=-3))
 

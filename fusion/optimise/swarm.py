@@ -472,8 +472,9 @@ class SwarmOptions:
         object.__setattr__(self, "stop", one_of(self.stop, ("stagnation", "positions"), "stop"))
 
     def keywords(self) -> dict[str, int | float | str]:
-        """The options as keyword arguments of :func:`particle_swarm_batch` (field name -> value)."""
-        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        """The options as keyword arguments of :func:`particle_swarm_batch` (field name -> value): the fields
+        :class:`SwarmOptions` declares, whatever fields a subclass adds (fuzz 35a C5)."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(SwarmOptions)}
 
 
 def check_swarm_options(swarm_options: object, name: str = "swarm_options") -> SwarmOptions:
@@ -489,16 +490,27 @@ def check_swarm_options(swarm_options: object, name: str = "swarm_options") -> S
     Returns
     -------
     SwarmOptions
-        ``swarm_options``, or the defaults for ``None``.
+        ``swarm_options``, or the defaults for ``None``. A subclass instance is read by the fields
+        :class:`SwarmOptions` declares, checked again as its constructor checks them, and returned as a plain
+        :class:`SwarmOptions` (a field a subclass adds is not the swarm's: it is ignored, fuzz 35a C5).
 
     Raises
     ------
     TypeError
-        Neither a :class:`SwarmOptions` nor ``None`` (a dict of options included).
+        Neither a :class:`SwarmOptions` nor ``None`` (a dict of options included); a subclass instance whose
+        declared field has a wrong type (named ``swarm_options.<field>``).
+    ValueError
+        A subclass instance whose declared field fails :class:`SwarmOptions`'s check (named
+        ``swarm_options.<field>``).
     """
     name = text(name, "name")  # the label of the message below (fuzz 24a U: never checked)
     if swarm_options is None:
         return SwarmOptions()
     if not isinstance(swarm_options, SwarmOptions):
         raise TypeError(f"{name} must be a SwarmOptions or None, got {type(swarm_options).__name__}")
+    if type(swarm_options) is not SwarmOptions:   # a subclass: its declared fields only, checked (fuzz 35a C5)
+        try:
+            return SwarmOptions(**SwarmOptions.keywords(swarm_options))
+        except (TypeError, ValueError) as exc:
+            raise type(exc)(f"{name}.{exc}") from None
     return swarm_options
