@@ -128,3 +128,17 @@ def test_c5_a_subclass_with_an_extra_field_is_read_by_the_declared_fields():
     with pytest.raises(ValueError, match=r"^swarm_options\.iterations"):
         check_swarm_options(Lax(iterations=-3))
 
+
+# ---------------------------------------------------------------- C6: the swarm's budget names swarm_options
+@pytest.mark.parametrize("field, size", [("iterations", 10**6), ("n_particles", 10**7)])
+def test_c6_the_swarm_budget_refusal_names_swarm_options(field, size):
+    from fusion.estimates.chernoff import fuse_mixtures, fuse_mixtures_batch
+    from fusion.optimise.swarm import SwarmOptions
+
+    big = SwarmOptions(**{field: size})
+    gms = _mixtures()
+    with pytest.raises(ValueError, match=rf"^swarm_options\.iterations and swarm_options\.n_particles"):
+        fuse_mixtures(gms, np.random.default_rng(0), 50, optimiser="pso", swarm_options=big)
+    w, m, c = (np.stack([x, x]) for x in (np.array([0.5, 0.5]), np.zeros((2, 2)), np.stack([np.eye(2)] * 2)))
+    with pytest.raises(ValueError, match=rf"^swarm_options\.iterations and swarm_options\.n_particles"):
+        fuse_mixtures_batch(w[None], m[None], c[None], [np.random.default_rng(0)], 50, swarm_options=big)

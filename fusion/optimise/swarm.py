@@ -283,6 +283,33 @@ def _swarm_one(fitness: Callable[[FloatArray], FloatArray], dim: int, rng: np.ra
     return OptimumResult(x=gbest / gbest.sum(), fun=float(gbest_f), n_evaluations=int(evals), history=np.array(history))
 
 
+def _swarm_work(problems: int, n_particles: int, iterations: int, dim: int, names: str) -> int:
+    """Refuse swarms beyond the work budget (rule 17), naming ``names``: ``problems`` swarms (vectorised) of
+    ``n_particles`` particles in ``dim`` coordinates for up to ``iterations`` generations, and a start per
+    swarm. The one rule of :func:`particle_swarm_batch` and of the entries that pass ``swarm_options`` on, which
+    check it first naming their own arguments (fuzz 35a C6: the inner names came after the caller's ``gms``).
+
+    Parameters
+    ----------
+    problems, n_particles, iterations, dim : int
+        The validated counts.
+    names : str
+        The caller's arguments setting them, named in the message.
+
+    Returns
+    -------
+    int
+        The units of work.
+
+    Raises
+    ------
+    ValueError
+        Beyond the budget (``fusion._limits.MAX_WORK``), naming ``names``.
+    """
+    return loop_work((iterations + problems,), problems * n_particles * dim, names,
+                     step=30 * LOOP_STEP)  # as particle_swarm, the problems vectorised, and a start per generator
+
+
 def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rngs: list[np.random.Generator],
            n_particles: int, iterations: int, inertia: float, c1: float, c2: float, vmax: float, lo: float, tol: float,
            patience: int, stop: str, xtol: float, trace: bool = False) -> list[OptimumResult]:
@@ -293,8 +320,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
     """
     dim, n_particles = count(dim, "dim"), count(n_particles, "n_particles")
     iterations, patience = count(iterations, "iterations"), count(patience, "patience")
-    loop_work((iterations + len(rngs),), len(rngs) * n_particles * dim, "rngs, n_particles, iterations and dim",
-              step=30 * LOOP_STEP)  # rule 17: as particle_swarm, the problems vectorised, and a start per generator
+    _swarm_work(len(rngs), n_particles, iterations, dim, "rngs, n_particles, iterations and dim")
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
     lo = scalar(lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True)
