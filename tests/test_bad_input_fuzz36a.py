@@ -142,3 +142,21 @@ def test_c6_the_swarm_budget_refusal_names_swarm_options(field, size):
     w, m, c = (np.stack([x, x]) for x in (np.array([0.5, 0.5]), np.zeros((2, 2)), np.stack([np.eye(2)] * 2)))
     with pytest.raises(ValueError, match=rf"^swarm_options\.iterations and swarm_options\.n_particles"):
         fuse_mixtures_batch(w[None], m[None], c[None], [np.random.default_rng(0)], 50, swarm_options=big)
+
+
+# ---------------------------------------------------------------- D4: a fit with dropped components as init
+def test_d4_a_fit_with_dropped_components_is_refused_as_init_saying_why():
+    from fusion.estimates.mixtures import weighted_em, weighted_em_batch
+
+    x = np.random.default_rng(1).normal(size=(100, 2))
+    w = np.full(100, 1e-300)
+    w[0] = 1.0
+    fit = weighted_em(x, w, 3, np.random.default_rng(0))
+    k = fit.mixture.weights.size
+    assert k < 3   # the documented drop
+    with pytest.raises(ValueError, match=rf"^init must have 3 components, got {k}: a fit whose components were dropped"):
+        weighted_em(x, np.ones(100), 3, np.random.default_rng(0), init=fit.mixture)
+    with pytest.raises(ValueError, match=r"^init\[0\] must have 3 components, got .*dropped"):
+        weighted_em_batch(x[None], np.ones((1, 100)), 3, [np.random.default_rng(0)], init=[fit.mixture])
+    again = weighted_em(x, np.ones(100), k, np.random.default_rng(0), init=fit.mixture)   # the documented way on
+    assert again.mixture.weights.size <= k
