@@ -1,11 +1,12 @@
-"""Fuzz 35a (issue 35), fixed in fix36a: the study cache's views, object arrays' precision, swarm options.
+"""Fuzz 35a (issue 35), fixed in fix36a: the study cache's views, object arrays' precision, swarm options, EM init.
 
 * C1/D2: a cached result never shares memory with anything a caller can write: an array that does not own its
   data (a view of an argument, a column of a local array) is kept as a read-only copy (in process and on disk).
-* C5: a SwarmOptions subclass is read by the fields SwarmOptions declares (check_swarm_options, keywords).
 * C4: an object array (or object Series) of numbers has the precision of its entries read as a list
   (``fusion._entries.given_dtype``; ``fusion._limits.entry_dtypes``/``integer_entries`` likewise).
-"""
+* C5: a SwarmOptions subclass is read by the fields SwarmOptions declares (check_swarm_options, keywords).
+* C6: the swarm's work budget is checked at the mixture fusion's entry, naming ``swarm_options``.
+* D4 (decided: refuse): a fit with dropped components as ``init`` of more components is refused, saying why."""
 
 from __future__ import annotations
 
