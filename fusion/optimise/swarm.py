@@ -284,28 +284,11 @@ def _swarm_one(fitness: Callable[[FloatArray], FloatArray], dim: int, rng: np.ra
 
 
 def _swarm_work(problems: int, n_particles: int, iterations: int, dim: int, names: str) -> int:
-    """Refuse swarms beyond the work budget (rule 17), naming ``names``: ``problems`` swarms (vectorised) of
-    ``n_particles`` particles in ``dim`` coordinates for up to ``iterations`` generations, and a start per
-    swarm. The one rule of :func:`particle_swarm_batch` and of the entries that pass ``swarm_options`` on, which
-    check it first naming their own arguments (fuzz 35a C6: the inner names came after the caller's ``gms``).
-
-    Parameters
-    ----------
-    problems, n_particles, iterations, dim : int
-        The validated counts.
-    names : str
-        The caller's arguments setting them, named in the message.
-
-    Returns
-    -------
-    int
-        The units of work.
-
-    Raises
-    ------
-    ValueError
-        Beyond the budget (``fusion._limits.MAX_WORK``), naming ``names``.
-    """
+    """The units of work of ``problems`` swarms (vectorised) of ``n_particles`` particles in ``dim`` coordinates
+    for up to ``iterations`` generations, and a start per swarm; ValueError naming ``names`` (the caller's
+    arguments) beyond the budget (rule 17, ``fusion._limits.MAX_WORK``). The one rule of
+    :func:`particle_swarm_batch` and of the entries that pass ``swarm_options`` on, which check it first naming
+    their own arguments (fuzz 35a C6: the inner names came after the caller's ``gms``)."""
     return loop_work((iterations + problems,), problems * n_particles * dim, names,
                      step=30 * LOOP_STEP)  # as particle_swarm, the problems vectorised, and a start per generator
 
