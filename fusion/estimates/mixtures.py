@@ -321,7 +321,6 @@ class EmFit:
     loglik: FloatArray
 
 
-@derived_inputs()
 def _check_init(init: GaussianMixture, n_components: int, dim: int, name: str) -> None:
     """Refuse a warm start ``init`` (checked a :class:`GaussianMixture`) without ``n_components`` components of
     dimension ``dim``, naming ``name``; one with fewer components is the EM's own fit whose components were dropped
@@ -335,6 +334,7 @@ def _check_init(init: GaussianMixture, n_components: int, dim: int, name: str) -
                          f"of as many, n_components={init.weights.size}")
 
 
+@derived_inputs()
 def weighted_em(
     x: ArrayLike,
     w: ArrayLike,
