@@ -151,7 +151,8 @@ def _buffer_dtype(x: object) -> np.dtype | None:
 
 
 def given_dtype(x: object) -> np.dtype | None:
-    """The numpy dtype whose precision the caller's numbers ``x`` have: an array's (or Series') own dtype, a pandas
+    """The numpy dtype whose precision the caller's numbers ``x`` have: an array's (or Series') own dtype (an object
+    array's or Series' that of its entries read as a list, fuzz 35a C4), a pandas
     extension dtype's numpy one (``"Float32"``: float32), the dtype a buffer or an ``__array__`` object converts to
     (``array.array("f", ...)``, a ``memoryview`` of float32: float32, fuzz 33a C7); for a list or tuple, the least
     precise dtype among its numpy float scalars and arrays (0-d ones included: ``[np.array(0.1, np.float32)] * 10``
@@ -161,6 +162,15 @@ def given_dtype(x: object) -> np.dtype | None:
     (Python numbers only: float64). An entry that is neither a number, an array nor a list gives None (the float64
     rule). The entries are not converted (no ``__float__`` is called: read once, fuzz 29a C5)."""
     dtype = getattr(x, "dtype", None)
+    if isinstance(dtype, np.dtype) and dtype.kind == "O":
+        # an object array (or Series) holds the caller's numbers as they were given: read as a list (fuzz 35a C4)
+        try:
+            entries = np.asarray(x, dtype=object).ravel().tolist()
+        except MemoryError:
+            raise
+        except Exception:  # noqa: BLE001 (a conversion that raises: the caller's conversion names the argument)
+            return None
+        return given_dtype(entries)
     if isinstance(dtype, np.dtype):
         return dtype
     if isinstance(getattr(dtype, "numpy_dtype", None), np.dtype):  # pandas masked extension dtypes

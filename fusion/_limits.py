@@ -201,9 +201,22 @@ def _entries(values: object) -> list[object]:
     return out
 
 
+def _object_entries(values: object) -> object:
+    """An object array's (or Series') entries as a list, as the caller gave them (fuzz 35a C4: its numbers have their
+    own dtypes, as in a list); anything else as it is."""
+    dtype = getattr(values, "dtype", None)
+    if isinstance(dtype, np.dtype) and dtype.kind == "O":
+        try:
+            return np.asarray(values, dtype=object).ravel().tolist()
+        except (TypeError, ValueError):
+            return values
+    return values
+
+
 def integer_entries(values: object, n: int) -> list[bool]:
     """Per entry of the ``n`` numbers ``values``, whether it was given as an integer (a Python or numpy int, not a bool):
-    an exact number even where its list's array is float64 (``[0.5, 2**53]``)."""
+    an exact number even where its list's array is float64 (``[0.5, 2**53]``); an object array is read as a list."""
+    values = _object_entries(values)
     if not isinstance(values, (list, tuple)):
         return [np.asarray(values).dtype.kind in "iu"] * n
     given = _entries(values)
@@ -216,7 +229,8 @@ def entry_dtypes(values: object, n: int) -> list[np.dtype]:
     """Per entry of the ``n`` numbers ``values``, the dtype whose precision it has: a numpy scalar's own (an
     ``np.float16`` beside Python numbers is a float16 number, fuzz 31a C1), an array entry's, float64 for a Python
     number; an array's dtype for every entry of an array. ``fusion._validation.given_dtype`` is the same rule for a
-    whole list (its least precise entry)."""
+    whole list (its least precise entry). An object array is read as a list."""
+    values = _object_entries(values)
     if not isinstance(values, (list, tuple)):
         return [np.asarray(values).dtype] * n
     out: list[np.dtype] = []

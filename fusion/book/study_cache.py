@@ -25,7 +25,8 @@ back as a contiguous copy.
 
 A cached result is shared by its callers only if nothing in it can be changed (fuzz 17, class A: one caller's
 in-place edit reached every later call). When it is computed or loaded, its arrays of numbers are made read-only in
-place (values and container types unchanged); if it then holds nothing mutable (atoms, read-only arrays, tuples,
+place (values and container types unchanged; an array that is a view of another is kept as a read-only copy, fuzz
+35a C1); if it then holds nothing mutable (atoms, read-only arrays, tuples,
 frozensets, read-only mappings and frozen dataclasses of those), every call returns the object itself; otherwise
 (a list, dict, set, DataFrame, non-frozen dataclass in it) each call returns a deep copy that shares the result's
 immutable parts (its read-only arrays are not copied). A result that holds something mutable and cannot be
@@ -275,8 +276,12 @@ def _key(qualname: str, arguments: dict[str, Any], digest: str | None, unnamed: 
 _ATOMS = (type(None), bool, int, float, complex, str, bytes, range, enum.Enum, np.generic, type, Path)
 
 
-def _frozen(value: Any, immutable: dict[int, Any], _open: frozenset[int] = frozenset()) -> bool:
+def _frozen(value: Any, immutable: dict[int, Any], _open: frozenset[int] = frozenset(), views: bool = False) -> bool:
     """Make ``value``'s arrays read-only in place and tell whether nothing in it can be changed any more.
+
+    With ``views``, an array that does not own its data (a view of a caller's array, or of a local one whose
+    writeable owner its ``.base`` exposes; fuzz 35a C1, D2) is left as it is and counts as mutable: the cache keeps
+    a copy of it (``_Shared``), so that a cached result never shares memory with anything a caller can write.
 
     Arrays of numbers (at any depth in tuples, lists, dicts, read-only mappings, named tuples and dataclasses)
     have their ``WRITEABLE`` flag cleared; no value and no container's type changes. ``value`` is immutable
@@ -292,6 +297,8 @@ def _frozen(value: Any, immutable: dict[int, Any], _open: frozenset[int] = froze
     if isinstance(value, np.ndarray):
         if value.dtype.kind not in "biufcmMSUV":  # object arrays hold mutable objects
             return False
+        if views and value.base is not None:    # shares its owner's memory: copied, never frozen in place
+            return False
         value.setflags(write=False)
         mask = np.ma.getmask(value)   # a masked array's mask: a second array a caller could change
         if isinstance(mask, np.ndarray) and mask is not np.ma.nomask:
@@ -302,13 +309,13 @@ def _frozen(value: Any, immutable: dict[int, Any], _open: frozenset[int] = froze
         return False
     inner = _open | {id(value)}
     if isinstance(value, (list, tuple, set, frozenset)):
-        ok = all([_frozen(v, immutable, inner) for v in value])   # every item frozen, not only up to the first miss
+        ok = all([_frozen(v, immutable, inner, views) for v in value])   # every item frozen, not only up to the first miss
         ok = ok and isinstance(value, (tuple, frozenset))
     elif isinstance(value, (dict, ReadOnlyMapping)):
-        ok = all([_frozen(k, immutable, inner) and _frozen(v, immutable, inner) for k, v in value.items()])
+        ok = all([_frozen(k, immutable, inner, views) and _frozen(v, immutable, inner, views) for k, v in value.items()])
         ok = ok and isinstance(value, ReadOnlyMapping)
     elif dataclasses.is_dataclass(value) and not isinstance(value, type):
-        ok = all([_frozen(getattr(value, f.name), immutable, inner) for f in dataclasses.fields(value)])
+        ok = all([_frozen(getattr(value, f.name), immutable, inner, views) for f in dataclasses.fields(value)])
         ok = ok and type(value).__dataclass_params__.frozen   # type: ignore[attr-defined]
     else:
         return False                              # a DataFrame, a Series, an object of another kind: copied
@@ -334,7 +341,8 @@ class _Shared:
     """One cached result as every caller sees it: the object itself when nothing in it can be changed, else a
     deep copy per caller that shares the result's immutable parts (its read-only arrays, frozen results).
 
-    A result that is not wholly immutable is copied once when it is kept (the first caller's copy, ``_spare``): one
+    A result that is not wholly immutable is copied once when it is kept (the kept value is the copy, in which an
+    array that was a view is an array of its own; the first caller gets the function's own result, ``_spare``): one
     that cannot be deep-copied raises ``_Uncopyable`` carrying it, and is returned to its caller uncached (fuzz 34a
     D1: a TypeError "cannot pickle" came after the computation, naming nothing)."""
 
@@ -343,13 +351,15 @@ class _Shared:
     def __init__(self, value: Any, keep: bool = True) -> None:
         self.value = value
         self.immutable: dict[int, Any] = {}
-        self.whole = _frozen(value, self.immutable)
+        self.whole = _frozen(value, self.immutable, views=True)
         self._spare: list[Any] = []
         if keep and not self.whole:
-            try:
-                self._spare.append(copy.deepcopy(value, dict(self.immutable)))
+            try:   # the kept value is a copy: nothing in it is a caller's (an argument, a view of one; fuzz 35a C1)
+                self.value = copy.deepcopy(value, dict(self.immutable))
             except _UNCOPYABLE:
                 raise _Uncopyable(value) from None
+            self._spare.append(value)           # the first caller's: what the function returned
+            self.whole = _frozen(self.value, self.immutable)   # its copied views are its own arrays now
 
     def get(self) -> Any:
         if self.whole:
@@ -621,9 +631,12 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
     run computes it, the others load a bitwise-equal copy. Its callers cannot change what a later call returns:
     the result's arrays are made read-only, and a result holding anything mutable (a list, dict, DataFrame,
     non-frozen dataclass) is deep-copied for each call, sharing its read-only arrays (see the module's docstring).
-    The arrays are made read-only in place: a function that returns (part of) an array argument freezes the
+    The arrays are made read-only in place: a function that returns an array argument itself freezes the
     caller's own array too (the cached result is that array; copying every result would cost each study a copy).
-    A cached function should return arrays of its own, as the book's studies do. A result that holds something
+    An array that does not own its data (a view such as ``x[1:]`` or ``x.T`` of an argument, or a column of a
+    local array, whose ``.base`` a caller could write) is kept as a read-only copy instead: a cached result never
+    shares memory with anything a caller can write, and only the first caller gets the view itself (fuzz 35a C1,
+    D2). A cached function should return arrays of its own, as the book's studies do. A result that holds something
     mutable and cannot be deep-copied (a memoryview, a generator, a lock in a dict) is returned to its caller
     uncached: every call computes it, as without the cache.
 

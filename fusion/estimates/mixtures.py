@@ -321,6 +321,19 @@ class EmFit:
     loglik: FloatArray
 
 
+def _check_init(init: GaussianMixture, n_components: int, dim: int, name: str) -> None:
+    """Refuse a warm start ``init`` (checked a :class:`GaussianMixture`) without ``n_components`` components of
+    dimension ``dim``, naming ``name``; one with fewer components is the EM's own fit whose components were dropped
+    (fuzz 35a D4): the message says so and how to go on from it."""
+    if init.dim != dim or init.weights.size > n_components:
+        raise ValueError(f"{name} must have {n_components} components of dimension {dim}, got {init.weights.size} "
+                         f"of dimension {init.dim}")
+    if init.weights.size < n_components:
+        raise ValueError(f"{name} must have {n_components} components, got {init.weights.size}: a fit whose "
+                         f"components were dropped (vanishing weight or collapsed covariance) warm-starts only a fit "
+                         f"of as many, n_components={init.weights.size}")
+
+
 @derived_inputs()
 def weighted_em(
     x: ArrayLike,
@@ -357,7 +370,10 @@ def weighted_em(
         premise study, 663.1 to 652.8).
     init : GaussianMixture, optional
         Warm start (e.g. the previous frame's mixture, predicted); must have
-        ``n_components`` components of the samples' dimension.
+        ``n_components`` components of the samples' dimension. A fit whose components were dropped (see Returns)
+        has fewer and is refused as ``init`` with this ``n_components``, naming ``init`` and saying so: it
+        warm-starts a fit of as many components (``n_components=fit.mixture.weights.size``); no component is
+        invented to fill the gap.
 
     Returns
     -------
@@ -371,7 +387,8 @@ def weighted_em(
     ------
     ValueError
         Shapes not (Q, d) and (Q,), non-finite samples or weights, negative or all-zero weights,
-        ``n_components`` outside [1, Q], ``init`` of the wrong size.
+        ``n_components`` outside [1, Q], ``init`` of the wrong size (fewer components than ``n_components``: a
+        fit with dropped components, named so).
 
     References
     ----------
@@ -392,8 +409,8 @@ def weighted_em(
     floor = nonnegative_scalar(floor, "floor")
     if init is not None:
         instance_of(init, GaussianMixture, "init")
-    if init is not None and (init.weights.size != n_components or init.dim != xx.shape[1]):
-        raise ValueError(f"init must have {n_components} components of dimension {xx.shape[1]}")
+    if init is not None:
+        _check_init(init, n_components, xx.shape[1], "init")
     return _em_batch(xx[None], ww[None], n_components, [rng], max_iter, tol, floor, [init])[0]
 
 
@@ -429,7 +446,8 @@ def weighted_em_batch(
     max_iter, tol, floor
         As in :func:`weighted_em`.
     init : sequence of GaussianMixture or None, length B, optional
-        Warm starts (``None`` entries: k-means++).
+        Warm starts (``None`` entries: k-means++), each as :func:`weighted_em`'s ``init`` (``n_components``
+        components: a fit with dropped components is refused as ``init[b]``, saying so).
 
     Returns
     -------
@@ -468,8 +486,7 @@ def weighted_em_batch(
     for b, g in enumerate(inits):
         if g is not None:
             instance_of(g, GaussianMixture, f"init[{b}]")
-            if g.weights.size != n_components or g.dim != xx.shape[2]:
-                raise ValueError(f"init[{b}] must have {n_components} components of dimension {xx.shape[2]}")
+            _check_init(g, n_components, xx.shape[2], f"init[{b}]")
     return _em_batch(xx, ww, n_components, list(rngs), max_iter, tol, floor, inits)
 
 

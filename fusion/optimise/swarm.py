@@ -283,6 +283,16 @@ def _swarm_one(fitness: Callable[[FloatArray], FloatArray], dim: int, rng: np.ra
     return OptimumResult(x=gbest / gbest.sum(), fun=float(gbest_f), n_evaluations=int(evals), history=np.array(history))
 
 
+def _swarm_work(problems: int, n_particles: int, iterations: int, dim: int, names: str) -> int:
+    """The units of work of ``problems`` swarms (vectorised) of ``n_particles`` particles in ``dim`` coordinates
+    for up to ``iterations`` generations, and a start per swarm; ValueError naming ``names`` (the caller's
+    arguments) beyond the budget (rule 17, ``fusion._limits.MAX_WORK``). The one rule of
+    :func:`particle_swarm_batch` and of the entries that pass ``swarm_options`` on, which check it first naming
+    their own arguments (fuzz 35a C6: the inner names came after the caller's ``gms``)."""
+    return loop_work((iterations + problems,), problems * n_particles * dim, names,
+                     step=30 * LOOP_STEP)  # as particle_swarm, the problems vectorised, and a start per generator
+
+
 def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rngs: list[np.random.Generator],
            n_particles: int, iterations: int, inertia: float, c1: float, c2: float, vmax: float, lo: float, tol: float,
            patience: int, stop: str, xtol: float, trace: bool = False) -> list[OptimumResult]:
@@ -293,8 +303,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
     """
     dim, n_particles = count(dim, "dim"), count(n_particles, "n_particles")
     iterations, patience = count(iterations, "iterations"), count(patience, "patience")
-    loop_work((iterations + len(rngs),), len(rngs) * n_particles * dim, "rngs, n_particles, iterations and dim",
-              step=30 * LOOP_STEP)  # rule 17: as particle_swarm, the problems vectorised, and a start per generator
+    _swarm_work(len(rngs), n_particles, iterations, dim, "rngs, n_particles, iterations and dim")
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
     lo = scalar(lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True)
@@ -472,8 +481,9 @@ class SwarmOptions:
         object.__setattr__(self, "stop", one_of(self.stop, ("stagnation", "positions"), "stop"))
 
     def keywords(self) -> dict[str, int | float | str]:
-        """The options as keyword arguments of :func:`particle_swarm_batch` (field name -> value)."""
-        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        """The options as keyword arguments of :func:`particle_swarm_batch` (field name -> value): the fields
+        :class:`SwarmOptions` declares, whatever fields a subclass adds (fuzz 35a C5)."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(SwarmOptions)}
 
 
 def check_swarm_options(swarm_options: object, name: str = "swarm_options") -> SwarmOptions:
@@ -489,16 +499,27 @@ def check_swarm_options(swarm_options: object, name: str = "swarm_options") -> S
     Returns
     -------
     SwarmOptions
-        ``swarm_options``, or the defaults for ``None``.
+        ``swarm_options``, or the defaults for ``None``. A subclass instance is read by the fields
+        :class:`SwarmOptions` declares, checked again as its constructor checks them, and returned as a plain
+        :class:`SwarmOptions` (a field a subclass adds is not the swarm's: it is ignored, fuzz 35a C5).
 
     Raises
     ------
     TypeError
-        Neither a :class:`SwarmOptions` nor ``None`` (a dict of options included).
+        Neither a :class:`SwarmOptions` nor ``None`` (a dict of options included); a subclass instance whose
+        declared field has a wrong type (named ``swarm_options.<field>``).
+    ValueError
+        A subclass instance whose declared field fails :class:`SwarmOptions`'s check (named
+        ``swarm_options.<field>``).
     """
     name = text(name, "name")  # the label of the message below (fuzz 24a U: never checked)
     if swarm_options is None:
         return SwarmOptions()
     if not isinstance(swarm_options, SwarmOptions):
         raise TypeError(f"{name} must be a SwarmOptions or None, got {type(swarm_options).__name__}")
+    if type(swarm_options) is not SwarmOptions:   # a subclass: its declared fields only, checked (fuzz 35a C5)
+        try:
+            return SwarmOptions(**SwarmOptions.keywords(swarm_options))
+        except (TypeError, ValueError) as exc:
+            raise type(exc)(f"{name}.{exc}") from None
     return swarm_options

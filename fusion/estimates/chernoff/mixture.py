@@ -39,7 +39,7 @@ from fusion._validation import flag, read_once, refuse_singular, renormalised, s
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
-from fusion.optimise.swarm import SwarmOptions, check_swarm_options, particle_swarm_batch
+from fusion.optimise.swarm import SwarmOptions, check_swarm_options, particle_swarm_batch, _swarm_work
 from fusion.estimates.chernoff.gaussian import _chernoff_derivatives_prepare, _chernoff_derivatives_prepared, _product_combine, _product_prepare, _product_terms
 from fusion.optimise.simplex import (_active_problems, _plane_newton_steps, _simplex_newton, check_simplex,
                                      minimise_on_simplex, simplex_row)
@@ -709,7 +709,9 @@ def fuse_mixtures_batch(
         Shapes inconsistent, non-finite values, weights off the simplex, a covariance with positive
         weight not symmetric positive definite, ``rngs`` of the wrong length, ``eps0`` off the simplex; means so far
         apart for their covariances that the objective's log-densities leave the range (1e150 in magnitude),
-        naming ``means`` (or ``covs``, the one at an extreme magnitude).
+        naming ``means`` (or ``covs``, the one at an extreme magnitude); with the swarm, ``swarm_options`` whose
+        swarms (their iterations and particles, for the problems and mixtures given) are beyond the work budget,
+        before any work, naming ``swarm_options.iterations and swarm_options.n_particles``.
 
     References
     ----------
@@ -880,6 +882,9 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
     """
     swarm_options = check_swarm_options(swarm_options)
     B, N = eps0.shape
+    if optimiser == "pso":   # before any work, naming the options (fuzz 35a C6: the inner names came after "gms")
+        _swarm_work(B, swarm_options.n_particles, swarm_options.iterations, N,
+                   "swarm_options.iterations and swarm_options.n_particles (with the mixtures and problems given)")
     clock = LapTimer(timings)
     wg, mug, Pg, log_z_first_order = _first_order_arrays(logw, means, covs, eps0)  # D
     clock.lap("first_order")
