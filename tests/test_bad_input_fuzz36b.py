@@ -27,3 +27,51 @@ def test_weighted_em_keeps_callers_underflow_state():
         assert np.geterr()["under"] == "raise"
     assert np.array_equal(plain.mixture.means, strict.mixture.means)
     assert len(batch) == 1
+
+
+# --- B1/D1: one run is refused naming runs (the caller's argument), not the comparison's inner "a and b" -----------
+
+@pytest.mark.parametrize("fn", ["ev_awf_estimated", "ev_cc_accuracy", "ev_belief_objective"])
+def test_chapter02_readings_refuse_one_run_by_name(fn):
+    from fusion.book.chapters import lecture_weighting as lw
+    with pytest.raises(ValueError, match=r"^runs must be an integer >= 2"):
+        getattr(lw, fn)({"reading": "primary"}, runs=1)
+
+
+def test_chapter03_reading_refuses_one_run_by_name():
+    from fusion.book.chapters import lecture_wavelets as lwv
+    with pytest.raises(ValueError, match=r"^runs must be an integer >= 2"):
+        lwv.ev_wavelet_better({"reading": "primary"}, runs=1)
+
+
+def test_ofs_evidence_refuses_one_run_by_name():
+    from fusion.book.chapters import ofs
+    with pytest.raises(ValueError, match=r"^runs must be an integer >= 2"):
+        ofs.evidence(0, 1)
+
+
+def test_evidence_at_names_the_entry_and_runs():
+    from fusion.book.chapters import lecture
+    with pytest.raises(ValueError, match=r"records\['lec-awf-estimated'\]: runs must be an integer >= 2"):
+        lecture.evidence_at({"lec-awf-estimated": 1}, 2100)
+
+
+def test_one_paired_run_without_reason_is_rule_r4_renamed_by_runs():
+    from fusion.book._few_runs import FewRunsError, runs_named
+    from fusion.book.ledger import Comparison
+    with pytest.raises(FewRunsError, match=r"^a and b hold 1 runs < "):
+        Comparison([1.0], [2.0], "x", "y", "less", "m")
+    with pytest.raises(ValueError, match=r"^runs gives paired comparisons of 1 runs"):
+        with runs_named("runs", "the argument runs"):
+            Comparison([1.0], [2.0], "x", "y", "less", "m")
+    with pytest.raises(ValueError, match=r"\(>= 2\) of paired runs"):  # with a reason: the shape rule, as before
+        Comparison([1.0], [2.0], "x", "y", "less", "m", reason="why")
+    with pytest.raises(ValueError, match=r"same number"):               # different lengths: not a run count
+        Comparison([1.0], [2.0, 3.0], "x", "y", "less", "m")
+
+
+def test_chapter01_reader_names_runs_and_keeps_propositions_at_one_run():
+    from fusion.book.chapters import ofs
+    with pytest.raises(ValueError, match=r"^runs gives paired comparisons of 1 runs"):
+        ofs.ev_fig4_unaffected({}, runs=1)
+    assert type(ofs.ev_eq3_5_rejects({}, runs=1)).__name__ == "Proposition"

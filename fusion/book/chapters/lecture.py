@@ -21,7 +21,7 @@ import pandas as pd
 from matplotlib.figure import Figure, SubFigure
 
 from fusion._docstrings import with_sections
-from fusion.book._few_runs import runs_named
+from fusion.book._few_runs import paired_runs, runs_named
 from fusion.book.glue import GlueValues
 from fusion.book.study_cache import process_cache
 from fusion.book.ledger import (EVIDENCE_TYPES, Comparison, Conjunction, Evidence,  # noqa: F401 (readings' return hints)
@@ -336,7 +336,7 @@ settings : mapping
 seed, runs : int
     {seed_runs} A reading that compares runs pairwise needs at least
     :data:`~fusion.book.ledger.MIN_RUNS` of them (rule R4; the function takes no ``reason``): fewer are refused
-    naming ``runs``.
+    naming ``runs`` (fewer than 2 as an integer below 2).
 
 Returns
 -------
@@ -381,10 +381,10 @@ def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any]
     if not rid:
         raise ValueError("rid must be a record id, got an empty string")
     as_callable(at, "at")
-    seed, runs = check_seed(seed), count(runs, "runs")
+    seed, runs = check_seed(seed), paired_runs(runs)
 
     def fn(settings: Mapping[str, Any], *, seed: int = seed, runs: int = runs) -> Evidence:
-        seed, n = check_seed(seed), count(runs, "runs")  # the record's entry: 1.5 is not seed 1
+        seed, n = check_seed(seed), paired_runs(runs)  # the record's entry: 1.5 is not seed 1; 1 run pairs nothing
         with runs_named("runs", f"runs={n}; the record's own run count is {runs}"):  # rule R4 named (fuzz 22b A2)
             return at(rid, settings, seed, n)
 
