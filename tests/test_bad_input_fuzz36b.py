@@ -75,3 +75,21 @@ def test_chapter01_reader_names_runs_and_keeps_propositions_at_one_run():
     with pytest.raises(ValueError, match=r"^runs gives paired comparisons of 1 runs"):
         ofs.ev_fig4_unaffected({}, runs=1)
     assert type(ofs.ev_eq3_5_rejects({}, runs=1)).__name__ == "Proposition"
+
+
+# --- B2: an ESS share cannot leave [1/R, 1] by round-off ------------------------------------------------------------
+
+@pytest.mark.parametrize("seed, r", [(1, 3)])
+def test_defensive_study_accepts_equal_weights(seed, r):
+    from fusion.book.chapters import chernoff_steps as cs
+    st = cs.defensive_study(np.random.default_rng(seed), runs=2, r=r)
+    assert all(np.all((v >= 1.0 / r) & (v <= 1.0)) for v in st.ess.values())
+
+
+def test_ess_share_of_near_equal_log_weights_stays_in_bounds():
+    from fusion.book.chapters import chernoff_steps as cs
+    rng = np.random.default_rng(0)
+    for r in (2, 3, 5, 7, 10, 64):
+        lw = rng.normal(size=(200, 1)) + rng.normal(size=(200, r)) * 1e-15  # equal weights up to round-off
+        e = cs._ess(lw)
+        assert np.all(e <= 1.0) and np.all(e >= 1.0 / r)

@@ -424,9 +424,15 @@ def _log_densities(gms: list[mx.GaussianMixture], x: FloatArray) -> FloatArray:
 
 @own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _ess(lw: FloatArray) -> FloatArray:
-    """ESS / R of log weights (..., R)."""
+    """ESS / R of log weights (..., R), clipped to [1/R, 1] (the bounds of the exact share).
+
+    Equal weights (the redraw samples from the target itself, its log weights constant up to round-off) give
+    1 + 2^-52 unclipped, which the result's bounds refused (fuzz 35b B2); the clip moves a value by round-off
+    only, as :func:`fusion.filtering.particles.effective_sample_size` clips to [1, Q].
+    """
     w = np.exp(lw - lw.max(axis=-1, keepdims=True))
-    return w.sum(axis=-1) ** 2 / np.sum(w**2, axis=-1) / lw.shape[-1]
+    r = lw.shape[-1]
+    return np.clip(w.sum(axis=-1) ** 2 / np.sum(w**2, axis=-1) / r, 1.0 / r, 1.0)
 
 
 @own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
