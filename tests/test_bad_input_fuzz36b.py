@@ -1,12 +1,19 @@
 """Fuzz 35b follow-ups (issue 35), chapter layer.
 
 - B5: the batched EM sets its own underflow state (``own_underflow`` back on ``_em_arrays``, fuzz 33b D6's rule);
+- B1/D1: one run is refused naming ``runs`` (entry checks; a one-run Comparison without a reason is rule R4's refusal);
+- B2: an ESS share clipped to its exact bounds (round-off of equal weights);
+- B3/B4: the chapter layer's file readers read through ``fusion._paths`` and name the caller's ``root``;
 """
 
 from __future__ import annotations
 
+import json
+import re
+
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings, strategies as st
 
 
 # --- B5: the EM's intended underflow under a caller's np.errstate(under="raise") ----------------------------------
@@ -93,3 +100,93 @@ def test_ess_share_of_near_equal_log_weights_stays_in_bounds():
         lw = rng.normal(size=(200, 1)) + rng.normal(size=(200, r)) * 1e-15  # equal weights up to round-off
         e = cs._ess(lw)
         assert np.all(e <= 1.0) and np.all(e >= 1.0 / r)
+
+
+# --- B3/B4: the chapter layer's file readers read through fusion._paths (one reader), malformed files named ------------
+
+def _repo(tmp_path):
+    r = tmp_path / "repo"
+    for d in ("book/claims", "book/ledger", "notebooks"):
+        (r / d).mkdir(parents=True)
+    (r / "_toc.yml").write_text("root: x\n")
+    (r / "book" / "a.md").write_text("hello lec_x\n")
+    return r
+
+
+def test_book_words_reads_a_valid_tree(tmp_path):
+    from fusion.book.chapters import lecture
+    r = _repo(tmp_path)
+    (r / "notebooks" / "n.ipynb").write_text(json.dumps({"cells": [
+        {"cell_type": "markdown", "source": ["see ", "lec_y\r\n"]}, {"cell_type": "code", "source": "lec_z = 1"},
+        {"cell_type": "markdown", "source": "and lec_w"}]}))
+    assert lecture.book_words(r) >= {"hello", "lec_x", "lec_y", "lec_w"} and "lec_z" not in lecture.book_words(r)
+
+
+@pytest.mark.parametrize("make", ["folder", "huge", "latin1"])
+def test_book_words_refuses_unreadable_files_naming_root(tmp_path, make):
+    from fusion.book.chapters import lecture
+    r = _repo(tmp_path)
+    p = r / "book" / "b.md"
+    if make == "folder":
+        p.mkdir()
+    elif make == "huge":
+        with open(p, "wb") as fh:
+            fh.truncate(17 << 20)   # sparse: beyond the one reader's 16 MB, refused before reading
+    else:
+        p.write_bytes("caf\xe9".encode("latin-1"))
+    with pytest.raises(ValueError, match=r"^root: 'book/b\.md': not"):
+        lecture.book_words(r)
+
+
+_JSON = st.recursive(st.none() | st.booleans() | st.integers() | st.text(max_size=3),
+                     lambda c: st.lists(c, max_size=3) | st.dictionaries(st.sampled_from(["cells", "cell_type", "source", "x"]), c,
+                                                                        max_size=3), max_leaves=8)
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(doc=_JSON | st.fixed_dictionaries({"cells": st.lists(_JSON, max_size=3)}))
+def test_book_words_malformed_notebook_named_by_root(tmp_path, doc):
+    from fusion.book.chapters import lecture
+    r = tmp_path / "h"
+    if not r.exists():
+        r = _repo(tmp_path)
+        r.rename(tmp_path / "h")
+        r = tmp_path / "h"
+    (r / "notebooks" / "x.ipynb").write_text(json.dumps(doc))
+    try:
+        lecture.book_words(r)
+    except ValueError as e:
+        assert str(e).startswith("root: 'notebooks/x.ipynb': ")
+
+
+_RECORD = {"committed": "reproduced", "reseeds": ["reproduced"] * 5, "scaled": "reproduced", "k": 5, "K": 5,
+           "flag": False, "failed": [], "runs_factor": 3}
+_RECORDS = [{"id": "lec-awf-estimated", "status": "reproduced", "runs": 300}]
+
+
+def _stability(tmp_path, content):
+    r = _repo(tmp_path)
+    (r / "book" / "ledger" / "stability.json").write_text(content)
+    return r
+
+
+def test_reseeding_glue_reads_a_whole_record(tmp_path):
+    from fusion.book.chapters.lecture_weighting import records as rs
+    r = _stability(tmp_path, json.dumps({"runs_factor": 10, "records": {"lec-awf-estimated": _RECORD}}))
+    assert rs.reseeding_glue(_RECORDS, r) == {
+        "lec_rs_awf_estimated": "reproduced at the chapter's 300 runs, stable in 5 of 5 reseeds and at 3× the runs"}
+
+
+@pytest.mark.parametrize("content, what", [
+    (json.dumps({"records": {"lec-awf-estimated": {k: v for k, v in _RECORD.items() if k != "k"}}}), "lacks the field 'k'"),
+    (json.dumps({"records": {"lec-awf-estimated": {**_RECORD, "reseeds": 5}}}), "'reseeds' must be"),
+    ("[1, 2]", "not a stability file"),
+    (json.dumps({"records": [1]}), "'records' must be an object"),
+    ("{", "not JSON"),
+])
+def test_reseeding_glue_refuses_a_malformed_stability_file_naming_root(tmp_path, content, what):
+    from fusion.book.chapters.lecture_weighting import records as rs
+    r = _stability(tmp_path, content)
+    with pytest.raises(ValueError, match=r"^root: book/ledger/stability\.json.*" + re.escape(what)):
+        rs.reseeding_glue(_RECORDS, r)
+
