@@ -190,3 +190,16 @@ def test_reseeding_glue_refuses_a_malformed_stability_file_naming_root(tmp_path,
     with pytest.raises(ValueError, match=r"^root: book/ledger/stability\.json.*" + re.escape(what)):
         rs.reseeding_glue(_RECORDS, r)
 
+
+# --- D3: a glue-key prefix is ASCII letters, digits and underscores (no spelling that prints like another) ------------
+
+@settings(max_examples=60, deadline=None)
+@given(prefix=st.text(max_size=4) | st.sampled_from(["é", "e\u0301", "ﬁ", "Ⅸ", "𝐱", "ｘ", "ok_1", "_a", "A9"]))
+def test_glue_prefix_is_an_ascii_identifier(prefix):
+    from fusion.book.chapters import chernoff_steps as cs
+    a, b = np.arange(6.0), np.arange(6.0) + 1.0
+    if prefix.isascii() and f"{prefix}_x".isidentifier():
+        assert f"{prefix}_stat" in cs.paired_numbers(a, b, prefix)
+    else:
+        with pytest.raises(ValueError, match=r"^prefix must be a glue key prefix \(ASCII"):
+            cs.paired_numbers(a, b, prefix)

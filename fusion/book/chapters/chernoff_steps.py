@@ -52,7 +52,7 @@ from fusion.estimates.chernoff import mixture as chm
 from fusion.estimates import mixtures as mx
 from fusion.scenarios import two_mixtures
 from fusion.scenarios.range_bearing import RangeBearingScenario, posterior_crb, simulate_target
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glue_prefix
 from fusion._counts import seed as check_seed
 from fusion._shown import shown
 
@@ -212,13 +212,12 @@ def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4,
     ValueError
         ``a`` or ``b`` as :func:`fusion.book.rulebook.judge_paired` refuses them, or holding an infinite run:
         the glued summary is finite numbers (an infinite run makes a mean or median difference infinite or
-        undefined, which no glued number can show); ``prefix`` whose keys are not identifiers.
+        undefined, which no glued number can show); ``prefix`` whose keys are not identifiers of ASCII letters,
+        digits and underscores.
     TypeError
         ``prefix`` not a string.
     """
-    prefix = text(prefix, "prefix")
-    if not f"{prefix}_stat".isidentifier():
-        raise ValueError(f"prefix must make glue keys that are identifiers (<prefix>_stat), got {shown(prefix)}")
+    prefix = _glue_prefix(text(prefix, "prefix"), "prefix")  # the one rule of a glue-key prefix (ASCII identifiers)
     j = judge_paired(a, b, "less", 0.0)  # the shared check of paired runs, naming a or b
     av, bv = np.asarray(a, float), np.asarray(b, float)
     for name, v in (("a", av), ("b", bv)):
