@@ -8,6 +8,7 @@ naming the argument and showing at most 60 characters of the value (a 5000-chara
 
 from __future__ import annotations
 
+import json
 import os
 import stat
 from pathlib import Path
@@ -120,3 +121,47 @@ def file_bytes(path: Path, label: str, limit: int = MAX_FILE_BYTES) -> bytes:
     if len(data) > limit:   # grew since the check
         raise ValueError(f"{label}: not a readable file (larger than {limit:,} bytes)")
     return data
+
+
+def file_text(path: Path, label: str, limit: int = MAX_FILE_BYTES) -> str:
+    """The UTF-8 text of the regular file ``path`` (:func:`file_bytes`), newlines universal as ``Path.read_text``
+    gives them; text that is not UTF-8 is a ValueError ``"<label>: not UTF-8 text (...)"`` (fuzz 35b B3: the chapter
+    layer's file readers read through this one reader, so that a caller's folder holding a FIFO, a device, a huge or
+    a malformed file is refused naming the caller's argument)."""
+    data = file_bytes(path, label, limit)
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{label}: not UTF-8 text ({exc.reason} at byte {exc.start})") from None
+    return text.replace("\r\n", "\n").replace("\r", "\n")
+
+
+def file_json(path: Path, label: str, limit: int = MAX_FILE_BYTES) -> object:
+    """The JSON document of the regular file ``path`` (:func:`file_text`); text that is not JSON is a ValueError
+    ``"<label>: not JSON (...)"``. Its structure is the caller's to check (by the keys it reads)."""
+    try:
+        return json.loads(file_text(path, label, limit))
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{label}: not JSON ({exc.msg} at line {exc.lineno})") from None
+
+
+def notebook_markdown(path: Path, label: str) -> list[str]:
+    """The text of every markdown cell of the notebook ``path`` (:func:`file_json`), in order; a document that is no
+    notebook (not an object with a list ``cells`` of objects with a text ``cell_type`` and a ``source`` that is a
+    string or a list of strings) is a ValueError ``"<label>: ..."`` naming what it lacks (fuzz 35b B3)."""
+    nb = file_json(path, label)
+    cells = nb.get("cells") if isinstance(nb, dict) else None
+    if not isinstance(cells, list):
+        raise ValueError(f"{label}: not a notebook (a JSON object with a list 'cells')")
+    out = []
+    for i, c in enumerate(cells):
+        if not (isinstance(c, dict) and isinstance(c.get("cell_type"), str)):
+            raise ValueError(f"{label}: cells[{i}] is not a notebook cell (an object with a text 'cell_type')")
+        src = c.get("source", "")
+        if isinstance(src, list) and all(isinstance(s, str) for s in src):
+            src = "".join(src)
+        elif not isinstance(src, str):
+            raise ValueError(f"{label}: cells[{i}]['source'] is not text (a string or a list of strings)")
+        if c["cell_type"] == "markdown":
+            out.append(src)
+    return out

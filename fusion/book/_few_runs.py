@@ -103,9 +103,31 @@ def study_runs_named(name: str) -> Callable[[_F], _F]:
     return decorate
 
 
+def paired_runs(runs: object, name: str = "runs") -> int:
+    """``runs`` of a function whose readings compare paired runs: a count of at least 2, refused by the caller's
+    ``name`` before any study (fuzz 26b R1b, 35b B1: one run was refused by the comparison's own ``a and b``).
+
+    Parameters
+    ----------
+    runs : int
+        The caller's run count.
+    name : str
+        The caller's argument.
+
+    Returns
+    -------
+    int
+        ``runs``, checked.
+    """
+    from fusion._counts import count
+
+    return count(runs, name, minimum=2)
+
+
 def reader_runs_named(fn: _F) -> _F:
     """An evidence function ``fn(settings, *, seed, runs)`` whose rule R4 refusal names its argument ``runs``
-    (:func:`runs_named`); signature and docstring kept."""
+    (:func:`runs_named`; one run without a reason is such a refusal too: ``Comparison``); signature and docstring
+    kept."""
     @functools.wraps(fn)
     def named(*args: Any, **kwargs: Any) -> Any:
         with runs_named("runs", "the argument runs"):

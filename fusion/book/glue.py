@@ -75,11 +75,16 @@ def _check_finite(key: str, value: object) -> None:
 def _glue_prefix(prefix: object, name: str) -> str:
     """A glue-key prefix argument (the rule of every chapter function that names its glue keys after a caller's
     prefix, fuzz 18 F/E): a str (TypeError naming ``name`` otherwise) that keeps the keys identifiers (a claim text's
-    ``{name}``; ValueError naming ``name`` otherwise); returned unchanged."""
+    ``{name}``) of ASCII letters, digits and underscores (ValueError naming ``name`` otherwise); returned unchanged.
+
+    ASCII, not any Unicode identifier (fuzz 35b D3): a key is matched as the text it is, and non-ASCII text has
+    several spellings that print alike (``é`` composed or decomposed; ``ﬁ`` and ``fi``, which Python's identifiers
+    fold together by NFKC and a glue key does not); no normalisation is applied, so the caller's key is the key."""
     if not isinstance(prefix, str):
         raise TypeError(f"{name} must be a glue key prefix (a str), got {type(prefix).__name__} {shown(prefix, 60)}")
-    if not f"{prefix}_x".isidentifier():
-        raise ValueError(f"{name} must be a glue key prefix (letters, digits and underscores), got {shown(prefix, 60)}")
+    if not (prefix.isascii() and f"{prefix}_x".isidentifier()):
+        raise ValueError(f"{name} must be a glue key prefix (ASCII letters, digits and underscores), got "
+                         f"{shown(prefix, 60)}")
     return prefix
 
 

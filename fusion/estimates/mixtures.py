@@ -691,7 +691,6 @@ def _unpack_sym(v: FloatArray, d: int) -> FloatArray:
 _EM_BLOCK = 16
 
 
-@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _positive_definite(covs: FloatArray, live: np.ndarray) -> np.ndarray:
     """Which of the symmetric ``covs`` (..., d, d) of the ``live`` components are positive definite (the others: True).
 
@@ -713,6 +712,7 @@ def _positive_definite(covs: FloatArray, live: np.ndarray) -> np.ndarray:
         return ok
 
 
+@own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Generator], max_iter: int, tol: float,
                floor: float, inits: Sequence[tuple[FloatArray, FloatArray, FloatArray] | None]
                ) -> tuple[FloatArray, FloatArray, FloatArray, list[list[float]]]:

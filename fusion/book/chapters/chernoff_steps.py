@@ -52,7 +52,7 @@ from fusion.estimates.chernoff import mixture as chm
 from fusion.estimates import mixtures as mx
 from fusion.scenarios import two_mixtures
 from fusion.scenarios.range_bearing import RangeBearingScenario, posterior_crb, simulate_target
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glue_prefix
 from fusion._counts import seed as check_seed
 from fusion._shown import shown
 
@@ -212,13 +212,12 @@ def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4,
     ValueError
         ``a`` or ``b`` as :func:`fusion.book.rulebook.judge_paired` refuses them, or holding an infinite run:
         the glued summary is finite numbers (an infinite run makes a mean or median difference infinite or
-        undefined, which no glued number can show); ``prefix`` whose keys are not identifiers.
+        undefined, which no glued number can show); ``prefix`` whose keys are not identifiers of ASCII letters,
+        digits and underscores.
     TypeError
         ``prefix`` not a string.
     """
-    prefix = text(prefix, "prefix")
-    if not f"{prefix}_stat".isidentifier():
-        raise ValueError(f"prefix must make glue keys that are identifiers (<prefix>_stat), got {shown(prefix)}")
+    prefix = _glue_prefix(text(prefix, "prefix"), "prefix")  # the one rule of a glue-key prefix (ASCII identifiers)
     j = judge_paired(a, b, "less", 0.0)  # the shared check of paired runs, naming a or b
     av, bv = np.asarray(a, float), np.asarray(b, float)
     for name, v in (("a", av), ("b", bv)):
@@ -424,9 +423,15 @@ def _log_densities(gms: list[mx.GaussianMixture], x: FloatArray) -> FloatArray:
 
 @own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
 def _ess(lw: FloatArray) -> FloatArray:
-    """ESS / R of log weights (..., R)."""
+    """ESS / R of log weights (..., R), clipped to [1/R, 1] (the bounds of the exact share).
+
+    Equal weights (the redraw samples from the target itself, its log weights constant up to round-off) give
+    1 + 2^-52 unclipped, which the result's bounds refused (fuzz 35b B2); the clip moves a value by round-off
+    only, as :func:`fusion.filtering.particles.effective_sample_size` clips to [1, Q].
+    """
     w = np.exp(lw - lw.max(axis=-1, keepdims=True))
-    return w.sum(axis=-1) ** 2 / np.sum(w**2, axis=-1) / lw.shape[-1]
+    r = lw.shape[-1]
+    return np.clip(w.sum(axis=-1) ** 2 / np.sum(w**2, axis=-1) / r, 1.0 / r, 1.0)
 
 
 @own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)

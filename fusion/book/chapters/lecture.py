@@ -8,7 +8,6 @@ the source's claims ledger; this module holds the source key and the glue helper
 
 from __future__ import annotations
 
-import json
 import os
 import re
 from collections.abc import Callable, Collection, Mapping
@@ -21,7 +20,7 @@ import pandas as pd
 from matplotlib.figure import Figure, SubFigure
 
 from fusion._docstrings import with_sections
-from fusion.book._few_runs import runs_named
+from fusion.book._few_runs import paired_runs, runs_named
 from fusion.book.glue import GlueValues
 from fusion.book.study_cache import process_cache
 from fusion.book.ledger import (EVIDENCE_TYPES, Comparison, Conjunction, Evidence,  # noqa: F401 (readings' return hints)
@@ -29,6 +28,7 @@ from fusion.book.ledger import (EVIDENCE_TYPES, Comparison, Conjunction, Evidenc
 from fusion.book.tables import _SUPERSCRIPT, _frame, _nonfinite_word, rounded  # noqa: F401 (_frame: the chapters' table rule)
 from fusion._counts import count, seed as check_seed
 from fusion._options import text
+from fusion._paths import file_text, notebook_markdown
 from fusion._structures import within
 from fusion._validation import _real_number, as_callable, instance_of, mapping_of
 from fusion._shown import shown
@@ -198,6 +198,15 @@ def book_words(root: Path | None = None) -> frozenset[str]:
     -------
     frozenset of str
         The distinct identifier-like words (letters, digits and ``_``, not starting with a digit) of all those texts.
+
+    Raises
+    ------
+    TypeError
+        ``root`` not a path.
+    ValueError
+        ``root`` not a folder holding ``book/``; one of those files not a readable regular UTF-8 file of at most
+        16 MB (a FIFO, a device, a folder named ``*.md``: ``fusion._paths.file_text``), or a notebook that is not
+        one (no list of cells with a ``cell_type`` and a text ``source``), naming ``root`` and the file.
     """
     if root is not None:
         if not isinstance(root, (str, os.PathLike)):
@@ -205,11 +214,15 @@ def book_words(root: Path | None = None) -> frozenset[str]:
         if not (Path(root) / "book").is_dir():
             raise ValueError(f"root must be the repository (a directory holding book/), got {shown(str(root), 80)}")
     base = Path(root) if root is not None else ledger_dir().parent.parent
-    texts = [p.read_text(encoding="utf-8") for p in sorted((base / "book").rglob("*.md"))]
-    texts += [p.read_text(encoding="utf-8") for p in sorted((base / "book" / "claims").glob("*.yaml"))]
+    where = "root" if root is not None else "the repository"
+
+    def label(p: Path) -> str:
+        return f"{where}: {shown(p.relative_to(base).as_posix(), 80)}"
+
+    texts = [file_text(p, label(p)) for p in sorted((base / "book").rglob("*.md"))]
+    texts += [file_text(p, label(p)) for p in sorted((base / "book" / "claims").glob("*.yaml"))]
     for nb in sorted((base / "notebooks").glob("*.ipynb")):
-        cells = json.loads(nb.read_text(encoding="utf-8"))["cells"]
-        texts += ["".join(c["source"]) for c in cells if c["cell_type"] == "markdown"]
+        texts += notebook_markdown(nb, label(nb))
     return frozenset(_WORD.findall("\n".join(texts)))
 
 
@@ -336,7 +349,7 @@ settings : mapping
 seed, runs : int
     {seed_runs} A reading that compares runs pairwise needs at least
     :data:`~fusion.book.ledger.MIN_RUNS` of them (rule R4; the function takes no ``reason``): fewer are refused
-    naming ``runs``.
+    naming ``runs`` (fewer than 2 as an integer below 2).
 
 Returns
 -------
@@ -381,10 +394,10 @@ def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any]
     if not rid:
         raise ValueError("rid must be a record id, got an empty string")
     as_callable(at, "at")
-    seed, runs = check_seed(seed), count(runs, "runs")
+    seed, runs = check_seed(seed), paired_runs(runs)
 
     def fn(settings: Mapping[str, Any], *, seed: int = seed, runs: int = runs) -> Evidence:
-        seed, n = check_seed(seed), count(runs, "runs")  # the record's entry: 1.5 is not seed 1
+        seed, n = check_seed(seed), paired_runs(runs)  # the record's entry: 1.5 is not seed 1; 1 run pairs nothing
         with runs_named("runs", f"runs={n}; the record's own run count is {runs}"):  # rule R4 named (fuzz 22b A2)
             return at(rid, settings, seed, n)
 

@@ -318,7 +318,16 @@ class Comparison:
                  reason: str = "", margin: float | None = None, relative_margin: float | None = None,
                  conditions: tuple[str, str] = ("", ""), infinite_mean: Sequence[str] = ()) -> None:
         a, b = read_once(a, "a"), read_once(b, "b")  # converted once: checked, and their dtype read (fuzz 33a C7)
-        av, bv = R._paired_runs(a, b)  # the rulebook's one check of paired runs: 1-D, same length, finite or +inf
+        try:
+            av, bv = R._paired_runs(a, b)  # the rulebook's one check of paired runs: 1-D, same length, finite or +inf
+        except ValueError:
+            if (isinstance(reason, str) and not reason and np.ndim(a) == 1 and np.shape(a) == np.shape(b)
+                    and np.size(a) < 2):
+                # one paired run without a reason is short for rule R4 too: a FewRunsError, which a chapter function
+                # renames by its caller's argument (fuzz 35b B1: "a and b ... (>= 2)" reached the caller of runs=1)
+                raise FewRunsError(f"a and b hold {np.size(a)} runs < {MIN_RUNS}: give more runs or a reason (the "
+                                   "argument reason: why fewer runs are enough)", int(np.size(a)), MIN_RUNS) from None
+            raise
         a_name, b_name, metric, reason = (_text(v, name) for name, v in (  # plain str copies (rule 19)
             ("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)))
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric)):

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import importlib
 import inspect
-import json
 from functools import lru_cache
 from pathlib import Path
 from collections.abc import Mapping
@@ -31,6 +30,7 @@ from fusion.book.chapters.chernoff.mixture import toy
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
 from fusion._validation import count
+from fusion._paths import file_text, notebook_markdown
 
 __all__ = ["ledger_values", "chapter_evidence", "claim_values", "SOURCE_CHAPTER", "referenced"]
 
@@ -166,16 +166,14 @@ def _referenced_keys() -> frozenset[str]:
     import re
 
     root = Path(__file__).resolve().parents[4]
-    nb = json.loads((root / f"{SOURCE_CHAPTER}.ipynb").read_text(encoding="utf-8"))
-    text = "".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "markdown")
+    text = "".join(notebook_markdown(root / f"{SOURCE_CHAPTER}.ipynb", f"the chapter's {SOURCE_CHAPTER}.ipynb"))
     keys = set(re.findall(r"\{glue(?::\w+)?\}`([A-Za-z0-9_-]+)", text))
-    pages = "".join(p.read_text(encoding="utf-8") for p in sorted((root / "book").glob("*.md")))
+    pages = "".join(file_text(p, f"the book's {p.name}") for p in sorted((root / "book").glob("*.md")))
     appendix = root / f"{SOURCE_CHAPTER}_appendix.ipynb"  # the chapter's appendix reads its values across documents
     if appendix.is_file():
-        pages += "".join("".join(c["source"]) for c in json.loads(appendix.read_text(encoding="utf-8"))["cells"]
-                         if c["cell_type"] == "markdown")
+        pages += "".join(notebook_markdown(appendix, f"the chapter's {appendix.name}"))
     keys |= set(re.findall(r"06_chernoff_fusion\.ipynb::([A-Za-z0-9_-]+)", pages))
-    keys |= set(re.findall(r"\{(chf_[A-Za-z0-9_]+)", (root / "book" / "claims" / f"{BIBKEY}.yaml").read_text(encoding="utf-8")))
+    keys |= set(re.findall(r"\{(chf_[A-Za-z0-9_]+)", file_text(root / "book" / "claims" / f"{BIBKEY}.yaml", "the chapter's claim file")))
     return frozenset(keys)
 
 

@@ -4,7 +4,6 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -14,6 +13,7 @@ from fusion._covariances import as_covariance
 from fusion._validation import as_array, scalar
 from fusion._validation import record as _record
 from fusion.book.glue import GlueValues
+from fusion._paths import file_json
 
 __all__ = ["stonesoup_check", "STONESOUP_RECORD"]
 
@@ -69,7 +69,7 @@ def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame,
     """
     from fusion.estimates.chernoff import chernoff_fuse_gaussians, log_normaliser_two_gaussians
 
-    rec = record if record is not None else json.loads(STONESOUP_RECORD.read_text(encoding="utf-8"))
+    rec = record if record is not None else file_json(STONESOUP_RECORD, "the Stone Soup record")
     _record(rec, "record", ("measurement", "prediction", "rows", "stonesoup_version"), extra=True)
     for part in ("measurement", "prediction"):
         _record(rec[part], f"record[{part!r}]", ("mean", "covariance"), extra=True)

@@ -42,6 +42,7 @@ from fusion._counts import seed as check_seed
 from fusion._counts import count
 from fusion._shown import shown
 from fusion._validation import instance_of
+from fusion._paths import file_text
 
 __all__ = [
     "Studies", "CHAPTER", "WIDE", "WIDE_CASE", "EVIDENCE", "ledger_evidence", "SEED", "cached_studies", "claims_file",
@@ -479,7 +480,7 @@ def claims_file() -> ClaimsFile:
     try:
         return cl.load(path)
     except cl.ClaimsFileError:
-        doc = yaml.safe_load(path.read_text(encoding="utf-8"))
+        doc = yaml.safe_load(file_text(path, f"the claim file {path.name}"))
         doc["records"] = [r for r in doc["records"] if r["chapter"] == CHAPTER or r.get("headline")]
         for r in doc["records"]:
             if r["chapter"] != CHAPTER:       # the headline, of another chapter: only its length can fail here

@@ -435,7 +435,7 @@ def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValu
         ``e26`` not a SignalStudy, ``block`` not an integer or ``key`` not a str.
     ValueError
         ``e26`` without the normaliser ``"max"``, ``block`` below :data:`~fusion.book.rulebook.MIN_RUNS` or larger
-        than E2.6's runs, ``key`` not an identifier.
+        than E2.6's runs, ``key`` not an identifier of ASCII letters, digits and underscores.
     """
     instance_of(e26, SignalStudy, "e26")
     key = _glue_prefix(key, "key")

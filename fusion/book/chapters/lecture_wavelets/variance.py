@@ -146,7 +146,7 @@ def glue_weighting(v: VarianceStudy, key: str = "wwt") -> GlueValues:
     TypeError
         ``v`` not a VarianceStudy, ``key`` not a str.
     ValueError
-        ``key`` not a glue key prefix (letters, digits and underscores), ``v`` of fewer than
+        ``key`` not a glue key prefix (ASCII letters, digits and underscores), ``v`` of fewer than
         :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4).
     """
     instance_of(v, VarianceStudy, "v")

@@ -4,7 +4,6 @@ evidence at any seed, the numbers the claim texts quote, and the reseeding and r
 from __future__ import annotations
 
 import functools
-import json
 import os
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
@@ -31,6 +30,7 @@ from fusion.scenarios.lecture_weighting.consistency import FaultCase
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
 from fusion._counts import seed as check_seed
 from fusion._shown import shown
+from fusion._paths import file_json
 
 
 __all__ = [
@@ -112,7 +112,11 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
     ValueError
         A record without ``id`` or ``status``, an empty ``id``, two records of one glue key (a repeated id, or ids
         that differ only by ``-`` and ``_``), a ``status`` not one of the rulebook's
-        :data:`~fusion.book.rulebook.STATUSES`, ``runs`` below 1; ``root`` not inside the book's repository.
+        :data:`~fusion.book.rulebook.STATUSES`, ``runs`` below 1; ``root`` not inside the book's repository;
+        its ``book/ledger/stability.json`` (when it exists) not a regular UTF-8 JSON file of at most 16 MB
+        (``fusion._paths.file_json``: a FIFO, a device, a folder), not an object of ``records``, or a record
+        that the function reads lacking ``k``, ``K``, ``reseeds``, ``scaled`` or ``flag``: named by ``root``,
+        the file and the record.
     """
     keyed = _keyed_records(records, "lec_rs_", ("id", "status"))
     if root is not None and not isinstance(root, (str, os.PathLike)):
@@ -124,15 +128,17 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
             raise
         raise ValueError(f"root = {shown(str(root))} is not a folder inside the book's repository (no _toc.yml in it "
                          "or above it)") from exc
-    if not path.is_file():
+    if not path.exists():
         return {}
-    data = json.loads(path.read_text(encoding="utf-8"))
+    data = _stability(path, "root" if root is not None else "the repository")
     default, stab = data.get("runs_factor", 10), data.get("records", {})
     out: GlueValues = {}
     for key, r in keyed:
         v = stab.get(r["id"])
         if v is None or not r.get("runs"):
             continue
+        _stability_record(v, f"{'root' if root is not None else 'the repository'}: book/ledger/stability.json "
+                             f"records[{shown(r['id'])}]")
         factor = v.get("runs_factor", default)   # each record keeps the factor it was swept with (--merge)
         status, k, n = r["status"], v["k"], v["K"]
         others = Counter(s for s in v["reseeds"] if s != status)
@@ -149,6 +155,42 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
             line = f"{head}, stable in {k} of {n} reseeds and at {factor}× the runs"
         out[key] = line
     return out
+
+
+#: The fields of a record of ``book/ledger/stability.json`` that :func:`reseeding_glue` reads, and their types.
+_STABILITY_FIELDS: dict[str, type | tuple[type, ...]] = {"k": int, "K": int, "reseeds": list, "scaled": str,
+                                                          "flag": bool}
+
+
+def _stability(path: Path, where: str) -> dict[str, Any]:
+    """``book/ledger/stability.json`` under ``where`` (the caller's ``root``), read by the one reader
+    (``fusion._paths.file_json``) and checked as far as :func:`reseeding_glue` reads it (fuzz 35b B4): an object
+    whose ``records`` is an object and whose ``runs_factor`` is a number."""
+    label = f"{where}: book/ledger/stability.json"
+    data = file_json(path, label)
+    if not isinstance(data, dict):
+        raise ValueError(f"{label}: not a stability file (a JSON object), got a JSON {type(data).__name__}")
+    if not isinstance(data.get("records", {}), dict):
+        raise ValueError(f"{label}: 'records' must be an object (record id -> its sweep)")
+    if not isinstance(data.get("runs_factor", 10), (int, float)) or isinstance(data.get("runs_factor"), bool):
+        raise ValueError(f"{label}: 'runs_factor' must be a number")
+    return data
+
+
+def _stability_record(v: object, label: str) -> None:
+    """A record of the stability file holds the fields :func:`reseeding_glue` reads (:data:`_STABILITY_FIELDS`),
+    else a ValueError naming ``label`` (the caller's ``root``, the file and the record) and the field."""
+    if not isinstance(v, dict):
+        raise ValueError(f"{label}: not a record (a JSON object), got a JSON {type(v).__name__}")
+    for field, kind in _STABILITY_FIELDS.items():
+        if field not in v:
+            raise ValueError(f"{label} lacks the field '{field}' that reseeding_glue reads")
+        if not isinstance(v[field], kind) or (kind is int and isinstance(v[field], bool)):
+            raise ValueError(f"{label}: '{field}' must be a JSON {kind.__name__}")  # type: ignore[union-attr]
+    if not all(isinstance(s, str) for s in v["reseeds"]):
+        raise ValueError(f"{label}: 'reseeds' must be a list of statuses (strings)")
+    if "runs_factor" in v and (not isinstance(v["runs_factor"], (int, float)) or isinstance(v["runs_factor"], bool)):
+        raise ValueError(f"{label}: 'runs_factor' must be a number")
 
 
 def robustness_glue(records: Sequence[Mapping[str, Any]]) -> GlueValues:

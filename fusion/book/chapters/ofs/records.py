@@ -29,7 +29,7 @@ from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, Fai
 from fusion.book.chapters.ofs.studies import (alpha_study, fair_weights, faulty_member_share, membership_study,
                                              not_neighbourhood_share, study, weight_study)
 from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint, table1_totals, tables
-from fusion.book._few_runs import reader_runs_named
+from fusion.book._few_runs import paired_runs, reader_runs_named
 from fusion.book.glue import GlueValues
 from fusion._counts import count
 from fusion._validation import instance_of
@@ -400,11 +400,11 @@ def evidence(seed: int = SEED, runs: int = N_RUNS, claims: ClaimsFile | None = N
     TypeError
         ``seed`` or ``runs`` not an integer, ``claims`` neither None nor a ClaimsFile.
     ValueError
-        ``seed`` negative, ``runs`` below 1 (or below the 100 runs rule R4 asks of a comparison), ``claims`` the
+        ``seed`` negative, ``runs`` below 2 (or below the 100 runs rule R4 asks of a comparison), ``claims`` the
         file of another source than :data:`SOURCE` (its records would give no evidence of this chapter).
     """
     seed = check_seed(seed)
-    runs = count(runs, "runs")
+    runs = paired_runs(runs)  # every record compares paired runs: 1 is refused here, by name (fuzz 35b B1)
     if claims is not None:
         instance_of(claims, ClaimsFile, "claims")
         if claims.source != SOURCE:

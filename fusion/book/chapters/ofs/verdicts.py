@@ -87,7 +87,7 @@ def ledger_numbers(ledger: Ledger, prefix: str = "ofs_",
         sequences of strings.
     ValueError
         ``ledger`` of another source than the chapter's (``ledger.source`` not :data:`SOURCE`), ``prefix`` not a glue
-        key prefix (letters, digits and underscores), or ``fields`` naming a record not in the ledger or a number
+        key prefix (ASCII letters, digits and underscores), or ``fields`` naming a record not in the ledger or a number
         the ledger does not give.
     """
     _chapter_ledger(ledger)
@@ -143,7 +143,7 @@ def comparison_numbers(comparison: Comparison, key: str,
         ``comparison`` not a :class:`~fusion.book.ledger.Comparison` (a proposition or an exact comparison has no
         paired runs), ``key`` not a string, ``fields`` not a sequence of strings.
     ValueError
-        ``key`` not a glue key prefix (``<key>_a`` not an identifier: letters, digits and underscores), a field not
+        ``key`` not a glue key prefix (``<key>_a`` not an identifier of ASCII letters, digits and underscores), a field not
         among the suffixes above, or a kept number not finite (a run with an infinite error makes a
         mean infinite: it cannot be printed), naming ``comparison``.
     """

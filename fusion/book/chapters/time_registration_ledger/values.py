@@ -5,7 +5,6 @@ Exact MSEs under each unmodelled change, NEES, noise gains, manoeuvre and latenc
 
 from __future__ import annotations
 
-import json
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -29,6 +28,7 @@ from fusion.book.chapters.time_registration_closed import _method_names
 from fusion._shown import shown
 from fusion._limits import recorded_as
 from fusion.book.chapters.time_registration_ledger.costs import _record_times
+from fusion._paths import file_json
 
 __all__ = [
     "nees_table",
@@ -413,7 +413,7 @@ def exact_check(sigma: float) -> pd.DataFrame:
         which needs its accuracy member).
     """
     path = ledger_dir() / "shi2023time.json"
-    stored = ({c["id"]: c["status"] for c in json.loads(path.read_text(encoding="utf-8"))["claims"]}
+    stored = ({c["id"]: c["status"] for c in file_json(path, "the stored ledger shi2023time.json")["claims"]}
               if path.exists() else {})
     pairs = (("shi-interp-vs-ls", EXTRAP, RegMethod.LEAST_SQUARES, {}), ("shi-kalman-s3", S3, EXTRAP, {"a": PC}),
              ("shi-improved", IMPROVED, TWO, {}), ("shi-improved-fair", IMPROVED, FIXED_LAG, {}),
