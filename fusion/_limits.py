@@ -45,8 +45,9 @@ MAX_WORK = 10**9
 #: counts each book call against its entry. Chapter 06's tracking study (``range_bearing.monte_carlo`` of the default
 #: scenario, 100 runs of 30 frames) counts 4.15e9 units (about 45 CPU-s measured): 9 x ``MAX_WORK`` (about 90 CPU-s),
 #: so a request of hours is refused at once. A larger single ``MAX_WORK`` would loosen every other function's edge.
-STUDY_WORK: Mapping[str, int] = constant(
-    {"chapter 06's tracking study (100 runs of the default range-bearing scenario)": 9 * MAX_WORK})
+#: The key of chapter 06's tracking study in :data:`STUDY_WORK`.
+TRACKING_STUDY = "chapter 06's tracking study (100 runs of the default range-bearing scenario)"
+STUDY_WORK: Mapping[str, int] = constant({TRACKING_STUDY: 9 * MAX_WORK})
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
 #: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).

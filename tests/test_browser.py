@@ -780,6 +780,13 @@ def not_full_size_on_tap(figures: list[dict[str, object]]) -> list[str]:
 
 
 @pytest.fixture(scope="module")
+def chromium(tmp_path_factory: pytest.TempPathFactory):  # noqa: ANN201 - a generator fixture
+    """One Chromium for this module's own renderings (a page rendered at one width, against the sweep's resize)."""
+    with Chromium(tmp_path_factory.mktemp("chromium")) as browser:
+        yield browser
+
+
+@pytest.fixture(scope="module")
 def narrow(site: Path, tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[Path, int], str]:
     """The chapters (every figure of the book) at 1280 and 420 px, and every other rendered page at 420 px
     (inline maths, tables): (page, width) -> DOM with the probe's findings."""

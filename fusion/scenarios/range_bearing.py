@@ -27,7 +27,7 @@ import numpy as np
 
 from fusion._validation import seed as check_seed, workers as check_workers
 from fusion._validation import flag
-from fusion._limits import STUDY_WORK
+from fusion._limits import STUDY_WORK, TRACKING_STUDY
 from fusion._guards import own_underflow
 from fusion._validation import FloatArray, allocation, as_array, count, instance_of, one_of, sequence, work
 from fusion.filtering.kalman import nees
@@ -205,7 +205,7 @@ TRACK_ELEMENT = 3
 #: Work budget of a tracking study (``_tracking_work``): the entry of ``fusion._limits.STUDY_WORK`` for the book's own
 #: study (chapter 06: 100 runs of the default 30-frame scenario, 4.15e9 units, about 45 CPU-s, cached and shared by
 #: workers), twice its count: 9 x ``MAX_WORK``, about 90 CPU-s on one core; a request of hours (8e6 runs) is refused.
-TRACK_WORK = STUDY_WORK["chapter 06's tracking study (100 runs of the default range-bearing scenario)"]
+TRACK_WORK = STUDY_WORK[TRACKING_STUDY]
 
 
 def _tracking_work(sc: RangeBearingScenario, runs: int, names: str) -> int:

@@ -17,7 +17,7 @@ from typing import Any, TypeVar
 
 from fusion._shown import shown
 
-__all__ = ["study_defaults"]
+__all__: list[str] = []  # private module: nothing public (study_defaults is imported by the chapters)
 
 F = TypeVar("F", bound=Callable[..., Any])
 

@@ -100,6 +100,7 @@ ALONG_LOW = "R·bias along c, 95 % low"
 ALONG_HIGH = "R·bias along c, 95 % high"
 EXTRA_LOW = "extra, 95 % low"
 EXTRA_HIGH = "extra, 95 % high"
+OMEGA_GAP = "mean |ω − ω*|"
 
 
 @own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
@@ -167,7 +168,7 @@ _BLOCKS = {"R": (2.0, np.inf, True), "blocks": (2.0, np.inf, True)}
 _SNIS_CELLS = {"ω": (0.0, 1.0, False), **_BLOCKS, C_NORM: (0.0, np.inf, False),
                **{c: (-np.inf, np.inf, False) for c in (ALONG, ALONG_LOW, ALONG_HIGH)}}
 _CHOSEN_CELLS = {**_BLOCKS, **{c: (-np.inf, np.inf, False) for c in ("extra", EXTRA_LOW, EXTRA_HIGH)},
-                 "mean |ω − ω*|": (0.0, 1.0, False)}
+                 OMEGA_GAP: (0.0, 1.0, False)}
 
 
 def _snis_relation(values: dict[str, Any], cls: str) -> None:
@@ -487,7 +488,7 @@ class ChosenBiasStudy:
     table: pd.DataFrame
     total: int
 
-    __result_spec__ = ResultSpec({"table": table("R", "blocks", "extra", EXTRA_LOW, EXTRA_HIGH, "mean |ω − ω*|",
+    __result_spec__ = ResultSpec({"table": table("R", "blocks", "extra", EXTRA_LOW, EXTRA_HIGH, OMEGA_GAP,
                                                  key=("R",), cells=_CHOSEN_CELLS),
                                   "total": integer(1)})
     __post_init__ = validated_post_init
@@ -510,7 +511,7 @@ class ChosenBiasStudy:
         for tag, row in (("first", first), ("last", last)):
             out[f"chf_chosen_r_{tag}"] = int(row["R"])
             for col, key in (("extra", "extra"), (EXTRA_LOW, "lo"), (EXTRA_HIGH, "hi"),
-                             ("mean |ω − ω*|", "dw")):
+                             (OMEGA_GAP, "dw")):
                 out[f"chf_chosen_{key}_{tag}"] = rounded(float(row[col]))
         return out
 
@@ -555,5 +556,5 @@ def chosen_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (20, 80, 4
                      "ω* fixed, 95 % low": float(a.mean() - half_a), "ω* fixed, 95 % high": float(a.mean() + half_a),
                      "R·bias along c, ω chosen": float(b.mean()), "extra": float(diff.mean()),
                      EXTRA_LOW: float(diff.mean() - half), EXTRA_HIGH: float(diff.mean() + half),
-                     "mean |ω − ω*|": float(np.mean(np.abs(w_hat - w_star)))})
+                     OMEGA_GAP: float(np.mean(np.abs(w_hat - w_star)))})
     return ChosenBiasStudy(pd.DataFrame(rows), total)
