@@ -91,3 +91,25 @@ def test_run_network_study_counts_its_rounds(monkeypatch):
         f.run_network_study(_network(2, rounds=5_000), 1, 2)
     with pytest.raises(Ran):
         f.run_network_study(_network(2, rounds=500), 1, 2)
+
+
+def _tracking(**kw):
+    from fusion.scenarios.range_bearing import RangeBearingScenario
+    return RangeBearingScenario(**{**dict(frames=2, n_particles=60, n_samples=60, n_central=100, em_iterations=2), **kw})
+
+
+@pytest.mark.parametrize("kw, runs, refused", [
+    (dict(n_components=1, n_initial=50_000), 39_000, True),   # ~2,000 CPU-s (2.6 CPU-s per 50 runs) was accepted
+    (dict(n_components=1, n_initial=50_000), 1_000, False),
+    (dict(n_components=60, n_particles=200), 20_000, True),   # ~38 h (13.6 CPU-s for 2 runs) was accepted
+    (dict(n_components=30, n_particles=200), 1_000, True),    # 27,000 tuples: ~0.38 CPU-s a run-frame measured
+    (dict(n_components=30, n_particles=200), 100, False),
+])
+def test_tracking_counts_n_initial_and_the_product_mixture(monkeypatch, kw, runs, refused):
+    # C3: the first frame's n_initial particles and the fusion's n_components**3 tuples were left out of the budget
+    import fusion.scenarios.range_bearing as rb
+    monkeypatch.setattr(rb, "_run_block", _ran)
+    monkeypatch.setattr(rb, "_pool_runs", _ran, raising=False)
+    with pytest.raises(ValueError if refused else Ran, match="^runs, sc.frames, sc.sensors, sc.n_initial, "
+                       "sc.n_components" if refused else None):
+        rb.monte_carlo(_tracking(**kw), 1, runs, all_nodes_first=False)
