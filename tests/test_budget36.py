@@ -113,3 +113,35 @@ def test_tracking_counts_n_initial_and_the_product_mixture(monkeypatch, kw, runs
     with pytest.raises(ValueError if refused else Ran, match="^runs, sc.frames, sc.sensors, sc.n_initial, "
                        "sc.n_components" if refused else None):
         rb.monte_carlo(_tracking(**kw), 1, runs, all_nodes_first=False)
+
+
+_CFG = {"wavelet": "db4", "level": 2, "threshold": "universal", "mode": "soft"}
+
+
+@pytest.mark.parametrize("kw, refused", [
+    (dict(runs=60_000), True),                                  # ~250 CPU-s were accepted
+    (dict(runs=2_000), False),                                  # 8.3 CPU-s measured
+    (dict(length=64, runs=2, configs=(_CFG,) * 10**6), True),   # ~12 min were accepted
+    (dict(length=64, runs=2, configs=(_CFG,) * 10_000), False),
+])
+def test_mechanism_study_counts_its_settings_and_samples(monkeypatch, kw, refused):
+    # D3: ~0.57 ms a setting and ~0.06-0.1 us a setting's sample; only the memory budget was checked
+    import fusion.scenarios.wavelet_sensors as ws
+    monkeypatch.setattr(ws, "config_label", _ran)  # the first step after the budget
+    with pytest.raises(ValueError if refused else Ran, match="^configs, runs, gains and length" if refused else None):
+        ws.mechanism_study(**kw)
+
+
+@pytest.mark.parametrize("length", [16, 63, 65, 100, 200])
+def test_mechanism_study_refuses_a_length_off_its_period_by_name(monkeypatch, length):
+    # D1: the bias's share at period 64 needs whole periods; the class refused it after the work with an inner name
+    import fusion.scenarios.wavelet_sensors as ws
+    monkeypatch.setattr(ws, "_case_arrays", _ran)
+    with pytest.raises(ValueError, match="^length must be"):
+        ws.mechanism_study(length=length, runs=3, configs=(_CFG,))
+
+
+def test_mechanism_study_keeps_lengths_of_whole_periods():
+    from fusion.scenarios.wavelet_sensors import mechanism_study
+    for length in (64, 192):
+        assert set(mechanism_study(length=length, runs=2, configs=(_CFG,)).bias_share_period) >= {64}
