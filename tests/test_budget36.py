@@ -145,3 +145,12 @@ def test_mechanism_study_keeps_lengths_of_whole_periods():
     from fusion.scenarios.wavelet_sensors import mechanism_study
     for length in (64, 192):
         assert set(mechanism_study(length=length, runs=2, configs=(_CFG,)).bias_share_period) >= {64}
+
+
+@pytest.mark.parametrize("n, refused", [(20, False), (21, True)])
+def test_sigma_point_first_order_counts_the_product_mixture(monkeypatch, n, refused):
+    # C7 (the same class in the chapter layer): ~0.3 us a tuple-mixture, as the first-order fusion
+    import fusion.book.chapters.chernoff_first_order as cfo
+    monkeypatch.setattr(cfo, "_sigma_point_fusion", _ran)
+    with pytest.raises(ValueError if refused else Ran, match="^gms" if refused else None):
+        cfo.sigma_point_first_order([_mixture()] * n, np.full(n, 1.0 / n))
