@@ -43,7 +43,7 @@ MAX_WORK = 10**9
 #: ``MAX_WORK`` gets one, twice that call's count rounded up to a whole ``MAX_WORK``, kept here and named in the
 #: refusal (:func:`work`'s ``limit``): the book's request, the key, is what the entry serves. ``tests/test_budget35.py``
 #: counts each book call against its entry. Chapter 06's tracking study (``range_bearing.monte_carlo`` of the default
-#: scenario, 100 runs of 30 frames) counts 4.15e9 units (about 45 CPU-s measured): 9 x ``MAX_WORK`` (about 90 CPU-s),
+#: scenario, 100 runs of 30 frames) counts 4.26e9 units (about 45 CPU-s measured): 9 x ``MAX_WORK`` (about 90 CPU-s),
 #: so a request of hours is refused at once. A larger single ``MAX_WORK`` would loosen every other function's edge.
 #: The key of chapter 06's tracking study in :data:`STUDY_WORK`.
 TRACKING_STUDY = "chapter 06's tracking study (100 runs of the default range-bearing scenario)"

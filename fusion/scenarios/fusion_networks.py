@@ -60,6 +60,7 @@ from fusion._validation import (_numeric, FloatArray, allocation, check_magnitud
                                 positive_scalar, std_scalar)
 # the batched kernels of the package (private: array-level; validated here)
 from fusion.estimates.chernoff.gaussian import _gaussian_chernoff_batch, _product_terms
+from fusion.estimates.chernoff._product import product_size
 from fusion.estimates.chernoff.mixture import _fuse_arrays, _moments_batch
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.particles import _systematic_resample, _wrap
@@ -537,6 +538,26 @@ _NET_STEP = 80_000
 _NET_ELEMENT = 2
 
 
+def _network_round_units(sc: NetworkScenario, runs: int) -> int:
+    """The units of one run's frame-round of :func:`run_network_study` (rule 17), its product mixtures' memory refused
+    by name: every node's particles and stages (fuzz 34a C8: a run-node costs 0.87 ms at 30 particles and 1 stage, 1.4
+    ms at the default 400 and 3 stages; each further round refits and exchanges again, about as much: 1.7-2.3 ms a
+    run-node-round measured at 1 to 20 rounds, fuzz 35a C2) and each node's fusion of its inputs' mixtures, a product
+    of ``n_components ** inputs`` component tuples for each mixture pipeline (fuzz 35a C7; the estimates' rule,
+    ``fusion.estimates.chernoff._product``)."""
+    N, Q, S = len(sc.nodes), int(sc.n_particles), int(sc.n_components)
+    node = _NET_STEP + _NET_ELEMENT * int(sc.stages) * (Q * (1 + int(sc.em_iterations) * S) + int(sc.n_samples))
+    nb = sc.neighbours
+    targets = [0] if sc.edges is None else list(range(N))
+    fusion = 0
+    for deg in sorted({len(nb[j]) for j in targets}):
+        problems = sum(len(nb[j]) == deg for j in targets)
+        tuples, per = product_size(runs * problems, deg, S, 2, "sc.nodes, sc.edges and sc.n_components",
+                                   int(sc.n_samples))
+        fusion += problems * tuples * per
+    return N * node + len(_MIXTURES) * fusion
+
+
 @own_underflow  # a far particle's weight underflows to zero by design (fuzz 31a D1)
 def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy:
     """Run every pipeline of the network ``runs`` times (vectorised across runs and nodes).
@@ -581,12 +602,8 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
     runs = count(runs, "runs", minimum=2)
     B, N, Q, d = runs, len(sc.nodes), sc.n_particles, 2
     allocation((B, N, Q + sc.frames, d), "runs, sc.nodes, sc.n_particles and sc.frames")  # the particles and z
-    # the work (rule 17), counted before any (fuzz 34a C8: the swarm's inner budget refused after 9 CPU-s, by its
-    # own arguments): a run-node costs 0.87 ms at 30 particles and 1 stage, 1.4 ms at the default 400 and 3 stages
-    # (OPENBLAS_NUM_THREADS=1; 0.85 CPU-s for 300 default runs of 2 nodes, 1.56 for 900 tiny ones)
-    per = _NET_STEP + _NET_ELEMENT * int(sc.stages) * (Q * (1 + int(sc.em_iterations) * int(sc.n_components))
-                                                        + int(sc.n_samples))
-    work((B, N, int(sc.frames)), "runs, sc.nodes, sc.frames and sc's particle, sample and stage counts", weight=per)
+    work((B, int(sc.frames), int(sc.rounds)), "runs, sc.nodes, sc.edges, sc.frames, sc.rounds and sc's particle, "
+         "sample, component and stage counts", weight=_network_round_units(sc, B))
     truth = np.asarray(sc.truth, dtype=float)
     pipes = _MIXTURES + _GAUSSIANS
     streams = []

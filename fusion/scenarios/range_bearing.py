@@ -28,6 +28,7 @@ import numpy as np
 from fusion._validation import seed as check_seed, workers as check_workers
 from fusion._validation import flag
 from fusion._limits import STUDY_WORK, TRACKING_STUDY
+from fusion.estimates.chernoff._product import product_size
 from fusion._guards import own_underflow
 from fusion._validation import FloatArray, allocation, as_array, count, instance_of, one_of, sequence, work
 from fusion.filtering.kalman import nees
@@ -159,7 +160,8 @@ def run_tracking_batch(
         raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
     swarm_options = check_swarm_options(swarm_options)
     _block_allocation(sc, len(seeds), "seeds, sc.sensors and sc.n_particles")
-    _tracking_work(sc, len(seeds), "seeds, sc.frames, sc.sensors and sc's particle and sample counts")
+    _tracking_work(sc, len(seeds), "seeds, sc.frames, sc.sensors, sc.n_initial, sc.n_components and sc's particle and "
+                   "sample counts")
     if os.environ.get("PYTEST_XDIST_WORKER"):
         workers = 1  # the test runner's worker processes already share the cores
     # blocks of at most RUN_BLOCK runs, as many as a multiple of the workers and of equal sizes (within one),
@@ -202,8 +204,16 @@ TRACK_STEP = 250_000
 #: n_components`` elements, a fusion sample and a centralised particle one; 3 units each fits the default scenario's
 #: measured 14 ms a run-frame (6,000 particles over 3 nodes, 2,000 samples, 10,000 central particles).
 TRACK_ELEMENT = 3
+#: Units of one particle of a node's first frame beyond ``n_particles`` (``n_initial``, predicted, weighted and cut
+#: down to ``n_particles``): measured 0.15-0.27 us (10 runs of 2 frames, ``n_initial`` 20,000 to 100,000; fuzz 35a C3).
+TRACK_INITIAL = 25
+#: Fusions of the nodes' product mixture (``n_components ** sensors`` component tuples, each weighed by the estimates'
+#: rule ``fusion.estimates.chernoff._product``, its samples already counted as elements) in a run-frame: 12.6-14 us a
+#: tuple measured at 20 and 30 components (60 particles, 60 samples, 2 runs of 2 frames), five fusions' worth at the
+#: rule's 2.6 us (fuzz 35a C3b); the default scenario's 27 tuples add 2.5 %.
+TRACK_FUSIONS = 5
 #: Work budget of a tracking study (``_tracking_work``): the entry of ``fusion._limits.STUDY_WORK`` for the book's own
-#: study (chapter 06: 100 runs of the default 30-frame scenario, 4.15e9 units, about 45 CPU-s, cached and shared by
+#: study (chapter 06: 100 runs of the default 30-frame scenario, 4.26e9 units, about 45 CPU-s, cached and shared by
 #: workers), twice its count: 9 x ``MAX_WORK``, about 90 CPU-s on one core; a request of hours (8e6 runs) is refused.
 TRACK_WORK = STUDY_WORK[TRACKING_STUDY]
 
@@ -211,10 +221,16 @@ TRACK_WORK = STUDY_WORK[TRACKING_STUDY]
 def _tracking_work(sc: RangeBearingScenario, runs: int, names: str) -> int:
     """Refuse (rule 17) a tracking study of ``runs`` runs of ``sc`` whose work is beyond :data:`TRACK_WORK`, before
     any work: ``runs x sc.frames`` run-frames of :data:`TRACK_STEP` units plus :data:`TRACK_ELEMENT` units per
-    particle-element (``names`` are the caller's arguments setting them); returns the units."""
-    elements = (len(sc.sensors) * int(sc.n_particles) * (1 + int(sc.em_iterations) * int(sc.n_components))
+    particle-element, :data:`TRACK_FUSIONS` fusions of the nodes' product mixture, and the first frame's particles
+    beyond ``n_particles`` (``n_initial``, :data:`TRACK_INITIAL` units each) spread over the frames (``names`` are the
+    caller's arguments setting them; the product's memory refused naming them too); returns the units."""
+    sensors, frames = len(sc.sensors), int(sc.frames)
+    elements = (sensors * int(sc.n_particles) * (1 + int(sc.em_iterations) * int(sc.n_components))
                 + int(sc.n_samples) + int(sc.n_central))
-    return work((int(runs), int(sc.frames)), names, weight=TRACK_STEP + TRACK_ELEMENT * elements, limit=TRACK_WORK)
+    tuples, per = product_size(min(int(runs), RUN_BLOCK), sensors, int(sc.n_components), 4, names)
+    initial = TRACK_INITIAL * sensors * max(int(sc.n_initial) - int(sc.n_particles), 0)
+    return work((int(runs), frames), names, limit=TRACK_WORK,
+                weight=TRACK_STEP + TRACK_ELEMENT * elements + TRACK_FUSIONS * tuples * per + -(-initial // frames))
 
 
 # --------------------------------------------------------------------------- Monte-Carlo study
@@ -339,7 +355,8 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     # the covariances kept (per method, run and frame)
     _block_allocation(sc, runs, "runs, sc.sensors and sc.n_particles")
     allocation((runs, int(sc.frames), 4, 4), "runs and sc.frames")
-    _tracking_work(sc, runs, "runs, sc.frames, sc.sensors and sc's particle and sample counts")
+    _tracking_work(sc, runs, "runs, sc.frames, sc.sensors, sc.n_initial, sc.n_components and sc's particle and sample "
+                   "counts")
     seed = check_seed(seed)
     flag(all_nodes_first, "all_nodes_first")
     seeds = np.random.SeedSequence(seed).spawn(int(runs))

@@ -49,6 +49,7 @@ from fusion._validation import derived_inputs, read_mapping, read_once, record, 
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
 from fusion._validation import LOOP_STEP, count_ceiling, distinct, loop_work, seeds as check_seeds, work
 from fusion.readings import wavelet as wv
+from fusion.scenarios._wavelet_stats import _accumulate_rec, _error_stats  # noqa: F401 (tests read them here)
 from fusion.scenarios._wavelet_relations import MECHANISM_ERRORS, cases_relation, configs_relation, seed_cases_relation
 
 __all__ = ["CONFIGS", "Signal", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
@@ -514,7 +515,7 @@ def _stream_metrics(produce: Any, truth: np.ndarray, blocks: list[slice], each: 
 
 
 def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence[float], seed: int,
-                 kind: Signal | str = Signal.TWO_TONES, weight: int = 0) -> tuple[np.ndarray, ...]:
+                 kind: Signal | str = Signal.TWO_TONES, weight: int = 0, configs: int = 0) -> tuple[np.ndarray, ...]:
     runs = count(runs, "runs", minimum=2)
     g = as_array(gains, "gains", ndim=1)
     sig = as_array(sigma, "sigma", ndim=1)
@@ -530,6 +531,8 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
     allocation((runs, g.size, S.size), "runs, gains and length")  # the memory budget, before the noise is drawn
     if weight:  # rule 17: the caller's work at ``weight`` units a sample (variance_study: 690,000 runs, ~31 CPU-s, ran)
         work((runs, g.size, S.size), "runs, gains and length", weight=weight)
+    if configs:  # rule 17 (fuzz 35a D3): mechanism_study's loop over its settings, at their measured cost
+        loop_work((configs,), _MECH_SAMPLE * runs * g.size * S.size, "configs, runs, gains and length", step=_MECH_STEP)
     noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size))
     noise *= sig[:, None]                                   # in place: the same numbers, one array fewer
     truth = g[:, None] * S
@@ -539,6 +542,12 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
         if float(np.abs(truth).max()) + float(np.abs(noise).max()) > MAX_MAGNITUDE:
             raise ValueError(f"g*S + noise may exceed {MAX_MAGNITUDE:g} in magnitude")
     return g, sig, S, truth, noise
+
+
+#: Units of one setting of :func:`mechanism_study` (its loop step: the denoising, both orders' metrics and the error
+#: statistics, ~0.57 ms measured at length 64) and of one sample of a setting (~0.06-0.1 us measured at length 1024,
+#: 100-2,000 runs): 60,000 runs (~250 CPU-s) and 10**6 settings (~12 min) were accepted (fuzz 35a D3).
+_MECH_STEP, _MECH_SAMPLE = 60 * LOOP_STEP, 10
 
 
 def _blocks(runs: int, per_run: int) -> list[slice]:
@@ -753,45 +762,6 @@ def seed_study(
     return SeedStudy(cases=cases, seeds=tuple(sv), runs=int(runs), kind=kind, mode=mode, normaliser=normaliser)
 
 
-def _accumulate_rec(sl: slice, est: dict[str, np.ndarray], truth: np.ndarray, g: np.ndarray,
-                    acc: dict[str, np.ndarray]) -> None:
-    """First-pass sums of the reconstruction's relative errors (for its bias share)."""
-    rel = (est["denoise-first"] - truth) / g[:, None]
-    acc["sum"] += rel.sum(axis=0)
-    acc["sq"] += np.sum(rel**2, axis=(0, 2))
-
-
-def _error_stats(den: np.ndarray, rec_acc: dict[str, np.ndarray], truth: np.ndarray, g: np.ndarray,
-                 blocks: list[slice]) -> dict[str, np.ndarray | float]:
-    """Bias and cross-sensor correlation of the relative errors (Y − gS)/g, accumulated block by block.
-
-    ``den`` holds the denoised signals of every run; ``rec_acc`` the sums of the reconstruction's relative
-    errors and of their squares (:func:`_accumulate_rec`). The correlations pool runs and samples, as
-    ``numpy.corrcoef`` of the flattened errors would.
-    """
-    R_, n, size = den.shape
-    dsum, dsq = np.zeros((n, size)), np.zeros(n)
-    S, s1 = np.zeros((n, n)), np.zeros(n)
-    for sl in blocks:
-        rel = (den[sl] - truth) / g[:, None]
-        dsum += rel.sum(axis=0)
-        dsq += np.sum(rel**2, axis=(0, 2))
-        S += np.einsum("rjn,rkn->jk", rel, rel)
-        s1 += rel.sum(axis=(0, 2))
-    N = R_ * size
-    bias, bias_rec = dsum / R_, rec_acc["sum"] / R_
-    cov = (S - np.outer(s1, s1) / N) / (N - 1)
-    cov_r = (S - R_ * bias @ bias.T) / (N - 1)          # after removing each sensor's bias (its pooled mean is 0)
-    corr = cov / np.sqrt(np.outer(np.diag(cov), np.diag(cov)))
-    corr_r = cov_r / np.sqrt(np.outer(np.diag(cov_r), np.diag(cov_r)))
-    off = ~np.eye(n, dtype=bool)
-    return {"bias_share": np.mean(bias**2, axis=-1) / (dsq / N),
-            "bias_share_rec": np.mean(bias_rec**2, axis=-1) / (rec_acc["sq"] / N),
-            "corr": corr, "corr_random": corr_r, "mean_offdiag_corr": float(corr[off].mean()),
-            "mean_offdiag_corr_random": float(corr_r[off].mean()), "bias_curve": bias,
-            "rms_bias": np.sqrt(np.mean(bias**2, axis=-1)), "rms_bias_rec": np.sqrt(np.mean(bias_rec**2, axis=-1))}
-
-
 def _weighted(sl: slice, keys: tuple[str, ...] | None, truth: np.ndarray, noise: np.ndarray, den: np.ndarray,
               reading: str, window: int, sigma: np.ndarray, ref: np.ndarray,
               keep: dict[str, np.ndarray], normaliser: str = "max") -> dict[str, np.ndarray]:
@@ -853,7 +823,8 @@ def mechanism_study(
     Parameters
     ----------
     length : int
-        Samples per signal I (>= 16).
+        Samples per signal I: a multiple of 64 (>= 64), since the bias's share at the tone's period 64
+        (``bias_share_period``) is read over whole periods; other lengths are refused naming ``length``.
     runs : int
         Monte-Carlo runs (>= 2).
     gains : sequence of float
@@ -876,12 +847,17 @@ def mechanism_study(
     Raises
     ------
     ValueError
-        Bad lengths or values, an empty ``configs``, a config with unknown options or an unknown ``kind``.
+        Bad lengths or values (``length`` not a multiple of 64), an empty ``configs``, a config with unknown options
+        or an unknown ``kind``; ``configs``, ``runs``, ``gains`` and ``length`` asking for more work than the budget
+        (``fusion._validation.MAX_WORK``, about 10 CPU-s).
     """
     kind = _signal(kind)
-    g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed, kind)
+    if count(length, "length", minimum=64) % 64:  # fuzz 35a D1: bias_share_period[64] needs whole periods of 64
+        raise ValueError("length must be a multiple of 64 (the bias's share at the tone's period 64, "
+                         f"MechanismStudy.bias_share_period, needs whole periods), got {int(length)}")
     if not sequence(configs, "configs"):
         raise ValueError("configs must be a non-empty sequence of dicts")
+    g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed, kind, configs=len(configs))
     for i, c in enumerate(configs):
         with within(f"configs[{i}]"):
             config_label(c)

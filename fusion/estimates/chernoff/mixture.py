@@ -32,7 +32,8 @@ from fusion._results import ResultSpec, instance, number, validated_post_init
 from fusion.estimates.chernoff._timings import FusionTimings
 from fusion.estimates.chernoff._sampling import _mixture_mean, _moments_batch, _sample_mixture  # noqa: F401
 from fusion._timing import LapTimer
-from fusion._validation import MAX_MAGNITUDE, derived_inputs, read_once
+from fusion._validation import MAX_MAGNITUDE, derived_inputs, read_once, work
+from fusion.estimates.chernoff._product import product_size
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
                                 instance_of, one_of)
 from fusion._validation import flag, read_once, refuse_singular, renormalised, sums_to_one
@@ -187,6 +188,8 @@ def first_order_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplifie
     flag(simplified, "simplified")
     _check_mixtures(gms)
     e = check_simplex(eps, len(gms))
+    tuples, per = product_size(1, len(gms), max(g.weights.size for g in gms), gms[0].dim, "gms", first_order=True)
+    work((tuples,), "gms (the product mixture's component tuples)", weight=per)  # fuzz 35a C7
     logw, means, covs = _mixture_arrays(gms)
     w, mu, P, log_z = _first_order_arrays(logw[None], means[None], covs[None], e[None], simplified=simplified)
     keep = w[0] > 0
@@ -640,6 +643,8 @@ def fuse_mixtures(
     n_samples = count(n_samples, "n_samples", minimum=2)
     N = len(gms)
     e0 = np.full(N, 1.0 / N) if eps0 is None else check_simplex(eps0, N, name="eps0")
+    tuples, per = product_size(1, N, max(g.weights.size for g in gms), gms[0].dim, "gms and n_samples", n_samples)
+    work((tuples,), "gms and n_samples (the product mixture's component tuples)", weight=per)  # fuzz 35a C7
     logw, means, covs = _mixture_arrays(gms)
     flag(timed, "timed")
     return _timed_fusion(logw[None], means[None], covs[None], [rng], n_samples, e0[None], optimiser, redraw, reference,
@@ -748,6 +753,9 @@ def fuse_mixtures_batch(
     refuse_singular(np.where(pos[..., None, None], c, np.eye(d)), "covs")  # the covariance rule, where w > 0
     as_rngs(rngs, "rngs", B)
     n_samples = count(n_samples, "n_samples", minimum=2)
+    tuples, per = product_size(B, N, S, d, "weights and n_samples", n_samples)
+    work((B, tuples), "weights and n_samples (the problems and the product mixture's component tuples)",
+         weight=per)  # fuzz 35a C7
     if eps0 is None:
         e0 = np.full((B, N), 1.0 / N)
     else:

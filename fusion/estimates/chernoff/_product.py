@@ -1,0 +1,63 @@
+"""The budget of the first-order fusion's product mixture (fuzz 35a C7).
+
+The first-order Chernoff fusion of N mixtures padded to S components is a mixture of :math:`S^N` components, one per
+tuple of components (``mixture._first_order_prepare``): every function that builds it counts that product at its entry
+by the shared memory and work rules (``fusion._counts.allocation``, ``fusion._limits.work``), naming its caller's
+arguments, so that 30 two-component mixtures (:math:`2^{30}` tuples, hours) or 24 (a 3 GiB array) are refused at once.
+"""
+
+from __future__ import annotations
+
+import math
+
+from fusion._counts import allocation
+
+#: Units (about 10 ns, ``fusion._limits.MAX_WORK``) of one (tuple, mixture) entry of the product mixture in the whole
+#: fusion (``fuse_mixtures``: the proposal, its samples' densities and the fused moments), ``FUSION_ENTRY + d * d``
+#: times ``FUSION_SQUARE``: measured (OPENBLAS_NUM_THREADS=1, 2**10 to 2**14 tuples of two-component mixtures, 200
+#: samples) about 0.5 us an entry at d = 2 and 0.86 us at d = 4.
+FUSION_ENTRY, FUSION_SQUARE = 40, 3
+#: The same for the first-order fusion alone (``first_order_fusion``): about 0.17-0.3 us an entry at d = 2, 0.26 us
+#: at d = 4.
+FIRST_ORDER_ENTRY, FIRST_ORDER_SQUARE = 28, 1
+#: A tuple's units per sample and covariance entry (the samples' proposal densities, ``n_samples x d x d`` a tuple):
+#: about 1.3 ns measured at 2**10 tuples and 5,000 to 20,000 samples, a fifth of a unit.
+SAMPLE_DIVISOR = 5
+#: Beyond ``2**MAX_LOG2_TUPLES`` tuples the product is beyond every budget (refused without forming its count).
+MAX_LOG2_TUPLES = 100
+
+
+def product_size(problems: int, n: int, s: int, d: int, names: str, n_samples: int = 0,
+                 first_order: bool = False) -> tuple[int, int]:
+    """The product mixture's tuples ``s ** n`` and the units of work of one tuple, its memory refused by name.
+
+    Parameters
+    ----------
+    problems : int
+        Fusion problems built at once (the product's arrays hold all of them).
+    n, s, d : int
+        Mixtures per problem, components per mixture (padded: the largest) and dimension.
+    names : str
+        The caller's arguments that set them, named in a refusal.
+    n_samples : int
+        Samples drawn from the product (0 for the first-order fusion alone).
+    first_order : bool
+        Weigh the first-order fusion alone (``first_order_fusion``) rather than the whole fusion.
+
+    Returns
+    -------
+    tuple of int
+        The tuples :math:`s^n` and the units of one tuple (for ``fusion._limits.work``'s ``weight``).
+
+    Raises
+    ------
+    ValueError
+        If the product's arrays are beyond the memory budget, naming ``names``.
+    """
+    if n * math.log2(max(s, 1)) > MAX_LOG2_TUPLES:
+        raise ValueError(f"{names} ask for a product mixture of {s}**{n} component tuples (the first-order "
+                         "fusion's), beyond the memory and work budgets")
+    tuples = s**n
+    allocation((problems, tuples, n, d, d), f"{names} (the product mixture's {s}**{n} component tuples)")
+    entry, square = (FIRST_ORDER_ENTRY, FIRST_ORDER_SQUARE) if first_order else (FUSION_ENTRY, FUSION_SQUARE)
+    return tuples, n * (entry + square * d * d) + -(-n_samples * d * d // SAMPLE_DIVISOR)
