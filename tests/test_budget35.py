@@ -194,10 +194,10 @@ def test_consistency_study_weighs_a_pair_check(monkeypatch):
 def test_study_work_is_twice_the_book_call_it_serves():
     # budget35's one rule for a budget above MAX_WORK: twice the book's own call, rounded up to a whole MAX_WORK
     # (range_bearing's was 20 x MAX_WORK, about 200 CPU-s, for a book study of about 45)
-    from fusion._limits import MAX_WORK, STUDY_WORK
+    from fusion._limits import MAX_WORK, STUDY_WORK, TRACKING_STUDY
     from fusion.scenarios import range_bearing as rb
     from fusion.book.chapters.chernoff.settings import STUDY_RUNS
-    book = {"chapter 06's tracking study (100 runs of the default range-bearing scenario)":
+    book = {TRACKING_STUDY:
             rb._tracking_work(rb.RangeBearingScenario(), STUDY_RUNS, "runs")}
     assert set(book) == set(STUDY_WORK)
     for key, units in book.items():

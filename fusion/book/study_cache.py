@@ -342,7 +342,8 @@ class _Shared:
     deep copy per caller that shares the result's immutable parts (its read-only arrays, frozen results).
 
     A result that is not wholly immutable is copied once when it is kept (the kept value is the copy, in which an
-    array that was a view is an array of its own; the first caller gets the function's own result, ``_spare``): one
+    array that was a view is an array of its own), and every caller, the first too (``_spare``), gets a copy of the
+    kept value that shares its read-only arrays (a study computed once has the same arrays in every result): one
     that cannot be deep-copied raises ``_Uncopyable`` carrying it, and is returned to its caller uncached (fuzz 34a
     D1: a TypeError "cannot pickle" came after the computation, naming nothing)."""
 
@@ -358,8 +359,9 @@ class _Shared:
                 self.value = copy.deepcopy(value, dict(self.immutable))
             except _UNCOPYABLE:
                 raise _Uncopyable(value) from None
-            self._spare.append(value)           # the first caller's: what the function returned
             self.whole = _frozen(self.value, self.immutable)   # its copied views are its own arrays now
+            if not self.whole:   # the first caller's copy, sharing the kept arrays as every later caller's does
+                self._spare.append(copy.deepcopy(self.value, dict(self.immutable)))
 
     def get(self) -> Any:
         if self.whole:
@@ -635,9 +637,9 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
     caller's own array too (the cached result is that array; copying every result would cost each study a copy).
     An array that does not own its data (a view such as ``x[1:]`` or ``x.T`` of an argument, or a column of a
     local array, whose ``.base`` a caller could write) is kept as a read-only copy instead: a cached result never
-    shares memory with anything a caller can write, and only the first caller gets the view itself (fuzz 35a C1,
-    D2). A cached function should return arrays of its own, as the book's studies do. A result that holds something
-    mutable and cannot be deep-copied (a memoryview, a generator, a lock in a dict) is returned to its caller
+    shares memory with anything a caller can write, and no caller gets the view itself (fuzz 35a C1, D2). A cached
+    function should return arrays of its own, as the book's studies do. A result that holds something mutable and
+    cannot be deep-copied (a memoryview, a generator, a lock in a dict) is returned to its caller
     uncached: every call computes it, as without the cache.
 
     The disk serves only a function that its module holds under its qualified name (a module-level ``def`` or a
