@@ -142,7 +142,7 @@ def build_book(out: Path) -> subprocess.CompletedProcess[str]:
 
 #: Environment variable naming the directory where this run's book is built (set by the controller).
 _BOOK_DIR_ENV = "FUSION_TEST_BOOK_DIR"
-_BOOK_USERS = ("test_book_build.py", "test_browser.py", "test_backlinks.py")
+_BOOK_USERS = ("test_book_build.py", "test_browser.py", "test_backlinks.py", "test_book_listings.py")
 _BUILD_KEY = pytest.StashKey[tuple]()
 #: Environment variable of the run's shared study cache (:data:`fusion.book.study_cache.ENV`), set by the controller.
 _STUDY_CACHE_ENV = "FUSION_STUDY_CACHE"

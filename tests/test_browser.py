@@ -10,7 +10,7 @@ phone, when an inline formula is cut off, or when a published-vs-reproduced tabl
 or reproduced column off a phone's screen.
 
 The checkers' own tests (each fails on a page made to have its problem) are in ``tests/test_browser_checks.py``,
-which does not wait for the book.
+which does not wait for the book; the static source listings and redirect stubs in ``tests/test_book_listings.py``.
 
 Skipped, with the reason, where no Chromium is installed (`.ci/run` installs Debian's
 ``chromium`` when it can).
@@ -635,46 +635,9 @@ def _pages(site: Path) -> list[Path]:
     )
 
 
-@pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
-def test_redirects_resolve(site: Path) -> None:
-    stubs = [p for p in site.rglob("*.html")
-             if REDIRECT.search(p.read_text(encoding="utf-8", errors="replace")[:2000])]
-    assert (site / "index.html") in stubs
-    for stub in stubs:
-        url = REDIRECT.search(stub.read_text(encoding="utf-8")[:2000])["url"]
-        assert (stub.parent / url).resolve().is_file(), f"{stub.name} redirects to missing {url}"
-
-
 def _is_source_listing(site: Path, page: Path) -> bool:
     """A highlighted-source page of sphinx.ext.viewcode (``_modules/``)."""
     return page.relative_to(site).parts[0] == "_modules"
-
-
-@pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
-def test_source_listings_are_static_and_their_links_resolve(site: Path) -> None:
-    """The ``_modules/`` pages (about 40 of the book's pages) are checked without Chromium.
-
-    They are highlighted source code: no math, no tables, figures or cell outputs (the only elements the
-    width probe measures), and the theme's scripts that run on them also run on every rendered page. So
-    their static HTML is what a reader's browser shows, and its links and images are checked here; the
-    pages with math and outputs are rendered (:func:`rendered`). Rendering the listings too cost about
-    half of this file's time in ``make test``.
-    """
-    listings = [p for p in _pages(site) if _is_source_listing(site, p)]
-    assert listings, "no _modules pages: viewcode is expected to list the package's source"
-    problems: dict[str, list[str]] = {}
-    ids_of: dict[Path, set[str]] = {}
-    for path in listings:
-        html = path.read_text(encoding="utf-8", errors="replace")
-        page = parse_page(html)
-        issues = [f"math on a source listing: {t}" for t in unrendered_math(page)]
-        issues += ["a table, figure or cell output on a source listing"] if re.search(
-            r"<(table|figure)\b|class=\"[^\"]*\bcell_output", html) else []
-        issues += [f"broken image: {s}" for s in broken_images(page, path)]
-        issues += [f"broken link: {h}" for h in broken_links(page, path, ids_of)]
-        if issues:
-            problems[str(path.relative_to(site))] = issues
-    assert not problems, "\n".join(f"{k}: {v}" for k, v in problems.items())
 
 
 @pytest.fixture(scope="module")
