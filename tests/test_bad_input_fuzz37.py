@@ -1,0 +1,71 @@
+"""Fuzz 36b follow-ups (issue 35), chapter layer.
+
+- B1/B2: the chapter layer's JSON reader (``fusion._paths.file_json``) keeps the book's one JSON rule of
+  ``fusion.book._json.read_object`` (one decoder, ``fusion._paths.json_document``): nesting beyond the recursion
+  limit, an integer too long to convert, NaN, Infinity and overflowing numbers are refused naming the caller's root;
+"""
+
+from __future__ import annotations
+
+import json
+import re
+
+import pytest
+
+
+# --- B1/B2: both JSON readers refuse deep nesting, huge integers, NaN and infinities by name ------------------------
+
+_RECORD = {"committed": "contradicted", "reseeds": ["contradicted"] * 5, "scaled": "contradicted", "k": 5, "K": 5,
+           "flag": False, "failed": [], "runs_factor": 10}
+_RECORDS = [{"id": "lec-awf-estimated", "status": "reproduced", "runs": 300}]
+_VALID = json.dumps({"records": {"lec-awf-estimated": _RECORD}, "runs_factor": 3})
+_DEEP = "[" * 100_000 + "]" * 100_000
+_BAD_JSON = [
+    ('{"records": ' + _DEEP + "}", "nested too deep"),
+    (_VALID.replace('"k": 5', '"k": ' + "9" * 5000), "digits"),
+    (_VALID.replace('"runs_factor": 10', '"runs_factor": NaN'), "NaN"),
+    (_VALID.replace('"runs_factor": 10', '"runs_factor": -Infinity'), "Infinity"),
+    (_VALID.replace('"runs_factor": 10', '"runs_factor": 1e999'), "overflows"),
+]
+
+
+def _root(tmp_path, stability=None, notebook=None):
+    r = tmp_path / "repo"
+    for d in ("book/claims", "book/ledger", "notebooks"):
+        (r / d).mkdir(parents=True)
+    (r / "_toc.yml").write_text("root: x\n")
+    if stability is not None:
+        (r / "book" / "ledger" / "stability.json").write_text(stability)
+    if notebook is not None:
+        (r / "notebooks" / "x.ipynb").write_text(notebook)
+    return r
+
+
+def test_reseeding_glue_reads_a_valid_stability_file(tmp_path):
+    from fusion.book.chapters.lecture_weighting import records as rs
+    glued = rs.reseeding_glue(_RECORDS, _root(tmp_path, stability=_VALID))
+    assert "contradicted at 10× the runs" in glued["lec_rs_awf_estimated"]
+
+
+@pytest.mark.parametrize("content, what", _BAD_JSON)
+def test_reseeding_glue_refuses_unreadable_json_naming_root(tmp_path, content, what):
+    from fusion.book.chapters.lecture_weighting import records as rs
+    with pytest.raises(ValueError, match=r"^root: book/ledger/stability\.json: .*" + re.escape(what)):
+        rs.reseeding_glue(_RECORDS, _root(tmp_path, stability=content))
+
+
+def test_book_words_refuses_a_deeply_nested_notebook_naming_root(tmp_path):
+    from fusion.book.chapters import lecture
+    with pytest.raises(ValueError, match=r"^root: 'notebooks/x\.ipynb': nested too deep"):
+        lecture.book_words(_root(tmp_path, notebook='{"cells": ' + _DEEP + "}"))
+
+
+@pytest.mark.parametrize("content, what", _BAD_JSON)
+def test_read_object_refuses_the_same_json_naming_the_file(tmp_path, content, what):
+    from fusion.book._json import read_object
+    p = tmp_path / "r.json"
+    p.write_text(content)
+    with pytest.raises(ValueError, match=r"^ledger file .*r\.json: .*" + re.escape(what)):
+        read_object(p, "ledger file")
+    p.write_text(_VALID)
+    assert read_object(p, "ledger file")["runs_factor"] == 3
