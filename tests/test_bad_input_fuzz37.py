@@ -10,7 +10,9 @@ from __future__ import annotations
 import json
 import re
 
+import numpy as np
 import pytest
+from hypothesis import given, settings, strategies as st
 
 
 # --- B1/B2: both JSON readers refuse deep nesting, huge integers, NaN and infinities by name ------------------------
@@ -69,3 +71,42 @@ def test_read_object_refuses_the_same_json_naming_the_file(tmp_path, content, wh
         read_object(p, "ledger file")
     p.write_text(_VALID)
     assert read_object(p, "ledger file")["runs_factor"] == 3
+
+
+# --- B5: a glue-key suffix is ASCII letters, digits and underscores (fix36b's prefix rule at the other end) ----------
+
+@settings(max_examples=60, deadline=None)
+@given(suffix=st.text(max_size=4) | st.sampled_from(["", "_an", "é", "e\u0301", "ｘ", "a b", "x.y", "_1"]))
+def test_glue_suffix_is_ascii_identifier_text(suffix):
+    from fusion.book.glue import _glue_suffix
+    if suffix.isascii() and f"k{suffix}".isidentifier():
+        assert _glue_suffix(suffix, "suffix") == suffix
+    else:
+        with pytest.raises(ValueError, match=r"^suffix must be a glue key suffix \(ASCII"):
+            _glue_suffix(suffix, "suffix")
+
+
+def _weight_search_call():
+    """The chapter 05 registry's valid weight_search_numbers call, built small (2 runs, one FOA seed)."""
+    from fusion.book.chapters import ci
+    from fusion.estimates.ci import ci_objective
+    Q, R1, _ = ci.printed_covariances()
+    wp = ci.weight_pair(R1, R1 / 9, Q, 2, seed=1, search_seed=2, fruit_fly_seeds=[3], runs=2, T=8.0)
+    flat = ci_objective(np.linspace(0, 1, 11), R1, R1)
+    return ci, wp, dict(res=wp.res, flat=flat, fruit_fly_seeds=wp.fruit_fly_seeds)
+
+
+def test_weight_search_numbers_suffix_and_flat_named():
+    ci, wp, kw = _weight_search_call()
+    Q = ci.printed_covariances()[0]
+    wp_an = ci.weight_pair(*ci.ANISO_R, Q, 2, seed=4, search_seed=2, fruit_fly_seeds=[3], runs=2, T=8.0)
+    assert ci.weight_claim_inputs(wp, wp_an, kw["flat"]).flat_level > 0
+    assert "ci_flat_range_an" in ci.weight_search_numbers(**kw, suffix="_an")
+    for bad in ("a b", "x.y", "é", "ｘ"):
+        with pytest.raises(ValueError, match=r"^suffix must be a glue key suffix"):
+            ci.weight_search_numbers(**kw, suffix=bad)
+    for flat in (np.zeros(11), -np.ones(11)):   # a mean of zero was divided by, the refusal named "value"
+        with pytest.raises(ValueError, match=r"^flat must hold positive values"):
+            ci.weight_search_numbers(**dict(kw, flat=flat))
+        with pytest.raises(ValueError, match=r"^flat must hold positive values"):
+            ci.weight_claim_inputs(wp, wp_an, flat)

@@ -88,6 +88,18 @@ def _glue_prefix(prefix: object, name: str) -> str:
     return prefix
 
 
+def _glue_suffix(suffix: object, name: str) -> str:
+    """A glue-key suffix argument (appended to a chapter's own keys, another pair's numbers): :func:`_glue_prefix`'s
+    rule for the other end of the key (fuzz 36b B5), a str (TypeError naming ``name`` otherwise) of ASCII letters,
+    digits and underscores, possibly empty (ValueError naming ``name`` otherwise); returned unchanged."""
+    if not isinstance(suffix, str):
+        raise TypeError(f"{name} must be a glue key suffix (a str), got {type(suffix).__name__} {shown(suffix, 60)}")
+    if not (suffix.isascii() and f"x{suffix}".isidentifier()):
+        raise ValueError(f"{name} must be a glue key suffix (ASCII letters, digits and underscores), got "
+                         f"{shown(suffix, 60)}")
+    return suffix
+
+
 def _glued_cell(table: object, row: object, column: object, name: str, lo: float | None = None,
                 hi: float | None = None) -> float:
     """The cell ``table.loc[row, column]`` that a chapter glues, as a float by the glue rule (fuzz 22b, V): the row
