@@ -110,3 +110,20 @@ def test_weight_search_numbers_suffix_and_flat_named():
             ci.weight_search_numbers(**dict(kw, flat=flat))
         with pytest.raises(ValueError, match=r"^flat must hold positive values"):
             ci.weight_claim_inputs(wp, wp_an, flat)
+
+
+# --- B7: a repeated omega in the Stone Soup record is refused by place (the 33b repeated-row rule) --------------------
+
+def test_stonesoup_check_refuses_two_rows_at_one_omega():
+    import copy
+    from fusion._paths import file_json
+    from fusion.book.chapters.chernoff import peers
+    rec = file_json(peers.STONESOUP_RECORD, "record")
+    assert len(peers.stonesoup_check(rec)[0]) == len(rec["rows"])
+    i = [r["omega"] for r in rec["rows"]].index(0.8)
+    row = copy.deepcopy(rec["rows"][i])
+    row["innovation_covariance"] = (np.array(row["innovation_covariance"]) * 3).tolist()
+    rec["rows"].append(row)   # the last row replaced the recorded one at 0.8 silently
+    n = len(rec["rows"]) - 1
+    with pytest.raises(ValueError, match=re.escape(f"record['rows'][{i}] and record['rows'][{n}] are both at omega")):
+        peers.stonesoup_check(rec)
