@@ -127,3 +127,20 @@ def test_stonesoup_check_refuses_two_rows_at_one_omega():
     n = len(rec["rows"]) - 1
     with pytest.raises(ValueError, match=re.escape(f"record['rows'][{i}] and record['rows'][{n}] are both at omega")):
         peers.stonesoup_check(rec)
+
+
+# --- B8: the stage share and ratio from the measured seconds, not from the table's 0.1 ms (no NaN glued) -------------
+
+def test_benchmark_cost_share_of_fast_stages_is_a_number(tmp_path):
+    from pathlib import Path
+    from fusion.book.chapters.chernoff import swarm
+    bench = json.loads((Path(__file__).parents[1] / "benchmarks" / "results" / "chernoff.json").read_text())
+    for m in bench["measurements"]:
+        if "stage" in m:
+            m["value"] = 1e-5   # positive seconds per frame, 0.0 ms at the table's 0.1 ms
+    p = tmp_path / "chernoff.json"
+    p.write_text(json.dumps(bench))
+    values = swarm.benchmark_cost(p)[1]
+    patent = len([m for m in bench["measurements"] if "stage" in m and m["stage"] in swarm.PATENT_STAGES])
+    assert f"a share {1 / patent:.2f} of the patent's own stages" in values["chf_bench_stage_text"]
+    assert "in the study's own stage costs 1.0 times" in values["chf_pso_ratio_text"]
