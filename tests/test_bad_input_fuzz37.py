@@ -144,3 +144,13 @@ def test_benchmark_cost_share_of_fast_stages_is_a_number(tmp_path):
     patent = len([m for m in bench["measurements"] if "stage" in m and m["stage"] in swarm.PATENT_STAGES])
     assert f"a share {1 / patent:.2f} of the patent's own stages" in values["chf_bench_stage_text"]
     assert "in the study's own stage costs 1.0 times" in values["chf_pso_ratio_text"]
+
+
+# --- B3/B4: glue_27 on a one-sensor study and on an ill-conditioned one (valid studies of correlated_study) -----------
+
+@pytest.mark.parametrize("kw", [dict(sigma=(1.0,)), dict(sigma=(0.01, 0.02)), dict(sigma_env=300.0)])
+def test_glue_27_takes_valid_edge_studies(kw):
+    from fusion.book.chapters.lecture_correlated import correlated as co
+    from fusion.scenarios import lecture_correlated as lsc
+    out = co.glue_27(lsc.correlated_study(runs=100, **kw))
+    assert out["lec_cor_runs"] == 100
