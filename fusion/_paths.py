@@ -9,6 +9,7 @@ naming the argument and showing at most 60 characters of the value (a 5000-chara
 from __future__ import annotations
 
 import json
+import math
 import os
 import stat
 from pathlib import Path
@@ -136,13 +137,38 @@ def file_text(path: Path, label: str, limit: int = MAX_FILE_BYTES) -> str:
     return text.replace("\r\n", "\n").replace("\r", "\n")
 
 
-def file_json(path: Path, label: str, limit: int = MAX_FILE_BYTES) -> object:
-    """The JSON document of the regular file ``path`` (:func:`file_text`); text that is not JSON is a ValueError
-    ``"<label>: not JSON (...)"``. Its structure is the caller's to check (by the keys it reads)."""
+def _no_constant(name: str) -> None:
+    raise ValueError(f"{name} (not a JSON number: NaN and infinities are refused)")
+
+
+def _finite_float(literal: str) -> float:
+    v = float(literal)
+    if not math.isfinite(v):  # 1e999 overflows to an infinity
+        raise ValueError(f"{literal[:40]} overflows to an infinity (NaN and infinities are refused)")
+    return v
+
+
+def json_document(text: str, label: str) -> object:
+    """The JSON document ``text``, by the book's one rule for its JSON files (issue 35, fuzz 21; fuzz 36b B1, B2):
+    text that is not JSON, nested beyond Python's recursion limit, holding ``NaN``, ``Infinity`` or a number that
+    overflows to one (which :func:`json.dumps` writes but JSON does not define), or an integer longer than Python
+    converts (4300 digits) is a ValueError ``"<label>: ..."`` (``label`` names the caller's argument and the file),
+    instead of a :class:`json.JSONDecodeError`, a :class:`RecursionError` or an unnamed ValueError."""
     try:
-        return json.loads(file_text(path, label, limit))
+        return json.loads(text, parse_constant=_no_constant, parse_float=_finite_float)
     except json.JSONDecodeError as exc:
-        raise ValueError(f"{label}: not JSON ({exc.msg} at line {exc.lineno})") from None
+        raise ValueError(f"{label}: not JSON ({exc.msg} at line {exc.lineno}, column {exc.colno})") from None
+    except RecursionError:
+        raise ValueError(f"{label}: nested too deep to read") from None
+    except ValueError as exc:  # a NaN or an infinity (parse_constant, parse_float), an integer too long to convert
+        raise ValueError(f"{label}: {str(exc)[:200]}") from None
+
+
+def file_json(path: Path, label: str, limit: int = MAX_FILE_BYTES) -> object:
+    """The JSON document of the regular file ``path`` (:func:`file_text`) by :func:`json_document`'s rule: text that
+    is not JSON, nested too deep, holding NaN or an infinity, or an integer too long to convert is a ValueError
+    ``"<label>: ..."``. Its structure is the caller's to check (by the keys it reads)."""
+    return json_document(file_text(path, label, limit), label)
 
 
 def notebook_markdown(path: Path, label: str) -> list[str]:

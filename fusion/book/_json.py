@@ -3,13 +3,11 @@ and the one reader of its stored JSON files (``read_object``; ``read_argument`` 
 
 from __future__ import annotations
 
-import json
-import math
 import os
 from pathlib import Path
 from typing import Any, ForwardRef, TypeAlias, Union
 
-from fusion._paths import file_bytes
+from fusion._paths import file_bytes, json_document
 
 __all__ = ["JSONValue", "JSONObject"]
 
@@ -21,17 +19,6 @@ _ITEM = ForwardRef("JSONValue", module=__name__)
 JSONValue: TypeAlias = Union[None, bool, int, float, str, list[_ITEM], dict[str, _ITEM]]
 #: A JSON object: what a ``to_dict`` serialiser returns (field name → JSON value).
 JSONObject: TypeAlias = dict[str, JSONValue]
-
-
-def _no_constant(name: str) -> None:
-    raise ValueError(f"{name} (not a JSON number: NaN and infinities are refused)")
-
-
-def _finite_float(literal: str) -> float:
-    v = float(literal)
-    if not math.isfinite(v):  # 1e999 overflows to an infinity
-        raise ValueError(f"{literal[:40]} overflows to an infinity (NaN and infinities are refused)")
-    return v
 
 
 def read_object(path: Path, what: str = "file") -> dict[str, Any]:
@@ -64,15 +51,10 @@ def read_object(path: Path, what: str = "file") -> dict[str, Any]:
     # a regular file of at most MAX_FILE_BYTES (fuzz 34a C3, C4; a folder or a dangling symlink: fuzz 22a W)
     data = file_bytes(path, f"{what} {path}")
     try:
-        record = json.loads(data.decode("utf-8"), parse_constant=_no_constant, parse_float=_finite_float)
+        text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise ValueError(f"{what} {path}: not UTF-8 text ({exc.reason} at byte {exc.start})") from exc
-    except json.JSONDecodeError as exc:
-        raise ValueError(f"{what} {path}: not JSON ({exc.msg} at line {exc.lineno}, column {exc.colno})") from exc
-    except RecursionError as exc:
-        raise ValueError(f"{what} {path}: nested too deep to read") from exc
-    except ValueError as exc:  # a NaN or an infinity (parse_constant, parse_float)
-        raise ValueError(f"{what} {path}: {exc}") from exc
+    record = json_document(text, f"{what} {path}")
     if not isinstance(record, dict):
         raise ValueError(f"{what} {path}: the top level must be a JSON object, got {type(record).__name__}")
     return record

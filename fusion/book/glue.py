@@ -80,12 +80,26 @@ def _glue_prefix(prefix: object, name: str) -> str:
     ASCII, not any Unicode identifier (fuzz 35b D3): a key is matched as the text it is, and non-ASCII text has
     several spellings that print alike (``é`` composed or decomposed; ``ﬁ`` and ``fi``, which Python's identifiers
     fold together by NFKC and a glue key does not); no normalisation is applied, so the caller's key is the key."""
-    if not isinstance(prefix, str):
-        raise TypeError(f"{name} must be a glue key prefix (a str), got {type(prefix).__name__} {shown(prefix, 60)}")
-    if not (prefix.isascii() and f"{prefix}_x".isidentifier()):
-        raise ValueError(f"{name} must be a glue key prefix (ASCII letters, digits and underscores), got "
-                         f"{shown(prefix, 60)}")
-    return prefix
+    return _glue_key_part(prefix, name, "prefix", ("", "_x"))
+
+
+def _glue_suffix(suffix: object, name: str) -> str:
+    """A glue-key suffix argument (appended to a chapter's own keys, another pair's numbers): :func:`_glue_prefix`'s
+    rule for the other end of the key (fuzz 36b B5), a str (TypeError naming ``name`` otherwise) of ASCII letters,
+    digits and underscores, possibly empty (ValueError naming ``name`` otherwise); returned unchanged."""
+    return _glue_key_part(suffix, name, "suffix", ("x", ""))
+
+
+def _glue_key_part(part: object, name: str, kind: str, around: tuple[str, str]) -> str:
+    """``part`` when it is a str and a key made with it (``around[0] + part + around[1]``) an ASCII identifier; else
+    TypeError / ValueError naming ``name`` as a glue key ``kind`` (prefix or suffix)."""
+    if not isinstance(part, str):
+        raise TypeError(f"{name} must be a glue key {kind} (a str), got {type(part).__name__} {shown(part, 60)}")
+    key = around[0] + part + around[1]
+    if not (key.isascii() and key.isidentifier()):
+        raise ValueError(f"{name} must be a glue key {kind} (ASCII letters, digits and underscores), got "
+                         f"{shown(part, 60)}")
+    return part
 
 
 def _glued_cell(table: object, row: object, column: object, name: str, lo: float | None = None,

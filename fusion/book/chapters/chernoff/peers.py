@@ -9,7 +9,9 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
+from fusion._counts import _first_repeat
 from fusion._covariances import as_covariance
+from fusion._shown import shown
 from fusion._validation import as_array, scalar
 from fusion._validation import record as _record
 from fusion.book.glue import GlueValues
@@ -59,7 +61,8 @@ def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame,
         ``record`` or a part of it not a mapping, a recorded number not a real number.
     ValueError
         ``record`` lacking a key read here, no rows, a recorded number NaN or infinite, an array of another shape
-        than the measurement's dimension gives, or an ω outside (0, 1) (each named by its place in the record).
+        than the measurement's dimension gives, an ω outside (0, 1), or two rows at one ω (each named by its place
+        in the record).
 
     References
     ----------
@@ -99,6 +102,11 @@ def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame,
         for key, shape in (("innovation_covariance", (d, d)), ("posterior_mean", (d,)),
                            ("posterior_covariance", (d, d))):
             as_array(r[key], f"{at}[{key!r}]", shape=shape)
+    repeat = _first_repeat(float(r["omega"]) for r in rows_in)  # the table has one row per ω (fuzz 36b B7: the last
+    if repeat is not None:                                        # row of a repeated ω replaced the first silently)
+        i, j, w = repeat
+        raise ValueError(f"record['rows'] must hold one row per omega: record['rows'][{i}] and record['rows'][{j}] "
+                         f"are both at omega {shown(w)}")
     if not any(float(r["omega"]) == 0.8 for r in rows_in):  # chf_ss_v_08 is read there (fuzz 24b SS1: KeyError)
         raise ValueError("record['rows'] must hold a row with omega 0.8 (the value chf_ss_v_08 reports)")
     rel = lambda x, y: float(np.linalg.norm(np.asarray(x) - np.asarray(y)) / np.linalg.norm(y))  # noqa: E731

@@ -288,7 +288,8 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
         study's runs by the per-run loop, batched in one process and with the chapter's worker processes, whether
         their results are identical, and the verdict against 60 s for 100 runs on 2 cores), ``chf_bench_stage_text``
         (EM's share of the patent's own stages B-I and the runs measured) and ``chf_pso_ratio_text`` (time of the
-        swarm / time of SLSQP on the same samples).
+        swarm / time of SLSQP on the same samples); the share and the ratio are of the measured seconds, not of the
+        table's ms rounded to 0.1.
 
     Raises
     ------
@@ -319,11 +320,13 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
     cost = pd.DataFrame({"stage": [m["stage"] for m in stages],
                          "ms per frame": [round(1000 * m["value"], 1) for m in stages]}).set_index("stage")
     key = {m["key"]: float(m["value"]) for m in ms if "key" in m}
-    patent = [i for i in cost.index if i in PATENT_STAGES]
-    share = cost.loc[BenchStage.EM, "ms per frame"] / cost.loc[patent, "ms per frame"].sum()
+    # the share and the ratio from the measured seconds (positive, checked), not from the table's 0.1 ms: stages
+    # faster than 0.05 ms per frame round to 0 and gave a NaN share (fuzz 36b B8)
+    seconds = {m["stage"]: float(m["value"]) for m in stages}
+    share = seconds[BenchStage.EM] / sum(v for k, v in seconds.items() if k in PATENT_STAGES)
     runs, workers = int(bench["runs"]), int(bench.get("workers", STUDY_WORKERS))
     swarm_ms, slsqp_ms = cost.loc[BenchStage.OPTIMISER, "ms per frame"], cost.loc[BenchStage.REFERENCE, "ms per frame"]
-    stage_ratio = swarm_ms / slsqp_ms
+    stage_ratio = seconds[BenchStage.OPTIMISER] / seconds[BenchStage.REFERENCE]
     cost = cost.rename(index=label)
     t2 = key["study_seconds_workers"]
     target = 60.0 * runs / 100

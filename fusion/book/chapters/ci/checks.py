@@ -313,3 +313,12 @@ def _arch_pair(ai: object, an: object, names: tuple[str, str]) -> None:
         raise ValueError(f"{names[1]} must be the anisotropic pair's study of architecture_studies: it holds "
                          f"{shown([str(k[1]) for k in placed], 120)}, eqs. 11-12 with Q in the sensors' own parts, "
                          "which architecture_studies runs on the identical sensors only (the identical sensors' study?)")
+
+
+def _objective_grid(flat: object, name: str) -> FloatArray:
+    """A CI objective on a grid of ω (``tr P(ω)``) as a 1-D array of finite positive numbers, refused naming ``name``
+    otherwise (fuzz 36b B6: a mean of zero was divided by, and the refusal named an inner ``value``)."""
+    flat = as_array(flat, name, ndim=1)
+    if not np.all(flat > 0):
+        raise ValueError(f"{name} must hold positive values (a CI objective is a covariance's trace)")
+    return flat

@@ -20,7 +20,7 @@ from fusion._shown import shown
 from fusion._validation import as_covariance, count, instance_of
 from fusion.book.style import color, new_figure
 from fusion.book.tables import rounded, roundoff
-from fusion.book.glue import GlueValues, _glued_cell
+from fusion.book.glue import GlueValues, _glue_suffix, _glued_cell
 from fusion.estimates.ci import ci_objective, ci_weight, split_ci_objective, split_covariance_intersection
 from fusion.estimates.ci import _split_ci_covariance, _split_parts
 from fusion.optimise.result import OptimumResult
@@ -30,8 +30,9 @@ from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, St
 from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
 from fusion.book.chapters._defaults import study_defaults
 from fusion.book.chapters.ci.text import _glue_doc, _sig3, excess_text, readable
-from fusion.book.chapters.ci.checks import (_entries, _frame, _indices, _optima_of, _per_step, _period_key, _results,
-                                            _same_search, _sensor_noises, _step_index, _study_of)
+from fusion.book.chapters.ci.checks import (_entries, _frame, _indices, _objective_grid, _optima_of, _per_step,
+                                            _period_key, _results, _same_search, _sensor_noises, _step_index,
+                                            _study_of)
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
@@ -512,13 +513,14 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fru
     res : mapping
         Search -> result (:func:`weight_search`), with ``"closed form"``.
     flat : array_like
-        The CI objective on identical sensors at 11 weights.
+        The CI objective on identical sensors at 11 weights (finite and positive: a covariance's trace).
     fruit_fly_seeds : FruitFlySeeds
         FOA over 100 seeds (:func:`fusion.scenarios.two_sensor.fruit_fly_over_seeds`, its default 1001-point grid)
         on the pair of ``res``: its exhaustive search must end where ``res``'s does (ω, and tr P to a relative
         1e-9), else a ValueError (another pair's optima).
     suffix : str
-        Appended to every key (another pair's numbers, e.g. ``"_an"``).
+        Appended to every key (another pair's numbers, e.g. ``"_an"``): ASCII letters, digits and underscores, the
+        rule of a glue-key prefix.
     omit : sequence of str
         Keys (without the suffix) left out: those the prose does not quote for this pair.
     """
@@ -526,8 +528,8 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fru
     res = _entries(_results(res, "res", OptimumResult, "weight_search"), "res", _SEARCH_METHODS, "weight_search",
                    numbers=False)
     _same_search(res, fruit_fly_seeds)   # one pair's searches (fuzz 24c MM)
-    flat = as_array(flat, "flat", ndim=1)
-    suffix = text_argument(suffix, "suffix")
+    flat = _objective_grid(flat, "flat")   # ptp/mean: a zero mean was divided by (fuzz 36b B6)
+    suffix = _glue_suffix(text_argument(suffix, "suffix"), "suffix")
     omit = [text_argument(o, f"omit[{i}]") for i, o in enumerate(sequence(omit, "omit"))]
     best = res["closed form"].fun
     out = {"ci_flat_range": f"{roundoff(np.ptp(flat) / abs(float(np.mean(flat))))} of its value", "ci_flat_level": readable(float(np.mean(flat)), 3), "ci_foa_evals": int(res["FOA (30 × 200)"].n_evaluations),
@@ -800,7 +802,7 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
     aniso : WeightPair
         The anisotropic pair (``ANISO_R``, the optimum inside (0, 1)).
     flat : array_like
-        tr P(ω) of identical sensors on a grid of ω (:func:`fusion.estimates.ci.ci_objective`).
+        tr P(ω) of identical sensors on a grid of ω (:func:`fusion.estimates.ci.ci_objective`; positive).
 
     Returns
     -------
@@ -813,14 +815,14 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
     TypeError
         ``asym`` or ``aniso`` not a WeightPair, ``flat`` not numeric.
     ValueError
-        ``flat`` not a 1-D array of finite numbers; ``aniso`` not a pair at ``ANISO_R`` or ``asym`` not one with
+        ``flat`` not a 1-D array of finite positive numbers; ``aniso`` not a pair at ``ANISO_R`` or ``asym`` not one with
         ``R2 = R1 / 9`` (the pairs swapped, or one pair twice: the ledger would read one pair's optima as the
         other's); the two searched at other steps ``k`` or on runs at other periods (the ledger quotes one step).
     """
     instance_of(asym, WeightPair, "asym")
     instance_of(aniso, WeightPair, "aniso")
     _pair_noises(asym, aniso, same_search=True)
-    flat = as_array(flat, "flat", ndim=1)
+    flat = _objective_grid(flat, "flat")   # its mean divides the range in the ledger (fuzz 36b B6)
     return WeightClaimInputs(fruit_fly_seeds=asym.fruit_fly_seeds, fruit_fly_step=asym.k,
                              foa_evaluations=asym.res["FOA (30 × 200)"].n_evaluations, ml_gap=asym.ml_gap(),
                              fruit_fly_seeds_aniso=aniso.fruit_fly_seeds, omega_aniso=aniso.res["closed form"].x,
