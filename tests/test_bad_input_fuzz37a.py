@@ -83,3 +83,29 @@ def test_chernoff_weights_keep_many_small_gaussians():
     w = covariance_intersection_weights((1.0 + np.arange(50.0))[:, None, None])
     assert w.shape == (50,) and np.isclose(w.sum(), 1.0)
 
+
+def _tiny_scenario(frames):
+    from fusion.scenarios import range_bearing as rb
+    return rb.RangeBearingScenario(frames=frames, n_particles=60, n_samples=60, n_central=100, em_iterations=2,
+                                   n_components=1)
+
+
+def test_tracking_budget_counts_swarm_iterations():
+    """Fuzz 36a C7: 200 frames at 33,000 swarm generations (~1,600 CPU-s) are refused at entry, naming the options."""
+    from fusion.optimise.swarm import SwarmOptions
+    from fusion.scenarios import range_bearing as rb
+    with pytest.raises(ValueError, match="swarm_options.iterations .*beyond the work budget"):
+        rb.run_tracking_batch(_tiny_scenario(200), np.random.SeedSequence(1).spawn(1),
+                              swarm_options=SwarmOptions(iterations=33000, tol=0.0))
+
+
+def test_tracking_budget_default_swarm_unchanged():
+    """The default swarm (inside TRACK_STEP) adds nothing, so chapter 06's own study keeps its count; a longer swarm
+    adds its generations to every run-frame."""
+    from fusion.optimise.swarm import SwarmOptions
+    from fusion.scenarios import range_bearing as rb
+    sc = _tiny_scenario(2)
+    base = rb._tracking_work(sc, 1, "runs")
+    assert rb._tracking_work(sc, 1, "runs", SwarmOptions()) == base
+    assert rb._tracking_work(sc, 1, "runs", SwarmOptions(iterations=20000)) > base + 2 * 19950 * rb.TRACK_SWARM_STEP
+
