@@ -109,3 +109,11 @@ def test_tracking_budget_default_swarm_unchanged():
     assert rb._tracking_work(sc, 1, "runs", SwarmOptions()) == base
     assert rb._tracking_work(sc, 1, "runs", SwarmOptions(iterations=20000)) > base + 2 * 19950 * rb.TRACK_SWARM_STEP
 
+
+def test_filter_runs_counts_runs_times_state():
+    """The estimates (runs, K, n) of an n-state model from z of m < n readings (z within the input budget)."""
+    from fusion.filtering.kalman import filter_runs, gain_sequence
+    n = 200
+    g = gain_sequence(np.eye(n), np.eye(n)[:1], 0.1 * np.eye(n), np.eye(1), np.eye(n), 10)
+    with pytest.raises(ValueError, match=f"^z and gains ask .*{BUDGET}"):  # refused before x0 is read
+        filter_runs(np.zeros((200000, 10, 1)), g, np.zeros((1, n)))

@@ -373,6 +373,7 @@ def filter_runs(z: ArrayLike, gains: GainSequence, x0: ArrayLike) -> FloatArray:
     zz = as_array(z, "z", ndim=3)
     if zz.shape[1:] != (K, m):
         raise ValueError(f"z must be (runs, {K}, {m}) to match the gains, got {zz.shape}")
+    _steps_allocation(K, zz.shape[0], n, "z and gains")  # the estimates (runs, K, n) of an n-state model
     x = np.array(as_array(x0, "x0", ndim=2), dtype=float)
     if x.shape != (zz.shape[0], n):
         raise ValueError(f"x0 must be ({zz.shape[0]}, {n}) (one state per run of z), got {x.shape}")
