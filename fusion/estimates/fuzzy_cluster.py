@@ -22,6 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.stats import chi2
 
+from fusion._counts import allocation
 from fusion._frozen import frozen_arrays
 from fusion._validation import singular_system, _numeric, FloatArray, as_covariance, check_magnitude, scalar
 
@@ -99,6 +100,9 @@ def fuzzy_cluster_fusion(xs: ArrayLike, Ps: ArrayLike, level: float = 0.01) -> C
         raise ValueError(f"xs must have shape (..., N, n), got {X.shape}")
     N, n = X.shape[-2:]
     check_magnitude(X, "xs")
+    # rule 9 (fuzz 36a C1), before any work: the closure's (..., N, N, N) max-min product, the pairs' (N, N, n, n)
+    allocation(X.shape[:-1] + (N, N), "xs and Ps")
+    allocation((N, N, n, n), "xs and Ps")
     P = _numeric(Ps, "Ps")
     if P.shape != (N, n, n):
         raise ValueError(f"Ps must have shape ({N}, {n}, {n}) to match xs, got {P.shape}")

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._counts import allocation
 from fusion._results import ResultSpec, array, trusted, validated_post_init
 from fusion._frozen import frozen_arrays
 from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_covariance, as_semidefinite,
@@ -154,6 +155,13 @@ def _model(F: ArrayLike, H: ArrayLike) -> tuple[FloatArray, FloatArray]:
     return F, H
 
 
+def _steps_allocation(steps: int, n: int, per_state: int, names: str) -> None:
+    """Rule 9 for a filter's per-step arrays (fuzz 36a C1): ``steps`` x ``n`` x ``per_state`` float64 (gains and
+    covariances of an ``n``-state model at every step, and the estimates of every run), refused by ``names`` (the
+    caller's arguments that set the steps and the state size) before any of them is built."""
+    allocation((steps, n, per_state), names)
+
+
 def _per_step(R: ArrayLike, dim: int, n_steps: int, name: str, definite: bool = True) -> FloatArray:
     """``R`` as one (dim, dim) matrix per step, shape (n_steps, dim, dim): a constant matrix is repeated.
 
@@ -225,6 +233,7 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     F, H = _model(F, H)
     n, m = F.shape[0], H.shape[0]
     n_steps = count(n_steps, "n_steps")
+    _steps_allocation(n_steps, n, n + m, "n_steps and the sizes of F and H")  # K (n_steps, n, m), P (n_steps, n, n)
     Q = as_semidefinite(Q, dim=n, name="Q")
     Rk = _per_step(R, m, n_steps, "R")
     P0 = as_covariance(P0, dim=n, name="P0")
@@ -364,6 +373,7 @@ def filter_runs(z: ArrayLike, gains: GainSequence, x0: ArrayLike) -> FloatArray:
     zz = as_array(z, "z", ndim=3)
     if zz.shape[1:] != (K, m):
         raise ValueError(f"z must be (runs, {K}, {m}) to match the gains, got {zz.shape}")
+    _steps_allocation(K, zz.shape[0], n, "z and gains")  # the estimates (runs, K, n) of an n-state model
     x = np.array(as_array(x0, "x0", ndim=2), dtype=float)
     if x.shape != (zz.shape[0], n):
         raise ValueError(f"x0 must be ({zz.shape[0]}, {n}) (one state per run of z), got {x.shape}")

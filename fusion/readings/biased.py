@@ -79,6 +79,7 @@ def _Hy(H: ArrayLike, y: ArrayLike, hname: str = "H", yname: str = "y") -> tuple
     Ha = as_array(H, hname, ndim=(1, 2))
     if Ha.ndim == 1:
         Ha = Ha[:, None]
+    allocation((Ha.shape[1], Ha.shape[1]), hname)  # rule 9: H^T H is d x d (fuzz 36a C1), before it is built
     ya = as_array(y, yname, ndim=1)
     if ya.shape != (Ha.shape[0],):
         raise ValueError(f"{hname} must be (m, d) and {yname} (m,), got {Ha.shape} and {ya.shape}")
@@ -447,6 +448,7 @@ def plugin_ridge(H: ArrayLike, y: ArrayLike, sigma: float | None = None) -> Ridg
     Ha = as_array(H, "H", ndim=(1, 2))
     if Ha.ndim == 1:
         Ha = Ha[:, None]
+    allocation((Ha.shape[1], Ha.shape[1]), "H")  # rule 9: H^T H is d x d (fuzz 36a C1), before it is built
     ya = as_array(y, "y", ndim=(1, 2))
     if ya.shape[0] != Ha.shape[0]:
         raise ValueError(f"y must be ({Ha.shape[0]},) or ({Ha.shape[0]}, runs) to match H, got {ya.shape}")

@@ -29,7 +29,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._validation import LOOP_STEP, integer, loop_work
+from fusion._validation import LOOP_STEP, allocation, integer, loop_work
 from fusion._results import ResultSpec, nested, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
@@ -188,6 +188,7 @@ def consistency_awf(
     variance = one_of(variance, ("lecture", "centred"), "variance")
     guard = one_of(guard, ("floor", "abs", "equal", "none"), "guard")
     A = _as_sample_array(X)
+    allocation(A.shape + A.shape[-1:], "X")  # rule 9: the shared instants of every pair of sensors, (..., k, n, n)
     mask = consistency_mask(A, eps, adjacent)
     n = A.shape[-1]
     mf = mask.astype(float)

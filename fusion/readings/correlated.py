@@ -44,6 +44,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
+from fusion._counts import allocation
 from fusion._frozen import frozen_arrays
 from fusion._covariances import column_rank_deficient
 from fusion._validation import read_once
@@ -605,6 +606,8 @@ def gls_low_rank(H: ArrayLike, D: ArrayLike, U: ArrayLike, z: ArrayLike) -> Line
     Ua = Ua[:, None] if Ua.ndim == 1 else Ua
     if Ua.shape[0] != Ha.shape[0]:
         raise ValueError(f"U must have {Ha.shape[0]} rows to match H, got {Ua.shape}")
+    allocation((Ua.shape[1], Ua.shape[1]), "U")  # rule 9 (fuzz 36a C1): the r x r core I + U^T D^-1 U
+    allocation((Ha.shape[1], Ha.shape[1]), "H")  # and the d x d information H^T R^-1 H, before either is built
     za = as_array(z, "z", ndim=(1, 2))
     if za.shape[0] != Ha.shape[0]:
         raise ValueError(f"z must be ({Ha.shape[0]},) or ({Ha.shape[0]}, runs) to match H, got shape {za.shape}")

@@ -161,7 +161,7 @@ def run_tracking_batch(
     swarm_options = check_swarm_options(swarm_options)
     _block_allocation(sc, len(seeds), "seeds, sc.sensors and sc.n_particles")
     _tracking_work(sc, len(seeds), "seeds, sc.frames, sc.sensors, sc.n_initial, sc.n_components and sc's particle and "
-                   "sample counts")
+                   "sample counts", swarm_options)
     if os.environ.get("PYTEST_XDIST_WORKER"):
         workers = 1  # the test runner's worker processes already share the cores
     # blocks of at most RUN_BLOCK runs, as many as a multiple of the workers and of equal sizes (within one),
@@ -212,25 +212,46 @@ TRACK_INITIAL = 25
 #: tuple measured at 20 and 30 components (60 particles, 60 samples, 2 runs of 2 frames), five fusions' worth at the
 #: rule's 2.6 us (fuzz 35a C3b); the default scenario's 27 tuples add 2.5 %.
 TRACK_FUSIONS = 5
+#: Units of one generation of a run-frame's particle swarm (``_tracking_work``), besides :data:`TRACK_SWARM_PAIR` per
+#: swarm particle and fusion sample: measured 1.3e-4 s a frame-generation with the default 20 particles and 60 samples,
+#: 1.5e-4 s with 80 particles, 2.2e-4 s with 2,000 samples (1 run of 2 frames, 2,000-4,000 generations, ``tol=0``;
+#: fuzz 36a C7). The default swarm's own generations are inside :data:`TRACK_STEP`: only the excess is counted.
+TRACK_SWARM_STEP = 13_000
+#: Units of one swarm particle times fusion sample of a generation (``_tracking_work``; measured 0.23-0.44).
+TRACK_SWARM_PAIR = 1
 #: Work budget of a tracking study (``_tracking_work``): the entry of ``fusion._limits.STUDY_WORK`` for the book's own
 #: study (chapter 06: 100 runs of the default 30-frame scenario, 4.26e9 units, about 45 CPU-s, cached and shared by
 #: workers), twice its count: 9 x ``MAX_WORK``, about 90 CPU-s on one core; a request of hours (8e6 runs) is refused.
 TRACK_WORK = STUDY_WORK[TRACKING_STUDY]
 
 
-def _tracking_work(sc: RangeBearingScenario, runs: int, names: str) -> int:
+def _swarm_units(sc: RangeBearingScenario, swarm_options: SwarmOptions) -> int:
+    """The units of a run-frame's particle swarm under ``swarm_options`` beyond the default swarm's (which
+    :data:`TRACK_STEP` holds): :data:`TRACK_SWARM_STEP` a generation plus :data:`TRACK_SWARM_PAIR` a particle and
+    fusion sample, every generation (``iterations``) counted (fuzz 36a C7); 0 for settings no costlier."""
+    def units(o: SwarmOptions) -> int:
+        return int(o.iterations) * (TRACK_SWARM_STEP + TRACK_SWARM_PAIR * int(o.n_particles) * int(sc.n_samples))
+    return max(units(swarm_options) - units(SwarmOptions()), 0)
+
+
+def _tracking_work(sc: RangeBearingScenario, runs: int, names: str, swarm_options: SwarmOptions | None = None) -> int:
     """Refuse (rule 17) a tracking study of ``runs`` runs of ``sc`` whose work is beyond :data:`TRACK_WORK`, before
     any work: ``runs x sc.frames`` run-frames of :data:`TRACK_STEP` units plus :data:`TRACK_ELEMENT` units per
     particle-element, :data:`TRACK_FUSIONS` fusions of the nodes' product mixture, and the first frame's particles
     beyond ``n_particles`` (``n_initial``, :data:`TRACK_INITIAL` units each) spread over the frames (``names`` are the
-    caller's arguments setting them; the product's memory refused naming them too); returns the units."""
+    caller's arguments setting them; the product's memory refused naming them too), and a costlier swarm than the
+    default (``swarm_options``: :func:`_swarm_units` a run-frame, named with ``names``); returns the units."""
     sensors, frames = len(sc.sensors), int(sc.frames)
     elements = (sensors * int(sc.n_particles) * (1 + int(sc.em_iterations) * int(sc.n_components))
                 + int(sc.n_samples) + int(sc.n_central))
     tuples, per = product_size(min(int(runs), RUN_BLOCK), sensors, int(sc.n_components), 4, names)
     initial = TRACK_INITIAL * sensors * max(int(sc.n_initial) - int(sc.n_particles), 0)
+    swarm = 0 if swarm_options is None else _swarm_units(sc, swarm_options)
+    if swarm:
+        names += ", swarm_options.iterations and swarm_options.n_particles"
     return work((int(runs), frames), names, limit=TRACK_WORK,
-                weight=TRACK_STEP + TRACK_ELEMENT * elements + TRACK_FUSIONS * tuples * per + -(-initial // frames))
+                weight=TRACK_STEP + TRACK_ELEMENT * elements + TRACK_FUSIONS * tuples * per + -(-initial // frames)
+                + swarm)
 
 
 # --------------------------------------------------------------------------- Monte-Carlo study

@@ -24,7 +24,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._counts import allocation
 from fusion._frozen import frozen_arrays
+from fusion._limits import work
 from fusion._validation import read_once
 from fusion._validation import (singular_system, _numeric, FloatArray, as_covariance, check_magnitude, gaussian_pair,
                                 one_of, unit_scalar)
@@ -376,6 +378,15 @@ def gaussian_kl(m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike) -> f
 
 
 @singular_system('means and covs')
+def _newton_budget(N: int, names: str) -> None:
+    """Rules 9 and 17 for the projected Newton method over the simplex of ``N`` weights (fuzz 36a C8): its Hessian
+    is N x N (refused by :func:`fusion._counts.allocation` beyond the memory budget) and its work grows as N**2 per
+    step (measured with scalar Gaussians: N = 1000 2.2 CPU-s, 2000 10.3 CPU-s; weight 220, so the edge, N ~ 2100, is
+    ~12 CPU-s), refused by ``names`` before any work."""
+    allocation((N, N), names)
+    work((N, N), names, weight=220)
+
+
 def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaussian:
     r"""Chernoff-optimal fusion of Gaussians: :math:`\arg\min_\Delta \log Z(\varepsilon)`, then fuse.
 
@@ -408,6 +419,7 @@ def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaus
       Fusion*.
     """
     m, c = _gaussians(means, covs)
+    _newton_budget(m.shape[0], "means and covs")
     e = _gaussian_chernoff_eps(m, np.linalg.inv(c), np.linalg.slogdet(2 * np.pi * c)[1])
     return chernoff_fuse_gaussians(m, c, e)
 
@@ -521,6 +533,7 @@ def covariance_intersection_weights(covs: ArrayLike, criterion: str = "det") -> 
     c = _numeric(covs, "covs")
     if c.ndim != 3 or c.shape[1] != c.shape[2] or c.shape[0] < 1:
         raise ValueError(f"covs must have shape (N, d, d), got {c.shape}")
+    _newton_budget(c.shape[0], "covs")
     c = np.stack([as_covariance(P, dim=c.shape[1], name=f"covs[{i}]") for i, P in enumerate(c)])
     return _ci_criterion_batch(np.linalg.inv(c)[None], criterion)[0]
 
