@@ -77,7 +77,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import (derived, singular_system, FloatArray, as_array, as_covariance, as_semidefinite, computed_part,
                                one_of, scalar)
 from fusion.estimates import ci as es
-from fusion.filtering.kalman import _model, _steps_allocation
+from fusion.filtering.kalman import FUSION_LOOP_STEP, _model, _steps_allocation, _steps_work
 from fusion._shown import shown
 
 __all__ = ["FEEDBACK_RULES", "ARCHITECTURES", "PROCESS_NOISE", "FusionLoop", "fusion_loop"]
@@ -292,6 +292,7 @@ def fusion_loop(
     runs, K = zs[0].shape[:2]
     # the estimates (runs, K, n), the fused and local P (K, n, n) and the split weights' four parts (K, n, n)
     _steps_allocation(K, n, runs + 6 * n, "z1 and the sizes of F and H")
+    _steps_work(K, runs, n, FUSION_LOOP_STEP, "z1 and z2 (their steps K)")
     xs = []
     for name, x0 in (("x0_1", x0_1), ("x0_2", x0_2)):
         arr = as_array(x0, name, ndim=2)

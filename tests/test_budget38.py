@@ -1,0 +1,77 @@
+"""Work budgets of fuzz 36a's Python loops (C5 filter steps, C2 ldl_recurrences, C6 Grubbs passes): a request
+beyond ``fusion._limits.MAX_WORK`` is refused at entry, naming the caller's argument, before any loop runs.
+
+The refused requests are built as cheap views (``np.broadcast_to``) or small arrays so that no test runs a loop.
+"""
+import numpy as np
+import pytest
+
+
+class _Ran(Exception):
+    """Raised by a patched loop body: the request reached the loop (before the budget, a run of minutes)."""
+
+
+def _stop(*args, **kwargs):
+    raise _Ran
+
+
+def _cv():
+    from fusion.filtering.kalman import cv_model
+    m = cv_model(1.0)
+    return m, np.diag([0.0, 1.0, 0.0, 1.0]), np.eye(2), 10 * np.eye(4)
+
+
+def test_fusion_loop_steps_refused_naming_z1(monkeypatch):
+    from fusion.filtering import feedback
+    from fusion.filtering.feedback import fusion_loop
+    monkeypatch.setattr(feedback, "_local_update", _stop)
+    m, Q, R, P0 = _cv()
+    z = np.broadcast_to(np.zeros(2), (1, 10**6, 2))
+    x0 = np.zeros((1, 4))
+    with pytest.raises(ValueError, match="z1 and z2"):
+        fusion_loop(z, z, x0, x0, m.F, m.H, Q, R, 2 * R, 0.5 * P0, 0.5 * P0, 0.5 * P0, "split", "split")
+
+
+def test_local_track_steps_refused_naming_z(monkeypatch):
+    from fusion.filtering import tracks
+    from fusion.filtering.tracks import local_track
+    monkeypatch.setattr(tracks, "gain_sequence", _stop)
+    m, Q, R, P0 = _cv()
+    z = np.broadcast_to(np.zeros(2), (1, 10**6, 2))
+    with pytest.raises(ValueError, match=r"^z \(its steps K\)"):
+        local_track(z, m.F, m.H, Q, R, np.zeros((1, 4)), 0.5 * P0, 0.5 * P0)
+
+
+def test_posterior_crb_frames_refused_naming_truths(monkeypatch):
+    from fusion.scenarios import range_bearing as rb
+    from fusion.scenarios import range_bearing_bounds
+    monkeypatch.setattr(range_bearing_bounds, "ncv_model", _stop)
+    sc = rb.RangeBearingScenario(frames=2, n_particles=60, n_samples=60, n_central=100, em_iterations=2,
+                                 n_components=1)
+    tr = np.broadcast_to(np.array([900.0, 0.01, 800.0, 0.01]), (1, 10**6, 4))
+    with pytest.raises(ValueError, match="truths"):
+        rb.posterior_crb(sc, tr)
+
+
+def test_filter_step_budget_keeps_the_books_sizes():
+    """The budget is a count of units: chapter-size requests (2,000 steps of 100 runs) stay inside it."""
+    from fusion.filtering.kalman import FUSION_LOOP_STEP, LOCAL_TRACK_STEP, _steps_work
+    _steps_work(2000, 100, 4, FUSION_LOOP_STEP, "z")
+    _steps_work(20000, 100, 4, LOCAL_TRACK_STEP, "z")
+
+
+class _Unread(np.ndarray):
+    """An array whose entries raise :class:`_Ran` when the loop reads them: before the budget, the loop starts."""
+
+    def __getitem__(self, key):
+        raise _Ran
+
+
+def test_ldl_recurrences_size_refused_naming_r(monkeypatch):
+    """n = 2,100 (2.2e6 entries of ~3.5 us: ~8 CPU-s and more as n grows) is refused before the loop reads R."""
+    from fusion.readings import correlated
+    R = np.broadcast_to(np.zeros(1), (2100, 2100)).view(_Unread)
+    monkeypatch.setattr(correlated, "as_covariance", lambda R, name: R)   # no O(n^3) check in the test
+    with pytest.raises(ValueError, match=r"^R \(its size n\)"):
+        correlated.ldl_recurrences(R)
+    correlated.loop_work((2000 * 1999 // 2,), 0, "R", step=correlated.LOOP_STEP // 2)   # n = 2,000 (7.5 CPU-s) stays
