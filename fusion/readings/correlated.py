@@ -461,11 +461,13 @@ def ldl_recurrences(R: ArrayLike) -> LDLFactors:
     * Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.), §4.1 (the LDLᵀ
       factorisation and its uniqueness). Johns Hopkins University Press.
     """
-    Ra = as_covariance(R, name="R")
-    n = Ra.shape[0]
     # rule 17 (fuzz 36a C2): a Python step per entry below the diagonal, 3-4 us each (time.process_time, n = 100 to
-    # 2,000): half a LOOP_STEP an entry, refused by R's size before the loop
+    # 2,000): half a LOOP_STEP an entry, refused by R's size before the loop and before its O(n^3) checks
+    Ra = as_array(R, "R")
+    n = Ra.shape[0] if Ra.ndim else 1
     loop_work((n * (n - 1) // 2,), 0, "R (its size n)", step=LOOP_STEP // 2)
+    Ra = as_covariance(Ra, name="R")
+    n = Ra.shape[0]
     L, d = np.eye(n), np.zeros(n)
     for i in range(n):
         for j in range(i):
