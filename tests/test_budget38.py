@@ -71,7 +71,20 @@ def test_ldl_recurrences_size_refused_naming_r(monkeypatch):
     """n = 2,100 (2.2e6 entries of ~3.5 us: ~8 CPU-s and more as n grows) is refused before the loop reads R."""
     from fusion.readings import correlated
     R = np.broadcast_to(np.zeros(1), (2100, 2100)).view(_Unread)
-    monkeypatch.setattr(correlated, "as_covariance", lambda R, name: R)   # no O(n^3) check in the test
+    monkeypatch.setattr(correlated, "as_array", lambda R, name: R)   # no copy in the test
+    monkeypatch.setattr(correlated, "as_covariance", _stop)   # its O(n^3) checks come after the budget
     with pytest.raises(ValueError, match=r"^R \(its size n\)"):
         correlated.ldl_recurrences(R)
     correlated.loop_work((2000 * 1999 // 2,), 0, "R", step=correlated.LOOP_STEP // 2)   # n = 2,000 (7.5 CPU-s) stays
+
+
+def test_grubbs_worst_case_refused_naming_x(monkeypatch):
+    """One epoch of 10**6 readings (~20 min when each pass drops one) is refused before the first pass; 40,000
+    (7.1 CPU-s measured) stays inside the budget."""
+    from fusion.readings import robust
+    monkeypatch.setattr(robust, "_grubbs", _stop)
+    x = np.broadcast_to(np.arange(10**6, dtype=float), (1, 10**6))
+    with pytest.raises(ValueError, match=r"^x \(its readings"):
+        robust.robust_fuse(x, "grubbs")
+    with pytest.raises(_Ran):   # the budget keeps 40,000 readings
+        robust.robust_fuse(np.arange(40000, dtype=float)[None], "grubbs")
