@@ -154,3 +154,22 @@ def test_glue_27_takes_valid_edge_studies(kw):
     from fusion.scenarios import lecture_correlated as lsc
     out = co.glue_27(lsc.correlated_study(runs=100, **kw))
     assert out["lec_cor_runs"] == 100
+
+
+def test_glue_27_check_is_not_vacuous_on_an_ill_conditioned_study(monkeypatch):
+    """The scaled tolerance is capped at 1e-4: on a valid study with cond(R) = 1.8e10 (own SDs 1e-5 and 2e-5), where
+    100 eps cond(R) is 4e-4, the unperturbed solvers agree and a structured solver off by 3e-4 (relative) is caught."""
+    from fusion.book.chapters.lecture_correlated import correlated as co
+    from fusion.scenarios import lecture_correlated as lsc
+    from fusion.readings import correlated as rc
+    real = rc.gls_low_rank
+
+    class _Off:
+        def __init__(self, res):
+            self.x = res.x * (1 + 3e-4)
+
+    study = lsc.correlated_study(runs=100, sigma=(1e-5, 2e-5))
+    assert co.glue_27(study)["lec_cor_runs"] == 100
+    monkeypatch.setattr(co.co, "gls_low_rank", lambda *a, **k: _Off(real(*a, **k)))
+    with pytest.raises(RuntimeError, match="Sherman-Morrison-Woodbury"):
+        co.glue_27(study)
