@@ -40,6 +40,7 @@ from fusion.book.chapters import time_registration_closed as _closed
 from fusion.book.chapters.time_registration_closed import (_method_names, closed_form_table, crossing_table,
                                                            named_crossings, transient_end, transient_table)
 from fusion._counts import count
+from fusion.book.chapters._defaults import study_defaults
 
 # named by this module, as before the split (the API page, its back-links to the chapter, the registries)
 for _f in (robustness_table, delay_table, delay_break_even, robustness_readings, RobustnessReading,
@@ -646,6 +647,7 @@ def ratio_figure(ratio: pd.DataFrame) -> Figure:
     return fig
 
 
+@study_defaults("mcs", "block")  # a default the study does not fit, named by the study (fuzz 36b D1)
 def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block: int = 20) -> pd.DataFrame:
     """What Fig. 4 would look like at each noise level, from simulated runs.
 

@@ -30,6 +30,7 @@ from fusion._counts import COUNT_CEILINGS, count, index
 from fusion.book.chapters.chernoff.compare import _reason, _word
 from fusion.book.chapters.chernoff.tracking import per_run_mse
 from fusion.book.glue import GlueValues
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = ["BENCH_SCHEMA", "BenchStage", "PATENT_STAGES", "stopping_values", "eps_figure", "pso_figure", "benchmark_cost"]
 
@@ -110,6 +111,7 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0)
     return fig, {k: rounded(float(x)) for k, x in values.items()}
 
 
+@study_defaults("runs", "frame")  # a default the study does not fit, named by the study (fuzz 36b D1)
 def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple[Figure, GlueValues]:
     """Figure ``fig-chf-pso`` (the swarm's best Ĵ against iteration in one run) and swarm-vs-SLSQP glue values.
 

@@ -21,6 +21,7 @@ from fusion.scenarios.range_bearing import (GUARD_STAGES, METHODS, RangeBearingS
 from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE, _check_crb, _check_study, _check_window
 from fusion.scenarios.range_bearing import _check_runs, _check_size
 from fusion.book.glue import GlueValues
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = ["central_collapsed", "scenario_values", "scenario_table", "crb_position", "method_table", "rmse_figure",
            "per_run_mse", "per_run_nees", "typical_run", "gain_values", "collapsed", "any_collapsed",
@@ -403,6 +404,7 @@ def per_run_mse(runs: list[TrackingRun], key: str) -> FloatArray:
     return np.round(position_sq_errors(runs, key)[:, LATE].mean(axis=1), 4)
 
 
+@study_defaults("runs", "frames")  # a default the study does not fit, named by the study (fuzz 36b D1)
 def per_run_nees(runs: list[TrackingRun], key: str, frames: slice = LATE) -> FloatArray:
     """Mean NEES (4-D) of one method over a window of frames, per run.
 

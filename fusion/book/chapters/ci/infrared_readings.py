@@ -30,6 +30,7 @@ from fusion.book.chapters.ci.checks import _averaging_start, _entries
 from fusion.book.chapters.lecture import _holds
 
 from fusion.book.chapters.ci.infrared import IR_SHOWN, _ir_budget
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = ["IR_AXES", "IrReadings", "IR_READINGS", "IR_ALWAYS", "IR_COMPONENTS", "IR_RATIO_METHODS", "ir_readings",
            "ir_rms", "ir_ratio", "ir_ratio_band", "ir_ratio_table", "ir_bound_table", "ir_reading_numbers",
@@ -221,6 +222,7 @@ def _ir_relation(values: Mapping[str, Any], cls: str) -> None:
         raise ValueError(f"{cls}.sigma_band must be two NaN or 0 < lo <= hi, got {shown((lo, hi))}")
 
 
+@study_defaults("duration", "t_min")  # a default the study does not fit, named by the study (fuzz 36b D1)
 def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: float = 2.0,
                 scaled_axes: tuple[str, ...] = ("x",)) -> IrReadings:
     r"""Source Figs. 9-10 under every azimuth convention and tracker reading, on the same paired runs.

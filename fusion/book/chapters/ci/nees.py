@@ -25,6 +25,7 @@ from fusion.book.chapters.ci.text import nees_band
 from fusion.book.chapters.ci.checks import _entries
 from fusion.book.chapters.ci.records import NeesPerStep, SplitExactness, stream_of
 from fusion._shown import shown
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = ["nees_numbers", "nees_per_step", "nees_step_band", "nees_start_table", "nees_start_numbers", "nees_table",
            "model_rmse"]
@@ -248,6 +249,7 @@ def _per_step(true_start: object, random_start: object, T: float, t_steady: floa
     return T, t_steady
 
 
+@study_defaults("true_start", "t_steady")  # a default the study does not fit, named by the study (fuzz 36b D1)
 def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
                      T: float = 1.0, t_steady: float = 20.0) -> pd.DataFrame:
     """Per-step NEES against its 95 % band, from the true and from a random initial velocity (appendix table).
@@ -307,6 +309,7 @@ def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping
 _START_READ = (NeesRule.SPLIT, NeesRule.LOCAL, NeesRule.CI_HALF, NeesRule.CONVEX, NeesRule.PRINTED)
 
 
+@study_defaults("true_start", "t_steady")  # a default the study does not fit, named by the study (fuzz 36b D1)
 def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
                        exact: Mapping[str, float], T: float = 1.0, t_steady: float = 20.0) -> GlueValues:
     """The numbers the appendix quotes from the per-step NEES and split CI's exactness (glue keys ``ci_nps_*``).

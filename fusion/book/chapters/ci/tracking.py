@@ -37,6 +37,7 @@ from fusion._counts import index
 from fusion._structures import mapping_of
 from fusion._structures import same_keys
 from fusion._shown import shown
+from fusion.book.chapters._defaults import study_defaults
 
 __all__ = ["published_numbers", "rmse_numbers", "fig3", "figure_rows", "rmse_table", "rmse_figure", "slip_table",
            "slip_numbers", "slip_band", "CAUSAL_FLOOR_LABEL", "IDENTICAL_LABEL", "ANISO_LABEL", "ANISO_R",
@@ -300,6 +301,7 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
 CAUSAL_FLOOR_LABEL = "floor: causal straight-leg least squares"
 
 
+@study_defaults("sc", "t_steady")  # a default the study does not fit, named by the study (fuzz 36b D1)
 @reads_results("sc")
 def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dict[float, np.ndarray]:
     """Per-run RMSE on x of fuzzy-clustering fusion of the two local tracks at each λ-cut level.

@@ -329,6 +329,7 @@ def _seed_rows(e26: SignalStudy, block: int = 100,
     return rows
 
 
+@study_defaults("e26", "block", "sensors")  # a default the study does not fit, named by the study (fuzz 36b D1)
 def table_seeds(e26: SignalStudy, block: int = 100, ss: SeedStudy | None = None,
                 sensors: tuple[int, ...] = (2, 3)) -> pd.DataFrame:
     """The primary reading's "MSE < own denoised" on disjoint blocks of E2.6's runs: intervals and verdict.
@@ -409,6 +410,7 @@ def mean_only_status(a: np.ndarray, b: np.ndarray, relative_margin: float = R.DE
     return R.status_from_region(R.region(float(ci.low), float(ci.high), margin, scale=scale), "less")
 
 
+@study_defaults("e26", "block")  # a default the study does not fit, named by the study (fuzz 36b D1)
 def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValues:
     """Glue values of the block check (keys ``lec_<key>_*``): how often ``block`` runs decide the primary verdict.
 

@@ -1,0 +1,49 @@
+"""Fuzz 36b's open debatable cases (D1-D4) and the caller's mappings read twice, decided by fixing (issue 35).
+
+Each test builds only what it needs (small studies or hand-built objects), never a chapter registry.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+
+# --- D1: a default the caller never passed is refused naming the caller's study, not the default ----------------
+
+def _d1_calls():
+    """(label, call, study name) of chapter functions whose default does not fit a small valid input."""
+    from fusion.book.chapters import ci, time_registration as tr
+    from fusion.book.chapters.lecture_wavelets import e26
+    from fusion.scenarios import time_registration as trs, wavelet_sensors as ws
+    from fusion.scenarios.two_sensor import NeesRule
+
+    sim, rmse = ci.ir_study(0.1, 1, 3, duration=1.5)   # a valid 1.5-s flight: the default t_min = 2 s is after it
+    nees = {r: np.ones(10) for r in NeesRule}           # 10 steps of 1 s: the default t_steady = 20 s leaves none after
+    e2 = ws.signal_study(runs=10, gains=(1.0, 1.5), sigma=(0.1, 0.2), length=256)   # 2 sensors, 10 runs
+    e4 = ws.signal_study(runs=10, length=256)                                        # 4 sensors, 10 runs
+    mc = trs.monte_carlo(list(trs.METHODS), 1.0, 4, 0)                               # 4 runs: default block = 20
+    return [("ir_table", lambda: ci.ir_table(rmse, sim.t), "t"),
+            ("ir_figure", lambda: ci.ir_figure(sim.t, rmse), "t"),
+            ("sensitivity_table", lambda: ci.sensitivity_table([0.1], 1, 3, duration=1.5), "duration"),
+            ("ir_readings", lambda: ci.ir_readings(0.1, 1, 3, duration=1.5), "duration"),
+            ("nees_start_table", lambda: ci.nees_start_table(nees, nees, 10), "true_start"),
+            ("nees_start_numbers", lambda: ci.nees_start_numbers(nees, nees, 10, {}), "true_start"),
+            ("table_seeds sensors", lambda: e26.table_seeds(e2), "e26"),
+            ("table_seeds block", lambda: e26.table_seeds(e4), "e26"),
+            ("glue_seeds block", lambda: e26.glue_seeds(e4), "e26"),
+            ("noise_level_table", lambda: tr.noise_level_table({1.0: mc}, axis_max=4.0), "mcs")]
+
+
+def test_unpassed_default_named_by_the_study():
+    """36b D1: ``ir_table(rmse, sim.t)`` on a valid 1.5-s flight said "t_min = 2 s is after the last scan"; a passed
+    ``t_min`` keeps its own name."""
+    for label, call, study in _d1_calls():
+        with pytest.raises(ValueError, match=rf"^{study} does not fit \w+'s default") as info:
+            call()
+        assert "pass " in str(info.value), label
+    from fusion.book.chapters import ci   # a passed argument keeps its own name (the caller passed it)
+    sim, rmse = ci.ir_study(0.1, 1, 3, duration=1.5)
+    with pytest.raises(ValueError, match=r"^t_min = 2 s is after the last scan"):
+        ci.ir_table(rmse, sim.t, t_min=2.0)
+    assert ci.ir_table(rmse, sim.t, t_min=1.0).shape[1] == 4   # valid input keeps working
