@@ -47,3 +47,17 @@ def test_unpassed_default_named_by_the_study():
     with pytest.raises(ValueError, match=r"^t_min = 2 s is after the last scan"):
         ci.ir_table(rmse, sim.t, t_min=2.0)
     assert ci.ir_table(rmse, sim.t, t_min=1.0).shape[1] == 4   # valid input keeps working
+
+
+# --- D2: record ids become glue-key parts by the glue-key rule (ASCII identifiers), refused by the caller's record --
+
+def test_record_ids_as_glue_key_parts():
+    """36b D2: ``robustness_glue([{"id": "lec-a b", ...}])`` glued under the key ``lec_rob_a b``; an id composed
+    or decomposed gave two keys that print alike."""
+    from fusion.book.chapters.lecture_weighting.records import reseeding_glue, robustness_glue
+    for rid in ("lec-a b", "lec-a.b", "lec-{x}", "lec-a\nb", "lec-a`b", "lec-\u00e9", "lec-e\u0301", "lec-\uff58"):
+        with pytest.raises(ValueError, match=r"records\[1\]\['id'\] must be a record id of ASCII"):
+            robustness_glue([{"id": "lec-ok", "robustness": "holds"}, {"id": rid, "robustness": "holds"}])
+        with pytest.raises(ValueError, match=r"records\[0\]\['id'\] must be a record id of ASCII"):
+            reseeding_glue([{"id": rid, "status": "reproduced", "runs": 300}])
+    assert robustness_glue([{"id": "lec-a-b_2", "robustness": "holds"}]) == {"lec_rob_a_b_2": "holds"}

@@ -90,6 +90,19 @@ def _glue_suffix(suffix: object, name: str) -> str:
     return _glue_key_part(suffix, name, "suffix", ("x", ""))
 
 
+def _glue_id_part(rid: str, name: str, strip: str = "") -> str:
+    """A record id made a glue-key part (``strip`` removed from its start, dashes as underscores), by
+    :func:`_glue_prefix`'s rule (fuzz 36b D2): the part must keep the key an ASCII identifier, so that an id of a
+    space, a dot or a brace (``"lec-a b"`` gave the key ``lec_rob_a b``), or of non-ASCII text whose composed and
+    decomposed spellings print alike, is refused naming ``name`` (the caller's record), not glued under a key no
+    claim text can name; returned as the part."""
+    part = rid.removeprefix(strip).replace("-", "_")
+    if not (part.isascii() and ("x" + part).isidentifier()):
+        raise ValueError(f"{name} must be a record id of ASCII letters, digits, '-' and '_' (it becomes a glue key "
+                         f"part), got {shown(rid, 60)}")
+    return part
+
+
 def _glue_key_part(part: object, name: str, kind: str, around: tuple[str, str]) -> str:
     """``part`` when it is a str and a key made with it (``around[0] + part + around[1]``) an ASCII identifier; else
     TypeError / ValueError naming ``name`` as a glue key ``kind`` (prefix or suffix)."""

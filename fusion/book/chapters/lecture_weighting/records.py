@@ -25,7 +25,7 @@ from fusion.book.chapters.lecture_weighting.study_evidence import (
     _ev_cc_accuracy, _ev_cc_beats_mean, ev_ls_beats_mean, ev_ls_below_every_sensor, ev_ls_diminishing,
     ev_ls_learning, ev_ls_normal, ev_ls_tracks, ev_ls_unbiased, _need)
 from fusion.book.chapters.lecture_weighting.studies import SEED, _Studies
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _glue_id_part
 from fusion.scenarios.lecture_weighting.consistency import FaultCase
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
 from fusion._counts import seed as check_seed
@@ -55,7 +55,8 @@ def _keyed_records(records: object, prefix: str, keys: tuple[str, ...]) -> list[
     """``records`` (ledger records holding ``keys``) each with its glue key, ``prefix`` + the id without ``lec-``,
     dashes as underscores: one check of the fields the reseeding and robustness lines read (fuzz 21b, R).
 
-    An ``id`` is a non-empty string, and no two records give one glue key (a repeated id, or ``lec-a-b`` and
+    An ``id`` is a non-empty string of ASCII letters, digits, ``-`` and ``_`` (it becomes a glue-key part,
+    ``fusion.book.glue._glue_id_part``), and no two records give one glue key (a repeated id, or ``lec-a-b`` and
     ``lec-a_b``: the second line would silently replace the first); a ``status`` is one of the rulebook's
     :data:`~fusion.book.rulebook.STATUSES`, ``runs`` an integer >= 1 or ``None`` (a record without runs), a
     ``robustness`` a string or ``None``. A TypeError (wrong type) or ValueError naming ``records[i]`` otherwise."""
@@ -66,7 +67,7 @@ def _keyed_records(records: object, prefix: str, keys: tuple[str, ...]) -> list[
         rid = text(r["id"], f"records[{i}]['id']")
         if not rid:
             raise ValueError(f"records[{i}]['id'] must be a record id, got an empty string")
-        key = prefix + rid.removeprefix("lec-").replace("-", "_")
+        key = prefix + _glue_id_part(rid, f"records[{i}]['id']", "lec-")   # an ASCII identifier (fuzz 36b D2)
         if key in first:
             j = first[key]
             raise ValueError(f"records[{i}] (id {shown(rid)}) gives the glue key {key} of records[{j}] (id "
@@ -110,10 +111,11 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
         ``records`` not a sequence, a record not a mapping, its ``id`` or ``status`` not a string, its ``runs``
         not an integer (or ``None``); ``root`` not a path.
     ValueError
-        A record without ``id`` or ``status``, an empty ``id``, two records of one glue key (a repeated id, or ids
-        that differ only by ``-`` and ``_``), a ``status`` not one of the rulebook's
-        :data:`~fusion.book.rulebook.STATUSES`, ``runs`` below 1; ``root`` not inside the book's repository;
-        its ``book/ledger/stability.json`` (when it exists) not a regular UTF-8 JSON file of at most 16 MB
+        A record without ``id`` or ``status``, an empty ``id`` or one not of ASCII letters, digits, ``-`` and
+        ``_``, two records of one glue key (a repeated id, or ids that differ only by ``-`` and ``_``), a
+        ``status`` not one of the rulebook's :data:`~fusion.book.rulebook.STATUSES`, ``runs`` below 1; ``root``
+        not inside the book's repository; its ``book/ledger/stability.json`` (when it exists) not a regular UTF-8
+        JSON file of at most 16 MB
         (``fusion._paths.file_json``: a FIFO, a device, a folder), not an object of ``records``, or a record
         that the function reads lacking ``k``, ``K``, ``reseeds``, ``scaled`` or ``flag``: named by ``root``,
         the file and the record.
@@ -212,8 +214,9 @@ def robustness_glue(records: Sequence[Mapping[str, Any]]) -> GlueValues:
         ``records`` not a sequence, a record not a mapping, its ``id`` or ``robustness`` not a string (a
         ``status`` it holds not a string, its ``runs`` not an integer).
     ValueError
-        A record without ``id``, an empty ``id``, two records of one glue key (a repeated id, or ids that differ
-        only by ``-`` and ``_``), or a ``status`` it holds not one of the rulebook's.
+        A record without ``id``, an empty ``id`` or one not of ASCII letters, digits, ``-`` and ``_``, two records
+        of one glue key (a repeated id, or ids that differ only by ``-`` and ``_``), or a ``status`` it holds not
+        one of the rulebook's.
     """
     return {key: r["robustness"] for key, r in _keyed_records(records, "lec_rob_", ("id",)) if r.get("robustness")}
 
