@@ -61,3 +61,33 @@ def test_record_ids_as_glue_key_parts():
         with pytest.raises(ValueError, match=r"records\[0\]\['id'\] must be a record id of ASCII"):
             reseeding_glue([{"id": rid, "status": "reproduced", "runs": 300}])
     assert robustness_glue([{"id": "lec-a-b_2", "robustness": "holds"}]) == {"lec_rob_a_b_2": "holds"}
+
+
+# --- D3: stability.json's fields checked for sense, as make stability writes them --------------------------------
+
+_REC = {"committed": "contradicted", "reseeds": ["contradicted"] * 5, "scaled": "contradicted", "k": 5, "K": 5,
+        "flag": False, "failed": [], "runs_factor": 10}
+
+
+def test_stability_fields_checked_for_sense(tmp_path):
+    """36b D3: a record of k > K glued "stable in 9 of 5 reseeds", K = 0 "5 of 0", runs_factor -3 "at -3× the
+    runs"; statuses not the rulebook's were glued as written."""
+    import json
+    from fusion.book.chapters.lecture_weighting.records import reseeding_glue
+    (tmp_path / "_toc.yml").write_text("format: jb-book\n")
+    (tmp_path / "book" / "ledger").mkdir(parents=True)
+    stab = tmp_path / "book" / "ledger" / "stability.json"
+    recs = [{"id": "lec-awf-estimated", "status": "contradicted", "runs": 300}]
+    stab.write_text(json.dumps({"records": {"lec-awf-estimated": _REC}, "runs_factor": 3}))
+    assert "stable in 5 of 5 reseeds and at 10× the runs" in reseeding_glue(recs, tmp_path)["lec_rs_awf_estimated"]
+    bad = [dict(k=9), dict(k=-1), dict(K=0, k=0), dict(K=6), dict(runs_factor=0), dict(runs_factor=-3),
+           dict(runs_factor=0.5), dict(runs_factor=2.5), dict(scaled="bogus"),
+           dict(reseeds=["contradicted"] * 4 + ["maybe"])]
+    for change in bad:
+        stab.write_text(json.dumps({"records": {"lec-awf-estimated": {**_REC, **change}}, "runs_factor": 3}))
+        with pytest.raises(ValueError, match=r"^root: book/ledger/stability.json records\['lec-awf-estimated'\]"):
+            reseeding_glue(recs, tmp_path)
+    stab.write_text(json.dumps({"records": {"lec-awf-estimated": {k: v for k, v in _REC.items() if k != "runs_factor"}},
+                                "runs_factor": -1}))
+    with pytest.raises(ValueError, match=r"^root: book/ledger/stability.json: 'runs_factor' must be an integer >= 1"):
+        reseeding_glue(recs, tmp_path)

@@ -49,7 +49,7 @@ from fusion.book.exact import ExactComparison
 from fusion.book.study_cache import process_cache
 from fusion.book.ledger import Comparison, Conjunction, Evidence, ledger_dir
 from fusion._shown import shown
-from fusion._paths import folder
+from fusion._paths import file_json, folder
 
 #: The command line's description (the docstring's first line; kept here, as ``python -OO`` strips docstrings).
 _DESCRIPTION = "Verdicts that survive reseeding: every stochastic record re-derived under fresh seeds, on Dask."
@@ -660,7 +660,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     }
     out = args.out or ledger_dir(root) / STABILITY_FILE
     if args.merge and out.is_file():
-        old = json.loads(out.read_text(encoding="utf-8"))
+        old = file_json(out, f"--merge: {out}")   # the chapter layer's one reader (regular UTF-8 JSON, bounded)
+        if not isinstance(old, dict) or not {"root_seed", "K", "runs_factor", "records", "readings"} <= set(old):
+            raise SystemExit(f"--merge: {out} is not a stability file (an object of root_seed, K, runs_factor, "
+                             "records and readings)")
         same = (old["root_seed"], old["K"]) == (args.root_seed, args.reseeds)
         if not same:
             raise SystemExit(f"--merge: {out} was run with another root seed or K")

@@ -117,8 +117,10 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
         not inside the book's repository; its ``book/ledger/stability.json`` (when it exists) not a regular UTF-8
         JSON file of at most 16 MB
         (``fusion._paths.file_json``: a FIFO, a device, a folder), not an object of ``records``, or a record
-        that the function reads lacking ``k``, ``K``, ``reseeds``, ``scaled`` or ``flag``: named by ``root``,
-        the file and the record.
+        that the function reads lacking ``k``, ``K``, ``reseeds``, ``scaled`` or ``flag`` or holding them
+        without the sense ``make stability`` writes (a status not the rulebook's, ``K`` < 1 or not the number
+        of ``reseeds``, ``k`` outside 0..K, a ``runs_factor`` not an integer >= 1): named by ``root``, the file
+        and the record.
     """
     keyed = _keyed_records(records, "lec_rs_", ("id", "status"))
     if root is not None and not isinstance(root, (str, os.PathLike)):
@@ -167,21 +169,30 @@ _STABILITY_FIELDS: dict[str, type | tuple[type, ...]] = {"k": int, "K": int, "re
 def _stability(path: Path, where: str) -> dict[str, Any]:
     """``book/ledger/stability.json`` under ``where`` (the caller's ``root``), read by the one reader
     (``fusion._paths.file_json``) and checked as far as :func:`reseeding_glue` reads it (fuzz 35b B4): an object
-    whose ``records`` is an object and whose ``runs_factor`` is a number."""
+    whose ``records`` is an object and whose ``runs_factor`` is an integer >= 1."""
     label = f"{where}: book/ledger/stability.json"
     data = file_json(path, label)
     if not isinstance(data, dict):
         raise ValueError(f"{label}: not a stability file (a JSON object), got a JSON {type(data).__name__}")
     if not isinstance(data.get("records", {}), dict):
         raise ValueError(f"{label}: 'records' must be an object (record id -> its sweep)")
-    if not isinstance(data.get("runs_factor", 10), (int, float)) or isinstance(data.get("runs_factor"), bool):
-        raise ValueError(f"{label}: 'runs_factor' must be a number")
+    _runs_factor(data.get("runs_factor", 10), label)
     return data
+
+
+def _runs_factor(factor: object, label: str) -> None:
+    """A sweep's runs factor is what ``make stability`` writes (``fusion.book.stability.tasks``): an integer >= 1
+    (fuzz 36b D3: 0 or -3 glued "at -3× the runs"), else a ValueError naming ``label``."""
+    if not isinstance(factor, int) or isinstance(factor, bool) or factor < 1:
+        raise ValueError(f"{label}: 'runs_factor' must be an integer >= 1 (the sweep's run multiple), got "
+                         f"{shown(factor)}")
 
 
 def _stability_record(v: object, label: str) -> None:
     """A record of the stability file holds the fields :func:`reseeding_glue` reads (:data:`_STABILITY_FIELDS`),
-    else a ValueError naming ``label`` (the caller's ``root``, the file and the record) and the field."""
+    else a ValueError naming ``label`` (the caller's ``root``, the file and the record) and the field; their sense
+    as ``make stability`` writes them: statuses of the rulebook, ``K >= 1`` statuses in ``reseeds``,
+    ``0 <= k <= K``, an integer ``runs_factor >= 1``."""
     if not isinstance(v, dict):
         raise ValueError(f"{label}: not a record (a JSON object), got a JSON {type(v).__name__}")
     for field, kind in _STABILITY_FIELDS.items():
@@ -191,8 +202,19 @@ def _stability_record(v: object, label: str) -> None:
             raise ValueError(f"{label}: '{field}' must be a JSON {kind.__name__}")  # type: ignore[union-attr]
     if not all(isinstance(s, str) for s in v["reseeds"]):
         raise ValueError(f"{label}: 'reseeds' must be a list of statuses (strings)")
-    if "runs_factor" in v and (not isinstance(v["runs_factor"], (int, float)) or isinstance(v["runs_factor"], bool)):
-        raise ValueError(f"{label}: 'runs_factor' must be a number")
+    # their sense too, as make stability writes them (fuzz 36b D3: "stable in 9 of 5 reseeds", "5 of 0" were glued)
+    for i, s in enumerate([*v["reseeds"], v["scaled"]]):
+        if s not in STATUSES:
+            where = f"'reseeds'[{i}]" if i < len(v["reseeds"]) else "'scaled'"
+            raise ValueError(f"{label}: {where} must be one of the rulebook's statuses {STATUSES}, got {shown(s)}")
+    if v["K"] < 1 or len(v["reseeds"]) != v["K"]:
+        raise ValueError(f"{label}: 'K' must be the number of reseeds (>= 1, one status each in 'reseeds'), got "
+                         f"K = {v['K']} with {len(v['reseeds'])} statuses")
+    if not 0 <= v["k"] <= v["K"]:
+        raise ValueError(f"{label}: 'k' must count the reseeds that keep the status (0 <= k <= K = {v['K']}), got "
+                         f"{v['k']}")
+    if "runs_factor" in v:
+        _runs_factor(v["runs_factor"], label)
 
 
 def robustness_glue(records: Sequence[Mapping[str, Any]]) -> GlueValues:
