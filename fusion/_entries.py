@@ -150,6 +150,25 @@ def _buffer_dtype(x: object) -> np.dtype | None:
     return None
 
 
+def entries_array(value: object) -> np.ndarray:
+    """``np.asarray(value)``, but an object array read as the list of its entries (fuzz 36b D4): an object array
+    holds the caller's numbers as they were given, so it takes the type its entries have as a list (the rule of
+    :func:`given_dtype`, fuzz 35a C4). An object array of Python ints is then an integer array and one of Python
+    bools a boolean one, as their lists are (``order`` of ``ofs_audit.explain`` refused the first as "dtype
+    object"); an array whose entries do not convert to an array of its own shape is returned as it is (object),
+    for the caller's type check to refuse. The caller bounds its size first (``input_size``)."""
+    a = np.asarray(value)
+    if a.dtype != object:
+        return a
+    try:
+        b = np.asarray(a.tolist())
+    except MemoryError:
+        raise
+    except Exception:  # noqa: BLE001 (entries that do not convert: the caller's type check names the argument)
+        return a
+    return b if b.shape == a.shape else a
+
+
 def given_dtype(x: object) -> np.dtype | None:
     """The numpy dtype whose precision the caller's numbers ``x`` have: an array's (or Series') own dtype (an object
     array's or Series' that of its entries read as a list, fuzz 35a C4), a pandas

@@ -12,6 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from fusion._counts import count
+from fusion._entries import entries_array
 from fusion._shown import shown
 from fusion._validation import _conversion_error, input_size, is_integer
 
@@ -27,7 +28,9 @@ def as_mask(value: object, name: str) -> NDArray[np.bool_]:
     """
     input_size(value, name)  # rule 9: before any conversion
     try:
-        m = np.asarray(value)  # no warning filter: process-global state that another thread would see (fuzz 24a W)
+        # an object array of bools is bools, as its list is (fuzz 36b D4); no warning filter: process-global state
+        # that another thread would see (fuzz 24a W)
+        m = entries_array(value)
     except MemoryError:
         raise
     except (TypeError, ValueError, RecursionError) as exc:

@@ -91,3 +91,28 @@ def test_stability_fields_checked_for_sense(tmp_path):
                                 "runs_factor": -1}))
     with pytest.raises(ValueError, match=r"^root: book/ledger/stability.json: 'runs_factor' must be an integer >= 1"):
         reseeding_glue(recs, tmp_path)
+
+
+# --- D4: an object array takes the type of its entries, as its list does, where integer or boolean arrays are read --
+
+def test_object_arrays_of_ints_and_bools():
+    """36b D4: ``run_program(t1, order=np.array([...], dtype=object))`` was refused "order must hold integers, got
+    dtype object" while the list of the same ints is accepted; a boolean mask as an object array likewise."""
+    from fusion._selections import as_mask
+    from fusion.book.chapters import ofs_audit
+    rng = np.random.default_rng(0)
+    t1 = 900.0 + rng.normal(size=(6, 4))
+    order = [5, 0, 3, 1, 4, 2]
+    for program in ("buffer, clean start", "buffer, previous pass"):
+        want = ofs_audit.run_program(t1, program, order=order)
+        got = ofs_audit.run_program(t1, program, order=np.array(order, dtype=object))
+        np.testing.assert_array_equal(got, want)
+    c = ofs_audit.Correction(0, 0, float("nan"), "none")   # Table 1 as printed
+    want = ofs_audit.explain(c, "buffer, clean start", order=order)
+    assert ofs_audit.explain(c, "buffer, clean start", order=np.array(order, dtype=object)).equals(want)
+    with pytest.raises(TypeError, match="^order must hold integers"):   # floats stay refused, as in a list
+        ofs_audit.run_program(t1, "buffer, clean start", order=np.array([float(i) for i in order], dtype=object))
+    mask = [True, False, True]
+    np.testing.assert_array_equal(as_mask(np.array(mask, dtype=object), "m"), mask)
+    with pytest.raises(TypeError, match="^m must be an array of bools"):
+        as_mask(np.array([1, 0, 1], dtype=object), "m")

@@ -38,6 +38,7 @@ from numpy.typing import ArrayLike, NDArray
 from fusion._frozen import constant
 from fusion import data
 from fusion._counts import count
+from fusion._entries import entries_array
 from fusion._results import ResultSpec, instance, integer, table, text, trusted, validated_post_init
 from fusion._shown import shown
 from fusion._validation import FloatArray, as_array, flag, input_size, instance_of, one_of, scalar
@@ -219,7 +220,7 @@ def _order(order: object, shape: tuple[int, int]) -> NDArray[np.intp]:
     a permutation of the observations; TypeError/ValueError naming ``order``."""
     input_size(order, "order")
     try:
-        o = np.asarray(order)
+        o = entries_array(order)   # an object array of ints is integers, as its list is (fuzz 36b D4)
     except (TypeError, ValueError) as exc:
         raise TypeError(f"order must be an array of integers (0-based observation indices): {exc}") from None
     if o.dtype.kind not in "iu":
