@@ -5,6 +5,8 @@ Each test builds only what it needs (small studies or hand-built objects), never
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 import pytest
 
@@ -116,3 +118,60 @@ def test_object_arrays_of_ints_and_bools():
     np.testing.assert_array_equal(as_mask(np.array(mask, dtype=object), "m"), mask)
     with pytest.raises(TypeError, match="^m must be an array of bools"):
         as_mask(np.array([1, 0, 1], dtype=object), "m")
+
+
+# --- A caller's mapping read once (decision 31a C2's read_mapping), where it was checked and then read again -------
+
+class _OnePass(Mapping):
+    """A mapping that may be read once: a second pass over its keys or a second read of a key raises (a mapping
+    whose ``__getitem__`` changes between reads would have one value checked and another used)."""
+
+    def __init__(self, data):
+        self._data, self._iters, self._read = dict(data), 0, set()
+
+    def __iter__(self):
+        self._iters += 1
+        if self._iters > 1:
+            raise RuntimeError("read twice")
+        return iter(self._data)
+
+    def __getitem__(self, key):
+        if key in self._read:
+            raise RuntimeError(f"{key!r} read twice")
+        value = self._data[key]
+        self._read.add(key)
+        return value
+
+    def __len__(self):
+        return len(self._data)
+
+
+def test_ofs_mappings_read_once():
+    """``mc_table``/``mc_numbers`` read ``studies`` and ``sigmas``, ``closing_numbers`` read ``judged``, once to
+    check and again to compute."""
+    from fusion.book.chapters import ofs
+    from fusion.book.ledger import Comparison
+    from fusion.scenarios import thermocouples
+    hs, eq = ofs.study(0, 2), ofs.study(1, 2, "equal")
+    studies, sigmas = {"hs": hs, "eq": eq}, {"hs": thermocouples.DEFAULT_SIGMAS, "eq": 1.0}
+    mc = ofs.mc_table(studies, sigmas)
+    assert ofs.mc_table(_OnePass(studies), _OnePass(sigmas)).equals(mc)
+    assert ofs.mc_numbers(mc, _OnePass(studies), _OnePass(sigmas), 2) == ofs.mc_numbers(mc, studies, sigmas, 2)
+    a = np.arange(100.0) + 1
+    cmp = Comparison(a, a + 1, "A", "B", "less", "m")
+    judged = {("yang-fig4-unaffected", "equal-noise"): cmp, ("yang-weights-reasonable", "primary"): cmp,
+              ("yang-weights-reasonable", "failure"): cmp, ("yang-membership-free", "scale"): cmp}
+    ws = ofs.weight_study(0, 2)
+    assert (ofs.closing_numbers(hs, eq, ws, _OnePass(judged), 0.05)
+            == ofs.closing_numbers(hs, eq, ws, judged, 0.05))
+
+
+def test_lecture_ledger_values_read_st_once():
+    """Chapters 02 and 03's ``ledger_values(st)`` checked ``st[key]`` and read it again (a checked study and another
+    used); read once, a study of the wrong type is refused naming it."""
+    from fusion.book.chapters.lecture_wavelets import records as wr
+    from fusion.book.chapters.lecture_weighting import records as lr
+    with pytest.raises(TypeError, match=r"^st\['s23'\]"):
+        lr.ledger_values(_OnePass({"s23": 1, "sreg": 1, "s21": 1}))
+    with pytest.raises(TypeError, match=r"^st\['\w+'\]"):
+        wr.ledger_values(_OnePass({k: 1 for k in wr.STUDIES}))

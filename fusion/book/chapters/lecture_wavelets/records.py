@@ -10,7 +10,7 @@ import numpy as np
 
 from fusion._frozen import constant
 from fusion.book.study_cache import study_cache
-from fusion._validation import count, instance_of, mapping_of, one_of
+from fusion._validation import count, instance_of, mapping_of, one_of, read_mapping
 from fusion.book import rulebook as R
 from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
 from fusion.book._few_runs import runs_named
@@ -331,6 +331,7 @@ def ledger_values(st: Mapping[str, ChapterStudy]) -> GlueValues:
     ValueError
         ``st`` without one of :data:`STUDIES`, or a study with fewer runs than ``sg``.
     """
+    st = read_mapping(st, "st")   # read once: the studies checked are the ones read (decision 31a C2)
     runs = _need(st)
     n = int(np.asarray(st["sg"].gains).size)
     # a claim about every sensor is contradicted if one sensor's interval lies wholly above 0: with no difference at

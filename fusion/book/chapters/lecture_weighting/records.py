@@ -14,7 +14,7 @@ import numpy as np
 
 from fusion.book._few_runs import study_runs_named
 from fusion._frozen import constant
-from fusion._validation import count, one_of, records_of, text
+from fusion._validation import count, one_of, read_mapping, records_of, text
 from fusion.book.rulebook import STATUSES
 from fusion.book.study_cache import study_cache
 from fusion.book.chapters.lecture import _source_claims, evidence_at, reading_function, reading_key
@@ -387,6 +387,7 @@ def ledger_values(st: Mapping[str, Any]) -> GlueValues:
     ValueError
         ``st`` without ``s23``, ``sreg`` or ``s21``.
     """
+    st = read_mapping(st, "st")   # read once: the studies checked are the ones read (decision 31a C2)
     _need(st, "s23", "sreg", "s21")
     s23, sreg, s21 = st["s23"], st["sreg"], st["s21"]
     fault, clean = s23.sq[FaultCase.FAULT], s23.sq[FaultCase.NONE]

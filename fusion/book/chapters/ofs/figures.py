@@ -16,7 +16,7 @@ from fusion._counts import count, sequence
 from fusion._limits import recorded_as
 from fusion._shown import shown
 from fusion._structures import same_keys, within
-from fusion._validation import as_array, instance_of, scalar, window as check_window
+from fusion._validation import as_array, instance_of, read_mapping, scalar, window as check_window
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import _frame, rounded
 from fusion.scenarios import thermocouples
@@ -45,7 +45,9 @@ _N_SENSORS = int(np.size(thermocouples.DEFAULT_SIGMAS))
 
 
 def _studies(studies: object, name: str = "studies") -> Mapping[str, PairedStudy]:
-    """``studies`` when it is a non-empty mapping of noise label to PairedStudy (TypeError/ValueError naming it)."""
+    """``studies`` when it is a non-empty mapping of noise label to PairedStudy (TypeError/ValueError naming it),
+    read once (``read_mapping``: the studies checked are the ones used, decision 31a C2)."""
+    studies = read_mapping(studies, name)
     instance_of(studies, Mapping, name)
     if not studies:
         raise ValueError(f"{name} must hold at least one noise setting (label -> PairedStudy), got an empty mapping")
@@ -55,7 +57,9 @@ def _studies(studies: object, name: str = "studies") -> Mapping[str, PairedStudy
 
 
 def _bounds(sigmas: object, studies: Mapping[str, PairedStudy]) -> dict[str, float]:
-    """The bound of each setting from ``sigmas`` (the keys of ``studies``; one SD, or one per sensor of the bank)."""
+    """The bound of each setting from ``sigmas`` (the keys of ``studies``; one SD, or one per sensor of the bank),
+    ``sigmas`` read once (``read_mapping``)."""
+    sigmas = read_mapping(sigmas, "sigmas")
     same_keys(sigmas, "sigmas", studies, "studies")
     out = {}
     for label in studies:
@@ -345,7 +349,7 @@ def mc_numbers(mc: pd.DataFrame, studies: Mapping[str, PairedStudy], sigmas: Map
     * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
     _frame(mc, "mc", (), maker="mc_table")   # the readers' rule (a big-endian column named, fuzz 29b D1)
-    studies = _studies(studies)
+    studies, sigmas = _studies(studies), read_mapping(sigmas, "sigmas")   # each read once (decision 31a C2)
     if len(studies) != 2:
         raise ValueError(f"studies must hold two noise settings (unequal noise first, then equal), got {len(studies)}")
     for label, st in studies.items():

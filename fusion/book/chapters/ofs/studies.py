@@ -8,7 +8,7 @@ from __future__ import annotations
 import inspect
 
 from fusion._guards import own_underflow
-from fusion._validation import instance_of
+from fusion._validation import instance_of, read_mapping
 
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -442,6 +442,7 @@ def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: objec
             raise ValueError(f"{name} must be a study of the three METHODS under the chapter's failure (two failing "
                              f"sensors), got the methods {list(st.clean)} and {len(st.failed_member_share)} shares")
     instance_of(weights, WeightStudy, "weights")
+    judged = read_mapping(judged, "judged")   # read once: the readings checked are the ones glued (decision 31a C2)
     instance_of(judged, Mapping, "judged")
     lacking = [k for k in _CLOSING_READINGS if k not in judged]
     if lacking:
