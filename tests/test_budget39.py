@@ -109,3 +109,43 @@ def test_em_counts_its_covariances_cube(monkeypatch, weighted):
                 getattr(mixtures, weighted)(*args)
         else:
             mixtures._em_work(50, 1, 40, 2, d)  # the budget alone (the fit is not run)
+
+
+def _unobserved(n_steps, per_step_r=False):
+    H = np.eye(4)[:2]
+    R = np.broadcast_to(np.eye(2), (n_steps, 2, 2)) if per_step_r else np.eye(2)
+    return np.eye(4), H, 0.1 * np.eye(4), R, np.eye(4), n_steps
+
+
+@pytest.mark.parametrize("n_steps, per_step_r", [(9_000_000, False), (400_000, True)])
+def test_gain_sequence_counts_its_worst_case(monkeypatch, n_steps, per_step_r):
+    """Fuzz 36a D2: a model that never reaches its fixed point (an unobserved state) at 9e6 steps (about 80 CPU-s)
+    and 4e5 steps of one R per step (about 11 CPU-s) are refused at entry naming n_steps."""
+    from fusion.filtering import kalman
+    for body in ("_gains_matrices", "_gains_axes", "_per_step"):
+        monkeypatch.setattr(kalman, body, _stop)
+    with pytest.raises(ValueError, match="^n_steps, F and R"):
+        kalman.gain_sequence(*_unobserved(n_steps, per_step_r))
+
+
+def test_gain_sequence_budget_keeps_the_books_sizes():
+    """Chapter sizes (10**5 steps of the cv model with one R, 2 x 10**4 with one R per step) stay inside."""
+    from fusion.filtering.kalman import _gains_work
+    _gains_work(10**5, 4, False, "n_steps")
+    _gains_work(2 * 10**4, 4, True, "n_steps")
+
+
+def test_local_track_names_its_own_arguments_for_its_gains(monkeypatch):
+    """local_track with a per-step shared R: its gain_sequence's worst case is refused by local_track's names."""
+    from fusion.filtering import kalman, tracks
+    from fusion.filtering.kalman import cv_model
+    for body in ("_gains_matrices", "_gains_axes"):
+        monkeypatch.setattr(kalman, body, _stop)
+    monkeypatch.setattr(tracks, "_per_step", _stop)
+    m = cv_model(1.0)
+    K = 400_000
+    z = np.broadcast_to(np.zeros(2), (1, K, 2))
+    P0 = 10 * np.eye(4)
+    with pytest.raises(ValueError, match=r"^z \(its steps K\) and R"):
+        tracks.local_track(z, m.F, m.H, np.diag([0.0, 1.0, 0.0, 1.0]), np.eye(2), np.zeros((1, 4)), 0.5 * P0,
+                           0.5 * P0, R_shared=np.eye(2))
