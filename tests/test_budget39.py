@@ -149,3 +149,15 @@ def test_local_track_names_its_own_arguments_for_its_gains(monkeypatch):
     with pytest.raises(ValueError, match=r"^z \(its steps K\) and R"):
         tracks.local_track(z, m.F, m.H, np.diag([0.0, 1.0, 0.0, 1.0]), np.eye(2), np.zeros((1, 4)), 0.5 * P0,
                            0.5 * P0, R_shared=np.eye(2))
+
+
+def test_belief_parameter_study_edge_reweighted(monkeypatch):
+    """budget35's edge (163,934 snapshots, registry call: about 20 CPU-s measured twice at 1/20 and 1/5) is refused
+    at entry naming snapshots; half of it (about 10 CPU-s) is the new edge's side that stays."""
+    from fusion.scenarios.lecture_weighting import belief
+    monkeypatch.setattr(belief, "_seed", _stop)
+    kw = dict(sigma=(0.5, 1.0, 2.0, 4.0), x=900.0, params=(0.5, 1.0), grid=(0.5, 1.0))
+    with pytest.raises(ValueError, match="^params and snapshots"):
+        belief.belief_parameter_study(snapshots=163_934, **kw)
+    with pytest.raises(_Ran):
+        belief.belief_parameter_study(snapshots=80_000, **kw)
