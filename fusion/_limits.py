@@ -158,9 +158,9 @@ def loop_work(steps: tuple[int, ...], per_step: int, names: str, step: int = LOO
     return work(tuple(steps) + (int(step) + int(per_step),), names)
 
 
-#: Units of one ``d**3`` term of dense ``d x d`` linear algebra on one core (LAPACK inverse, Cholesky, determinant or a
-#: matrix product: 0.2 to 0.5 ns measured, a twentieth to a fiftieth of a unit): :func:`dense_work`'s weights are
-#: multiples of it, measured per function (fuzz 36a C3).
+#: The step of :func:`dense_work`'s weights, 0.01 units (0.1 ns) a ``d**3``: dense ``d x d`` linear algebra on one
+#: core (LAPACK inverses, Cholesky factors, determinants, matrix products) measured 0.1 to 1.2 ns a ``d**3`` per
+#: matrix over a whole call, so a function's weight is 1.5 to 12 of it (fuzz 36a C3).
 DENSE_CUBE = 0.01
 
 
@@ -189,12 +189,12 @@ def dense_work(count: int, d: int, names: str, weight: float) -> int:
     Returns
     -------
     int
-        The units of work.
+        ``weight x count x d**3``, rounded up.
 
     Raises
     ------
     ValueError
-        If the work is beyond :data:`MAX_WORK`, naming ``names``.
+        Beyond :data:`MAX_WORK`: :func:`work`'s message, naming ``names``, the count, ``d`` three times and the weight.
     """
     return work((count, d, d, d), names, weight=weight)
 
