@@ -4,6 +4,8 @@ at its step count without a fixed point), and D1's whole glue keys.
 No test runs the refused work: the d**3 budgets are read from the units counted at small dimensions (a spy on
 ``fusion._limits.work``), the refused filter loops are patched to raise, and their inputs are cheap views.
 """
+import unicodedata
+
 import numpy as np
 import pytest
 
@@ -161,3 +163,26 @@ def test_belief_parameter_study_edge_reweighted(monkeypatch):
         belief.belief_parameter_study(snapshots=163_934, **kw)
     with pytest.raises(_Ran):
         belief.belief_parameter_study(snapshots=80_000, **kw)
+
+
+_CAFE = "tr_caf\u00e9"
+
+
+@pytest.mark.parametrize("key", [unicodedata.normalize("NFC", _CAFE), unicodedata.normalize("NFD", _CAFE),
+                                 "tr_\uff58", "tr_\ufb01"])
+def test_keep_refuses_non_ascii_keys(key):
+    """Fuzz 36a D1: a kept key is held to the prefixes' ASCII rule (NFC/NFD twins printed alike were two keys)."""
+    from fusion.book.glue import _checked_keep
+    with pytest.raises(ValueError, match="^values must have glue keys"):
+        _checked_keep({}, {key: 1.0})
+    assert _checked_keep({}, {"tr_cafe": 1.0}) == {"tr_cafe": 1.0}
+
+
+@pytest.mark.parametrize("key", [unicodedata.normalize("NFD", _CAFE), "fig-\u00e9", "a b", ""])
+def test_glue_all_refuses_keys_beyond_ascii(key):
+    """Fuzz 36a D1: glue_all's keys are ASCII letters, digits, underscores and hyphens (the book's figure keys
+    ``fig-chf-pso`` keep working), refused before anything is glued."""
+    from fusion.book import glue
+    with pytest.raises(ValueError, match="^values must have glue keys"):
+        glue.glue_all({key: 1.0})
+    assert glue._GLUE_KEY.fullmatch("fig-chf-pso") and glue._GLUE_KEY.fullmatch("lec_cor_flop_written_gesv_600")
