@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg.lapack import dpotrf as _potrf
 
-from fusion._limits import MAX_MAGNITUDE, MIN_VARIANCE
+from fusion._limits import MAX_MAGNITUDE, MIN_VARIANCE, dense_work
 from fusion._structures import singular_error
 from fusion._validation import FloatArray, _magnitude_problem, _numeric, as_state, check_magnitude, scalar
 
@@ -328,7 +328,7 @@ _F64 = np.dtype(np.float64)
 
 
 def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1", "P2"),
-                    dim: int | None = None, rtol: float = 1e-9) -> tuple[FloatArray, FloatArray]:
+                    dim: int | None = None, rtol: float = 1e-9, weight: float = 0.0) -> tuple[FloatArray, FloatArray]:
     """Two symmetric positive-definite covariances of one size, validated in one stacked pass.
 
     The same checks as :func:`as_covariance` on each (shape, NaN/inf, symmetry, positive
@@ -345,6 +345,9 @@ def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1"
         Required size ``n``.
     rtol : float
         Relative asymmetry tolerance.
+    weight : float
+        The caller's measured units per ``d**3`` of each matrix (``fusion._limits.dense_work``), checked before the
+        ``O(d**3)`` checks; 0 for none.
 
     Returns
     -------
@@ -382,6 +385,8 @@ def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1"
                         return P1, P2
     A, B = _numeric(P1, names[0]), _numeric(P2, names[1])
     shape = A.shape
+    if weight and A.ndim == 2:
+        dense_work(2, max(A.shape), f"{names[0]} and {names[1]}", weight)  # fuzz 36a C3
     n = shape[0] if len(shape) == 2 else 0
     if n < 2 or B.shape != shape or shape[1] != n or (dim is not None and n != dim):
         # the general path (scalars, 1x1, mismatches): one at a time, with the per-matrix messages
@@ -465,15 +470,19 @@ def computed_part(M: FloatArray) -> FloatArray:
 
 
 def gaussian_pair(
-    m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike, names: tuple[str, str, str, str]
+    m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike, names: tuple[str, str, str, str], weight: float = 0.0
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """Two Gaussians (means of one length, SPD covariances of that size), validated.
 
-    ``names`` are the four argument names used in the messages.
+    ``names`` are the four argument names used in the messages; ``weight`` the caller's measured units per ``d**3``
+    of each covariance (``fusion._limits.dense_work``, checked from the means' length before the covariances'
+    ``O(d**3)`` checks; 0 for none).
     """
     a, b = as_state(m0, names[0]), as_state(m1, names[2])
     if a.shape != b.shape:
         raise ValueError(f"{names[0]} and {names[2]} must have the same length, got {a.size} and {b.size}")
+    if weight:
+        dense_work(2, a.size, f"{names[1]} and {names[3]}", weight)  # fuzz 36a C3
     A = as_covariance(P0, name=names[1])
     if A.shape[0] != a.size:
         raise ValueError(f"{names[1]} must be {a.size}x{a.size} to match {names[0]}, got {A.shape}")

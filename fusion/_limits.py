@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from decimal import Decimal
 from fractions import Fraction
@@ -75,7 +76,7 @@ def recorded_as(given: object, recorded: object) -> bool:
     return bool(np.allclose(g, r, rtol=RECORDED_RTOL, atol=0.0))
 
 
-def work(shape: tuple[int, ...], names: str, weight: int = 1, limit: int = MAX_WORK) -> int:
+def work(shape: tuple[int, ...], names: str, weight: float = 1, limit: int = MAX_WORK) -> int:
     """Refuse a call whose work, ``weight`` times the product of the counts in ``shape``, is beyond :data:`MAX_WORK`
     (rule 17).
 
@@ -89,9 +90,10 @@ def work(shape: tuple[int, ...], names: str, weight: int = 1, limit: int = MAX_W
         The counts whose product is the number of units of work (each at least 1).
     names : str
         The arguments setting them (``"runs, k and sigma"``), named in the message.
-    weight : int
+    weight : int or float
         The units of one counted element: its measured CPU time over the unit's (about 10 ns, :data:`MAX_WORK`),
-        rounded up; 1 for a vectorised element.
+        rounded up; 1 for a vectorised element; a fraction of a unit for an element cheaper than 10 ns (a
+        ``d**3`` term of a dense factorisation, :func:`dense_work`).
     limit : int
         The budget (:data:`MAX_WORK`; a larger one only from :data:`STUDY_WORK`, where the book's own call counts
         more, as the tracking study of ``fusion.scenarios.range_bearing``, named in the message).
@@ -99,18 +101,21 @@ def work(shape: tuple[int, ...], names: str, weight: int = 1, limit: int = MAX_W
     Returns
     -------
     int
-        The units of work, ``weight`` times the product.
+        The units of work, ``weight`` times the product (rounded up).
 
     Raises
     ------
     ValueError
         If the product is beyond :data:`MAX_WORK`, naming ``names`` and the budget.
     """
-    n = int(weight)
+    n = 1
     for s in shape:
         n *= int(s)
+    n = n * int(weight) if float(weight).is_integer() else math.ceil(n * float(weight))
     if n > limit:
-        dims = " x ".join(f"{int(d):,}" for d in shape) + (f", {int(weight):,} units each" if weight != 1 else "")
+        dims = " x ".join(f"{int(d):,}" for d in shape) + (
+            "" if weight == 1 else f", {int(weight):,} units each" if float(weight).is_integer()
+            else f", {float(weight):.3g} units each")
         served = [k for k, v in STUDY_WORK.items() if v == limit]
         budget = ("fusion._validation.MAX_WORK, about 10 CPU-s" if limit == MAX_WORK
                   else f"about {limit / MAX_WORK * 10:.0f} CPU-s"
@@ -151,6 +156,47 @@ def loop_work(steps: tuple[int, ...], per_step: int, names: str, step: int = LOO
         If the work is beyond :data:`MAX_WORK`, naming ``names``.
     """
     return work(tuple(steps) + (int(step) + int(per_step),), names)
+
+
+#: The step of :func:`dense_work`'s weights, 0.01 units (0.1 ns) a ``d**3``: dense ``d x d`` linear algebra on one
+#: core (LAPACK inverses, Cholesky factors, determinants, matrix products) measured 0.1 to 1.2 ns a ``d**3`` per
+#: matrix over a whole call, so a function's weight is 1.5 to 12 of it (fuzz 36a C3).
+DENSE_CUBE = 0.01
+
+
+def dense_work(count: int, d: int, names: str, weight: float) -> int:
+    """Refuse a call whose dense linear algebra on ``count`` matrices of ``d x d`` is beyond :data:`MAX_WORK`
+    (rule 17; fuzz 36a C3).
+
+    The dimension of a caller's covariance costs ``d**3`` per inverse, factorisation or product, which no count
+    argument holds: within the input budget a stack of two covariances has ``d = 4,096`` (a Chernoff weight search
+    there ran about 100 CPU-s). A function doing such work weighs ``count x d**3`` by ``weight`` units, its
+    measured CPU time per ``d**3`` per matrix (a multiple of :data:`DENSE_CUBE`, from its whole call at
+    ``d = 250`` to ``750``), so that its accepted edge costs about 10 CPU-s; it calls this before its covariances'
+    own ``O(d**3)`` checks where the dimension is known before them.
+
+    Parameters
+    ----------
+    count : int
+        The number of ``d x d`` matrices (or of weights a search evaluates, each one inverse).
+    d : int
+        Their dimension.
+    names : str
+        The arguments setting them, named in the message.
+    weight : float
+        The measured units of one matrix's ``d**3``.
+
+    Returns
+    -------
+    int
+        ``weight x count x d**3``, rounded up.
+
+    Raises
+    ------
+    ValueError
+        Beyond :data:`MAX_WORK`: :func:`work`'s message, naming ``names``, the count, ``d`` three times and the weight.
+    """
+    return work((count, d, d, d), names, weight=weight)
 
 
 #: Relative round-off of a float64 computation of a decimal (``0.1 * 3``, ``12.3 / 100``: within one or two ulps of

@@ -7,6 +7,7 @@ from decimal import Decimal
 import cmath
 import datetime
 import numbers
+import re
 from collections.abc import Mapping
 from typing import Any, TypeAlias, Union
 
@@ -31,11 +32,18 @@ GlueValue: TypeAlias = Union[float, int, str, Figure, pd.DataFrame, Styler]
 GlueValues: TypeAlias = dict[str, GlueValue]
 
 
+#: A whole glue key (:func:`glue_all`): ASCII letters, digits, underscores and hyphens (every key of the book's
+#: notebooks; a figure's key has hyphens), the rule of :func:`_glue_prefix` for the whole key.
+_GLUE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+
+
 def _checked_keep(store: object, values: object) -> dict[str, Any]:
     """The one rule of the chapters' ``keep(store, values)``, which store glue values for the claim texts.
 
     ``store`` a mutable mapping and ``values`` a mapping (TypeError naming them); every key a str (TypeError) that
-    is an identifier (a ``{name}`` field of a claim text; ValueError naming ``values``); a float finite (ValueError
+    is an ASCII identifier (a ``{name}`` field of a claim text; :func:`_glue_prefix`'s rule for the whole key, as
+    text that prints alike, ``é`` composed or decomposed, would be two keys: fuzz 36a D1; ValueError naming
+    ``values``); a float finite (ValueError
     naming ``values[key]``, also given as a 0-d array or a :class:`~decimal.Decimal`). A key kept again takes the
     new value: re-running a notebook's cell recomputes it, and the claim texts read the store when the ledger is
     built, after every cell. Checked before ``store`` changes.
@@ -54,8 +62,9 @@ def _checked_keep(store: object, values: object) -> dict[str, Any]:
     for k, v in values.items():  # type: ignore[attr-defined]
         if not isinstance(k, str):
             raise TypeError(f"values must have str glue keys, got the key {shown(k, 60)}")
-        if not k.isidentifier():
-            raise ValueError(f"values must have glue keys that are identifiers (a claim text's {{name}}), got {shown(k)}")
+        if not (k.isascii() and k.isidentifier()):
+            raise ValueError(f"values must have glue keys that are identifiers of ASCII letters, digits and "
+                             f"underscores (a claim text's {{name}}), got {shown(k)}")
         _check_finite(k, v)  # glue_all's rule, the same function (fuzz 22b, KP)
         if isinstance(v, (float, np.floating, Decimal)) or (isinstance(v, np.ndarray) and v.ndim == 0):
             scalar(v, f"values[{k!r}]", tiny=True)
@@ -230,6 +239,8 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         the containers below (a deque, ``array.array``, dict view, generator or masked array: what it prints is
         not checked), naming ``values[key]``.
     ValueError
+        A key that is not ASCII letters, digits, underscores and hyphens (``fig-chf-pso``; text that prints alike,
+        ``é`` composed or decomposed, would be two keys: :func:`_glue_prefix`'s rule for the whole key, fuzz 36a D1).
         A number (a float, a complex number, a NumPy scalar, a Decimal, any entry of a numeric array) NaN or
         infinite, or a missing value (``pd.NA``, ``pd.NaT``, a NumPy ``NaT``), also inside a list, tuple, set,
         mapping, Series, Index, pandas extension array (``pd.array``, Categorical, SparseArray), object or
@@ -247,8 +258,11 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     for key, value in values.items():  # every value checked before any is glued
         if not isinstance(key, str):
             raise TypeError(f"values must have str glue keys, got the key {shown(key, 60)}")
-        _check_finite(key, value)
         key = text(key, "values keys")
+        if not _GLUE_KEY.fullmatch(key):  # the prefixes' ASCII rule for the whole key (fuzz 35b D3, 36a D1)
+            raise ValueError(f"values must have glue keys of ASCII letters, digits, underscores and hyphens, got "
+                             f"{shown(key, 60)}")
+        _check_finite(key, value)
         plain[key] = text(value, f"values[{shown(key)}]") if isinstance(value, str) else value
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 

@@ -11,6 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import singular_system, scalar
+from fusion._limits import DENSE_CUBE
 from fusion.estimates.ci import FusedEstimate, _two_estimates
 
 __all__ = ["wang2024_eqs_1_2"]
@@ -43,7 +44,7 @@ def wang2024_eqs_1_2(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike,
     ValueError
         Bad estimates or ``omega`` outside (0, 1).
     """
-    x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
+    x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2, 3 * DENSE_CUBE)  # 4 inverses (fuzz 36a C3)
     omega = scalar(omega, "omega", 0.0, 1.0, lo_open=True, hi_open=True)
     w1, w2 = omega, 1.0 - omega
     P = np.linalg.inv(np.linalg.inv(P1 / w1) + np.linalg.inv(P2 / w2))

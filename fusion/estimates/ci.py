@@ -43,6 +43,7 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import chi2
 
 from fusion._frozen import frozen_arrays
+from fusion._limits import DENSE_CUBE, dense_work
 from fusion._validation import read_once
 from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, check_invertible,
                                 covariance_pair, one_of, scalar, singular_error, singular_system, unit_scalar)
@@ -90,16 +91,20 @@ def _two_states(x1: ArrayLike, x2: ArrayLike) -> tuple[FloatArray, FloatArray]:
     return a, b
 
 
-def _two_covariances(P1: ArrayLike, P2: ArrayLike) -> tuple[FloatArray, FloatArray]:
-    """Two symmetric positive-definite covariances of the same size, validated in one stacked pass."""
-    return covariance_pair(P1, P2, ("P1", "P2"))
+def _two_covariances(P1: ArrayLike, P2: ArrayLike, weight: float) -> tuple[FloatArray, FloatArray]:
+    """Two symmetric positive-definite covariances of the same size, validated in one stacked pass, the caller's dense
+    work (``weight`` units per ``d**3`` of each, ``fusion._limits.dense_work``) checked first."""
+    return covariance_pair(P1, P2, ("P1", "P2"), weight=weight)
 
 
 def _two_estimates(
-    x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike
+    x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike, weight: float
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """Two estimates (states of one length, covariances SPD of that size), validated."""
+    """Two estimates (states of one length, covariances SPD of that size), validated, the caller's dense work
+    (``weight`` units per ``d**3`` of each covariance, ``fusion._limits.dense_work``) checked before the
+    covariances' own ``O(d**3)`` checks."""
     a, b = _two_states(x1, x2)
+    dense_work(2, a.size, "P1 and P2", weight)  # rule 17 (fuzz 36a C3)
     A, B = covariance_pair(P1, P2, ("P1", "P2"), dim=a.size)
     return a, A, b, B
 
@@ -135,10 +140,12 @@ def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criteri
         Bad covariances, ``omega`` outside [0, 1] or not finite, unknown criterion.
     """
     criterion = one_of(criterion, ("trace", "det"), "criterion")
-    P1, P2 = _two_covariances(P1, P2)
+    P1, P2 = _two_covariances(P1, P2, 1.5 * DENSE_CUBE)
     w = as_array(omega, "omega", nonempty=False)
     if np.any((w < 0.0) | (w > 1.0)):
         raise ValueError(f"omega must lie in [0, 1], got {omega}")
+    # an inverse a weight (fuzz 36a C3): 0.3 ns a d**3 for one weight, 0.9 for ten
+    dense_work(w.size + 2, P1.shape[0], "omega, P1 and P2", DENSE_CUBE)
     I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
     info = w[..., None, None] * I1 + (1.0 - w[..., None, None]) * I2
     if criterion == "trace":
@@ -199,6 +206,7 @@ def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike,
     if first.ndim != 2:
         raise ValueError(f"P1d must be a square matrix, got shape {first.shape}")
     n = first.shape[0]
+    dense_work(4, n, "P1d, P1i, P2d and P2i", 2.5 * DENSE_CUBE)  # rule 17, first (fuzz 36a C3): 0.8-0.9 ns/d**3
     A1d, A1i, A2d, A2i = (as_semidefinite(M, n, name=nm)
                           for M, nm in ((P1d, "P1d"), (P1i, "P1i"), (P2d, "P2d"), (P2i, "P2i")))
     as_covariance(A1d + A1i, name="P1d + P1i")
@@ -207,6 +215,7 @@ def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike,
     hi_ok = (w <= 1.0) if same_omega else (w < 1.0)
     if not np.all((w > 0.0) & hi_ok):
         raise ValueError(f"omega must lie in (0, {'1]' if same_omega else '1)'}, got {omega}")
+    dense_work(w.size + 3, n, "omega, P1d, P1i, P2d and P2i", 2.5 * DENSE_CUBE)
     w1 = w[..., None, None]
     w2 = w1 if same_omega else 1.0 - w1
     T1, T2 = A1d / w1 + A1i, A2d / w2 + A2i
@@ -327,7 +336,7 @@ def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> f
     """
     if type(criterion) is not str or (criterion != "trace" and criterion != "det"):  # one_of names it
         criterion = one_of(criterion, ("trace", "det"), "criterion")
-    P1, P2 = covariance_pair(P1, P2)
+    P1, P2 = covariance_pair(P1, P2, weight=3 * DENSE_CUBE)  # 0.26 ns a d**3 (fuzz 36a C3)
     try:  # rule 5 inline (the CI weight is the benchmark's hot call: no wrapper frame)
         return _optimal_weight(P1, P2, np.linalg.inv(P1), np.linalg.inv(P2), criterion)
     except np.linalg.LinAlgError as exc:
@@ -408,7 +417,7 @@ def covariance_intersection(
     array([1.6, 1.6])
     """
     criterion = one_of(criterion, ("trace", "det"), "criterion")
-    x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
+    x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2, 3 * DENSE_CUBE)  # 0.26-0.29 ns a d**3 (fuzz 36a C3)
     I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
     if omega is None:
         w = _optimal_weight(P1, P2, I1, I2, criterion)
@@ -461,7 +470,7 @@ def convex_combination(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLik
       Systems*, AES-22(6), 803-805 (the fusion with the cross-covariance, of which this is the
       zero-correlation case).
     """
-    x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
+    x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2, 2 * DENSE_CUBE)  # 0.15-0.19 ns a d**3 (fuzz 36a C3)
     I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
     P = np.linalg.inv(I1 + I2)
     P = 0.5 * (P + P.T)
@@ -600,6 +609,8 @@ def split_covariance_intersection(
     flag(same_omega, "same_omega")
     criterion = one_of(criterion, ("trace", "det"), "criterion")
     x1, x2 = _two_states(x1, x2)
+    # rule 17 before the parts' O(d**3) checks (fuzz 36a C3): the weight search 0.5 ns a part's d**3, one weight less
+    dense_work(4, x1.size, "P1d, P1i, P2d and P2i", (5 if omega is None else 2) * DENSE_CUBE)
     A1d, A1i, A2d, A2i = _split_parts(P1d, P1i, P2d, P2i, x1.size)
 
     def parts(w: float) -> tuple[FloatArray, FloatArray]:

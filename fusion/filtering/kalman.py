@@ -177,6 +177,15 @@ def _steps_work(steps: int, runs: int, n: int, step: int, names: str) -> None:
     loop_work((steps,), runs * n * n, names, step=step)
 
 
+def _gains_work(n_steps: int, n: int, per_step_r: bool, names: str) -> None:
+    """Rule 17 for :func:`gain_sequence` (fuzz 36a D2): its worst case, a recursion that never reaches its fixed
+    point (an unobserved state), one Python step of ``LOOP_STEP`` units (8 us measured, n = 4, m = 2), three with
+    one ``R`` per step (26-28 us, each ``R`` checked), plus ``n**3 / 20`` units (0.3-0.9 ns an ``n**3`` at n = 30 and
+    100), refused by ``names`` (the caller's arguments) before any check of the steps' matrices
+    (``fusion._limits.loop_work``)."""
+    loop_work((n_steps,), n ** 3 // 20, names, step=(3 if per_step_r else 1) * LOOP_STEP)
+
+
 def _per_step(R: ArrayLike, dim: int, n_steps: int, name: str, definite: bool = True) -> FloatArray:
     """``R`` as one (dim, dim) matrix per step, shape (n_steps, dim, dim): a constant matrix is repeated.
 
@@ -225,7 +234,9 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     P0 : array_like, shape (n, n)
         Covariance of the initial estimate (step 0).
     n_steps : int
-        Number of steps K, including step 0.
+        Number of steps K, including step 0. The work budget counts the recursion's worst case, a model that
+        never reaches its fixed point (about 10**6 steps of a 4-state model with one ``R``, 3 x 10**5 with one
+        ``R`` per step), even for a model that would reach it and copy the remaining steps.
 
     Returns
     -------
@@ -236,7 +247,7 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     ------
     ValueError
         ``Q`` not symmetric positive semidefinite, ``R`` (any step) or ``P0`` not symmetric positive
-        definite, or of the wrong size.
+        definite, or of the wrong size; ``n_steps`` beyond the work budget.
 
     References
     ----------
@@ -249,6 +260,8 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     n, m = F.shape[0], H.shape[0]
     n_steps = count(n_steps, "n_steps")
     _steps_allocation(n_steps, n, n + m, "n_steps and the sizes of F and H")  # K (n_steps, n, m), P (n_steps, n, n)
+    R = _numeric(R, "R")
+    _gains_work(n_steps, n, R.ndim == 3, "n_steps, F and R")
     Q = as_semidefinite(Q, dim=n, name="Q")
     Rk = _per_step(R, m, n_steps, "R")
     P0 = as_covariance(P0, dim=n, name="P0")

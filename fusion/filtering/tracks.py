@@ -34,7 +34,7 @@ from fusion._validation import (FloatArray, _numeric, as_array, as_covariance, a
                                 instance_of, one_of, positive_scalar)
 from fusion.estimates import ci as es
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
-from fusion.filtering.kalman import LOCAL_TRACK_STEP, _steps_work
+from fusion.filtering.kalman import LOCAL_TRACK_STEP, _gains_work, _steps_work
 from fusion.filtering.kalman import GainSequence, _model, _per_step, _steps_allocation, filter_runs, gain_sequence, split_covariances
 
 __all__ = ["RULES", "LocalTrack", "local_track", "FusedTracks", "fuse_tracks"]
@@ -137,6 +137,8 @@ def local_track(
     # gains (K, n, m), P, Pd, Pi (K, n, n) and the estimates (runs, K, n)
     _steps_allocation(zz.shape[1], n, m + 3 * n + zz.shape[0], "z and the sizes of F and H")
     _steps_work(zz.shape[1], zz.shape[0], n, LOCAL_TRACK_STEP, "z (its steps K)")
+    # its gain_sequence's worst case, by this function's names (fuzz 36a D2): R_total is one R per step with R_shared
+    _gains_work(zz.shape[1], n, R_shared is not None or _numeric(R, "R").ndim == 3, "z (its steps K) and R")
     x = as_array(x0, "x0", ndim=2)
     if x.shape != (zz.shape[0], n):
         raise ValueError(f"x0 must be a finite ({zz.shape[0]}, {n}) array (one state per run of z), got shape {x.shape}")

@@ -26,7 +26,7 @@ from numpy.typing import ArrayLike
 
 from fusion._counts import allocation
 from fusion._frozen import frozen_arrays
-from fusion._limits import work
+from fusion._limits import DENSE_CUBE, dense_work, work
 from fusion._validation import read_once
 from fusion._validation import (singular_system, _numeric, FloatArray, as_covariance, check_magnitude, gaussian_pair,
                                 one_of, unit_scalar)
@@ -72,11 +72,21 @@ class ChernoffGaussian:
     log_normaliser: float
 
 
-def _gaussians(means: ArrayLike, covs: ArrayLike) -> tuple[FloatArray, FloatArray]:
+#: Measured units per ``d**3`` of one covariance (``fusion._limits.dense_work``, fuzz 36a C3): fusing N Gaussians
+#: (their inverses, log-determinants and the fused inverse: 0.22-0.25 ns a covariance at d = 250-750), and the
+#: projected Newton search of the Chernoff and CI weights (products with every covariance at each step: 0.7-1.1 ns
+#: (Chernoff), 0.35-1.5 ns (CI, N = 2-8) per covariance), so that each edge costs about 10 CPU-s.
+_FUSE_CUBE = 3 * DENSE_CUBE
+_NEWTON_CUBE = 12 * DENSE_CUBE
+
+
+def _gaussians(means: ArrayLike, covs: ArrayLike, weight: float = _FUSE_CUBE) -> tuple[FloatArray, FloatArray]:
+    """N Gaussians, validated, their dense work (``weight`` units per ``d**3`` of each covariance) checked first."""
     m = _numeric(means, "means")
     c = _numeric(covs, "covs")
     if m.ndim != 2 or m.shape[0] < 1 or c.shape != (m.shape[0], m.shape[1], m.shape[1]):
         raise ValueError(f"means must be (N, d) and covs (N, d, d); got {m.shape} and {c.shape}")
+    dense_work(m.shape[0], m.shape[1], "covs", weight)  # rule 17, before the O(d**3) checks (fuzz 36a C3)
     check_magnitude(m, "means")
     c = np.stack([as_covariance(c[i], dim=m.shape[1], name=f"covs[{i}]") for i in range(m.shape[0])])
     return m, c
@@ -278,10 +288,13 @@ def is_second_moment(means: ArrayLike, covs: ArrayLike, eps: ArrayLike, eps0: Ar
       sampling). https://artowen.su.domains/mc/
     """
     means, covs = (read_once(means, "means"), read_once(covs, "covs"))  # converted once (fuzz 29a C5)
-    target = chernoff_fuse_gaussians(means, covs, eps)
+    c = _numeric(covs, "covs")
+    if c.ndim == 3:  # two fusions, three inverses and a solve: 0.5-0.6 ns a covariance's d**3 (fuzz 36a C3)
+        dense_work(c.shape[0], c.shape[-1], "covs", 6 * DENSE_CUBE)
+    target = chernoff_fuse_gaussians(means, c, eps)
     n = np.shape(target.eps)[0]
     e0 = check_simplex(eps0, n, name="eps0")
-    prop = chernoff_fuse_gaussians(means, covs, e0)
+    prop = chernoff_fuse_gaussians(means, c, e0)
     P, G = target.P, prop.P
     Pinv, Ginv = np.linalg.inv(P), np.linalg.inv(G)
     Lam = 2.0 * Pinv - Ginv
@@ -340,7 +353,7 @@ def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: Ar
         ``omega`` outside [0, 1], or covariances not SPD of size d.
     """
     omega = unit_scalar(omega, "omega")
-    a, A, b, B = gaussian_pair(a, A, b, B, ("a", "A", "b", "B"))
+    a, A, b, B = gaussian_pair(a, A, b, B, ("a", "A", "b", "B"), weight=3 * DENSE_CUBE)  # 0.18-0.22 ns (fuzz 36a C3)
     d = a - b
     M = (1 - omega) * A + omega * B
     Pw = np.linalg.inv(omega * np.linalg.inv(A) + (1 - omega) * np.linalg.inv(B))
@@ -371,13 +384,12 @@ def gaussian_kl(m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike) -> f
     * Kullback, S., & Leibler, R. A. (1951). On information and sufficiency. *Annals of
       Mathematical Statistics*, 22(1), 79-86.
     """
-    m0, P0, m1, P1 = gaussian_pair(m0, P0, m1, P1, ("m0", "P0", "m1", "P1"))
+    m0, P0, m1, P1 = gaussian_pair(m0, P0, m1, P1, ("m0", "P0", "m1", "P1"), weight=1.5 * DENSE_CUBE)  # 0.11-0.14 ns
     dm = m1 - m0
     return float(0.5 * (np.trace(np.linalg.solve(P1, P0)) + dm @ np.linalg.solve(P1, dm) - m0.size
                         + np.linalg.slogdet(P1)[1] - np.linalg.slogdet(P0)[1]))
 
 
-@singular_system('means and covs')
 def _newton_budget(N: int, names: str) -> None:
     """Rules 9 and 17 for the projected Newton method over the simplex of ``N`` weights (fuzz 36a C8): its Hessian
     is N x N (refused by :func:`fusion._counts.allocation` beyond the memory budget) and its work grows as N**2 per
@@ -387,6 +399,7 @@ def _newton_budget(N: int, names: str) -> None:
     work((N, N), names, weight=220)
 
 
+@singular_system('means and covs')
 def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaussian:
     r"""Chernoff-optimal fusion of Gaussians: :math:`\arg\min_\Delta \log Z(\varepsilon)`, then fuse.
 
@@ -418,7 +431,7 @@ def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaus
       and its generalization. *Proceedings of the 5th International Conference on Information
       Fusion*.
     """
-    m, c = _gaussians(means, covs)
+    m, c = _gaussians(means, covs, _NEWTON_CUBE)
     _newton_budget(m.shape[0], "means and covs")
     e = _gaussian_chernoff_eps(m, np.linalg.inv(c), np.linalg.slogdet(2 * np.pi * c)[1])
     return chernoff_fuse_gaussians(m, c, e)
@@ -534,6 +547,7 @@ def covariance_intersection_weights(covs: ArrayLike, criterion: str = "det") -> 
     if c.ndim != 3 or c.shape[1] != c.shape[2] or c.shape[0] < 1:
         raise ValueError(f"covs must have shape (N, d, d), got {c.shape}")
     _newton_budget(c.shape[0], "covs")
+    dense_work(c.shape[0], c.shape[1], "covs", _NEWTON_CUBE)  # rule 17, before the O(d**3) checks (fuzz 36a C3)
     c = np.stack([as_covariance(P, dim=c.shape[1], name=f"covs[{i}]") for i, P in enumerate(c)])
     return _ci_criterion_batch(np.linalg.inv(c)[None], criterion)[0]
 

@@ -545,7 +545,7 @@ def keep(store: GlueValues, values: Mapping[str, GlueValue]) -> GlueValues:
     TypeError
         ``store`` is not a mutable mapping, ``values`` not a mapping, or a key of ``values`` not a str.
     ValueError
-        As ``time_registration_ledger.keep`` (one rule): a key that is not an identifier or a number that is not
+        As ``time_registration_ledger.keep`` (one rule): a key that is not an ASCII identifier or a number that is not
         finite; ``store`` is then left unchanged. A key kept again takes its new value (a re-run cell).
 
     Notes

@@ -65,7 +65,7 @@ def keep(store: GlueValues, values: GlueValues) -> GlueValues:
     TypeError
         ``store`` is not a mutable mapping, ``values`` not a mapping, or a key of ``values`` not a str.
     ValueError
-        A key of ``values`` is not an identifier (a claim text's ``{name}``); a number of ``values`` is not
+        A key of ``values`` is not an ASCII identifier (a claim text's ``{name}``); a number of ``values`` is not
         finite (NaN or infinite, which the book would print), named ``values[key]``. ``store`` is then left
         unchanged. A key kept again takes its new value (a re-run cell).
     """
