@@ -9,6 +9,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import example, given, settings
+from hypothesis import strategies as st
 
 from fusion.book import study_cache as sc
 
@@ -75,3 +77,43 @@ def test_a_directory_in_place_of_an_entry_or_its_lock_returns_the_result_unstore
     lock.mkdir()
     assert _same(_study(5), _expected(5)) and _CALLS == [5, 5, 5]
     assert not entry.exists()
+
+
+# --- C5: glue_27's solver self-check on every study correlated_study accepts ------------------------------------------
+
+@settings(max_examples=40, deadline=None)
+@example(sigma=[1e-4, 2e-4], sigma_env=1e3)                        # the report's case: cond(R) = 8e13
+@example(sigma=[1e-3, 2e-3, 3e-3], sigma_env=1e3)                  # cond(R) ~ 4e12, 3 sensors
+@given(sigma=st.lists(st.floats(-6, 1).map(lambda e: 10.0 ** e), min_size=1, max_size=4),
+       sigma_env=st.floats(-3, 4).map(lambda e: 10.0 ** e))
+def test_glue_27_checks_every_study_correlated_study_accepts(sigma: list[float], sigma_env: float) -> None:
+    """C5 (regression of fuzz 36b B4's capped tolerance): cond(R) from ~4e12 up to the positive-definite limit (~3e14)
+    raised RuntimeError in glue_27's self-check. Decided: correlated_study refuses cond(R) or sigma_env²/min(sigma²) above MAX_COND = 1e11 naming
+    sigma and sigma_env (GLS's own round-off eps cond(R) would reach the 4 digits glued); below it the check holds."""
+    from fusion.book.chapters.lecture_correlated import correlated as co
+    from fusion.scenarios import lecture_correlated as lsc
+
+    try:
+        s = lsc.correlated_study(runs=20, sigma=sigma, sigma_env=sigma_env)
+    except ValueError as exc:
+        assert "sigma" in str(exc) and ("condition number" in str(exc) or "positive definite" in str(exc))
+        return
+    assert np.linalg.cond(s.R) <= 1.01 * lsc.MAX_COND
+    assert co.glue_27(s)["lec_cor_runs"] == 20
+
+
+def test_glue_27_names_s_for_an_r_beyond_the_limit_built_otherwise() -> None:
+    """A study carrying an R beyond correlated_study's limit (built by hand) is refused naming ``s``, not a RuntimeError
+    of the self-check."""
+    import dataclasses
+
+    from fusion.book.chapters.lecture_correlated import correlated as co
+    from fusion.scenarios import lecture_correlated as lsc
+
+    s = lsc.correlated_study(runs=20, sigma=(1.0, 2.0))
+    for sig, env in (((1e-4, 2e-4), 1e3), ((1.0, 1e-6), 1e3)):   # cond(R) 8e13; cond 4e6 but R lost the 1e-12
+        sig = np.array(sig)
+        R = np.kron(np.diag(sig**2), np.eye(2)) + env**2 * np.kron(np.ones((2, 2)), np.eye(2))
+        with pytest.raises(ValueError, match=r"^s must have an R with a condition number"):
+            co.glue_27(dataclasses.replace(s, R=R))
+
