@@ -117,3 +117,35 @@ def test_glue_27_names_s_for_an_r_beyond_the_limit_built_otherwise() -> None:
         with pytest.raises(ValueError, match=r"^s must have an R with a condition number"):
             co.glue_27(dataclasses.replace(s, R=R))
 
+
+# --- C4: integers beyond a float's range in the book's JSON files -------------------------------------------------
+
+def test_benchmark_cost_names_path_for_an_integer_beyond_a_float(tmp_path: Path) -> None:
+    """C4: a measurement ``value`` of 10**400 (a JSON integer, 401 digits) raised OverflowError in the check
+    ``math.isfinite(v)``. The one JSON reader refuses integers beyond a float's range at decode time, naming the file."""
+    import json
+
+    from fusion.book.chapters.chernoff import swarm
+
+    src = json.loads((Path(__file__).resolve().parents[1] / "benchmarks/results/chernoff.json").read_text())
+    for m in src["measurements"]:
+        if m.get("stage") == "em":
+            m["value"] = 10**400
+    path = tmp_path / "bench.json"
+    path.write_text(json.dumps(src))
+    with pytest.raises(ValueError, match=r"bench\.json.*401 digits overflows a float"):
+        swarm.benchmark_cost(path)
+
+
+@pytest.mark.parametrize("sign", ["", "-"])
+def test_json_document_keeps_integers_a_float_holds_and_refuses_the_rest(sign: str) -> None:
+    import sys
+
+    from fusion._paths import json_document
+
+    top = int(sys.float_info.max)
+    assert json_document(f"[{sign}{top + 1}, {sign}{10**308}, {sign}12]", "f") == [int(f"{sign}{v}") for v in
+                                                                                  (top + 1, 10**308, 12)]
+    for bad in (2 * top, 10**309, 10**4000):
+        with pytest.raises(ValueError, match=r"^f: an integer of \d+ digits overflows a float"):
+            json_document(f"{{\"a\": [{sign}{bad}]}}", "f")
