@@ -149,3 +149,44 @@ def test_json_document_keeps_integers_a_float_holds_and_refuses_the_rest(sign: s
     for bad in (2 * top, 10**309, 10**4000):
         with pytest.raises(ValueError, match=r"^f: an integer of \d+ digits overflows a float"):
             json_document(f"{{\"a\": [{sign}{bad}]}}", "f")
+
+
+# --- C2: no process-global warning filter in the package --------------------------------------------------------------
+
+def test_the_package_sets_no_warning_filter() -> None:
+    """C2 (fuzz 24a W's rule): ``warnings.catch_warnings`` / ``simplefilter`` / ``filterwarnings`` change process-global
+    state; three threads in ``ir_ratio`` left its two "ignore" filters in ``warnings.filters`` for good."""
+    import re
+
+    root = Path(__file__).resolve().parents[1] / "fusion"
+    call = re.compile(r"^\s*(with\s+)?(warnings|_?w)\.(catch_warnings|simplefilter|filterwarnings|resetwarnings)\(|"
+                      r"^\s*from warnings import", re.M)
+    found = [str(p.relative_to(root)) for p in sorted(root.rglob("*.py")) if call.search(p.read_text(encoding="utf-8"))]
+    assert not found, found
+
+
+def _rmse(runs: int, seed: int = 0) -> np.ndarray:
+    return np.abs(np.random.default_rng(seed).normal(1, 0.3, size=(runs, 4)))
+
+
+def test_ir_ratio_warns_nothing_and_refuses_every_undefined_interval_by_name() -> None:
+    """C2/C3: without its warning filter, ``ir_ratio`` emits no warning under the caller's ``simplefilter("error")``,
+    on valid runs or on degenerate ones (refused by name), and leaves ``warnings.filters`` as it found them. Decided:
+    a resample holding only zero x errors is refused wherever it is among the 2000 (as documented; before, one outside
+    the interval's quantiles passed with an infinite resampled ratio)."""
+    import warnings
+
+    from fusion.book.chapters.ci import infrared_readings as ir
+
+    ok = ir.ir_ratio(_rmse(40), 1)
+    x_zero = _rmse(6, 3)
+    x_zero[:2, 2] = 0                     # 2 of 6 runs without x error: a few of 2000 resamples hold no x error
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        before = list(warnings.filters)
+        assert ir.ir_ratio(_rmse(40), 1) == ok
+        for bad in (np.ones((10, 4)), _rmse(10) * [1, 1, 1, 0], x_zero):
+            with pytest.raises(ValueError, match="run_rmse: the bootstrap interval of the ratio is undefined"):
+                ir.ir_ratio(bad, 1)
+        assert warnings.filters == before
+
