@@ -190,3 +190,71 @@ def test_ir_ratio_warns_nothing_and_refuses_every_undefined_interval_by_name() -
                 ir.ir_ratio(bad, 1)
         assert warnings.filters == before
 
+
+# --- C3: valid calls emit no third-party warning (a caller's simplefilter("error")) -----------------------------------
+
+def test_valid_calls_emit_no_warning_under_the_callers_error_filter() -> None:
+    """C3: ``length_study(64, runs=3)`` (documented ``length >= 16``) raised pywt's UserWarning "Level value of 4 is
+    too high"; ``mean_only_status(a, a + 0.5)`` (a constant paired difference) and ``architecture``'s interval of
+    differences equal up to round-off raised scipy's "Precision loss" RuntimeWarning."""
+    import warnings
+
+    from fusion.book.chapters.ci import architecture
+    from fusion.book.chapters.lecture_wavelets import appendix, e26
+
+    a = np.array([1.0, 2.0, 3.0, 4.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert e26.mean_only_status(a, a + 0.5) == "reproduced"
+        assert appendix.length_study(64, runs=3).length == 64
+        assert architecture._mean_ci(np.array([0.3, 0.1 + 0.2, 0.3, 0.1 + 0.2])) == (np.mean([0.3, 0.1 + 0.2] * 2), 0.0)
+
+
+@settings(max_examples=60, deadline=None)
+@given(base=st.floats(-1e6, 1e6, allow_subnormal=False), n=st.integers(2, 30), seed=st.integers(0, 2**16),
+       spread=st.sampled_from([0.0, 1e-18, 1e-16, 1e-14, 1e-3, 1.0]))
+def test_t_intervals_warn_nothing_and_equal_scipy_where_scipy_does_not_warn(base: float, n: int, seed: int,
+                                                                           spread: float) -> None:
+    """The shared rule (``fusion.book._t_interval``): data constant to round-off give the zero-width interval at their
+    mean and a test decided by the mean's side, without a warning; all other data scipy's numbers bit for bit."""
+    import warnings
+
+    from scipy import stats
+
+    from fusion.book import _t_interval as ti
+
+    x = base + spread * max(abs(base), 1.0) * np.random.default_rng(seed).normal(size=n)
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        ref = stats.ttest_1samp(x, 0.0).confidence_interval(0.95)
+        p_ref = stats.ttest_1samp(x, base + 1.0, alternative="less").pvalue
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got, p = ti.mean_interval(x, 0.95), ti.t_pvalue(x, base + 1.0, "less")
+    if any(issubclass(w.category, RuntimeWarning) for w in seen):
+        assert got == (float(x.mean()), float(x.mean())) and p == (0.0 if x.mean() < base + 1.0 else 1.0)
+    else:
+        assert got == (float(ref.low), float(ref.high)) and p == float(p_ref)
+
+
+@pytest.mark.parametrize("wavelet", ["db4", "haar", "coif3"])
+def test_the_wavelet_transform_equals_pywt_at_every_depth_without_its_warning(wavelet: str) -> None:
+    """C3's pywt site, in the main package: ``denoise``'s decimated transform is ``pywt.wavedec``'s bit for bit at any
+    depth (beyond ``pywt.dwt_max_level`` too, where pywt warns) and warns nothing."""
+    import warnings
+
+    import pywt
+
+    from fusion.readings import wavelet as wv
+
+    x = np.random.default_rng(5).normal(size=(2, 64))
+    for level in (1, 4, 6):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ref = pywt.wavedec(x, wavelet, level=level, mode="periodization", axis=-1)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            got = wv._wavedec_periodic(x, wavelet, level)
+            wv.denoise(x, wavelet=wavelet, level=level)
+        assert len(got) == len(ref) and all(np.array_equal(g, r) for g, r in zip(got, ref))
+
