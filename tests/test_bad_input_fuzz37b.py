@@ -81,7 +81,7 @@ def test_a_directory_in_place_of_an_entry_or_its_lock_returns_the_result_unstore
 
 # --- C5: glue_27's solver self-check on every study correlated_study accepts ------------------------------------------
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=25, deadline=None)
 @example(sigma=[1e-4, 2e-4], sigma_env=1e3)                        # the report's case: cond(R) = 8e13
 @example(sigma=[1e-3, 2e-3, 3e-3], sigma_env=1e3)                  # cond(R) ~ 4e12, 3 sensors
 @given(sigma=st.lists(st.floats(-6, 1).map(lambda e: 10.0 ** e), min_size=1, max_size=4),
@@ -210,9 +210,10 @@ def test_valid_calls_emit_no_warning_under_the_callers_error_filter() -> None:
         assert architecture._mean_ci(np.array([0.3, 0.1 + 0.2, 0.3, 0.1 + 0.2])) == (np.mean([0.3, 0.1 + 0.2] * 2), 0.0)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=40, deadline=None)
+@example(base=1.0, n=2, seed=0, spread=1e-14)                        # scipy warns at 10 eps of the mean, any n
 @given(base=st.floats(-1e6, 1e6, allow_subnormal=False), n=st.integers(2, 30), seed=st.integers(0, 2**16),
-       spread=st.sampled_from([0.0, 1e-18, 1e-16, 1e-14, 1e-3, 1.0]))
+       spread=st.sampled_from([0.0, 1e-18, 1e-16, 1e-15, 3e-15, 1e-14, 1e-3, 1.0]))
 def test_t_intervals_warn_nothing_and_equal_scipy_where_scipy_does_not_warn(base: float, n: int, seed: int,
                                                                            spread: float) -> None:
     """The shared rule (``fusion.book._t_interval``): data constant to round-off give the zero-width interval at their

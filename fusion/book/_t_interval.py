@@ -1,7 +1,7 @@
 """Student's t interval and one-sample t test of a mean, without scipy's "precision loss" warning (fuzz 37b C3).
 
 ``scipy.stats.ttest_1samp`` warns (``RuntimeWarning``: "Precision loss occurred in moment calculation due to
-catastrophic cancellation") when its data equal their mean to within ``n eps`` of it: a constant paired difference
+catastrophic cancellation") when its data equal their mean to within ``10 eps`` of it: a constant paired difference
 (``a`` and ``a + 0.5``) or runs equal up to round-off, legitimate inputs of the chapters' readings, which a caller's
 ``warnings.simplefilter("error")`` turned into an exception. Such data are treated here as the constant they are to
 round-off, scipy's own answer for exactly constant data: the zero-width interval at their mean, and a test decided by
@@ -18,11 +18,12 @@ __all__: list[str] = []
 
 
 def constant_to_round_off(x: np.ndarray) -> bool:
-    """Whether the entries of ``x`` equal their mean exactly or to within ``n eps`` of it: scipy's precision-loss
-    criterion (``scipy.stats._stats_py._moment``), under which its variance is round-off."""
+    """Whether the entries of ``x`` equal their mean exactly or to within ``10 eps`` of it: scipy's precision-loss
+    criterion (``scipy.stats._stats_py._demean``), under which its variance is round-off."""
     x = np.asarray(x, dtype=float)
-    dev = float(np.max(np.abs(x - x.mean())))
-    return dev == 0.0 or dev < np.finfo(float).eps * x.size * abs(float(x.mean()))
+    mean = x.mean()
+    dev = float(np.max(np.abs(x - mean)))
+    return dev == 0.0 or dev < 10 * np.finfo(float).eps * abs(float(mean))
 
 
 def mean_interval(x: np.ndarray, level: float = 0.95) -> tuple[float, float]:
