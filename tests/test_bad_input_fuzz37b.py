@@ -259,3 +259,27 @@ def test_the_wavelet_transform_equals_pywt_at_every_depth_without_its_warning(wa
             wv.denoise(x, wavelet=wavelet, level=level)
         assert len(got) == len(ref) and all(np.array_equal(g, r) for g, r in zip(got, ref))
 
+
+# --- D2: benchmark_cost's stage times beyond a measured duration's range ---------------------------------------------
+
+@pytest.mark.parametrize("value", [1e300, 1e-320, 2e6])
+def test_benchmark_cost_refuses_a_duration_outside_the_plausible_range(value: float, tmp_path: Path) -> None:
+    """D2, decided: a measured duration lies in [1e-9, 1e6] s (a timer's nanosecond to 11 days; the stored benchmarks
+    measure 4.6e-5 to 218 s); 1e300 s glued a 300-digit number of ms, 1e-320 s "0.0 against 0.0 ms per frame"."""
+    import json
+
+    from fusion.book.chapters.chernoff import swarm
+
+    src = json.loads((Path(__file__).resolve().parents[1] / "benchmarks/results/chernoff.json").read_text())
+    for m in src["measurements"]:
+        if "stage" in m:
+            m["value"] = value
+    path = tmp_path / "bench.json"
+    path.write_text(json.dumps(src))
+    with pytest.raises(ValueError, match=r"^path: benchmark result .*bench\.json.*must lie in \[1e-09, 1e\+06\]"):
+        swarm.benchmark_cost(path)
+    for m in src["measurements"]:
+        if "stage" in m:
+            m["value"] = 1e-9 if value < 1 else 1e6              # the range's ends are measured durations
+    path.write_text(json.dumps(src))
+    assert swarm.benchmark_cost(path)[1]["chf_bench_current"] is True
