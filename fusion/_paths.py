@@ -148,25 +148,37 @@ def _finite_float(literal: str) -> float:
     return v
 
 
+def _float_range_int(literal: str) -> int:
+    v = int(literal)   # beyond 4300 digits: Python's own ValueError
+    if len(literal) > 308:   # 309 digits or more: near or beyond the float range (checked only there)
+        try:
+            float(v)
+        except OverflowError:   # fuzz 37b C4: a reader's float(v) raised it
+            raise ValueError(f"an integer of {len(literal.lstrip('-'))} digits overflows a float (integers beyond "
+                             "about ±1.8e308 are refused)") from None
+    return v
+
+
 def json_document(text: str, label: str) -> object:
     """The JSON document ``text``, by the book's one rule for its JSON files (issue 35, fuzz 21; fuzz 36b B1, B2):
     text that is not JSON, nested beyond Python's recursion limit, holding ``NaN``, ``Infinity`` or a number that
-    overflows to one (which :func:`json.dumps` writes but JSON does not define), or an integer longer than Python
-    converts (4300 digits) is a ValueError ``"<label>: ..."`` (``label`` names the caller's argument and the file),
-    instead of a :class:`json.JSONDecodeError`, a :class:`RecursionError` or an unnamed ValueError."""
+    overflows to one (which :func:`json.dumps` writes but JSON does not define), or an integer beyond the float range
+    (a number a reader converts to float: ``10**400`` raised OverflowError there, fuzz 37b C4) is a ValueError
+    ``"<label>: ..."`` (``label`` names the caller's argument and the file), instead of a
+    :class:`json.JSONDecodeError`, a :class:`RecursionError`, an :class:`OverflowError` or an unnamed ValueError."""
     try:
-        return json.loads(text, parse_constant=_no_constant, parse_float=_finite_float)
+        return json.loads(text, parse_constant=_no_constant, parse_float=_finite_float, parse_int=_float_range_int)
     except json.JSONDecodeError as exc:
         raise ValueError(f"{label}: not JSON ({exc.msg} at line {exc.lineno}, column {exc.colno})") from None
     except RecursionError:
         raise ValueError(f"{label}: nested too deep to read") from None
-    except ValueError as exc:  # a NaN or an infinity (parse_constant, parse_float), an integer too long to convert
+    except ValueError as exc:  # a NaN or an infinity (parse_constant, parse_float), an integer beyond a float's range
         raise ValueError(f"{label}: {str(exc)[:200]}") from None
 
 
 def file_json(path: Path, label: str, limit: int = MAX_FILE_BYTES) -> object:
     """The JSON document of the regular file ``path`` (:func:`file_text`) by :func:`json_document`'s rule: text that
-    is not JSON, nested too deep, holding NaN or an infinity, or an integer too long to convert is a ValueError
+    is not JSON, nested too deep, holding NaN or an infinity, or an integer beyond a float's range is a ValueError
     ``"<label>: ..."``. Its structure is the caller's to check (by the keys it reads)."""
     return json_document(file_text(path, label, limit), label)
 

@@ -26,7 +26,8 @@ def read_object(path: Path, what: str = "file") -> dict[str, Any]:
 
     One rule for the book's JSON files (issue 35, fuzz 21): a file that is not UTF-8, not JSON, nested beyond
     Python's recursion limit, holding ``NaN``, ``Infinity`` or a number that overflows to one (which :func:`json.dumps` writes but JSON does not
-    define, and which the claim files refuse as ``.nan``), or whose top level is not an object, is refused with a
+    define, and which the claim files refuse as ``.nan``), an integer beyond a float's range (fuzz 37b C4), or whose
+    top level is not an object, is refused with a
     :class:`ValueError` naming the file, instead of a :class:`json.JSONDecodeError`, a :class:`TypeError` or a
     :class:`RecursionError` of the first reader.
 

@@ -99,8 +99,9 @@ def _check_record(record: Mapping[str, Any], path: Path) -> None:
 def _check_measurements(ms: object, path: Path) -> None:
     """A record's ``measurements``: a list of objects, each ``key`` (where given) a string held by no other
     measurement (a reader looks a value up by its key: with two, which one it reads is arbitrary; fuzz 24b D6) and
-    each ``value`` (where given) a finite number, positive where its ``unit`` is seconds (``"s"``, ``"CPU-s"``: a
-    measured duration; fuzz 24b BC3); refused by a ValueError naming the file and the field."""
+    each ``value`` (where given) a finite number, within [1e-9, 1e6] where its ``unit`` is seconds (``"s"``,
+    ``"CPU-s"``: a measured duration; fuzz 24b BC3, fuzz 37b D2); refused by a ValueError naming the file and the
+    field."""
     if not isinstance(ms, list):
         raise ValueError(f"benchmark result {path}: measurements must be a list, got {shown(ms)}")
     seen: dict[str, int] = {}
@@ -117,13 +118,18 @@ def _check_measurements(ms: object, path: Path) -> None:
         v = m.get("value")
         if "value" in m and (not isinstance(v, (int, float)) or isinstance(v, bool) or not math.isfinite(v)):
             raise ValueError(f"benchmark result {path}: measurements[{i}].value must be a finite number, got {shown(v)}")
-        if "value" in m and m.get("unit") in _SECONDS and not v > 0:
+        if "value" in m and m.get("unit") in _SECONDS and not _DURATION[0] <= v <= _DURATION[1]:
             raise ValueError(f"benchmark result {path}: measurements[{i}].value is a duration ({m['unit']}) and must "
-                             f"be positive, got {shown(v)}")
+                             f"lie in [{_DURATION[0]:g}, {_DURATION[1]:g}] s (a nanosecond timer's step to 11 days), "
+                             f"got {shown(v)}")
 
 
-#: Units of a measured duration, whose values :func:`_check_measurements` requires positive.
+#: Units of a measured duration, whose values :func:`_check_measurements` requires within :data:`_DURATION`.
 _SECONDS = ("s", "CPU-s")
+#: The plausible range of a measured duration in seconds (fuzz 37b D2: 1e300 s glued a 300-digit number of ms,
+#: 1e-320 s "0.0 against 0.0 ms"): from a nanosecond, the step of the timers, to a million seconds (11 days); the
+#: stored benchmarks measure 4.6e-5 to 218 s.
+_DURATION = (1e-9, 1e6)
 
 
 def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:

@@ -7,8 +7,10 @@ the process (least recently used dropped first, keyed as on disk but with every 
 environment variable :data:`ENV` names a directory, also on disk there: the first process to need a result
 computes it under a file lock and stores it (pickle, written atomically); a process that asks meanwhile waits for
 it instead of computing it a second time, and later ones load it. A stored file that cannot be read back (empty,
-truncated, corrupt) or does not hold its own key's result is a miss: the result is computed again and the file
-rewritten.
+truncated, corrupt, a damaged length field included, or a directory in its place) or does not hold its own key's
+result is a miss: the result is computed again and the file rewritten. An entry that cannot be written (its lock or
+its file blocked by a directory, a full disk) is not an error either: the computed result is returned unstored, as
+without :data:`ENV` (fuzz 37b C1, D1).
 
 The key of a result is the SHA-256 of the package's sources (every ``fusion/**/*.py``), numpy's version, the
 function's qualified name and its arguments bound to its parameters (defaults applied): any edit of the package
@@ -47,6 +49,7 @@ more than once without the cache, and what they cost.
 from __future__ import annotations
 
 import collections
+import contextlib
 import copy
 import dataclasses
 import enum
@@ -404,12 +407,19 @@ def _log(qualname: str, arguments: dict[str, Any], event: str, cpu: float) -> No
 
 def _stored(target: Path, key: str) -> tuple[Any] | None:
     """``(value,)`` stored in ``target`` for ``key``, or None (a miss, recomputed and rewritten) when the file cannot be
-    read back (empty, truncated, corrupt: issue 35, fuzz 21 D14) or holds another key's result or something else."""
+    read back (empty, truncated, corrupt: issue 35, fuzz 21 D14; a directory) or holds another key's result or something
+    else. A damaged length field (a frame's, a bytes' or a text's) makes pickle ask for that much memory (fuzz 37b C1:
+    one flipped bit raised MemoryError): after a MemoryError the file is unpickled again from its bytes, where a length
+    beyond the file is a truncation error, and any failure is a miss (a real shortage recurs in the recomputation,
+    where it is raised). The normal hit path reads the file once, as before."""
     try:
         with open(target, "rb") as fh:
             loaded = pickle.load(fh)          # noqa: S301 - our own file, written in this invocation
     except MemoryError:
-        raise
+        try:
+            loaded = pickle.loads(target.read_bytes())   # noqa: S301 - as above; lengths bounded by the file's size
+        except Exception:                     # noqa: BLE001 - MemoryError included: a miss
+            return None
     except Exception:                         # noqa: BLE001 - any unreadable file is a miss, never the study's error
         return None
     if isinstance(loaded, tuple) and len(loaded) == 2 and loaded[0] == key:
@@ -470,7 +480,11 @@ def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any]
                          f"{shown(str(root))} ({type(exc).__name__}: {exc.strerror})") from None
     target = root / f"{key}.pkl"
     start = time.process_time()
-    with open(root / f"{key}.lock", "w", encoding="utf-8") as lock:
+    try:
+        lock = open(root / f"{key}.lock", "w", encoding="utf-8")   # noqa: SIM115 - closed below
+    except OSError:   # a directory in its place (fuzz 37b D1): computed and returned unstored, as without the disk
+        return compute()
+    with lock:
         fcntl.flock(lock, fcntl.LOCK_EX)      # released when the file closes (also on an exception)
         stored = _stored(target, key) if target.exists() else None
         if stored is not None:
@@ -482,12 +496,24 @@ def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any]
         except (pickle.PicklingError, TypeError, AttributeError):
             data = None                       # not picklable: every process computes it, as without the cache
         if data is not None:
-            fd, tmp = tempfile.mkstemp(dir=root, prefix=f".{key}.", suffix=".tmp")
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(data)
-            os.replace(tmp, target)           # atomic: a reader sees the whole file or none
+            _store(root, key, target, data)
         _log(qualname, arguments, "computed", time.process_time() - start)
         return value
+
+
+def _store(root: Path, key: str, target: Path, data: bytes) -> None:
+    """Write ``data`` to ``target`` atomically, or leave it unstored when the entry cannot be written (a directory at
+    ``target``, a full disk: fuzz 37b D1, the computed result was lost to an OS error)."""
+    tmp = None
+    try:
+        fd, tmp = tempfile.mkstemp(dir=root, prefix=f".{key}.", suffix=".tmp")
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.replace(tmp, target)               # atomic: a reader sees the whole file or none
+    except OSError:
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                os.remove(tmp)
 
 
 def _name_unhashable(fn: Callable[..., Any], args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:

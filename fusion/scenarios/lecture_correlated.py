@@ -305,6 +305,24 @@ def _optimal_k_representable(x: float, sigma: float, name: str) -> None:
 
 
 # --------------------------------------------------------------------------- E2.7
+#: The largest condition number of E2.7's R, and ratio sigma_env² / min(sigma²), that :func:`correlated_study` accepts:
+#: GLS's relative round-off is of order eps cond(R) (2.2e-5 here), below half a unit of the 4th significant digit its
+#: readers glue, and the chapter's solver self-check (structured against plain GLS, measured 0.1-0.5 eps cond(R)
+#: apart) stays 10x inside its 1e-4 tolerance (fuzz 37b C5: from cond(R) ~4e12 the two valid solvers differed by more
+#: than the glued precision; at sigma_env² / sigma² = 1e18 R did not hold the own variance at all).
+MAX_COND = 1e11
+
+
+def _conditioning(sig: np.ndarray, sigma_env: float) -> float:
+    """The larger of cond(R) of E2.7's R = diag(sig²) ⊗ I₂ + sigma_env² 1 1ᵀ ⊗ I₂ (that of its N x N factor: ⊗ I₂
+    repeats each eigenvalue; inf when it is not positive definite in floating point) and sigma_env² / min(sig²), the
+    conditioning of R's split into D + U Uᵀ: a diagonal that R holds only to a relative eps sigma_env² / sig² (at 1e18
+    R does not hold the own SD at all, and the structured solver's D was not positive)."""
+    ev = np.linalg.eigvalsh(np.diag(sig**2) + sigma_env**2 * np.ones((sig.size, sig.size)))
+    split = sigma_env**2 / float(np.min(sig**2)) if sig.size > 1 else 0.0   # one sensor: no coupling, R = D + 0
+    return max(float(ev[-1] / ev[0]) if ev[0] > 0 else np.inf, split)
+
+
 @derived_inputs()
 def correlated_study(
     sigma: Sequence[float] = (1.0, 2.0, 3.0),
@@ -324,7 +342,9 @@ def correlated_study(
     sigma : sequence of float
         Own noise standard deviation :math:`\sigma_i` of each sensor.
     sigma_env : float
-        Standard deviation :math:`\sigma_e` of the common environmental noise (> 0).
+        Standard deviation :math:`\sigma_e` of the common environmental noise (> 0). With ``sigma``, R's condition
+        number must not exceed ``MAX_COND`` (1e11), nor ``sigma_env**2`` that of the smallest own variance: beyond
+        either, GLS's round-off or the split of R into its own and common parts reaches the 4 digits E2.7 glues.
     runs : int
         Monte-Carlo runs.
     x : sequence of float
@@ -352,6 +372,10 @@ def correlated_study(
     sizes = [int(n) for n in _ints(sizes, "sizes")]  # the validated values (any 1-D array-like)
     distinct(sizes, "sizes")  # one row per size: a repeated size would repeat its row
     loop_work((len(sizes),), 0, "sizes", step=10 * LOOP_STEP)  # rule 17: a closed-form row (~40 us) per size
+    if _conditioning(sig, sigma_env) > MAX_COND:   # fuzz 37b C5: beyond what the chapter can glue and check
+        raise ValueError(f"sigma and sigma_env must give R a condition number, and sigma_env**2 / min(sigma)**2, of at "
+                         f"most {MAX_COND:g} (round-off reaches the 4 digits glued): the own SDs are too small beside "
+                         "sigma_env or each other")
     R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
     H = np.kron(np.ones((N, 1)), np.eye(2))
     xt = np.asarray(x, dtype=float)

@@ -802,9 +802,9 @@ def _orders(sl: slice, keys: tuple[str, ...] | None, truth: np.ndarray, noise: n
 
 def _band_shares(x: np.ndarray, wavelet: str, level: int) -> np.ndarray:
     """Share of the energy of ``x`` in each band of its decimated transform, (a_L, d_L, ..., d_1)."""
-    import pywt
+    from fusion.readings.wavelet import _wavedec_periodic   # pywt.wavedec's values without its depth warning
 
-    c = pywt.wavedec(x, wavelet, level=level, mode="periodization")
+    c = _wavedec_periodic(np.asarray(x, dtype=float), wavelet, int(level))
     e = np.array([np.sum(v**2) for v in c])
     return e / e.sum()
 

@@ -19,7 +19,7 @@ from fusion._shown import shown
 from fusion._validation import is_integer, scalar
 from fusion._counts import sequence
 from fusion.book._json import read_argument
-from fusion.book.benchmarks import _check_measurements
+from fusion.book.benchmarks import _DURATION, _check_measurements
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
@@ -215,6 +215,8 @@ PATENT_STAGES: tuple[BenchStage, ...] = (BenchStage.PARTICLE_FILTERS, BenchStage
 _BENCH_KEYS = ("loop_seconds", "study_seconds", "study_seconds_workers", "identical", "pso_over_slsqp")
 #: Those of them that are durations or a ratio of durations: positive whatever their unit.
 _POSITIVE_KEYS = ("loop_seconds", "study_seconds", "study_seconds_workers", "pso_over_slsqp")
+#: Those of them that are durations in seconds, within the plausible range of a measured duration (``_DURATION``).
+_DURATION_KEYS = ("loop_seconds", "study_seconds", "study_seconds_workers")
 #: The largest ``runs`` a benchmark record may give: the count ceiling of runs (rule 9 of ``fusion._validation``).
 _MAX_RUNS = COUNT_CEILINGS["runs"]
 
@@ -257,11 +259,15 @@ def _current_measurements(bench: dict[str, Any], path: Path) -> list[dict[str, A
                 raise ValueError(f"{where}: measurements[{i}] measures stage {shown(m['stage'])} again (first "
                                  f"measurements[{seen[m['stage']]}]): a stage is measured once")
             seen[m["stage"]] = i
-            if not m["value"] > 0:
+            if not _DURATION[0] <= m["value"] <= _DURATION[1]:   # whatever its unit (fuzz 37b D2: 1e300 s glued)
                 raise ValueError(f"{where}: measurements[{i}].value (stage {shown(m['stage'])}, seconds per frame) "
-                                 f"must be positive, got {shown(m['value'])}")
+                                 f"must lie in [{_DURATION[0]:g}, {_DURATION[1]:g}] (a measured duration), got "
+                                 f"{shown(m['value'])}")
         if m.get("key") in _POSITIVE_KEYS and "value" in m and not m["value"] > 0:
             raise ValueError(f"{where}: measurements[{i}].value ({m['key']}) must be positive, got {shown(m['value'])}")
+        if m.get("key") in _DURATION_KEYS and "value" in m and not _DURATION[0] <= m["value"] <= _DURATION[1]:
+            raise ValueError(f"{where}: measurements[{i}].value ({m['key']}, seconds) must lie in "
+                             f"[{_DURATION[0]:g}, {_DURATION[1]:g}] (a measured duration), got {shown(m['value'])}")
     stages = {m["stage"] for m in ms if "stage" in m}
     keys = {m["key"] for m in ms if "key" in m and "value" in m}
     lacks = [str(st) for st in (BenchStage.EM, BenchStage.OPTIMISER, BenchStage.REFERENCE) if st not in stages]
@@ -301,9 +307,10 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
         ``path`` not an existing file holding a JSON object, or, when it has :data:`BENCH_SCHEMA`, without what is
         read here (``runs``, a list of measurements with finite values, those of the stages of EM, the swarm and
         SLSQP, and the keys of the study's timings), naming ``path`` and the file; also when a stage is measured
-        twice or a key repeats, a stage's seconds or a timing is not positive, ``runs`` or ``workers`` is not a
-        positive integer (``runs`` at most the count ceiling of runs), ``load_average`` (optional, shown as ``?``
-        when absent) is not a non-empty list of non-negative numbers, or ``schema`` is not an integer.
+        twice or a key repeats, a stage's seconds or a timing in seconds is outside [1e-9, 1e6] (a measured
+        duration) or the time ratio is not positive, ``runs`` or ``workers`` is not a positive integer (``runs`` at
+        most the count ceiling of runs), ``load_average`` (optional, shown as ``?`` when absent) is not a non-empty
+        list of non-negative numbers, or ``schema`` is not an integer.
     """
     bench = read_argument(path, "path", "benchmark result")
     date = str(bench.get("date", bench.get("timestamp", "undated")))[:10]

@@ -25,6 +25,7 @@ from fusion.book.chapters.ci.constants import (BSC_N, CI_N, CVX_N, FB, FBC, IND,
 from fusion.book.chapters.ci.text import _glue_doc, nees_band, paired_text
 from fusion.book.chapters.ci.tracking import ANISO_LABEL, ANISO_R, IDENTICAL_LABEL
 from fusion._shown import shown
+from fusion.book._t_interval import constant_to_round_off, mean_interval
 
 __all__ = ["architecture_numbers", "architecture_table", "architecture_figure", "q_scaling_table", "q_numbers",
            "architecture_studies", "rule_label", "architecture_row"]
@@ -160,13 +161,12 @@ def _same_runs(qs: object, ai: object, scales: tuple[float, ...]) -> None:
 
 
 def _mean_ci(x: np.ndarray) -> tuple[float, float]:
-    """Mean and half-width of Student's 95 % interval of the mean (scipy.stats)."""
-    from scipy import stats
-
+    """Mean and half-width of Student's 95 % interval of the mean (scipy.stats); 0 for data constant to round-off
+    (``fusion.book._t_interval``: scipy warned of precision loss on differences equal up to round-off, fuzz 37b C3)."""
     x = np.asarray(x, dtype=float)
-    if np.ptp(x) == 0.0:
+    if constant_to_round_off(x):
         return float(x.mean()), 0.0
-    lo, hi = stats.ttest_1samp(x, 0.0).confidence_interval(0.95)
+    lo, hi = mean_interval(x, 0.95)
     return float(x.mean()), float(hi - x.mean())
 
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -394,7 +393,9 @@ def ir_ratio(run_rmse: np.ndarray, seed: int) -> tuple[float, float, float]:
         ``run_rmse`` is not of shape (runs, 4) with at least two runs (and at most about 8,000: the jackknife of
         the interval holds runs × (runs − 1) entries, within the memory budget), or holds NaN, infinite or negative
         entries, or its x errors are all zero; or the bootstrap interval is undefined: the resampled ratio does not vary (the
-        runs' x and y errors constant, or the y errors all zero) or a resample holds only zero x errors.
+        runs' x and y errors constant, or the y errors all zero) or one of the 2000 resamples holds only zero x errors
+        (the rule applied to every resample since fuzz 37b C2; before, an infinite resampled ratio outside the
+        interval's quantiles passed).
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     run_rmse = as_array(run_rmse, "run_rmse", shape=(None, len(IR_COMPONENTS)), nonnegative=True, subnormal=True)
@@ -408,17 +409,46 @@ def ir_ratio(run_rmse: np.ndarray, seed: int) -> tuple[float, float, float]:
     scaled, scale = _binary_scaled(run_rmse[:, 2:])   # exact powers of two: squares of 1e-200 m do not underflow
     ms, factor = scaled ** 2, float(scale[1] / scale[0])
     ratio = float(np.sqrt(ms[:, 1].mean() / ms[:, 0].mean())) * factor
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", stats.DegenerateDataWarning)   # a degenerate interval is refused below, by name
-        warnings.simplefilter("ignore", RuntimeWarning)               # (its BCa acceleration divides 0 by 0)
-        res = stats.bootstrap((ms[:, 0], ms[:, 1]), lambda a, b, axis=-1: np.sqrt(b.mean(axis=axis) / a.mean(axis=axis)),
-                              paired=True, vectorized=True, n_resamples=2000, confidence_level=0.95,
-                              rng=np.random.default_rng(seed))
+    undefined = ValueError(f"run_rmse: the bootstrap interval of the ratio is undefined (the ratio {ratio:.6g} is the "
+                           "same on every resample of runs, or some resample holds no non-zero x error): the runs must vary")
+    # no warning filter (process-global state another thread sees and can be left with: fuzz 24a W, fuzz 37b C2): the
+    # resamples are drawn once with a percentile interval, which stays finite, and the BCa interval is computed from
+    # them only where it is defined (scipy warns, DegenerateDataWarning, where it is not); numpy's 0/0 of a degenerate
+    # case is silenced by np.errstate, which is thread-local
+    kw = dict(paired=True, vectorized=True, confidence_level=0.95, rng=np.random.default_rng(seed))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        drawn = stats.bootstrap((ms[:, 0], ms[:, 1]), _resampled_ratio, n_resamples=2000, method="percentile", **kw)
+        if not _bca_defined(ms, drawn.bootstrap_distribution):
+            raise undefined
+        res = stats.bootstrap((ms[:, 0], ms[:, 1]), _resampled_ratio, n_resamples=0, bootstrap_result=drawn, **kw)
     low, high = float(res.confidence_interval.low) * factor, float(res.confidence_interval.high) * factor
     if not (np.isfinite(low) and np.isfinite(high)):
-        raise ValueError(f"run_rmse: the bootstrap interval of the ratio is undefined (the ratio {ratio:.6g} is the same "
-                         "on every resample of runs, or some resample holds no non-zero x error): the runs must vary")
+        raise undefined
     return ratio, low, high
+
+
+def _resampled_ratio(a: np.ndarray, b: np.ndarray, axis: int = -1) -> np.ndarray:
+    """:func:`ir_ratio`'s statistic on resamples of runs, sqrt(mean b / mean a), and -1 (no ratio) where a resample
+    holds no non-zero x error (0/0 or y/0: NaN and infinities would make scipy's interval NaN, with a warning)."""
+    ma, mb = a.mean(axis=axis), b.mean(axis=axis)
+    return np.where(ma > 0, np.sqrt(mb / ma), -1.0)   # the caller holds np.errstate for the 0/0
+
+
+def _bca_defined(ms: np.ndarray, drawn: np.ndarray) -> bool:
+    """Whether scipy's BCa interval (``scipy.stats._resampling._bca_interval``) is defined on the paired runs ``ms``
+    and their resampled ratios ``drawn``: every resample holds a non-zero x error, the bias correction is finite (the
+    full ratio is neither below nor above every resampled one) and the jackknife's acceleration is (the ratio with one
+    run left out varies); its terms computed as scipy does."""
+    if not (drawn >= 0).all():
+        return False
+    full = _resampled_ratio(ms[:, 0], ms[:, 1])
+    share = (np.count_nonzero(drawn < full) + np.count_nonzero(drawn <= full)) / (2 * drawn.size)
+    n = ms.shape[0]
+    out = np.arange(n)[np.newaxis, :].repeat(n, axis=0)[~np.eye(n, dtype=bool)].reshape(n, n - 1)   # leave one out
+    theta = _resampled_ratio(ms[out, 0], ms[out, 1])
+    u = (n - 1) * (theta.mean() - theta)
+    den = np.sum(u**2) / n**2
+    return bool(0 < share < 1 and (theta >= 0).all() and den > 0 and np.isfinite(np.sum(u**3) / n**3 / den**1.5))
 
 
 def ir_ratio_band() -> tuple[float, float]:

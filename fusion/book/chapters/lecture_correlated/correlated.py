@@ -19,6 +19,7 @@ from fusion.book.tables import rounded
 from fusion.readings import correlated as co
 from fusion.scenarios import correlated_sensors as cs
 from fusion.scenarios.correlated_sensors import CouplingStudy, EstimatedCovarianceStudy
+from fusion.scenarios.lecture_correlated import MAX_COND as _MAX_COND
 from fusion.scenarios.lecture_correlated import CorrelatedStudy
 from fusion.book.glue import GlueValues
 from fusion._docstrings import ParameterDocs
@@ -111,14 +112,16 @@ def glue_27(s: CorrelatedStudy) -> GlueValues:
 
     The structured baseline (Sherman-Morrison-Woodbury on R = D + UUᵀ) is checked against GLS on
     ``s.R`` to a relative round-off of ``100 eps cond(R)`` (at least 1e-12, at most 1e-4); a one-sensor study has no
-    coupling between sensors to read, and its R is split as D + 0.
+    coupling between sensors to read, and its R is split as D + 0. cond(R) must not exceed ``correlated_study``'s
+    limit ``fusion.scenarios.lecture_correlated.MAX_COND`` (1e11).
 
     Raises
     ------
     TypeError
         ``s`` not a CorrelatedStudy.
     ValueError
-        ``s`` without the problem size Nm = 600 among its ``sizes`` (E2.7's ``correlated_study`` has it), named.
+        ``s`` without the problem size Nm = 600 among its ``sizes`` (E2.7's ``correlated_study`` has it), or with an R
+        conditioned (or split into own and common variances) beyond ``correlated_study``'s limit, named.
     """
     instance_of(s, CorrelatedStudy, "s")
     ft = table_27(s)
@@ -144,12 +147,17 @@ def glue_27(s: CorrelatedStudy) -> GlueValues:
     env2 = float(R[0, 2]) if N >= 4 else 0.0
     D = np.diag(R - env2 * np.kron(np.ones((N // 2, N // 2)), np.eye(2)))
     U = np.sqrt(env2) * np.kron(np.ones((N // 2, 1)), np.eye(2))
+    cond = float(np.linalg.cond(R))
+    split = env2 / float(np.min(D)) if np.min(D) > 0 else np.inf
+    if not max(cond, split) <= _MAX_COND:   # correlated_study refuses these; one built otherwise is named (fuzz 37b C5)
+        raise ValueError(f"s must have an R with a condition number, and a common over smallest own variance, of at most "
+                         f"{_MAX_COND:g} (correlated_study's limit): beyond it round-off reaches the 4 digits glued")
     z = np.random.default_rng(2705).normal(size=(N, 50))
     a, b = co.gls_low_rank(H, D, U, z).x, co.gls(H, R, z).x
     # both solvers are backward stable: they differ by round-off of order eps·cond(R), which a study whose own SDs
     # are far below σₑ makes large (fuzz 36b B4: σₑ = 300 differs by 7e-12, a fixed 1e-12 refused a valid study)
     # at most 1e-4, finer than the 4 significant digits glued: the check never becomes vacuous at a huge cond(R)
-    tol = min(1e-4, max(1e-12, 100 * np.finfo(float).eps * float(np.linalg.cond(R))))
+    tol = min(1e-4, max(1e-12, 100 * np.finfo(float).eps * cond))
     if not float(np.max(np.abs(a - b)) / np.max(np.abs(b))) < tol:
         raise RuntimeError("the structured (Sherman-Morrison-Woodbury) GLS does not equal GLS on E2.7")
     out.update(_r({"cor_flop_lowrank_600": (oc["ldl"] / co.low_rank_count(600, 2, 2), 0)}))

@@ -9,7 +9,6 @@ from typing import Any
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
-from scipy import stats
 
 from fusion._counts import distinct, index, sequence
 from fusion._validation import as_array, count, instance_of, same_length, scalar
@@ -28,6 +27,7 @@ from fusion.book.glue import GlueValues, _glue_prefix
 from fusion.book._few_runs import studies_runs_named
 from fusion._shown import shown
 from fusion.book.chapters._defaults import study_defaults
+from fusion.book._t_interval import mean_interval
 
 __all__ = [
     "table_26_display", "figure_26", "glue_26", "glue_equal_gains", "table_seeds", "mean_only_status",
@@ -396,7 +396,8 @@ def mean_only_status(a: np.ndarray, b: np.ndarray, relative_margin: float = R.DE
     -------
     str
         ``"reproduced"``, ``"contradicted"`` or ``"not distinguishable"``: where the t interval of the mean of a − b
-        lies against ``± relative_margin·|mean(b)|``.
+        lies against ``± relative_margin·|mean(b)|`` (differences constant to round-off, a constant shift included:
+        the zero-width interval at their mean, ``fusion.book._t_interval``).
     """
     a_arr, b_arr = as_array(a, "a", ndim=1), as_array(b, "b", ndim=1)
     same_length(a_arr, "a", b_arr, "b")
@@ -404,10 +405,10 @@ def mean_only_status(a: np.ndarray, b: np.ndarray, relative_margin: float = R.DE
     d = a_arr - b_arr
     if d.size < 2 or not np.all(np.isfinite(d)):
         raise ValueError("a and b must be finite paired runs of the same length >= 2")
-    ci = stats.ttest_1samp(d, 0.0).confidence_interval(R.CONFIDENCE_LEVEL)
+    low, high = mean_interval(d, R.CONFIDENCE_LEVEL)   # differences constant to round-off: zero width (fuzz 37b C3)
     margin = relative_margin * abs(float(np.mean(b)))
     scale = float(max(np.max(np.abs(a_arr)), np.max(np.abs(b_arr))))  # R2's scale: the runs' largest magnitude
-    return R.status_from_region(R.region(float(ci.low), float(ci.high), margin, scale=scale), "less")
+    return R.status_from_region(R.region(low, high, margin, scale=scale), "less")
 
 
 @study_defaults("e26", "block")  # a default the study does not fit, named by the study (fuzz 36b D1)
