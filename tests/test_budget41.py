@@ -149,3 +149,16 @@ def test_grubbs_pass_over_a_2d_x(monkeypatch):
     for x in (np.broadcast_to(np.arange(1000.0), (300, 1000)), np.arange(40000.0)[None]):
         with pytest.raises(_Ran):
             robust.robust_fuse(x, "grubbs")
+
+
+def test_gain_sequence_counts_a_steps_measurements(monkeypatch):
+    """n = 4 states and m = 300 measurements, 3.6 ms a step (8.7 with one R per step, each checked): 5,000 steps
+    (about 18 CPU-s) are refused naming n_steps, 1,000 (about 4 s) stay."""
+    from fusion.filtering import kalman
+    for body in ("_gains_matrices", "_gains_axes", "as_semidefinite"):
+        monkeypatch.setattr(kalman, body, _stop)
+    H = np.ones((300, 4)) / 300 + np.eye(300, 4)
+    with pytest.raises(ValueError, match="^n_steps, F and R"):
+        kalman.gain_sequence(np.eye(4), H, np.eye(4), np.eye(300), np.eye(4), 5000)
+    with pytest.raises(_Ran):
+        kalman.gain_sequence(np.eye(4), H, np.eye(4), np.eye(300), np.eye(4), 1000)

@@ -141,7 +141,7 @@ def local_track(
     # gains (K, n, m), P, Pd, Pi (K, n, n) and the estimates (runs, K, n)
     _steps_allocation(zz.shape[1], n, m + 3 * n + zz.shape[0], "z and the sizes of F and H")
     # its gain_sequence's worst case, by this function's names (fuzz 36a D2): R_total is one R per step with R_shared
-    _gains_work(zz.shape[1], n, R_shared is not None or _numeric(R, "R").ndim == 3, "z (its steps K) and R")
+    _gains_work(zz.shape[1], n, R_shared is not None or _numeric(R, "R").ndim == 3, "z (its steps K) and R", m)
     # its gain_sequence, split_covariances and filter_runs: each R given per step checked per step (R_shared makes the
     # filter's R one per step), and each step's dense n x n and m x m algebra (fuzz 37a C2)
     per_step = (_numeric(R, "R").ndim == 3) + (R_shared is not None and _numeric(R_shared, "R_shared").ndim == 3)
