@@ -56,8 +56,8 @@ def test_posterior_crb_frames_refused_naming_truths(monkeypatch):
 def test_filter_step_budget_keeps_the_books_sizes():
     """The budget is a count of units: chapter-size requests (2,000 steps of 100 runs) stay inside it."""
     from fusion.filtering.kalman import FUSION_LOOP_STEP, LOCAL_TRACK_STEP, _steps_work
-    _steps_work(2000, 100, 4, FUSION_LOOP_STEP, "z")
-    _steps_work(20000, 100, 4, LOCAL_TRACK_STEP, "z")
+    _steps_work(2000, 100, 4, 2, FUSION_LOOP_STEP, "z")
+    _steps_work(20000, 100, 4, 2, LOCAL_TRACK_STEP, "z")
 
 
 class _Unread(np.ndarray):

@@ -77,7 +77,8 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import (derived, singular_system, FloatArray, as_array, as_covariance, as_semidefinite, computed_part,
                                one_of, scalar)
 from fusion.estimates import ci as es
-from fusion.filtering.kalman import FUSION_LOOP_STEP, _model, _steps_allocation, _steps_work
+from fusion.filtering.kalman import (FUSION_LOOP_CUBE, FUSION_LOOP_M_CUBE, FUSION_LOOP_SPLIT_CUBE,
+                                    FUSION_LOOP_SPLIT_STEP, FUSION_LOOP_STEP, _model, _steps_allocation, _steps_work)
 from fusion._shown import shown
 
 __all__ = ["FEEDBACK_RULES", "ARCHITECTURES", "PROCESS_NOISE", "FusionLoop", "fusion_loop"]
@@ -262,7 +263,10 @@ def fusion_loop(
     Raises
     ------
     ValueError
-        Arrays of the wrong shape or not finite, covariances not valid, an unknown option.
+        Arrays of the wrong shape or not finite, covariances not valid, an unknown option; the steps ``K`` of ``z1``
+        and ``z2`` with the sizes of ``F`` and ``H`` beyond the work budget (``fusion._limits.MAX_WORK``, ~10
+        CPU-s: each step's ``n x n`` products and inverses cost about ``n**3``; 75 steps of 300 states, 18 with
+        the split rules).
 
     References
     ----------
@@ -292,7 +296,11 @@ def fusion_loop(
     runs, K = zs[0].shape[:2]
     # the estimates (runs, K, n), the fused and local P (K, n, n) and the split weights' four parts (K, n, n)
     _steps_allocation(K, n, runs + 6 * n, "z1 and the sizes of F and H")
-    _steps_work(K, runs, n, FUSION_LOOP_STEP, "z1 and z2 (their steps K)")
+    # each step's dense n x n and m x m algebra too (fuzz 37a C2): the split rules search a weight a step, dearer
+    searched = rule in ("split", "printed")
+    _steps_work(K, runs, n, m, FUSION_LOOP_SPLIT_STEP if searched else FUSION_LOOP_STEP,
+                "z1 and z2 (their steps K) and the sizes of F and H",
+                FUSION_LOOP_SPLIT_CUBE if searched else FUSION_LOOP_CUBE, FUSION_LOOP_M_CUBE)
     xs = []
     for name, x0 in (("x0_1", x0_1), ("x0_2", x0_2)):
         arr = as_array(x0, name, ndim=2)

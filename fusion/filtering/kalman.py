@@ -25,6 +25,7 @@ References
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -165,25 +166,59 @@ def _steps_allocation(steps: int, n: int, per_state: int, names: str) -> None:
 
 #: Units (:data:`fusion._limits.LOOP_STEP` multiples) of one Python-level step of a filter loop of a small model,
 #: measured with ``time.process_time`` on the cv model (n = 4, m = 2, one run): :func:`fusion.filtering.feedback.fusion_loop`
-#: 0.34-0.46 ms a step (45 steps of 10 us), :func:`fusion.filtering.tracks.local_track` 15 us a step (2).
+#: 0.34-0.46 ms a step (45 steps of 10 us; its split rules, whose weights are searched, 0.4-0.84 ms: 90),
+#: :func:`split_covariances` 15 us (2), and 17 us more for each ``R`` given per step (checked per step: 2),
+#: :func:`error_moments` 11 us (2), :func:`filter_runs` 3 us (1), :func:`fusion.filtering.tracks.local_track`
+#: 15-46 us (the sum of its :func:`gain_sequence`'s, ``split_covariances``' and ``filter_runs``': 4, more with
+#: ``R`` per step), :func:`fusion.filtering.tracks.fuse_tracks` 0.10-0.21 ms (25).
 FUSION_LOOP_STEP = 45 * LOOP_STEP
-LOCAL_TRACK_STEP = 2 * LOOP_STEP
+FUSION_LOOP_SPLIT_STEP = 90 * LOOP_STEP
+LOCAL_TRACK_STEP = 4 * LOOP_STEP
+FUSE_TRACKS_STEP = 25 * LOOP_STEP
+#: Units of one ``n**3`` of a step (n states: every step multiplies and inverts ``n x n`` matrices; fuzz 37a C2),
+#: measured as the CPU time a step of the function's costliest rule takes at n = 150, m = 75 and n = m = 300 over
+#: ``n**3``: ``fusion_loop`` 2.5-4.4 ns (0.45 units), 7-19 ns with the split rules (2), ``local_track`` 1 ns (0.15),
+#: ``split_covariances`` 0.5-0.7 ns (0.07), ``error_moments`` 0.2-0.3 ns (0.04), ``fuse_tracks`` 0.7-1.4 ns
+#: (0.15), 4 ns with ``"split"`` (0.4), 11 ns with ``"printed"`` (1.1); ``filter_runs`` multiplies vectors only.
+FUSION_LOOP_CUBE = 0.45
+FUSION_LOOP_SPLIT_CUBE = 2.0
+LOCAL_TRACK_CUBE = 0.15
+SPLIT_COVARIANCES_CUBE = 0.07
+ERROR_MOMENTS_CUBE = 0.04
+FUSE_TRACKS_CUBE = 0.15
+FUSE_TRACKS_SPLIT_CUBE = 0.4
+FUSE_TRACKS_PRINTED_CUBE = 1.1
+#: Units of one ``m**3`` of a step (m measurements: the innovation covariance's inverse), measured at n = 4,
+#: m = 300: ``fusion_loop`` 0.12-0.23 ns (0.03 units), ``local_track`` 0.11 ns (0.02), ``split_covariances`` and
+#: ``error_moments`` under 0.02 ns (0.002).
+FUSION_LOOP_M_CUBE = 0.03
+LOCAL_TRACK_M_CUBE = 0.02
+GAINS_M_CUBE = 0.002
+#: Units of one ``m**3`` of a :func:`gain_sequence` step, measured at n = 4 and 30, m = 150 and 300: 0.08-0.13 ns with
+#: one ``R`` (0.02 units), 0.13-0.32 ns with one ``R`` per step, each checked (0.04).
+GAINS_R_CUBE = 0.02
+GAINS_STEP_R_CUBE = 0.04
 
 
-def _steps_work(steps: int, runs: int, n: int, step: int, names: str) -> None:
-    """Rule 17 for a filter's loop over its steps (fuzz 36a C5): ``steps`` Python steps of ``step`` units, each
-    with ``runs x n x n`` vectorised units, refused by ``names`` (the caller's arguments that set the steps) before
-    the loop starts (:func:`fusion._limits.loop_work`)."""
-    loop_work((steps,), runs * n * n, names, step=step)
+def _steps_work(steps: int, runs: int, n: int, m: int, step: int, names: str, cube: float = 0.0,
+                m_cube: float = 0.0) -> None:
+    """Rule 17 for a filter's loop over its steps (fuzz 36a C5, 37a C2): ``steps`` Python steps of ``step`` units,
+    each with ``runs x n x max(n, m)`` vectorised units (every run's state products), ``cube x n**3`` units of dense
+    ``n x n`` products and inverses and ``m_cube x m**3`` of ``m x m`` ones (measured per function, the ``*_CUBE``
+    constants), refused by ``names`` (the caller's arguments that set the steps and sizes) before the loop starts
+    (:func:`fusion._limits.loop_work`)."""
+    loop_work((steps,), runs * n * max(n, m) + math.ceil(cube * n ** 3 + m_cube * m ** 3), names, step=step)
 
 
-def _gains_work(n_steps: int, n: int, per_step_r: bool, names: str) -> None:
+def _gains_work(n_steps: int, n: int, per_step_r: bool, names: str, m: int = 0) -> None:
     """Rule 17 for :func:`gain_sequence` (fuzz 36a D2): its worst case, a recursion that never reaches its fixed
     point (an unobserved state), one Python step of ``LOOP_STEP`` units (8 us measured, n = 4, m = 2), three with
     one ``R`` per step (26-28 us, each ``R`` checked), plus ``n**3 / 20`` units (0.3-0.9 ns an ``n**3`` at n = 30 and
-    100), refused by ``names`` (the caller's arguments) before any check of the steps' matrices
-    (``fusion._limits.loop_work``)."""
-    loop_work((n_steps,), n ** 3 // 20, names, step=(3 if per_step_r else 1) * LOOP_STEP)
+    100) and :data:`GAINS_R_CUBE` (or :data:`GAINS_STEP_R_CUBE`) a ``m**3`` (the innovation covariance's inverse, and
+    each ``R``'s check; fuzz 37a C2), refused by ``names`` (the caller's arguments) before any check of the steps'
+    matrices (``fusion._limits.loop_work``)."""
+    cube = n ** 3 // 20 + math.ceil((GAINS_STEP_R_CUBE if per_step_r else GAINS_R_CUBE) * m ** 3)
+    loop_work((n_steps,), cube, names, step=(3 if per_step_r else 1) * LOOP_STEP)
 
 
 def _per_step(R: ArrayLike, dim: int, n_steps: int, name: str, definite: bool = True) -> FloatArray:
@@ -236,7 +271,9 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     n_steps : int
         Number of steps K, including step 0. The work budget counts the recursion's worst case, a model that
         never reaches its fixed point (about 10**6 steps of a 4-state model with one ``R``, 3 x 10**5 with one
-        ``R`` per step), even for a model that would reach it and copy the remaining steps.
+        ``R`` per step), even for a model that would reach it and copy the remaining steps; a step of ``n``
+        states and ``m`` measurements costs about ``n**3`` and ``m**3`` more (about 1,800 steps of 4 states and
+        300 measurements).
 
     Returns
     -------
@@ -261,7 +298,7 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     n_steps = count(n_steps, "n_steps")
     _steps_allocation(n_steps, n, n + m, "n_steps and the sizes of F and H")  # K (n_steps, n, m), P (n_steps, n, n)
     R = _numeric(R, "R")
-    _gains_work(n_steps, n, R.ndim == 3, "n_steps, F and R")
+    _gains_work(n_steps, n, R.ndim == 3, "n_steps, F and R", m)
     Q = as_semidefinite(Q, dim=n, name="Q")
     Rk = _per_step(R, m, n_steps, "R")
     P0 = as_covariance(P0, dim=n, name="P0")
@@ -356,6 +393,13 @@ def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: Arra
     SplitCovariances
         ``Pd`` and ``Pi`` at every step.
 
+    Raises
+    ------
+    ValueError
+        Arrays of the wrong shape or not finite, covariances not valid; the steps of ``gains`` (with the sizes
+        ``n`` and ``m``, and each ``R`` given per step) beyond the work budget (``fusion._limits.MAX_WORK``, ~10 CPU-s:
+        about 5 x 10**5 steps of a 4-state model), named ``gains``.
+
     References
     ----------
     * Bar-Shalom, Y., & Campo, L. (1986). The effect of the common process noise on the
@@ -365,6 +409,12 @@ def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: Arra
     instance_of(gains, GainSequence, "gains")
     F, H = gains.F, gains.H
     n, m, K = F.shape[0], H.shape[0], gains.P.shape[0]
+    # rule 17 (fuzz 37a C3): a Python step per step of gains, each R given per step checked per step
+    R = _numeric(R, "R")
+    R_shared = None if R_shared is None else _numeric(R_shared, "R_shared")
+    per_step = (R.ndim == 3) + (R_shared is not None and R_shared.ndim == 3)
+    _steps_work(K, 1, n, m, (2 + 2 * per_step) * LOOP_STEP, "gains (its steps K and sizes)",
+                SPLIT_COVARIANCES_CUBE, GAINS_M_CUBE)
     Q = as_semidefinite(Q, dim=n, name="Q")
     # with a shared part only the sum R + R_shared (checked by gain_sequence) must be definite
     Rk = _per_step(R, m, K, "R", definite=R_shared is None)
@@ -395,6 +445,12 @@ def filter_runs(z: ArrayLike, gains: GainSequence, x0: ArrayLike) -> FloatArray:
     -------
     ndarray, shape (runs, K, 4)
         Filtered estimates.
+
+    Raises
+    ------
+    ValueError
+        ``z`` or ``x0`` of the wrong shape or not finite; the steps of ``gains`` and the runs of ``z`` beyond the
+        work budget (``fusion._limits.MAX_WORK``, ~10 CPU-s), named ``z and gains``.
     """
     instance_of(gains, GainSequence, "gains")
     K, n, m = gains.K.shape
@@ -402,6 +458,7 @@ def filter_runs(z: ArrayLike, gains: GainSequence, x0: ArrayLike) -> FloatArray:
     if zz.shape[1:] != (K, m):
         raise ValueError(f"z must be (runs, {K}, {m}) to match the gains, got {zz.shape}")
     _steps_allocation(K, zz.shape[0], n, "z and gains")  # the estimates (runs, K, n) of an n-state model
+    _steps_work(K, zz.shape[0], n, m, LOOP_STEP, "z and gains (their steps K)")  # rule 17 (fuzz 37a C3)
     x = np.array(as_array(x0, "x0", ndim=2), dtype=float)
     if x.shape != (zz.shape[0], n):
         raise ValueError(f"x0 must be ({zz.shape[0]}, {n}) (one state per run of z), got {x.shape}")
@@ -489,7 +546,8 @@ def error_moments(gains: GainSequence, truth: ArrayLike, R: ArrayLike, mean0: Ar
     Raises
     ------
     ValueError
-        Arrays of the wrong shape or not finite, covariances not valid.
+        Arrays of the wrong shape or not finite, covariances not valid; the steps of ``gains`` (with the sizes
+        ``n`` and ``m``) beyond the work budget (``fusion._limits.MAX_WORK``, ~10 CPU-s), named ``gains``.
 
     References
     ----------
@@ -500,6 +558,8 @@ def error_moments(gains: GainSequence, truth: ArrayLike, R: ArrayLike, mean0: Ar
     F, H = gains.F, gains.H
     n, m = F.shape[0], H.shape[0]
     K = gains.K.shape[0]
+    # rule 17 (fuzz 37a C3): a Python step per step of gains
+    _steps_work(K, 1, n, m, 2 * LOOP_STEP, "gains (its steps K and sizes)", ERROR_MOMENTS_CUBE, GAINS_M_CUBE)
     X = as_array(truth, "truth", shape=(K, n))
     R = as_covariance(R, dim=m, name="R")
     b = as_array(mean0, "mean0", shape=(n,)).copy()
