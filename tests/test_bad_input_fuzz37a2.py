@@ -1,0 +1,125 @@
+"""Fuzz 37a (main package and book layer; report /work/tmp/fuzz37a/report.md), the cases fixed or decided by fix40a.
+
+* C1: ``study_cache`` / ``process_cache`` handed every caller the same array objects: a caller's ``r.shape = ...``,
+  ``r.dtype = ...``, ``r.resize(...)`` or ``r.setflags(write=True)`` (the kept array owned its data) reached every
+  later caller. Each caller now gets its own read-only array objects over the kept memory (an immutable ``bytes``).
+
+Each case builds only what it needs (no registry import).
+"""
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fusion.book import study_cache as sc
+
+
+@dataclasses.dataclass(frozen=True)
+class _Study:
+    mse: np.ndarray
+    label: str
+
+
+def _array(n: int) -> np.ndarray:
+    return np.array([1.0, 2.0, 3.0]) * n
+
+
+def _dataclass(n: int) -> _Study:
+    return _Study(mse=np.array([1.0, 2.0, 3.0]) * n, label="s")
+
+
+def _mixed(n: int) -> dict[str, object]:
+    return {"t": (np.array([1.0, 2.0, 3.0]) * n, "a"), "f": np.asfortranarray(np.eye(3)[:, :2] * n)}
+
+
+_cached_array = sc.study_cache(4)(_array)          # module-level names: the disk serves them (fusion.book.study_cache)
+_cached_dataclass = sc.study_cache(4)(_dataclass)
+_cached_mixed = sc.study_cache(4)(_mixed)
+_CACHED = {"array": (_cached_array, _array), "dataclass": (_cached_dataclass, _dataclass),
+           "mixed": (_cached_mixed, _mixed)}
+
+
+def _arrays_of(value: object) -> list[np.ndarray]:
+    if isinstance(value, np.ndarray):
+        return [value]
+    if isinstance(value, _Study):
+        return [value.mse]
+    if isinstance(value, dict):
+        return [a for v in value.values() for a in _arrays_of(v)]
+    if isinstance(value, tuple):
+        return [a for v in value for a in _arrays_of(v)]
+    return []
+
+
+def _shape(a: np.ndarray) -> None:
+    a.shape = (a.size, 1)
+
+
+def _dtype(a: np.ndarray) -> None:
+    a.dtype = np.int64
+
+
+def _write(a: np.ndarray) -> None:
+    a.setflags(write=True)
+    a.flat[0] = 99.0
+
+
+def _resize(a: np.ndarray) -> None:
+    a.resize(a.size + 5, refcheck=False)
+
+
+_EDITS = {"shape": _shape, "dtype": _dtype, "setflags": _write, "resize": _resize}
+
+
+def _same(a: object, b: object) -> bool:
+    xs, ys = _arrays_of(a), _arrays_of(b)
+    return len(xs) == len(ys) > 0 and all(x.dtype == y.dtype and x.shape == y.shape and x.strides == y.strides
+                                          and np.array_equal(x, y) for x, y in zip(xs, ys))
+
+
+@pytest.mark.parametrize("where", ["process", "disk", "process_cache"])
+@pytest.mark.parametrize("kind", sorted(_CACHED))
+@pytest.mark.parametrize("edit", sorted(_EDITS))
+def test_c1_a_callers_change_of_an_array_object_never_reaches_a_later_call(
+        edit: str, kind: str, where: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    cached, fn = _CACHED[kind]
+    if where == "disk":
+        monkeypatch.setenv(sc.ENV, str(tmp_path))
+    else:
+        monkeypatch.delenv(sc.ENV, raising=False)
+    if where == "process_cache":
+        cached = sc.process_cache(4)(fn)
+    cached.cache_clear()
+    for _ in range(2 if where == "disk" else 1):   # through the disk: computed and stored, then loaded
+        for got in (cached(2), cached(2)):         # the first caller's result too
+            for a in _arrays_of(got):
+                assert not a.flags.writeable
+                try:
+                    _EDITS[edit](a)
+                except (ValueError, AttributeError, TypeError):
+                    pass                           # refused: read-only memory that no array owns
+            assert _same(cached(2), fn(2)), (edit, kind, where)
+        cached.cache_clear()
+
+
+def test_c1_one_computation_one_memory_and_the_callers_argument_untouched(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv(sc.ENV, raising=False)
+    _cached_array.cache_clear()
+    one, two = _cached_array(3), _cached_array(3)
+    assert one is not two and np.shares_memory(one, two)   # new objects, one copy of the data
+
+    @sc.study_cache(2)
+    def nested(n: int) -> tuple[np.ndarray, np.ndarray]:
+        return _cached_array(n), np.zeros(2)
+
+    assert np.shares_memory(nested(3)[0], one)             # a cached study inside another: not copied again
+    mine = np.ones(3)
+    ident = sc.study_cache(2)(lambda x: x)
+    got = ident(mine)
+    assert mine.flags.writeable and not np.shares_memory(got, mine)
+    mine[0] = 5.0
+    assert ident(np.ones(3)).tolist() == [1.0, 1.0, 1.0]
+
