@@ -3,6 +3,9 @@
 * C1: ``study_cache`` / ``process_cache`` handed every caller the same array objects: a caller's ``r.shape = ...``,
   ``r.dtype = ...``, ``r.resize(...)`` or ``r.setflags(write=True)`` (the kept array owned its data) reached every
   later caller. Each caller now gets its own read-only array objects over the kept memory (an immutable ``bytes``).
+* D2 (decided, fixed): ``inverse_variance_weights`` raised EVERY estimate to its floor (1e-12 x the row's mean), so one
+  valid sensor of huge variance equalised the precise sensors' weights; the floor now applies where it is needed
+  (an estimate that is not positive), and valid positive variances get the exact formula.
 
 Each case builds only what it needs (no registry import).
 """
@@ -13,6 +16,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from fusion.book import study_cache as sc
 
@@ -122,4 +127,29 @@ def test_c1_one_computation_one_memory_and_the_callers_argument_untouched(monkey
     assert mine.flags.writeable and not np.shares_memory(got, mine)
     mine[0] = 5.0
     assert ident(np.ones(3)).tolist() == [1.0, 1.0, 1.0]
+
+
+# ---------------------------------------------------------------- D2: the variance floor only where it is needed
+@settings(max_examples=25, deadline=None, derandomize=True)
+@given(st.lists(st.floats(-40.0, 40.0), min_size=2, max_size=6), st.sampled_from(["floor", "abs", "equal"]))
+def test_d2_positive_variances_get_the_exact_inverse_variance_weights(exponents: list[float], guard: str) -> None:
+    from fusion.readings.weighting import inverse_variance_weights
+    v = 10.0 ** np.array(exponents)
+    exact = (1.0 / v) / np.sum(1.0 / v)
+    np.testing.assert_allclose(inverse_variance_weights(v, guard=guard), exact, rtol=1e-12, atol=0.0)
+
+
+def test_d2_the_floor_still_guards_estimates_that_are_not_positive() -> None:
+    from fusion.readings.weighting import cumulative_fusion, fuse_current, inverse_variance_weights
+    assert fuse_current(np.array([[10.0, 11.0, 12.0, 10.5]]), np.array([1.0, 2.0, 4.0, 1e14]))[0] == \
+        pytest.approx(74.0 / 7.0, rel=1e-12)                     # the report's call: 10.5714, not 11.0
+    w = inverse_variance_weights(np.array([0.0, 1.0, 2.0]))      # documented: the zero gets almost all the weight
+    assert w[0] > 1.0 - 1e-11 and w.sum() == pytest.approx(1.0)
+    np.testing.assert_allclose(inverse_variance_weights(np.array([-1.0, 1.0, 2.0]), guard="abs"), [0.4, 0.4, 0.2])
+    np.testing.assert_allclose(inverse_variance_weights(np.zeros(3)), [1 / 3] * 3)
+    # cumulative_fusion's precision time weights use the same guarded estimates: a precise instant is not equalised
+    x = np.array([[1.0, 1.0], [3.0, 3.0]])
+    got = cumulative_fusion(x, np.array([[1.0, 1e14], [1e13, 1e13]]), time_weights="precision")[-1]
+    tau = np.array([1.0 + 1e-14, 2e-13])
+    assert got == pytest.approx((tau[0] * 1.0 + tau[1] * 3.0) / tau.sum(), rel=1e-12)
 
