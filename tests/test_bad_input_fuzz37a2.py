@@ -6,6 +6,11 @@
 * D2 (decided, fixed): ``inverse_variance_weights`` raised EVERY estimate to its floor (1e-12 x the row's mean), so one
   valid sensor of huge variance equalised the precise sensors' weights; the floor now applies where it is needed
   (an estimate that is not positive), and valid positive variances get the exact formula.
+* D3 (decided, fixed): ``fuse_denoised(..., variance="running")`` on a constant residual gave weights from round-off
+  (1e-21 estimates) that changed with the input's scale, while ``"batch"`` refused the same data. One rule: a
+  variance estimate at or below the round-off of its own computation is zero (``variance_estimates``), and a sensor
+  whose residual is constant over the signal is refused by ``"batch"``, ``"running"`` and ``"window"`` alike,
+  naming the caller's signals.
 
 Each case builds only what it needs (no registry import).
 """
@@ -152,4 +157,34 @@ def test_d2_the_floor_still_guards_estimates_that_are_not_positive() -> None:
     got = cumulative_fusion(x, np.array([[1.0, 1e14], [1e13, 1e13]]), time_weights="precision")[-1]
     tau = np.array([1.0 + 1e-14, 2e-13])
     assert got == pytest.approx((tau[0] * 1.0 + tau[1] * 3.0) / tau.sum(), rel=1e-12)
+
+
+# ---------------------------------------------------------------- D3: one rule for a residual of zero variance
+def _signals(scale: float) -> tuple[np.ndarray, np.ndarray]:
+    t = np.linspace(0.0, 1.0, 64)
+    X = scale * np.stack([2.0 + np.sin(2 * np.pi * t), 2.5 + np.cos(2 * np.pi * t), 3.0 + t])
+    return X, X - 0.01 * scale          # a residual constant in value (its computed samples differ by round-off)
+
+
+@pytest.mark.parametrize("scale", [1.0, 3.0, 7.0, 1e-3, 1e5])
+def test_d3_a_constant_residual_is_refused_by_every_residual_reading(scale: float) -> None:
+    from fusion.readings.wavelet import fuse_denoised, variance_estimates
+    X, Y = _signals(scale)
+    for variance in ("batch", "running", "window"):
+        with pytest.raises(ValueError, match="X and Y must give every sensor a residual .* not constant"):
+            fuse_denoised(X, Y, "max-raw", variance, 8)
+        est = variance_estimates(X, Y, X.max(axis=-1), variance, 8)
+        assert np.all(est == 0.0), variance        # round-off estimates are zero, at every scale
+    w = fuse_denoised(X, Y, "max-raw", "measurement", 8).weights   # not a residual reading: unchanged, defined
+    assert np.all(np.isfinite(w)) and w.sum() == pytest.approx(1.0)
+
+
+def test_d3_valid_residuals_keep_their_weights_at_every_scale() -> None:
+    from fusion.readings.wavelet import fuse_denoised
+    X, Y = _signals(1.0)
+    Y = Y + 0.003 * np.random.default_rng(3).standard_normal(Y.shape)
+    for variance in ("batch", "running", "window"):
+        w1 = fuse_denoised(X, Y, "max-raw", variance, 8).weight_path
+        w7 = fuse_denoised(7.0 * X, 7.0 * Y, "max-raw", variance, 8).weight_path
+        assert not np.allclose(w1[..., -1], 1 / 3) and np.allclose(w1, w7, rtol=1e-9), variance
 
