@@ -55,6 +55,7 @@ def arrays(value: object) -> list[np.ndarray]:
 
 def one_computation(a: object, b: object) -> bool:
     """Two results come from one cache entry: a cached result with a mutable part (a dict) is copied for each caller
-    (fusion/book/study_cache.py), its read-only arrays shared; a second computation would have arrays of its own."""
+    (fusion/book/study_cache.py), each caller's arrays new objects over the kept read-only memory (its ``bytes``
+    base, fuzz 37a C1); a second computation would have memory of its own."""
     xs, ys = arrays(a), arrays(b)
-    return len(xs) == len(ys) > 0 and all(x is y for x, y in zip(xs, ys))
+    return len(xs) == len(ys) > 0 and all(x is y or (x.base is not None and x.base is y.base) for x, y in zip(xs, ys))

@@ -351,7 +351,9 @@ def registry() -> dict[str, dict[str, A]]:
     R[rv + "variance_estimates"] = dict(X=A(Xv, ARR), Y=A(Xv - 0.01, ("nan", "inf", "empty", "more", "less", "str")),
                                         norms=A(np.array([4.0, 4.1, 3.9]), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
                                         variance=A("running", OPT), window=A(8, COUNT))
-    R[rv + "fuse_denoised"] = dict(X=A(Xv, ARR), Y=A(Xv - 0.01, ("nan", "inf", "empty", "more", "less", "str")),
+    # a residual that is not constant (X - 0.01 alone has zero variance: refused by every residual reading, fuzz 37a D3)
+    Yv = Xv - 0.01 - 0.005 * np.random.default_rng(5).normal(size=Xv.shape)
+    R[rv + "fuse_denoised"] = dict(X=A(Xv, ARR), Y=A(Yv, ("nan", "inf", "empty", "more", "less", "str")),
                                    normaliser=A("max-raw", OPT), variance=A("running", OPT), window=A(8, COUNT))
     ec = "fusion.estimates.ci."
     R[ec + "covariance_intersection"] = dict(x1=A(v1, ARR + ("len",)), P1=A(P1, COV), x2=A(v2, ARR + ("len",)),

@@ -351,11 +351,10 @@ def test_d3_a_cached_masked_result_keeps_its_mask():
     def f(n: int):
         return np.ma.masked_array(np.arange(float(n)), mask=[False] * n)
     first = f(3)
-    with pytest.raises(ValueError, match="read-only"):
-        first.mask[0] = True
-    with pytest.raises(ValueError, match="read-only"):
-        first[0] = np.ma.masked
-    assert not f(3).mask.any()
+    assert isinstance(first, np.ma.MaskedArray) and not first.mask.any()
+    first.mask[0] = True                 # an array subclass is the caller's own copy (fuzz 37a C1): its edit stays there
+    first[1] = np.ma.masked
+    assert not f(3).mask.any() and f(3).tolist() == [0.0, 1.0, 2.0]
 
 
 def test_d4_process_cache_is_equality_keyed_as_documented():

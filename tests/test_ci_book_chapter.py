@@ -1127,7 +1127,7 @@ def test_study_functions_share_one_computation() -> None:
     assert one_computation(chapter.paired_study(), chapter.paired_study(chapter.SEED, runs=chapter.LEDGER_RUNS))
     assert one_computation(chapter.aniso_pair(chapter.SEED, chapter.LEDGER_RUNS), chapter.aniso_pair())
     st = chapter.ledger_studies()
-    assert st.arch == tuple(chapter.arch_study().values())
+    assert one_computation(st.arch, tuple(chapter.arch_study().values()))
     assert one_computation(st.ir_readings, chapter.ir_reading_study())
     assert one_computation(st.paired, chapter.paired_study().paired)
     assert st.aniso_seed == chapter.aniso_pair().seed == chapter.study_seed(chapter.SEED, "anisotropic pair")

@@ -368,8 +368,8 @@ def test_process_cache_applies_the_same_rule(case: str) -> None:
 
 def test_an_immutable_result_is_shared_and_a_mutable_one_copied_with_its_arrays_shared(
         monkeypatch: pytest.MonkeyPatch) -> None:
-    """The rule's cost: an immutable result is the object itself at every call; a mutable one is a new container per
-    call whose read-only arrays are the cached ones (not copied)."""
+    """The rule's cost: an immutable result without arrays is the object itself at every call; any other is a new
+    container per call whose arrays are new read-only array objects over the cached memory (not copied; fuzz 37a C1)."""
     import pandas as pd
 
     monkeypatch.delenv(sc.ENV, raising=False)
@@ -380,13 +380,16 @@ def test_an_immutable_result_is_shared_and_a_mutable_one_copied_with_its_arrays_
     def mutable() -> dict[str, object]:
         return {"a": np.arange(3.0), "t": pd.DataFrame({"x": [1.0]})}
 
+    atoms = sc.study_cache(maxsize=1)(lambda: ("a", 1.5, frozenset({1})))
+    assert atoms() is atoms()
     tup = sc.study_cache(maxsize=1)(immutable)
-    assert tup() is tup()
-    assert not tup()[0].flags.writeable
+    one, two = tup(), tup()
+    assert one[0] is not two[0] and one[0].base is two[0].base and not one[0].flags.writeable
+    assert one[3] is two[3]                                # its parts without arrays are shared
     d = sc.study_cache(maxsize=1)(mutable)
     one, two = d(), d()
     assert one is not two and type(one) is dict           # the container's type is kept (no caller breaks)
-    assert one["a"] is two["a"] and not one["a"].flags.writeable
+    assert one["a"] is not two["a"] and one["a"].base is two["a"].base and not one["a"].flags.writeable
     assert one["t"] is not two["t"]                        # a DataFrame cannot be frozen: each caller has its own
 
 

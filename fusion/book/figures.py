@@ -29,6 +29,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+import matplotlib as mpl
 import numpy as np
 from matplotlib import colors as mcolors
 from matplotlib.axes import Axes
@@ -181,7 +182,8 @@ def audit_figure(fig: Figure) -> list[str]:
     FigureStyleError
         Listing every breach: colour outside the palette, registered method in another colour,
         internal key as a label, text below :data:`MIN_FONT_PT`, width above :data:`MAX_WIDTH_IN`,
-        legend covering data; a size or dpi outside :data:`fusion.book.style.FIGURE_SIDE_RANGE_IN` or
+        legend covering data, a figure or axes background or axis text colour that is not the book style's (a
+        figure drawn in a caller's matplotlib style, not through :func:`fusion.book.style.new_figure`); a size or dpi outside :data:`fusion.book.style.FIGURE_SIDE_RANGE_IN` or
         :data:`fusion.book.style.FIGURE_DPI_RANGE` is reported before drawing (the figure is then not drawn);
         a figure matplotlib fails to render (a RuntimeError of its rasteriser: text placed far outside the
         axes, at x = 1e5 say) is reported as not drawable.
@@ -231,6 +233,34 @@ def _raise_problems(problems: list[str]) -> None:
         raise FigureStyleError("figure breaks the book's figure rules:\n  - " + "\n  - ".join(unique))
 
 
+def _book_rc(key: str) -> object:
+    """One matplotlib setting in the book's whole style (``style.use_book_style``): the book's, else matplotlib's
+    default."""
+    return style._STYLE.get(key, mpl.rcParamsDefault[key])
+
+
+def _style_problems(fig: Figure) -> list[str]:
+    """Background and text colours that are not the book style's (fuzz 37a D1: a figure drawn in a caller's
+    ``dark_background`` style, black with white text, passed the audit)."""
+    def hexed(c: object) -> str:
+        return str(mcolors.to_hex(c))   # type: ignore[arg-type]
+
+    problems = []
+    face, axes_face = hexed(_book_rc("figure.facecolor")), hexed(_book_rc("axes.facecolor"))
+    if hexed(fig.get_facecolor()) != face:
+        problems.append(f"figure background {hexed(fig.get_facecolor())} is not the book style's {face} (drawn in "
+                        "another matplotlib style? use fusion.book.style.new_figure)")
+    ink = hexed(_book_rc("text.color"))
+    for ax in fig.axes:
+        if hexed(ax.get_facecolor()) != axes_face:
+            problems.append(f"axes background {hexed(ax.get_facecolor())} is not the book style's {axes_face}")
+        for label in (ax.xaxis.label, ax.yaxis.label, *ax.get_xticklabels()[:1], *ax.get_yticklabels()[:1]):
+            if label.get_text() and hexed(label.get_color()) != ink:
+                problems.append(f"axis text colour {hexed(label.get_color())} is not the book style's {ink}")
+                break
+    return problems
+
+
 def _problems(fig: Figure, width: float) -> list[str]:
     """Every breach of the rules by a figure just drawn (its legends and text where that draw put them).
 
@@ -240,6 +270,7 @@ def _problems(fig: Figure, width: float) -> list[str]:
     palette = allowed_colors()
     if width > MAX_WIDTH_IN + 1e-9:
         problems.append(f"figure is {width:.2f} in wide (> {MAX_WIDTH_IN} in): it would be shrunk on the page")
+    problems += _style_problems(fig)
     for ax in fig.axes:
         for artist in _data_artists(ax):
             for h in _artist_colors(artist):

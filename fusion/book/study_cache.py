@@ -26,15 +26,19 @@ without :data:`ENV`, and cached there by equality and type (``functools.lru_cach
 back as a contiguous copy.
 
 A cached result is shared by its callers only if nothing in it can be changed (fuzz 17, class A: one caller's
-in-place edit reached every later call). When it is computed or loaded, its arrays of numbers are made read-only in
-place (values and container types unchanged; an array that is a view of another is kept as a read-only copy, fuzz
-35a C1); if it then holds nothing mutable (atoms, read-only arrays, tuples,
-frozensets, read-only mappings and frozen dataclasses of those), every call returns the object itself; otherwise
-(a list, dict, set, DataFrame, non-frozen dataclass in it) each call returns a deep copy that shares the result's
-immutable parts (its read-only arrays are not copied). A result that holds something mutable and cannot be
-deep-copied (a memoryview, a generator, a lock in a dict) is not cached: it is returned to its caller, and each call
-computes it again, as without the cache (fuzz 34a D1). :func:`process_cache` applies the same rule to an in-process
-cache without the disk.
+in-place edit reached every later call). When it is computed or loaded, the cache keeps a copy in which every plain
+array of numbers is a sealed read-only copy, its memory an immutable ``bytes`` object that no array owns (values and
+container types unchanged; nothing of the caller's is changed in place or shared, a view of an argument included,
+fuzz 35a C1). A result that holds nothing mutable and no array (atoms, tuples, frozensets, read-only mappings and
+frozen dataclasses of those) is the object itself at every call; any other (an array in it, or a list, dict, set,
+DataFrame, non-frozen dataclass) is a deep copy per call that shares the result's immutable parts without arrays and
+gives each caller its own read-only array objects over the kept memory (about 0.5 us an array, no data copied; fuzz
+37a C1: a caller's ``r.shape = (n, 1)``, ``r.dtype = ...``, ``r.resize(...)`` or ``r.setflags(write=True)`` on a
+shared array object reached every later caller; now they change the caller's array object only, or are refused). An
+array subclass (masked, matrix) or an object array is deep-copied per caller. A result that holds something mutable
+and cannot be deep-copied (a memoryview, a generator, a lock in a dict) is not cached: it is returned to its caller,
+and each call computes it again, as without the cache (fuzz 34a D1). :func:`process_cache` applies the same rule to an
+in-process cache without the disk.
 
 Only a function that its module holds under its qualified name (a module-level ``def``, or a wrapper of one) is
 cached on disk: a function made in another function (closures of one factory share a name), a lambda, or a
@@ -279,52 +283,68 @@ def _key(qualname: str, arguments: dict[str, Any], digest: str | None, unnamed: 
 _ATOMS = (type(None), bool, int, float, complex, str, bytes, range, enum.Enum, np.generic, type, Path)
 
 
-def _frozen(value: Any, immutable: dict[int, Any], _open: frozenset[int] = frozenset(), views: bool = False) -> bool:
-    """Make ``value``'s arrays read-only in place and tell whether nothing in it can be changed any more.
+def _frozen(value: Any, immutable: dict[int, Any], arrays: dict[int, np.ndarray],
+            _open: frozenset[int] = frozenset()) -> tuple[bool, bool]:
+    """Tell whether nothing in ``value`` can be changed and whether it holds an array of numbers: ``(whole, holds)``.
 
-    With ``views``, an array that does not own its data (a view of a caller's array, or of a local one whose
-    writeable owner its ``.base`` exposes; fuzz 35a C1, D2) is left as it is and counts as mutable: the cache keeps
-    a copy of it (``_Shared``), so that a cached result never shares memory with anything a caller can write.
-
-    Arrays of numbers (at any depth in tuples, lists, dicts, read-only mappings, named tuples and dataclasses)
-    have their ``WRITEABLE`` flag cleared; no value and no container's type changes. ``value`` is immutable
-    if it is an atom, such an array, or a tuple, frozenset, :class:`~fusion._frozen.ReadOnlyMapping` or frozen
-    dataclass of immutable values; a list, dict, set, non-frozen dataclass, pandas object or anything else is not.
-    Every immutable part found is recorded in ``immutable`` (id -> object): a per-caller copy shares them.
-    A container that contains itself (``_open``: the ids of the containers around ``value``) is mutable.
+    Nothing is changed in place (a caller's array argument returned by the function stays the caller's, writeable).
+    A plain ``ndarray`` of numbers (no object fields), at any depth in tuples, lists, dicts, read-only mappings,
+    named tuples and dataclasses, counts as immutable: it is recorded in ``arrays`` (id -> array), and the cache
+    keeps a sealed read-only copy of it (``_sealed``) of which each caller gets its own array object (``_own``;
+    fuzz 37a C1). An array subclass (masked, matrix, record), an object array or a ``np.void`` record is mutable:
+    copied for each caller. ``value`` is immutable if it is an atom, such an array, or a tuple, frozenset,
+    :class:`~fusion._frozen.ReadOnlyMapping` or frozen dataclass of immutable values; a list, dict, set,
+    non-frozen dataclass, pandas object or anything else is not. Every immutable part that holds no array is
+    recorded in ``immutable`` (id -> object): every caller's copy shares them. A container that contains itself
+    (``_open``: the ids of the containers around ``value``) is mutable.
     """
     if isinstance(value, np.void):   # a structured array's record: a writable view (fuzz 33a C8), copied per caller
-        return False
+        return False, False
     if isinstance(value, _ATOMS):
-        return True
+        return True, False
     if isinstance(value, np.ndarray):
-        if value.dtype.kind not in "biufcmMSUV":  # object arrays hold mutable objects
-            return False
-        if views and value.base is not None:    # shares its owner's memory: copied, never frozen in place
-            return False
-        value.setflags(write=False)
-        mask = np.ma.getmask(value)   # a masked array's mask: a second array a caller could change
-        if isinstance(mask, np.ndarray) and mask is not np.ma.nomask:
-            mask.setflags(write=False)
-        immutable[id(value)] = value
-        return True
+        if type(value) is not np.ndarray or value.dtype.kind not in "biufcmMSUV" or value.dtype.hasobject:
+            return False, False   # a subclass (its own attributes: a mask, a fill value) or objects: copied per caller
+        arrays[id(value)] = value
+        return True, True
     if id(value) in _open:
-        return False
+        return False, False
     inner = _open | {id(value)}
     if isinstance(value, (list, tuple, set, frozenset)):
-        ok = all([_frozen(v, immutable, inner, views) for v in value])   # every item frozen, not only up to the first miss
-        ok = ok and isinstance(value, (tuple, frozenset))
+        parts = [_frozen(v, immutable, arrays, inner) for v in value]   # every item seen, not only up to the first miss
+        ok = isinstance(value, (tuple, frozenset))
     elif isinstance(value, (dict, ReadOnlyMapping)):
-        ok = all([_frozen(k, immutable, inner, views) and _frozen(v, immutable, inner, views) for k, v in value.items()])
-        ok = ok and isinstance(value, ReadOnlyMapping)
+        parts = [p for k, v in value.items() for p in (_frozen(k, immutable, arrays, inner),
+                                                        _frozen(v, immutable, arrays, inner))]
+        ok = isinstance(value, ReadOnlyMapping)
     elif dataclasses.is_dataclass(value) and not isinstance(value, type):
-        ok = all([_frozen(getattr(value, f.name), immutable, inner, views) for f in dataclasses.fields(value)])
-        ok = ok and type(value).__dataclass_params__.frozen   # type: ignore[attr-defined]
+        parts = [_frozen(getattr(value, f.name), immutable, arrays, inner) for f in dataclasses.fields(value)]
+        ok = type(value).__dataclass_params__.frozen   # type: ignore[attr-defined]
     else:
-        return False                              # a DataFrame, a Series, an object of another kind: copied
-    if ok:
+        return False, False                       # a DataFrame, a Series, an object of another kind: copied
+    ok = ok and all(whole for whole, _ in parts)
+    holds = any(held for _, held in parts)
+    if ok and not holds:
         immutable[id(value)] = value
-    return ok
+    return ok, holds
+
+
+def _sealed(arr: np.ndarray) -> tuple[np.ndarray, int]:
+    """A read-only copy of ``arr`` whose memory is an immutable ``bytes`` object, and its offset in it: no array owns
+    that memory, so no holder can make it writeable again (``setflags(write=True)`` raises), resize it, or reach an
+    array it could reshape. An array over such memory already (another cached study's, nested in this result) shares
+    it, not copied: one computation, one copy in memory."""
+    if type(arr.base) is bytes:
+        offset = arr.__array_interface__["data"][0] - np.frombuffer(arr.base, np.uint8).__array_interface__["data"][0]
+        return np.ndarray(arr.shape, arr.dtype, buffer=arr.base, offset=offset, strides=arr.strides), offset
+    order = "F" if arr.flags.f_contiguous and not arr.flags.c_contiguous else "C"
+    return np.ndarray(arr.shape, arr.dtype, buffer=arr.tobytes(order=order), order=order), 0
+
+
+def _own(sealed: np.ndarray, offset: int) -> np.ndarray:
+    """A caller's own array object over a kept ``_sealed`` array's memory (about 0.5 us): its shape, dtype or strides
+    changed in place change only it; its ``.base`` is the immutable ``bytes``, never the kept array."""
+    return np.ndarray(sealed.shape, sealed.dtype, buffer=sealed.base, offset=offset, strides=sealed.strides)
 
 
 #: What ``copy.deepcopy`` raises for a value it cannot copy (a memoryview, a generator, a lock), as the disk layer
@@ -341,30 +361,44 @@ class _Uncopyable(Exception):
 
 
 class _Shared:
-    """One cached result as every caller sees it: the object itself when nothing in it can be changed, else a
-    deep copy per caller that shares the result's immutable parts (its read-only arrays, frozen results).
+    """One cached result as every caller sees it: the object itself when nothing in it can be changed and it holds no
+    array, else a deep copy per caller that shares the result's immutable parts without arrays and gives the caller
+    its own array objects over the kept arrays' read-only memory (fuzz 37a C1: a caller's ``r.shape = (n, 1)``,
+    ``r.dtype = ...``, ``r.resize(...)`` or ``r.setflags(write=True)`` on a shared array object reached every later
+    caller).
 
-    A result that is not wholly immutable is copied once when it is kept (the kept value is the copy, in which an
-    array that was a view is an array of its own), and every caller, the first too (``_spare``), gets a copy of the
-    kept value that shares its read-only arrays (a study computed once has the same arrays in every result): one
-    that cannot be deep-copied raises ``_Uncopyable`` carrying it, and is returned to its caller uncached (fuzz 34a
-    D1: a TypeError "cannot pickle" came after the computation, naming nothing)."""
+    The kept value is a copy made once when the result is kept, in which every plain array of numbers is a sealed
+    read-only copy (``_sealed``: an array that was a view of a caller's array, fuzz 35a C1, or the caller's array
+    itself, is never shared); every caller, the first too (``_spare``), gets a copy of the kept value whose arrays are
+    new array objects over the kept memory (``_own``; a study computed once has the same memory in every result). A
+    result that holds something mutable and cannot be deep-copied raises ``_Uncopyable`` carrying it, and is returned
+    to its caller uncached (fuzz 34a D1: a TypeError "cannot pickle" came after the computation, naming nothing)."""
 
-    __slots__ = ("value", "immutable", "whole", "_spare")
+    __slots__ = ("value", "immutable", "arrays", "whole", "_spare")
 
     def __init__(self, value: Any, keep: bool = True) -> None:
         self.value = value
         self.immutable: dict[int, Any] = {}
-        self.whole = _frozen(value, self.immutable, views=True)
+        found: dict[int, np.ndarray] = {}
+        whole, holds = _frozen(value, self.immutable, found)
+        self.whole = whole and not holds             # the object itself serves every caller
+        self.arrays: dict[int, tuple[np.ndarray, int]] = {}   # id -> a kept array and its offset in its bytes
         self._spare: list[Any] = []
         if keep and not self.whole:
+            sealed = {i: _sealed(a) for i, a in found.items()}
+            memo = dict(self.immutable)
+            memo.update({i: kept for i, (kept, _) in sealed.items()})
             try:   # the kept value is a copy: nothing in it is a caller's (an argument, a view of one; fuzz 35a C1)
-                self.value = copy.deepcopy(value, dict(self.immutable))
+                self.value = copy.deepcopy(value, memo)
             except _UNCOPYABLE:
                 raise _Uncopyable(value) from None
-            self.whole = _frozen(self.value, self.immutable)   # its copied views are its own arrays now
-            if not self.whole:   # the first caller's copy, sharing the kept arrays as every later caller's does
-                self._spare.append(copy.deepcopy(self.value, dict(self.immutable)))
+            self.arrays = {id(kept): (kept, offset) for kept, offset in sealed.values()}
+            self._spare.append(self._copy())   # the first caller's copy, made as every later caller's is
+
+    def _copy(self) -> Any:
+        memo = dict(self.immutable)
+        memo.update({i: _own(a, offset) for i, (a, offset) in self.arrays.items()})
+        return copy.deepcopy(self.value, memo)
 
     def get(self) -> Any:
         if self.whole:
@@ -372,7 +406,7 @@ class _Shared:
         try:
             return self._spare.pop()            # atomic: one caller gets the copy made when the result was kept
         except IndexError:
-            return copy.deepcopy(self.value, dict(self.immutable))
+            return self._copy()
 
 
 def _readonly(arr: np.ndarray) -> np.ndarray:
@@ -548,9 +582,9 @@ def process_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], A
     """Decorator: ``functools.lru_cache`` (typed) under the study cache's sharing rule, in the process only.
 
     For a function that reads a file or that the disk cannot key (a claim file, a private helper): a result in
-    which nothing can be changed (see :func:`study_cache`) is shared by every call; its arrays of numbers are made
-    read-only in place; any other result (a list, dict, DataFrame, non-frozen dataclass in it) is deep-copied for
-    each caller, its immutable parts shared. A caller's edit of a result never reaches another call. A result that
+    which nothing can be changed and no array is held (see :func:`study_cache`) is shared by every call; any other
+    result (an array, a list, dict, DataFrame, non-frozen dataclass in it) is deep-copied for each caller, its
+    immutable parts shared and its arrays of numbers new read-only array objects over the kept memory. A caller's edit of a result never reaches another call. A result that
     holds something mutable and cannot be deep-copied (a memoryview, a generator) is returned uncached.
 
     Calls are keyed as ``functools.lru_cache(typed=True)`` keys them: by equality, the type checked for each top-level
@@ -657,13 +691,12 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
     -----
     The function must be a pure function of its arguments (seeded randomness included): the first process of a
     run computes it, the others load a bitwise-equal copy. Its callers cannot change what a later call returns:
-    the result's arrays are made read-only, and a result holding anything mutable (a list, dict, DataFrame,
-    non-frozen dataclass) is deep-copied for each call, sharing its read-only arrays (see the module's docstring).
-    The arrays are made read-only in place: a function that returns an array argument itself freezes the
-    caller's own array too (the cached result is that array; copying every result would cost each study a copy).
-    An array that does not own its data (a view such as ``x[1:]`` or ``x.T`` of an argument, or a column of a
-    local array, whose ``.base`` a caller could write) is kept as a read-only copy instead: a cached result never
-    shares memory with anything a caller can write, and no caller gets the view itself (fuzz 35a C1, D2). A cached
+    each caller gets its own read-only array objects over the kept arrays' memory, which no holder can make
+    writeable, resize or reshape for another caller, and a result holding anything mutable (a list, dict, DataFrame,
+    non-frozen dataclass) is deep-copied for each call (see the module's docstring; fuzz 37a C1). The cache keeps a
+    sealed copy of every array (one copy of the data when the result is kept): a function that returns an array
+    argument itself, or a view of one (``x[1:]``, ``x.T``), leaves the caller's own array as it is (writeable, not
+    shared with any result; fuzz 32a D2, 35a C1, D2). A cached
     function should return arrays of its own, as the book's studies do. A result that holds something mutable and
     cannot be deep-copied (a memoryview, a generator, a lock in a dict) is returned to its caller
     uncached: every call computes it, as without the cache.

@@ -421,6 +421,11 @@ _STYLE = {
 def use_book_style() -> None:
     """Apply the book's matplotlib style (call once at the top of a notebook).
 
+    The style is whole: matplotlib's defaults with the book's settings on top (``plt.style.use(["default", ...])``),
+    so a style or setting of the caller's (``plt.style.use("dark_background")``, a ``prop_cycle``) does not carry
+    into the book's figures (fuzz 37a D1); :func:`new_figure` applies it at every figure. Settings that are not
+    style (the backend, interactive mode) are kept.
+
     Inside IPython (a notebook) figures are also stored as high-DPI ("retina") PNG: twice the
     pixels, with width and height metadata so the page shows them at their nominal size, sharp on
     high-density screens. Each PNG carries its alt text (:func:`figure_alt`) in its ``Description``
@@ -428,7 +433,7 @@ def use_book_style() -> None:
     page's ``<img alt=...>``; and tables are shown through :func:`fusion.book.tables.use_book_tables`
     (no NaN, inf, True/False or e-notation in a cell).
     """
-    mpl.rcParams.update(_STYLE)
+    plt.style.use(["default", _STYLE])
     try:
         from IPython import get_ipython
     except ImportError:  # pragma: no cover - IPython is a book dependency
@@ -525,7 +530,8 @@ def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure
     Returns
     -------
     fig : matplotlib.figure.Figure
-        The new figure, in the book's style.
+        The new figure, in the book's style whatever the caller's matplotlib style (:func:`use_book_style` is
+        applied first, replacing a style the caller set; the axes drawn on afterwards keep it).
     ax : matplotlib.axes.Axes or ndarray of them
         One Axes for a single panel, else the ``nrows`` × ``ncols`` array of Axes that ``subplots`` returns.
 

@@ -175,6 +175,31 @@ def _wavedec_periodic(a: np.ndarray, wavelet: str, level: int) -> list[np.ndarra
     return [a, *details[::-1]]
 
 
+#: The round-off factor of a variance estimate (``_round_off``): an estimate at most this many units of round-off
+#: is zero.
+_ROUND_OFF_UNITS = 8.0
+
+
+def _round_off(z: FloatArray, raw: FloatArray, memory: str, window: int) -> FloatArray:
+    r"""The round-off level of each variance estimate of ``z`` (shape (..., n, I)), below which it is zero (fuzz 37a
+    D3: a constant residual gave variance estimates of 1e-21 set by round-off, whose ratios set the weights and
+    changed with the input's scale while ``"batch"`` refused the same data).
+
+    ``raw`` is the normalised raw signal the residual was computed from: each residual sample carries an error of
+    about :math:`\epsilon\max|raw|` (the cancellation of ``X - Y``), so a variance below :math:`(8\epsilon\max|raw|)^2`
+    is round-off; a mean of :math:`N` accumulated terms adds :math:`8\epsilon N` times the accumulated sum of
+    :math:`z^2` over the terms averaged (``memory``: ``"growing"`` the prefix, ``"window"`` the last ``window``
+    samples, ``"batch"`` the whole signal, one value). Scale-free: a rescaled input scales it as its estimates.
+    """
+    eps = _ROUND_OFF_UNITS * np.finfo(float).eps
+    cancel = (eps * np.abs(raw).max(axis=-1, keepdims=True)) ** 2
+    if memory == "batch":
+        return cancel + eps * z.shape[-1] * np.mean(z * z, axis=-1, keepdims=True)
+    n = np.arange(1, z.shape[-1] + 1, dtype=float)
+    counted = n if memory == "growing" else np.minimum(n, window)
+    return cancel + eps * n * np.cumsum(z * z, axis=-1) / counted
+
+
 @derived_inputs()
 def variance_estimates(X: ArrayLike, Y: ArrayLike, norms: ArrayLike, variance: Variance = "batch",
                        window: int = 64) -> FloatArray:
@@ -218,7 +243,10 @@ def variance_estimates(X: ArrayLike, Y: ArrayLike, norms: ArrayLike, variance: V
     ndarray, shape (..., n, I)
         Variance estimates in normalised units² at every sample (constant along the last axis for
         ``"batch"`` and ``"equal"``). The first sample of the recursive readings is 0 (one sample
-        has no spread); :func:`reconstruct` then uses equal weights.
+        has no spread); :func:`reconstruct` then uses equal weights. An estimate at or below the round-off of its
+        own computation (about :math:`8\epsilon` of the raw signal's maximum squared, plus :math:`8\epsilon N`
+        of the mean of :math:`z^2` over the :math:`N` accumulated samples) is 0: a residual that is constant (in
+        value) has zero variance in every reading, whatever the input's scale.
 
     Raises
     ------
@@ -249,12 +277,15 @@ def variance_estimates(X: ArrayLike, Y: ArrayLike, norms: ArrayLike, variance: V
     if variance == "equal":
         return np.ones_like(A)
     z = (A if variance == "measurement" else A - D) / nrm[..., None]
+    raw = A / nrm[..., None]
     if variance == "batch":
-        return np.broadcast_to(z.var(axis=-1, keepdims=True), z.shape).copy()
+        v = z.var(axis=-1, keepdims=True)
+        return np.broadcast_to(np.where(v <= _round_off(z, raw, "batch", L), 0.0, v), z.shape).copy()
     memory = "window" if variance == "window" else "growing"
     m1 = running_average(z, memory, window=L, axis=-1)
     m2 = running_average(z * z, memory, window=L, axis=-1)
-    return np.maximum(m2 - m1 * m1, 0.0)   # the difference of two running means can round below 0
+    v = m2 - m1 * m1                       # the difference of two running means can round below 0, or just above
+    return np.where(v <= _round_off(z, raw, memory, L), 0.0, v)
 
 
 @dataclass(frozen=True)
@@ -347,8 +378,10 @@ def reconstruct(
     variance : {"batch", "running", "window", "measurement", "equal"}
         How :math:`\sigma_j^2` of the weights is estimated (step 3; :func:`variance_estimates`). With
         the recursive readings the weights change along the signal,
-        :math:`W_j(n) \propto \hat\sigma_j^{-2}(n)`, and a sample at which some estimate is 0 (the first)
-        gets equal weights.
+        :math:`W_j(n) \propto \hat\sigma_j^{-2}(n)`, and a sample at which some estimate is 0 (the first, or
+        one at round-off level) gets equal weights. A sensor whose residual (raw minus denoised) is constant over
+        the whole signal, to round-off, has no inverse-variance weight under ``"batch"``, ``"running"`` or
+        ``"window"`` alike: refused.
     window : int
         Window of ``variance="window"``.
 
@@ -409,10 +442,11 @@ def _reconstruct(A: FloatArray, wavelet: str, level: int, normaliser: str, mode:
 
 
 def _fuse(A: FloatArray, Y: FloatArray, normaliser: str, variance: str, window: int,
-          source: FloatArray | None = None, names: str = "X") -> Reconstruction:
+          source: FloatArray | None = None, names: str = "X", residual: str = "X") -> Reconstruction:
     """Steps 2-5 from the raw ``A`` and denoised ``Y`` (validated); fuses ``source`` (default ``Y``) normalised.
 
-    ``names``: the arguments the signals come from, named when a normaliser is not positive.
+    ``names``: the arguments the signals come from, named when a normaliser is not positive; ``residual``: those the
+    residual ``A - Y`` comes from, named when it is constant.
     """
     if normaliser == "max":
         norms = Y.max(axis=-1)
@@ -430,13 +464,18 @@ def _fuse(A: FloatArray, Y: FloatArray, normaliser: str, variance: str, window: 
                          f"(normaliser={shown(normaliser)}) is <= 0 for sensor(s) "
                          f"{sorted(set(np.nonzero(norms <= 0)[-1].tolist()))}")
     constant = variance in ("batch", "equal")
-    if variance == "batch":
+    if variance in ("batch", "running", "window"):   # one rule for a residual of zero variance (fuzz 37a D3)
+        z = (A - Y) / norms[..., None]
         var = (A - Y).var(axis=-1, keepdims=True) / norms[..., None] ** 2      # the normalised residual's variance
-        if np.any(var <= 0):
-            raise ValueError("a sensor has zero residual variance: weights undefined")
-    elif variance == "equal":
+        flat = var <= _round_off(z, A / norms[..., None], "batch", window)
+        if np.any(flat):
+            raise ValueError(f"{residual} must give every sensor a residual (raw minus denoised) that is not "
+                             f"constant: sensor(s) {sorted(set(np.nonzero(flat)[-2].tolist()))} have zero residual "
+                             f"variance up to round-off, so the inverse-variance weights (variance={shown(variance)}) "
+                             "are undefined")
+    if variance == "equal":
         var = np.ones((*A.shape[:-1], 1))
-    else:
+    elif variance != "batch":
         var = variance_estimates(A, Y, norms, variance, window)
     ok = np.all(var > 0, axis=-2, keepdims=True)                  # (..., 1, I or 1)
     inv = np.where(ok, 1.0 / np.where(ok, var, 1.0), 1.0)          # equal weights where some estimate is 0
@@ -486,4 +525,5 @@ def fuse_denoised(X: ArrayLike, Y: ArrayLike, normaliser: Normaliser = "max", va
     if D.shape != A.shape:
         raise ValueError(f"Y must be finite with the shape of X {A.shape}, got {D.shape}")
     check_magnitude(D, "Y")
-    return _fuse(A, D, normaliser, variance, window, names="X" if normaliser == "max-raw" else "Y")
+    return _fuse(A, D, normaliser, variance, window, names="X" if normaliser == "max-raw" else "Y",
+                 residual="X and Y")

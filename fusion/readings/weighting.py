@@ -151,9 +151,10 @@ def inverse_variance_weights(estimates: ArrayLike, floor: float = VARIANCE_FLOOR
     The lecture inverts its estimates as they are; a non-positive estimate needs a guard, which
     the lecture leaves open (see :data:`GUARDS`):
 
-    * ``"floor"`` (default): each estimate is raised to :math:`\text{floor}\cdot\overline{|\hat\sigma^2|}`
-      (mean over the sensors of that row), so a non-positive estimate gets almost all the weight;
-    * ``"abs"``: :math:`|\hat\sigma_p^2|`, then the same floor (for exact zeros);
+    * ``"floor"`` (default): a non-positive estimate is raised to :math:`\text{floor}\cdot\overline{|\hat\sigma^2|}`
+      (mean over the sensors of that row), so it gets almost all the weight; a positive estimate is used as it is,
+      however small beside the mean (a sensor of huge variance leaves the others' weights exact);
+    * ``"abs"``: :math:`|\hat\sigma_p^2|`, then the same floor (for exact zeros only);
     * ``"equal"``: a row with any non-positive estimate gets equal weights :math:`1/n`;
     * ``"none"``: :math:`W_p = \hat\sigma_p^{-2}/\sum_i\hat\sigma_i^{-2}` literally; weights can be
       negative and arbitrarily large.
@@ -195,19 +196,25 @@ def inverse_variance_weights(estimates: ArrayLike, floor: float = VARIANCE_FLOOR
         if np.any(tot == 0.0):
             raise ValueError("the inverse estimates of a row sum to zero: the unguarded weights are undefined")
         return inv / tot
-    if guard == "abs":
-        v = np.abs(v)
-    scale = np.abs(v).mean(axis=-1, keepdims=True)
-    zero = scale == 0.0
-    scale = np.where(zero, 1.0, scale)
-    vv = np.maximum(v, floor * scale)
-    vv = np.where(zero, 1.0, vv)
-    inv = 1.0 / vv
+    inv = 1.0 / _guarded(v, guard, floor)
     w = inv / inv.sum(axis=-1, keepdims=True)
     if guard == "equal":
         bad = np.any(v <= 0.0, axis=-1, keepdims=True)
         w = np.where(bad, 1.0 / v.shape[-1], w)
     return w
+
+
+def _guarded(v: np.ndarray, guard: str, floor: float) -> np.ndarray:
+    """The estimates that :func:`inverse_variance_weights` inverts under ``guard`` ("floor", "abs" or "equal"):
+    ``|v|`` under "abs"; an estimate that is not positive raised to ``floor`` times its row's mean ``|v|``, and a
+    row of zeros all ones (equal weights). A positive estimate is kept as it is, however far below the mean (fuzz
+    37a D2: raising every estimate to the floor made the precise sensors' weights equal beside one of a huge
+    variance, ``(1, 2, 4, 1e13)`` weighted as ``(1, 1, 0.6, ...)``)."""
+    if guard == "abs":
+        v = np.abs(v)
+    scale = np.abs(v).mean(axis=-1, keepdims=True)
+    zero = scale == 0.0
+    return np.where(zero, 1.0, np.where(v > 0.0, v, floor * np.where(zero, 1.0, scale)))
 
 
 def lecture_variance_sd(level: float, k: ArrayLike, variances: ArrayLike) -> FloatArray:
@@ -974,9 +981,5 @@ def cumulative_fusion(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs",
     if time_weights == "equal":
         tau = np.ones(inst.shape)
     else:  # the guarded estimates of inverse_variance_weights, before normalisation
-        g = np.abs(V) if guard == "abs" else V
-        scale = np.abs(g).mean(axis=-1, keepdims=True)
-        zero = scale == 0.0
-        g = np.where(zero, 1.0, np.maximum(g, VARIANCE_FLOOR * np.where(zero, 1.0, scale)))
-        tau = (1.0 / g).sum(axis=-1)
+        tau = (1.0 / _guarded(V, guard, VARIANCE_FLOOR)).sum(axis=-1)
     return np.cumsum(tau * inst, axis=-1) / np.cumsum(tau, axis=-1)
