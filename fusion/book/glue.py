@@ -240,7 +240,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         not checked), naming ``values[key]``.
     ValueError
         A key that is not ASCII letters, digits, underscores and hyphens (``fig-chf-pso``; text that prints alike,
-        ``é`` composed or decomposed, would be two keys: :func:`_glue_prefix`'s rule for the whole key, fuzz 36a D1).
+        ``é`` composed or decomposed, would be two keys: ``_glue_prefix``'s rule for the whole key, fuzz 36a D1).
         A number (a float, a complex number, a NumPy scalar, a Decimal, any entry of a numeric array) NaN or
         infinite, or a missing value (``pd.NA``, ``pd.NaT``, a NumPy ``NaT``), also inside a list, tuple, set,
         mapping, Series, Index, pandas extension array (``pd.array``, Categorical, SparseArray), object or

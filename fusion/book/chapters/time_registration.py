@@ -270,8 +270,7 @@ def _record_times(t1: ArrayLike, t2: ArrayLike) -> tuple[np.ndarray, np.ndarray]
 def _scenario_instants(t2: ArrayLike, min_len: int, why: str) -> np.ndarray:
     """Instants ``t2`` that a function registers onto the scenario's sensor-1 samples (``sc.instants()``), checked
     by name (fuzz 24d W, D3: refused inside by ``monte_carlo``'s names, or extrapolated 1e6 s past the record to a
-    gain of 9e22): at least ``min_len`` strictly increasing instants (``why`` says what needs them) within the
-    record of those samples."""
+    gain of 9e22): at least ``min_len`` strictly increasing instants (``why`` says what needs them) in its record."""
     t2 = as_times(t2, "t2")
     if t2.size < min_len:
         raise ValueError(f"t2 must hold at least {min_len} instants ({why}), got {t2.size}")
