@@ -1,0 +1,73 @@
+"""Fuzz 38b (chapter layer, issue 35): stability records as make stability writes them (C1), a caller's
+{method: value} mapping beside a study (C2, D3), glue_27 at correlated_study's conditioning edge (C3), figure glue keys
+(C4), the benchmark's speed ratio (C5), nees_start's default T (D1), hand-made cache entries (D2) and explain's order
+shape (D4). Chapter registries are not imported here: each test builds only what it needs."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+# ---------------------------------------------------------------- C1: stability records of make stability
+
+_RID, _SEEDS = "lec-awf-estimated", [11, 12, 13, 14, 15]
+
+
+def _sweep(tmp_path: Path, runs_factor: int, fail_seed: int | None = None, fail_scaled: bool = False,
+           status: str = "reproduced") -> Path:
+    """A stability file written as ``stability.main`` writes it (records by ``summarise``), under a book root."""
+    from fusion.book import stability as S
+    res = []
+    for s in _SEEDS:
+        t = S.Task("lec", _RID, "primary", "primary", s, 300)
+        res.append(S.TaskResult(t, None, 1.0, "RuntimeError('x')") if s == fail_seed else S.TaskResult(t, status, 1.0))
+    if runs_factor > 1:
+        t = S.Task("lec", _RID, "primary", "primary", _SEEDS[0], 300 * runs_factor, scaled=True)
+        res.append(S.TaskResult(t, None, 1.0, "RuntimeError('x')") if fail_scaled else S.TaskResult(t, status, 1.0))
+    records = S.summarise(res, _SEEDS, {_RID: "reproduced"})
+    for v in records.values():
+        v.update(commit="abc", runs_factor=runs_factor)
+    doc = {"root_seed": 1, "K": 5, "seeds": _SEEDS, "runs_factor": runs_factor, "readings": {}, "records": records}
+    (tmp_path / "book/ledger").mkdir(parents=True)
+    (tmp_path / "_toc.yml").write_text("format: jb-book\n")
+    (tmp_path / "book/ledger/stability.json").write_text(json.dumps(doc, indent=1) + "\n")
+    return tmp_path
+
+
+def _line(root: Path) -> str:
+    from fusion.book.chapters.lecture_weighting.records import reseeding_glue
+    return reseeding_glue([{"id": _RID, "status": "reproduced", "runs": 300}], root)["lec_rs_awf_estimated"]
+
+
+@pytest.mark.parametrize("runs_factor, fail_seed, fail_scaled, want", [
+    (3, None, False, "stable in 5 of 5 reseeds and at 3× the runs"),
+    (1, None, False, "stable in 5 of 5 reseeds"),
+    (3, 13, False, "stable in 4 of 5 reseeds and at 3× the runs (1 of 5 reseeds failed to run)"),
+    (3, None, True, "stable in 5 of 5 reseeds (the run at 3× the runs failed)"),
+    (1, 11, False, "stable in 4 of 5 reseeds (1 of 5 reseeds failed to run)"),
+])
+def test_c1_records_make_stability_writes_are_glued(tmp_path: Path, runs_factor: int, fail_seed: int | None,
+                                                     fail_scaled: bool, want: str) -> None:
+    line = _line(_sweep(tmp_path, runs_factor, fail_seed, fail_scaled))
+    assert line == f"reproduced at the chapter's 300 runs, {want}"
+
+
+def test_c1_a_failed_reseed_beside_a_moved_one(tmp_path: Path) -> None:
+    """A record that moved names its failures too; one that only failed is not said to move."""
+    root = _sweep(tmp_path, 3, 13, status="contradicted")
+    line = _line(root)
+    assert "moves under reseeding" in line and "1 of 5 reseeds failed to run" in line
+
+
+@pytest.mark.parametrize("k", [5, -1])
+def test_c1_k_above_the_reseeds_that_ran_is_refused(tmp_path: Path, k: int) -> None:
+    root = _sweep(tmp_path, 3, 13)
+    f = root / "book/ledger/stability.json"
+    doc = json.loads(f.read_text())
+    doc["records"][_RID]["k"] = k
+    f.write_text(json.dumps(doc))
+    with pytest.raises(ValueError, match=r"root: .*'k' must count the reseeds that ran"):
+        _line(root)
+
