@@ -71,3 +71,28 @@ def test_c1_k_above_the_reseeds_that_ran_is_refused(tmp_path: Path, k: int) -> N
     with pytest.raises(ValueError, match=r"root: .*'k' must count the reseeds that ran"):
         _line(root)
 
+
+# ---------------------------------------------------------------- C2, D3: {method: value} beside a study
+
+@pytest.fixture(scope="module")
+def _ci_leg():
+    import numpy as np
+    from fusion.book.chapters import ci
+    from fusion.scenarios import two_sensor
+    Q, R1, R2 = ci.printed_covariances()
+    sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(0), runs=2, T=8.0)
+    study = two_sensor.fusion_study(sc, np.full(sc.t.size, 0.5), np.full(sc.t.size, 0.5), published_omega=0.5)
+    return ci, study, ci.straight_leg(study, 8.0, 150.0)
+
+
+def test_c2_rmse_numbers_takes_exactly_the_methods_straight_leg_gives(_ci_leg) -> None:
+    ci, study, leg = _ci_leg
+    ci.rmse_numbers(study, leg.floor, leg.steady, leg.rmse, leg.causal)   # valid: every method, any mapping order
+    ci.rmse_numbers(study, leg.floor, leg.steady, dict(reversed(list(leg.rmse.items()))), leg.causal)
+    extra = {**leg.rmse, "zz_extra": 1.0}
+    with pytest.raises(ValueError, match=r"^leg_rmse must hold exactly the study's methods.* holds \['zz_extra'\]"):
+        ci.rmse_numbers(study, leg.floor, leg.steady, extra, leg.causal)
+    first = next(iter(leg.rmse))
+    lacking = {k: v for k, v in leg.rmse.items() if k != first}
+    with pytest.raises(ValueError, match=r"^leg_rmse must hold exactly the study's methods.* lacks"):
+        ci.rmse_numbers(study, leg.floor, leg.steady, lacking, leg.causal)
