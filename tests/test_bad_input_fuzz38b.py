@@ -96,3 +96,25 @@ def test_c2_rmse_numbers_takes_exactly_the_methods_straight_leg_gives(_ci_leg) -
     lacking = {k: v for k, v in leg.rmse.items() if k != first}
     with pytest.raises(ValueError, match=r"^leg_rmse must hold exactly the study's methods.* lacks"):
         ci.rmse_numbers(study, leg.floor, leg.steady, lacking, leg.causal)
+
+
+# ---------------------------------------------------------------- C3: glue_27 at correlated_study's edge
+
+@pytest.mark.parametrize("sigma, env", [((1e-3, 1.0, 2.0), 316.227), ((0.003, 1.0), 948.6823), ((1.0, 1.0), 223607.0)])
+def test_c3_glue_27_glues_every_study_correlated_study_accepts_at_its_edge(sigma: tuple, env: float) -> None:
+    """sigma_env bisected to the producer's own edge (60 halvings): the last accepted study is glued."""
+    from fusion.scenarios.lecture_correlated import correlated_study
+    from fusion.book.chapters.lecture_correlated.correlated import glue_27
+
+    def study(e: float):
+        try:
+            return correlated_study(sigma=sigma, sigma_env=e, runs=2, sizes=(600,))
+        except ValueError:
+            return None
+
+    lo, hi = env * 0.9, env * 1.1
+    assert study(lo) is not None and study(hi) is None
+    for _ in range(60):
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if study(mid) is not None else (lo, mid)
+    glue_27(study(lo))
