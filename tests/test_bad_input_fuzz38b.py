@@ -118,3 +118,30 @@ def test_c3_glue_27_glues_every_study_correlated_study_accepts_at_its_edge(sigma
         mid = (lo + hi) / 2
         lo, hi = (mid, hi) if study(mid) is not None else (lo, mid)
     glue_27(study(lo))
+
+
+# ---------------------------------------------------------------- C4: one whole-key rule for every glue path
+
+_KEYS_REFUSED = ["lec-fig a", "lec-fig-e\u0301", "lec-fig\n", "\ufb01g", "\uff46ig", ""]
+
+
+@pytest.mark.parametrize("key", _KEYS_REFUSED)
+def test_c4_figure_glue_keys_follow_glue_alls_rule(key: str) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from fusion.book.chapters.lecture import glue_figures
+    from fusion.book.figures import glue_figure
+    from fusion.book.glue import glue_all
+
+    fig = plt.figure()
+    try:
+        with pytest.raises(ValueError, match="^values must have glue keys of ASCII"):
+            glue_all({key: 1.0})
+        with pytest.raises(ValueError, match="^figures must have glue keys of ASCII"):
+            glue_figures({"lec-fig-ok": fig, key: fig})   # checked before the first is glued
+        with pytest.raises(ValueError, match="^key must be a non-empty glue key of ASCII"):
+            glue_figure(key, fig)
+        assert plt.fignum_exists(fig.number)   # nothing glued, nothing closed
+    finally:
+        plt.close(fig)
