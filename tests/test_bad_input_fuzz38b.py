@@ -145,3 +145,25 @@ def test_c4_figure_glue_keys_follow_glue_alls_rule(key: str) -> None:
         assert plt.fignum_exists(fig.number)   # nothing glued, nothing closed
     finally:
         plt.close(fig)
+
+
+# ---------------------------------------------------------------- C5: the swarm's time ratio in words
+
+def _bench_text(tmp_path: Path, ratio: float) -> str:
+    from fusion.book.chapters.chernoff import swarm
+    root = Path(__file__).resolve().parents[1]
+    doc = json.loads((root / "benchmarks/results/chernoff.json").read_text())
+    for m in doc["measurements"]:
+        if m.get("key") == "pso_over_slsqp":
+            m["value"] = ratio
+    path = tmp_path / "bench.json"
+    path.write_text(json.dumps(doc))
+    return swarm.benchmark_cost(path)[1]["chf_pso_ratio_text"].split(" (benchmark of")[0]
+
+
+@pytest.mark.parametrize("ratio, want", [(6.837220283231126, "7 times slower"), (1.2, "1.20 times slower"),
+                                         (1.0, "about as fast"), (0.995, "about as fast"),
+                                         (0.6, "1.67 times faster"), (0.4, "2 times faster"),
+                                         (1e-6, "1000000 times faster")])
+def test_c5_a_ratio_below_one_is_glued_as_faster(tmp_path: Path, ratio: float, want: str) -> None:
+    assert _bench_text(tmp_path, ratio) == want
