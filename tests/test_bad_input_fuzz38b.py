@@ -167,3 +167,22 @@ def _bench_text(tmp_path: Path, ratio: float) -> str:
                                          (1e-6, "1000000 times faster")])
 def test_c5_a_ratio_below_one_is_glued_as_faster(tmp_path: Path, ratio: float, want: str) -> None:
     assert _bench_text(tmp_path, ratio) == want
+
+
+# ---------------------------------------------------------------- D1: nees_start's default T named by the study
+
+def test_d1_nees_start_default_T_is_named_by_true_start() -> None:
+    import numpy as np
+    from fusion.book.chapters import ci
+    Q, R1, R2 = ci.printed_covariances()
+    x0 = np.array([0.0, 0.0, 100.0, 50.0])
+    st = {s: ci.nees_per_step(np.random.default_rng(1), Q, R1, R2, x0, 30, 3, T=8.0, random_velocity=s)
+          for s in (False, True)}
+    exact = ci.split_ci_exactness(Q, R1, 8.0, 30)
+    with pytest.raises(ValueError, match=r"^true_start does not fit nees_start_table's default T = 1\.0 .*pass T"):
+        ci.nees_start_table(st[False], st[True], 3, t_steady=16.0)
+    with pytest.raises(ValueError, match=r"^true_start does not fit nees_start_numbers's default T = 1\.0"):
+        ci.nees_start_numbers(st[False], st[True], 3, exact, t_steady=16.0)
+    with pytest.raises(ValueError, match=r"^T = 2 s must be the sampling period"):   # passed: the caller's T named
+        ci.nees_start_table(st[False], st[True], 3, T=2.0, t_steady=6.0)
+    ci.nees_start_table(st[False], st[True], 3, T=8.0, t_steady=16.0)
