@@ -186,3 +186,45 @@ def test_d1_nees_start_default_T_is_named_by_true_start() -> None:
     with pytest.raises(ValueError, match=r"^T = 2 s must be the sampling period"):   # passed: the caller's T named
         ci.nees_start_table(st[False], st[True], 3, T=2.0, t_steady=6.0)
     ci.nees_start_table(st[False], st[True], 3, T=8.0, t_steady=16.0)
+
+
+# ---------------------------------------------------------------- D2: a hand-made cache entry keyed by an array
+
+_D2_CALLS: list = []
+
+
+def _d2_cached_impl(seed: int) -> tuple:
+    _D2_CALLS.append(seed)
+    return (seed, "computed")
+
+
+def _d2_cached(seed: int) -> tuple:   # replaced below by its cached form, under its module name (fuzz 34a D2)
+    return _d2_cached_impl(seed)
+
+
+def _d2_setup() -> None:
+    from fusion.book import study_cache as sc
+    global _d2_cached
+    if not hasattr(_d2_cached, "cache_clear"):
+        _d2_cached = sc.study_cache(maxsize=4)(_d2_cached)
+
+
+@pytest.mark.parametrize("make_key", ["array", "array of the key", "series"])
+def test_d2_an_entry_keyed_by_anything_but_its_str_is_a_miss(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                              make_key: str) -> None:
+    import pickle
+
+    import numpy as np
+    import pandas as pd
+    from fusion.book import study_cache as sc
+    _d2_setup()
+    monkeypatch.setenv(sc.ENV, str(tmp_path))
+    _D2_CALLS.clear()
+    _d2_cached.cache_clear()
+    assert _d2_cached(3) == (3, "computed")
+    (entry,) = tmp_path.glob("*.pkl")
+    key = pickle.loads(entry.read_bytes())[0]   # the key the cache wrote for the call
+    bad = {"array": np.array([1, 2]), "array of the key": np.array([key]), "series": pd.Series([key, key])}[make_key]
+    entry.write_bytes(pickle.dumps((bad, "forged")))
+    _d2_cached.cache_clear()
+    assert _d2_cached(3) == (3, "computed") and _D2_CALLS == [3, 3]   # a miss: recomputed, never the forged value
