@@ -228,3 +228,20 @@ def test_d2_an_entry_keyed_by_anything_but_its_str_is_a_miss(tmp_path: Path, mon
     entry.write_bytes(pickle.dumps((bad, "forged")))
     _d2_cached.cache_clear()
     assert _d2_cached(3) == (3, "computed") and _D2_CALLS == [3, 3]   # a miss: recomputed, never the forged value
+
+
+# ---------------------------------------------------------------- D4: explain's order, one order of six
+
+def test_d4_explain_takes_one_order_as_a_row_or_a_single_row_array() -> None:
+    import numpy as np
+    from fusion.book.chapters import ofs_audit as oa
+    c = oa.Correction(0, 0, np.nan, "none")
+    program = next(iter(oa.PROGRAMS))
+    o = np.array([5, 4, 3, 2, 1, 0])
+    want = oa.explain(c, program, order=o)
+    assert want.equals(oa.explain(c, program, order=o.reshape(1, 6)))   # the documented (1, 6)
+    assert want.equals(oa.explain(c, program, order=[o.tolist()]))
+    with pytest.raises(ValueError, match=r"^order must have shape \(6,\) or \(1, 6\) \(one order .*got \(1, 1, 6\)"):
+        oa.explain(c, program, order=o.reshape(1, 1, 6))
+    with pytest.raises(ValueError, match=r"^order must have shape .*got \(2, 6\)"):
+        oa.explain(c, program, order=np.stack([o, o]))
