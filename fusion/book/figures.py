@@ -41,8 +41,6 @@ from matplotlib.patches import Patch
 from matplotlib.text import Text
 from matplotlib.transforms import Bbox
 
-from fusion._shown import shown
-from fusion._validation import text
 from fusion.book import style
 
 __all__ = ["OKABE_ITO", "MIN_FONT_PT", "MAX_WIDTH_IN", "FigureStyleError", "allowed_colors",
@@ -338,15 +336,14 @@ def glue_figure(key: str, fig: Figure, alt: str | None = None) -> None:
     TypeError
         ``key`` is not a str or ``fig`` not a Figure.
     ValueError
-        ``key`` is empty.
+        ``key`` empty or not of ASCII letters, digits, underscores and hyphens (the whole-key rule of
+        :func:`fusion.book.glue.glue_all`).
     FigureStyleError
         If the figure breaks the book's rules (see :func:`audit_figure`).
     """
-    if not isinstance(key, str):
-        raise TypeError(f"key must be a str (a glue key), got {type(key).__name__} {shown(key, 40)}")
-    key = text(key, "key")  # the plain text (rule 19): glued and looked up as its text
-    if not key:
-        raise ValueError("key must be a non-empty string")
+    from fusion.book.glue import _glue_key
+
+    key = _glue_key(key, "key", many=False)  # glue_all's whole-key rule, as its plain text (rule 19; fuzz 38b C4)
     if not isinstance(fig, Figure):
         raise TypeError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")
     style.set_figure_alt(fig, alt if alt is not None else style.FIGURE_ALT.get(key))

@@ -37,6 +37,23 @@ GlueValues: TypeAlias = dict[str, GlueValue]
 _GLUE_KEY = re.compile(r"[A-Za-z0-9_-]+")
 
 
+def _glue_key(key: object, name: str, many: bool = True) -> str:
+    """``key`` as the plain text of a whole glue key, the one rule of every glue path (:func:`glue_all`,
+    :func:`fusion.book.figures.glue_figure` and the chapters' ``glue_figures``; fuzz 36a D1, 38b C4): a str
+    (TypeError naming ``name`` otherwise) of ASCII letters, digits, underscores and hyphens, not empty (ValueError
+    naming ``name``: text that prints alike, ``é`` composed or decomposed, would be two keys). ``many``: ``name``
+    holds the keys (a mapping), else it is the key."""
+    which = "have glue keys" if many else "be a non-empty glue key"
+    if not isinstance(key, str):
+        raise TypeError(f"{name} must {'have str glue keys' if many else 'be a str (a glue key)'}, got "
+                        f"{'the key ' if many else ''}{type(key).__name__} {shown(key, 60)}")
+    key = text(key, f"{name} keys" if many else name)
+    if not _GLUE_KEY.fullmatch(key):  # the prefixes' ASCII rule for the whole key (fuzz 35b D3, 36a D1)
+        raise ValueError(f"{name} must {which} of ASCII letters, digits, underscores and hyphens"
+                         f"{' (not empty)' if many else ''}, got {shown(key, 60)}")
+    return key
+
+
 def _checked_keep(store: object, values: object) -> dict[str, Any]:
     """The one rule of the chapters' ``keep(store, values)``, which store glue values for the claim texts.
 
@@ -256,12 +273,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         decimals = count(decimals, "decimals", minimum=0)
     plain = {}  # keys and text values as their plain str (rule 19): a (str, Enum) member is glued as its text
     for key, value in values.items():  # every value checked before any is glued
-        if not isinstance(key, str):
-            raise TypeError(f"values must have str glue keys, got the key {shown(key, 60)}")
-        key = text(key, "values keys")
-        if not _GLUE_KEY.fullmatch(key):  # the prefixes' ASCII rule for the whole key (fuzz 35b D3, 36a D1)
-            raise ValueError(f"values must have glue keys of ASCII letters, digits, underscores and hyphens, got "
-                             f"{shown(key, 60)}")
+        key = _glue_key(key, "values")
         _check_finite(key, value)
         plain[key] = text(value, f"values[{shown(key)}]") if isinstance(value, str) else value
     from myst_nb import glue  # a book dependency, imported only when a chapter runs

@@ -442,7 +442,7 @@ def _log(qualname: str, arguments: dict[str, Any], event: str, cpu: float) -> No
 def _stored(target: Path, key: str) -> tuple[Any] | None:
     """``(value,)`` stored in ``target`` for ``key``, or None (a miss, recomputed and rewritten) when the file cannot be
     read back (empty, truncated, corrupt: issue 35, fuzz 21 D14; a directory) or holds another key's result or something
-    else. A damaged length field (a frame's, a bytes' or a text's) makes pickle ask for that much memory (fuzz 37b C1:
+    else (anything but a plain tuple of the key's own str and the value: an array or a Series as its key is a miss). A damaged length field (a frame's, a bytes' or a text's) makes pickle ask for that much memory (fuzz 37b C1:
     one flipped bit raised MemoryError): after a MemoryError the file is unpickled again from its bytes, where a length
     beyond the file is a truncation error, and any failure is a miss (a real shortage recurs in the recomputation,
     where it is raised). The normal hit path reads the file once, as before."""
@@ -456,7 +456,9 @@ def _stored(target: Path, key: str) -> tuple[Any] | None:
             return None
     except Exception:                         # noqa: BLE001 - any unreadable file is a miss, never the study's error
         return None
-    if isinstance(loaded, tuple) and len(loaded) == 2 and loaded[0] == key:
+    # compared by exact type and value (fuzz 38b D2): a hand-made entry keyed by an array or a Series gave numpy's
+    # ambiguous-truth error, np.array([key]) was a false hit; either is a damaged entry, a miss
+    if type(loaded) is tuple and len(loaded) == 2 and type(loaded[0]) is str and loaded[0] == key:
         return (loaded[1],)
     return None
 

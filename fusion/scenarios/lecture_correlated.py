@@ -313,14 +313,22 @@ def _optimal_k_representable(x: float, sigma: float, name: str) -> None:
 MAX_COND = 1e11
 
 
-def _conditioning(sig: np.ndarray, sigma_env: float) -> float:
-    """The larger of cond(R) of E2.7's R = diag(sig²) ⊗ I₂ + sigma_env² 1 1ᵀ ⊗ I₂ (that of its N x N factor: ⊗ I₂
-    repeats each eigenvalue; inf when it is not positive definite in floating point) and sigma_env² / min(sig²), the
-    conditioning of R's split into D + U Uᵀ: a diagonal that R holds only to a relative eps sigma_env² / sig² (at 1e18
-    R does not hold the own SD at all, and the structured solver's D was not positive)."""
-    ev = np.linalg.eigvalsh(np.diag(sig**2) + sigma_env**2 * np.ones((sig.size, sig.size)))
-    split = sigma_env**2 / float(np.min(sig**2)) if sig.size > 1 else 0.0   # one sensor: no coupling, R = D + 0
-    return max(float(ev[-1] / ev[0]) if ev[0] > 0 else np.inf, split)
+def _conditioning(R: np.ndarray) -> float:
+    """The larger of cond(R) of E2.7's R = diag(sig²) ⊗ I₂ + sigma_env² 1 1ᵀ ⊗ I₂ (by its eigenvalues; inf when it
+    is not positive definite in floating point) and sigma_env² / min(sig²), the conditioning of R's split into
+    D + U Uᵀ as the chapter's structured solver splits it (sigma_env² = R[0, 2], the own variances R's diagonal less
+    it): a diagonal that R holds only to a relative eps sigma_env² / sig² (at 1e18 R does not hold the own SD at all,
+    and the structured solver's D was not positive). One function of R for :func:`correlated_study` and its reader
+    ``glue_27`` (fuzz 38b C3: the reader's recomputation from R lost ~2e-5 relative against the producer's from
+    sigma, refusing accepted studies at the edge), so that every R the producer accepts its reader accepts."""
+    R = np.asarray(R, dtype=float)
+    ev = np.linalg.eigvalsh(R)
+    cond = float(ev[-1] / ev[0]) if ev[0] > 0 else np.inf
+    if R.shape[0] < 4:   # one sensor: no coupling, R = D + 0
+        return cond
+    env2 = float(R[0, 2])
+    own = float(np.min(np.diag(R) - env2))
+    return max(cond, env2 / own if own > 0 else np.inf)
 
 
 @derived_inputs()
@@ -372,11 +380,11 @@ def correlated_study(
     sizes = [int(n) for n in _ints(sizes, "sizes")]  # the validated values (any 1-D array-like)
     distinct(sizes, "sizes")  # one row per size: a repeated size would repeat its row
     loop_work((len(sizes),), 0, "sizes", step=10 * LOOP_STEP)  # rule 17: a closed-form row (~40 us) per size
-    if _conditioning(sig, sigma_env) > MAX_COND:   # fuzz 37b C5: beyond what the chapter can glue and check
+    R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
+    if not _conditioning(R) <= MAX_COND:   # fuzz 37b C5: beyond what the chapter can glue and check
         raise ValueError(f"sigma and sigma_env must give R a condition number, and sigma_env**2 / min(sigma)**2, of at "
                          f"most {MAX_COND:g} (round-off reaches the 4 digits glued): the own SDs are too small beside "
                          "sigma_env or each other")
-    R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
     H = np.kron(np.ones((N, 1)), np.eye(2))
     xt = np.asarray(x, dtype=float)
     L = co.ldl_unpivoted(R).L

@@ -61,15 +61,15 @@ def glue_figures(figures: dict[str, Figure]) -> None:
     TypeError
         ``figures`` not a mapping, or a value not a matplotlib Figure.
     ValueError
-        ``figures`` empty.
+        ``figures`` empty, or a key empty or not of ASCII letters, digits, underscores and hyphens (the whole-key
+        rule of :func:`fusion.book.glue.glue_all`).
     """
     from fusion.book.figures import glue_figure
+    from fusion.book.glue import _glue_key
 
     mapping_of(figures, "figures", "figure", values=Figure)
-    for key in figures:  # every key checked before the first figure is glued (and closed)
-        if not isinstance(key, str):
-            raise TypeError(f"figures: the glue keys must be strings, got {type(key).__name__} {shown(key, 60)}")
-    for key, fig in figures.items():
+    keys = [_glue_key(key, "figures") for key in figures]  # every key checked before the first figure is glued
+    for key, fig in zip(keys, figures.values()):
         glue_figure(key, fig)   # checks the book's figure rules, glues, closes
 
 

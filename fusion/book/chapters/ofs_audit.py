@@ -215,9 +215,10 @@ def run_program(t1: ArrayLike, program: str = "correct", rule: str = "averages, 
     return _run(arr, set_members(arr, rule), program, None if order is None else _order(order, arr.shape[:2]), single)
 
 
-def _order(order: object, shape: tuple[int, int]) -> NDArray[np.intp]:
+def _order(order: object, shape: tuple[int, int], what: str = "the observations of t1 and its H variants"
+           ) -> NDArray[np.intp]:
     """``order`` as integer observation indices of shape (n_obs,) or (H, n_obs) (``shape`` is (H, n_obs)), each row
-    a permutation of the observations; TypeError/ValueError naming ``order``."""
+    a permutation of the observations; TypeError/ValueError naming ``order`` (and ``what`` the shape is)."""
     input_size(order, "order")
     try:
         o = entries_array(order)   # an object array of ints is integers, as its list is (fuzz 36b D4)
@@ -227,8 +228,7 @@ def _order(order: object, shape: tuple[int, int]) -> NDArray[np.intp]:
         raise TypeError(f"order must hold integers (0-based observation indices), got dtype {o.dtype}")
     H, n_obs = shape
     if o.shape not in ((n_obs,), (1, n_obs), (H, n_obs)):
-        raise ValueError(f"order must have shape ({n_obs},) or ({H}, {n_obs}) (the observations of t1 and its H "
-                         f"variants), got {o.shape}")
+        raise ValueError(f"order must have shape ({n_obs},) or ({H}, {n_obs}) ({what}), got {o.shape}")
     o = np.broadcast_to(o.astype(np.intp), (H, n_obs))
     if not np.all(np.sort(o, axis=1) == np.arange(n_obs)):
         raise ValueError("order must be a permutation of the observations")
@@ -770,8 +770,8 @@ def explain(correction: Correction, program: str, rule: str = "averages, d_i < d
         Data correction (``Correction(0, 0, nan, "none")`` for Table 1 as printed).
     program, rule : str
         Keys of :data:`PROGRAMS` and :data:`SET_RULES`.
-    order : array_like of int, optional
-        0-based order of the observations (natural by default).
+    order : array_like of int, shape (6,) or (1, 6), optional
+        0-based order of the observations (natural by default): one order, as a row or a single-row array.
     truth : float
         True temperature (°C).
 
@@ -787,13 +787,16 @@ def explain(correction: Correction, program: str, rule: str = "averages, d_i < d
         ``correction`` not a :class:`Correction`, ``order`` not of integers.
     ValueError
         ``correction`` of an unknown kind or outside Table 1 (as in :func:`describe`), an unknown ``program`` or
-        ``rule``, ``order`` not a permutation of the six observations, ``truth`` not finite.
+        ``rule``, ``order`` not of shape (6,) or (1, 6) or not a permutation of the six observations, ``truth``
+        not finite.
     """
     _correction(correction, "correction")
     truth = scalar(truth, "truth")
     tab = _tables([correction])
     mean = tab.mean(axis=2)[0]
-    ofs = run_program(tab, program, rule, None if order is None else np.asarray(order)[None])[0]
+    if order is not None:   # checked here, by the caller's shape (fuzz 38b D4: (1, 6) was refused as (1, 1, 6))
+        order = _order(order, (1, tab.shape[1]), "one order of the six observations")
+    ofs = run_program(tab, program, rule, order)[0]
     pub = published_values()
     em, eo = np.round(np.abs(mean - truth), 4), np.round(np.abs(ofs - truth), 4)
     df = pd.DataFrame({("mean", "printed"): pub["mean"], ("mean", "reconstructed"): mean,

@@ -47,6 +47,19 @@ def _entries(value: object, name: str, keys: Collection[object], maker: str, *, 
     return out
 
 
+def _exact_keys(value: Mapping, name: str, keys: Collection[object], maker: str) -> None:
+    """A caller's {method: value} mapping beside a study holds exactly the study's methods ``keys``, those of
+    ``maker`` on it (fuzz 38b C2, D3): a key the study did not run (its value flowed into a glued minimum) or a
+    method it ran left out is a ValueError naming ``name``, both listed."""
+    extra = [k for k in value if k not in keys]
+    missing = [k for k in keys if k not in value]
+    if extra or missing:
+        parts = ([f"holds {shown([str(k) for k in extra], 200)} that the study did not run"] if extra else []) + (
+            [f"lacks {shown([str(k) for k in missing], 200)} that it ran"] if missing else [])
+        raise ValueError(f"{name} must hold exactly the study's methods, as {maker} gives them: it "
+                         f"{' and '.join(parts)}")
+
+
 def _results(value: object, name: str, cls: type, maker: str) -> Mapping:
     """``value`` (a mapping that is not a dict read once into one) when it is a non-empty mapping of labels to ``cls``
     instances (the results of ``maker``); TypeError/ValueError naming ``name``."""

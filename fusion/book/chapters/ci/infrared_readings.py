@@ -25,7 +25,7 @@ from fusion.scenarios import infrared_radar as ir
 from fusion.book.chapters.ci.constants import IR_CVX, IR_FZ, IR_IMP
 from fusion._docstrings import with_sections, reads_results
 from fusion.book.chapters.ci.text import paired_text
-from fusion.book.chapters.ci.checks import _averaging_start, _entries
+from fusion.book.chapters.ci.checks import _averaging_start, _entries, _exact_keys
 from fusion.book.chapters.lecture import _holds
 
 from fusion.book.chapters.ci.infrared import IR_SHOWN, _ir_budget
@@ -557,6 +557,7 @@ def _ir_pair(readings: IrReadings, sim: ir.IrRadarRuns, rmse: object) -> dict[st
     _entries(rmse, "rmse", IR_SHOWN, "fusion.scenarios.infrared_radar.rmse_by_rule(sim)", numbers=False)
     assert isinstance(rmse, Mapping)
     expected = ir.rmse_by_rule(sim)
+    _exact_keys(rmse, "rmse", list(expected), "rmse_by_rule(sim)")
     read = {}
     for name in IR_SHOWN:
         got = read[name] = as_array(rmse[name], f"rmse[{shown(name)}]")
@@ -582,7 +583,8 @@ def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[
         ``sim``.
     rmse : mapping of str to ndarray, shape (K, 4)
         Its RMSE per scan by method (:func:`fusion.scenarios.infrared_radar.rmse_by_rule` of ``sim``, as
-        :func:`ir_study` returns it); another simulation's is refused naming ``rmse``.
+        :func:`ir_study` returns it), with exactly its methods; another simulation's, or a mapping adding or
+        lacking a method, is refused naming ``rmse``.
 
     Returns
     -------

@@ -249,7 +249,7 @@ def _per_step(true_start: object, random_start: object, T: float, t_steady: floa
     return T, t_steady
 
 
-@study_defaults("true_start", "t_steady")  # a default the study does not fit, named by the study (fuzz 36b D1)
+@study_defaults("true_start", "T", "t_steady")  # a default the study does not fit, named by it (fuzz 36b D1, 38b D1)
 def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
                      T: float = 1.0, t_steady: float = 20.0) -> pd.DataFrame:
     """Per-step NEES against its 95 % band, from the true and from a random initial velocity (appendix table).
@@ -309,7 +309,7 @@ def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping
 _START_READ = (NeesRule.SPLIT, NeesRule.LOCAL, NeesRule.CI_HALF, NeesRule.CONVEX, NeesRule.PRINTED)
 
 
-@study_defaults("true_start", "t_steady")  # a default the study does not fit, named by the study (fuzz 36b D1)
+@study_defaults("true_start", "T", "t_steady")  # a default the study does not fit, named by it (fuzz 36b D1, 38b D1)
 def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
                        exact: Mapping[str, float], T: float = 1.0, t_steady: float = 20.0) -> GlueValues:
     """The numbers the appendix quotes from the per-step NEES and split CI's exactness (glue keys ``ci_nps_*``).

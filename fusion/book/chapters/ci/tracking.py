@@ -32,7 +32,7 @@ from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
 from fusion.scenarios.two_sensor.study import OVER_STEPS, RUN_AVERAGED
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 from fusion.book.chapters.ci.text import _glue_doc
-from fusion.book.chapters.ci.checks import _entries, _frame, _leg_of, _per_step, _steps, _study_of
+from fusion.book.chapters.ci.checks import _entries, _exact_keys, _frame, _leg_of, _per_step, _steps, _study_of
 from fusion._counts import index
 from fusion._structures import mapping_of
 from fusion._structures import same_keys
@@ -454,7 +454,7 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
     legs_steady : array_like of bool
         Straight-leg steps after the start-up transient.
     leg_rmse : mapping
-        Method -> RMSE on those steps (m).
+        Method -> RMSE on those steps (m), for exactly the methods the study ran (as :func:`straight_leg` gives).
     leg_causal : array_like, optional
         The causal straight-leg floor on the same steps (``straight_leg_floor(..., causal=True)``).
 
@@ -464,7 +464,8 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
         ``study`` not a FusionStudy, ``legs_steady`` not bools, ``leg_rmse`` not a mapping, a floor not numeric.
     ValueError
         ``leg_floor`` (``leg_causal``) not one finite non-negative number per straight-leg step, ``legs_steady`` not
-        one bool per straight-leg step or selecting none, ``leg_rmse`` empty or not of finite non-negative numbers;
+        one bool per straight-leg step or selecting none, ``leg_rmse`` empty or not of finite non-negative numbers,
+        holding a method the study did not run or lacking one it ran;
         the leg not that of ``study`` (:func:`straight_leg` on it): another count of straight-leg steps, other steady
         steps, or a method's RMSE of ``leg_rmse`` not the study's mean there (relative 1e-9).
     """
@@ -475,6 +476,7 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
         raise ValueError("legs_steady selects no straight-leg step: the floors' mean would be of nothing")
     mapping_of(leg_rmse, "leg_rmse", "RMSE (m)", maker="straight_leg")
     leg_rmse = _entries(leg_rmse, "leg_rmse", list(leg_rmse), "straight_leg", nonnegative=True)
+    _exact_keys(leg_rmse, "leg_rmse", list(study.rmse), "straight_leg(study, ...).rmse")
     if leg_causal is not None:
         leg_causal = _per_step(leg_causal, "leg_causal", leg_floor.size, "straight-leg step of leg_floor",
                                nonnegative=True)

@@ -92,6 +92,12 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
     reseeds differ only by rule R5's qualifier (a reseed states no assumptions) says so; any other record reads
     "stable in k of K reseeds and at r× the runs". The scaled run reruns the primary reading only.
 
+    A task that failed in the sweep (``make stability`` writes ``null`` for its status) is counted as failed, not
+    as a status: "1 of 5 reseeds failed to run" or "the run at r× the runs failed" is added in brackets, ``k``
+    counts the reseeds that ran and kept the status, and a record that moved only by failed tasks reads
+    "stable in k of K reseeds" with the failures named, not "a status that moves". A sweep with
+    ``runs_factor`` 1 runs no scaled task (``"scaled": null``): its line has no "at r× the runs" clause.
+
     Parameters
     ----------
     records : sequence of mapping
@@ -119,7 +125,8 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
         (``fusion._paths.file_json``: a FIFO, a device, a folder), not an object of ``records``, or a record
         that the function reads lacking ``k``, ``K``, ``reseeds``, ``scaled`` or ``flag`` or holding them
         without the sense ``make stability`` writes (a status not the rulebook's, ``K`` < 1 or not the number
-        of ``reseeds``, ``k`` outside 0..K, a ``runs_factor`` not an integer >= 1): named by ``root``, the file
+        of ``reseeds``, ``k`` outside 0..K or above the reseeds that ran, a ``runs_factor`` not an integer
+        >= 1; a ``null`` status is a failed task, see above): named by ``root``, the file
         and the record.
     """
     keyed = _keyed_records(records, "lec_rs_", ("id", "status"))
@@ -144,26 +151,40 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
         _stability_record(v, f"{'root' if root is not None else 'the repository'}: book/ledger/stability.json "
                              f"records[{shown(r['id'])}]")
         factor = v.get("runs_factor", default)   # each record keeps the factor it was swept with (--merge)
-        status, k, n = r["status"], v["k"], v["K"]
-        others = Counter(s for s in v["reseeds"] if s != status)
-        parts = [f"{s} in {c} of {n} reseeds" for s, c in others.items()]
-        if v["scaled"] != status:
-            parts.append(f"{v['scaled']} at {factor}× the runs, the primary reading rerun")
-        head = f"{status} at the chapter's {int(r['runs']):,} runs"
-        if v["flag"]:
-            line = f"{head}, a status that moves under reseeding ({'; '.join(parts)})"
-        elif parts:
-            line = (f"{head}, stable in {k} of {n} reseeds up to rule R5's qualifier, which a reseed does not state "
-                    f"({'; '.join(parts)})")
-        else:
-            line = f"{head}, stable in {k} of {n} reseeds and at {factor}× the runs"
-        out[key] = line
+        out[key] = _reseeding_line(r["status"], int(r["runs"]), v, factor)
     return out
 
 
+def _reseeding_line(status: str, runs: int, v: Mapping[str, Any], factor: int) -> str:
+    """The text of one record's sweep ``v`` (checked by :func:`_stability_record`) for its ledger ``status`` at
+    the chapter's ``runs``: a failed task (``null``) is named as failed, not read as a status (fuzz 38b C1)."""
+    k, n, scaled = v["k"], v["K"], v["scaled"]
+    failed = sum(s is None for s in v["reseeds"])
+    others = Counter(s for s in v["reseeds"] if s is not None and s != status)
+    parts = [f"{s} in {c} of {n} reseeds" for s, c in others.items()]
+    if scaled is not None and scaled != status:
+        parts.append(f"{scaled} at {factor}× the runs, the primary reading rerun")
+    fails = [f"{failed} of {n} reseeds failed to run"] if failed else []
+    if scaled is None and factor > 1:   # runs_factor 1 runs no scaled task; above it a null is a failed one
+        fails.append(f"the run at {factor}× the runs failed")
+    same = {"reproduced under stated assumptions": "reproduced"}   # rule R5's qualifier (stability._same)
+    # the sweep flags a failed task too: the status moved only if a task that ran disagrees
+    moved = v["flag"] and (k < n - failed
+                           or (scaled is not None and same.get(scaled, scaled) != same.get(status, status)))
+    head = f"{status} at the chapter's {runs:,} runs"
+    if moved:
+        return f"{head}, a status that moves under reseeding ({'; '.join(parts + fails)})"
+    if parts:
+        return (f"{head}, stable in {k} of {n} reseeds up to rule R5's qualifier, which a reseed does not state "
+                f"({'; '.join(parts + fails)})")
+    line = f"{head}, stable in {k} of {n} reseeds" + (f" and at {factor}× the runs" if scaled is not None else "")
+    return line + (f" ({'; '.join(fails)})" if fails else "")
+
+
 #: The fields of a record of ``book/ledger/stability.json`` that :func:`reseeding_glue` reads, and their types.
-_STABILITY_FIELDS: dict[str, type | tuple[type, ...]] = {"k": int, "K": int, "reseeds": list, "scaled": str,
-                                                          "flag": bool}
+#: ``scaled`` is null where the sweep ran no scaled task (``runs_factor`` 1) or it failed.
+_STABILITY_FIELDS: dict[str, type | tuple[type, ...]] = {"k": int, "K": int, "reseeds": list,
+                                                          "scaled": (str, type(None)), "flag": bool}
 
 
 def _stability(path: Path, where: str) -> dict[str, Any]:
@@ -199,20 +220,22 @@ def _stability_record(v: object, label: str) -> None:
         if field not in v:
             raise ValueError(f"{label} lacks the field '{field}' that reseeding_glue reads")
         if not isinstance(v[field], kind) or (kind is int and isinstance(v[field], bool)):
-            raise ValueError(f"{label}: '{field}' must be a JSON {kind.__name__}")  # type: ignore[union-attr]
-    if not all(isinstance(s, str) for s in v["reseeds"]):
-        raise ValueError(f"{label}: 'reseeds' must be a list of statuses (strings)")
+            what = "str or null" if field == "scaled" else kind.__name__  # type: ignore[union-attr]
+            raise ValueError(f"{label}: '{field}' must be a JSON {what}")
+    if not all(s is None or isinstance(s, str) for s in v["reseeds"]):
+        raise ValueError(f"{label}: 'reseeds' must be a list of statuses (strings, null for a failed reseed)")
     # their sense too, as make stability writes them (fuzz 36b D3: "stable in 9 of 5 reseeds", "5 of 0" were glued)
     for i, s in enumerate([*v["reseeds"], v["scaled"]]):
-        if s not in STATUSES:
+        if s is not None and s not in STATUSES:
             where = f"'reseeds'[{i}]" if i < len(v["reseeds"]) else "'scaled'"
             raise ValueError(f"{label}: {where} must be one of the rulebook's statuses {STATUSES}, got {shown(s)}")
     if v["K"] < 1 or len(v["reseeds"]) != v["K"]:
         raise ValueError(f"{label}: 'K' must be the number of reseeds (>= 1, one status each in 'reseeds'), got "
                          f"K = {v['K']} with {len(v['reseeds'])} statuses")
-    if not 0 <= v["k"] <= v["K"]:
-        raise ValueError(f"{label}: 'k' must count the reseeds that keep the status (0 <= k <= K = {v['K']}), got "
-                         f"{v['k']}")
+    ran = sum(s is not None for s in v["reseeds"])
+    if not 0 <= v["k"] <= ran:
+        raise ValueError(f"{label}: 'k' must count the reseeds that ran and keep the status (0 <= k <= {ran}, K = "
+                         f"{v['K']} with {v['K'] - ran} failed), got {v['k']}")
     if "runs_factor" in v:
         _runs_factor(v["runs_factor"], label)
 
