@@ -1,0 +1,84 @@
+"""Work and memory budgets of fuzz 38a (fix42a): the measured edges of the Kalman step budgets (C7, D1), the memory
+of arrays built from two caller sizes (C1, C2, C6), Python loops over a caller's rows or lists (C3, C5, C8) and the
+``d**3`` and per-matrix costs of dense functions (C4, C9). Each test counts units (``fusion._limits.work`` spied on
+small inputs, or a refusal at entry): no slow call."""
+import numpy as np
+import pytest
+
+import fusion._limits as limits
+
+
+@pytest.fixture
+def units(monkeypatch):
+    """Record the units of every ``fusion._limits.work`` call (the budget itself still applies)."""
+    seen = []
+    real = limits.work
+
+    def spy(shape, names, weight=1, limit=limits.MAX_WORK):
+        n = real(shape, names, weight=weight, limit=10**30)
+        seen.append((names, n))
+        return real(shape, names, weight=weight, limit=limit)
+
+    monkeypatch.setattr(limits, "work", spy)
+    return seen
+
+
+def _per_step(units, names, K):
+    return max(n for nm, n in units if nm.startswith(names)) / K
+
+
+def _cv():
+    from fusion.filtering.kalman import cv_model
+    m = cv_model(1.0)
+    return m.F, m.H, np.diag([0.0, 1.0, 0.0, 1.0]), np.eye(2), 10 * np.eye(4)
+
+
+# Steps of each loop that run 5 and 20 CPU-s at the measured cost of a step (cv model, one core): the budget must
+# accept the first and refuse the second (fuzz 38a C7: filter_runs refused 990,000 steps that run 0.5 CPU-s; D1:
+# local_track, fuse_tracks and fusion_loop refused at 3-4 CPU-s).
+def test_filter_runs_step_budget_fits_its_measured_cost(units):
+    from fusion.filtering.kalman import filter_runs, gain_sequence
+    F, H, Q, R, P0 = _cv()
+    K = 50
+    g = gain_sequence(F, H, Q, R, P0, K)
+    filter_runs(np.zeros((1, K, 2)), g, np.zeros((1, 4)))  # independent axes, one run: 0.5 us a step
+    per = _per_step(units, "z and gains", K)
+    assert 990_000 * per <= limits.MAX_WORK < 2e7 * 2 * per
+    units.clear()
+    filter_runs(np.zeros((3, K, 2)), g, np.zeros((3, 4)))  # the array recursion: 2.4-3 us a step
+    per = _per_step(units, "z and gains", K)
+    assert 1.7e6 * per <= limits.MAX_WORK < 6.7e6 * per
+
+
+def test_local_track_step_budget_fits_its_measured_cost(units):
+    from fusion.filtering.tracks import local_track
+    F, H, Q, R, P0 = _cv()
+    K = 30
+    local_track(np.zeros((1, K, 2)), F, H, Q, R, np.zeros((1, 4)), 0.5 * P0, 0.5 * P0)  # 15.7 us a step
+    per = _per_step(units, "z (its steps K)", K)
+    assert 320_000 * per <= limits.MAX_WORK < 1.3e6 * per
+
+
+@pytest.mark.parametrize("rule, cost", [("convex", 95e-6), ("ci", 137e-6), ("split", 185e-6)])
+def test_fuse_tracks_step_budget_fits_its_measured_cost(units, rule, cost):
+    from fusion.filtering.tracks import fuse_tracks, local_track
+    F, H, Q, R, P0 = _cv()
+    K = 20
+    z = np.zeros((1, K, 2))
+    a = local_track(z, F, H, Q, R, np.zeros((1, 4)), 0.5 * P0, 0.5 * P0)
+    b = local_track(z, F, H, Q, 2 * R, np.zeros((1, 4)), 0.5 * P0, 0.5 * P0)
+    units.clear()
+    fuse_tracks(a, b, rule)
+    per = _per_step(units, "a and b", K)
+    assert 5 / cost * per <= limits.MAX_WORK < 20 / cost * per
+
+
+def test_fusion_loop_step_budget_fits_its_measured_cost(units):
+    from fusion.filtering.feedback import fusion_loop
+    F, H, Q, R, P0 = _cv()
+    K = 20
+    z = np.zeros((1, K, 2))
+    x0 = np.zeros((1, 4))
+    fusion_loop(z, z, x0, x0, F, H, Q, R, 2 * R, 0.5 * P0, 0.5 * P0, 0.5 * P0, "ci")  # 188-209 us a step
+    per = _per_step(units, "z1 and z2", K)
+    assert 5 / 209e-6 * per <= limits.MAX_WORK < 20 / 188e-6 * per
