@@ -82,3 +82,39 @@ def test_fusion_loop_step_budget_fits_its_measured_cost(units):
     fusion_loop(z, z, x0, x0, F, H, Q, R, 2 * R, 0.5 * P0, 0.5 * P0, 0.5 * P0, "ci")  # 188-209 us a step
     per = _per_step(units, "z1 and z2", K)
     assert 5 / 209e-6 * per <= limits.MAX_WORK < 20 / 188e-6 * per
+
+
+# Memory of an array built from two caller sizes (fuzz 38a C1, C2, C6): refused at entry by ValueError naming the
+# caller's arguments (was a raw MemoryError, 2.7-27 GiB).
+def test_ci_objective_counts_its_stack_of_omegas():
+    from fusion.estimates.ci import ci_objective, split_ci_objective
+    with pytest.raises(ValueError, match=r"^omega, P1 and P2 ask for an array"):
+        ci_objective(np.full(400_000, 0.5), np.eye(30), 2 * np.eye(30))
+    with pytest.raises(ValueError, match=r"^omega, P1d, P1i, P2d and P2i ask for an array"):
+        split_ci_objective(np.full(200_000, 0.5), np.eye(30), np.eye(30), np.eye(30), np.eye(30))
+    assert ci_objective(np.full(3, 0.5), np.eye(2), 2 * np.eye(2)).shape == (3,)
+
+
+def test_is_objective_counts_its_samples_by_rows():
+    from fusion.estimates.chernoff.mixture import is_objective
+    with pytest.raises(ValueError, match=r"^L and eps ask for an array"):
+        is_objective(np.zeros((20_000, 2)), np.zeros(20_000), np.full((100_000, 2), 0.5))
+    with pytest.raises(ValueError, match=r"^L and eps ask for .* units of work"):
+        is_objective(np.zeros((20_000, 2)), np.zeros(20_000), np.full((13_000, 2), 0.5))
+    assert is_objective(np.zeros((5, 2)), np.zeros(5), np.full((3, 2), 0.5)).shape == (3,)
+
+
+def test_weighted_moments_counts_its_covariance():
+    from fusion.filtering.particles import weighted_moments
+    with pytest.raises(ValueError, match=r"^x ask for an array"):
+        weighted_moments(np.zeros((4, 60_000)), np.full(4, 0.25))
+    with pytest.raises(ValueError, match=r"^x ask for .* units of work"):
+        weighted_moments(np.zeros((400, 16_000)), np.full(400, 1 / 400))  # 1e11 multiply-adds, ~8 CPU-s
+    assert weighted_moments(np.eye(3), np.full(3, 1 / 3)).cov.shape == (3, 3)
+
+
+def test_work_and_allocation_compare_counts_beyond_a_float():
+    from fusion._counts import allocation
+    for call in (lambda: limits.work((10**200, 10**200), "n", weight=0.5), lambda: allocation((10**200, 10**200), "n")):
+        with pytest.raises(ValueError, match=r"^n ask for (an array of )?(5e\+399|1e\+400) "):
+            call()
