@@ -118,3 +118,84 @@ def test_work_and_allocation_compare_counts_beyond_a_float():
     for call in (lambda: limits.work((10**200, 10**200), "n", weight=0.5), lambda: allocation((10**200, 10**200), "n")):
         with pytest.raises(ValueError, match=r"^n ask for (an array of )?(5e\+399|1e\+400) "):
             call()
+
+
+class _Stop(Exception):
+    """Raised by the spied budget once it has counted the named arguments' units (the call goes no further)."""
+
+
+@pytest.fixture
+def stop_at(monkeypatch):
+    """Record the units of ``fusion._limits.work`` calls; stop the call at the first whose names start as given."""
+    seen = {}
+    real = limits.work
+
+    def start(prefix):
+        def spy(shape, names, weight=1, limit=limits.MAX_WORK):
+            n = real(shape, names, weight=weight, limit=10**30)
+            if names.startswith(prefix):
+                seen[prefix] = n
+                raise _Stop
+            return real(shape, names, weight=weight, limit=limit)
+        monkeypatch.setattr(limits, "work", spy)
+        return seen
+    return start
+
+
+def _mixtures():
+    from fusion.estimates.mixtures import GaussianMixture
+    gA = GaussianMixture(np.array([0.4, 0.6]), np.array([[0.0, 0.0], [1.0, 1.0]]), np.stack([np.eye(2), 2 * np.eye(2)]))
+    gB = GaussianMixture(np.array([1.0]), np.array([[0.5, 0.0]]), np.eye(2)[None] * 1.5)
+    return [gA, gB]
+
+
+# Python loops over a caller's rows, sensors, blocks or runs (fuzz 38a C3, C5, C8): refused at entry naming them
+# beyond about 10 CPU-s of their measured cost; the sizes that run in under about 5 CPU-s stay.
+def test_grid_log_normaliser_counts_the_rows_of_eps(stop_at):
+    from fusion.scenarios.two_mixtures import grid_log_normaliser
+    gms = _mixtures()
+    with pytest.raises(ValueError, match=r"^eps and n ask for .* units of work"):
+        grid_log_normaliser(gms, np.full((1_400, 2), 0.5))  # 1.1-5.6 ms a row: 1,400 rows up to 8 CPU-s
+    with pytest.raises(ValueError, match=r"^eps and n ask for an array"):
+        grid_log_normaliser(gms, np.full((100, 2), 0.5), return_density=True)  # 36 M densities
+    seen = stop_at("eps and n")
+    with pytest.raises(_Stop):
+        grid_log_normaliser(gms, np.full((800, 2), 0.5))  # at most 4.5 CPU-s
+    assert seen["eps and n"] <= limits.MAX_WORK
+
+
+def test_correlated_study_counts_its_sensors(stop_at):
+    from fusion.scenarios.lecture_correlated import correlated_study
+    with pytest.raises(ValueError, match=r"^sigma ask for"):
+        correlated_study(sigma=tuple(np.linspace(1, 2, 1_500)), runs=2)  # 0.5-0.9 ns a (2N)**3: 14-24 CPU-s
+    seen = stop_at("sigma")
+    with pytest.raises(_Stop):
+        correlated_study(sigma=tuple(np.linspace(1, 2, 1_000)), runs=2)  # 4.2 CPU-s measured
+    assert seen["sigma"] <= limits.MAX_WORK
+
+
+def test_ridge_fusions_count_their_blocks():
+    from fusion.readings import biased
+    H = np.array([[1.0, 0.5], [0.2, 1.0], [1.0, 1.0]])
+    y = np.array([1.0, 2.0, 2.5])
+    for n, call in ((150_000, lambda n: biased.ridge_fusion_plugin([H] * n, [np.eye(3)] * n, [y] * n, "distributed")),
+                    (150_000, lambda n: biased.ridge_distributed([H] * n, [np.eye(3)] * n, [y] * n, 0.5)),
+                    (300_000, lambda n: biased.ridge_centralised([H] * n, [np.eye(3)] * n, [y] * n, 0.5))):
+        with pytest.raises(ValueError, match=r"^Hs, Rs and ys ask for"):
+            call(n)
+    assert biased.ridge_centralised([H] * 3, [np.eye(3)] * 3, [y] * 3, 0.5).shape == (2,)
+
+
+def test_range_bearing_readers_count_their_runs(stop_at):
+    from fusion.scenarios import range_bearing as rb
+    sc = rb.RangeBearingScenario(frames=2, n_particles=60, n_samples=60, n_central=100, em_iterations=2,
+                                 n_components=1)
+    run = rb.monte_carlo(sc, 1, 1, all_nodes_first=False)
+    for call in (lambda r: rb.nees_per_frame(r, "centralised_pf"), lambda r: rb.position_sq_errors(r, "centralised_pf"),
+                 rb.min_local_ess):
+        with pytest.raises(ValueError, match=r"^runs ask for"):
+            call(run * 80_000)  # 136-146 us a run: ~11 CPU-s
+    seen = stop_at("runs")
+    with pytest.raises(_Stop):
+        rb.nees_per_frame(run * 35_000, "centralised_pf")  # ~5 CPU-s
+    assert seen["runs"] <= limits.MAX_WORK
