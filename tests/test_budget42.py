@@ -199,3 +199,44 @@ def test_range_bearing_readers_count_their_runs(stop_at):
     with pytest.raises(_Stop):
         rb.nees_per_frame(run * 35_000, "centralised_pf")  # ~5 CPU-s
     assert seen["runs"] <= limits.MAX_WORK
+
+
+# Dense d**3 work and per-matrix Python checks (fuzz 38a C4, C9): each function's units at a small size, scaled by
+# d**3 (its dense_work weight), refuse the dimension the fuzz ran for 14-40 CPu-s and keep one of about 5 CPU-s.
+def _c9_calls():
+    from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
+    from fusion.readings import biased, correlated, fusion_set
+    from fusion.scenarios.two_sensor.case import model_truth
+    d, eye = 20, np.eye(20)
+    return [
+        ("A", 3_000, 1_400, lambda: biased.best_ridge_k(2 * eye, np.ones(d))),
+        ("xs and Ps", 3_000, 1_800, lambda: fuzzy_cluster_fusion(np.zeros((3, d)), np.stack([eye] * 3))),
+        ("H and R", 4_800, 3_000, lambda: correlated.eigen_decorrelation_fusion(np.ones((d, 1)), eye, np.zeros(d))),
+        ("H and R", 4_800, 3_000, lambda: correlated.pseudo_measurement_fusion(np.ones((d, 1)), eye, np.zeros(d))),
+        ("F and Q", 4_800, 3_000, lambda: model_truth(np.random.default_rng(0), eye, eye, np.zeros(d), 5, 2)),
+        ("B", 4_800, 3_600, lambda: fusion_set.perron_weights(np.ones((d, d)))),
+    ]
+
+
+@pytest.mark.parametrize("i", range(6))
+def test_dense_functions_count_their_dimension(stop_at, i):
+    names, refused, kept, call = _c9_calls()[i]
+    seen = stop_at(names)
+    with pytest.raises(_Stop):
+        call()
+    per_cube = seen[names] / 20**3
+    assert per_cube * kept**3 <= limits.MAX_WORK < per_cube * refused**3
+
+
+def test_many_gaussians_count_each_covariance_check(monkeypatch):
+    from fusion.estimates.chernoff import gaussian
+    for fn in (gaussian.chernoff_fuse_gaussians, gaussian.gaussian_log_normaliser):
+        N = 600_000  # ~22 us a covariance: ~13 CPU-s
+        with pytest.raises(ValueError, match=r"^covs ask for"):
+            fn(np.zeros((N, 2)), np.broadcast_to(np.eye(2), (N, 2, 2)), np.full(N, 1 / N))
+    with pytest.raises(ValueError, match=r"^(covs|means and covs) ask for"):  # before 4.5 CPU-s of checks
+        gaussian.gaussian_chernoff_weights(np.zeros((N, 2)), np.broadcast_to(np.eye(2), (N, 2, 2)))
+    monkeypatch.setattr(gaussian, "as_covariance", lambda *a, **k: (_ for _ in ()).throw(_Stop()))
+    N = 200_000  # ~4.4 CPU-s: reaches the checks
+    with pytest.raises(_Stop):
+        gaussian.chernoff_fuse_gaussians(np.zeros((N, 2)), np.broadcast_to(np.eye(2), (N, 2, 2)), np.full(N, 1 / N))
