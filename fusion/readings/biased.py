@@ -870,7 +870,7 @@ def best_ridge_k(A: ArrayLike, x: ArrayLike) -> tuple[float, float]:
     """
     from scipy.optimize import minimize_scalar
 
-    Aa = as_array(A, "A", ndim=2)
+    Aa = as_array(A, "A", ndim=2, subnormal=True)  # a covariance: as_covariance's rule for tiny entries applies
     # rule 17 (fuzz 38a C9): an eigh of A at each of the bounded search's evaluations, 1.45 ns a d**3 measured
     dense_work(1, Aa.shape[0], "A", 15 * DENSE_CUBE)
     Aa = as_covariance(Aa, name="A")
