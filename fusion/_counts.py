@@ -16,7 +16,7 @@ from collections.abc import Callable, Iterable, Sequence
 
 import numpy as np
 
-from fusion._limits import work
+from fusion._limits import count_text, work
 from fusion._shown import shown
 
 
@@ -357,7 +357,7 @@ def _beyond(shape: tuple[int, ...], names: str, limit: int, budget: str) -> None
         n *= int(s)
     if n > limit:
         dims = " x ".join(f"{int(d):.3g}" if int(d) > 10**6 else str(int(d)) for d in shape)
-        raise ValueError(f"{names} ask for an array of {n:.3g} elements ({dims}), beyond {budget}")
+        raise ValueError(f"{names} ask for an array of {count_text(n)} elements ({dims}), beyond {budget}")
 
 
 def input_allocation(shape: tuple[int, ...], names: str) -> None:

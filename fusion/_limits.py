@@ -76,6 +76,14 @@ def recorded_as(given: object, recorded: object) -> bool:
     return bool(np.allclose(g, r, rtol=RECORDED_RTOL, atol=0.0))
 
 
+def count_text(n: int) -> str:
+    """``n`` to three significant digits (``1.01e+09``), also beyond a float's range (``1e+400``), where formatting
+    the integer as a float raises OverflowError."""
+    if n < 10**300:
+        return f"{n:.3g}"
+    return f"{int(str(n)[:3]) / 100:.3g}e+{len(str(n)) - 1}"
+
+
 def work(shape: tuple[int, ...], names: str, weight: float = 1, limit: int = MAX_WORK) -> int:
     """Refuse a call whose work, ``weight`` times the product of the counts in ``shape``, is beyond :data:`MAX_WORK`
     (rule 17).
@@ -111,7 +119,8 @@ def work(shape: tuple[int, ...], names: str, weight: float = 1, limit: int = MAX
     n = 1
     for s in shape:
         n *= int(s)
-    n = n * int(weight) if float(weight).is_integer() else math.ceil(n * float(weight))
+    # exact integers (fuzz 38a: a product beyond 1.8e308 raised OverflowError as a float)
+    n = n * int(weight) if float(weight).is_integer() else math.ceil(n * Fraction(float(weight)))
     if n > limit:
         dims = " x ".join(f"{int(d):,}" for d in shape) + (
             "" if weight == 1 else f", {int(weight):,} units each" if float(weight).is_integer()
@@ -120,7 +129,7 @@ def work(shape: tuple[int, ...], names: str, weight: float = 1, limit: int = MAX
         budget = ("fusion._validation.MAX_WORK, about 10 CPU-s" if limit == MAX_WORK
                   else f"about {limit / MAX_WORK * 10:.0f} CPU-s"
                   + (f", fusion._limits.STUDY_WORK: {served[0]}" if served else ""))
-        raise ValueError(f"{names} ask for {n:.3g} units of work ({dims}), beyond the work budget "
+        raise ValueError(f"{names} ask for {count_text(n)} units of work ({dims}), beyond the work budget "
                          f"(at most {limit:.0e}, {budget})")
     return n
 

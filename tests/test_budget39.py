@@ -60,14 +60,16 @@ def _calls():
 
 
 def _counted(monkeypatch, call, d):
-    """The largest work (units) counted during ``call(d)``, and the names of that count."""
+    """The largest dense work (units of a ``count x d x d x d`` count, ``dense_work``) counted during ``call(d)``, and
+    the names of that count (fuzz 38a C4 added a per-covariance loop count, constant in d, to the Gaussians)."""
     from fusion import _limits
     seen = []
     real = _limits.work
 
     def spy(shape, names, weight=1, limit=MAX_WORK):
         n = real(shape, names, weight, limit)
-        seen.append((n, names))
+        if len(shape) == 4 and shape[1] == shape[2] == shape[3]:
+            seen.append((n, names))
         return n
     monkeypatch.setattr(_limits, "work", spy)
     call(d)

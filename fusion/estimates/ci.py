@@ -47,7 +47,7 @@ from fusion._limits import DENSE_CUBE, dense_work
 from fusion._validation import read_once
 from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, check_invertible,
                                 covariance_pair, one_of, scalar, singular_error, singular_system, unit_scalar)
-from fusion._validation import flag
+from fusion._validation import allocation, flag
 from fusion.optimise.scalar import _bounded_brent_batch
 
 __all__ = [
@@ -146,6 +146,7 @@ def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criteri
         raise ValueError(f"omega must lie in [0, 1], got {omega}")
     # an inverse a weight (fuzz 36a C3): 0.3 ns a d**3 for one weight, 0.9 for ten
     dense_work(w.size + 2, P1.shape[0], "omega, P1 and P2", DENSE_CUBE)
+    allocation((w.size, P1.shape[0], P1.shape[0]), "omega, P1 and P2")  # rule 9: the stack (fuzz 38a C1)
     I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
     info = w[..., None, None] * I1 + (1.0 - w[..., None, None]) * I2
     if criterion == "trace":
@@ -216,6 +217,7 @@ def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike,
     if not np.all((w > 0.0) & hi_ok):
         raise ValueError(f"omega must lie in (0, {'1]' if same_omega else '1)'}, got {omega}")
     dense_work(w.size + 3, n, "omega, P1d, P1i, P2d and P2i", 2.5 * DENSE_CUBE)
+    allocation((2, w.size, n, n), "omega, P1d, P1i, P2d and P2i")  # rule 9: the stack of both (fuzz 38a C1)
     w1 = w[..., None, None]
     w2 = w1 if same_omega else 1.0 - w1
     T1, T2 = A1d / w1 + A1i, A2d / w2 + A2i

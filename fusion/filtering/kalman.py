@@ -165,16 +165,23 @@ def _steps_allocation(steps: int, n: int, per_state: int, names: str) -> None:
 
 
 #: Units (:data:`fusion._limits.LOOP_STEP` multiples) of one Python-level step of a filter loop of a small model,
-#: measured with ``time.process_time`` on the cv model (n = 4, m = 2, one run): :func:`fusion.filtering.feedback.fusion_loop`
-#: 0.34-0.46 ms a step (45 steps of 10 us; its split rules, whose weights are searched, 0.4-0.84 ms: 90),
+#: measured with ``time.process_time`` on the cv model (n = 4, m = 2) at one and 200 runs (re-measured by fuzz 38a
+#: C7/D1: the earlier weights put the edges at 0.5-4 CPU-s): :func:`fusion.filtering.feedback.fusion_loop` 126-244 us a
+#: step (20 steps of 10 us; its split rules, whose weights are searched, 0.4-0.9 ms: 90),
 #: :func:`split_covariances` 15 us (2), and 17 us more for each ``R`` given per step (checked per step: 2),
-#: :func:`error_moments` 11 us (2), :func:`filter_runs` 3 us (1), :func:`fusion.filtering.tracks.local_track`
-#: 15-46 us (the sum of its :func:`gain_sequence`'s, ``split_covariances``' and ``filter_runs``': 4, more with
-#: ``R`` per step), :func:`fusion.filtering.tracks.fuse_tracks` 0.10-0.21 ms (25).
-FUSION_LOOP_STEP = 45 * LOOP_STEP
+#: :func:`error_moments` 11 us (2), :func:`filter_runs` 2.4-3 us a step (``FILTER_RUNS_STEP``, 250 units) and 28 ns
+#: a run (0.2 units an ``n x max(n, m)``), 0.47 us a run and step on its path of independent axes (50 units),
+#: :func:`fusion.filtering.tracks.local_track` 15.7 us, 34 us at 100 runs (2, plus the ``R`` given per step: at least
+#: its ``split_covariances``' step, so that its own budget, naming z, refuses first),
+#: :func:`fusion.filtering.tracks.fuse_tracks` 95-151 us (14), 185-201 us with ``"split"`` and ``"printed"`` (20).
+FUSION_LOOP_STEP = 20 * LOOP_STEP
 FUSION_LOOP_SPLIT_STEP = 90 * LOOP_STEP
-LOCAL_TRACK_STEP = 4 * LOOP_STEP
-FUSE_TRACKS_STEP = 25 * LOOP_STEP
+LOCAL_TRACK_STEP = 2 * LOOP_STEP
+FUSE_TRACKS_STEP = 14 * LOOP_STEP
+FUSE_TRACKS_SPLIT_STEP = 20 * LOOP_STEP
+FILTER_RUNS_STEP = LOOP_STEP // 4
+FILTER_RUNS_RUN = 0.2
+FILTER_RUNS_AXES_RUN = LOOP_STEP // 20
 #: Units of one ``n**3`` of a step (n states: every step multiplies and inverts ``n x n`` matrices; fuzz 37a C2),
 #: measured as the CPU time a step of the function's costliest rule takes at n = 150, m = 75 and n = m = 300 over
 #: ``n**3``: ``fusion_loop`` 2.5-4.4 ns (0.45 units), 7-19 ns with the split rules (2), ``local_track`` 1 ns (0.15),
@@ -201,13 +208,15 @@ GAINS_STEP_R_CUBE = 0.04
 
 
 def _steps_work(steps: int, runs: int, n: int, m: int, step: int, names: str, cube: float = 0.0,
-                m_cube: float = 0.0) -> None:
+                m_cube: float = 0.0, run_weight: float = 1.0) -> None:
     """Rule 17 for a filter's loop over its steps (fuzz 36a C5, 37a C2): ``steps`` Python steps of ``step`` units,
-    each with ``runs x n x max(n, m)`` vectorised units (every run's state products), ``cube x n**3`` units of dense
+    each with ``runs x n x max(n, m)`` vectorised units (every run's state products; ``run_weight`` of a unit each
+    where measured cheaper, :data:`FILTER_RUNS_RUN`), ``cube x n**3`` units of dense
     ``n x n`` products and inverses and ``m_cube x m**3`` of ``m x m`` ones (measured per function, the ``*_CUBE``
     constants), refused by ``names`` (the caller's arguments that set the steps and sizes) before the loop starts
     (:func:`fusion._limits.loop_work`)."""
-    loop_work((steps,), runs * n * max(n, m) + math.ceil(cube * n ** 3 + m_cube * m ** 3), names, step=step)
+    loop_work((steps,), math.ceil(run_weight * runs * n * max(n, m) + cube * n ** 3 + m_cube * m ** 3), names,
+              step=step)
 
 
 def _gains_work(n_steps: int, n: int, per_step_r: bool, names: str, m: int = 0) -> None:
@@ -458,15 +467,20 @@ def filter_runs(z: ArrayLike, gains: GainSequence, x0: ArrayLike) -> FloatArray:
     if zz.shape[1:] != (K, m):
         raise ValueError(f"z must be (runs, {K}, {m}) to match the gains, got {zz.shape}")
     _steps_allocation(K, zz.shape[0], n, "z and gains")  # the estimates (runs, K, n) of an n-state model
-    _steps_work(K, zz.shape[0], n, m, LOOP_STEP, "z and gains (their steps K)")  # rule 17 (fuzz 37a C3)
+    # one or two runs of independent axes: a recursion per axis on Python floats (the same bits, tested)
+    axes = zz.shape[0] <= _SCALAR_RUNS and _decoupled_axes(gains.F, gains.H) and _scalar_path_ok()
+    if axes:  # gains across axes: zero for independent axes
+        axes = not gains.K[:, np.kron(np.eye(m), np.ones((2, 1))) == 0].any()
+    # rule 17 (fuzz 37a C3), each path weighed at its measured cost (fuzz 38a C7)
+    if axes:
+        _steps_work(K, 0, n, m, FILTER_RUNS_AXES_RUN * zz.shape[0], "z and gains (their steps K)")
+    else:
+        _steps_work(K, zz.shape[0], n, m, FILTER_RUNS_STEP, "z and gains (their steps K)", run_weight=FILTER_RUNS_RUN)
     x = np.array(as_array(x0, "x0", ndim=2), dtype=float)
     if x.shape != (zz.shape[0], n):
         raise ValueError(f"x0 must be ({zz.shape[0]}, {n}) (one state per run of z), got {x.shape}")
-    # one or two runs of independent axes: a recursion per axis on Python floats (the same bits, tested)
-    if zz.shape[0] <= _SCALAR_RUNS and _decoupled_axes(gains.F, gains.H) and _scalar_path_ok():
-        off = np.kron(np.eye(m), np.ones((2, 1))) == 0  # gains across axes: zero for independent axes
-        if not gains.K[:, off].any():
-            return _states_axes(zz, gains, x)
+    if axes:
+        return _states_axes(zz, gains, x)
     return _states_matrices(zz, gains, x)
 
 

@@ -25,7 +25,7 @@ import numpy as np
 from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._validation import axis_of, read_once, renormalised, sums_to_one
+from fusion._validation import allocation, axis_of, read_once, renormalised, sums_to_one, work
 from fusion._frozen import frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
                                 positive_scalar, psd_factor, std_scalar, step_scalar)
@@ -254,6 +254,10 @@ class WeightedMoments:
     cov: FloatArray
 
 
+#: Units of one multiply-add of :func:`weighted_moments`' covariance product (a BLAS product on one core).
+_MOMENTS_PRODUCT = 0.01
+
+
 def weighted_moments(x: ArrayLike, w: ArrayLike) -> WeightedMoments:
     r"""Mean (d,) and covariance (d, d) of particles ``x`` (Q, d) with normalised weights ``w`` (Q,).
 
@@ -274,12 +278,16 @@ def weighted_moments(x: ArrayLike, w: ArrayLike) -> WeightedMoments:
     Raises
     ------
     ValueError
-        Shapes not (Q, d) and (Q,).
+        Shapes not (Q, d) and (Q,); the ``d x d`` covariance beyond the memory budget or its ``Q x d x d`` product
+        beyond the work budget, named ``x``.
     """
     xx = as_array(x, "x", ndim=2)
     ww = _normalised(w, "w")
     if ww.shape != (xx.shape[0],):
         raise ValueError(f"x must be (Q, d) and w (Q,), got {xx.shape} and {ww.shape}")
+    # rules 9 and 17 (fuzz 38a C6): the d x d covariance, a product of Q x d x d multiply-adds
+    allocation((xx.shape[1], xx.shape[1]), "x")
+    work((xx.shape[0], xx.shape[1], xx.shape[1]), "x", weight=_MOMENTS_PRODUCT)
     mean = ww @ xx
     d = xx - mean
     cov = d.T @ (d * ww[:, None])

@@ -36,8 +36,8 @@ from fusion._validation import (FloatArray, _numeric, as_array, as_covariance, a
 from fusion.estimates import ci as es
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 from fusion.filtering.kalman import (FUSE_TRACKS_CUBE, FUSE_TRACKS_PRINTED_CUBE, FUSE_TRACKS_SPLIT_CUBE,
-                                    FUSE_TRACKS_STEP, LOCAL_TRACK_CUBE, LOCAL_TRACK_M_CUBE, LOCAL_TRACK_STEP,
-                                    _gains_work, _steps_work)
+                                    FUSE_TRACKS_SPLIT_STEP, FUSE_TRACKS_STEP, LOCAL_TRACK_CUBE, LOCAL_TRACK_M_CUBE,
+                                    LOCAL_TRACK_STEP, _gains_work, _steps_work)
 from fusion.filtering.kalman import GainSequence, _model, _per_step, _steps_allocation, filter_runs, gain_sequence, split_covariances
 
 __all__ = ["RULES", "LocalTrack", "local_track", "FusedTracks", "fuse_tracks"]
@@ -257,7 +257,8 @@ def fuse_tracks(
     runs, K, n = a.est.shape
     # rule 17 (fuzz 37a C3): a Python step per step of the tracks, each a fusion of two n x n covariances; fuzzy
     # clustering iterates on every run (0.6 us a run and step measured at n = 4, 1,000 and 10,000 runs: 4 x n x n)
-    _steps_work(K, runs * (_FUZZY_RUN if rule == "fuzzy" else 1), n, 0, FUSE_TRACKS_STEP,
+    _steps_work(K, runs * (_FUZZY_RUN if rule == "fuzzy" else 1), n, 0,
+                FUSE_TRACKS_SPLIT_STEP if rule in ("split", "printed") else FUSE_TRACKS_STEP,
                 "a and b (their steps K, runs and state size)",
                 {"split": FUSE_TRACKS_SPLIT_CUBE, "printed": FUSE_TRACKS_PRINTED_CUBE}.get(rule, FUSE_TRACKS_CUBE))
     if omega is None:

@@ -40,6 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._guards import own_underflow
+from fusion._limits import DENSE_CUBE, dense_work
 from fusion._frozen import constant, fresh, frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, flag, keywords,
                                 one_of, positive_scalar, scalar, shown, text)
@@ -824,6 +825,8 @@ def perron_weights(B: ArrayLike) -> FloatArray:
         Non-negative weights summing to one.
     """
     arr, single = _belief_stack(B)
+    # rule 17 (fuzz 38a C9): an eigendecomposition a matrix, 0.13 ns a n**3 measured (n = 4,800: 14 CPU-s)
+    dense_work(arr.shape[0], arr.shape[-1], "B", 1.3 * DENSE_CUBE)
     w = _perron_rows(arr)
     return w[0] if single else w
 

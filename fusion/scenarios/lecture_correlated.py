@@ -19,6 +19,7 @@ from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import FloatArray, as_array, count, scalar, shown, std_scalar
 from fusion._validation import allocation
+from fusion._limits import DENSE_CUBE, dense_work
 from fusion._validation import LOOP_STEP, distinct, distinct_printed, general, loop_work, work
 from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
 from fusion.readings import biased as rg
@@ -348,7 +349,8 @@ def correlated_study(
     Parameters
     ----------
     sigma : sequence of float
-        Own noise standard deviation :math:`\sigma_i` of each sensor.
+        Own noise standard deviation :math:`\sigma_i` of each sensor; the study's ``2N x 2N`` algebra of ``N``
+        sensors has a work budget (about 1,100 sensors, refused naming ``sigma``).
     sigma_env : float
         Standard deviation :math:`\sigma_e` of the common environmental noise (> 0). With ``sigma``, R's condition
         number must not exceed ``MAX_COND`` (1e11), nor ``sigma_env**2`` that of the smallest own variance: beyond
@@ -374,6 +376,8 @@ def correlated_study(
     runs = count(runs, "runs", minimum=2)
     N = sig.size
     allocation((2 * N, runs), "sigma and runs")
+    # rule 17 (fuzz 38a C5): R is 2N x 2N (LDL, GLS, Cholesky, eigvalsh), 0.5-0.9 ns a (2N)**3 measured (N = 300-2,000)
+    dense_work(1, 2 * N, "sigma", 8 * DENSE_CUBE)
     if as_array(x, "x", ndim=1).size != 2:
         raise ValueError("x must have length 2")
     seed = _seed(seed)

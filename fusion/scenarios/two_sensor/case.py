@@ -16,6 +16,7 @@ from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 finite_result, grid_points, positive_scalar, psd_factor, std_scalar)
 from fusion._validation import LOOP_STEP, loop_work, work
+from fusion._limits import DENSE_CUBE, dense_work
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence
 from fusion.filtering.tracks import LocalTrack, local_track
 
@@ -191,6 +192,8 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
     F = as_array(F, "F", ndim=2)
     if F.shape[0] != F.shape[1]:
         raise ValueError(f"F must be square, got shape {F.shape}")
+    # rule 17 (fuzz 38a C9): Q's check and factor, 0.19 ns a n**3 measured (n = 4,800: 21 CPU-s)
+    dense_work(1, F.shape[0], "F and Q", 2 * DENSE_CUBE)
     Q = as_semidefinite(Q, F.shape[0], name="Q")
     x0 = as_array(x0, "x0", shape=(F.shape[0],))
     n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
