@@ -32,11 +32,10 @@ from fusion._results import ResultSpec, instance, number, validated_post_init
 from fusion.estimates.chernoff._timings import FusionTimings
 from fusion.estimates.chernoff._sampling import _mixture_mean, _moments_batch, _sample_mixture  # noqa: F401
 from fusion._timing import LapTimer
-from fusion._validation import MAX_MAGNITUDE, allocation, derived_inputs, read_once, work
 from fusion.estimates.chernoff._product import product_size
-from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
-                                instance_of, one_of)
-from fusion._validation import flag, read_once, refuse_singular, renormalised, sums_to_one
+from fusion._validation import (MAX_MAGNITUDE, FloatArray, _covariance_magnitude, _numeric, allocation, as_array, as_rng,
+                                as_rngs, count, derived_inputs, flag, instance_of, one_of, read_once, refuse_singular,
+                                renormalised, sums_to_one, work)
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
@@ -67,8 +66,7 @@ def _first_order_log_normaliser_derivatives(logw: FloatArray, means: FloatArray,
     + \log Z_m(\varepsilon)` over the component tuples :math:`m`; with :math:`\alpha_m` the normalised weights and
     :math:`v_m = \nabla\log\tilde\alpha_m`, the gradient is :math:`\sum_m\alpha_mv_m` and the Hessian
     :math:`\sum_m\alpha_m(\nabla^2\log Z_m + v_mv_m^\top) - (\sum_m\alpha_mv_m)(\cdot)^\top`: a log-sum-exp of
-    convex functions, convex.
-    """
+    convex functions, convex."""
     return _first_order_derivatives_prepared(_first_order_derivatives_prepare(logw, means, covs), eps)
 
 
@@ -349,8 +347,7 @@ def _is_objective(Lm: FloatArray, lg: FloatArray, eps: FloatArray) -> FloatArray
     Elementwise arithmetic (:func:`_combine`), so that its values, and the path of the SLSQP reference
     that compares them, are the same with every BLAS kernel. The batched swarms of
     :func:`fuse_mixtures_batch` score the same objective by one matrix product (:func:`_is_values`),
-    which agrees with this to round-off.
-    """
+    which agrees with this to round-off."""
     E = np.atleast_2d(eps)
     vals = _logsumexp(_combine(Lm, E.T) - lg[:, None], axis=0) - np.log(Lm.shape[0])
     return vals if np.ndim(eps) == 2 else vals[0]
