@@ -180,24 +180,44 @@ def _wavedec_periodic(a: np.ndarray, wavelet: str, level: int) -> list[np.ndarra
 _ROUND_OFF_UNITS = 8.0
 
 
-def _round_off(z: FloatArray, raw: FloatArray, memory: str, window: int) -> FloatArray:
+def _round_off(z: FloatArray, raw: FloatArray, memory: str, m2: FloatArray, window: int) -> FloatArray:
     r"""The round-off level of each variance estimate of ``z`` (shape (..., n, I)), below which it is zero (fuzz 37a
     D3: a constant residual gave variance estimates of 1e-21 set by round-off, whose ratios set the weights and
     changed with the input's scale while ``"batch"`` refused the same data).
 
     ``raw`` is the normalised raw signal the residual was computed from: each residual sample carries an error of
     about :math:`\epsilon\max|raw|` (the cancellation of ``X - Y``), so a variance below :math:`(8\epsilon\max|raw|)^2`
-    is round-off; a mean of :math:`N` accumulated terms adds :math:`8\epsilon N` times the accumulated sum of
-    :math:`z^2` over the terms averaged (``memory``: ``"growing"`` the prefix, ``"window"`` the last ``window``
-    samples, ``"batch"`` the whole signal, one value). Scale-free: a rescaled input scales it as its estimates.
+    is round-off. The rest matches how each ``memory`` computes its variance (``m2``: its mean of :math:`z^2`):
+    ``"batch"`` is numpy's two-pass ``var`` (the mean removed first), exact to a few :math:`\epsilon` of
+    :math:`\max|z|^2`, whatever the length; ``"growing"`` subtracts :math:`\bar z^2` from a prefix sum of
+    :math:`N` terms, exact to :math:`8\epsilon N` times ``m2``; ``"window"`` does so from the window's own sums
+    (``_window_mean``, at most ``window`` terms each), exact to :math:`8\epsilon` ``window`` times ``m2`` however
+    long the signal (fix43r: an N-fold batch term refused a residual of relative SD 1e-6). Scale-free: a rescaled
+    input scales it as its estimates.
     """
     eps = _ROUND_OFF_UNITS * np.finfo(float).eps
     cancel = (eps * np.abs(raw).max(axis=-1, keepdims=True)) ** 2
     if memory == "batch":
-        return cancel + eps * z.shape[-1] * np.mean(z * z, axis=-1, keepdims=True)
+        return cancel + (eps * np.abs(z).max(axis=-1, keepdims=True)) ** 2
     n = np.arange(1, z.shape[-1] + 1, dtype=float)
-    counted = n if memory == "growing" else np.minimum(n, window)
-    return cancel + eps * n * np.cumsum(z * z, axis=-1) / counted
+    return cancel + eps * (n if memory == "growing" else np.minimum(n, window)) * m2
+
+
+def _window_mean(z: FloatArray, window: int) -> FloatArray:
+    """The mean of the last ``window`` samples of ``z`` along its last axis (shorter at the start), as
+    :func:`fusion.readings.weighting.running_average` ``(memory="window")`` but summed from the window's own
+    samples (a block's prefix plus the previous block's suffix), not as a difference of prefix sums whose
+    round-off grows with the signal's length."""
+    I = z.shape[-1]
+    nb = -(-I // window)
+    pad = np.zeros((*z.shape[:-1], nb * window - I))
+    blocks = np.concatenate([z, pad], axis=-1).reshape(*z.shape[:-1], nb, window)
+    pre = np.cumsum(blocks, axis=-1)                                        # sum of block j up to offset r
+    suf = np.cumsum(blocks[..., ::-1], axis=-1)[..., ::-1]                  # sum of block j from offset r on
+    tail = np.zeros_like(pre)
+    tail[..., 1:, :-1] = suf[..., :-1, 1:]                                   # block j-1 from offset r+1 on
+    sums = (pre + tail).reshape(*z.shape[:-1], nb * window)[..., :I]
+    return sums / np.minimum(np.arange(1, I + 1), window)
 
 
 @derived_inputs()
@@ -244,8 +264,9 @@ def variance_estimates(X: ArrayLike, Y: ArrayLike, norms: ArrayLike, variance: V
         Variance estimates in normalised units² at every sample (constant along the last axis for
         ``"batch"`` and ``"equal"``). The first sample of the recursive readings is 0 (one sample
         has no spread); :func:`reconstruct` then uses equal weights. An estimate at or below the round-off of its
-        own computation (about :math:`8\epsilon` of the raw signal's maximum squared, plus :math:`8\epsilon N`
-        of the mean of :math:`z^2` over the :math:`N` accumulated samples) is 0: a residual that is constant (in
+        own computation (about :math:`8\epsilon` of the raw signal's maximum, squared; plus, for ``"batch"``, the
+        same of the residual's maximum; for the running readings, :math:`8\epsilon N` of the mean of :math:`z^2`
+        over the :math:`N` samples summed: the prefix for ``"running"``, the window's own for ``"window"``) is 0: a residual that is constant (in
         value) has zero variance in every reading, whatever the input's scale.
 
     Raises
@@ -280,12 +301,15 @@ def variance_estimates(X: ArrayLike, Y: ArrayLike, norms: ArrayLike, variance: V
     raw = A / nrm[..., None]
     if variance == "batch":
         v = z.var(axis=-1, keepdims=True)
-        return np.broadcast_to(np.where(v <= _round_off(z, raw, "batch", L), 0.0, v), z.shape).copy()
+        return np.broadcast_to(np.where(v <= _round_off(z, raw, "batch", v, L), 0.0, v), z.shape).copy()
     memory = "window" if variance == "window" else "growing"
-    m1 = running_average(z, memory, window=L, axis=-1)
-    m2 = running_average(z * z, memory, window=L, axis=-1)
+    if memory == "window":
+        m1, m2 = _window_mean(z, L), _window_mean(z * z, L)
+    else:
+        m1 = running_average(z, memory, window=L, axis=-1)
+        m2 = running_average(z * z, memory, window=L, axis=-1)
     v = m2 - m1 * m1                       # the difference of two running means can round below 0, or just above
-    return np.where(v <= _round_off(z, raw, memory, L), 0.0, v)
+    return np.where(v <= _round_off(z, raw, memory, m2, L), 0.0, v)
 
 
 @dataclass(frozen=True)
@@ -467,7 +491,7 @@ def _fuse(A: FloatArray, Y: FloatArray, normaliser: str, variance: str, window: 
     if variance in ("batch", "running", "window"):   # one rule for a residual of zero variance (fuzz 37a D3)
         z = (A - Y) / norms[..., None]
         var = (A - Y).var(axis=-1, keepdims=True) / norms[..., None] ** 2      # the normalised residual's variance
-        flat = var <= _round_off(z, A / norms[..., None], "batch", window)
+        flat = var <= _round_off(z, A / norms[..., None], "batch", var, window)
         if np.any(flat):
             raise ValueError(f"{residual} must give every sensor a residual (raw minus denoised) that is not "
                              f"constant: sensor(s) {sorted(set(np.nonzero(flat)[-2].tolist()))} have zero residual "
