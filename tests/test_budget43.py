@@ -37,3 +37,19 @@ def test_window_round_off_does_not_grow_with_the_signal_length() -> None:
     v = variance_estimates(z + 5.0, np.full_like(z, 5.0), np.ones(2), "window", 64)
     assert np.mean(v == 0.0) < 1e-3
 
+
+# --- tracks.py: the refusal points its docstring states are the code's ------------------------------------------
+
+@pytest.mark.parametrize(("rule", "edge"), [("ci", 71296), ("convex", 71296), ("fuzzy", 71053), ("split", 49895),
+                                            ("printed", 49783)])
+def test_fuse_tracks_refusal_points_match_its_docstring(monkeypatch, rule: str, edge: int) -> None:
+    """One run of a 4-state track: ``edge`` steps pass the budget, one more is refused (stated in the docstring)."""
+    from fusion.filtering import tracks
+    assert f"{edge:,} " in " ".join(tracks.fuse_tracks.__doc__.split())
+
+    from types import SimpleNamespace
+    monkeypatch.setattr(tracks, "instance_of", lambda *args: None)   # stand-in tracks: only their shape is read
+    for K, message in ((edge, "^omega"), (edge + 1, "^a and b")):     # the budget first, then omega's check
+        track = SimpleNamespace(est=np.broadcast_to(np.zeros(4), (1, K, 4)))
+        with pytest.raises(ValueError, match=message):
+            tracks.fuse_tracks(track, track, rule, omega=[[0.5]])

@@ -226,8 +226,9 @@ def fuse_tracks(
     ------
     ValueError
         Tracks of different shapes, an unknown rule, ``omega`` of the wrong shape; the steps of ``a`` and ``b``
-        with their runs and state size beyond the work budget (``fusion._limits.MAX_WORK``, ~10 CPU-s: about 4 x
-        10**4 steps of a 4-state track, a step a weight search), named ``a and b``.
+        with their runs and state size beyond the work budget (``fusion._limits.MAX_WORK``, ~10 CPU-s: one run of a
+        4-state track is refused from 71,296 steps with ``"ci"`` or ``"convex"``, 71,053 with ``"fuzzy"``, 49,895
+        with ``"split"`` and 49,783 with ``"printed"``), named ``a and b``.
 
     Examples
     --------
