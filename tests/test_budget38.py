@@ -55,9 +55,13 @@ def test_posterior_crb_frames_refused_naming_truths(monkeypatch):
 
 def test_filter_step_budget_keeps_the_books_sizes():
     """The budget is a count of units: chapter-size requests (2,000 steps of 100 runs) stay inside it."""
-    from fusion.filtering.kalman import FUSION_LOOP_STEP, LOCAL_TRACK_STEP, _steps_work
-    _steps_work(2000, 100, 4, 2, FUSION_LOOP_STEP, "z")
-    _steps_work(20000, 100, 4, 2, LOCAL_TRACK_STEP, "z")
+    from fusion.filtering.kalman import (FUSION_LOOP_CUBE, FUSION_LOOP_M_CUBE, FUSION_LOOP_SPLIT_CUBE,
+                                         FUSION_LOOP_SPLIT_STEP, FUSION_LOOP_STEP, LOCAL_TRACK_CUBE,
+                                         LOCAL_TRACK_M_CUBE, LOCAL_TRACK_STEP, _steps_work)
+    # with the weights fusion_loop and local_track pass (fix43r: a bad cube weight can fail this test)
+    _steps_work(2000, 100, 4, 2, FUSION_LOOP_STEP, "z", FUSION_LOOP_CUBE, FUSION_LOOP_M_CUBE)
+    _steps_work(2000, 100, 4, 2, FUSION_LOOP_SPLIT_STEP, "z", FUSION_LOOP_SPLIT_CUBE, FUSION_LOOP_M_CUBE)
+    _steps_work(20000, 100, 4, 2, LOCAL_TRACK_STEP, "z", LOCAL_TRACK_CUBE, LOCAL_TRACK_M_CUBE)
 
 
 class _Unread(np.ndarray):
