@@ -53,3 +53,29 @@ def test_fuse_tracks_refusal_points_match_its_docstring(monkeypatch, rule: str, 
         track = SimpleNamespace(est=np.broadcast_to(np.zeros(4), (1, K, 4)))
         with pytest.raises(ValueError, match=message):
             tracks.fuse_tracks(track, track, rule, omega=[[0.5]])
+
+
+# --- particles.py: regularise's Q x d x d product has weighted_moments' work budget --------------------------------
+
+def test_regularise_counts_its_product_as_weighted_moments_does(monkeypatch) -> None:
+    """Its Q x d x d product is counted as weighted_moments' (same weight) by particles, before the covariance's
+    check: at the input limits (Q d = 2**25, d = 5,792; about 14 CPU-s of product) it is beyond the budget; the
+    book's sizes (10**4 particles of 4 states) pass."""
+    from fusion._limits import MAX_WORK
+    from fusion.filtering import particles
+    rng = np.random.default_rng(0)
+    Q, d = 2**25 // 5792, 5792
+    assert particles._MOMENTS_PRODUCT * Q * d * d > MAX_WORK
+    seen = []
+
+    def _count(shape, names, weight=1.0):
+        seen.append((shape, names, weight))
+        raise ValueError(f"{names} counted")
+
+    with monkeypatch.context() as m:
+        m.setattr(particles, "work", _count)
+        m.setattr(particles, "as_semidefinite", lambda *a, **k: pytest.fail("the covariance was checked first"))
+        with pytest.raises(ValueError, match="^particles counted"):
+            particles.regularise(np.zeros((7, 3)), np.eye(3), rng)
+    assert seen == [((7, 3, 3), "particles", particles._MOMENTS_PRODUCT)]
+    assert particles.regularise(np.zeros((10**4, 4)), np.eye(4), rng).shape == (10**4, 4)
