@@ -29,11 +29,11 @@ def test_constant_residual_still_refused(variance: str) -> None:
 
 
 def test_window_round_off_does_not_grow_with_the_signal_length() -> None:
-    """A window variance of 1e-6 of the mean square on 10**6 samples is an estimate, not round-off (the level of
-    prefix-sum differences grew as n**2/window and set 81 % of these estimates to 0)."""
+    """A window variance of 1e-6 of the mean square on 4 x 10**5 samples is an estimate, not round-off (the level of
+    prefix-sum differences grew as n**2/window and set most of these estimates to 0)."""
     from fusion.readings.wavelet import variance_estimates
     rng = np.random.default_rng(0)
-    z = 1.0 + 1e-3 * rng.normal(size=(2, 10**6))
+    z = 1.0 + 1e-3 * rng.normal(size=(2, 4 * 10**5))
     v = variance_estimates(z + 5.0, np.full_like(z, 5.0), np.ones(2), "window", 64)
     assert np.mean(v == 0.0) < 1e-3
 
@@ -79,3 +79,57 @@ def test_regularise_counts_its_product_as_weighted_moments_does(monkeypatch) -> 
             particles.regularise(np.zeros((7, 3)), np.eye(3), rng)
     assert seen == [((7, 3, 3), "particles", particles._MOMENTS_PRODUCT)]
     assert particles.regularise(np.zeros((10**4, 4)), np.eye(4), rng).shape == (10**4, 4)
+
+
+# --- budgets whose edge was below 5 CPU-s: is_objective and grid_log_normaliser re-weighted (edge ~10 CPU-s) ---------
+
+def _units(monkeypatch, module, name, call) -> int:
+    """The units ``module.name`` (``work`` or ``loop_work``) counts for ``call``, which is stopped there."""
+    from fusion import _limits
+
+    class _Stop(Exception):
+        pass
+
+    seen = []
+
+    def spy(*args, **kwargs):
+        if name == "work":
+            shape, names = args[:2]
+            seen.append(_limits.work(shape, names, weight=kwargs.get("weight", 1), limit=10**30))
+        else:                                           # loop_work's units, as fusion._limits.loop_work counts them
+            steps, per_step, names = args[:3]
+            seen.append(_limits.work(tuple(steps) + (int(kwargs.get("step", _limits.LOOP_STEP)) + int(per_step),),
+                                     names, limit=10**30))
+        raise _Stop
+
+    monkeypatch.setattr(module, name, spy)
+    with pytest.raises(_Stop):
+        call()
+    monkeypatch.undo()
+    return seen[0]
+
+
+@pytest.mark.parametrize(("N", "rows", "kept"), [(50, 6_500, True), (100, 13_000, False)])
+def test_is_objective_edge_is_about_ten_cpu_seconds(monkeypatch, N: int, rows: int, kept: bool) -> None:
+    """20,000 samples, 39 ns a sample and row measured at N = 50 densities: 6,500 rows (~5 CPU-s) pass; 13,000 of
+    N = 100 (~18 CPU-s) are refused (1 unit an N + 2 refused calls of 1.3-4.8 CPU-s)."""
+    from fusion._limits import MAX_WORK
+    from fusion.estimates.chernoff import mixture
+    units = _units(monkeypatch, mixture, "work",
+                   lambda: mixture.is_objective(np.zeros((20_000, N)), np.zeros(20_000), np.full((rows, N), 1 / N)))
+    assert (units <= MAX_WORK) == kept
+
+
+@pytest.mark.parametrize(("rows", "kept"), [(3_300, True), (14_000, False)])
+def test_grid_log_normaliser_edge_is_about_ten_cpu_seconds(monkeypatch, rows: int, kept: bool) -> None:
+    """The default 601 x 601 grid of two mixtures, 1.3-1.6 ms a row measured: 3,300 rows (~5 CPU-s) pass, 14,000
+    (~20 CPU-s) are refused (1 unit an entry refused calls of 1.5-7.7 CPU-s)."""
+    from fusion._limits import MAX_WORK
+    from fusion.estimates.mixtures import GaussianMixture
+    from fusion.scenarios import two_mixtures
+    gA = GaussianMixture(np.array([0.4, 0.6]), np.array([[0.0, 0.0], [1.0, 1.0]]),
+                         np.stack([np.eye(2), 2 * np.eye(2)]))
+    gB = GaussianMixture(np.array([1.0]), np.array([[0.5, 0.0]]), np.eye(2)[None] * 1.5)
+    units = _units(monkeypatch, two_mixtures, "loop_work",
+                   lambda: two_mixtures.grid_log_normaliser([gA, gB], np.full((rows, 2), 0.5)))
+    assert (units <= MAX_WORK) == kept
