@@ -335,3 +335,22 @@ def _objective_grid(flat: object, name: str) -> FloatArray:
     if not np.all(flat > 0):
         raise ValueError(f"{name} must hold positive values (a CI objective is a covariance's trace)")
     return flat
+
+
+def _every_method(study: object, name: str = "study", *, published: bool = False, min_runs: int = 1) -> None:
+    """``study`` a FusionStudy with every rule of :func:`fusion.scenarios.two_sensor.fusion_study` run that the reader
+    reads (the optional weights' rules; with ``published``, the published ω's too) and at least ``min_runs`` runs
+    (2: a Monte-Carlo standard error; fuzz 39b C4, C5); ValueError naming ``name``."""
+    from fusion._structures import holds
+    from fusion._validation import instance_of
+    from fusion.scenarios.two_sensor import FusionStudy, StudyMethod
+    from fusion.scenarios.two_sensor.study import STUDY_METHODS
+
+    instance_of(study, FusionStudy, name)
+    keys = [m for m in STUDY_METHODS if published or m != StudyMethod.CI_PUBLISHED]
+    holds(study.est, name, keys, "rules",
+          "fusion_study with w_fruit_fly, w_grid" + (" and published_omega" if published else "") + " given")
+    runs = int(next(iter(study.est.values())).shape[0])
+    if runs < min_runs:
+        raise ValueError(f"{name} holds {runs} run, fewer than {min_runs}: a Monte-Carlo standard error needs at "
+                         f"least {min_runs} runs (give the scenario more runs)")
