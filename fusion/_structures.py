@@ -60,34 +60,6 @@ def record(value: object, name: str, required: tuple[str, ...], optional: tuple[
     return value
 
 
-def holds(value: Mapping, name: str, keys: Sequence[object], what: str, maker: str) -> None:
-    """A producer's result read by keys the producer may leave out (fuzz 39b C4, C6-C8): every key of ``keys`` in
-    ``value``, else a ValueError naming ``name``, the missing keys (program constants, printed with ``str``) and
-    ``maker``, the producer call that holds them, never a raw :class:`KeyError` from the reader.
-
-    Parameters
-    ----------
-    value : Mapping
-        The result's mapping read by key (already checked to be one).
-    name : str
-        Argument name used in the message (``study``, ``v``).
-    keys : sequence
-        The keys the reader reads.
-    what : str
-        What a key is (``"rules"``, ``"readings"``).
-    maker : str
-        How to make a result that holds them.
-
-    Raises
-    ------
-    ValueError
-        A key of ``keys`` missing from ``value``.
-    """
-    missing = [str(k) for k in keys if k not in value]
-    if missing:
-        raise ValueError(f"{name} lacks the {what} {', '.join(missing)} that this reader reads ({maker})")
-
-
 def same_keys(value: object, name: str, like: Mapping, like_name: str, *, ordered: bool = False) -> Mapping:
     """A mapping paired with another (rule 12): ``value`` holds exactly the keys of ``like`` (in its order
     when ``ordered``), so that a label of one without its companion in the other is a ValueError naming

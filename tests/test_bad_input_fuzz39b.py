@@ -20,26 +20,30 @@ def _scenario(runs: int):
     return two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(5), runs=runs, T=1.0)
 
 
-@pytest.mark.parametrize("given", [(), ("w",), ("p",), ("w", "p"), ("w", "w")])
+@cache
+def _study(runs: int, given: tuple[str, ...]):
+    from fusion.scenarios import two_sensor
+
+    sc = _scenario(runs)
+    w = np.full(sc.t.size, 0.5)
+    return two_sensor.fusion_study(sc, *[w for g in given if g == "w"], published_omega=0.5 if "p" in given else None)
+
+
+@pytest.mark.parametrize("given", [(), ("w",), ("w", "p"), ("w", "w")])
 @pytest.mark.parametrize("reader", ["rmse_figure", "rmse_table", "slip_table", "rmse_numbers"])
 def test_ch05_readers_refuse_a_study_without_its_optional_rules(reader, given):
     """C4: fusion_study without the weights or the published ω is valid; the readers of every curve refuse it when
     they read the rule left out (the published ω: rmse_numbers only; the figures and tables draw the weights)."""
     from fusion.book.chapters import ci
-    from fusion.scenarios import two_sensor
 
-    sc = _scenario(2)
-    w = np.full(sc.t.size, 0.5)
-    args = [w for g in given if g == "w"]
-    study = two_sensor.fusion_study(sc, *args, published_omega=0.5 if "p" in given else None)
-    calls = {"rmse_figure": lambda: ci.rmse_figure(study, np.ones(sc.t.size, bool), np.ones(sc.t.size)),
+    study = _study(2, given)
+    n = study.t.size
+    calls = {"rmse_figure": lambda: ci.rmse_figure(study, np.ones(n, bool), np.ones(n)),
              "rmse_table": lambda: ci.rmse_table(study), "slip_table": lambda: ci.slip_table(study),
              "rmse_numbers": lambda: ci.rmse_numbers(study, np.ones(3), np.ones(3, bool), {"x": 1.0})}
     if given == ("w", "w") and reader != "rmse_numbers":
-        plt_close = calls[reader]()   # both weights given: accepted (the published ω is rmse_numbers' only)
-        if reader == "rmse_figure":
-            import matplotlib.pyplot as plt
-            plt.close(plt_close)
+        if reader == "slip_table":   # both weights given: accepted (the published ω is rmse_numbers' only)
+            assert len(calls[reader]()) > 0
         return
     with pytest.raises(ValueError, match="^study lacks the rules"):
         calls[reader]()
@@ -49,11 +53,8 @@ def test_ch05_readers_refuse_a_study_without_its_optional_rules(reader, given):
 def test_ch05_standard_error_readers_refuse_one_run(reader):
     """C5: a one-run study has no Monte-Carlo standard error: refused naming study, with no numpy warning."""
     from fusion.book.chapters import ci
-    from fusion.scenarios import two_sensor
 
-    sc = _scenario(1)
-    w = np.full(sc.t.size, 0.5)
-    study = two_sensor.fusion_study(sc, w, w, published_omega=0.5)
+    study = _study(1, ("w", "w", "p"))
     leg = ci.straight_leg(study, 1.0, 150.0)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -62,3 +63,51 @@ def test_ch05_standard_error_readers_refuse_one_run(reader):
                 ci.rmse_table(study)
             else:
                 ci.rmse_numbers(study, leg.floor, leg.steady, leg.rmse, leg.causal)
+
+
+def test_identical_study_check_refuses_an_architecture_study_at_other_weights():
+    """C6: architecture_study at other printed/placement weights is valid; the identical-sensor study check that
+    paired_numbers and architecture_numbers run refuses it naming the argument (a raw KeyError in paired_numbers
+    before), and accepts the published weight's study."""
+    from fusion.book.chapters.ci.checks import _identical_study
+    from fusion.book.chapters.ci.constants import W_PUB
+    from fusion.scenarios import two_sensor
+
+    def study(w):
+        return two_sensor.architecture_study(np.random.default_rng(1), np.eye(2) * 2500.0, np.eye(2) * 900.0,
+                                             np.eye(4), runs=2, nees_runs=2, T=5.0, printed_omegas=np.array([w]),
+                                             placement_omegas=np.array([w]))
+
+    with pytest.raises(ValueError, match="^ai lacks the fed-back runs"):
+        _identical_study(study(0.5), "ai")
+    _identical_study(study(W_PUB), "ai")
+
+
+def test_correlated_readers_label_another_case_key_as_given():
+    """C7: the producers accept any case key; the readers label a key without a registered label by the key."""
+    import matplotlib.pyplot as plt
+
+    from fusion.book.chapters.lecture_correlated import correlated as co
+    from fusion.scenarios import correlated_sensors as cs
+
+    sc = {"c": {"own": (1.0, 2.0), "coupling": (1.0, 2.0), "env": 1.0}}
+    s = cs.coupling_study(sc, runs=5, x=1.0, seed=1, env_grid=(0.0, 1.0), env_far=50.0)
+    assert list(co.table_coupling(s).index) == ["c"]
+    fig = co.figure_coupling(s)
+    assert "c" in [t.get_text() for t in fig.legends[0].get_texts()] + [
+        t.get_text() for ax in fig.axes if ax.get_legend() for t in ax.get_legend().get_texts()]
+    plt.close(fig)
+    e = cs.estimated_covariance_study(sc, ns=(5, 8), reps=3, seed=1, misstate=0.1)
+    assert list(co.table_estimated(e).index) == ["c"]
+
+
+@pytest.mark.parametrize("readings", [("batch", "window"), ("window",), ("equal", "window")])
+def test_glue_weighting_refuses_a_study_without_batch_or_equal(readings):
+    """C8: variance_study at other readings is valid; glue_weighting reads batch and equal and refuses naming v."""
+    from fusion.book.chapters.lecture_wavelets import variance as va
+    from fusion.scenarios import wavelet_sensors as ws
+
+    v = ws.variance_study(length=128, runs=3, gains=(1.0, 1.5, 0.8), sigma=(0.05, 0.1, 0.2), seed=1, window=8,
+                          readings=readings, mode="hard", normaliser="max")
+    with pytest.raises(ValueError, match="^v lacks the readings"):
+        va.glue_weighting(v)

@@ -156,7 +156,7 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
         ``study`` lacks a rule (a weight left out of ``fusion_study``) or holds one run (no Monte-Carlo standard
         error); ``sc`` not the study's scenario.
     """
-    _every_method(study, min_runs=2)
+    _every_method(study, "rmse_table", min_runs=2)
     if sc is not None:
         _study_of(sc, study)
     rows = []
@@ -224,7 +224,7 @@ def slip_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
         ``study`` lacks a rule (a weight left out of ``fusion_study``); ``sc`` not the study's
         scenario.
     """
-    _every_method(study)
+    _every_method(study, "slip_table")
     if sc is not None:
         _study_of(sc, study)
     every = np.ones(study.t.size, dtype=bool)
@@ -288,7 +288,7 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
         ``study``, ``floor`` not one finite non-negative number per step it
         selects.
     """
-    _every_method(study)
+    _every_method(study, "rmse_figure")
     on_leg = _steps(on_leg, "on_leg", study.t.size)
     floor = _per_step(floor, "floor", int(on_leg.sum()), "straight-leg step of on_leg", nonnegative=True)
     full = np.full(study.t.size, np.nan)   # gaps in the turns, for the plot only
@@ -489,7 +489,7 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
         the leg not that of ``study`` (:func:`straight_leg` on it): another count of straight-leg steps, other steady
         steps, or a method's RMSE of ``leg_rmse`` not the study's mean there (relative 1e-9).
     """
-    _every_method(study, published=True, min_runs=2)
+    _every_method(study, "rmse_numbers", published=True, min_runs=2)
     leg_floor = as_array(leg_floor, "leg_floor", ndim=1, nonnegative=True)
     legs_steady = _steps(legs_steady, "legs_steady", leg_floor.size, "straight-leg step of leg_floor")
     if not legs_steady.any():
