@@ -111,3 +111,18 @@ def test_glue_weighting_refuses_a_study_without_batch_or_equal(readings):
                           readings=readings, mode="hard", normaliser="max")
     with pytest.raises(ValueError, match="^v lacks the readings"):
         va.glue_weighting(v)
+
+
+@pytest.mark.parametrize("reader", ["nees_start_table", "nees_start_numbers"])
+def test_nees_start_readers_name_the_default_T_before_a_valid_t_steady(reader):
+    """C3: runs at T = 8 s with T left at its default and a valid t_steady: the refusal names the default T (by
+    true_start), not the caller's t_steady."""
+    from fusion.book.chapters import ci
+
+    Q, R1, R2 = ci.printed_covariances()
+    x0 = np.array([0.0, 0.0, 10.0, 5.0])
+    st = {s: ci.nees_per_step(np.random.default_rng(1), Q, R1, R2, x0, 12, 2, T=8.0, random_velocity=s)
+          for s in (False, True)}
+    with pytest.raises(ValueError, match="^true_start does not fit .*default T = 1"):
+        getattr(ci, reader)(st[False], st[True], 2, *([{}] if reader == "nees_start_numbers" else []), t_steady=40.0)
+    ci.nees_start_table(st[False], st[True], 2, T=8.0, t_steady=40.0)   # T given: accepted
