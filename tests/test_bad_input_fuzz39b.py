@@ -126,3 +126,38 @@ def test_nees_start_readers_name_the_default_T_before_a_valid_t_steady(reader):
     with pytest.raises(ValueError, match="^true_start does not fit .*default T = 1"):
         getattr(ci, reader)(st[False], st[True], 2, *([{}] if reader == "nees_start_numbers" else []), t_steady=40.0)
     ci.nees_start_table(st[False], st[True], 2, T=8.0, t_steady=40.0)   # T given: accepted
+
+
+def test_benchmark_cost_never_prints_a_positive_value_as_zero(tmp_path):
+    """C2: an optimiser stage of 4e-5 s against SLSQP's 1.4 ms, and a loop of 0.3 s, print with significant digits."""
+    import copy
+    import json
+    from pathlib import Path
+
+    import fusion
+    from fusion.book.chapters.chernoff import swarm
+
+    src = json.loads((Path(fusion.__file__).resolve().parents[1] / "benchmarks/results/chernoff.json").read_text())
+    if src.get("schema") != swarm.BENCH_SCHEMA:
+        pytest.skip("the stored benchmark predates the current schema")
+    d = copy.deepcopy(src)
+    for m in d["measurements"]:
+        if m.get("stage") == swarm.BenchStage.OPTIMISER:
+            m["value"] = 4e-5
+        if m.get("key") == "loop_seconds":
+            m["value"] = 0.3
+    p = tmp_path / "b.json"
+    p.write_text(json.dumps(d))
+    values = swarm.benchmark_cost(p)[1]
+    part = values["chf_pso_ratio_text"].split("stage costs ")[1]
+    assert not part.startswith("0.0 ") and "(0.04 against" in part
+    assert "take 0.3 s by the per-run loop" in values["chf_bench_text"]
+
+
+@pytest.mark.parametrize("ratio, words", [(2.5, "3 times slower"), (3.5, "4 times slower"), (0.4, "3 times faster"),
+                                          (1.995, "2 times slower"), (1.5, "1.50 times slower")])
+def test_slower_rounds_halves_away_from_zero(ratio, words):
+    """D1: "N times" rounds halves up (2.5 read "2 times" before), and a ratio rounding to 2.00 reads "2 times"."""
+    from fusion.book.chapters.chernoff.swarm import _slower
+
+    assert _slower(ratio) == words
