@@ -161,3 +161,28 @@ def test_slower_rounds_halves_away_from_zero(ratio, words):
     from fusion.book.chapters.chernoff.swarm import _slower
 
     assert _slower(ratio) == words
+
+
+@pytest.mark.parametrize("swept, now", [("reproduced", "contradicted"), ("contradicted", "reproduced")])
+def test_reseeding_glue_counts_a_stale_sweep_against_the_ledger_status(tmp_path, swept, now):
+    """C1: a sweep made when the ledger said ``swept``, read for a record that now says ``now``: every reseed gave
+    another status, so the status moves (it read "stable in 5 of 5 reseeds" before); the same status stays stable."""
+    import json
+
+    from fusion.book import stability as S
+    from fusion.book.chapters.lecture_weighting import records as RS
+
+    rid, seeds = "lec-awf-estimated", [11, 12, 13, 14, 15]
+    res = [S.TaskResult(S.Task("lec", rid, "primary", "primary", s, 300), swept, 1.0) for s in seeds]
+    res.append(S.TaskResult(S.Task("lec", rid, "primary", "primary", 11, 3000, scaled=True), swept, 1.0))
+    recs = S.summarise(res, seeds, {rid: swept})
+    for v in recs.values():
+        v.update(commit="abc", runs_factor=10)
+    (tmp_path / "book/ledger").mkdir(parents=True)
+    (tmp_path / "_toc.yml").write_text("format: jb-book\n")
+    (tmp_path / "book/ledger/stability.json").write_text(json.dumps(
+        {"root_seed": 1, "K": 5, "runs_factor": 10, "readings": {}, "records": recs}) + "\n")
+    line = RS.reseeding_glue([{"id": rid, "status": now, "runs": 300}], tmp_path)["lec_rs_awf_estimated"]
+    assert "a status that moves under reseeding" in line and f"{swept} in 5 of 5 reseeds" in line
+    line = RS.reseeding_glue([{"id": rid, "status": swept, "runs": 300}], tmp_path)["lec_rs_awf_estimated"]
+    assert "stable in 5 of 5 reseeds and at 10× the runs" in line
