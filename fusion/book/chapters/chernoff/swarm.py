@@ -22,7 +22,7 @@ from fusion.book._json import read_argument
 from fusion.book.benchmarks import _DURATION, _check_measurements
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
-from fusion.book.tables import rounded
+from fusion.book.tables import rounded, sci
 from fusion.optimise.swarm import particle_swarm
 from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun
 from fusion.book.chapters.chernoff.settings import LATE, STUDY_WORKERS, _MSE, _check_study
@@ -296,9 +296,12 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
         study's runs by the per-run loop, batched in one process and with the chapter's worker processes, whether
         their results are identical, and the verdict against 60 s for 100 runs on 2 cores), ``chf_bench_stage_text``
         (EM's share of the patent's own stages B-I and the runs measured) and ``chf_pso_ratio_text`` (time of the
-        swarm / time of SLSQP on the same samples, in words: "N times slower" from 2, rounded to a whole number,
+        swarm / time of SLSQP on the same samples, in words: "N times slower" from 2, rounded to a whole number
+        (halves up),
         "1.23 times slower" between 1.01 and 2, "about as fast" within 1 % of 1, "N times faster" by the same
-        rule below); the share and the ratio are of the measured seconds, not of the table's ms rounded to 0.1.
+        rule below); the share and the ratio are of the measured seconds, not of the table's ms rounded to 0.1; a
+        value below one unit of its printed decimals (seconds, ms, the stage ratio) is printed to 2 significant
+        digits, never as 0.
 
     Raises
     ------
@@ -335,13 +338,14 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
     seconds = {m["stage"]: float(m["value"]) for m in stages}
     share = seconds[BenchStage.EM] / sum(v for k, v in seconds.items() if k in PATENT_STAGES)
     runs, workers = int(bench["runs"]), int(bench.get("workers", STUDY_WORKERS))
-    swarm_ms, slsqp_ms = cost.loc[BenchStage.OPTIMISER, "ms per frame"], cost.loc[BenchStage.REFERENCE, "ms per frame"]
+    swarm_ms, slsqp_ms = (_fixed(1000 * seconds[s], 1) for s in (BenchStage.OPTIMISER, BenchStage.REFERENCE))
     stage_ratio = seconds[BenchStage.OPTIMISER] / seconds[BenchStage.REFERENCE]
     cost = cost.rename(index=label)
     t2 = key["study_seconds_workers"]
     target = 60.0 * runs / 100
-    text = (f"{runs} runs take {key['loop_seconds']:.0f} s by the per-run loop, {key['study_seconds']:.0f} s batched "
-            f"in one process and {t2:.0f} s batched with {workers} worker processes, "
+    text = (f"{runs} runs take {_fixed(key['loop_seconds'], 0)} s by the per-run loop, "
+            f"{_fixed(key['study_seconds'], 0)} s batched in one process and {_fixed(t2, 0)} s batched with {workers} "
+            "worker processes, "
             f"{'within' if t2 <= target else 'over'} the target of {target:.0f} s on 2 cores; the three give "
             f"{'identical' if key['identical'] == 1.0 else 'different'} results (benchmark of {date}, load average "
             f"{bench.get('load_average', ['?'])[0]})")
@@ -351,18 +355,26 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
                   "chf_bench_stage_text": stage_text,
                   "chf_pso_ratio_text": f"{_slower(key['pso_over_slsqp'])} (benchmark of {date}) on the "
                                         "static example with a duplicated input [A, B, A], whose objective has a flat "
-                                        f"direction; in the study's own stage costs {stage_ratio:.1f} times "
-                                        f"({swarm_ms:.1f} against {slsqp_ms:.1f} ms per frame)"}
+                                        f"direction; in the study's own stage costs {_fixed(stage_ratio, 1)} times "
+                                        f"({swarm_ms} against {slsqp_ms} ms per frame)"}
+
+
+def _fixed(x: float, decimals: int) -> str:
+    """A positive measured value at ``decimals`` decimals, or at 2 significant digits (:func:`fusion.book.tables.sci`)
+    when it is below one unit of the last decimal, so that it never prints as 0 (fuzz 39b C2: "0.0 times")."""
+    return f"{x:.{decimals}f}" if x >= 10.0 ** -decimals else sci(x, 2)
 
 
 def _slower(ratio: float) -> str:
     """A positive time ratio (the swarm's time over SLSQP's) in words (fuzz 38b C5: 0.4 read "0 times slower"):
-    "N times slower" from 2 (N rounded to a whole number, as the book quotes it), two decimals between 1.01 and 2,
+    "N times slower" from 2 (N rounded to a whole number, halves up, as the book quotes it; a ratio that rounds to
+    2.00 is already "2 times"), two decimals between 1.01 and 2,
     "about as fast" within 1 % of 1, and below that the inverse ratio by the same rule, "times faster"."""
     if 1 / 1.01 < ratio < 1.01:
         return "about as fast"
     word, r = ("slower", ratio) if ratio > 1 else ("faster", 1 / ratio)
-    return f"{r:.0f} times {word}" if r >= 2 else f"{r:.2f} times {word}"
+    r2 = math.floor(100 * r + 0.5) / 100   # halves away from zero (fuzz 39b D1: 2.5 read "2 times", 3.5 "4 times")
+    return f"{math.floor(r + 0.5)} times {word}" if r2 >= 2 else f"{r2:.2f} times {word}"
 
 
 def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,

@@ -309,11 +309,18 @@ def _placement_rules(study: object) -> list:
 
 def _identical_study(study: object, name: str) -> None:
     """``study`` is architecture_studies' identical-sensor study by the rules it records: it holds the placement
-    rules (:func:`_placement_rules`); ValueError naming ``name`` (the anisotropic pair's study lacks them)."""
+    rules (:func:`_placement_rules`) and the fed-back runs its readers read, at the published weight; ValueError
+    naming ``name`` (the anisotropic pair's study lacks the former, a study at other weights the latter)."""
     if not _placement_rules(study):
         raise ValueError(f"{name} must be the identical-sensor study of architecture_studies: it holds no run of "
                          "eqs. 11-12 with Q in the sensors' own parts at a fixed weight, which architecture_studies "
                          "runs on the identical sensors only (the anisotropic pair's study?)")
+    from fusion.book.chapters.ci.constants import CI_N, CVX_N, FB, LIT, PRINTED, SPLIT_S
+    from fusion.book.chapters.lecture import _holds
+
+    # the runs every reader of the identical sensors' study reads (fuzz 39b C6: other printed weights are valid)
+    _holds(study.run_rmse, [(FB, k) for k in (CI_N, SPLIT_S, PRINTED, LIT, CVX_N)], name,
+           "fed-back runs (architecture_studies' at the published weight W_PUB)", "this chapter")
 
 
 def _arch_pair(ai: object, an: object, names: tuple[str, str]) -> None:
@@ -335,3 +342,23 @@ def _objective_grid(flat: object, name: str) -> FloatArray:
     if not np.all(flat > 0):
         raise ValueError(f"{name} must hold positive values (a CI objective is a covariance's trace)")
     return flat
+
+
+def _every_method(study: object, reader: str, name: str = "study", *, published: bool = False,
+                  min_runs: int = 1) -> None:
+    """``study`` a FusionStudy with every rule of :func:`fusion.scenarios.two_sensor.fusion_study` run that the reader
+    reads (the optional weights' rules; with ``published``, the published ω's too) and at least ``min_runs`` runs
+    (2: a Monte-Carlo standard error; fuzz 39b C4, C5); ValueError naming ``name``."""
+    from fusion._validation import instance_of
+    from fusion.book.chapters.lecture import _holds
+    from fusion.scenarios.two_sensor import FusionStudy, StudyMethod
+    from fusion.scenarios.two_sensor.study import STUDY_METHODS
+
+    instance_of(study, FusionStudy, name)
+    keys = [m for m in STUDY_METHODS if published or m != StudyMethod.CI_PUBLISHED]
+    _holds(study.est, keys, name, "rules (give fusion_study w_fruit_fly, w_grid"
+           + (" and published_omega" if published else "") + ")", reader)
+    runs = int(next(iter(study.est.values())).shape[0])
+    if runs < min_runs:
+        raise ValueError(f"{name} holds {runs} run, fewer than {min_runs}: a Monte-Carlo standard error needs at "
+                         f"least {min_runs} runs (give the scenario more runs)")

@@ -173,9 +173,9 @@ def nees_step_band(runs: int, n: int = 4) -> tuple[float, float]:
 
 def _same_runs(true_start: object, random_start: object, runs: int, T: float) -> None:
     """Check what the results of :func:`nees_per_step` record (issue 35, swaps; fuzz 26c q6): ``true_start`` from
-    the true initial velocity, ``random_start`` from a drawn one, each averaging ``runs`` runs at the period ``T``,
-    and the two of the same settings and the same generator state (their noise is then the same draws). A plain
-    mapping records none of it and is not checked."""
+    the true initial velocity, ``random_start`` from a drawn one, each averaging ``runs`` runs (their period ``T``:
+    ``_per_step``), and the two of the same settings and the same generator state (their noise is then the same
+    draws). A plain mapping records none of it and is not checked."""
     recorded = [(name, d) for name, d in (("true_start", true_start), ("random_start", random_start))
                 if isinstance(d, NeesPerStep)]
     for name, d in recorded:
@@ -186,8 +186,6 @@ def _same_runs(true_start: object, random_start: object, runs: int, T: float) ->
                              " (true_start and random_start swapped, or one start twice?)")
         if d.runs != runs:
             raise ValueError(f"runs = {runs} must be the number of runs {name} averages ({d.runs})")
-        if not recorded_as(T, d.T):
-            raise ValueError(f"T = {T:g} s must be the sampling period of {name}'s runs ({d.T:g} s)")
     if len(recorded) == 2:
         a, b = true_start, random_start
         assert isinstance(a, NeesPerStep) and isinstance(b, NeesPerStep)
@@ -221,8 +219,9 @@ def _exact_case(exact: object, true_start: object, T: float, t_steady: float) ->
 
 def _per_step(true_start: object, random_start: object, T: float, t_steady: float) -> tuple[float, float]:
     """Check the per-step NEES of both starts (fuzz 19, F9): two mappings with the same rules (a rule of
-    METHOD_LABELS), one finite non-negative value per step, the same steps in every array, and ``t_steady`` splitting them
-    (steps before and after it), so that no mean is taken over no step; ``(T, t_steady)`` as floats."""
+    METHOD_LABELS), one finite non-negative value per step, the same steps in every array, ``T`` the period the runs
+    record (a :class:`NeesPerStep`; checked first, fuzz 39b C3) and ``t_steady`` splitting them (steps before and
+    after it), so that no mean is taken over no step; ``(T, t_steady)`` as floats."""
     for name, d in (("true_start", true_start), ("random_start", random_start)):
         if not isinstance(d, Mapping):
             raise TypeError(f"{name} must be a mapping of rule -> NEES per step (nees_per_step), got {type(d).__name__}")
@@ -243,6 +242,9 @@ def _per_step(true_start: object, random_start: object, T: float, t_steady: floa
                 raise ValueError(f"{name}[{shown(rule)}] holds {v.size} steps, the other arrays of true_start and "
                                  f"random_start {steps}: both starts must cover the same steps")
     assert steps is not None
+    for name, d in (("true_start", true_start), ("random_start", random_start)):   # T first: the t_steady check
+        if isinstance(d, NeesPerStep) and not recorded_as(T, d.T):                  # reads it (fuzz 39b C3)
+            raise ValueError(f"T = {T:g} s must be the sampling period of {name}'s runs ({d.T:g} s)")
     if not 0.0 < t_steady <= (steps - 1) * T:
         raise ValueError(f"t_steady = {t_steady:g} s must leave steps before and after it: the {steps} steps "
                          f"of true_start run from 0 to {(steps - 1) * T:g} s (T = {T:g} s)")

@@ -32,7 +32,8 @@ from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
 from fusion.scenarios.two_sensor.study import OVER_STEPS, RUN_AVERAGED
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 from fusion.book.chapters.ci.text import _glue_doc
-from fusion.book.chapters.ci.checks import _entries, _exact_keys, _frame, _leg_of, _per_step, _steps, _study_of
+from fusion.book.chapters.ci.checks import (_every_method, _entries, _exact_keys, _frame, _leg_of, _per_step, _steps,
+                                           _study_of)
 from fusion._counts import index
 from fusion._structures import mapping_of
 from fusion._structures import same_keys
@@ -146,8 +147,16 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
         spread over √runs), reproduced / published (on x). Rounded to 2 decimals, NaN where a
         figure prints no value (shown "—" by :func:`fusion.book.tables.highlight_mismatches`). A last row,
         ``("reference", ...)``, is the centralised Kalman filter, which the source does not run.
+
+    Raises
+    ------
+    TypeError
+        ``study`` not a FusionStudy.
+    ValueError
+        ``study`` lacks a rule (a weight left out of ``fusion_study``) or holds one run (no Monte-Carlo standard
+        error); ``sc`` not the study's scenario.
     """
-    instance_of(study, FusionStudy, "study")
+    _every_method(study, "rmse_table", min_runs=2)
     if sc is not None:
         _study_of(sc, study)
     rows = []
@@ -206,8 +215,16 @@ def slip_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
         Indexed by (figure, the source's method), the curves with a published value; columns our method,
         published (m), RMSE (m; over runs per step, t ≥ 20 s), and the slip over all steps, over the steps
         after 20 s and over the runs (m, x). Rounded to 2 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``study`` not a FusionStudy.
+    ValueError
+        ``study`` lacks a rule (a weight left out of ``fusion_study``); ``sc`` not the study's
+        scenario.
     """
-    instance_of(study, FusionStudy, "study")
+    _every_method(study, "slip_table")
     if sc is not None:
         _study_of(sc, study)
     every = np.ones(study.t.size, dtype=bool)
@@ -250,7 +267,8 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
     Parameters
     ----------
     study : FusionStudy
-        Output of :func:`fusion.scenarios.two_sensor.fusion_study`.
+        Output of :func:`fusion.scenarios.two_sensor.fusion_study` with its weights given (the published ω may be
+        left out).
     on_leg, floor : array_like, shapes (K,) and (L,)
         The straight-leg steps of the study and the causal floor there (m), from
         :func:`fusion.scenarios.two_sensor.straight_leg_floor` at the study's period.
@@ -266,10 +284,11 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
     TypeError
         ``study`` not a FusionStudy, ``on_leg`` not bools, ``floor`` not numeric.
     ValueError
-        ``on_leg`` not one bool per step of ``study``, ``floor`` not one finite non-negative number per step it
+        ``study`` lacks a rule (a weight left out of ``fusion_study``), ``on_leg`` not one bool per step of
+        ``study``, ``floor`` not one finite non-negative number per step it
         selects.
     """
-    instance_of(study, FusionStudy, "study")
+    _every_method(study, "rmse_figure")
     on_leg = _steps(on_leg, "on_leg", study.t.size)
     floor = _per_step(floor, "floor", int(on_leg.sum()), "straight-leg step of on_leg", nonnegative=True)
     full = np.full(study.t.size, np.nan)   # gaps in the turns, for the plot only
@@ -463,13 +482,14 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
     TypeError
         ``study`` not a FusionStudy, ``legs_steady`` not bools, ``leg_rmse`` not a mapping, a floor not numeric.
     ValueError
-        ``leg_floor`` (``leg_causal``) not one finite non-negative number per straight-leg step, ``legs_steady`` not
+        ``study`` lacks a rule (a weight or the published ω left out of ``fusion_study``) or holds one run (no
+        Monte-Carlo standard error), ``leg_floor`` (``leg_causal``) not one finite non-negative number per straight-leg step, ``legs_steady`` not
         one bool per straight-leg step or selecting none, ``leg_rmse`` empty or not of finite non-negative numbers,
         holding a method the study did not run or lacking one it ran;
         the leg not that of ``study`` (:func:`straight_leg` on it): another count of straight-leg steps, other steady
         steps, or a method's RMSE of ``leg_rmse`` not the study's mean there (relative 1e-9).
     """
-    instance_of(study, FusionStudy, "study")
+    _every_method(study, "rmse_numbers", published=True, min_runs=2)
     leg_floor = as_array(leg_floor, "leg_floor", ndim=1, nonnegative=True)
     legs_steady = _steps(legs_steady, "legs_steady", leg_floor.size, "straight-leg step of leg_floor")
     if not legs_steady.any():

@@ -166,12 +166,19 @@ def glue_27(s: CorrelatedStudy) -> GlueValues:
     return out
 
 
+def _case_label(key: object) -> str:
+    """A case's label: :data:`fusion.book.style.METHOD_LABELS` of a standard
+    :class:`~fusion.scenarios.correlated_sensors.CouplingCase` key, the key itself for another case the producers
+    accept (fuzz 39b C7: a raw KeyError before)."""
+    return METHOD_LABELS.get(key, str(key))
+
+
 @_COUPLING("s")
 def table_coupling(s: CouplingStudy) -> pd.DataFrame:
     """One row per correlated case: GLS and naive weights' exact MSE, ratio, Monte Carlo, NEES (4 decimals).
 
     Rows are labelled by the cases' labels (:data:`fusion.book.style.METHOD_LABELS` of their
-    :class:`~fusion.scenarios.correlated_sensors.CouplingCase` keys). The case's parameters (own SDs, couplings, environmental SD) are written as given (text).
+    :class:`~fusion.scenarios.correlated_sensors.CouplingCase` keys; another case key as given). The case's parameters (own SDs, couplings, environmental SD) are written as given (text).
 
     Returns
     -------
@@ -184,7 +191,7 @@ def table_coupling(s: CouplingStudy) -> pd.DataFrame:
     tab = tab.drop(columns=[cs.LDL_VS_GLS, cs.EIGEN_VS_GLS])
     tab.insert(1, "own SDs", [", ".join(f"{v:g}" for v in s.scenarios[c]["own"]) for c in tab.index])
     tab.insert(2, "couplings", [", ".join(f"{v:g}" for v in s.scenarios[c]["coupling"]) for c in tab.index])
-    tab.index = pd.Index([METHOD_LABELS[c] for c in tab.index], name=tab.index.name)  # the cases' labels
+    tab.index = pd.Index([_case_label(c) for c in tab.index], name=tab.index.name)  # the cases' labels
     tab[cs.ENV_SD] = [f"{v:g}" for v in tab[cs.ENV_SD]]  # as the SDs beside it: 1.5, 2, not 2.0
     return tab.round(4)
 
@@ -196,7 +203,8 @@ def figure_coupling(s: CouplingStudy) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
-        Left: the exact naive/GLS MSE ratio against σₑ (log), a dot at each case's own σₑ; right: bars of each sensor's
+        Left: the exact naive/GLS MSE ratio against σₑ (log), a dot at each case's own σₑ (labelled as in
+        :func:`table_coupling`); right: bars of each sensor's
         GLS and naive weights, per case.
     """
     instance_of(s, CouplingStudy, "s")
@@ -204,8 +212,8 @@ def figure_coupling(s: CouplingStudy) -> Figure:
     names = list(s.curves)
     for j, nm in enumerate(names):
         c = color(f"sensor {j % 4 + 1}") if j < 4 else color("truth")
-        axes[0].semilogy(s.env_grid, s.curves[nm], color=c, ls=("-", "--", "-.", ":", "-")[j],
-                         label=METHOD_LABELS[nm])
+        axes[0].semilogy(s.env_grid, s.curves[nm], color=c, ls=("-", "--", "-.", ":", "-")[j % 5],
+                         label=_case_label(nm))
         env = s.scenarios[nm]["env"]
         axes[0].plot([env], [s.rows[j][cs.NAIVE_OVER_GLS]], "o", color=c)
     axes[0].set_xlabel("SD of the common environmental noise σₑ")
@@ -321,13 +329,13 @@ def table_estimated(est: EstimatedCovarianceStudy) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Rows: cases (their labels); columns: exact MSE ratios (naive over GLS; GLS with R̂ from n calibration vectors over
+        Rows: cases (their labels; a case key without one as given); columns: exact MSE ratios (naive over GLS; GLS with R̂ from n calibration vectors over
         GLS with the true R, mean over the repetitions; naive over GLS with R̂; GLS with one coupling misstated
         over GLS), as text at 3 decimals.
     """
     instance_of(est, EstimatedCovarianceStudy, "est")
     tab = pd.DataFrame(est.rows).set_index("case")
-    tab.index = pd.Index([METHOD_LABELS[c] for c in tab.index])  # the cases' labels
+    tab.index = pd.Index([_case_label(c) for c in tab.index])  # the cases' labels
     tab.index.name = f"exact MSE ratios ({est.reps} calibrations per n)"
     return tab.map(lambda v: f"{v:.3f}")
 

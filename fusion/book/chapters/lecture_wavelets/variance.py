@@ -147,9 +147,11 @@ def glue_weighting(v: VarianceStudy, key: str = "wwt") -> GlueValues:
         ``v`` not a VarianceStudy, ``key`` not a str.
     ValueError
         ``key`` not a glue key prefix (ASCII letters, digits and underscores), ``v`` of fewer than
-        :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4).
+        :data:`~fusion.book.rulebook.MIN_RUNS` runs (rule R4) or without ``"batch"`` or ``"equal"`` among its
+        readings.
     """
     instance_of(v, VarianceStudy, "v")
+    _holds(v.readings, ("batch", "equal"), "v", "readings", "glue_weighting")   # fuzz 39b C8: a raw KeyError before
     key = _glue_prefix(key, "key")
     c = _weighting(v)
     mean, lo, hi = c.interval()

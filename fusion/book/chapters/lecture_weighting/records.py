@@ -90,7 +90,10 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
     results, which the lead's ``make stability`` writes. A record the sweep flags reads "<status> at the chapter's
     n runs, a status that moves under reseeding (...)", naming every other status and how often; a record whose
     reseeds differ only by rule R5's qualifier (a reseed states no assumptions) says so; any other record reads
-    "stable in k of K reseeds and at r× the runs". The scaled run reruns the primary reading only.
+    "stable in k of K reseeds and at r× the runs". The scaled run reruns the primary reading only. ``k`` and
+    whether the status moves are counted from the sweep's reseeds against the record's status given here (as
+    ``make stability`` counts them against the status it committed), so that a ledger status that changed since
+    the sweep is not read as stable.
 
     A task that failed in the sweep (``make stability`` writes ``null`` for its status) is counted as failed, not
     as a status: "1 of 5 reseeds failed to run" or "the run at r× the runs failed" is added in brackets, ``k``
@@ -157,8 +160,14 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
 
 def _reseeding_line(status: str, runs: int, v: Mapping[str, Any], factor: int) -> str:
     """The text of one record's sweep ``v`` (checked by :func:`_stability_record`) for its ledger ``status`` at
-    the chapter's ``runs``: a failed task (``null``) is named as failed, not read as a status (fuzz 38b C1)."""
-    k, n, scaled = v["k"], v["K"], v["scaled"]
+    the chapter's ``runs``: a failed task (``null``) is named as failed, not read as a status (fuzz 38b C1); ``k``
+    and the flag counted from the reseeds against ``status``, not read from the file (fuzz 39b C1)."""
+    n, scaled = v["K"], v["scaled"]
+    same = {"reproduced under stated assumptions": "reproduced"}   # rule R5's qualifier (stability._same)
+    # k and the flag recounted against the caller's status, as make stability counts them against the status it
+    # committed: the ledger may have moved since the sweep (fuzz 39b C1: a sweep of another status read as stable)
+    k = sum(s is not None and same.get(s, s) == same.get(status, status) for s in v["reseeds"])
+    flag = k < n or (scaled is not None and same.get(scaled, scaled) != same.get(status, status))
     failed = sum(s is None for s in v["reseeds"])
     others = Counter(s for s in v["reseeds"] if s is not None and s != status)
     parts = [f"{s} in {c} of {n} reseeds" for s, c in others.items()]
@@ -167,9 +176,8 @@ def _reseeding_line(status: str, runs: int, v: Mapping[str, Any], factor: int) -
     fails = [f"{failed} of {n} reseeds failed to run"] if failed else []
     if scaled is None and factor > 1:   # runs_factor 1 runs no scaled task; above it a null is a failed one
         fails.append(f"the run at {factor}× the runs failed")
-    same = {"reproduced under stated assumptions": "reproduced"}   # rule R5's qualifier (stability._same)
     # the sweep flags a failed task too: the status moved only if a task that ran disagrees
-    moved = v["flag"] and (k < n - failed
+    moved = flag and (k < n - failed
                            or (scaled is not None and same.get(scaled, scaled) != same.get(status, status)))
     head = f"{status} at the chapter's {runs:,} runs"
     if moved:
