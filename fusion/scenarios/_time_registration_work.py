@@ -14,7 +14,9 @@ at a few sizes each (fuzz 30b D2: ``transient_table(1100, 1)`` was accepted and 
   solves for the whole record: 42-50 ns per unit in its weight matrix at 6,000-22,664 samples, fuzz 33a C9);
 * a Monte-Carlo run over one sample or instant: :data:`RUN_WEIGHT` by method (a fixed-weight method 9-10 ns, a
   Kalman method 40-105 ns, the fixed-lag smoother about 200 ns), 1 for runs through each method's weight matrix;
-  a Kalman method's filter pass over the samples and instants, all runs at once: :data:`KALMAN_STEP` a step.
+  a Kalman method's filter pass over the samples and instants, all runs at once: :data:`KALMAN_STEP` a step;
+* a run of ``fusion_runs`` through a method (one registration of the run's samples on the scenario's times, in
+  Python): :data:`FUSION_RUN_WEIGHT` by method (fuzz 39a C4: its runs were not counted).
 
 Private: the functions are re-exported by ``fusion.scenarios.time_registration``, where the chapter calls them.
 """
@@ -39,6 +41,30 @@ RUN_WEIGHT: dict[str, int] = {"reg_kalman_predict": 10, "reg_kalman_two_point": 
 #: weighs 1 (9-22 ns measured in a weight matrix). The cubic spline solves for the whole record each time: 42 ns
 #: at 6,000 and 12,000 samples, 34-50 ns at 22,664 (fuzz 33a C9: its largest accepted Monte Carlo ran 27-46 CPU-s).
 REGISTRATION_WEIGHT: dict[str, int] = {"reg_cubic_spline": 5}
+
+
+#: Units of one run of ``fusion_runs`` through one method, by method, on the scenario's 20 samples and 8 instants
+#: (the only times it registers): each run is registered by a Python call (``register``, or the Kalman methods'
+#: registration of that run's filtered states), so a run weighs its measured time, not a vectorised element.
+#: Measured with ``time.process_time`` and ``OPENBLAS_NUM_THREADS=1`` as the slope of 2 to 3,002 runs of one method
+#: (the machine shared with other jobs, the least of two): the Kalman methods 43-69 us (``5 * LOOP_STEP``: 200,000
+#: runs, the edge, 8.6-14 CPU-s), the other fixed-weight methods 75-100 us (``10 * LOOP_STEP``, a registration), the
+#: methods fitting each instant (``_PER_INSTANT``) 245-317 us and the cubic spline 225 us (``30 * LOOP_STEP``: 33,333
+#: runs, 7.5-10.6 CPU-s). A method not listed weighs ``10 * LOOP_STEP``.
+FUSION_RUN_WEIGHT: dict[str, int] = {
+    **{n: 5 * LOOP_STEP for n in ("reg_kalman_predict", "reg_kalman_two_point", "reg_improved", "reg_causal_improved",
+                                  "reg_rts_smoother", "reg_fixed_lag")},
+    **{n: 30 * LOOP_STEP for n in ("reg_least_squares", "reg_qls_next", "reg_qls_causal", "reg_local_qls",
+                                   "reg_cubic_spline")}}
+
+
+def _fusion_runs_work(names: Sequence[str], runs: int, n_src: int, n_dst: int, what: str, times: str) -> int:
+    """Refuse (rule 17) a ``fusion_runs`` of ``runs`` runs of ``names`` before any draw, naming ``what`` (its runs
+    and methods, each run of a method weighing :data:`FUSION_RUN_WEIGHT`) or ``times`` (each method's weight matrix,
+    ``n_src + 1`` registrations on ``n_src`` samples and ``n_dst`` instants, :func:`_registration_work`), the rule of
+    ``monte_carlo``'s :func:`_monte_carlo_work` (fuzz 39a C4); return the units of the runs."""
+    _registration_work(names, n_src, n_dst, n_src + 1, times)
+    return work((int(runs), sum(FUSION_RUN_WEIGHT.get(n, 10 * LOOP_STEP) for n in names)), what)
 
 
 def _registration_work(names: Sequence[str], n_src: int, n_dst: int, calls: int, what: str) -> int:

@@ -27,7 +27,8 @@ from fusion._frozen import constant
 from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, number, validated_post_init
 from fusion import registration as reg
 from fusion.registration import methods as _methods
-from fusion.scenarios._time_registration_work import _exact_work, _monte_carlo_work, _registration_work  # noqa: F401
+from fusion.scenarios._time_registration_work import (_exact_work, _fusion_runs_work, _monte_carlo_work,  # noqa: F401
+                                                      _registration_work)
 from fusion.scenarios import _time_registration_kf as _kf
 from fusion._validation import read_mapping, read_once
 from fusion._validation import derived_inputs
@@ -910,13 +911,22 @@ def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> Fus
     sigma : float
         Noise standard deviation of both sensors (m), > 0.
     runs : int
-        Number of runs, >= 2.
+        Number of runs, >= 2. ``runs`` x the methods of ``names`` (each run registered by a Python call, 30 to
+        300 us measured) are held to the work budget (``fusion._limits.MAX_WORK``, about 10 CPU-s), refused by name
+        before any draw (``_fusion_runs_work``): 200,000 runs of one Kalman method, 100,000 of a fixed-weight method
+        and 33,333 of a method fitting each instant or of the cubic spline are accepted, one more refused.
     seed : int
 
     Returns
     -------
     FusionRuns
         Per-run MSE (m²) of sensor 2 alone, fused unregistered, and fused after each method's registration.
+
+    Raises
+    ------
+    ValueError
+        An unknown method, a ``sigma`` or ``runs`` out of range; ``runs`` with ``names`` beyond the work budget,
+        named ``runs and names``.
     """
     if isinstance(names, (str, bytes)):
         raise TypeError(f"names must be a sequence of method names, got the string {shown(names)}")
@@ -926,6 +936,7 @@ def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> Fus
     runs = count(runs, "runs", minimum=2)
     seed = check_seed(seed)
     t1, t2 = instants()
+    _fusion_runs_work(names, runs, t1.size, t2.size, "runs and names", "names")  # rule 17 (fuzz 39a C4)
     rng = np.random.default_rng(seed)
     z1 = truth(t1) + sigma * rng.standard_normal((runs, t1.size))
     z2 = truth(t2) + sigma * rng.standard_normal((runs, t2.size))
