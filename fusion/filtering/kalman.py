@@ -164,43 +164,79 @@ def _steps_allocation(steps: int, n: int, per_state: int, names: str) -> None:
     allocation((steps, n, per_state), names)
 
 
-#: Units (:data:`fusion._limits.LOOP_STEP` multiples) of one Python-level step of a filter loop of a small model,
-#: measured with ``time.process_time`` on the cv model (n = 4, m = 2) at one and 200 runs (re-measured by fuzz 38a
-#: C7/D1: the earlier weights put the edges at 0.5-4 CPU-s): :func:`fusion.filtering.feedback.fusion_loop` 126-244 us a
-#: step (20 steps of 10 us; its split rules, whose weights are searched, 0.4-0.9 ms: 90),
-#: :func:`split_covariances` 15 us (2), and 17 us more for each ``R`` given per step (checked per step: 2),
-#: :func:`error_moments` 11 us (2), :func:`filter_runs` 2.4-3 us a step (``FILTER_RUNS_STEP``, 250 units) and 28 ns
-#: a run (0.2 units an ``n x max(n, m)``), 0.47 us a run and step on its path of independent axes (50 units),
-#: :func:`fusion.filtering.tracks.local_track` 15.7 us, 34 us at 100 runs (2, plus the ``R`` given per step: at least
-#: its ``split_covariances``' step, so that its own budget, naming z, refuses first),
-#: :func:`fusion.filtering.tracks.fuse_tracks` 95-151 us (14), 185-201 us with ``"split"`` and ``"printed"`` (20).
-FUSION_LOOP_STEP = 20 * LOOP_STEP
-FUSION_LOOP_SPLIT_STEP = 90 * LOOP_STEP
-LOCAL_TRACK_STEP = 2 * LOOP_STEP
-FUSE_TRACKS_STEP = 14 * LOOP_STEP
-FUSE_TRACKS_SPLIT_STEP = 20 * LOOP_STEP
+#: The weights of a filter loop's steps (``_steps_work``), in units (about 10 ns, ``fusion._limits.MAX_WORK``),
+#: re-measured by fuzz 39a C1 (the earlier weights charged each run's ``n x max(n, m)`` products a whole unit, where
+#: the batched BLAS products cost 0.03-0.5 ns each at larger n: valid calls of 0.2-2 CPU-s were refused, e.g.
+#: ``local_track`` with n = 40, 1,500 runs and 420 steps). Measured with ``time.process_time`` and
+#: ``OPENBLAS_NUM_THREADS=1`` (the machine shared with other jobs, the least of three) over n = 2 to 300, m = n / 2,
+#: ``m = n``, ``m = 300`` with n = 4 and 30, runs 1 to 10,000, each function's CPU time a step fitted (non-negative least
+#: squares of the relative error) as ``step + matrix x n(n + 2m) + cube x n**3 + m_cube x m**3 + runs x (run x (n + m)
+#: + product x n(n + 2m))``: the ``n x n``, ``m x n`` and ``n x m`` matrices read once a step, the dense ``n x n`` and
+#: ``m x m`` products and inverses, each run's state and measurement entries and its products with the matrices
+#: (``fuse_tracks``: ``m = 0``). With the weights below the accepted edge of every measured (n, m, runs) ran 6-18
+#: CPU-s (fusion_loop's split rules 22 s at 10,000 runs of n = 4; fuzzy clustering 4-20 s).
+#:
+#: :func:`filter_runs`: 2.5-3 us a step, 0.04-0.6 ns a ``n(n + 2m)`` of the matrices, 4-6 ns a run's entry and 0.03
+#: ns its product (250 units, 0.025, 0.5 and 0.003); on its path of independent axes 0.47 us a run and step (50 units).
 FILTER_RUNS_STEP = LOOP_STEP // 4
-FILTER_RUNS_RUN = 0.2
+FILTER_RUNS_MATRIX = 0.025
+FILTER_RUNS_RUN = 0.5
+FILTER_RUNS_PRODUCT = 0.003
 FILTER_RUNS_AXES_RUN = LOOP_STEP // 20
-#: Units of one ``n**3`` of a step (n states: every step multiplies and inverts ``n x n`` matrices; fuzz 37a C2),
-#: measured as the CPU time a step of the function's costliest rule takes at n = 150, m = 75 and n = m = 300 over
-#: ``n**3``: ``fusion_loop`` 2.5-4.4 ns (0.45 units), 7-19 ns with the split rules (2), ``local_track`` 1 ns (0.15),
-#: ``split_covariances`` 0.5-0.7 ns (0.07), ``error_moments`` 0.2-0.3 ns (0.04), ``fuse_tracks`` 0.7-1.4 ns
-#: (0.15), 4 ns with ``"split"`` (0.4), 11 ns with ``"printed"`` (1.1); ``filter_runs`` multiplies vectors only.
-FUSION_LOOP_CUBE = 0.45
-FUSION_LOOP_SPLIT_CUBE = 2.0
-LOCAL_TRACK_CUBE = 0.15
-SPLIT_COVARIANCES_CUBE = 0.07
-ERROR_MOMENTS_CUBE = 0.04
-FUSE_TRACKS_CUBE = 0.15
-FUSE_TRACKS_SPLIT_CUBE = 0.4
-FUSE_TRACKS_PRINTED_CUBE = 1.1
-#: Units of one ``m**3`` of a step (m measurements: the innovation covariance's inverse), measured at n = 4,
-#: m = 300: ``fusion_loop`` 0.12-0.23 ns (0.03 units), ``local_track`` 0.11 ns (0.02), ``split_covariances`` and
-#: ``error_moments`` under 0.02 ns (0.002).
-FUSION_LOOP_M_CUBE = 0.03
-LOCAL_TRACK_M_CUBE = 0.02
-GAINS_M_CUBE = 0.002
+#: :func:`fusion.filtering.tracks.local_track` (its ``gain_sequence``, ``split_covariances`` and ``filter_runs``):
+#: 23-31 us a step at n <= 10 (2 LOOP_STEP, plus the ``R`` given per step: at least its ``split_covariances``' step, so
+#: that its own budget, naming z, refuses first), 20 ns a ``n(n + 2m)``, 0.6 ns a ``n**3``, 0.12 ns a ``m**3``, 8 ns
+#: a run's entry and 0.01 ns a product.
+LOCAL_TRACK_STEP = 2 * LOOP_STEP
+LOCAL_TRACK_MATRIX = 2.0
+LOCAL_TRACK_CUBE = 0.06
+LOCAL_TRACK_M_CUBE = 0.012
+LOCAL_TRACK_RUN = 0.8
+LOCAL_TRACK_PRODUCT = 0.001
+#: :func:`fusion.filtering.feedback.fusion_loop`: 170-550 us a step at n <= 10 (30 LOOP_STEP; its split rules,
+#: whose weights are searched, 440-950 us: 60), 0.2 us a ``n(n + 2m)`` (0.25 us; 0.4 us with ``"printed"``), 2 ns a
+#: ``n**3`` (5 ns; 8 ns with ``"printed"``, 1.3-1.5 times ``"split"`` at n = 40 to 300), 0.1 ns a ``m**3`` (0.2 ns),
+#: 15 ns a run's entry and 0.13 ns a product (both filters and the fusion).
+FUSION_LOOP_STEP = 30 * LOOP_STEP
+FUSION_LOOP_SPLIT_STEP = 60 * LOOP_STEP
+FUSION_LOOP_MATRIX = 20.0
+FUSION_LOOP_SPLIT_MATRIX = 25.0
+FUSION_LOOP_PRINTED_MATRIX = 40.0
+FUSION_LOOP_CUBE = 0.2
+FUSION_LOOP_SPLIT_CUBE = 0.5
+FUSION_LOOP_PRINTED_CUBE = 0.8
+FUSION_LOOP_M_CUBE = 0.01
+FUSION_LOOP_SPLIT_M_CUBE = 0.02
+FUSION_LOOP_RUN = 1.5
+FUSION_LOOP_PRODUCT = 0.013
+#: :func:`fusion.filtering.tracks.fuse_tracks` (``m = 0``: the tracks' state only): 180-360 us a step at n <= 10
+#: with ``"ci"`` and fuzzy clustering (25 LOOP_STEP), 110-140 us with ``"convex"`` (18), 200-320 us with ``"split"``
+#: and ``"printed"`` (23), 0.35 us a ``n**2`` (0.25 us with ``"convex"``, 0.6 us with ``"split"`` and ``"printed"``),
+#: a ``n**3`` 0.3 ns (0.6 ns with ``"split"``, 7 ns with ``"printed"``), 18 ns a run's entry; fuzzy clustering
+#: iterates on every run: 0.2 us a ``n**2``, 0.2 ns a ``n**3``, 0.22 us a run's entry and 1.6 ns a run's ``n**2``.
+FUSE_TRACKS_STEP = 25 * LOOP_STEP
+FUSE_TRACKS_CONVEX_STEP = 18 * LOOP_STEP
+FUSE_TRACKS_CONVEX_MATRIX = 25.0
+FUSE_TRACKS_SPLIT_STEP = 23 * LOOP_STEP
+FUSE_TRACKS_MATRIX = 35.0
+FUSE_TRACKS_SPLIT_MATRIX = 60.0
+FUSE_TRACKS_FUZZY_MATRIX = 20.0
+FUSE_TRACKS_CUBE = 0.03
+FUSE_TRACKS_SPLIT_CUBE = 0.06
+FUSE_TRACKS_PRINTED_CUBE = 0.7
+FUSE_TRACKS_FUZZY_CUBE = 0.02
+FUSE_TRACKS_RUN = 1.8
+FUSE_TRACKS_FUZZY_RUN = 22.0
+FUSE_TRACKS_FUZZY_PRODUCT = 0.16
+#: :func:`split_covariances` and :func:`error_moments` (one pass, no runs): 12-16 us a step (2 LOOP_STEP, 2 more for
+#: each ``R`` given per step, checked per step), 3-15 ns a ``n(n + 2m)`` (1.5 and 0.3 units), 0.35 and 0.2 ns a
+#: ``n**3`` (0.035 and 0.02), 5 and 2.5 ps a ``m**3`` (``K R K^T``, measured at n = 4 and 30, m = 300).
+SPLIT_COVARIANCES_MATRIX = 1.5
+SPLIT_COVARIANCES_CUBE = 0.035
+SPLIT_COVARIANCES_M_CUBE = 0.0005
+ERROR_MOMENTS_MATRIX = 0.3
+ERROR_MOMENTS_CUBE = 0.02
+ERROR_MOMENTS_M_CUBE = 0.00025
 #: Units of one ``m**3`` of a :func:`gain_sequence` step, measured at n = 4 and 30, m = 150 and 300: 0.08-0.13 ns with
 #: one ``R`` (0.02 units), 0.13-0.32 ns with one ``R`` per step, each checked (0.04).
 GAINS_R_CUBE = 0.02
@@ -208,15 +244,16 @@ GAINS_STEP_R_CUBE = 0.04
 
 
 def _steps_work(steps: int, runs: int, n: int, m: int, step: int, names: str, cube: float = 0.0,
-                m_cube: float = 0.0, run_weight: float = 1.0) -> None:
-    """Rule 17 for a filter's loop over its steps (fuzz 36a C5, 37a C2): ``steps`` Python steps of ``step`` units,
-    each with ``runs x n x max(n, m)`` vectorised units (every run's state products; ``run_weight`` of a unit each
-    where measured cheaper, :data:`FILTER_RUNS_RUN`), ``cube x n**3`` units of dense
-    ``n x n`` products and inverses and ``m_cube x m**3`` of ``m x m`` ones (measured per function, the ``*_CUBE``
-    constants), refused by ``names`` (the caller's arguments that set the steps and sizes) before the loop starts
-    (:func:`fusion._limits.loop_work`)."""
-    loop_work((steps,), math.ceil(run_weight * runs * n * max(n, m) + cube * n ** 3 + m_cube * m ** 3), names,
-              step=step)
+                m_cube: float = 0.0, run: float = 0.0, product: float = 0.0, matrix: float = 0.0) -> None:
+    """Rule 17 for a filter's loop over its steps (fuzz 36a C5, 37a C2, 39a C1): ``steps`` Python steps of ``step``
+    units, each with ``matrix x n(n + 2m)`` units of reading its ``n x n``, ``m x n`` and ``n x m`` matrices,
+    ``cube x n**3`` of dense ``n x n`` products and inverses, ``m_cube x m**3`` of ``m x m`` ones, and per run
+    ``run x (n + m)`` units of its state and measurement entries and ``product x n(n + 2m)`` of its products with the
+    matrices (the weights measured per function, the constants above), refused by ``names`` (the caller's arguments
+    that set the steps and sizes) before the loop starts (:func:`fusion._limits.loop_work`)."""
+    products = n * (n + 2 * m)
+    per_step = (matrix * products + cube * n ** 3 + m_cube * m ** 3 + runs * (run * (n + m) + product * products))
+    loop_work((steps,), math.ceil(per_step), names, step=step)
 
 
 def _gains_work(n_steps: int, n: int, per_step_r: bool, names: str, m: int = 0) -> None:
@@ -423,7 +460,7 @@ def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: Arra
     R_shared = None if R_shared is None else _numeric(R_shared, "R_shared")
     per_step = (R.ndim == 3) + (R_shared is not None and R_shared.ndim == 3)
     _steps_work(K, 1, n, m, (2 + 2 * per_step) * LOOP_STEP, "gains (its steps K and sizes)",
-                SPLIT_COVARIANCES_CUBE, GAINS_M_CUBE)
+                SPLIT_COVARIANCES_CUBE, SPLIT_COVARIANCES_M_CUBE, matrix=SPLIT_COVARIANCES_MATRIX)
     Q = as_semidefinite(Q, dim=n, name="Q")
     # with a shared part only the sum R + R_shared (checked by gain_sequence) must be definite
     Rk = _per_step(R, m, K, "R", definite=R_shared is None)
@@ -475,7 +512,8 @@ def filter_runs(z: ArrayLike, gains: GainSequence, x0: ArrayLike) -> FloatArray:
     if axes:
         _steps_work(K, 0, n, m, FILTER_RUNS_AXES_RUN * zz.shape[0], "z and gains (their steps K)")
     else:
-        _steps_work(K, zz.shape[0], n, m, FILTER_RUNS_STEP, "z and gains (their steps K)", run_weight=FILTER_RUNS_RUN)
+        _steps_work(K, zz.shape[0], n, m, FILTER_RUNS_STEP, "z and gains (their steps K)", run=FILTER_RUNS_RUN,
+                    product=FILTER_RUNS_PRODUCT, matrix=FILTER_RUNS_MATRIX)
     x = np.array(as_array(x0, "x0", ndim=2), dtype=float)
     if x.shape != (zz.shape[0], n):
         raise ValueError(f"x0 must be ({zz.shape[0]}, {n}) (one state per run of z), got {x.shape}")
@@ -573,7 +611,8 @@ def error_moments(gains: GainSequence, truth: ArrayLike, R: ArrayLike, mean0: Ar
     n, m = F.shape[0], H.shape[0]
     K = gains.K.shape[0]
     # rule 17 (fuzz 37a C3): a Python step per step of gains
-    _steps_work(K, 1, n, m, 2 * LOOP_STEP, "gains (its steps K and sizes)", ERROR_MOMENTS_CUBE, GAINS_M_CUBE)
+    _steps_work(K, 1, n, m, 2 * LOOP_STEP, "gains (its steps K and sizes)", ERROR_MOMENTS_CUBE, ERROR_MOMENTS_M_CUBE,
+                matrix=ERROR_MOMENTS_MATRIX)
     X = as_array(truth, "truth", shape=(K, n))
     R = as_covariance(R, dim=m, name="R")
     b = as_array(mean0, "mean0", shape=(n,)).copy()

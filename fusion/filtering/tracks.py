@@ -35,8 +35,12 @@ from fusion._validation import (FloatArray, _numeric, as_array, as_covariance, a
                                 instance_of, one_of, positive_scalar)
 from fusion.estimates import ci as es
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
-from fusion.filtering.kalman import (FUSE_TRACKS_CUBE, FUSE_TRACKS_PRINTED_CUBE, FUSE_TRACKS_SPLIT_CUBE,
-                                    FUSE_TRACKS_SPLIT_STEP, FUSE_TRACKS_STEP, LOCAL_TRACK_CUBE, LOCAL_TRACK_M_CUBE,
+from fusion.filtering.kalman import (FUSE_TRACKS_CONVEX_MATRIX, FUSE_TRACKS_CONVEX_STEP, FUSE_TRACKS_CUBE,
+                                    FUSE_TRACKS_FUZZY_CUBE, FUSE_TRACKS_FUZZY_MATRIX,
+                                    FUSE_TRACKS_FUZZY_PRODUCT, FUSE_TRACKS_FUZZY_RUN, FUSE_TRACKS_MATRIX,
+                                    FUSE_TRACKS_PRINTED_CUBE, FUSE_TRACKS_RUN, FUSE_TRACKS_SPLIT_CUBE,
+                                    FUSE_TRACKS_SPLIT_MATRIX, FUSE_TRACKS_SPLIT_STEP, FUSE_TRACKS_STEP, LOCAL_TRACK_CUBE,
+                                    LOCAL_TRACK_M_CUBE, LOCAL_TRACK_MATRIX, LOCAL_TRACK_PRODUCT, LOCAL_TRACK_RUN,
                                     LOCAL_TRACK_STEP, _gains_work, _steps_work)
 from fusion.filtering.kalman import GainSequence, _model, _per_step, _steps_allocation, filter_runs, gain_sequence, split_covariances
 
@@ -44,8 +48,6 @@ __all__ = ["RULES", "LocalTrack", "local_track", "FusedTracks", "fuse_tracks"]
 
 
 RULES = ("ci", "convex", "split", "printed", "fuzzy")
-#: Units of a run of :func:`fuse_tracks`' fuzzy clustering per step, in ``n x n`` units (measured, n = 4).
-_FUZZY_RUN = 4
 
 
 
@@ -149,7 +151,7 @@ def local_track(
     per_step = (_numeric(R, "R").ndim == 3) + (R_shared is not None and _numeric(R_shared, "R_shared").ndim == 3)
     step = LOCAL_TRACK_STEP + (2 * per_step + (2 if per_step or R_shared is not None else 0)) * LOOP_STEP
     _steps_work(zz.shape[1], zz.shape[0], n, m, step, "z (its steps K) and the sizes of F and H", LOCAL_TRACK_CUBE,
-                LOCAL_TRACK_M_CUBE)
+                LOCAL_TRACK_M_CUBE, run=LOCAL_TRACK_RUN, product=LOCAL_TRACK_PRODUCT, matrix=LOCAL_TRACK_MATRIX)
     x = as_array(x0, "x0", ndim=2)
     if x.shape != (zz.shape[0], n):
         raise ValueError(f"x0 must be a finite ({zz.shape[0]}, {n}) array (one state per run of z), got shape {x.shape}")
@@ -227,8 +229,9 @@ def fuse_tracks(
     ValueError
         Tracks of different shapes, an unknown rule, ``omega`` of the wrong shape; the steps of ``a`` and ``b``
         with their runs and state size beyond the work budget (``fusion._limits.MAX_WORK``, ~10 CPU-s: one run of a
-        4-state track is refused from 71,296 steps with ``"ci"`` or ``"convex"``, 71,053 with ``"fuzzy"``, 49,895
-        with ``"split"`` and 49,783 with ``"printed"``), named ``a and b``.
+        4-state track is accepted up to 39,108 steps with ``"ci"``, 54,318 with ``"convex"``, 39,351 with ``"fuzzy"``,
+        41,715 with ``"split"`` and 41,645 with ``"printed"``, one step more refused; each run adds its state's
+        products), named ``a and b``.
 
     Examples
     --------
@@ -256,12 +259,18 @@ def fuse_tracks(
         raise ValueError(f"a and b must be tracks of the same shape (runs, steps, state), got a.est {a.est.shape} "
                          f"and b.est {b.est.shape}")
     runs, K, n = a.est.shape
-    # rule 17 (fuzz 37a C3): a Python step per step of the tracks, each a fusion of two n x n covariances; fuzzy
-    # clustering iterates on every run (0.6 us a run and step measured at n = 4, 1,000 and 10,000 runs: 4 x n x n)
-    _steps_work(K, runs * (_FUZZY_RUN if rule == "fuzzy" else 1), n, 0,
-                FUSE_TRACKS_SPLIT_STEP if rule in ("split", "printed") else FUSE_TRACKS_STEP,
+    # rule 17 (fuzz 37a C3, 39a C1): a Python step per step of the tracks, each a fusion of two n x n covariances applied
+    # to every run; fuzzy clustering iterates on every run (the weights measured, fusion.filtering.kalman)
+    split = rule in ("split", "printed")
+    _steps_work(K, runs, n, 0, FUSE_TRACKS_SPLIT_STEP if split else FUSE_TRACKS_CONVEX_STEP if rule == "convex"
+                else FUSE_TRACKS_STEP,
                 "a and b (their steps K, runs and state size)",
-                {"split": FUSE_TRACKS_SPLIT_CUBE, "printed": FUSE_TRACKS_PRINTED_CUBE}.get(rule, FUSE_TRACKS_CUBE))
+                {"split": FUSE_TRACKS_SPLIT_CUBE, "printed": FUSE_TRACKS_PRINTED_CUBE,
+                 "fuzzy": FUSE_TRACKS_FUZZY_CUBE}.get(rule, FUSE_TRACKS_CUBE),
+                run=FUSE_TRACKS_FUZZY_RUN if rule == "fuzzy" else FUSE_TRACKS_RUN,
+                product=FUSE_TRACKS_FUZZY_PRODUCT if rule == "fuzzy" else 0.0,
+                matrix=FUSE_TRACKS_SPLIT_MATRIX if split else FUSE_TRACKS_FUZZY_MATRIX if rule == "fuzzy"
+                else FUSE_TRACKS_CONVEX_MATRIX if rule == "convex" else FUSE_TRACKS_MATRIX)
     if omega is None:
         ws = [None] * K
     else:
