@@ -16,6 +16,7 @@ import yaml
 from hypothesis import HealthCheck, settings
 import hypothesis.core as hypothesis_core
 from hypothesis.internal import reflection as hypothesis_reflection
+from _pytest.assertion import rewrite as assertion_rewrite
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -89,6 +90,65 @@ PLAIN_HYPOTHESIS = (bool(os.environ.get("FUSION_TEST_PLAIN_HYPOTHESIS"))
 if not PLAIN_HYPOTHESIS:
     hypothesis_reflection.function_digest = function_digest
     hypothesis_core.function_digest = function_digest
+
+# --------------------------------------------------------------------------------------------
+# assertion rewriting: each test module rewritten once per run, not once per worker
+# --------------------------------------------------------------------------------------------
+
+#: Environment variable naming this run's directory of rewritten test modules (set by the controller).
+_REWRITE_DIR_ENV = "FUSION_TEST_REWRITE_DIR"
+_REWRITE_DIR_KEY = pytest.StashKey[Path]()
+TESTS = ROOT / "tests"
+#: pytest's own function (kept on its module: a second import of this file must not wrap the wrapper)
+_ORIGINAL_REWRITE = getattr(assertion_rewrite, "_fusion_original_rewrite", getattr(assertion_rewrite, "_rewrite_test", None))
+
+
+def shared_rewrite(fn: Path, config: pytest.Config) -> tuple[bytes, object]:
+    """pytest's ``_rewrite_test(fn, config)`` of a test module of ``tests/``, computed by one process of the run.
+
+    Every xdist worker collects every test module, and pytest rewrites each module's asserts (parse, rewrite,
+    compile: about 9 CPU-s for ``tests/``) in each worker: its own cache of rewritten modules (``__pycache__``) is
+    not written under ``PYTHONDONTWRITEBYTECODE``, and in a fresh clone both workers miss it at the same time. Here
+    the first process to reach a module rewrites it under a file lock and stores the code in pytest's own format
+    (its ``_write_pyc_fp``); the others read it back with pytest's own reader (``_read_pyc``: checked against the
+    hash of the current source, else rewritten again). The code is the same (``marshal``, as pytest's cache):
+    every assert is rewritten as before. ``tests/test_hypothesis_digest.py`` checks the parity.
+    """
+    root = os.environ.get(_REWRITE_DIR_ENV)
+    if not root or Path(fn).parent != TESTS:
+        return _ORIGINAL_REWRITE(fn, config)
+    import fcntl
+    import importlib.util
+
+    fn = Path(fn)
+    pyc = Path(root) / (fn.name[:-3] + ".pyc")
+    try:
+        lock = open(Path(root) / (fn.name + ".lock"), "w", encoding="utf-8")  # noqa: SIM115 - closed below
+    except OSError:          # the run's directory is gone (a run that outlived its controller): rewrite here
+        return _ORIGINAL_REWRITE(fn, config)
+    with lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        co = assertion_rewrite._read_pyc(fn, pyc)
+        if co is not None:
+            return importlib.util.source_hash(fn.read_bytes()), co
+        source_hash, co = _ORIGINAL_REWRITE(fn, config)
+        part = pyc.with_name(f"{pyc.name}.{os.getpid()}")
+        try:
+            with open(part, "wb") as fp:
+                assertion_rewrite._write_pyc_fp(fp, source_hash, co)
+            os.replace(part, pyc)
+        except OSError:      # not stored: the next process rewrites it too
+            pass
+        return source_hash, co
+
+
+#: Also off (pytest's own rewriting) when the installed pytest lacks the private helpers read above.
+PLAIN_REWRITE = (bool(os.environ.get("FUSION_TEST_PLAIN_REWRITE"))
+                 or not all(hasattr(assertion_rewrite, n) for n in ("_rewrite_test", "_read_pyc", "_write_pyc_fp")))
+if not PLAIN_REWRITE:
+    assertion_rewrite._fusion_original_rewrite = _ORIGINAL_REWRITE
+    assertion_rewrite._rewrite_test = shared_rewrite
+
 
 #: Each hypothesis test function's own settings (its ``@settings``, or the profile), by function.
 _OWN_SETTINGS: dict[object, object] = {}
@@ -252,6 +312,11 @@ def pytest_configure(config: pytest.Config) -> None:
         study_dir = Path(tempfile.mkdtemp(prefix="fusion-study-cache-"))
         os.environ[_STUDY_CACHE_ENV] = str(study_dir)
         config.stash[_STUDY_CACHE_KEY] = study_dir
+    if not os.environ.get("PYTEST_XDIST_WORKER") and not os.environ.get(_REWRITE_DIR_ENV) and not PLAIN_REWRITE:
+        # the run's rewritten test modules (:func:`shared_rewrite`), inherited by the workers; removed when it ends
+        rewrite_dir = Path(tempfile.mkdtemp(prefix="fusion-test-rewrite-"))
+        os.environ[_REWRITE_DIR_ENV] = str(rewrite_dir)
+        config.stash[_REWRITE_DIR_KEY] = rewrite_dir
     if os.environ.get("PYTEST_XDIST_WORKER") or os.environ.get(_BOOK_DIR_ENV) or not _run_needs_the_book(config):
         return
     if os.environ.get("FUSION_TEST_COSTS"):   # recording costs: the build's CPU is the first book test's
@@ -276,6 +341,10 @@ def pytest_unconfigure(config: pytest.Config) -> None:
         thread, root = started
         thread.join()
         shutil.rmtree(root, ignore_errors=True)
+    rewrite_dir = config.stash.get(_REWRITE_DIR_KEY, None)
+    if rewrite_dir is not None:
+        os.environ.pop(_REWRITE_DIR_ENV, None)
+        shutil.rmtree(rewrite_dir, ignore_errors=True)
     study_dir = config.stash.get(_STUDY_CACHE_KEY, None)
     if study_dir is not None:
         os.environ.pop(_STUDY_CACHE_ENV, None)

@@ -115,3 +115,33 @@ def test_every_case_had_the_same_settings() -> None:
     _, _, max_examples, derandomize, database, suppressed = _SEEN[0]
     assert max_examples == 2 and derandomize == settings.get_profile("fusion").derandomize and database is None
     assert {HealthCheck.differing_executors, HealthCheck.too_slow} <= suppressed
+
+
+# ---------------------------------------------------------------------------------------------- the shared rewrite
+def test_the_shared_rewrite_is_pytests_own(tmp_path, monkeypatch, pytestconfig) -> None:
+    """``conftest.shared_rewrite``: the process that rewrites a test module stores it, the next one reads it back; both
+    give pytest's own rewritten code (marshalled, byte for byte) and its source hash; a module outside ``tests/`` and a
+    changed source are rewritten by pytest itself."""
+    import marshal
+
+    from _pytest.assertion import rewrite
+
+    if conftest.PLAIN_REWRITE:
+        pytest.skip("pytest's own rewriting (FUSION_TEST_PLAIN_REWRITE, or another pytest release)")
+    assert rewrite._rewrite_test is conftest.shared_rewrite
+    monkeypatch.setenv(conftest._REWRITE_DIR_ENV, str(tmp_path))
+    fn = conftest.TESTS / "test_module_size.py"
+    own_hash, own = conftest._ORIGINAL_REWRITE(fn, pytestconfig)
+    first = conftest.shared_rewrite(fn, pytestconfig)                # rewritten here, stored
+    assert (tmp_path / "test_module_size.pyc").exists()
+    second = conftest.shared_rewrite(fn, pytestconfig)               # read back
+    for h, co in (first, second):
+        assert h == own_hash and marshal.dumps(co) == marshal.dumps(own)
+    # a stored module whose source changed is rewritten again (pytest's reader checks the source's hash)
+    copy = tmp_path / "elsewhere" / "test_copy.py"
+    copy.parent.mkdir()
+    copy.write_text(fn.read_text(encoding="utf-8") + "\nassert True\n", encoding="utf-8")
+    (tmp_path / "test_copy.pyc").write_bytes((tmp_path / "test_module_size.pyc").read_bytes())
+    assert rewrite._read_pyc(copy, tmp_path / "test_copy.pyc") is None
+    outside = conftest.shared_rewrite(copy, pytestconfig)             # not under tests/: pytest's own, not stored
+    assert marshal.dumps(outside[1]) == marshal.dumps(conftest._ORIGINAL_REWRITE(copy, pytestconfig)[1])
