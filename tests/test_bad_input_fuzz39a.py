@@ -39,3 +39,48 @@ def test_correlated_study_entry_edge_is_the_gls_input_edge():
     input_allocation(lc._stacked_shape(240, runs), "sigma and runs")  # accepted
     with pytest.raises(ValueError):
         input_allocation(lc._stacked_shape(240, runs + 1), "sigma and runs")
+
+
+_OFS = {"mean": {"method": "mean"}, "ofs": {"method": "optimal_fusion_set"}}
+
+
+def test_thermocouples_monte_carlo_refuses_fuse_epochs_limits_at_entry():
+    """D1: the n_runs * n_samples epochs beyond fuse_epochs's input budget or its kernel's work budget are refused
+    before the draws, naming the caller's arguments (they were refused inside fuse_epochs naming every argument)."""
+    from fusion.scenarios import thermocouples as th
+
+    _refused_fast(th.monte_carlo, 1, 40_000, _OFS, match=r"^n_runs, n_samples, n_sensors and methods ask .*input budget")
+    _refused_fast(th.monte_carlo, 1, 5_001, _OFS, match=r"^n_runs, n_samples, n_sensors and methods \(10 readings")
+
+
+def test_thermocouples_monte_carlo_edge_is_fuse_epochs_edge():
+    """D1, the bound inside: 5,000 runs of 100 epochs of 10 readings pass the same rule fuse_epochs applies."""
+    from fusion.readings._row_blocks import epochs_limit
+
+    epochs_limit(5_000 * 100, 10, "optimal_fusion_set", "n_runs")  # accepted
+    with pytest.raises(ValueError, match="n_runs"):
+        epochs_limit(5_001 * 100, 10, "optimal_fusion_set", "n_runs")
+
+
+@pytest.mark.parametrize("study", ["tail_study", "lumv_study"])
+def test_chunk_beyond_the_variance_estimates_input_is_refused_at_entry(study):
+    """D1: a chunk of (chunk, k, n) readings beyond wt.variance_estimates' input budget is refused at entry, naming
+    runs and chunk (it was refused inside, after the chunk's draws)."""
+    from fusion.scenarios.lecture_weighting import estimators as es
+
+    _refused_fast(getattr(es, study), sigma=(1.0, 2.0, 3.0, 4.0), k=2, runs=10**7, chunk=10**7,
+                  match=r"^runs, chunk, k and sigma ask .*input budget")
+
+
+@pytest.mark.parametrize("study, inside, outside", [("tail_study", 249_000, 251_000), ("lumv_study", 39_900, 40_100)])
+def test_chunk_of_one_counts_its_python_steps(study, inside, outside):
+    """C3: chunk = 1 makes a Python step a run (tail_study, ~30 us) or a pair (lumv_study, ~480 us); the loop is
+    counted: just outside the edge is refused quickly naming chunk, just inside passes the same rule (its run,
+    7-11 CPU-s measured, is not repeated here)."""
+    from fusion.scenarios.lecture_weighting import estimators as es
+
+    _refused_fast(getattr(es, study), sigma=(1.0, 2.0), k=2, runs=outside, chunk=1, match=r"^runs, chunk, k and sigma")
+    step, items, per = (4_000, inside, 4) if study == "tail_study" else (50_000, inside // 2, 96)
+    es._chunk_loop(items, 1, items * per, step)  # accepted
+    with pytest.raises(ValueError, match="chunk"):
+        es._chunk_loop(items + 1000, 1, (items + 1000) * per, step)
