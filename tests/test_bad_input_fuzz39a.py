@@ -84,3 +84,29 @@ def test_chunk_of_one_counts_its_python_steps(study, inside, outside):
     es._chunk_loop(items, 1, items * per, step)  # accepted
     with pytest.raises(ValueError, match="chunk"):
         es._chunk_loop(items + 1000, 1, (items + 1000) * per, step)
+
+
+def _probe_calls():
+    from fusion.book.chapters.lecture_correlated import appendix
+    from fusion.scenarios import ridge_sensors as rs
+    from fusion.scenarios.lecture_weighting import estimators as es, learning as le
+
+    s4 = (0.5, 1.0, 2.0, 4.0)
+    return {  # each array 4e7 entries: inside the memory budget (2**28), beyond the callee's input budget (2**25)
+        "ar1_study": ("runs, k and sigma", lambda: es.ar1_study(sigma=s4, k=2, runs=5_000_000)),
+        "plugin_study": ("m and runs", lambda: rs.plugin_study(xs=(1.0,), m=5, runs=8_000_000)),
+        "learning_study": ("runs, epochs and r_sets",
+                           lambda: le.learning_study(r_sets=((1.0, 4.0),), epochs=2, runs=10_000_000, last=2)),
+        "learned_limit_check": ("ns and draws", lambda: le.learned_limit_check(ns=(8,), draws=5_000_000)),
+        "table_james_stein": ("ds and runs", lambda: appendix.table_james_stein(ds=(10,), ratios=(1.0,),
+                                                                                runs=4_000_000)),
+    }
+
+
+@pytest.mark.parametrize("name", ["ar1_study", "plugin_study", "learning_study", "learned_limit_check",
+                                  "table_james_stein"])
+def test_drawn_readings_beyond_a_callees_input_budget_are_refused_at_entry(name):
+    """D1 (the class, found by probing every entry with an ``allocation`` check): these drew 4e7 readings (1-3
+    CPU-s) and were refused by their callee's input budget, naming the callee's argument or every argument."""
+    names, call = _probe_calls()[name]
+    _refused_fast(call, match=rf"^{names} ask for an array of 4e\+07 elements .*input budget")

@@ -390,6 +390,7 @@ def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k
     k = count(k, "k", minimum=2)
     runs = count(runs, "runs", minimum=100)
     allocation((runs, k, sig.size), "runs, k and sigma")
+    input_allocation((runs, k, sig.size), "runs, k and sigma")  # the readings are wt's input (fuzz 39a D1, class)
     # rule 17: about 0.13 us a reading (run x sample x sensor) measured (budget35: 1.7 CPU-s for 446,000 runs x 10 x 3);
     # without a work budget 8.9e6 runs (some 35 CPU-s) were accepted
     work((runs, k, sig.size), "runs, k and sigma", weight=15)
