@@ -773,10 +773,10 @@ def lumv_study(
     seed = _seed(seed)
     chunk = count(chunk, "chunk")
     allocation((min(chunk, runs // 2), k, sig.size), "runs, chunk, k and sigma")
-    input_allocation((min(chunk, runs // 2), k, sig.size), "runs, chunk, k and sigma")  # wt.variance_estimates' input
     # rule 17: chunks bound the memory, not the time; a reading weighs 12 units, measured (budget35: ~0.12 us;
     # k = 10**7 of 6 runs, ~22 CPU-s, was accepted at 1 unit)
     units = work((runs, k, sig.size), "runs, k and sigma", weight=12)
+    input_allocation((min(chunk, runs // 2), k, sig.size), "runs, chunk, k and sigma")  # wt.variance_estimates' input
     # each chunk of pairs is a Python step of two passes of _lumv_errors (some twenty numpy calls and validated
     # calls), 480 us measured (chunk = 1, k = 2, two sensors, time.process_time, shared machine): 50 LOOP_STEP, on
     # top of the readings' units (fuzz 39a C3: chunk = 1 of 2e7 runs, accepted, would have run about 4,800 CPU-s)
