@@ -110,3 +110,40 @@ def test_drawn_readings_beyond_a_callees_input_budget_are_refused_at_entry(name)
     CPU-s) and were refused by their callee's input budget, naming the callee's argument or every argument."""
     names, call = _probe_calls()[name]
     _refused_fast(call, match=rf"^{names} ask for an array of 4e\+07 elements .*input budget")
+
+
+def test_is_objective_counts_its_two_simultaneous_arrays():
+    """D2: is_objective holds two (R, E) arrays at once (tracemalloc: 2.08); R x E = 1.5e8 passed the memory rule
+    checked on one array (2**28) and held two of 1.2 GiB. Now refused by name; just inside (R x E = 2**27) passes
+    the same rule."""
+    from fusion._counts import allocation
+    from fusion.estimates.chernoff.mixture import is_objective
+
+    R = 2**24
+    L, lg = np.zeros((R, 1)), np.zeros(R)
+    _refused_fast(is_objective, L, lg, np.ones((9, 1)), match=r"^L and eps ask .*2 arrays of")
+    allocation((R, 8), "L and eps", arrays=2)  # accepted: 2**28 elements in all
+    with pytest.raises(ValueError, match="L and eps"):
+        allocation((R, 8), "L and eps", arrays=3)
+
+
+@pytest.mark.parametrize("order", [lambda: list(range(2**22)), lambda: [list(range(6))] * (2**22 // 6),
+                                   lambda: [list(range(2**22))]])
+def test_explain_sizes_order_before_converting_it(order):
+    """E1: an order of 2**25 entries was converted (1.7-2.2 CPU-s) before its shape check (here 2**22); now counted
+    from its lengths first and it is refused by name at once."""
+    from fusion.book.chapters import ofs_audit as oa
+
+    given = order()
+    _refused_fast(oa.explain, oa.corrections()[0], "correct", order=given,
+                  match=r"^order must have shape \(6,\) or \(1, 6\) .*got at least")
+
+
+def test_explain_order_of_six_still_accepted():
+    """E1, the bound inside: one order of the six observations, as a row or a single-row list, is read."""
+    from fusion.book.chapters import ofs_audit as oa
+
+    c = oa.corrections()[0]
+    a = oa.explain(c, "correct", order=[5, 4, 3, 2, 1, 0])
+    b = oa.explain(c, "correct", order=[[5, 4, 3, 2, 1, 0]])
+    assert a.equals(b)
