@@ -147,3 +147,30 @@ def test_explain_order_of_six_still_accepted():
     a = oa.explain(c, "correct", order=[5, 4, 3, 2, 1, 0])
     b = oa.explain(c, "correct", order=[[5, 4, 3, 2, 1, 0]])
     assert a.equals(b)
+
+
+@pytest.mark.parametrize("reader", ["table_coupling", "figure_coupling"])
+def test_a_case_key_reading_as_another_cases_label_is_refused(reader):
+    """E3: a caller's case key equal to another case's registered label gave two rows (curves) one label."""
+    import matplotlib.pyplot as plt
+
+    from fusion.book.chapters.lecture_correlated import correlated as ch
+    from fusion.book.style import METHOD_LABELS
+    from fusion.scenarios import correlated_sensors as cs
+
+    key = cs.CouplingCase.UNEQUAL
+    case = cs.SCENARIOS[key]
+    study = cs.coupling_study({key: case, METHOD_LABELS[key]: case}, runs=100)
+    with pytest.raises(ValueError, match=r"^s has the cases .* with one label"):
+        getattr(ch, reader)(study)
+    ok = getattr(ch, reader)(cs.coupling_study({key: case, "my case": case}, runs=100))  # distinct labels: read
+    if reader == "table_coupling":
+        assert list(ok.index) == [METHOD_LABELS[key], "my case"]
+    plt.close("all")
+
+
+def test_a_case_key_that_is_a_method_key_is_its_own_label():
+    """E3: a case key that is another method's key in METHOD_LABELS ("gls") is labelled as given, not as GLS."""
+    from fusion.book.chapters.lecture_correlated import correlated as ch
+
+    assert ch._case_label("gls") == "gls"
