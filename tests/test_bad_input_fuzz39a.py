@@ -193,3 +193,22 @@ def test_constant_residual_round_off_holds_up_to_the_input_limit():
     X = Y + np.array([[1e5 + 0.1], [0.0]]) + np.array([[0.0], [0.01]]) * np.random.default_rng(1).normal(size=N)
     with pytest.raises(ValueError, match=r"sensor\(s\) \[0\] have zero residual variance"):
         fuse_denoised(X, Y)
+
+
+@pytest.mark.parametrize("name, inside, outside", [("split_ci_exactness", 14_285, 14_300),
+                                                   ("shift_weight_draws", 552, 560)])
+def test_chapter_counts_reweighted_at_their_measured_edge(name, inside, outside):
+    """E4: at their old edges split_ci_exactness (98,000 steps) ran 68 CPU-s and shift_weight_draws (4,851 draws)
+    83 CPU-s; re-weighted from the measurement (0.70 ms a step, 85 us a draw and shift) the edge is ~10 CPU-s. Just
+    outside is refused at once by the count's name; just inside passes the same rule (its run is not repeated)."""
+    from fusion._limits import loop_work
+    from fusion.book.chapters.ci import printed
+    from fusion.book.chapters.lecture_weighting import belief
+
+    if name == "split_ci_exactness":
+        Q, R1, _ = printed.printed_covariances()
+        _refused_fast(printed.split_ci_exactness, Q, R1, 1.0, outside, match=r"^n_steps ask")
+        loop_work((inside,), 0, "n_steps", step=printed._SPLIT_CI_STEP)
+    else:
+        _refused_fast(belief.shift_weight_draws, draws=outside, match=r"^draws and sigma ask")
+        loop_work((inside, 201), 4, "draws and sigma", step=belief._SHIFT_DRAW_STEP)
