@@ -212,3 +212,16 @@ def test_chapter_counts_reweighted_at_their_measured_edge(name, inside, outside)
     else:
         _refused_fast(belief.shift_weight_draws, draws=outside, match=r"^draws and sigma ask")
         loop_work((inside, 201), 4, "draws and sigma", step=belief._SHIFT_DRAW_STEP)
+
+
+def test_ls_special_cases_counts_its_scalar_steps_as_measured():
+    """E4: its recursive filter's Python steps are scalar arithmetic, 0.29 us each: 980,000 steps (the old edge, a
+    LOOP_STEP each) ran 0.28 CPU-s, so valid requests of 1-10 million readings (0.3-3 CPU-s) were refused. At 100
+    units a step the edge (9.9e6 steps) ran 3.1 CPU-s; just outside is refused at once, just inside passes the rule."""
+    from fusion._limits import loop_work
+    from fusion.book.chapters.lecture_correlated import propositions as pr
+
+    _refused_fast(pr.ls_special_cases, np.random.default_rng(0), 10**7, match=r"^m ask")
+    loop_work((9_900_000,), 1, "m", step=100)
+    assert set(pr.ls_special_cases(np.random.default_rng(0), 2 * 10**6)) == {"mean", "weighted mean",
+                                                                             "recursive filter"}  # ~0.6 CPU-s
