@@ -225,3 +225,15 @@ def test_ls_special_cases_counts_its_scalar_steps_as_measured():
     loop_work((9_900_000,), 1, "m", step=100)
     assert set(pr.ls_special_cases(np.random.default_rng(0), 2 * 10**6)) == {"mean", "weighted mean",
                                                                              "recursive filter"}  # ~0.6 CPU-s
+
+
+def test_check_grid_refuses_beyond_its_callees_input_and_weighs_a_reading_as_measured():
+    """D1/E4: check_grid's readings beyond the fusions' input budget were refused inside (130,666 runs, 1.7 CPU-s,
+    naming X); and a counted reading costs 470-580 ns (its input edge, 67,108 runs, ran over 240 CPU-s at 1 unit):
+    now 50 units, the edge 2,666 runs of the default grid. Just outside is refused at once; just inside passes."""
+    from fusion._limits import work
+    from fusion.book.chapters.lecture_weighting import consistency as c
+
+    _refused_fast(c.check_grid, runs=67_109, match=r"^runs, samples and sigma ask .*input budget")
+    _refused_fast(c.check_grid, runs=2_700, match=r"^biases, eps_factors, runs, samples and sigma ask")
+    work((5, 3, 2_666, 100, 5), "runs", weight=50)
