@@ -220,7 +220,8 @@ def _order(order: object, shape: tuple[int, int], what: str = "the observations 
     """``order`` as integer observation indices of shape (n_obs,) or (H, n_obs) (``shape`` is (H, n_obs)), each row
     a permutation of the observations; TypeError/ValueError naming ``order`` (and ``what`` the shape is)."""
     H, n_obs = shape
-    n = given_entries(order, H * n_obs)   # its entries before it is read or converted (fuzz 39a E1)
+    # a sequence's entries before it is read or converted (fuzz 39a E1); an array's shape is named below (no copy)
+    n = None if isinstance(getattr(order, "shape", None), tuple) else given_entries(order, H * n_obs)
     if n is not None and n > H * n_obs:
         raise ValueError(f"order must have shape ({n_obs},) or ({H}, {n_obs}) ({what}), got {entries_text(n)} entries")
     input_size(order, "order")
