@@ -178,7 +178,7 @@ _CASE_KEYS = frozenset(str(c) for c in cs.CouplingCase)
 
 
 def _case_labels(keys: list[object], name: str) -> list[str]:
-    """The labels of a study's cases (:func:`_case_label`), one per case: a caller's case key that reads as another
+    """The labels of a study's cases (``_case_label``), one per case: a caller's case key that reads as another
     case's label (``"unequal coupling"`` beside ``cpl_unequal``) would give two rows, bars or curves one label, so
     it is refused, naming ``name`` and both keys (fuzz 39a E3)."""
     labels = [_case_label(k) for k in keys]
