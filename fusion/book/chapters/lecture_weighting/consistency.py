@@ -4,7 +4,7 @@ appendix's grid of thresholds and biases."""
 from __future__ import annotations
 
 from fusion.book._few_runs import study_runs_named
-from fusion._counts import allocation, sequence
+from fusion._counts import allocation, input_allocation, sequence
 from fusion._limits import work
 from fusion._validation import as_array, instance_of, scalar, std_scalar, window as check_window
 
@@ -270,7 +270,14 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
     # every run's draws at once, before anything is drawn (fuzz 29b B3: 3e6 runs x 100 samples x 3 sensors passed the
     # work budget and drew 6.7 GiB); then the fusions of every cell
     allocation((runs, samples, sig.size), "runs, samples and sigma")
-    work((len(biases), len(eps_factors), runs, samples, sig.size), "biases, eps_factors, runs, samples and sigma")
+    # the readings are the input of the weighting fusions, which refuse more than MAX_INPUT_ELEMENTS (fuzz 39a D1/E4:
+    # 130,666 runs were refused inside after 1.7 CPU-s, naming their argument X)
+    input_allocation((runs, samples, sig.size), "runs, samples and sigma")
+    # a reading of a cell passes the AWF, two consistency checks and their running means: 470-580 ns measured (200
+    # and 1,000 runs, time.process_time, shared machine; at 1 unit the input edge, 67,108 runs, ran over 240 CPU-s,
+    # fuzz 39a E4): 50 units, the edge 2,666 runs of the default grid (~10 CPU-s)
+    work((len(biases), len(eps_factors), runs, samples, sig.size), "biases, eps_factors, runs, samples and sigma",
+         weight=50)
     win = slice(*check_window(window, "window", samples))
     eps0 = 3 * np.sqrt(2) * sig.max()
     clean = x + np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
