@@ -91,3 +91,108 @@ def test_median_interval_at_the_books_level_is_unchanged():
     assert median_values_needed() == median_values_needed(0.96875) == 6 and median_values_needed(0.97) == 7
     assert median_interval(np.arange(6.0)) == (2.5, 0.0, 5.0)
     assert median_interval(np.arange(100.0)) == (49.5, 39.0, 60.0)
+
+
+# --- C2, C3: the study cache's entries ------------------------------------------------------------------------------
+
+_CALLS: list[int] = []
+
+
+def _cached_study(n: int) -> np.ndarray:
+    """Module-level (wrapped below): only a function its module holds under its name reaches the disk."""
+    _CALLS.append(n)
+    return np.arange(n) * 1.5
+
+
+def _cache(tmp_path, monkeypatch):
+    from fusion.book import study_cache as sc
+
+    global _cached_study
+    if not hasattr(_cached_study, "cache_clear"):
+        _cached_study = sc.study_cache(maxsize=4)(_cached_study)
+    monkeypatch.setenv(sc.ENV, str(tmp_path))
+    _cached_study.cache_clear()
+    _CALLS.clear()
+    assert np.array_equal(_cached_study(5), np.arange(5) * 1.5) and _CALLS == [5]
+    (entry,) = tmp_path.glob("*.pkl")
+    _cached_study.cache_clear()
+    return entry
+
+
+class _Hang(BaseException):   # not caught as an unreadable entry
+    pass
+
+
+def _alarm(signum, frame):
+    raise _Hang("blocked for 30 s")
+
+
+@pytest.mark.parametrize("where", [".pkl", ".lock"])
+def test_a_fifo_in_place_of_an_entry_or_its_lock_is_a_miss_without_blocking(where, tmp_path, monkeypatch):
+    """C2: a FIFO at ``<key>.pkl`` or ``<key>.lock`` made every cached call block for ever in ``open()``."""
+    import os
+    import signal
+
+    entry = _cache(tmp_path, monkeypatch)
+    path = entry.with_suffix(where)
+    path.unlink()
+    os.mkfifo(path)
+    old = signal.signal(signal.SIGALRM, _alarm)
+    signal.alarm(30)
+    try:
+        value = _cached_study(5)
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+    assert np.array_equal(value, np.arange(5) * 1.5) and _CALLS == [5, 5]   # a miss: computed
+    if where == ".pkl":
+        assert entry.is_file()   # and rewritten over the FIFO
+        _cached_study.cache_clear()
+        assert np.array_equal(_cached_study(5), value) and _CALLS == [5, 5]   # loaded
+
+
+def test_a_changed_byte_of_a_stored_entry_is_a_miss(tmp_path, monkeypatch):
+    """C3: one changed float of a stored array loaded silently ([0, 1.5, 3.25, 4.5, 6]); the module promises the
+    computed values bit for bit. The entry's digest finds it: a miss, recomputed and rewritten."""
+    import struct
+
+    entry = _cache(tmp_path, monkeypatch)
+    good = entry.read_bytes()
+    at = good.find(struct.pack("<d", 3.0))
+    assert at > 0
+    entry.write_bytes(good[:at] + struct.pack("<d", 3.25) + good[at + 8:])
+    assert np.array_equal(_cached_study(5), np.arange(5) * 1.5) and _CALLS == [5, 5]
+    assert entry.read_bytes() == good
+
+
+# --- C4: parameters_matching returns roots only -----------------------------------------------------------------------
+
+def _numeric_options():
+    from fusion.book.audit import _NOT_NUMERIC
+    from fusion.readings.fusion_set import METHODS
+
+    return [(m, o) for m, (_, opts) in METHODS.items() for o in opts if o not in _NOT_NUMERIC]
+
+
+@pytest.mark.parametrize("method, name", _numeric_options())
+@pytest.mark.parametrize("target", [900.5, 905.0, 910.0])
+def test_parameters_matching_returns_only_values_where_the_fused_value_is_the_target(method, name, target):
+    """C4: for belief_degree's step options (binary_eps, limit, and a jump of scale) brentq converged onto a jump of
+    the fused value and returned it as a root ([0.3, 49.6] for 905, where the fused value is 900.25 and 904.33).
+    Every option of every method: each value returned gives the target to round-off (the documented tie)."""
+    from fusion.book.audit import parameters_matching
+    from fusion.readings.fusion_set import fuse_epochs
+
+    x = np.array([900.1, 901.3, 899.7, 950.0, 900.4])
+    for r in parameters_matching(x, target, method, name, 1e-3, 1e3):
+        fused = fuse_epochs(x, method, **{name: float(r)}).values[0]
+        assert abs(fused - target) <= 1e-9 * 950.0, (method, name, r, fused)
+
+
+def test_parameters_matching_still_finds_the_roots_of_a_continuous_option():
+    from fusion.book.audit import parameters_matching
+
+    x = np.array([900.1, 901.3, 899.7, 950.0, 900.4])
+    assert parameters_matching(x, 905.0, "support_degree", "alpha", 1e-3, 1e3).size == 1
+    assert parameters_matching(x, 905.0, "fusion_set_weights", "scale", 1e-3, 1e3).size == 2
+    assert parameters_matching(x, 905.0, "belief_degree", "scale", 1e-3, 1e3).size == 1   # its jump dropped
