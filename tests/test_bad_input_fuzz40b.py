@@ -196,3 +196,41 @@ def test_parameters_matching_still_finds_the_roots_of_a_continuous_option():
     assert parameters_matching(x, 905.0, "support_degree", "alpha", 1e-3, 1e3).size == 1
     assert parameters_matching(x, 905.0, "fusion_set_weights", "scale", 1e-3, 1e3).size == 2
     assert parameters_matching(x, 905.0, "belief_degree", "scale", 1e-3, 1e3).size == 1   # its jump dropped
+
+
+# --- C5: evaluate calls an evidence function only as its signature allows ----------------------------------------------
+
+def _deterministic_records():
+    import inspect
+
+    from fusion.book import claims as C
+
+    out = []
+    for cf in C.load_all(C.claims_dir()).values():
+        for spec in cf.records:
+            if spec.evidence:
+                fn = C._evidence_function(spec.evidence, "")
+                try:
+                    inspect.signature(fn).bind({}, seed=0, runs=1)
+                except TypeError:
+                    out.append(spec)
+    return out
+
+
+def test_evaluate_refuses_the_books_deterministic_records_naming_their_evidence_field():
+    """C5: 23 evidence functions of the book's claim files (every lecture_weighting ev_*, ci's ev_headline, ...) take a
+    chapter's studies, not ``(settings, seed=, runs=)``: evaluate raised a raw TypeError ("unexpected keyword argument
+    'seed'") or the function's own refusal of a dict. Each is refused by a ClaimsFileError naming the field evidence,
+    before the call."""
+    import time
+
+    from fusion.book import claims as C
+
+    specs = _deterministic_records()
+    assert len({s.evidence for s in specs}) == 23
+    for spec in specs:
+        t0 = time.process_time()
+        with pytest.raises(C.ClaimsFileError, match=rf"record {spec.id}: field evidence: .* not \(settings, \*, seed, "
+                                                    r"runs\)"):
+            C.evaluate(spec, "primary", 0, 100)
+        assert time.process_time() - t0 < 1.0
