@@ -234,3 +234,24 @@ def test_evaluate_refuses_the_books_deterministic_records_naming_their_evidence_
                                                     r"runs\)"):
             C.evaluate(spec, "primary", 0, 100)
         assert time.process_time() - t0 < 1.0
+
+
+# --- D2: a float32 or float16 is glued as the decimal it prints ------------------------------------------------------
+
+@pytest.mark.parametrize("value, decimals, expected", [
+    (np.float32(0.654), None, 0.654), (np.array(np.float32(0.654)), None, 0.654), (np.float16(0.1), 5, 0.1),
+    (np.float32(1e-8), None, 1e-8), (np.float64(0.654), None, 0.654), (np.int32(7), None, 7)])
+def test_glue_all_glues_a_float32_as_the_decimal_it_prints(monkeypatch, value, decimals, expected):
+    """D2: np.float32(0.654) was glued as 0.6539999842643738 and np.float16(0.1) at 5 decimals as 0.09998, while a
+    float32 table cell is read as the decimal it prints (fuzz 26c q10): one rule for both now."""
+    from fusion.book import glue as G
+
+    glued = []
+    monkeypatch.setattr("myst_nb.glue", lambda key, v, display: glued.append(v))
+    G.glue_all({"x-a": value}, decimals)
+    assert glued == [expected] and type(glued[0]) is type(expected)
+    import pandas as pd
+
+    if np.ndim(value) == 0 and isinstance(expected, float):
+        table = pd.DataFrame({"c": np.array([value])})
+        assert G._glued_cell(table, 0, "c", "t") == expected
