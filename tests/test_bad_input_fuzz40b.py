@@ -255,3 +255,39 @@ def test_glue_all_glues_a_float32_as_the_decimal_it_prints(monkeypatch, value, d
     if np.ndim(value) == 0 and isinstance(expected, float):
         table = pd.DataFrame({"c": np.array([value])})
         assert G._glued_cell(table, 0, "c", "t") == expected
+
+
+# --- C6, C7: stability.tasks refuses before building ----------------------------------------------------------------
+
+def _readings(records: int, runs: int = 1000) -> dict:
+    return {("src", f"r{i}"): {"primary": ("primary", runs)} for i in range(records)}
+
+
+def test_tasks_refuses_a_runs_factor_beyond_the_run_ceiling():
+    """C6: runs_factor = 10**4 gave tasks of 2e8 runs, refused only on the Dask workers after the sweep's work."""
+    from fusion.book import stability as S
+
+    seed_list = S.seeds(3)
+    assert max(t.runs for t in S.tasks(_readings(2), seed_list, 10**4)) == 10**7   # 1000 x 10**4: the ceiling
+    with pytest.raises(ValueError, match=r"^runs_factor .* got runs_factor = 10001 x 1000 runs"):
+        S.tasks(_readings(2), seed_list, 10**4 + 1)
+
+
+def test_tasks_refuses_more_tasks_than_the_budget_builds_before_building_them():
+    """C7: seeds(10_000) (k = MAX_SEEDS) built 5.1e6 tasks in 101 CPU-s. The edge, 500,000 tasks, is accepted (by the
+    budget alone: about 8 CPU-s to build); one seed more is refused at once, naming seed_list."""
+    import time
+
+    from fusion._limits import work
+    from fusion.book import stability as S
+
+    assert work((500_000,), "seed_list", weight=S.TASK_WORK) == 10**9
+    readings = _readings(1000)
+    assert len(S.tasks(readings, S.seeds(20), 1)) == 20_000
+    seed_list = S.seeds(501)
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match=r"^seed_list .*\(501,000, 2,000 units each\)"):
+        S.tasks(readings, seed_list, 1)   # 501,000 tasks
+    assert time.process_time() - t0 < 1.0
+    with pytest.raises(ValueError, match=r"^seed_list "):
+        S.tasks({k: {f"x{j}": ("primary", 100) for j in range(51)} for k in _readings(1)}, S.seeds(10_000), 1)   # MAX_SEEDS
