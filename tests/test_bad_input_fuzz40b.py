@@ -291,3 +291,40 @@ def test_tasks_refuses_more_tasks_than_the_budget_builds_before_building_them():
     assert time.process_time() - t0 < 1.0
     with pytest.raises(ValueError, match=r"^seed_list "):
         S.tasks({k: {f"x{j}": ("primary", 100) for j in range(51)} for k in _readings(1)}, S.seeds(10_000), 1)   # MAX_SEEDS
+
+
+# --- C8: recommend.check reads at most the ceiling of an iterable's items ---------------------------------------------
+
+@pytest.mark.parametrize("which", ["records", "recommendations"])
+def test_recommend_check_refuses_an_endless_iterable_by_name(which):
+    """C8: check([], itertools.cycle(RECOMMENDATIONS)) ran into a MemoryError; an endless generator of records did not
+    return within 90 s. Rule 9's ceiling of an iterable's items (as stability.seeds(avoid=...)) refuses it at once."""
+    import itertools
+    import time
+
+    from fusion.book.recommend import RECOMMENDATIONS, check
+
+    endless = {"records": itertools.repeat({"id": "a", "status": "reproduced"}),
+               "recommendations": itertools.cycle(RECOMMENDATIONS)}[which]
+    args = {"records": [], "recommendations": RECOMMENDATIONS} | {which: endless}
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match=rf"^{which} has more than 10000000 items"):
+        check(**args)
+    assert time.process_time() - t0 < 5.0
+
+
+def test_recommend_check_budget_edges():
+    """Within the ceiling of items, the check's work is budgeted: 5e6 records (the edge, about 8 CPU-s) are accepted
+    by the budget alone, 5e6 + 1 refused before the check, naming records and recommendations; a generator is read."""
+    import time
+
+    from fusion._limits import work
+    from fusion.book import recommend as RC
+
+    assert work((RC.CHECK_RECORD * 5_000_000,), "records") == 10**9
+    records = [{"id": "a", "status": "reproduced"}] * (5_000_001)
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match=r"^records and recommendations"):
+        RC.check(records, [])
+    assert time.process_time() - t0 < 1.0
+    assert RC.check(({"id": f"r{i}", "status": "reproduced"} for i in range(3)), []) == []
