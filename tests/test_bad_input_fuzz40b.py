@@ -13,14 +13,18 @@ import numpy as np
 import pytest
 
 
-def _records(evidence) -> list[dict]:
+def _ledger(evidence):
     from fusion.book.ledger import SOURCES, Claim, Ledger
 
     src = sorted(SOURCES)[0]
     led = Ledger(src)
     led.add(Claim(id="x-y", source=src, where="T1", claim="c", published="q", evidence=evidence, link="l",
                   headline=True))
-    return led.records()
+    return led
+
+
+def _records(evidence) -> list[dict]:
+    return _ledger(evidence).records()
 
 
 @pytest.mark.parametrize("a, b", [
@@ -54,7 +58,7 @@ def test_margin_sensitivity_still_refuses_one_open_end_with_a_finite_baseline():
 
 @pytest.mark.parametrize("a, b, declared", [([math.inf, 1.0, 2.0], [1.0] * 3, ()), ([3.0] * 5, [1.0] * 5, ("a",)),
                                             ([1.0] * 2, [2.0, math.inf], ())])
-def test_brief_of_an_infinite_mean_with_few_runs(a, b, declared):
+def test_brief_of_an_infinite_mean_with_few_runs(a, b, declared, tmp_path):
     """C9: brief() of valid R3 evidence with 2-5 runs (a reason given) raised "d must hold at least 6 values", and so
     did Claim.to_dict, Ledger.records() and Ledger.write(); it now gives the infinite mean without a median interval,
     as summary() does."""
@@ -64,6 +68,7 @@ def test_brief_of_an_infinite_mean_with_few_runs(a, b, declared):
     text = c.brief()
     assert "infinite mean" in text and f"{len(a)} runs" in text and "[" not in text
     assert _records(c)[0]["evidence"]["runs"] == len(a)
+    assert _ledger(c).write(tmp_path) and list(tmp_path.glob("*.json"))   # written (its digest returned)
 
 
 def test_brief_of_an_infinite_mean_keeps_its_median_interval_from_six_runs():
