@@ -295,7 +295,7 @@ def test_tasks_refuses_more_tasks_than_the_budget_builds_before_building_them():
         S.tasks(readings, seed_list, 1)   # 501,000 tasks
     assert time.process_time() - t0 < 1.0
     with pytest.raises(ValueError, match=r"^seed_list "):
-        S.tasks({k: {f"x{j}": ("primary", 100) for j in range(51)} for k in _readings(1)}, S.seeds(10_000), 1)   # MAX_SEEDS
+        S.tasks({k: {f"x{j}": ("primary", 100) for j in range(51)} for k in _readings(1)}, S.seeds(10_000), 1)
 
 
 # --- C8: recommend.check reads at most the ceiling of an iterable's items ---------------------------------------------

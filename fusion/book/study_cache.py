@@ -7,11 +7,11 @@ the process (least recently used dropped first, keyed as on disk but with every 
 environment variable :data:`ENV` names a directory, also on disk there: the first process to need a result
 computes it under a file lock and stores it (pickle, written atomically); a process that asks meanwhile waits for
 it instead of computing it a second time, and later ones load it. A stored file that cannot be read back (empty,
-truncated, corrupt, a damaged length field included, a directory, a FIFO, a socket or a device in its place) or
-does not hold its own key's result, or whose bytes do not match the digest stored with them (a BLAKE2b of the
-pickled result) is a miss: the result is computed again and the file rewritten. An entry that cannot be written (its lock or
-its file blocked by a directory, a FIFO or a device, a full disk) is not an error either: the computed result is returned unstored, as
-without :data:`ENV` (fuzz 37b C1, D1).
+truncated, corrupt, a damaged length field included, a directory, a FIFO, a socket or a device in its place), whose
+bytes do not match the digest stored with them (a BLAKE2b of the pickled result) or that does not hold its own key's
+result is a miss: the result is computed again and the file rewritten. An entry that cannot be written (its lock or
+its file blocked by a directory, a FIFO or a device, a full disk) is not an error either: the computed result is
+returned unstored, as without :data:`ENV` (fuzz 37b C1, D1; fuzz 40b C2, C3).
 
 The key of a result is the SHA-256 of the package's sources (every ``fusion/**/*.py``), numpy's version, the
 function's qualified name and its arguments bound to its parameters (defaults applied): any edit of the package
@@ -465,14 +465,14 @@ def _entry(key: str, value: Any) -> bytes:
 def _stored(target: Path, key: str) -> tuple[Any] | None:
     """``(value,)`` stored in ``target`` for ``key``, or None (a miss, recomputed and rewritten) when the file cannot be
     read back (empty, truncated, corrupt: issue 35, fuzz 21 D14; a directory) or holds another key's result or something
-    else (anything but a plain tuple of the key's own str and the value: an array or a Series as its key is a miss). A damaged length field (a frame's, a bytes' or a text's) makes pickle ask for that much memory (fuzz 37b C1:
-    one flipped bit raised MemoryError): after a MemoryError the file is unpickled again from its bytes, where a length
-    beyond the file is a truncation error, and any failure is a miss (a real shortage recurs in the recomputation,
-    where it is raised). The normal hit path reads the file once, as before.
+    else (anything but a plain tuple of the key's own str and the value: an array or a Series as its key is a miss).
 
     Not a regular file (a FIFO, a socket, a device: fuzz 40b C2, where ``open`` blocked for ever) is a miss, found on
     the descriptor opened without blocking; so is a file whose payload does not match its stored digest (fuzz 40b C3:
-    one changed float of an array loaded silently), checked before anything is unpickled."""
+    one changed float of an array loaded silently), checked before anything is unpickled: a damaged length field (a
+    frame's, a bytes' or a text's, which made pickle ask for that much memory, fuzz 37b C1) fails it too, and any
+    failure of the unpickling (a MemoryError included: a real shortage recurs in the recomputation) is a miss. The
+    hit path reads the file once."""
     try:
         fd = os.open(target, os.O_RDONLY | _NONBLOCK)
     except OSError:
