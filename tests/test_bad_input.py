@@ -894,6 +894,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[bk + "style.plain_math"] = dict(text=A(r"$\sigma_1^2$", ("notstr",)))
     R[rb + "hill_tail_index"] = dict(x=A(ab[0], ("nan", "inf", "empty", "str")))
     R[rb + "median_interval"] = dict(d=A(ab[0], ("nan", "empty", "str")), level=A(0.95, UNIT))
+    R[rb + "median_values_needed"] = dict(level=A(0.95, UNIT))
     R[rb + "share_interval"] = dict(wins=A(40, ("neg", "frac", "str")), runs=A(100, COUNT), level=A(0.95, UNIT))
     R[rb + "region"] = dict(low=A(-1.0, ("nan_s", "str")), high=A(1.0, ("nan_s", "str")), margin=A(0.5, NONNEG),
                             scale=A(2.0, NONNEG))

@@ -8,6 +8,7 @@ end on a toy repository, is the first test).
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import pickle
@@ -341,10 +342,13 @@ def test_a_corrupt_or_foreign_cache_file_is_a_miss(tmp_path: Path, monkeypatch: 
     calls.clear()
     assert f(3) == 6.0 and calls == [3]
     (target,) = tmp_path.glob("*.pkl")
-    if corrupt == "other key":
-        corrupt = pickle.dumps(("0" * 64, 99.0))
+    signed = target.read_bytes()[:sc._DIGEST]   # entries with their payload's digest (fuzz 40b C3): only their key or
+    if corrupt == "other key":                   # their form makes them a miss
+        corrupt = sc._entry("0" * 64, 99.0)
     elif corrupt == "bare value":
-        corrupt = pickle.dumps(99.0)
+        payload = pickle.dumps(99.0)
+        corrupt = hashlib.blake2b(payload, digest_size=sc._DIGEST).digest() + payload
+    assert len(signed) == sc._DIGEST
     target.write_bytes(corrupt)
     f.cache_clear()
     assert f(3) == 6.0 and calls == [3, 3]          # recomputed

@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from fusion._validation import within, FloatArray, as_array, as_callable, as_readings, count, nonnegative_scalar, one_of, positive_scalar, scalar
+from fusion._limits import ROUND_OFF_TIE
 from fusion._validation import LOOP_STEP, pairwise, shown
 from fusion._objectives import objective_values
 from fusion._validation import text
@@ -187,6 +188,12 @@ def parameters_matching(
     and refines each with Brent's method. An empty result means the target cannot be
     reached with any value of the option in that range.
 
+    A refined value is returned only where the fused value equals ``target`` to round-off: ``|fused - target|``
+    at most ``ROUND_OFF_TIE`` (1e-9, the package's tie rule, ``fusion._limits``) times the larger of ``|target|``
+    and the readings' largest magnitude. A sign change across a jump of a step option (``belief_degree``'s
+    ``binary_eps`` and ``limit``: the fused value steps past the target) is refined onto the jump, where the fused
+    value is not the target: not a root (fuzz 40b C4 returned 0.3 and 49.6, where it is 900.25 and 904.33, for 905).
+
     Parameters
     ----------
     x : array_like, shape (n,)
@@ -236,12 +243,15 @@ def parameters_matching(
 
     grid = np.linspace(np.log(lo), np.log(hi), n_grid)
     vals = np.array([g(v) for v in grid])
+    tie = ROUND_OFF_TIE * max(abs(target), float(np.max(np.abs(s))))   # equal to round-off (the tie rule)
     roots = []
     for a, b, fa, fb in zip(grid[:-1], grid[1:], vals[:-1], vals[1:]):
         if fa == 0.0:
             roots.append(float(np.exp(a)))
         elif fa * fb < 0.0:
-            roots.append(float(np.exp(brentq(g, a, b, xtol=1e-12))))
+            r = brentq(g, a, b, xtol=1e-12)
+            if abs(g(r)) <= tie:   # a root, not a jump of a step option across the target (fuzz 40b C4)
+                roots.append(float(np.exp(r)))
     if vals[-1] == 0.0:   # hi itself (each bracket checks its left end only)
         roots.append(float(np.exp(grid[-1])))
     return np.array(sorted(roots))

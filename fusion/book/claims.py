@@ -945,7 +945,9 @@ def evaluate(spec: ClaimSpec, reading: str, seed: int, runs: int) -> Evidence:
     """Recompute one reading's evidence with its record's evidence function.
 
     The function named by the record's ``evidence`` field takes the reading's settings, a seed and a run
-    count: ``fn(settings, seed=seed, runs=runs) -> Evidence``.
+    count: ``fn(settings, seed=seed, runs=runs) -> Evidence``. A record whose function cannot be called so (its
+    signature does not bind these arguments: a deterministic record's evidence function, which takes a chapter's
+    studies, as ``ev_awf_optimal(st)``) is refused before the call (fuzz 40b C5: a raw TypeError naming nothing).
 
     Parameters
     ----------
@@ -965,7 +967,8 @@ def evaluate(spec: ClaimSpec, reading: str, seed: int, runs: int) -> Evidence:
         ``spec`` is not a :class:`ClaimSpec`, ``reading`` not a string, ``seed`` or ``runs`` not an integer.
     ValueError
         ``seed`` negative or ``runs`` below 1; :class:`ClaimsFileError` (a ValueError) when the record names no
-        evidence function, names one that does not exist (field evidence) or has no reading ``reading``.
+        evidence function, names one that does not exist or cannot take ``(settings, seed=, runs=)`` (field
+        evidence) or has no reading ``reading``.
     """
     from fusion._validation import seed as check_seed
 
@@ -975,6 +978,13 @@ def evaluate(spec: ClaimSpec, reading: str, seed: int, runs: int) -> Evidence:
     if not spec.evidence:
         raise ClaimsFileError(f"record {spec.id}: names no evidence function")
     fn = _evidence_function(spec.evidence, f"record {spec.id}: field evidence")
+    try:   # the one test of what evaluate calls: the function's own signature (fuzz 40b C5)
+        inspect.signature(fn).bind({}, seed=seed, runs=runs)
+    except TypeError:
+        raise ClaimsFileError(f"record {spec.id}: field evidence: {shown(spec.evidence)} takes "
+                              f"({', '.join(inspect.signature(fn).parameters)}), not "
+                              "(settings, *, seed, runs): a deterministic record's evidence is not recomputed by "
+                              "evaluate") from None
     settings = next((r.settings for r in spec.readings if r.key == reading), None)
     if settings is None and reading != "primary":
         raise ClaimsFileError(f"record {spec.id}: no reading {shown(reading)}")

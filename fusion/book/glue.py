@@ -141,6 +141,14 @@ def _glue_key_part(part: object, name: str, kind: str, around: tuple[str, str]) 
     return part
 
 
+def _printed_float(value: object) -> object:
+    """A NumPy float32 or float16 (a scalar or a 0-d array) as the shortest decimal that round-trips in its own dtype,
+    the number it prints (``np.float32(0.654)`` -> 0.654, not its widening 0.6539999842643738; fuzz 26c q10, fuzz
+    40b D2); any other value unchanged. The one rule of :func:`glue_all` and of a glued table cell."""
+    v = value[()] if isinstance(value, np.ndarray) and value.ndim == 0 else value
+    return float(str(v)) if isinstance(v, (np.float16, np.float32)) else value
+
+
 def _glued_cell(table: object, row: object, column: object, name: str, lo: float | None = None,
                 hi: float | None = None) -> float:
     """The cell ``table.loc[row, column]`` that a chapter glues, as a float by the glue rule (fuzz 22b, V): the row
@@ -156,8 +164,7 @@ def _glued_cell(table: object, row: object, column: object, name: str, lo: float
         if hits != 1:
             raise ValueError(f"{name} must hold the {what} {shown(label)} once, got it {hits} times")
     cell = table.loc[row, column]  # type: ignore[attr-defined]
-    if isinstance(cell, (np.float16, np.float32)):   # the decimal it prints (0.654), not its widening (fuzz 26c q10)
-        cell = float(str(cell))
+    cell = _printed_float(cell)   # the decimal a float32 prints (0.654), not its widening (fuzz 26c q10)
     return scalar(cell, f"{name}.loc[{shown(row)}, {shown(column)}]", lo, hi, tiny=True)
 
 
@@ -242,7 +249,9 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     ----------
     values : mapping of str to object
         Glue keys (prefixed with the chapter's short id) and values. Floats are rounded to
-        ``decimals`` when it is given; NumPy scalars are converted to Python numbers.
+        ``decimals`` when it is given; NumPy scalars are converted to Python numbers, a float32 or float16 (also a
+        0-d array) to the shortest decimal that round-trips in its own dtype, the number it prints
+        (``np.float32(0.654)`` is glued as 0.654, not 0.6539999842643738).
         Matplotlib figures are checked by :func:`fusion.book.figures.audit_figure` (which raises
         on a figure that breaks the book's figure rules), glued, then closed.
     decimals : int, optional
@@ -284,6 +293,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         if isinstance(value, Figure):
             glue_figure(key, value)
             continue
+        value = _printed_float(value)   # a float32, float16: the decimal it prints (fuzz 40b D2)
         if hasattr(value, "item") and getattr(value, "ndim", 1) == 0:
             value = value.item()
         if decimals is not None and isinstance(value, float):

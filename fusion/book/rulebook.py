@@ -120,6 +120,7 @@ __all__ = [
     "Judgement",
     "hill_tail_index",
     "median_interval",
+    "median_values_needed",
     "share_interval",
     "region",
     "status_from_region",
@@ -408,7 +409,9 @@ def median_interval(d: ArrayLike, level: float = CONFIDENCE_LEVEL) -> tuple[floa
     Parameters
     ----------
     d : array_like, shape (n,)
-        Values (infinite values allowed; NaN refused), n >= 6.
+        Values (infinite values allowed; NaN refused), n >= 6, and at least as many as ``level`` needs: the
+        widest interval, ``[min, max]``, covers the median with probability :math:`1 - 2\\cdot 2^{-n}`, so a
+        ``level`` above 0.96875 needs more than 6 values (0.99: 8; 0.999: 11; see :func:`median_values_needed`).
     level : float
         Coverage, in (0, 1).
 
@@ -420,15 +423,19 @@ def median_interval(d: ArrayLike, level: float = CONFIDENCE_LEVEL) -> tuple[floa
     Raises
     ------
     ValueError
-        ``d`` holds NaN, fewer than 6 values, or a finite value beyond the representable range; or its
+        ``d`` holds NaN, fewer than 6 values or fewer than ``level`` needs (no order statistic covers the median
+        with probability ``level``; fuzz 40b C10: ``[min, max]`` of 6 values was returned at 0.99, coverage
+        0.969), or a finite value beyond the representable range; or its
         median is undefined: n is even and the two middle values are ``-inf`` and ``+inf`` (their mean is
         not a number, and no other value is the median; :func:`judge_paired` gives such evidence the
         status "cannot be checked" under R3 instead of calling this).
     """
     v = np.sort(_numeric(d, "d").ravel())
     level = scalar(level, "level", 0.0, 1.0, lo_open=True, hi_open=True)
-    if v.size < 6:
-        raise ValueError(f"d must hold at least 6 values, got {v.size}")
+    need = median_values_needed(level)
+    if v.size < need:
+        raise ValueError(f"d must hold at least {need} values" + (f" for level {shown(level)}" if need > 6 else "")
+                         + f", got {v.size}")
     if np.any(np.isnan(v)):
         raise ValueError("d must not hold NaN")
     check_magnitude(v[np.isfinite(v)], "d")  # infinite values allowed; finite ones in range (a median averages two)
@@ -437,10 +444,37 @@ def median_interval(d: ArrayLike, level: float = CONFIDENCE_LEVEL) -> tuple[floa
     j = int(stats.binom.ppf(alpha, n, 0.5))  # P(B <= j) >= alpha
     while j > 0 and stats.binom.cdf(j - 1, n, 0.5) > alpha:
         j -= 1
-    j = max(j, 1)
+    j = max(j, 1)   # j >= 1 holds already: n >= median_values_needed(level) gives P(B <= 0) = 2**-n <= alpha
     if _median_undefined(v):
         raise ValueError(f"d has no median: its two middle values are -inf and +inf ({n} values)")
     return float(np.median(v)), float(v[j - 1]), float(v[n - j])
+
+
+def median_values_needed(level: float = CONFIDENCE_LEVEL) -> int:
+    """The fewest values :func:`median_interval` takes at ``level``: at least 6, and the smallest n whose widest
+    interval ``[min, max]`` covers the median with probability at least ``level`` (:math:`2^{-n} \\le
+    (1 - \\text{level})/2`).
+
+    Parameters
+    ----------
+    level : float
+        Coverage, in (0, 1).
+
+    Returns
+    -------
+    int
+        6 up to ``level`` 0.96875 (the book's 0.95 included), then 7, 8 (0.99), ... 11 (0.999).
+
+    Raises
+    ------
+    TypeError, ValueError
+        ``level`` not a number in (0, 1).
+    """
+    level = scalar(level, "level", 0.0, 1.0, lo_open=True, hi_open=True)
+    alpha, n = (1.0 - level) / 2.0, 6
+    while 0.5 ** n > alpha:   # alpha >= 2**-54 (level < 1 is a float), so at most ~50 steps
+        n += 1
+    return n
 
 
 def _median_undefined(v: np.ndarray) -> bool:

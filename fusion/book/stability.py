@@ -41,6 +41,8 @@ import numpy as np
 
 from fusion.book._json import JSONObject, read_object
 from fusion._results import ResultSpec, flag, instance, integer, number, text, validated_post_init
+from fusion._counts import COUNT_CEILINGS
+from fusion._limits import work
 from fusion._validation import is_integer
 from fusion._validation import count, distinct, instance_of, iterable, seed as check_seed, seeds as check_seeds, sequence
 from fusion.book import claims as C
@@ -67,6 +69,12 @@ MAX_SEEDS = 10**4
 
 #: The primary reading is also run at this many times the chapter's runs.
 RUNS_FACTOR = 10
+
+#: Units of work (``fusion._limits.work``, about 10 ns each) of one :class:`Task` that :func:`tasks` builds and checks:
+#: 15-17 us measured on this shared machine (CPU time, minimum of 3; 153,650 tasks of 300 seeds in 2.4 CPU-s), so the
+#: budget's edge, 500,000 tasks (about 980 seeds of the book's 512 readings), builds in about 8-9 CPU-s (fuzz 40b C7:
+#: ``seeds(10_000)`` built 5.1e6 tasks in 101 CPU-s). The book's sweep, 5 seeds, is 2,560 tasks.
+TASK_WORK = 2000
 
 #: Retries of a failed task before it is reported as failed.
 RETRIES = 2
@@ -306,10 +314,25 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
     list of Task
         One task per reading and seed of ``seed_list``, by record; then, if ``runs_factor`` > 1, each primary at the
         first seed with that many times the runs.
+
+    Raises
+    ------
+    ValueError
+        Before any task is built (fuzz 40b C6, C7): ``runs_factor`` times a primary reading's runs beyond the ceiling
+        of a run count (``10**7``: its task would be refused only on a worker, after the sweep), naming
+        ``runs_factor``; more tasks (seeds x readings, plus the scaled primaries) than the work budget builds in
+        about 10 CPU-s (``TASK_WORK`` units each: about 500,000 tasks), naming ``seed_list``.
     """
     runs_factor = count(runs_factor, "runs_factor")
     seed_list = distinct(check_seeds(seed_list, "seed_list"), "seed_list")
     readings = _readings(readings, runs_factor)
+    if runs_factor > 1 and readings:
+        top = max(rs["primary"][1] for rs in readings.values())
+        if top * runs_factor > COUNT_CEILINGS["runs"]:
+            raise ValueError(f"runs_factor x a primary reading's runs must be at most {COUNT_CEILINGS['runs']:.0e} (the "
+                             f"ceiling of a run count), got runs_factor = {runs_factor} x {top} runs")
+    n_tasks = len(seed_list) * sum(len(rs) for rs in readings.values()) + (len(readings) if runs_factor > 1 else 0)
+    work((n_tasks,), "seed_list (its seeds x the readings, in tasks)", weight=TASK_WORK)
     out = []
     for (src, rid), rs in sorted(readings.items()):
         for key, (kind, runs) in rs.items():

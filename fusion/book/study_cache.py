@@ -7,10 +7,11 @@ the process (least recently used dropped first, keyed as on disk but with every 
 environment variable :data:`ENV` names a directory, also on disk there: the first process to need a result
 computes it under a file lock and stores it (pickle, written atomically); a process that asks meanwhile waits for
 it instead of computing it a second time, and later ones load it. A stored file that cannot be read back (empty,
-truncated, corrupt, a damaged length field included, or a directory in its place) or does not hold its own key's
+truncated, corrupt, a damaged length field included, a directory, a FIFO, a socket or a device in its place), whose
+bytes do not match the digest stored with them (a BLAKE2b of the pickled result) or that does not hold its own key's
 result is a miss: the result is computed again and the file rewritten. An entry that cannot be written (its lock or
-its file blocked by a directory, a full disk) is not an error either: the computed result is returned unstored, as
-without :data:`ENV` (fuzz 37b C1, D1).
+its file blocked by a directory, a FIFO or a device, a full disk) is not an error either: the computed result is
+returned unstored, as without :data:`ENV` (fuzz 37b C1, D1; fuzz 40b C2, C3).
 
 The key of a result is the SHA-256 of the package's sources (every ``fusion/**/*.py``), numpy's version, the
 function's qualified name and its arguments bound to its parameters (defaults applied): any edit of the package
@@ -65,6 +66,7 @@ import io
 import json
 import os
 import pickle
+import stat
 import sys
 import tempfile
 import threading
@@ -439,23 +441,53 @@ def _log(qualname: str, arguments: dict[str, Any], event: str, cpu: float) -> No
         fh.write(line + "\n")
 
 
+#: Bytes of the BLAKE2b digest of an entry's payload, stored before it (fuzz 40b C3: a changed float in a stored
+#: array loaded silently). The digest costs about 0.8 ns a byte here (``hashlib.blake2b``; measured on this shared
+#: machine, minimum of 7, CPU time): the hit of chapter 06's tracking study (13.8 MB, the largest entry found) went
+#: from 28 to 41 ms, chapter 04's studies (7.2 MB) from 6 to 15 ms; computing them takes tens of CPU-seconds.
+_DIGEST = 32
+#: Flags of an entry's or a lock's ``os.open``: never blocks on a FIFO (fuzz 40b C2), not inherited by a child.
+_NONBLOCK = os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0)
+
+
+def _regular(fd: int) -> bool:
+    """Whether the open ``fd`` is a regular file (not a FIFO, a socket, a device or a directory): checked on the
+    descriptor itself, so a file swapped in after the check is not read."""
+    return stat.S_ISREG(os.fstat(fd).st_mode)
+
+
+def _entry(key: str, value: Any) -> bytes:
+    """The bytes stored for ``key``: the digest of the payload, then the payload (the pickled ``(key, value)``)."""
+    payload = _dumps((key, value))   # the key stored with the value: a file under another name is a miss
+    return hashlib.blake2b(payload, digest_size=_DIGEST).digest() + payload
+
+
 def _stored(target: Path, key: str) -> tuple[Any] | None:
     """``(value,)`` stored in ``target`` for ``key``, or None (a miss, recomputed and rewritten) when the file cannot be
     read back (empty, truncated, corrupt: issue 35, fuzz 21 D14; a directory) or holds another key's result or something
-    else (anything but a plain tuple of the key's own str and the value: an array or a Series as its key is a miss). A damaged length field (a frame's, a bytes' or a text's) makes pickle ask for that much memory (fuzz 37b C1:
-    one flipped bit raised MemoryError): after a MemoryError the file is unpickled again from its bytes, where a length
-    beyond the file is a truncation error, and any failure is a miss (a real shortage recurs in the recomputation,
-    where it is raised). The normal hit path reads the file once, as before."""
+    else (anything but a plain tuple of the key's own str and the value: an array or a Series as its key is a miss).
+
+    Not a regular file (a FIFO, a socket, a device: fuzz 40b C2, where ``open`` blocked for ever) is a miss, found on
+    the descriptor opened without blocking; so is a file whose payload does not match its stored digest (fuzz 40b C3:
+    one changed float of an array loaded silently), checked before anything is unpickled: a damaged length field (a
+    frame's, a bytes' or a text's, which made pickle ask for that much memory, fuzz 37b C1) fails it too, and any
+    failure of the unpickling (a MemoryError included: a real shortage recurs in the recomputation) is a miss. The
+    hit path reads the file once."""
     try:
-        with open(target, "rb") as fh:
-            loaded = pickle.load(fh)          # noqa: S301 - our own file, written in this invocation
-    except MemoryError:
-        try:
-            loaded = pickle.loads(target.read_bytes())   # noqa: S301 - as above; lengths bounded by the file's size
-        except Exception:                     # noqa: BLE001 - MemoryError included: a miss
-            return None
-    except Exception:                         # noqa: BLE001 - any unreadable file is a miss, never the study's error
+        fd = os.open(target, os.O_RDONLY | _NONBLOCK)
+    except OSError:
         return None
+    try:
+        with os.fdopen(fd, "rb") as fh:
+            if not _regular(fh.fileno()):
+                return None
+            data = fh.read()
+        digest, payload = data[:_DIGEST], memoryview(data)[_DIGEST:]
+        if len(digest) < _DIGEST or hashlib.blake2b(payload, digest_size=_DIGEST).digest() != digest:
+            return None
+        loaded = pickle.loads(payload)        # noqa: S301 - our own file, written in this invocation
+    except Exception:                         # noqa: BLE001 - any unreadable file is a miss, never the study's error
+        return None                           # (MemoryError included: a real shortage recurs in the recomputation)
     # compared by exact type and value (fuzz 38b D2): a hand-made entry keyed by an array or a Series gave numpy's
     # ambiguous-truth error, np.array([key]) was a false hit; either is a damaged entry, a miss
     if type(loaded) is tuple and len(loaded) == 2 and type(loaded[0]) is str and loaded[0] == key:
@@ -516,9 +548,13 @@ def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any]
                          f"{shown(str(root))} ({type(exc).__name__}: {exc.strerror})") from None
     target = root / f"{key}.pkl"
     start = time.process_time()
-    try:
-        lock = open(root / f"{key}.lock", "w", encoding="utf-8")   # noqa: SIM115 - closed below
-    except OSError:   # a directory in its place (fuzz 37b D1): computed and returned unstored, as without the disk
+    try:   # without blocking: a FIFO in its place opened for writing waited for a reader for ever (fuzz 40b C2)
+        fd = os.open(root / f"{key}.lock", os.O_WRONLY | os.O_CREAT | _NONBLOCK, 0o666)
+    except OSError:   # a directory (fuzz 37b D1), a FIFO without reader: computed and returned unstored, as without
+        return compute()   # the disk
+    lock = os.fdopen(fd, "w", encoding="utf-8")   # noqa: SIM115 - closed below
+    if not _regular(fd):   # a FIFO with a reader, a device: not a lock file, computed and returned unstored
+        lock.close()
         return compute()
     with lock:
         fcntl.flock(lock, fcntl.LOCK_EX)      # released when the file closes (also on an exception)
@@ -528,7 +564,7 @@ def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any]
             return stored[0]
         value = compute()
         try:
-            data = _dumps((key, value))       # the key stored with the value: a file under another name is a miss
+            data = _entry(key, value)
         except (pickle.PicklingError, TypeError, AttributeError):
             data = None                       # not picklable: every process computes it, as without the cache
         if data is not None:

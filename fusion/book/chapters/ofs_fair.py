@@ -486,8 +486,11 @@ def _ledger_comparisons(ledger: Mapping) -> list[tuple[object, str, object, Mapp
     """The paired comparisons a stored ledger's records hold, checked as they are read (fuzz 21b M): (record id,
     reading, status, evidence) of each primary reading, counted alternative and part of a conjunction whose evidence
     is a comparison. A nested record that is not a mapping, lacks a key read here or holds a value that is not a
-    finite number (``mean_b``, ``margin``, the interval's ends, which may both be ``None``: no interval) is refused
-    with an error naming ``ledger`` and the record's path."""
+    finite number is refused with an error naming ``ledger`` and the record's path. ``None`` is read where
+    ``Ledger.records()`` stores it for valid evidence (fuzz 40b C1, D1), and only there: ``mean_b`` of an infinite
+    mean (B's; any end of its interval then, an end of R3's median interval of two infinite means included, each
+    ``None`` for an infinite or undefined end); with a finite ``mean_b``, both ends (an infinite A's mean: no
+    interval) or neither. ``margin`` is always a number."""
     out = []
     for i, r in enumerate(ledger["claims"]):
         path = f"ledger['claims'][{i}]"
@@ -511,8 +514,12 @@ def _ledger_comparisons(ledger: Mapping) -> list[tuple[object, str, object, Mapp
                 if record(e, at, (), extra=True).get("kind") != "comparison":
                     continue
                 record(e, at, ("mean_b", "ci_low", "ci_high", "margin"), extra=True)
-                for key in ("mean_b", "margin") + (() if e["ci_low"] is None and e["ci_high"] is None
-                                                   else ("ci_low", "ci_high")):
+                ends = ("ci_low", "ci_high")
+                if e["mean_b"] is None:   # B's mean infinite: an end may be infinite (stored None) or finite
+                    ends = tuple(k for k in ends if e[k] is not None)
+                elif e["ci_low"] is None and e["ci_high"] is None:   # a finite B's mean and no interval: A's infinite
+                    ends = ()
+                for key in ("margin",) + (() if e["mean_b"] is None else ("mean_b",)) + ends:
                     scalar(e[key], f"{at}[{key!r}]")
                 out.append((r["id"], label or name, st, e))
     return out
@@ -537,8 +544,8 @@ def margin_sensitivity(ledger: dict, low: float = 0.025, high: float = 0.10) -> 
     DataFrame
         One row per primary reading, counted reading or part of one, whose status would change at a relative
         margin in ``[low, high]``: record, reading, status, 95 % interval, margin used and the break-even margins.
-        A comparison without an interval (both ends ``None``: an infinite mean) or with a baseline of 0 has no
-        break-even margin and no row.
+        A comparison without an interval (both ends ``None``: an infinite mean), with an infinite baseline mean
+        (``mean_b`` ``None``: no relative margin) or with a baseline of 0 has no break-even margin and no row.
 
     Raises
     ------

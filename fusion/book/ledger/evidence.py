@@ -525,11 +525,13 @@ class Comparison:
         j, t = self.judgement(), self._text
         if j.statistic == "infinite mean":  # the sample mean of the infinite side says nothing: name it, give medians
             inf_a = "a" in self.infinite_mean or math.isinf(self._mean(self.a))
+            finite = (self.b_name, self._mean(self.b)) if inf_a else (self.a_name, self._mean(self.a))
+            head = f"{self.a_name if inf_a else self.b_name}: infinite mean vs {finite[0]} {t(finite[1])}"
+            if self.runs < R.median_values_needed():   # R3 with a reason (R4) allows 2 runs; no median interval
+                return f"{head}, {self.runs} runs"     # then, as summary() gives none (fuzz 40b C9)
             med, lo, hi = R.median_interval(np.subtract(np.where(np.isinf(self.a), np.inf, self.a),
                                                         np.where(np.isinf(self.b), np.inf, self.b)))
-            finite = (self.b_name, self._mean(self.b)) if inf_a else (self.a_name, self._mean(self.a))
-            return (f"{self.a_name if inf_a else self.b_name}: infinite mean vs {finite[0]} {t(finite[1])}; "
-                    f"median difference {t(med)} [{t(lo)}, {t(hi)}], {self.runs} runs")
+            return f"{head}; median difference {t(med)} [{t(lo)}, {t(hi)}], {self.runs} runs"
         stat = {"mean": "difference", "median": "median difference"}[j.statistic]
         return (f"{self.a_name} {t(self._mean(self.a))} vs {self.b_name} {t(self._mean(self.b))}; "
                 f"{stat} {t(j.estimate)} [{t(j.low)}, {t(j.high)}], {self.runs} runs")
