@@ -65,7 +65,7 @@ def sequence_entries(x: object, limit: int) -> float | None:
     """
     if isinstance(x, np.ndarray):
         return None
-    if type(x) in _ROWS and set(map(type, x)) <= _SCALARS:  # the common case, first: a flat list of numbers
+    if type(x) in _ROWS and len(x) <= limit and set(map(type, x)) <= _SCALARS:  # the common case: a flat list
         return len(x)
     if not isinstance(x, Sequence) or isinstance(x, (str, bytes, bytearray, memoryview, _array.array)):
         return None
@@ -81,6 +81,8 @@ def sequence_entries(x: object, limit: int) -> float | None:
             return total
         if not isinstance(s, (list, tuple, deque)) or n + total > limit:  # a range's entries are numbers
             total += n
+            if total > limit and isinstance(s, (list, tuple, deque)):
+                return total + 0.5  # its entries, perhaps sequences, not read: at least this many
         else:
             try:
                 types = set(map(type, s))

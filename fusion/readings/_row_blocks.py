@@ -51,3 +51,16 @@ def _belief_rows(s: FloatArray, scale: float, binary_eps: float | None, limit: f
         return (d <= binary_eps).astype(float)
     B = np.exp(-d / (2.0 * scale))
     return B if limit is None else np.where(d <= limit, B, 0.0)
+
+
+def epochs_limit(rows: int, n: int, method: str, names: str) -> None:
+    """Refuse, naming ``names``, what ``fuse_epochs`` would refuse of ``rows`` epochs of ``n`` readings fused by
+    ``method``: its input budget (``MAX_INPUT_ELEMENTS``) and its kernel's memory and work (``pairwise`` with
+    :data:`PAIRS` and :data:`CUBIC`, the arguments ``fusion._validation.as_reading_rows`` passes). A caller that
+    draws the readings itself calls this at its entry, once per method, so that a request is refused by its own
+    arguments before the draws (fuzz 39a D1: ``thermocouples.monte_carlo`` was refused inside ``fuse_epochs``)."""
+    from fusion._counts import input_allocation, pairwise
+
+    input_allocation((rows, n), names)
+    if PAIRS[method]:
+        pairwise(n, names, PAIRS[method], rows=rows, cubic=method in CUBIC)

@@ -19,6 +19,7 @@ from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import FloatArray, as_array, count, scalar, shown, std_scalar
 from fusion._validation import allocation
+from fusion._counts import input_allocation
 from fusion._limits import DENSE_CUBE, dense_work
 from fusion._validation import LOOP_STEP, distinct, distinct_printed, general, loop_work, work
 from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
@@ -332,6 +333,12 @@ def _conditioning(R: np.ndarray) -> float:
     return max(cond, env2 / own if own > 0 else np.inf)
 
 
+def _stacked_shape(N: int, runs: int) -> tuple[int, int]:
+    """The shape of :func:`correlated_study`'s stacked readings z of ``N`` two-axis sensors over ``runs`` runs: the
+    one rule for the array it draws and for its entry check against its callees' input budget."""
+    return (2 * N, runs)
+
+
 @derived_inputs()
 def correlated_study(
     sigma: Sequence[float] = (1.0, 2.0, 3.0),
@@ -376,6 +383,10 @@ def correlated_study(
     runs = count(runs, "runs", minimum=2)
     N = sig.size
     allocation((2 * N, runs), "sigma and runs")
+    # the stacked readings z, (2N, runs), are the input of co.gls and its siblings, which refuse more than
+    # MAX_INPUT_ELEMENTS: refused here by the same shape, naming sigma and runs (fuzz 39a C2: 480 x 70,000 was
+    # refused by gls after the draws and the LDL algebra, naming every argument)
+    input_allocation(_stacked_shape(N, runs), "sigma and runs")
     # rule 17 (fuzz 38a C5): R is 2N x 2N (LDL, GLS, Cholesky, eigvalsh), 0.5-0.9 ns a (2N)**3 measured (N = 300-2,000)
     dense_work(1, 2 * N, "sigma", 8 * DENSE_CUBE)
     if as_array(x, "x", ndim=1).size != 2:
@@ -394,7 +405,7 @@ def correlated_study(
     L = co.ldl_unpivoted(R).L
     M = co.unit_lower_inverse(L)
     D = M @ R @ M.T
-    z = H @ xt[:, None] + np.linalg.cholesky(R) @ np.random.default_rng(seed).normal(size=(2 * N, runs))
+    z = H @ xt[:, None] + np.linalg.cholesky(R) @ np.random.default_rng(seed).normal(size=_stacked_shape(N, runs))
     gls, naive = co.gls(H, R, z), co.naive_fusion(H, R, z, block=2)
     xg, Pg, xn, Pn = gls.x, gls.P, naive.x, naive.P
     xl = co.pseudo_measurement_fusion(H, R, z).x

@@ -28,6 +28,7 @@ import numpy as np
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of,
                              real_key, validated_post_init)
 from fusion._validation import derived_inputs
+from fusion._counts import input_allocation
 from fusion._validation import seed as check_seed
 from fusion._validation import distinct, distinct_printed, glue_part, loop_work
 from fusion._validation import allocation, as_array, count, finite_result, positive_scalar, std_scalar
@@ -219,6 +220,7 @@ def plugin_study(
     sigma = std_scalar(sigma, "sigma")
     runs = count(runs, "runs", minimum=2)
     allocation((m, runs), "m and runs")  # the noise of every run
+    input_allocation((m, runs), "m and runs")  # and the readings y its estimators take (fuzz 39a D1, class)
     seed = check_seed(seed)
     cv = as_array(curve, "curve", ndim=1)
     if cv.size == 0:

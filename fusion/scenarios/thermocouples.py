@@ -24,6 +24,7 @@ from fusion._validation import allocation, record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
 from fusion.readings.fusion_set import METHODS as _METHODS, _check_options, fuse_epochs
+from fusion.readings._row_blocks import epochs_limit
 from fusion._validation import within
 from fusion._options import text_key
 from fusion._shown import shown
@@ -315,7 +316,13 @@ def _draws(seed: int, n_runs: int, methods: dict[str, dict[str, object]], sigma:
     """The readings :func:`monte_carlo` fuses (its checks, in its order): shape (n_runs, n_samples, n_sensors)."""
     n_runs = count(n_runs, "n_runs")
     seed = check_seed(seed)
-    _check_methods(methods)
+    checked = _check_methods(methods)
+    # fuse_epochs's input and kernel limits on the n_runs * n_samples epochs, checked before the draws by the
+    # same rule, naming these arguments (fuzz 39a D1: refused inside fuse_epochs, naming every argument)
+    rows, n = count(n_runs, "n_runs") * count(n_samples, "n_samples"), count(n_sensors, "n_sensors")
+    allocation((rows, n), "n_runs, n_samples and n_sensors")  # simulate's own memory rule first, as before
+    for spec in checked.values():
+        epochs_limit(rows, n, str(spec["method"]), "n_runs, n_samples, n_sensors and methods")
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
     if failure is not None:

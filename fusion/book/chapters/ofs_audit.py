@@ -41,7 +41,7 @@ from fusion._counts import count
 from fusion._entries import entries_array
 from fusion._results import ResultSpec, instance, integer, table, text, trusted, validated_post_init
 from fusion._shown import shown
-from fusion._validation import FloatArray, as_array, flag, input_size, instance_of, one_of, scalar
+from fusion._validation import FloatArray, as_array, entries_text, flag, given_entries, input_size, instance_of, one_of, scalar
 from fusion.readings.fusion_set import TIE_RTOL, _set_weights
 from fusion.book.glue import GlueValues
 # the support-degree variants of Table 3's column (audited apart from Table 2) live in their own module
@@ -219,6 +219,10 @@ def _order(order: object, shape: tuple[int, int], what: str = "the observations 
            ) -> NDArray[np.intp]:
     """``order`` as integer observation indices of shape (n_obs,) or (H, n_obs) (``shape`` is (H, n_obs)), each row
     a permutation of the observations; TypeError/ValueError naming ``order`` (and ``what`` the shape is)."""
+    H, n_obs = shape
+    n = given_entries(order, H * n_obs)   # its entries before it is read or converted (fuzz 39a E1)
+    if n is not None and n > H * n_obs:
+        raise ValueError(f"order must have shape ({n_obs},) or ({H}, {n_obs}) ({what}), got {entries_text(n)} entries")
     input_size(order, "order")
     try:
         o = entries_array(order)   # an object array of ints is integers, as its list is (fuzz 36b D4)
@@ -226,7 +230,6 @@ def _order(order: object, shape: tuple[int, int], what: str = "the observations 
         raise TypeError(f"order must be an array of integers (0-based observation indices): {exc}") from None
     if o.dtype.kind not in "iu":
         raise TypeError(f"order must hold integers (0-based observation indices), got dtype {o.dtype}")
-    H, n_obs = shape
     if o.shape not in ((n_obs,), (1, n_obs), (H, n_obs)):
         raise ValueError(f"order must have shape ({n_obs},) or ({H}, {n_obs}) ({what}), got {o.shape}")
     o = np.broadcast_to(o.astype(np.intp), (H, n_obs))

@@ -20,6 +20,7 @@ from fusion._frozen import constant
 from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
+from fusion._counts import input_allocation
 from fusion._validation import LOOP_STEP, as_mask, distinct, distinct_printed, glue_part, loop_work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
@@ -233,6 +234,14 @@ class TailStudy(ConstantLevelRuns):
          "block_mse": array(5, bounds=NONNEGATIVE), "median_sq": number(), **_CONSTANT_LEVEL})
 
 
+def _chunk_loop(items: int, chunk: int, units: int, step: int) -> int:
+    """Refuse a loop over ``items`` runs (or pairs) in chunks of ``chunk`` whose Python steps, ``step`` units a chunk,
+    and vectorised ``units`` (the readings' work, already counted) are together beyond the work budget (rule 17),
+    naming runs and chunk: ``chunk = 1`` makes one step per run."""
+    n = -(-items // min(chunk, items))
+    return loop_work((n,), -(-units // n), "runs, chunk, k and sigma", step=step)
+
+
 @derived_inputs()
 @finite_result("sigma, x and thresholds")
 def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, k: int = 100,
@@ -273,7 +282,14 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     seed = _seed(seed)  # a plain int: numpy.random.default_rng refuses a 0-d array
     chunk = count(chunk, "chunk")
     allocation((min(chunk, runs), k, sig.size), "runs, chunk, k and sigma")
-    work((runs, k, sig.size), "runs, k and sigma")  # rule 17: chunks bound the memory, not the time
+    # a chunk is the input of wt.variance_estimates, which refuses more than MAX_INPUT_ELEMENTS: refused here by the
+    # same shape (fuzz 39a D1: refused inside after the first chunk's draws, naming every argument)
+    input_allocation((min(chunk, runs), k, sig.size), "runs, chunk, k and sigma")
+    units = work((runs, k, sig.size), "runs, k and sigma")  # rule 17: chunks bound the memory, not the time
+    # and each chunk is a Python step of a few numpy calls and a validated call, 33 us measured (chunk = 1, k = 2,
+    # two sensors, time.process_time, shared machine): 4 LOOP_STEP, on top of the readings' units (fuzz 39a C3:
+    # chunk = 1 of 2.5e8 runs, accepted, would have run about 8,000 CPU-s)
+    _chunk_loop(runs, chunk, units, 4 * LOOP_STEP)
     t = _values(thresholds, "thresholds")
     if np.any(t <= 0):
         raise ValueError("thresholds must be positive")
@@ -374,6 +390,7 @@ def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k
     k = count(k, "k", minimum=2)
     runs = count(runs, "runs", minimum=100)
     allocation((runs, k, sig.size), "runs, k and sigma")
+    input_allocation((runs, k, sig.size), "runs, k and sigma")  # the readings are wt's input (fuzz 39a D1, class)
     # rule 17: about 0.13 us a reading (run x sample x sensor) measured (budget35: 1.7 CPU-s for 446,000 runs x 10 x 3);
     # without a work budget 8.9e6 runs (some 35 CPU-s) were accepted
     work((runs, k, sig.size), "runs, k and sigma", weight=15)
@@ -758,7 +775,12 @@ def lumv_study(
     allocation((min(chunk, runs // 2), k, sig.size), "runs, chunk, k and sigma")
     # rule 17: chunks bound the memory, not the time; a reading weighs 12 units, measured (budget35: ~0.12 us;
     # k = 10**7 of 6 runs, ~22 CPU-s, was accepted at 1 unit)
-    work((runs, k, sig.size), "runs, k and sigma", weight=12)
+    units = work((runs, k, sig.size), "runs, k and sigma", weight=12)
+    input_allocation((min(chunk, runs // 2), k, sig.size), "runs, chunk, k and sigma")  # wt.variance_estimates' input
+    # each chunk of pairs is a Python step of two passes of _lumv_errors (some twenty numpy calls and validated
+    # calls), 480 us measured (chunk = 1, k = 2, two sensors, time.process_time, shared machine): 50 LOOP_STEP, on
+    # top of the readings' units (fuzz 39a C3: chunk = 1 of 2e7 runs, accepted, would have run about 4,800 CPU-s)
+    _chunk_loop(runs // 2, chunk, units, 50 * LOOP_STEP)
     V = sig**2
     w_or = wt.optimal_weights(V)
     rng = np.random.default_rng(seed)

@@ -14,6 +14,7 @@ from fusion._validation import read_once
 from fusion._validation import as_array, derived_inputs
 from fusion._validation import count, scalar, sequence
 from fusion._validation import allocation
+from fusion._counts import input_allocation
 from fusion._validation import LOOP_STEP, MAX_MAGNITUDE, distinct, loop_work, work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas
@@ -168,6 +169,7 @@ def learning_study(
         if np.any(np.asarray(Rt, dtype=float) <= 0):
             raise ValueError("r_sets must hold positive variances")
     allocation((runs, epochs, n_max), "runs, epochs and r_sets")
+    input_allocation((runs, epochs, n_max), "runs, epochs and r_sets")  # the readings Y are its fusions' input
     sizes = [len(Rt) for Rt in r_sets]
     if len(set(sizes)) != len(sizes):  # the learned variances are keyed by the set's size
         raise ValueError(f"r_sets must hold sets of different sizes (the learned variances are keyed by size), "
@@ -296,6 +298,7 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
     n_arr = _ints(ns, "ns", minimum=2)
     draws = count(draws, "draws")
     allocation((draws, int(n_arr.max())), "ns and draws")
+    input_allocation((draws, int(n_arr.max())), "ns and draws")  # the variance sets are the weights' input
     distinct(n_arr.tolist(), "ns")  # one rule for sizes: a repeated n would draw its sets twice
     work((n_arr.size * LOOP_STEP + 8 * draws * int(n_arr.sum()),), "ns and draws")  # rule 17: draws x sum(ns)
     seed = _seed(seed)

@@ -20,7 +20,7 @@ from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.ridge_sensors import LS, VectorStudy
 from fusion.book.glue import GlueValues
 from fusion.book.rulebook import MIN_RUNS
-from fusion._counts import allocation, count, counts, distinct, sequence
+from fusion._counts import allocation, count, counts, distinct, input_allocation, sequence
 from fusion._validation import as_array, derived, scalar, std_scalar
 
 #: Most readings (sensors x readings per sensor) of :func:`table_sequential`: its n x n covariance is factored.
@@ -213,6 +213,7 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
               for i, r in enumerate(sequence(ratios, "ratios", minimum=1, what="ratio"))]
     for d in ds:
         allocation((d, runs), "ds and runs")
+        input_allocation((d, runs), "ds and runs")  # the readings are rg.james_stein's input (fuzz 39a D1, class)
     rows = []
     for d in ds:
         e = np.random.default_rng(seed + int(d)).normal(size=(int(d), runs))

@@ -5,6 +5,7 @@ timings of ``benchmarks/bench_correlated.py``.
 from __future__ import annotations
 
 from fusion._validation import count, instance_of
+from fusion._shown import shown
 
 from collections.abc import Mapping
 from typing import Any
@@ -169,8 +170,25 @@ def glue_27(s: CorrelatedStudy) -> GlueValues:
 def _case_label(key: object) -> str:
     """A case's label: :data:`fusion.book.style.METHOD_LABELS` of a standard
     :class:`~fusion.scenarios.correlated_sensors.CouplingCase` key, the key itself for another case the producers
-    accept (fuzz 39b C7: a raw KeyError before)."""
-    return METHOD_LABELS.get(key, str(key))
+    accept (fuzz 39b C7: a raw KeyError before; a key that is another method's key, ``"gls"``, is its own label)."""
+    return METHOD_LABELS[key] if key in _CASE_KEYS else str(key)
+
+
+_CASE_KEYS = frozenset(str(c) for c in cs.CouplingCase)
+
+
+def _case_labels(keys: list[object], name: str) -> list[str]:
+    """The labels of a study's cases (:func:`_case_label`), one per case: a caller's case key that reads as another
+    case's label (``"unequal coupling"`` beside ``cpl_unequal``) would give two rows, bars or curves one label, so
+    it is refused, naming ``name`` and both keys (fuzz 39a E3)."""
+    labels = [_case_label(k) for k in keys]
+    seen: dict[str, object] = {}
+    for k, lab in zip(keys, labels):
+        if lab in seen:
+            raise ValueError(f"{name} has the cases {shown(str(seen[lab]))} and {shown(str(k))} with one label "
+                             f"{shown(lab)}: a case key must not read as another case's label (rename the case)")
+        seen[lab] = k
+    return labels
 
 
 @_COUPLING("s")
@@ -191,7 +209,7 @@ def table_coupling(s: CouplingStudy) -> pd.DataFrame:
     tab = tab.drop(columns=[cs.LDL_VS_GLS, cs.EIGEN_VS_GLS])
     tab.insert(1, "own SDs", [", ".join(f"{v:g}" for v in s.scenarios[c]["own"]) for c in tab.index])
     tab.insert(2, "couplings", [", ".join(f"{v:g}" for v in s.scenarios[c]["coupling"]) for c in tab.index])
-    tab.index = pd.Index([_case_label(c) for c in tab.index], name=tab.index.name)  # the cases' labels
+    tab.index = pd.Index(_case_labels(list(tab.index), "s"), name=tab.index.name)  # the cases' labels
     tab[cs.ENV_SD] = [f"{v:g}" for v in tab[cs.ENV_SD]]  # as the SDs beside it: 1.5, 2, not 2.0
     return tab.round(4)
 
@@ -210,10 +228,11 @@ def figure_coupling(s: CouplingStudy) -> Figure:
     instance_of(s, CouplingStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
     names = list(s.curves)
+    labels = _case_labels(names, "s")
     for j, nm in enumerate(names):
         c = color(f"sensor {j % 4 + 1}") if j < 4 else color("truth")
         axes[0].semilogy(s.env_grid, s.curves[nm], color=c, ls=("-", "--", "-.", ":", "-")[j % 5],
-                         label=_case_label(nm))
+                         label=labels[j])
         env = s.scenarios[nm]["env"]
         axes[0].plot([env], [s.rows[j][cs.NAIVE_OVER_GLS]], "o", color=c)
     axes[0].set_xlabel("SD of the common environmental noise σₑ")
@@ -335,7 +354,7 @@ def table_estimated(est: EstimatedCovarianceStudy) -> pd.DataFrame:
     """
     instance_of(est, EstimatedCovarianceStudy, "est")
     tab = pd.DataFrame(est.rows).set_index("case")
-    tab.index = pd.Index([_case_label(c) for c in tab.index])  # the cases' labels
+    tab.index = pd.Index(_case_labels(list(tab.index), "est"))  # the cases' labels
     tab.index.name = f"exact MSE ratios ({est.reps} calibrations per n)"
     return tab.map(lambda v: f"{v:.3f}")
 
