@@ -181,3 +181,20 @@ def test_ridge_study_weighs_its_draws():
 
     work((4, 2_000, 50_000), "ms", weight=2.5)
     _refused_fast(ridge_study, ms=(50_001,), match=r"^ms and draws ask")
+
+
+_OFS3 = {k: {"method": "optimal_fusion_set"} for k in ("a", "b", "c")}
+
+
+def test_thermocouple_studies_count_their_methods():
+    """The class in the scenario modules: each method's fuse_epochs was within its own budget, but the methods were
+    not counted (200,000 "mean" methods of 2 runs ran over 60 CPU-s; three optimal-set kernels of 2,000 runs, 4e8
+    units each, 1.2e9 together): refused before the draws naming the caller's arguments; two are accepted."""
+    from fusion.scenarios import thermocouples as th
+
+    names = r"^n_runs, n_samples, n_sensors and methods ask for .* units of work"
+    _refused_fast(th.monte_carlo, 1, 2_000, _OFS3, match=names)
+    _refused_fast(th.paired_study, 1, 2_000, _OFS3, match=names)
+    _refused_fast(th.absolute_errors, np.full((2_000 * 100, 10), 900.0), _OFS3, match=r"^z and methods ask")
+    two = {k: _OFS3[k] for k in ("a", "b")}
+    th._methods_work(2_000 * 100, 10, two, "methods")  # accepted: 8e8 units
