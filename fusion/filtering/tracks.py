@@ -195,6 +195,23 @@ class FusedTracks:
 
 
 
+def _fuse_tracks_work(K: int, runs: int, n: int, rule: str, names: str) -> None:
+    """Rule 17 of :func:`fuse_tracks` for ``K`` steps of ``runs`` runs of an ``n``-state track fused by ``rule``, refused
+    by ``names`` (fuzz 37a C3, 39a C1): a Python step per step of the tracks, each a fusion of two n x n covariances
+    applied to every run; fuzzy clustering iterates on every run (the weights measured, ``fusion.filtering.kalman``).
+    A caller that fuses tracks it builds or is given checks them here at its entry, naming its own arguments (fuzz
+    40a C4)."""
+    split = rule in ("split", "printed")
+    _steps_work(K, runs, n, 0, FUSE_TRACKS_SPLIT_STEP if split else FUSE_TRACKS_CONVEX_STEP if rule == "convex"
+                else FUSE_TRACKS_STEP, names,
+                {"split": FUSE_TRACKS_SPLIT_CUBE, "printed": FUSE_TRACKS_PRINTED_CUBE,
+                 "fuzzy": FUSE_TRACKS_FUZZY_CUBE}.get(rule, FUSE_TRACKS_CUBE),
+                run=FUSE_TRACKS_FUZZY_RUN if rule == "fuzzy" else FUSE_TRACKS_RUN,
+                product=FUSE_TRACKS_FUZZY_PRODUCT if rule == "fuzzy" else 0.0,
+                matrix=FUSE_TRACKS_SPLIT_MATRIX if split else FUSE_TRACKS_FUZZY_MATRIX if rule == "fuzzy"
+                else FUSE_TRACKS_CONVEX_MATRIX if rule == "convex" else FUSE_TRACKS_MATRIX)
+
+
 def fuse_tracks(
     a: LocalTrack, b: LocalTrack, rule: str, omega: float | ArrayLike | None = None, criterion: str = "trace",
 ) -> FusedTracks:
@@ -259,18 +276,7 @@ def fuse_tracks(
         raise ValueError(f"a and b must be tracks of the same shape (runs, steps, state), got a.est {a.est.shape} "
                          f"and b.est {b.est.shape}")
     runs, K, n = a.est.shape
-    # rule 17 (fuzz 37a C3, 39a C1): a Python step per step of the tracks, each a fusion of two n x n covariances applied
-    # to every run; fuzzy clustering iterates on every run (the weights measured, fusion.filtering.kalman)
-    split = rule in ("split", "printed")
-    _steps_work(K, runs, n, 0, FUSE_TRACKS_SPLIT_STEP if split else FUSE_TRACKS_CONVEX_STEP if rule == "convex"
-                else FUSE_TRACKS_STEP,
-                "a and b (their steps K, runs and state size)",
-                {"split": FUSE_TRACKS_SPLIT_CUBE, "printed": FUSE_TRACKS_PRINTED_CUBE,
-                 "fuzzy": FUSE_TRACKS_FUZZY_CUBE}.get(rule, FUSE_TRACKS_CUBE),
-                run=FUSE_TRACKS_FUZZY_RUN if rule == "fuzzy" else FUSE_TRACKS_RUN,
-                product=FUSE_TRACKS_FUZZY_PRODUCT if rule == "fuzzy" else 0.0,
-                matrix=FUSE_TRACKS_SPLIT_MATRIX if split else FUSE_TRACKS_FUZZY_MATRIX if rule == "fuzzy"
-                else FUSE_TRACKS_CONVEX_MATRIX if rule == "convex" else FUSE_TRACKS_MATRIX)
+    _fuse_tracks_work(K, runs, n, rule, "a and b (their steps K, runs and state size)")
     if omega is None:
         ws = [None] * K
     else:

@@ -34,8 +34,9 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, 
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
+from fusion._counts import input_allocation
 from fusion._validation import text
-from fusion._validation import LOOP_STEP, counts, distinct, loop_work, work
+from fusion._validation import LOOP_STEP, counts, distinct, work
 from fusion.readings import correlated as co
 from fusion._shown import shown
 
@@ -210,7 +211,8 @@ def covariance(own: ArrayLike, coupling: ArrayLike, env: float) -> np.ndarray:
     ------
     ValueError
         Non-finite or non-positive own SDs, lengths that differ, negative ``env``; a covariance that
-        overflows (``own``, ``coupling`` and ``env`` each in range, their squares not).
+        overflows (``own``, ``coupling`` and ``env`` each in range, their squares not); three N x N arrays beyond the
+        memory budget (N above 9,459), before any of them.
     """
     s = as_array(own, "own", ndim=1)
     if s.size < 1 or np.any(s <= 0):
@@ -219,6 +221,9 @@ def covariance(own: ArrayLike, coupling: ArrayLike, env: float) -> np.ndarray:
     if c.shape != s.shape:
         raise ValueError(f"coupling must have the length of own ({s.size}), got {c.size}")
     e = scalar(env, "env", lo=0.0)
+    # rule 9 (fuzz 40a C8's probe): the N x N diagonal, outer product and sum held at once, before any of them (20,000
+    # sensors allocated 3.2 GB for 9.3 CPU-s, 100,000 raised a raw MemoryError)
+    allocation((s.size, s.size), "own and coupling (their length N)", arrays=3)
     return np.diag(s**2) + e**2 * np.outer(c, c)
 
 
@@ -309,6 +314,27 @@ def _scenarios(scenarios: Mapping[str, Mapping[str, Any]] | None) -> Mapping[str
     return {text(name, "scenarios keys"): case for name, case in sc.items()}  # names as plain texts (rule 19)
 
 
+#: The (N, runs) arrays :func:`coupling_study` holds at once for a case of N sensors (the draws, z, and the fusions'
+#: temporaries): tracemalloc's peak, 4.67, 4.07 and 4.03 arrays measured at N = 3, 30 and 100 (10**6, 10**5 and 30,000
+#: runs).
+_COUPLING_ARRAYS = 5
+
+
+def _coupling_case_units(N: int, runs: int, grid: int) -> int:
+    """Units of work (rule 17) of one case of N sensors of :func:`coupling_study` with ``runs`` runs and ``grid``
+    environmental SDs (fuzz 40a C8: the sensors were not counted, N = 2,000 of 2 runs ran 65 CPU-s; D3: nor the runs).
+
+    Each SD of the grid and ``env_far`` cost an exact GLS and naive MSE (a covariance, a solve and products): 280 us,
+    0.9, 9.3, 46 and 120 ms at N = 3, 100, 300, 600 and 1,000, fitted as ``28,000 + 4 N**2 + 0.016 N**3`` units;
+    the case's own exact MSEs, Cholesky factor and four fusions ``30 N**2 + 0.04 N**3`` (55, 217 and 460 ms at
+    N = 300, 600, 1,000); each run ``3 N + 0.08 N**2`` (100 ns, 1 and 8.2 us a run at N = 3, 30 and 100). Measured with
+    ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls, the machine shared with other jobs:
+    N = 1,000 with 21 SDs ran 3.3 CPU-s (counted 5.1e8 units), N = 1,500 with 3 SDs 3.8 (4.5e8).
+    """
+    return ((grid + 1) * (28_000 + 4 * N * N + (16 * N**3 + 999) // 1000) + 30 * N * N + (4 * N**3 + 99) // 100
+            + runs * (3 * N + (8 * N * N + 99) // 100))
+
+
 @derived_inputs()
 def coupling_study(
     scenarios: Mapping[str, Mapping[str, Any]] | None = None,
@@ -356,7 +382,10 @@ def coupling_study(
     Raises
     ------
     ValueError
-        Bad scenario entries, ``runs`` < 2, negative ``seed`` or grid values.
+        Bad scenario entries, ``runs`` < 2, negative ``seed`` or grid values; the cases' sensors N, ``runs`` and
+        ``env_grid`` beyond the work budget (``(grid + 1) x (28,000 + 4 N**2 + 0.016 N**3) + 30 N**2 + 0.04 N**3 +
+        runs x (3 N + 0.08 N**2)`` units a case, measured), or a case's N x ``runs`` draws beyond the input or memory
+        budget, before any work.
     """
     sc = _scenarios(scenarios)
     runs = count(runs, "runs", minimum=2)
@@ -365,8 +394,14 @@ def coupling_study(
     grid = as_array(env_grid, "env_grid", ndim=1)
     if grid.size == 0 or np.any(grid < 0):
         raise ValueError("env_grid must be a non-empty sequence of SDs >= 0")
-    # rule 17: an exact GLS and naive MSE per case and SD (~20 loop steps of small linear algebra)
-    loop_work((len(sc), grid.size + 1), 0, "env_grid", step=20 * LOOP_STEP)
+    # rules 17 and 9 on every case's sensors N, runs and env_grid, before any work (fuzz 40a C8, D3)
+    units = 0
+    for name, case in sc.items():
+        N = len(case["own"])
+        input_allocation((N, runs), f"runs and the sensors of case {shown(name)}")  # z, the fusions' input
+        allocation((N, runs), f"runs and the sensors of case {shown(name)}", arrays=_COUPLING_ARRAYS)
+        units += _coupling_case_units(N, runs, grid.size)
+    work((units,), "scenarios (their sensors), runs and env_grid")
     far_env = scalar(env_far, "env_far", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
     rows, sq, weights, curves, far = [], {}, {}, {}, {}

@@ -22,6 +22,7 @@ mismatch is common to both sensors and is the correlated part of their errors.
 from __future__ import annotations
 
 import hashlib
+import math
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -33,7 +34,8 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import constant
 from fusion._results import ResultSpec, array, nested, number, numbers, trusted, validated_post_init
-from fusion._validation import read_mapping, read_once
+from fusion._validation import given_entries, read_mapping, read_once
+from fusion._limits import MAX_INPUT_ELEMENTS
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
                                 grid_points, positive_scalar, scalar, std_scalar, step_scalar, work)
@@ -42,6 +44,7 @@ from fusion._validation import LOOP_STEP, loop_work
 from fusion._validation import flag, text
 from fusion._options import text_key
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
+from fusion.scenarios._infrared_budget import _reader_budget, _scan_budget, _tracks_budget
 from fusion.filtering.kalman import cv_model
 from fusion._shown import shown
 
@@ -531,11 +534,15 @@ def rule_errors(sim: IrRadarRuns, rules: Sequence[str] | None = None) -> dict[Ir
     Raises
     ------
     ValueError
-        A key in ``rules`` that is not in :data:`RULES`.
+        A key in ``rules`` that is not in :data:`RULES`; ``sim``'s runs times scans beyond the work, memory or input
+        budget of this reading (270 units a run and scan with every rule, 13 arrays of 4 entries; about 3.7 million
+        with every rule), refused before any work.
     """
     instance_of(sim, IrRadarRuns, "sim")
+    subset = _rule_subset(rules)
+    _reader_budget("rule_errors", *sim.ir.est.shape, subset, "sim (its runs and scans) and rules")
     angle_tracks = {IrMethod.IR_ALONE: sim.ir.est, IrMethod.RADAR_ALONE: sim.radar.est}
-    for name, rule in _rule_subset(rules).items():
+    for name, rule in subset.items():
         angle_tracks[name] = fuse_tracks(sim.ir, sim.radar, rule).est
     out = {name: _errors(sim, position(sim.radar_range.est, est), est[..., 0::2]) for name, est in angle_tracks.items()}
     raw = spherical_to_cartesian(sim.radar_range.z[..., 0], sim.ir.z[..., 0], sim.ir.z[..., 1])
@@ -555,6 +562,11 @@ def rmse_by_rule(sim: IrRadarRuns) -> dict[IrMethod, FloatArray]:
     -------
     dict of IrMethod to ndarray, shape (K, 4)
         Azimuth (rad), elevation (rad), x (m), y (m).
+
+    Raises
+    ------
+    ValueError
+        ``sim`` beyond the budget of :func:`rule_errors`, refused before any work.
     """
     return {name: np.sqrt(np.mean(e**2, axis=0)) for name, e in rule_errors(sim).items()}
 
@@ -575,11 +587,25 @@ def late_means(rmse: dict[str, FloatArray], t: ArrayLike, t_min: float = 2.0) ->
     -------
     dict of str to dict
         Per method: ``"azimuth (mrad)"``, ``"elevation (mrad)"``, ``"x (m)"``, ``"y (m)"``.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, named; ``rmse``'s methods and entries beyond the work budget (3,000 units a method, 2 an
+        entry, measured), before any is converted.
     """
     rmse, t = (read_mapping(rmse, "rmse"), read_once(t, "t"))  # read once (fuzz 29a C5, fuzz 31a C3)
     instance_of(rmse, Mapping, "rmse")
     tt = as_array(t, "t", ndim=1)
     t_min = scalar(t_min, "t_min")
+    # rule 17 on rmse's methods and their entries, before converting any (fuzz 40a, the class of its C6: the methods
+    # were not counted, so one array given under many keys was read over and over): 11 ns an entry and 20 us a
+    # method measured (4 of 2**24 entries; 20,000 of 404; the least of two calls, time.process_time, machine
+    # shared), weighed 2 units and 3 LOOP_STEP
+    work((len(rmse),), "rmse (its methods)", weight=3 * LOOP_STEP)
+    entries = [given_entries(r, MAX_INPUT_ELEMENTS) for r in rmse.values()]
+    work((3 * LOOP_STEP * len(entries) + 2 * math.ceil(sum(min(n, MAX_INPUT_ELEMENTS + 1) for n in entries
+                                                            if n is not None)),), "rmse (its methods and scans)")
     checked = {}  # the arrays the checks return are what the means read (fuzz 31a C2: a DataFrame, a list of lists)
     for name, r in rmse.items():
         name = text_key(name, "rmse")   # a method's label keys the result: its text (fuzz 33a C5)
@@ -657,7 +683,9 @@ def many_scan_bound(
     Raises
     ------
     ValueError
-        A noise level not positive, an unknown sensor set, a path that is not a straight
+        ``path`` of more scans than the work or memory budget takes (750 units and 7 arrays of 36 float64 a scan,
+        about 1e6 scans), refused before any work; a noise level not positive, an unknown sensor set, a path that is
+        not a straight
         constant-velocity line, or noise levels so far apart in scale (each valid alone) that the
         information matrix is singular to working precision (condition number >= 1/eps).
 
@@ -675,6 +703,9 @@ def many_scan_bound(
     s_r = std_scalar(sigma_range, "sigma_range")
     t, p = path.t, path.pos
     K = t.size
+    # rules 17 and 9 on the path's scans K, before any work (fuzz 40a C3: truth accepts 10**7 scans; 3e6 ran 22.5
+    # CPU-s, 1e7 a raw MemoryError on a 2.7 GiB (K, 6, 6) array)
+    _scan_budget(K, "path (its scans K)")
     A = np.concatenate([np.broadcast_to(np.eye(3), (K, 3, 3)), t[:, None, None] * np.eye(3)], axis=-1)  # (K, 3, 6)
     theta, *_ = np.linalg.lstsq(A.reshape(-1, 6), p.reshape(-1), rcond=None)
     if not np.allclose(A @ theta, p, rtol=0.0, atol=1e-6 * max(1.0, float(np.abs(p).max()))):
@@ -848,7 +879,8 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
     Raises
     ------
     ValueError
-        ``sigma_acc`` or ``velocity_sigma`` not positive.
+        ``sigma_acc`` or ``velocity_sigma`` not positive; ``sim``'s runs times scans beyond the work or memory budget
+        (150 units and 54 float64 a run and scan, about 5 million), refused before any work.
 
     References
     ----------
@@ -858,6 +890,8 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
     instance_of(sim, IrRadarRuns, "sim")
     q = std_scalar(sigma_acc, "sigma_acc")
     sv = std_scalar(velocity_sigma, "velocity_sigma")
+    # rules 17 and 9 on sim's runs and scans, before any work (fuzz 40a C4: 110,000 runs of 101 scans ran 20 CPU-s)
+    _tracks_budget(*sim.ir.est.shape[:2], "sim (its runs and scans)")
     T = float(sim.t[1] - sim.t[0])
     F, H = _cv3(T)
     Q = np.kron(np.eye(3), white_acceleration(T, q))
@@ -916,15 +950,18 @@ def cartesian_errors(sim: IrRadarRuns, tracks: CartesianTracks, rules: Sequence[
     ------
     ValueError
         A key in ``rules`` that is not in :data:`RULES`; ``tracks`` built from another simulation
-        than ``sim`` (other runs, scans or draws).
+        than ``sim`` (other runs, scans or draws); their runs times scans beyond the work, memory or input budget
+        of this reading (355 units a run and scan with every rule, about 2.8 million), refused before any work.
     """
     instance_of(sim, IrRadarRuns, "sim")
     instance_of(tracks, CartesianTracks, "tracks")
     if tracks.radar.est.shape[:2] != sim.ir.est.shape[:2] or (tracks.source and tracks.source != _fingerprint(sim)):
         raise ValueError(f"tracks were built from another simulation than sim (tracks of shape {tracks.radar.est.shape[:2]} "
                          f"for runs x scans {sim.ir.est.shape[:2]}, or other draws): pass cartesian_tracks(sim)")
+    subset = _rule_subset(rules)
+    _reader_budget("cartesian_errors", *tracks.ir.est.shape, subset, "sim and tracks (their runs and scans) and rules")
     est = {CARTESIAN_LOCAL["radar"]: tracks.radar.est, CARTESIAN_LOCAL["ir"]: tracks.ir.est}
-    for name, rule in _rule_subset(rules).items():
+    for name, rule in subset.items():
         est[name] = fuse_tracks(tracks.ir, tracks.radar, rule).est
     out = {}
     for name, e in est.items():

@@ -201,8 +201,8 @@ def ridge_study(
     xs : sequence of float
         True values x (no two equal: the curves are keyed by x).
     ms : sequence of int
-        Numbers of measurements m of the convergence study (no two equal; draws x sum(ms) within the work
-        budget, ``fusion._validation.MAX_WORK``).
+        Numbers of measurements m of the convergence study (no two equal; 4 x draws x sum(ms) normals, 2.5 units
+        each, measured, within the work budget, ``fusion._validation.MAX_WORK``: sum(ms) up to 50,000 of 2,000 draws).
     m0 : int
         Number of measurements of the analytic curves.
     sigma : float
@@ -245,7 +245,11 @@ def ridge_study(
     seed_vector = _seed(seed_vector, "seed_vector")
     draws = count(draws, "draws", minimum=2)
     allocation((draws, int(m_arr.max())), "ms and draws")
-    work((4, draws, sum(ms)), "ms and draws")  # the loop below draws 4 x draws x sum(ms) normals (fuzz13 bug 1)
+    # the loop below draws 4 x draws x sum(ms) normals (fuzz13 bug 1), each with its sum and mean: 16-22 ns a normal
+    # measured at sum(ms) = 20,000 and 40,000 of 2,000 draws (the least of two calls, time.process_time,
+    # OPENBLAS_NUM_THREADS=1, machine shared; 28.5 in fuzz 40a D2, whose 8e8 normals at one unit ran 22.8 CPU-s),
+    # weighed 2.5 units: the edge, 4e8 normals, runs 6-11 CPU-s
+    work((4, draws, sum(ms)), "ms and draws", weight=2.5)
     kgrid = np.linspace(0, 5, 501)
     i1 = int(np.argmin(np.abs(kgrid - 1.0)))
     delta = sigma / np.sqrt(m0)

@@ -372,6 +372,15 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     -------
     list of TrackingRun, length ``runs``
         Run r: :func:`run_tracking` with the r-th seed spawned from ``seed``.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, named; ``runs`` and ``sc``'s counts beyond the memory or work budget, before any work; ``sc``:
+        a node's particle cloud that collapses (its covariance singular to working precision, a run whose true path
+        passes by a sensor) is refused at the frame it happens, after the blocks of runs before it (fuzz 40a D1: 17
+        CPU-s into 400 runs with a sensor on the nominal path). Whether a cloud collapses depends on the draws of the
+        run, so no check before the work can tell it; a path that reaches a sensor is refused at that frame too.
     """
     runs = count(runs, "runs")  # >= 1 and at most MAX_COUNT
     instance_of(sc, RangeBearingScenario, "sc")

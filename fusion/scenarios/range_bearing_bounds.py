@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike
 from fusion._results import NONNEGATIVE, ResultSpec, array, validated_post_init
 from fusion._validation import FloatArray, as_array, instance_of
 from fusion._validation import flag
-from fusion._limits import LOOP_STEP, loop_work
+from fusion._limits import LOOP_STEP, loop_work, work
 from fusion.filtering.particles import ncv_model
 from fusion.scenarios.range_bearing_scenario import RangeBearingScenario, refuse_on_sensor
 
@@ -131,6 +131,17 @@ class LinearisedErrors:
     __post_init__ = validated_post_init
 
 
+def _linearised_frame_units(n: int) -> int:
+    """Units of work of one frame of :func:`linearised_errors` with ``n`` sensors (rule 17; fuzz 40a C2).
+
+    A frame's Python loops over the sensors, its ``n x n`` blocks of 4 x 4 products and its ``(4n + 4)``-square KKT
+    solve cost ``300 + 40 n + 4.5 n**2 + 0.005 n**3`` us, a bound fitted above the minimum of two calls measured here
+    (``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, machine shared with other jobs): 335, 776, 5,274, 50,747,
+    410,087 and 2,675,690 us a frame at n = 3, 10, 30, 100, 300 and 600 (at most 1.5 times over). One unit is 10 ns.
+    """
+    return 30_000 + 4_000 * n + 450 * n * n + (n * n * n + 1) // 2
+
+
 def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
                       common_process: bool = True) -> LinearisedErrors:
     r"""Cross-covariances of the nodes' errors for Kalman filters linearised at the nominal trajectory.
@@ -167,7 +178,9 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
     TypeError
         ``sc`` not a :class:`RangeBearingScenario`, or a switch not a bool.
     ValueError
-        ``sc``: its nominal trajectory reaches a sensor (range 0: no bearing, no linearisation; fuzz 28a C5), or the
+        ``sc``: its frames times its sensors' cost per frame (``30,000 + 4,000 n + 450 n**2 + n**3 / 2`` units for
+        ``n`` sensors, measured) beyond the work budget (fuzz 40a C2: 100,000 frames ran 31 CPU-s), refused before any
+        work; its nominal trajectory reaches a sensor (range 0: no bearing, no linearisation; fuzz 28a C5), or the
         filters' covariances at its noise levels are not representable (a non-finite record, refused naming ``sc``,
         fuzz 28a C6: ``sigma_r = 1e-3`` m loses the centralised covariance's positivity to round-off).
 
@@ -179,6 +192,7 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
     instance_of(sc, RangeBearingScenario, "sc")
     flag(common_prior, "common_prior")
     flag(common_process, "common_process")
+    work((sc.frames,), "sc (its frames and sensors)", weight=_linearised_frame_units(len(sc.sensor_array)))
     model = ncv_model(sc.T, sc.q)
     F, Q = model.F, model.Q
     S = sc.sensor_array

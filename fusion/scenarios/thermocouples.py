@@ -19,7 +19,7 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, integer, n
                              validated_post_init)
 from fusion._validation import read_once
 from fusion._validation import derived_inputs
-from fusion._validation import distinct, loop_work, one_of
+from fusion._validation import LOOP_STEP, distinct, loop_work, one_of, work
 from fusion._validation import allocation, record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
@@ -240,6 +240,27 @@ def _check_methods(methods: object) -> dict[str, dict[str, object]]:
     return out
 
 
+#: Units of one ``fuse_epochs`` call of a method of :func:`absolute_errors` and :func:`paired_study` beyond its epochs'
+#: own work: 50 us a call measured (2,000 methods of "mean" on 2 runs: monte_carlo 0.1 CPU-s, paired_study 0.2 with
+#: its two calls a method; time.process_time, machine shared), weighed 8 LOOP_STEP.
+_METHOD_CALL = 8 * LOOP_STEP
+
+
+def _methods_work(rows: int, n: int, methods: Mapping[str, Mapping[str, object]], names: str) -> int:
+    """Rule 17 on every method's ``fuse_epochs`` of ``rows`` epochs of ``n`` readings, naming ``names``: each method's own kernel by ``fuse_epochs``' rule (``pairwise`` with its declared arrays, or one unit a
+    reading for the mean) plus ``_METHOD_CALL``, summed over the methods (the methods were not counted: 200,000 of
+    2 runs ran over 60 CPU-s, each within ``fuse_epochs``' budget; fuzz 40a, the class)."""
+    from fusion._counts import pairwise
+    from fusion.readings._row_blocks import CUBIC, PAIRS
+
+    total = 0
+    for spec in methods.values():
+        m = str(spec["method"])
+        per = pairwise(n, names, PAIRS[m], rows=rows, cubic=m in CUBIC) if PAIRS[m] else rows * n
+        total += _METHOD_CALL + per
+    return work((total,), names)
+
+
 def absolute_errors(
     z: ArrayLike, methods: dict[str, dict[str, object]], truth: float = 900.0
 ) -> dict[str, FloatArray]:
@@ -265,6 +286,7 @@ def absolute_errors(
     truth = scalar(truth, "truth")
     methods = _check_methods(methods)
     flat = as_reading_rows(arr.reshape(-1, arr.shape[-1]), "z")
+    _methods_work(flat.shape[0], flat.shape[1], methods, "z and methods")
     out: dict[str, FloatArray] = {}
     for label, spec in methods.items():
         spec = dict(spec)
@@ -323,6 +345,7 @@ def _draws(seed: int, n_runs: int, methods: dict[str, dict[str, object]], sigma:
     allocation((rows, n), "n_runs, n_samples and n_sensors")  # simulate's own memory rule first, as before
     for spec in checked.values():
         epochs_limit(rows, n, str(spec["method"]), "n_runs, n_samples, n_sensors and methods")
+    _methods_work(rows, n, checked, "n_runs, n_samples, n_sensors and methods")  # their sum (fuzz 40a, the class)
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
     if failure is not None:
@@ -523,6 +546,11 @@ def paired_study(
         record(failure, "failure", (), ("sensors", "samples", "biases"))
     failure_mode = one_of(failure_mode, FAILURE_MODES, "failure_mode")   # TypeError for a non-str (issue 35)
     fail = dict(failure or {})
+    # every method fuses the clean epochs, then the failed ones (a window of them: 31 of 100 samples by default),
+    # counted before the draws by _draws' counts, the clean epochs' fusions in full (fuzz 40a, the class: the methods
+    # were not counted; chapter 01's alpha study, 6 kernels of 500 runs, counts 6e8)
+    _methods_work(n_runs * count(n_samples, "n_samples"), count(n_sensors, "n_sensors"), methods,
+                  "n_runs, n_samples, n_sensors and methods")
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
     z_fail = random_failure(z, rng, failure_mode, **fail)  # type: ignore[arg-type]

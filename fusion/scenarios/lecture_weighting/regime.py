@@ -143,18 +143,25 @@ REGIME_CONSTANT_ONLY: tuple[RegimeMethod, ...] = (_R.PER_SAMPLE_FORGETTING, _R.P
 #: OPENBLAS_NUM_THREADS=1): about 5 us and 0.75 us a draw (2.1 and 0.28 CPU-s for the default 100 runs x 1,000
 #: samples x 4 sensors), so that the edge is about 10 CPU-s (without a work budget, 10**7 samples of 2 runs, some
 #: 400 CPU-s, were accepted).
-_REGIME_DRAW, _CHANGE_DRAW = 500, 75
+_REGIME_DRAW = 500
+#: :func:`variance_change_study`'s cost is a draw's per change (fuzz 40a C6: 60 changes of 400 runs, 12 % of the budget
+#: at 75 units a draw, ran 37.6 CPU-s): 10 units a draw and 45 a draw and change, from 566, 451, 351 and 465 ns a draw
+#: and change with 1, 3, 12 and 30 changes of 100 runs x 1,000 samples x 4 sensors (the least of two calls,
+#: ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, machine shared with other jobs; the default 3 changes: 145 units,
+#: 1.35 us a draw, so the edge is about 9 CPU-s).
+_CHANGE_DRAW, _CHANGE_DRAW_EACH = 10, 45
 
 
 def _draws(sigma: Sequence[float], samples: int, runs: int, seed: int,
-           weight: int) -> tuple[np.ndarray, int, int, int]:
+           weight: int, names: str = "runs, samples and sigma") -> tuple[np.ndarray, int, int, int]:
     """The checked SDs (three or more), samples (20 or more), runs and seed of a study's (runs, samples, n) draws,
-    within the memory budget and the work budget at ``weight`` units a draw (rule 17)."""
+    within the memory budget and the work budget at ``weight`` units a draw (rule 17), naming ``names`` in the work
+    refusal (the arguments that set ``weight`` too)."""
     sig = _sigmas(sigma, minimum=3)
     samples = count(samples, "samples", minimum=20)
     runs = count(runs, "runs")
     allocation((runs, samples, sig.size), "runs, samples and sigma")
-    work((runs, samples, sig.size), "runs, samples and sigma", weight=weight)
+    work((runs, samples, sig.size), names, weight=weight)
     return sig, samples, runs, _seed(seed)
 
 
@@ -559,14 +566,22 @@ def variance_change_study(
     -------
     VarianceChangeStudy
         Per change and method the squared errors against k, with the SDs after the change.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, named; ``runs x samples x n`` draws at ``10 + 45 x len(changes)`` units each (measured)
+        beyond the work budget, naming runs, samples, sigma and changes, before any work.
     """
-    sig, samples, runs, seed = _draws(sigma, samples, runs, seed, _CHANGE_DRAW)
-    change_at = _index(change_at, samples, "change_at")
-    forgetting, forgetting_alt = (_forgetting(v, name)
-                                  for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))
     sequence(changes, "changes")
     if isinstance(changes, (str, bytes, Mapping)) or len(changes) == 0:
         raise ValueError(f"changes must be a non-empty sequence of (name, {{sensor: SD}}) pairs, got {shown(changes)}")
+    # rule 17: every change runs the five fusions on every draw, so the changes are counted before any work
+    sig, samples, runs, seed = _draws(sigma, samples, runs, seed, _CHANGE_DRAW + _CHANGE_DRAW_EACH * len(changes),
+                                      "runs, samples, sigma and changes")
+    change_at = _index(change_at, samples, "change_at")
+    forgetting, forgetting_alt = (_forgetting(v, name)
+                                  for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))
     n, K = sig.size, samples
     after_sd: dict[str, np.ndarray] = {}
     for item in changes:

@@ -1,0 +1,66 @@
+"""The work and memory budgets of the readers and bounds of ``fusion.scenarios.infrared_radar`` (fuzz 40a C3-C5), kept
+here so that the module stays within its size: each weight measured, as stated."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from fusion._counts import allocation, input_allocation
+from fusion._frozen import constant
+from fusion._limits import work
+from fusion.filtering.tracks import _fuse_tracks_work
+
+__all__: list[str] = []
+
+#: Units of work of one scan of ``many_scan_bound`` (its vectorised (K, 6, 6) products, sums and solves): 3.8 to
+#: 4.8 us measured, 7.5 in fuzz 40a's run at 3e6 scans.
+_BOUND_SCAN_UNITS = 750
+
+
+def _scan_budget(K: int, names: str) -> None:
+    """Rules 17 and 9 of ``many_scan_bound`` on a path of ``K`` scans, refused by ``names``: 3.8-4.8 us a scan measured
+    at K = 1e5 and 3e5 (the minimum of two calls, ``OPENBLAS_NUM_THREADS=1``, machine shared; 7.5 in the fuzz at 3e6),
+    weighed ``_BOUND_SCAN_UNITS``; tracemalloc's peak is 5.1-6.1 arrays of (K, 6, 6), counted as 7."""
+    work((K,), names, weight=_BOUND_SCAN_UNITS)
+    allocation((K, 6, 6), names, arrays=7)
+
+
+#: Units of work of one run and scan of ``cartesian_tracks`` (two 6-state Kalman filters and the conversions): 0.96
+#: us measured at 10,000 runs of 101 scans (the least of two calls, ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``,
+#: machine shared; 1.8 us in fuzz 40a's run of 110,000), weighed 150: the edge, 6.7 million, runs 6-12 CPU-s.
+_TRACKS_UNITS = 150
+
+
+def _tracks_budget(runs: int, K: int, names: str) -> None:
+    """Rules 17 and 9 of ``cartesian_tracks`` on ``runs`` runs of ``K`` scans, refused by ``names``:
+    ``_TRACKS_UNITS`` a run and scan; tracemalloc's peak 52 float64 a run and scan (9 arrays of 6)."""
+    work((runs, K), names, weight=_TRACKS_UNITS)
+    allocation((runs, K, 6), names, arrays=9)
+
+
+#: Units of work per run and scan of ``rule_errors`` and ``cartesian_errors`` (``"base"``: the local tracks'
+#: positions and errors; a rule: its ``fuse_tracks`` and its errors), 1.5 times the least of two calls measured at
+#: 10,000 runs of 101 scans (``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, machine shared with other jobs):
+#: rule_errors 23 ns, and 17 (ci), 24 (split), 14 (convex), 99 (fuzzy) a rule; cartesian_errors 15 ns, and 22, 51, 28
+#: and 116 a rule (each call with every rule: 2.7 and 2.4 us a run and scan). Fuzz 40a C4, C5.
+_READER_UNITS = constant({
+    "rule_errors": constant({"base": 35, "ci": 25, "split": 35, "printed": 35, "convex": 25, "fuzzy": 150}),
+    "cartesian_errors": constant({"base": 25, "ci": 35, "split": 75, "printed": 75, "convex": 45, "fuzzy": 175}),
+})
+
+
+def _reader_budget(reader: str, runs: int, K: int, n: int, rules: Mapping[str, str], names: str) -> None:
+    """Rules 9 and 17 of a reader of a simulation (``rule_errors``, ``cartesian_errors``), at its entry, naming its own
+    arguments (fuzz 40a C4, C5: a valid ``simulate`` of 110,000 runs was refused by ``position``'s input budget,
+    naming ``angle_est``, after 18 CPU-s, and by ``fuse_tracks``' budget, naming ``a and b``, after 9): each rule's
+    ``fuse_tracks`` by its own rule (``_fuse_tracks_work``, ``n``-state tracks), the reader's measured work
+    (``_READER_UNITS``), the (runs, K, 4) arrays it holds at once (tracemalloc's peak: 5 + 2 a rule for
+    ``rule_errors``, 3.8 + 2.5 a rule for ``cartesian_errors``) and the input budget of the (runs, K, 4) and
+    (runs, K, 3) tracks it passes to ``position`` and ``cartesian_to_spherical``."""
+    units = _READER_UNITS[reader]
+    for rule in rules.values():
+        _fuse_tracks_work(K, runs, n, rule, names)
+    work((runs, K), names, weight=units["base"] + sum(units[rule] for rule in rules.values()))
+    arrays = 5 + 2 * len(rules) if reader == "rule_errors" else 4 + (5 * len(rules) + 1) // 2
+    allocation((runs, K, 4), names, arrays=arrays)
+    input_allocation((runs, K, 4), names)
