@@ -397,7 +397,11 @@ class Chromium:
             while not events.empty():                           # type: ignore[attr-defined]
                 if events.get() is None:                        # type: ignore[attr-defined]
                     raise RuntimeError(self._alive_reason())
-            send("Storage.clearDataForOrigin", {"origin": "file://", "storageTypes": "all"})
+            # a file page's storage is kept under "file://" by some Chromium releases (156: local and session
+            # storage) and, for its session storage, under the serialised opaque origin "null" by others (Debian
+            # bookworm's 150: cleared under "file://" only, a page saw the session storage the page before it left)
+            for origin in ("file://", "null"):
+                send("Storage.clearDataForOrigin", {"origin": origin, "storageTypes": "all"})
             viewport(widths[0])
             send("Emulation.setVirtualTimePolicy", {"policy": "pause"})
             nav = send("Page.navigate", {"url": url})
