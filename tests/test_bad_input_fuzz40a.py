@@ -183,18 +183,52 @@ def test_ridge_study_weighs_its_draws():
     _refused_fast(ridge_study, ms=(50_001,), match=r"^ms and draws ask")
 
 
-_OFS3 = {k: {"method": "optimal_fusion_set"} for k in ("a", "b", "c")}
+def _sets(k: int, **options) -> dict:
+    return {f"s{i}": {"method": "optimal_fusion_set", **options} for i in range(k)}
 
 
 def test_thermocouple_studies_count_their_methods():
     """The class in the scenario modules: each method's fuse_epochs was within its own budget, but the methods were
-    not counted (200,000 "mean" methods of 2 runs ran over 60 CPU-s; three optimal-set kernels of 2,000 runs, 4e8
-    units each, 1.2e9 together): refused before the draws naming the caller's arguments; two are accepted."""
+    not counted (200,000 "mean" methods of 2 runs ran over 60 CPU-s): refused before the draws naming the caller's
+    arguments. fix46: the methods are counted at their measured cost (``_EPOCH_UNITS``: an optimal set's 500,000
+    epochs of 10 readings, 0.89 CPU-s, count 1.5e8 units), so the edges are where the work is: monte_carlo's 6 optimal
+    sets of 5,000 runs count 9.0e8 (ran 6.5 CPU-s), 7 are refused; paired_study fuses each twice (3 sets: 9.25e8, ran
+    4.8 CPU-s; 4 refused)."""
     from fusion.scenarios import thermocouples as th
 
     names = r"^n_runs, n_samples, n_sensors and methods ask for .* units of work"
-    _refused_fast(th.monte_carlo, 1, 2_000, _OFS3, match=names)
-    _refused_fast(th.paired_study, 1, 2_000, _OFS3, match=names)
-    _refused_fast(th.absolute_errors, np.full((2_000 * 100, 10), 900.0), _OFS3, match=r"^z and methods ask")
-    two = {k: _OFS3[k] for k in ("a", "b")}
-    th._methods_work(2_000 * 100, 10, two, "methods")  # accepted: 8e8 units
+    # "mean" methods of 20 runs: 28,000 units each (8,000 a call, 2,000 epochs of 10 readings); 35,714 accepted
+    means = {f"m{i}": {"method": "mean"} for i in range(36_000)}
+    assert th._methods_work(20 * 100, 10, list(means.values())[:35_714], "methods") < MAX_WORK
+    _refused_fast(th.monte_carlo, 1, 20, means, match=names)
+    _refused_fast(th.paired_study, 1, 20, dict(list(means.items())[:18_000]), match=names)
+    assert th._methods_work(5_000 * 100, 10, _sets(6), "methods") == 6 * (8_000 + 500_000 * 300)   # accepted
+    _refused_fast(th.monte_carlo, 1, 5_000, _sets(7), match=names)
+    _refused_fast(th.absolute_errors, np.full((5_000 * 100, 10), 900.0), _sets(7), match=r"^z and methods ask")
+    inside = {**_sets(1), **{f"x{i}": {"method": "optimal_fusion_set", "include_self": False} for i in range(2)}}
+    assert th._methods_work(5_000 * 100, 10, inside, "methods", fusions=2, per_reading=th._PAIRED_READING) < MAX_WORK
+    _refused_fast(th.paired_study, 1, 5_000, _sets(4), match=names)
+
+
+def test_paired_study_counts_each_method_twice_and_the_members_run():
+    """fix46 (review 18, point 6): paired_study counted one fusion a method though it fuses each twice (the clean
+    epochs, then those the failure changed), and not the default optimal set it runs for the members when only sets
+    with options are asked; nor did it check each method's fuse_epochs limits at entry, as monte_carlo does."""
+    from fusion.scenarios import thermocouples as th
+
+    names = r"^n_runs, n_samples, n_sensors and methods ask for .* units of work"
+    # 3 sets with options, and the members' default set: 4 sets fused twice, 1.2e9 units (3 of them counted 9.0e8)
+    _refused_fast(th.paired_study, 1, 5_000, _sets(3, include_self=False), match=names)
+    # 6 sets of 2,800 runs: 1.0e9 fused twice (5.0e8 once, as counted before)
+    assert th._methods_work(2_800 * 100, 10, _sets(6), "methods") < MAX_WORK / 1.9
+    _refused_fast(th.paired_study, 1, 2_800, _sets(6), match=names)
+    # fuse_epochs' own limit of one method, before the draws, naming the caller's arguments (as monte_carlo)
+    _refused_fast(th.paired_study, 1, 5_001, _sets(1), match=r"^n_runs, n_samples, n_sensors and methods \(10 readings")
+
+
+def test_thermocouple_method_costs_cover_every_method():
+    """Every method fuse_epochs takes has a measured cost in the studies' count."""
+    from fusion.readings.fusion_set import METHODS
+    from fusion.scenarios import thermocouples as th
+
+    assert set(th._EPOCH_UNITS) == set(METHODS)

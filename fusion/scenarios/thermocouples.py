@@ -8,8 +8,11 @@ parameter here and the chapter states and varies its choice.
 
 from __future__ import annotations
 
+import math
+from collections import Counter
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -244,21 +247,44 @@ def _check_methods(methods: object) -> dict[str, dict[str, object]]:
 #: own work: 50 us a call measured (2,000 methods of "mean" on 2 runs: monte_carlo 0.1 CPU-s, paired_study 0.2 with
 #: its two calls a method; time.process_time, machine shared), weighed 8 LOOP_STEP.
 _METHOD_CALL = 8 * LOOP_STEP
+#: Units (about 10 ns each) of one epoch of ``n`` readings fused by each method of ``fuse_epochs``, as (a reading,
+#: a pair of readings): measured on this shared machine (OPENBLAS_NUM_THREADS=1, time.process_time, minimum of 2;
+#: n = 3, 10, 30, 100, 300 and 900 readings, 2e6 to 1 epochs) and rounded up to the largest per reading at small n
+#: and per pair at large n. The optimal fusion set: 143-200 ns a reading at n <= 10, 6-8 ns a pair at n >= 100 (its
+#: 500,000 epochs of 10 readings, 0.89 CPU-s: 300 units an epoch counts 1.5 s); the fusion-set weights 90-112 ns a
+#: reading, 3.4-3.8 ns a pair; the support degree 35-50 ns a reading, 1.8-2.2 ns a pair; the belief degree (its
+#: eigendecomposition included) 480-820 ns a reading at n <= 10, 70-160 ns a pair up to n = 900; the mean 2-6 ns a
+#: reading. ``fuse_epochs``' own budget (``PAIR_WORK``, 20 units a pair) stays each method's limit (``epochs_limit``):
+#: the sum of the methods counts what they cost (fix46: at ``PAIR_WORK`` the book's stability reading of chapter 01,
+#: 6 methods of 5,000 runs, counted 6e9 units and ran 3.0 CPU-s).
+_EPOCH_UNITS: Mapping[str, tuple[Fraction, Fraction]] = constant({
+    "mean": (Fraction(1), Fraction(0)),
+    "optimal_fusion_set": (Fraction(20), Fraction(1)),
+    "fusion_set_weights": (Fraction(12), Fraction(1, 2)),
+    "support_degree": (Fraction(5), Fraction(1, 4)),
+    "belief_degree": (Fraction(30), Fraction(16)),
+})
+#: Units of each reading :func:`paired_study` draws, fails and compares besides its fusions (``simulate``,
+#: ``random_failure``, the changed epochs and the errors): 30-40 ns a reading measured (5,000 runs of 10 sensors,
+#: 50,000 of 3, 500 of 100), weighed 5.
+_PAIRED_READING = 5
 
 
-def _methods_work(rows: int, n: int, methods: Mapping[str, Mapping[str, object]], names: str) -> int:
-    """Rule 17 on every method's ``fuse_epochs`` of ``rows`` epochs of ``n`` readings, naming ``names``: each method's own kernel by ``fuse_epochs``' rule (``pairwise`` with its declared arrays, or one unit a
-    reading for the mean) plus ``_METHOD_CALL``, summed over the methods (the methods were not counted: 200,000 of
-    2 runs ran over 60 CPU-s, each within ``fuse_epochs``' budget; fuzz 40a, the class)."""
-    from fusion._counts import pairwise
-    from fusion.readings._row_blocks import CUBIC, PAIRS
-
-    total = 0
-    for spec in methods.values():
-        m = str(spec["method"])
-        per = pairwise(n, names, PAIRS[m], rows=rows, cubic=m in CUBIC) if PAIRS[m] else rows * n
-        total += _METHOD_CALL + per
-    return work((total,), names)
+def _methods_work(rows: int, n: int, methods: Mapping[str, Mapping[str, object]] | Sequence[Mapping[str, object]],
+                  names: str, fusions: int = 1, per_reading: int = 0) -> int:
+    """Rule 17 on every method's ``fuse_epochs`` of ``rows`` epochs of ``n`` readings, ``fusions`` times each, naming
+    ``names``: first each method's own limits (``epochs_limit``, what ``fuse_epochs`` would refuse), then their sum
+    at their measured cost (``_EPOCH_UNITS`` an epoch plus ``_METHOD_CALL`` a call; the methods were not counted: 200,000
+    of 2 runs ran over 60 CPU-s, each within ``fuse_epochs``' budget; fuzz 40a, the class), plus ``per_reading`` units
+    of each of the ``rows * n`` readings for the caller's own work. ``methods``: a dict of specs, or their list."""
+    used = Counter(str(spec["method"]) for spec in (methods.values() if isinstance(methods, Mapping) else methods))
+    for name in used:   # the limits depend on the method's name only: once a name (200,000 methods, a few ms)
+        epochs_limit(rows, n, name, names)
+    total = Fraction(per_reading * rows * n)
+    for name, k in used.items():
+        reading, pair = _EPOCH_UNITS[name]
+        total += k * fusions * (_METHOD_CALL + rows * (reading * n + pair * n * n))
+    return work((math.ceil(total),), names)
 
 
 def absolute_errors(
@@ -343,9 +369,8 @@ def _draws(seed: int, n_runs: int, methods: dict[str, dict[str, object]], sigma:
     # same rule, naming these arguments (fuzz 39a D1: refused inside fuse_epochs, naming every argument)
     rows, n = count(n_runs, "n_runs") * count(n_samples, "n_samples"), count(n_sensors, "n_sensors")
     allocation((rows, n), "n_runs, n_samples and n_sensors")  # simulate's own memory rule first, as before
-    for spec in checked.values():
-        epochs_limit(rows, n, str(spec["method"]), "n_runs, n_samples, n_sensors and methods")
-    _methods_work(rows, n, checked, "n_runs, n_samples, n_sensors and methods")  # their sum (fuzz 40a, the class)
+    # each method's own limits, then their sum (fuzz 40a, the class)
+    _methods_work(rows, n, checked, "n_runs, n_samples, n_sensors and methods")
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
     if failure is not None:
@@ -546,11 +571,19 @@ def paired_study(
         record(failure, "failure", (), ("sensors", "samples", "biases"))
     failure_mode = one_of(failure_mode, FAILURE_MODES, "failure_mode")   # TypeError for a non-str (issue 35)
     fail = dict(failure or {})
-    # every method fuses the clean epochs, then the failed ones (a window of them: 31 of 100 samples by default),
-    # counted before the draws by _draws' counts, the clean epochs' fusions in full (fuzz 40a, the class: the methods
-    # were not counted; chapter 01's alpha study, 6 kernels of 500 runs, counts 6e8)
-    _methods_work(n_runs * count(n_samples, "n_samples"), count(n_sensors, "n_sensors"), methods,
-                  "n_runs, n_samples, n_sensors and methods")
+    # every method fuses the clean epochs, then the failed ones (those the failure changed: at most every epoch, 31 of
+    # 100 samples by default), so two fusions a method; an optimal set with options only runs the default set for its
+    # members (_paired_errors). Counted before the draws by monte_carlo's rules: simulate's memory, each method's
+    # fuse_epochs limits (fix46: paired_study lacked them), their sum at their measured cost (fuzz 40a, the class).
+    # The book's largest call, chapter 01's alpha study at the stability sweep's 10x runs (6 methods of 5,000 runs),
+    # counts 7.0e8 units and ran 3.0 CPU-s; its 3 methods of 5,000 runs count 4.1e8 and ran 2.2 CPU-s.
+    rows, n = n_runs * count(n_samples, "n_samples"), count(n_sensors, "n_sensors")
+    allocation((rows, n), "n_runs, n_samples and n_sensors")
+    fused = list(methods.values())
+    if any(s["method"] == "optimal_fusion_set" for s in fused) and not any(
+            s == {"method": "optimal_fusion_set"} for s in fused):
+        fused.append({"method": "optimal_fusion_set"})
+    _methods_work(rows, n, fused, "n_runs, n_samples, n_sensors and methods", fusions=2, per_reading=_PAIRED_READING)
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
     z_fail = random_failure(z, rng, failure_mode, **fail)  # type: ignore[arg-type]
