@@ -114,17 +114,18 @@ def test_drawn_readings_beyond_a_callees_input_budget_are_refused_at_entry(name)
 
 def test_is_objective_counts_its_two_simultaneous_arrays():
     """D2: is_objective holds two (R, E) arrays at once (tracemalloc: 2.08); R x E = 1.5e8 (2**21 x 72) passed the memory rule
-    checked on one array (2**28) and held two of 1.2 GiB. Now refused by name; just inside (R x E = 2**27) passes
+    checked on one array (2**28) and held two of 1.2 GiB. Now refused by name; just inside (R x E = 2**21 x 42: three
+    arrays, 2.08 rounded up, review 18) passes
     the same rule."""
     from fusion._counts import allocation
     from fusion.estimates.chernoff.mixture import is_objective
 
     R = 2**21
     L, lg = np.zeros((R, 1)), np.zeros(R)
-    _refused_fast(is_objective, L, lg, np.ones((72, 1)), match=r"^L and eps ask .*2 arrays of")
-    allocation((R, 64), "L and eps", arrays=2)  # accepted: 2**28 elements in all
+    _refused_fast(is_objective, L, lg, np.ones((72, 1)), match=r"^L and eps ask .*3 arrays of")
+    allocation((R, 42), "L and eps", arrays=3)  # accepted: 2**28 elements in all (3 arrays: 2.08 rounded up)
     with pytest.raises(ValueError, match="L and eps"):
-        allocation((R, 65), "L and eps", arrays=2)
+        allocation((R, 43), "L and eps", arrays=3)
 
 
 @pytest.mark.parametrize("order", [lambda: list(range(2**22)), lambda: [list(range(6))] * (2**22 // 6),

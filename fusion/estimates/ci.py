@@ -147,8 +147,8 @@ def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criteri
     # an inverse a weight (fuzz 36a C3): 0.3 ns a d**3 for one weight, 0.9 for ten
     dense_work(w.size + 2, P1.shape[0], "omega, P1 and P2", DENSE_CUBE)
     # rule 9: the stack (fuzz 38a C1), two at once (w I1 and (1 - w) I2, then info and its inverse): tracemalloc's
-    # peak 2.01 stacks measured (20,000 weights, d = 20; fuzz 39a D2)
-    allocation((w.size, P1.shape[0], P1.shape[0]), "omega, P1 and P2", arrays=2)
+    # peak 2.01 stacks measured (20,000 weights, d = 20; fuzz 39a D2), rounded up (review 18)
+    allocation((w.size, P1.shape[0], P1.shape[0]), "omega, P1 and P2", arrays=3)
     I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
     info = w[..., None, None] * I1 + (1.0 - w[..., None, None]) * I2
     if criterion == "trace":
@@ -220,8 +220,8 @@ def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike,
         raise ValueError(f"omega must lie in (0, {'1]' if same_omega else '1)'}, got {omega}")
     dense_work(w.size + 3, n, "omega, P1d, P1i, P2d and P2i", 2.5 * DENSE_CUBE)
     # rule 9: the stack of both (fuzz 38a C1), three times at once: tracemalloc's peak 6.2 stacks of one, 3.1 of
-    # both, measured (20,000 weights, d = 20; fuzz 39a D2)
-    allocation((2, w.size, n, n), "omega, P1d, P1i, P2d and P2i", arrays=3)
+    # both, measured (20,000 weights, d = 20; fuzz 39a D2), rounded up (review 18)
+    allocation((2, w.size, n, n), "omega, P1d, P1i, P2d and P2i", arrays=4)
     w1 = w[..., None, None]
     w2 = w1 if same_omega else 1.0 - w1
     T1, T2 = A1d / w1 + A1i, A2d / w2 + A2i

@@ -103,8 +103,9 @@ def fuzzy_cluster_fusion(xs: ArrayLike, Ps: ArrayLike, level: float = 0.01) -> C
     check_magnitude(X, "xs")
     # rule 9 (fuzz 36a C1), before any work: the closure's (..., N, N, N) max-min product, the pairs' (N, N, n, n)
     allocation(X.shape[:-1] + (N, N), "xs and Ps")
-    # the pairs' sums and their inverses at once: tracemalloc's peak 2.05 stacks measured (N = 40, n = 40; fuzz 39a D2)
-    allocation((N, N, n, n), "xs and Ps", arrays=2)
+    # the pairs' sums and their inverses at once: tracemalloc's peak 2.05 stacks measured (N = 40, n = 40; fuzz 39a D2),
+    # rounded up (review 18)
+    allocation((N, N, n, n), "xs and Ps", arrays=3)
     # rule 17 (fuzz 38a C9): the N covariances' checks and the N x N pairs' inverses, 0.06 ns a d**3 per matrix
     # measured (N = 3, n = 3,000: 20 CPU-s)
     dense_work(N * N + N, n, "xs and Ps", 0.6 * DENSE_CUBE)

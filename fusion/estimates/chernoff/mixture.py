@@ -327,7 +327,7 @@ def is_objective(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
         raise ValueError(f"eps has {E.shape[-1]} entries, L has {Lm.shape[1]} columns")
     # rules 9, 17 (fuzz 38a C2, fix43r): the (R, E) log weights, 7-13 ns each at N = 2-3, 39 at 50: 0.08 a N + 10
     rows = E.shape[0] if E.ndim == 2 else 1
-    allocation((Lm.shape[0], rows), "L and eps", arrays=2)  # two at once: tracemalloc peak 2.08 (fuzz 39a D2)
+    allocation((Lm.shape[0], rows), "L and eps", arrays=3)  # two at once: tracemalloc peak 2.08 (fuzz 39a D2), up
     work((Lm.shape[0], rows, Lm.shape[1] + 10), "L and eps", weight=0.08)
     return _is_objective(Lm, lg, E)
 

@@ -88,7 +88,7 @@ def toy_study(rng: np.random.Generator, r: int = 20_000, base: ToyStudy | None =
     rng : numpy.random.Generator
         Draws the ``r`` importance samples from the first-order mixture at ω = 0.5 (eq. ``eq-chf-is``).
     r : int
-        Importance samples (>= 1; the samples' densities at the 101 exponents, r × 101, must fit the memory budget).
+        Importance samples (>= 1; the samples' densities at the 101 exponents, r × 101, three at once, must fit the memory budget).
     base : ToyStudy, optional
         A study of the same mixtures whose exact and first-order curves and minimisers are reused (they do not
         depend on the samples): only the importance sampling is redone.
@@ -108,7 +108,7 @@ def toy_study(rng: np.random.Generator, r: int = 20_000, base: ToyStudy | None =
     """
     rng = as_rng(rng)
     r = count(r, "r")
-    allocation((r, 101), "r")
+    allocation((r, 101), "r", arrays=3)   # is_objective's three (r, 101) arrays at once, checked here by r (review 18)
     if base is not None:
         instance_of(base, ToyStudy, "base")
     toy = two_mixtures.toy_mixtures()

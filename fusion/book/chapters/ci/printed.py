@@ -141,8 +141,8 @@ def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, veloc
     T : float
         Sampling period (s).
     n_steps : int
-        Steps, the initial one included (at most 10⁵: a split CI search per step, within the work budget
-        ``fusion._validation.MAX_WORK``; a ValueError names ``n_steps``).
+        Steps, the initial one included (at most 14,285: a split CI search per step, 0.70 ms measured, within the
+        work budget ``fusion._validation.MAX_WORK``; a ValueError names ``n_steps``).
     velocity_sigma : float
         Prior velocity standard deviation (m/s), common to both filters.
     t_steady : float
