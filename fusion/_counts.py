@@ -343,7 +343,7 @@ def allocation(shape: tuple[int, ...], names: str, arrays: int = 1) -> None:
     product of counts (runs x particles x steps) calls this at its entry with that product's shape, and with
     ``arrays``, the arrays of that shape its work holds at once (a product and the temporary of the next operation
     on it: fuzz 39a D2, ``is_objective`` held two 1.8 GiB arrays at once when each alone was checked), measured
-    (``tracemalloc``'s peak over one array's bytes, rounded) and stated at the call.
+    (``tracemalloc``'s peak over one array's bytes, rounded up: 2.05 is 3) and stated at the call.
 
     Raises
     ------
@@ -612,32 +612,46 @@ def sequence(value: object, name: str, length: int | None = None, *, minimum: in
     return items
 
 
-def iterable(value: object, name: str) -> list:
+def iterable(value: object, name: str, limit: int | None = None, why: str = "") -> list:
     """An argument documented as an *iterable* (issue 35, class 6): its items, in iteration order.
 
     Wider than :func:`sequence`, for an argument whose order does not matter (a collection of values to avoid):
     any sequence :func:`sequence` takes, and a set, a frozenset, a mapping (its keys), a dict view, an iterator or a
     generator. Text (``str``, ``bytes``) is refused as a whole, not read character by character; so is anything that
-    is not iterable. A one-pass iterable is read once, at most :data:`MAX_COUNT` + 1 items (an endless generator is
-    refused, not iterated for ever).
+    is not iterable. A one-pass iterable is read once, at most ``limit`` + 1 items (an endless generator is
+    refused, not iterated for ever, and the items held stay bounded).
+
+    Parameters
+    ----------
+    value : iterable
+        The argument.
+    name : str
+        Its name, named in the messages.
+    limit : int, optional
+        The most items accepted: :data:`MAX_COUNT` (rule 9) by default; a caller whose work budget accepts fewer
+        (``MAX_WORK`` // the units of an item) passes that count, so that no more than it + 1 items are read.
+    why : str
+        The reason of ``limit``, stated in the message (default rule 9's).
 
     Raises
     ------
     TypeError
         Text or not an iterable; or the iteration itself raised (its exception named and chained).
     ValueError
-        More than :data:`MAX_COUNT` items.
+        More than ``limit`` items.
     """
+    if limit is None:
+        limit, why = MAX_COUNT, "rule 9: the items of an iterable argument are a size"
     if isinstance(value, (list, tuple, range, np.ndarray)) or hasattr(value, "__array__"):
         return sequence(value, name)
     if isinstance(value, (str, bytes, bytearray)) or not isinstance(value, Iterable):
         raise TypeError(f"{name} must be an iterable (a list, set, tuple, generator, ...), got {type(value).__name__}")
     try:
-        items = list(itertools.islice(iter(value), MAX_COUNT + 1))
+        items = list(itertools.islice(iter(value), limit + 1))
     except MemoryError:
         raise
     except Exception as exc:  # the argument's own exception: rule 15, named and chained
         raise TypeError(f"{name} could not be iterated: it raised {type(exc).__name__}: {str(exc):.200}") from exc
-    if len(items) > MAX_COUNT:
-        raise ValueError(f"{name} has more than {MAX_COUNT} items (rule 9: the items of an iterable argument are a size)")
+    if len(items) > limit:
+        raise ValueError(f"{name} has more than {limit} items ({why})")
     return items

@@ -313,9 +313,28 @@ def test_recommend_check_refuses_an_endless_iterable_by_name(which):
                "recommendations": itertools.cycle(RECOMMENDATIONS)}[which]
     args = {"records": [], "recommendations": RECOMMENDATIONS} | {which: endless}
     t0 = time.process_time()
-    with pytest.raises(ValueError, match=rf"^{which} has more than 10000000 items"):
+    with pytest.raises(ValueError, match=rf"^{which} has more than {dict(records=5000000, recommendations=10000000)[which]} items"):
         check(**args)
     assert time.process_time() - t0 < 5.0
+
+
+def test_recommend_check_reads_no_more_records_than_it_checks():
+    """Review 18 (fix46): a generator of records was read up to 1e7 + 1 items (2 GB of distinct dicts) before the
+    refusal; the work budget checks 5e6 records (CHECK_RECORD units each), so at most 5e6 + 1 are read, and refused
+    by name at once (fresh dicts: the caller's memory held by the read stays bounded)."""
+    import itertools
+    import time
+
+    from fusion._limits import MAX_WORK
+    from fusion.book.recommend import CHECK_RECORD, check
+
+    drawn = itertools.count()
+    fresh = (dict() for _ in drawn)    # a distinct new dict each
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match=r"^records has more than 5000000 items \(the work budget"):
+        check(fresh, [])
+    assert time.process_time() - t0 < 1.0
+    assert next(drawn) == MAX_WORK // CHECK_RECORD + 1   # items read
 
 
 def test_recommend_check_budget_edges():
