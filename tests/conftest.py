@@ -112,7 +112,9 @@ def shared_rewrite(fn: Path, config: pytest.Config) -> tuple[bytes, object]:
     the first process to reach a module rewrites it under a file lock and stores the code in pytest's own format
     (its ``_write_pyc_fp``); the others read it back with pytest's own reader (``_read_pyc``: checked against the
     hash of the current source, else rewritten again). The code is the same (``marshal``, as pytest's cache):
-    every assert is rewritten as before. ``tests/test_hypothesis_digest.py`` checks the parity.
+    every assert is rewritten as before. ``tests/test_hypothesis_digest.py`` checks the parity. Each stored file is
+    named by :func:`rewrite_key` (pytest's release and the options that change the rewrite), so a file another pytest
+    or another setting wrote is never read.
     """
     root = os.environ.get(_REWRITE_DIR_ENV)
     if not root or Path(fn).parent != TESTS:
@@ -121,7 +123,7 @@ def shared_rewrite(fn: Path, config: pytest.Config) -> tuple[bytes, object]:
     import importlib.util
 
     fn = Path(fn)
-    pyc = Path(root) / (fn.name[:-3] + ".pyc")
+    pyc = Path(root) / f"{fn.name[:-3]}.{rewrite_key(config)}.pyc"
     try:
         lock = open(Path(root) / (fn.name + ".lock"), "w", encoding="utf-8")  # noqa: SIM115 - closed below
     except OSError:          # the run's directory is gone (a run that outlived its controller): rewrite here
@@ -142,9 +144,31 @@ def shared_rewrite(fn: Path, config: pytest.Config) -> tuple[bytes, object]:
         return source_hash, co
 
 
-#: Also off (pytest's own rewriting) when the installed pytest lacks the private helpers read above.
-PLAIN_REWRITE = (bool(os.environ.get("FUSION_TEST_PLAIN_REWRITE"))
-                 or not all(hasattr(assertion_rewrite, n) for n in ("_rewrite_test", "_read_pyc", "_write_pyc_fp")))
+def rewrite_key(config: pytest.Config) -> str:
+    """The name under which :func:`shared_rewrite` stores a rewritten module: pytest's ``PYTEST_TAG`` (the Python
+    cache tag and pytest's version, as pytest's own cache) and the ini options the rewriter reads
+    (``enable_assertion_pass_hook`` adds code to every assert)."""
+    return f"{assertion_rewrite.PYTEST_TAG}-passhook{int(bool(config.getini('enable_assertion_pass_hook')))}"
+
+
+def rewrite_contract(module: object) -> bool:
+    """Whether ``module``'s private rewriting helpers have the contract :func:`shared_rewrite` relies on (pytest 9's):
+    ``_rewrite_test(fn, config)`` returning the source's hash, ``_write_pyc_fp(fp, source_hash, co)`` and
+    ``_read_pyc(source, pyc, ...)`` checking that hash, and a ``PYTEST_TAG``. pytest 8 (allowed by pyproject) passes a
+    stat of the source instead (``_write_pyc_fp(fp, source_stat, co)``): any other contract is pytest's own path."""
+    def params(name: str) -> list[str]:
+        return list(inspect.signature(getattr(module, name)).parameters)
+    try:
+        return (params("_rewrite_test") == ["fn", "config"] and params("_write_pyc_fp") == ["fp", "source_hash", "co"]
+                and params("_read_pyc")[:2] == ["source", "pyc"]
+                and isinstance(getattr(module, "PYTEST_TAG", None), str))
+    except (AttributeError, TypeError, ValueError):   # a helper missing, or not a function with a signature
+        return False
+
+
+#: Also off (pytest's own rewriting) when the installed pytest's private helpers have another contract
+#: (:func:`rewrite_contract`).
+PLAIN_REWRITE = bool(os.environ.get("FUSION_TEST_PLAIN_REWRITE")) or not rewrite_contract(assertion_rewrite)
 if not PLAIN_REWRITE:
     assertion_rewrite._fusion_original_rewrite = _ORIGINAL_REWRITE
     assertion_rewrite._rewrite_test = shared_rewrite

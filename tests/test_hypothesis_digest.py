@@ -133,7 +133,8 @@ def test_the_shared_rewrite_is_pytests_own(tmp_path, monkeypatch, pytestconfig) 
     fn = conftest.TESTS / "test_module_size.py"
     own_hash, own = conftest._ORIGINAL_REWRITE(fn, pytestconfig)
     first = conftest.shared_rewrite(fn, pytestconfig)                # rewritten here, stored
-    assert (tmp_path / "test_module_size.pyc").exists()
+    stored = tmp_path / f"test_module_size.{conftest.rewrite_key(pytestconfig)}.pyc"
+    assert stored.exists()
     second = conftest.shared_rewrite(fn, pytestconfig)               # read back
     for h, co in (first, second):
         assert h == own_hash and marshal.dumps(co) == marshal.dumps(own)
@@ -141,7 +142,58 @@ def test_the_shared_rewrite_is_pytests_own(tmp_path, monkeypatch, pytestconfig) 
     copy = tmp_path / "elsewhere" / "test_copy.py"
     copy.parent.mkdir()
     copy.write_text(fn.read_text(encoding="utf-8") + "\nassert True\n", encoding="utf-8")
-    (tmp_path / "test_copy.pyc").write_bytes((tmp_path / "test_module_size.pyc").read_bytes())
+    (tmp_path / "test_copy.pyc").write_bytes(stored.read_bytes())
     assert rewrite._read_pyc(copy, tmp_path / "test_copy.pyc") is None
     outside = conftest.shared_rewrite(copy, pytestconfig)             # not under tests/: pytest's own, not stored
     assert marshal.dumps(outside[1]) == marshal.dumps(conftest._ORIGINAL_REWRITE(copy, pytestconfig)[1])
+
+
+def _foreign_pyc(path, fn) -> None:
+    """A pyc valid for ``fn``'s current source (pytest's header and hash) holding other code."""
+    import importlib.util
+
+    from _pytest.assertion import rewrite
+
+    with open(path, "wb") as fp:
+        rewrite._write_pyc_fp(fp, importlib.util.source_hash(fn.read_bytes()), compile("FOREIGN = 1", str(fn), "exec"))
+
+
+def test_the_shared_rewrite_reads_only_its_own_tag(tmp_path, monkeypatch, pytestconfig) -> None:
+    """fix46 (review 18, points 3-4): a module stored under another pytest's tag, or another rewrite option, or the
+    earlier name without a tag, is never read: each is rewritten by pytest itself (under the pass hook, with it)."""
+    import marshal
+
+    if conftest.PLAIN_REWRITE:
+        pytest.skip("pytest's own rewriting (FUSION_TEST_PLAIN_REWRITE, or another pytest release)")
+    monkeypatch.setenv(conftest._REWRITE_DIR_ENV, str(tmp_path))
+    fn = conftest.TESTS / "test_module_size.py"
+    key = conftest.rewrite_key(pytestconfig)
+    for name in ("test_module_size.pyc", "test_module_size.cpython-311-pytest-8.3.5-passhook0.pyc",
+                 f"test_module_size.{key.replace('passhook0', 'passhook1')}.pyc"):
+        _foreign_pyc(tmp_path / name, fn)
+    got = conftest.shared_rewrite(fn, pytestconfig)[1]
+    assert "FOREIGN" not in got.co_names
+    assert marshal.dumps(got) == marshal.dumps(conftest._ORIGINAL_REWRITE(fn, pytestconfig)[1])
+    # the pass hook on: another key, its own rewrite (not the one stored without it)
+    getini = pytestconfig.getini
+    monkeypatch.setattr(pytestconfig, "getini", lambda name: True if name == "enable_assertion_pass_hook"
+                        else getini(name))
+    (tmp_path / f"test_module_size.{key.replace('passhook0', 'passhook1')}.pyc").unlink()
+    hooked = conftest.shared_rewrite(fn, pytestconfig)[1]
+    assert marshal.dumps(hooked) == marshal.dumps(conftest._ORIGINAL_REWRITE(fn, pytestconfig)[1])
+    assert marshal.dumps(hooked) != marshal.dumps(got)
+
+
+def test_the_shared_rewrite_needs_pytests_contract() -> None:
+    """fix46: pytest 8's helpers (a stat of the source, not its hash) are not the contract: pytest's own path."""
+    import types
+
+    from _pytest.assertion import rewrite
+
+    assert conftest.rewrite_contract(rewrite)
+    eight = types.SimpleNamespace(PYTEST_TAG="cpython-311-pytest-8.3.5", _rewrite_test=lambda fn, config: None,
+                                  _read_pyc=lambda source, pyc, trace=None: None,
+                                  _write_pyc_fp=lambda fp, source_stat, co: None)
+    assert not conftest.rewrite_contract(eight)
+    assert not conftest.rewrite_contract(types.SimpleNamespace(PYTEST_TAG="x"))
+    assert conftest.rewrite_contract(types.SimpleNamespace(**{**vars(eight), "_write_pyc_fp": lambda fp, source_hash, co: None}))
