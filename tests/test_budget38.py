@@ -54,14 +54,28 @@ def test_posterior_crb_frames_refused_naming_truths(monkeypatch):
 
 
 def test_filter_step_budget_keeps_the_books_sizes():
-    """The budget is a count of units: chapter-size requests (2,000 steps of 100 runs) stay inside it."""
-    from fusion.filtering.kalman import (FUSION_LOOP_CUBE, FUSION_LOOP_M_CUBE, FUSION_LOOP_SPLIT_CUBE,
-                                         FUSION_LOOP_SPLIT_STEP, FUSION_LOOP_STEP, LOCAL_TRACK_CUBE,
-                                         LOCAL_TRACK_M_CUBE, LOCAL_TRACK_STEP, _steps_work)
-    # with the weights fusion_loop and local_track pass (fix43r: a bad cube weight can fail this test)
-    _steps_work(2000, 100, 4, 2, FUSION_LOOP_STEP, "z", FUSION_LOOP_CUBE, FUSION_LOOP_M_CUBE)
-    _steps_work(2000, 100, 4, 2, FUSION_LOOP_SPLIT_STEP, "z", FUSION_LOOP_SPLIT_CUBE, FUSION_LOOP_M_CUBE)
-    _steps_work(20000, 100, 4, 2, LOCAL_TRACK_STEP, "z", LOCAL_TRACK_CUBE, LOCAL_TRACK_M_CUBE)
+    """The budget is a count of units: chapter-size requests (2,000 steps of 100 runs) stay inside it, counted with
+    every weight fusion_loop and local_track pass (their step, cube, run, product and matrix weights: review 18, the
+    runs were not counted here), so that a bad weight of any kind fails this test."""
+    from fusion.filtering import kalman as K
+
+    def fusion_loop(steps: int, rule: str) -> None:
+        searched = rule in ("split", "printed")
+        return K._steps_work(steps, 100, 4, 2, K.FUSION_LOOP_SPLIT_STEP if searched else K.FUSION_LOOP_STEP, "z",
+                             K.FUSION_LOOP_PRINTED_CUBE if rule == "printed" else K.FUSION_LOOP_SPLIT_CUBE if searched
+                             else K.FUSION_LOOP_CUBE, K.FUSION_LOOP_SPLIT_M_CUBE if searched else K.FUSION_LOOP_M_CUBE,
+                             run=K.FUSION_LOOP_RUN, product=K.FUSION_LOOP_PRODUCT,
+                             matrix=K.FUSION_LOOP_PRINTED_MATRIX if rule == "printed" else K.FUSION_LOOP_SPLIT_MATRIX
+                             if searched else K.FUSION_LOOP_MATRIX)
+
+    for rule in ("convex", "split", "printed"):
+        fusion_loop(2000, rule)
+    K._steps_work(20000, 100, 4, 2, K.LOCAL_TRACK_STEP, "z", K.LOCAL_TRACK_CUBE, K.LOCAL_TRACK_M_CUBE,
+                  run=K.LOCAL_TRACK_RUN, product=K.LOCAL_TRACK_PRODUCT, matrix=K.LOCAL_TRACK_MATRIX)
+    # the runs count: the same steps with 10**6 runs are refused (without the run weights they were not)
+    with pytest.raises(ValueError, match="^z"):
+        K._steps_work(2000, 10**6, 4, 2, K.LOCAL_TRACK_STEP, "z", K.LOCAL_TRACK_CUBE, K.LOCAL_TRACK_M_CUBE,
+                      run=K.LOCAL_TRACK_RUN, product=K.LOCAL_TRACK_PRODUCT, matrix=K.LOCAL_TRACK_MATRIX)
 
 
 class _Unread(np.ndarray):
