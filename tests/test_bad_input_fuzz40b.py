@@ -222,23 +222,44 @@ def _deterministic_records():
     return out
 
 
-def test_evaluate_refuses_the_books_deterministic_records_naming_their_evidence_field():
+class _Drawn(BaseException):
+    """Raised at the first draw of an evidence function: evaluate called it."""
+
+
+def test_evaluate_refuses_the_books_deterministic_records_naming_their_evidence_field(monkeypatch):
     """C5: 23 evidence functions of the book's claim files (every lecture_weighting ev_*, ci's ev_headline, ...) take a
     chapter's studies, not ``(settings, seed=, runs=)``: evaluate raised a raw TypeError ("unexpected keyword argument
-    'seed'") or the function's own refusal of a dict. Each is refused by a ClaimsFileError naming the field evidence,
-    before the call."""
+    'seed'") or the function's own refusal of a dict. Each such record is deterministic (the ledger's primary evidence
+    has no run count) and refused by a ClaimsFileError naming the field evidence, before the call; every stochastic
+    record (as the stability sweep reads them) is called, up to its first draw. Review 18: their count was pinned."""
     import time
 
     from fusion.book import claims as C
+    from fusion.book import stability as S
 
-    specs = _deterministic_records()
-    assert len({s.evidence for s in specs}) == 23
-    for spec in specs:
+    stochastic = {rid for _, rid in S.stochastic_readings()}
+    unbound = {spec.id for spec in _deterministic_records()}
+    assert unbound and not unbound & stochastic
+    specs = {spec.id: spec for cf in C.load_all(C.claims_dir()).values() for spec in cf.records if spec.evidence}
+    assert stochastic <= set(specs)
+
+    def drawn(*args, **kwargs):
+        raise _Drawn
+
+    monkeypatch.setattr(np.random, "default_rng", drawn)
+    for rid in sorted(unbound):
         t0 = time.process_time()
-        with pytest.raises(C.ClaimsFileError, match=rf"record {spec.id}: field evidence: .* not \(settings, \*, seed, "
+        with pytest.raises(C.ClaimsFileError, match=rf"record {rid}: field evidence: .* not \(settings, \*, seed, "
                                                     r"runs\)"):
-            C.evaluate(spec, "primary", 0, 100)
+            C.evaluate(specs[rid], "primary", 0, 100)
         assert time.process_time() - t0 < 1.0
+    for rid in sorted(stochastic):
+        try:
+            C.evaluate(specs[rid], "primary", 0, 100)
+        except _Drawn:
+            pass
+        except C.ClaimsFileError as exc:
+            pytest.fail(f"stochastic record {rid} refused: {exc}")
 
 
 # --- D2: a float32 or float16 is glued as the decimal it prints ------------------------------------------------------
