@@ -67,3 +67,20 @@ def test_toy_study_refuses_what_is_objective_would():
 
     r = MAX_ELEMENTS // (3 * 101) + 1
     _refused_fast(toy_study, np.random.default_rng(0), r, match=r"^r ask .*3 arrays of")
+
+
+def test_a_flat_list_beyond_the_limit_counts_exactly():
+    """Point 11: a flat list longer than sequence_entries' limit was reported as "at least" its length though its count
+    is exact; read within _EXACT_SCAN entries it is exact, a nested one or one beyond the scan stays "at least" (and
+    fast: fuzz 39a E1)."""
+    from fusion._entries import _EXACT_SCAN
+    from fusion._validation import entries_text, given_entries
+
+    assert given_entries([0.5] * 1000, 6) == 1000
+    assert entries_text(given_entries(tuple(range(1000)), 6)) == "1e+03"
+    assert given_entries([[0.5, 0.5]] * 1000, 6) == 1000.5            # rows not read: at least
+    assert given_entries([[0.5] * 1000, [0.5]], 6) == 1001                 # the last one flat: exact
+    big = [0.5] * (_EXACT_SCAN + 1)
+    t0 = time.process_time()
+    assert given_entries(big, 6) == _EXACT_SCAN + 1.5
+    assert time.process_time() - t0 < 0.1
