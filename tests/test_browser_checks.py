@@ -109,6 +109,35 @@ def test_pages_do_not_see_what_earlier_pages_stored(tmp_path: Path, chromium: Ch
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
+def test_a_refused_opaque_origin_is_tolerated_and_nothing_else(tmp_path: Path) -> None:
+    """Review 18: the session storage is also cleared under the opaque origin "null" (Chromium 150 keeps a file page's
+    there); a Chromium that refuses that origin (a DevTools error) still renders, but any other failure of that command,
+    or a refusal of the "file://" one, fails the page."""
+    import test_browser as tb
+
+    page = tmp_path / "fine.html"
+    page.write_text("<html><body><p>fine</p></body></html>", encoding="utf-8")
+    with Chromium(tmp_path / "profile") as browser:
+        real = browser.send
+
+        def refusing(failure: type[RuntimeError], origin: str):
+            def send(method, params=None, session=None, timeout=tb.COMMAND_TIMEOUT):
+                if method == "Storage.clearDataForOrigin" and (params or {}).get("origin") == origin:
+                    raise failure(f"{method}: Chromium refused it: {{'code': -32602, 'message': 'Invalid origin'}}")
+                return real(method, params, session, timeout)
+            return send
+
+        browser.send = refusing(tb.DevToolsRefused, "null")
+        assert "<p>fine</p>" in browser.render(page.as_uri(), 800)[0]
+        browser.send = refusing(RuntimeError, "null")
+        with pytest.raises(RuntimeError, match="fine.html at 800 px: Storage.clearDataForOrigin"):
+            browser.render(page.as_uri(), 800)
+        browser.send = refusing(tb.DevToolsRefused, "file://")
+        with pytest.raises(RuntimeError, match="fine.html at 800 px: Storage.clearDataForOrigin"):
+            browser.render(page.as_uri(), 800)
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
 def test_a_hung_page_or_an_ended_browser_fails_clearly(tmp_path: Path) -> None:
     """A page that never finishes fails after its timeout, naming it, and the browser renders the next page; a
     browser that has died fails the next page, saying so; either way no process of the browser is left."""
