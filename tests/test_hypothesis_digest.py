@@ -196,4 +196,5 @@ def test_the_shared_rewrite_needs_pytests_contract() -> None:
                                   _write_pyc_fp=lambda fp, source_stat, co: None)
     assert not conftest.rewrite_contract(eight)
     assert not conftest.rewrite_contract(types.SimpleNamespace(PYTEST_TAG="x"))
-    assert conftest.rewrite_contract(types.SimpleNamespace(**{**vars(eight), "_write_pyc_fp": lambda fp, source_hash, co: None}))
+    nine = {**vars(eight), "_write_pyc_fp": lambda fp, source_hash, co: None}
+    assert conftest.rewrite_contract(types.SimpleNamespace(**nine))

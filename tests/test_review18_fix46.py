@@ -16,7 +16,8 @@ def test_split_ci_exactness_states_its_edge():
     from fusion.book.chapters.ci import printed
 
     doc = printed.split_ci_exactness.__doc__
-    stated = int(re.search(r"n_steps : int\s+Steps, the initial one included \(at most ([\d,]+)", doc)[1].replace(",", ""))
+    found = re.search(r"n_steps : int\s+Steps, the initial one included \(at most ([\d,]+)", doc)
+    stated = int(found[1].replace(",", ""))
     loop_work((stated,), 0, "n_steps", step=printed._SPLIT_CI_STEP)   # accepted
     with pytest.raises(ValueError, match="^n_steps"):
         loop_work((stated + 1,), 0, "n_steps", step=printed._SPLIT_CI_STEP)

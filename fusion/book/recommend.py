@@ -259,8 +259,9 @@ def check(records: Iterable[Mapping[str, object]],
     ValueError
         A record without ``id`` and ``status``, a status outside :data:`fusion.book.ledger.STATUSES`, or two
         records with one id (naming ``records``); more than 5e6 items in ``records`` (what the work budget checks)
-        or ``10**7`` in ``recommendations`` (rule 9: an endless generator is refused, not read for ever), or more records and evidence items than the
-        work budget checks in about 10 CPU-s (``CHECK_RECORD``, ``CHECK_EVIDENCE`` units each), naming them.
+        or ``10**7`` in ``recommendations`` (rule 9: an endless generator is refused, not read for ever), or more
+        records and evidence items than the work budget checks in about 10 CPU-s (``CHECK_RECORD``,
+        ``CHECK_EVIDENCE`` units each), naming them.
     """
     # an iterable's items read at most once past what the work budget checks (fuzz 40b C8: an endless generator was
     # read for ever; review 18: up to 1e7 + 1 records, 2 GB of the caller's dicts, were read before the refusal)

@@ -274,9 +274,10 @@ def _methods_work(rows: int, n: int, methods: Mapping[str, Mapping[str, object]]
                   names: str, fusions: int = 1, per_reading: int = 0) -> int:
     """Rule 17 on every method's ``fuse_epochs`` of ``rows`` epochs of ``n`` readings, ``fusions`` times each, naming
     ``names``: first each method's own limits (``epochs_limit``, what ``fuse_epochs`` would refuse), then their sum
-    at their measured cost (``_EPOCH_UNITS`` an epoch plus ``_METHOD_CALL`` a call; the methods were not counted: 200,000
-    of 2 runs ran over 60 CPU-s, each within ``fuse_epochs``' budget; fuzz 40a, the class), plus ``per_reading`` units
-    of each of the ``rows * n`` readings for the caller's own work. ``methods``: a dict of specs, or their list."""
+    at their measured cost (``_EPOCH_UNITS`` an epoch plus ``_METHOD_CALL`` a call; the methods were not counted:
+    200,000 of 2 runs ran over 60 CPU-s, each within ``fuse_epochs``' budget; fuzz 40a, the class), plus
+    ``per_reading`` units of each of the ``rows * n`` readings for the caller's own work. ``methods``: a dict of
+    specs, or their list."""
     used = Counter(str(spec["method"]) for spec in (methods.values() if isinstance(methods, Mapping) else methods))
     for name in used:   # the limits depend on the method's name only: once a name (200,000 methods, a few ms)
         epochs_limit(rows, n, name, names)

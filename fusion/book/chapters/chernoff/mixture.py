@@ -88,7 +88,8 @@ def toy_study(rng: np.random.Generator, r: int = 20_000, base: ToyStudy | None =
     rng : numpy.random.Generator
         Draws the ``r`` importance samples from the first-order mixture at ω = 0.5 (eq. ``eq-chf-is``).
     r : int
-        Importance samples (>= 1; the samples' densities at the 101 exponents, r × 101, three at once, must fit the memory budget).
+        Importance samples (>= 1; the samples' densities at the 101 exponents, r × 101, three at once, must fit the
+        memory budget).
     base : ToyStudy, optional
         A study of the same mixtures whose exact and first-order curves and minimisers are reused (they do not
         depend on the samples): only the importance sampling is redone.
