@@ -6,6 +6,7 @@ from decimal import Decimal
 
 import cmath
 import datetime
+import math
 import numbers
 import re
 from collections.abc import Mapping
@@ -149,6 +150,21 @@ def _printed_float(value: object) -> object:
     return float(str(v)) if isinstance(v, (np.float16, np.float32)) else value
 
 
+def _longdouble_float(value: object, name: str) -> object:
+    """A NumPy longdouble (a scalar or a 0-d array) as a Python float (fuzz 41b D3: ``.item()`` keeps a longdouble, so
+    :func:`glue_all` glued ``np.longdouble('0.123456')`` unrounded and unconverted); ValueError naming ``name`` when
+    the float would be another number, beyond float's range (``1e400`` overflows to inf, a non-zero ``1e-400``
+    underflows to 0); any other value unchanged."""
+    v = value[()] if isinstance(value, np.ndarray) and value.ndim == 0 else value
+    if not isinstance(v, np.longdouble):
+        return value
+    f = float(v)
+    if np.isfinite(v) and (not math.isfinite(f) or (f == 0.0 and v != 0)):
+        raise ValueError(f"{name} must be a number within float's range (a longdouble is glued as a float), got "
+                         f"{shown(v)}")
+    return f
+
+
 def _glued_cell(table: object, row: object, column: object, name: str, lo: float | None = None,
                 hi: float | None = None) -> float:
     """The cell ``table.loc[row, column]`` that a chapter glues, as a float by the glue rule (fuzz 22b, V): the row
@@ -249,8 +265,8 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     ----------
     values : mapping of str to object
         Glue keys (prefixed with the chapter's short id) and values. Floats are rounded to
-        ``decimals`` when it is given; NumPy scalars are converted to Python numbers, a float32 or float16 (also a
-        0-d array) to the shortest decimal that round-trips in its own dtype, the number it prints
+        ``decimals`` when it is given; NumPy scalars are converted to Python numbers (a longdouble to a float, then
+        rounded), a float32 or float16 (also a 0-d array) to the shortest decimal that round-trips in its own dtype, the number it prints
         (``np.float32(0.654)`` is glued as 0.654, not 0.6539999842643738).
         Matplotlib figures are checked by :func:`fusion.book.figures.audit_figure` (which raises
         on a figure that breaks the book's figure rules), glued, then closed.
@@ -273,7 +289,8 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         structured array (not a DataFrame or Styler, whose tables print a missing cell as a word), naming
         ``values[key]``; checked for every value before any is glued, whatever ``decimals``. Containers nested
         more than 64 deep (``fusion._nesting.MAX_NESTING``; their text recurses), naming ``values[key]``; a
-        container that holds itself is accepted (its text prints ``[...]`` there).
+        container that holds itself is accepted (its text prints ``[...]`` there). A NumPy longdouble beyond float's
+        range (it would be glued as inf or 0), naming ``values[key]``.
     """
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")
@@ -284,6 +301,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     for key, value in values.items():  # every value checked before any is glued
         key = _glue_key(key, "values")
         _check_finite(key, value)
+        value = _longdouble_float(value, f"values[{shown(key)}]")   # then rounded at decimals as any float
         plain[key] = text(value, f"values[{shown(key)}]") if isinstance(value, str) else value
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 

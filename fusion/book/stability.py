@@ -75,6 +75,11 @@ RUNS_FACTOR = 10
 #: budget's edge, 500,000 tasks (about 980 seeds of the book's 512 readings), builds in about 8-9 CPU-s (fuzz 40b C7:
 #: ``seeds(10_000)`` built 5.1e6 tasks in 101 CPU-s). The book's sweep, 5 seeds, is 2,560 tasks.
 TASK_WORK = 2000
+#: Units of work of one reading (a ``(kind, runs)`` entry of a record) that :func:`tasks` checks before building any
+#: task: 7.2-8.0 us measured on this shared machine (CPU time, minimum of 3, 200,000 one-reading records), so 1,000
+#: units (fuzz 41b C1: 2,000,000 readings at one seed were checked for 19 CPU-s before the task budget refused them).
+#: :func:`tasks` counts the readings (a length per record, about 0.2 us each) before checking any of them.
+READING_WORK = 1000
 
 #: Retries of a failed task before it is reported as failed.
 RETRIES = 2
@@ -320,19 +325,27 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
     ValueError
         Before any task is built (fuzz 40b C6, C7): ``runs_factor`` times a primary reading's runs beyond the ceiling
         of a run count (``10**7``: its task would be refused only on a worker, after the sweep), naming
-        ``runs_factor``; more tasks (seeds x readings, plus the scaled primaries) than the work budget builds in
-        about 10 CPU-s (``TASK_WORK`` units each: about 500,000 tasks), naming ``seed_list``.
+        ``runs_factor``; more readings and tasks (seeds x readings, plus the scaled primaries) than the work budget
+        checks and builds in about 10 CPU-s (``READING_WORK`` units a reading, counted before any is checked, and
+        ``TASK_WORK`` units a task: about 330,000 readings at one seed, 500,000 tasks of the book's 512 readings),
+        naming ``readings`` and ``seed_list``.
     """
     runs_factor = count(runs_factor, "runs_factor")
     seed_list = distinct(check_seeds(seed_list, "seed_list"), "seed_list")
+    instance_of(readings, Mapping, "readings")
+    # counted before any reading is checked (fuzz 41b C1): a length per record; a record that is not a mapping is
+    # refused by _readings
+    n_readings = sum(len(rs) if isinstance(rs, Mapping) else 0 for rs in readings.values())
+    scaled = len(readings) if runs_factor > 1 else 0
+    work((n_readings * (READING_WORK + len(seed_list) * TASK_WORK) + scaled * TASK_WORK,),
+         f"readings and seed_list ({n_readings:,} readings, {READING_WORK:,} units each to check, x {len(seed_list):,} "
+         f"seeds, {TASK_WORK:,} units a task)")
     readings = _readings(readings, runs_factor)
     if runs_factor > 1 and readings:
         top = max(rs["primary"][1] for rs in readings.values())
         if top * runs_factor > COUNT_CEILINGS["runs"]:
             raise ValueError(f"runs_factor x a primary reading's runs must be at most {COUNT_CEILINGS['runs']:.0e} (the "
                              f"ceiling of a run count), got runs_factor = {runs_factor} x {top} runs")
-    n_tasks = len(seed_list) * sum(len(rs) for rs in readings.values()) + (len(readings) if runs_factor > 1 else 0)
-    work((n_tasks,), "seed_list (its seeds x the readings, in tasks)", weight=TASK_WORK)
     out = []
     for (src, rid), rs in sorted(readings.items()):
         for key, (kind, runs) in rs.items():

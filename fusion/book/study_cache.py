@@ -77,7 +77,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._counts import count
+from fusion._counts import MAX_ELEMENTS, count
 from fusion._frozen import ReadOnlyMapping
 from fusion._validation import text
 from fusion._paths import file_bytes, folder
@@ -448,6 +448,12 @@ def _log(qualname: str, arguments: dict[str, Any], event: str, cpu: float) -> No
 _DIGEST = 32
 #: Flags of an entry's or a lock's ``os.open``: never blocks on a FIFO (fuzz 40b C2), not inherited by a child.
 _NONBLOCK = os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0)
+#: Largest entry file read back, in bytes: the memory budget (``fusion._counts.MAX_ELEMENTS`` float64, 2 GiB) plus
+#: 16 MiB of pickle framing, key and digest. A study's result is held in memory within that budget, so no entry the
+#: cache writes is larger (it does not write one that is: :func:`_entry`'s bytes beyond it are left unstored); a
+#: larger file in an entry's place is a miss found on its size, without reading it (fuzz 41b D1: a 3 GiB sparse file
+#: was read and hashed for 15.8 CPU-s before the miss). The largest entry of the book is 13.8 MB.
+_MAX_ENTRY_BYTES = MAX_ELEMENTS * 8 + 2**24
 
 
 def _regular(fd: int) -> bool:
@@ -471,23 +477,31 @@ def _stored(target: Path, key: str) -> tuple[Any] | None:
     the descriptor opened without blocking; so is a file whose payload does not match its stored digest (fuzz 40b C3:
     one changed float of an array loaded silently), checked before anything is unpickled: a damaged length field (a
     frame's, a bytes' or a text's, which made pickle ask for that much memory, fuzz 37b C1) fails it too, and any
-    failure of the unpickling (a MemoryError included: a real shortage recurs in the recomputation) is a miss. The
-    hit path reads the file once."""
+    failure of the unpickling (a MemoryError included: a real shortage recurs in the recomputation) is a miss. So is a
+    file larger than any entry the cache writes (``_MAX_ENTRY_BYTES``, fuzz 41b D1), found on its size without
+    reading it. The descriptor is closed on every path (fuzz 41b C6). The hit path reads the file once."""
     try:
         fd = os.open(target, os.O_RDONLY | _NONBLOCK)
     except OSError:
         return None
     try:
-        with os.fdopen(fd, "rb") as fh:
-            if not _regular(fh.fileno()):
-                return None
-            data = fh.read()
+        # checked on the descriptor before any read; the descriptor is closed on every path (fuzz 41b C6: a directory
+        # in the entry's place made os.fdopen raise, leaving the descriptor open, one per lookup)
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode) or st.st_size > _MAX_ENTRY_BYTES:
+            return None
+        with open(fd, "rb", closefd=False) as fh:
+            data = fh.read(_MAX_ENTRY_BYTES + 1)
+        if len(data) > _MAX_ENTRY_BYTES:      # grown since the fstat
+            return None
         digest, payload = data[:_DIGEST], memoryview(data)[_DIGEST:]
         if len(digest) < _DIGEST or hashlib.blake2b(payload, digest_size=_DIGEST).digest() != digest:
             return None
         loaded = pickle.loads(payload)        # noqa: S301 - our own file, written in this invocation
     except Exception:                         # noqa: BLE001 - any unreadable file is a miss, never the study's error
         return None                           # (MemoryError included: a real shortage recurs in the recomputation)
+    finally:
+        os.close(fd)
     # compared by exact type and value (fuzz 38b D2): a hand-made entry keyed by an array or a Series gave numpy's
     # ambiguous-truth error, np.array([key]) was a false hit; either is a damaged entry, a miss
     if type(loaded) is tuple and len(loaded) == 2 and type(loaded[0]) is str and loaded[0] == key:
@@ -567,7 +581,7 @@ def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any]
             data = _entry(key, value)
         except (pickle.PicklingError, TypeError, AttributeError):
             data = None                       # not picklable: every process computes it, as without the cache
-        if data is not None:
+        if data is not None and len(data) <= _MAX_ENTRY_BYTES:   # a larger one would be read back as a miss
             _store(root, key, target, data)
         _log(qualname, arguments, "computed", time.process_time() - start)
         return value

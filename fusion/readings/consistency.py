@@ -29,7 +29,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._validation import LOOP_STEP, allocation, integer, loop_work
+from fusion._validation import LOOP_STEP, allocation, integer, loop_work, work
 from fusion._results import ResultSpec, nested, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
@@ -38,6 +38,27 @@ from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_varia
 from fusion._shown import shown
 
 __all__ = ["ConsistentAWF", "consistency_mask", "consistency_awf", "rejection_probability"]
+
+
+#: Arrays of the pairs' shape ``(..., K, n, n)`` that :func:`consistency_awf` holds at once: ``tracemalloc``'s peak
+#: over one such array's bytes measured 5.1-6.2 (``"lecture"``) and 7.0-7.6 (``"centred"``) on (2000, 100, 5),
+#: (20, 100, 50) and (2, 50, 400) readings (fuzz 41b C3: the memory rule counted one, so (40000, 100, 5) readings
+#: raised a raw MemoryError after 12 CPU-s).
+_PAIR_ARRAYS = 8
+#: Units of work (``fusion._limits.work``, about 10 ns) of one element of the pairs' shape in :func:`consistency_awf`:
+#: 2.2-4.1 (``"lecture"``) and 3.3-5.5 (``"centred"``) units measured on the same readings (CPU time, minimum of 2,
+#: OPENBLAS_NUM_THREADS=1, shared machine), rounded up.
+_PAIR_WORK = 6
+
+
+def _pair_budget(shape: tuple[int, ...], names: str, fusions: int = 1) -> None:
+    """Refuse, before any work, ``fusions`` calls of :func:`consistency_awf` on readings of ``shape`` (..., K, n) whose
+    ``(..., K, n, n)`` pair arrays (``_PAIR_ARRAYS`` of them at once) exceed the memory budget or whose work
+    (``_PAIR_WORK`` units a pair element, each call) exceeds the work budget: ValueError naming ``names``. The one
+    rule of the function and of a caller that runs it (``check_grid`` of chapter 02, at its entry)."""
+    pairs = tuple(int(d) for d in shape) + (int(shape[-1]),)
+    allocation(pairs, names, arrays=_PAIR_ARRAYS)
+    work((int(fusions),) + pairs, names, weight=_PAIR_WORK)
 
 
 def _label_counts(labels: NDArray[np.int_]) -> NDArray[np.int_]:
@@ -184,11 +205,18 @@ def consistency_awf(
     -------
     ConsistentAWF
         The fusion ``awf`` and the ``mask`` of kept readings.
+
+    Raises
+    ------
+    ValueError
+        Before any work, naming ``X``: its pairs of sensors at every instant, ``(..., K, n, n)`` arrays (eight held
+        at once), beyond the memory budget (``fusion._counts.MAX_ELEMENTS``, 2 GiB) or their work (6 units an
+        element, about 60 ns) beyond the work budget (``fusion._limits.MAX_WORK``).
     """
     variance = one_of(variance, ("lecture", "centred"), "variance")
     guard = one_of(guard, ("floor", "abs", "equal", "none"), "guard")
     A = _as_sample_array(X)
-    allocation(A.shape + A.shape[-1:], "X")  # rule 9: the shared instants of every pair of sensors, (..., k, n, n)
+    _pair_budget(A.shape, "X")  # rules 9 and 17: the moments of every pair of sensors, (..., k, n, n), fuzz 41b C3
     mask = consistency_mask(A, eps, adjacent)
     n = A.shape[-1]
     mf = mask.astype(float)

@@ -20,7 +20,8 @@ from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.ridge_sensors import LS, VectorStudy
 from fusion.book.glue import GlueValues
 from fusion.book.rulebook import MIN_RUNS
-from fusion._counts import allocation, count, counts, distinct, input_allocation, sequence
+from fusion._counts import COUNT_CEILINGS, allocation, count, counts, distinct, input_allocation, sequence
+from fusion._limits import LOOP_STEP, work
 from fusion._validation import as_array, derived, scalar, std_scalar
 
 #: Most readings (sensors x readings per sensor) of :func:`table_sequential`: its n x n covariance is factored.
@@ -144,6 +145,21 @@ def glue_sequential(tab: pd.DataFrame) -> GlueValues:
             "lec_seq_mult": int(tab["multiplications"].sum()), "lec_seq_full": int(tab[FULL_M].sum())}
 
 
+#: Units of work (``fusion._limits.work``, about 10 ns) of :func:`table_james_stein`: a normal draw of its d x runs
+#: noise, and a term of :func:`james_stein_risk`'s Poisson sum. Measured (CPU time, minimum of 2,
+#: OPENBLAS_NUM_THREADS=1, shared machine): 10 ratios over d x runs = 3e6 draws (d = 3 to 10,000) took 0.46-1.04 units
+#: an element and ratio, draws included (so 1 unit an element and ratio, 3 a drawn element); the exact risk at
+#: ratio 1000 (5.4e5 terms) 32 ms, 6 units a term.
+_JS_DRAW_WORK = 3
+_JS_TERM_WORK = 6
+
+
+def _js_terms(ratio: float) -> int:
+    """Terms of :func:`james_stein_risk`'s Poisson sum at ``ratio`` (``‖x‖/σ``): about ratio² / 2."""
+    lam = float(ratio) ** 2 / 2.0
+    return int(lam + 40.0 * np.sqrt(lam + 1.0) + 50) + 1
+
+
 def james_stein_risk(d: int, ratio: float) -> float:
     r"""Exact risk of James-Stein over that of least squares, :math:`y \sim N(x, \sigma^2I_d)`, :math:`\lVert x\rVert/\sigma` = ``ratio``.
 
@@ -167,8 +183,8 @@ def james_stein_risk(d: int, ratio: float) -> float:
 
     d = count(d, "d", minimum=2)
     ratio = scalar(ratio, "ratio", lo=0.0, hi=MAX_JS_RATIO)
+    kmax = _js_terms(ratio) - 1
     lam = float(ratio) ** 2 / 2.0
-    kmax = int(lam + 40.0 * np.sqrt(lam + 1.0) + 50)
     k = np.arange(kmax + 1)
     e = float(np.sum(poisson.pmf(k, lam) / (d - 2 + 2 * k))) if d > 2 else 0.0
     return 1.0 - (d - 2) ** 2 / d * e
@@ -203,17 +219,28 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
     TypeError
         ``runs``, ``seed`` or an entry of ``ds`` not an integer, an entry of ``ratios`` not a number.
     ValueError
-        ``runs`` below ``MIN_RUNS``; ``ds`` or ``ratios`` empty, an entry of ``ds`` below 2 or repeated, of
-        ``ratios`` outside [0, ``MAX_JS_RATIO``].
+        ``runs`` below ``MIN_RUNS``; ``ds`` or ``ratios`` empty, an entry of ``ds`` below 2, above the ceiling of a
+        dimension (``10**4``, as :func:`james_stein_risk`) or repeated, of ``ratios`` outside [0, ``MAX_JS_RATIO``];
+        before any draw, the draws and estimates of every cell (``runs`` x the sum of ``ds`` x (3 + the ratios),
+        units of about 10 ns) and the exact risks' Poisson sums beyond the work budget
+        (``fusion._limits.MAX_WORK``), naming ``ds``, ``ratios`` and ``runs``.
     """
     runs = count(runs, "runs", minimum=MIN_RUNS)  # R4: a Monte-Carlo column of fewer draws is one draw's noise
     seed = check_seed(seed)   # an integer seed (rule 11), named
-    ds = distinct(counts(ds, "ds", minimum=2), "ds")
+    # james_stein_risk's ceiling of a dimension on every entry, at entry (fuzz 41b C5: ds = (10000, 10001) was refused
+    # by it inside the loop, after the first d's Monte Carlo, naming its own d)
+    ds = distinct(counts(ds, "ds", minimum=2, maximum=COUNT_CEILINGS["dimension"]), "ds")
     ratios = [scalar(r, f"ratios[{i}]", lo=0.0, hi=MAX_JS_RATIO)
               for i, r in enumerate(sequence(ratios, "ratios", minimum=1, what="ratio"))]
     for d in ds:
         allocation((d, runs), "ds and runs")
         input_allocation((d, runs), "ds and runs")  # the readings are rg.james_stein's input (fuzz 39a D1, class)
+    # rule 17 (fuzz 41b C4: nothing counted the cells; ds = (10000, 9999), 60 ratios, 3,000 runs ran 35 CPU-s): per d,
+    # its d x runs draws (_JS_DRAW_WORK units an element) and per ratio a James-Stein estimate over them (1 unit an
+    # element) and the exact risk's Poisson sum (_JS_TERM_WORK units a term, plus a loop step)
+    terms = sum(_js_terms(r) for r in ratios)
+    work((runs * sum(ds) * (_JS_DRAW_WORK + len(ratios)) + len(ds) * (len(ratios) * LOOP_STEP + _JS_TERM_WORK * terms),),
+         f"ds, ratios and runs ({len(ds):,} dimensions summing to {sum(ds):,} x {len(ratios):,} ratios x {runs:,} runs)")
     rows = []
     for d in ds:
         e = np.random.default_rng(seed + int(d)).normal(size=(int(d), runs))

@@ -551,8 +551,14 @@ def _draws_relation(values: dict, cls: str) -> None:
         raise ValueError(f"{cls}.n_nonmonotone must be at most draws = {values['draws']}, got {values['n_nonmonotone']}")
 
 
-#: Units of one belief-degree fusion of :func:`shift_weight_draws` (a draw at one shift, 85 us measured).
+#: Units of one belief-degree fusion of :func:`shift_weight_draws` (a draw at one shift, 85 us measured) on top of its
+#: n x n pairs (``_SHIFT_DRAW_PAIR``).
 _SHIFT_DRAW_STEP = 9 * LOOP_STEP
+#: Units of one of the n x n pairs of a belief-degree fusion of n sensors (fuzz 41b C2: the sensors were counted once
+#: each, so 20 draws of 300 sensors, 3.7 % of the budget, ran 38 CPU-s). ``belief_degree`` of n readings measured
+#: (CPU time, minimum of 3, OPENBLAS_NUM_THREADS=1, shared machine) 87 us at n = 4, 287 us at 50, 852 us at 100,
+#: 4.0 ms at 200, 9.7 ms at 300, 29 ms at 500: about 9,000 + 12 n**2 units (10 to 11.7 units per pair from 100 on).
+_SHIFT_DRAW_PAIR = 12
 
 
 def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
@@ -588,8 +594,9 @@ def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float
         std_scalar(v, f"sigma[{i}]")
     x = scalar(x, "x")
     # one belief-degree fusion per draw and shift, 85 us measured (4,851 draws, the edge at one loop step, ran 83
-    # CPU-s; time.process_time, shared machine; fuzz 39a E4): 9 loop steps, 552 draws (~9.4 CPU-s) the most accepted
-    loop_work((draws, 201), sig.size, "draws and sigma", step=_SHIFT_DRAW_STEP)
+    # CPU-s; time.process_time, shared machine; fuzz 39a E4): 9 loop steps, and 12 units per pair of sensors
+    # (fuzz 41b C2: its cost grows as n**2): 541 draws of 4 sensors, 4 draws of 300 the most accepted
+    loop_work((draws, 201), _SHIFT_DRAW_PAIR * sig.size**2, "draws and sigma", step=_SHIFT_DRAW_STEP)
     deltas = np.linspace(0, 20, 201)
     base = x + np.random.default_rng(seed).normal(size=(draws, sig.size)) * sig
     e1 = np.eye(sig.size)[0]

@@ -250,8 +250,10 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
     ValueError
         ``eps_factors`` or ``biases`` empty (no cell to show), an entry out of range, fewer than 3 sensors,
         ``window`` outside the samples; the draws (``runs`` x ``samples`` x sensors) beyond the memory budget
-        (``fusion._counts.MAX_ELEMENTS``, 2 GiB) or the fusions of every cell beyond the work budget
-        (``fusion._limits.MAX_WORK``).
+        (``fusion._counts.MAX_ELEMENTS``, 2 GiB), and so the consistency fusions' ``runs x samples x sensors x
+        sensors`` pair arrays (eight at once), or the fusions of every cell (10 units a reading and sensor, at least
+        50 a reading) beyond the work budget (``fusion._limits.MAX_WORK``), naming ``runs``, ``samples`` and
+        ``sigma``.
     """
     seed = check_seed(seed)
     from fusion.readings import consistency as cs
@@ -273,11 +275,17 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
     # the readings are the input of the weighting fusions, which refuse more than MAX_INPUT_ELEMENTS (fuzz 39a D1/E4:
     # 130,666 runs were refused inside after 1.7 CPU-s, naming their argument X)
     input_allocation((runs, samples, sig.size), "runs, samples and sigma")
-    # a reading of a cell passes the AWF, two consistency checks and their running means: 470-580 ns measured (200
-    # and 1,000 runs, time.process_time, shared machine; at 1 unit the input edge, 67,108 runs, ran over 240 CPU-s,
-    # fuzz 39a E4): 50 units, the edge 2,666 runs of the default grid (~10 CPU-s)
-    work((len(biases), len(eps_factors), runs, samples, sig.size), "biases, eps_factors, runs, samples and sigma",
-         weight=50)
+    # each cell's two consistency fusions hold (runs, samples, n, n) pair arrays (fuzz 41b C3: counted as runs x
+    # samples x n, 1 eps x 1 bias at 40,000 runs raised a raw MemoryError after 20 CPU-s): their memory by the callee's
+    # rule, before anything is drawn
+    cs._pair_budget((runs, samples, sig.size), "runs, samples and sigma")
+    # a reading of a cell passes the AWF, two consistency checks and their running means: 470-580 ns measured at 5
+    # sensors (200 and 1,000 runs, time.process_time, shared machine; fuzz 39a E4), and the checks grow with the pairs
+    # of sensors (fuzz 41b C3: 2 runs of 400 sensors, 6 % of a budget counting n, ran 63 CPU-s): one fused cell
+    # measured 82 units a reading at 5 sensors (200 runs), 490 at 50 (20 runs), 1,640 at 200 (2 runs), so 10 units a
+    # pair of sensors, at least 50 a reading: the edge 2,666 runs of the default grid (~10 CPU-s), 1 run at 400 sensors
+    work((len(biases), len(eps_factors), runs, samples, sig.size, max(5, sig.size)),
+         "biases, eps_factors, runs, samples and sigma", weight=10)
     win = slice(*check_window(window, "window", samples))
     eps0 = 3 * np.sqrt(2) * sig.max()
     clean = x + np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
