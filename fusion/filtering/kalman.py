@@ -251,9 +251,15 @@ def _steps_work(steps: int, runs: int, n: int, m: int, step: int, names: str, cu
     ``run x (n + m)`` units of its state and measurement entries and ``product x n(n + 2m)`` of its products with the
     matrices (the weights measured per function, the constants above), refused by ``names`` (the caller's arguments
     that set the steps and sizes) before the loop starts (:func:`fusion._limits.loop_work`)."""
+    loop_work((steps,), _step_units(runs, n, m, cube, m_cube, run, product, matrix), names, step=step)
+
+
+def _step_units(runs: int, n: int, m: int, cube: float = 0.0, m_cube: float = 0.0, run: float = 0.0,
+                product: float = 0.0, matrix: float = 0.0) -> int:
+    """The vectorised units of one step of ``_steps_work`` (without its ``step`` overhead), rounded up: a caller
+    that runs several such loops sums them (fuzz 41a C2)."""
     products = n * (n + 2 * m)
-    per_step = (matrix * products + cube * n ** 3 + m_cube * m ** 3 + runs * (run * (n + m) + product * products))
-    loop_work((steps,), math.ceil(per_step), names, step=step)
+    return math.ceil(matrix * products + cube * n ** 3 + m_cube * m ** 3 + runs * (run * (n + m) + product * products))
 
 
 def _gains_work(n_steps: int, n: int, per_step_r: bool, names: str, m: int = 0) -> None:
