@@ -134,3 +134,17 @@ def test_late_means_counts_array_likes_by_their_converted_size():
                   match=r"^rmse \(its methods and scans\) ask")
     small = late_means({"a": _ArrayOnly(np.ones((101, 4)))}, np.linspace(0, 10, 101))
     assert small["a"]["x (m)"] == 1.0
+
+
+def test_fuse_tracks_counts_a_small_states_run_as_four_entries():
+    """D1: a run's step of a 1- or 2-state track costs about what a 4-state one does (a strided read and write: 25-80
+    ns measured at n = 1, 2, about 100 ns estimated by the fuzz at 1e6 runs), but was counted 18 ns an entry: the
+    edge of 1e6 runs at n = 2, 275 steps, ran an estimated 28-30 CPU-s. Now 138 steps accepted, 139 refused; 1 run of
+    a 4-state track keeps its edge (test_budget43)."""
+    from fusion.filtering.tracks import _fuse_tracks_work
+
+    for rule in ("ci", "convex", "split", "printed"):
+        for n in (1, 2):
+            _fuse_tracks_work(138, 10**6, n, rule, "a and b")
+            with pytest.raises(ValueError, match=r"^a and b ask .*work"):
+                _fuse_tracks_work(139, 10**6, n, rule, "a and b")
