@@ -226,6 +226,13 @@ FUSE_TRACKS_SPLIT_CUBE = 0.06
 FUSE_TRACKS_PRINTED_CUBE = 0.7
 FUSE_TRACKS_FUZZY_CUBE = 0.02
 FUSE_TRACKS_RUN = 1.8
+#: The fewest entries a run's step of :func:`fusion.filtering.tracks.fuse_tracks`' linear rules is counted by (fuzz 41a
+#: D1): a run's state at one step is one strided read and write whatever ``n`` below it, so at n = 1 and 2 a run's step
+#: costs about what it does at n = 4: 25-27 ns at n = 1 and 41-80 ns at n = 2 measured with 30,000 runs of 1,000 steps,
+#: 33-36 ns at n = 2 with 300,000 of 100 (``time.process_time``, the least of two calls, ``OPENBLAS_NUM_THREADS=1``,
+#: machine shared), about 100 ns estimated by the fuzz at its edge of 1e6 runs of 275 steps (28-30 CPU-s); counted as
+#: 4 entries, 72 ns, the edge of 1e6 runs at n <= 4 is 138 steps (about 5-14 CPU-s).
+FUSE_TRACKS_RUN_ENTRIES = 4
 FUSE_TRACKS_FUZZY_RUN = 22.0
 FUSE_TRACKS_FUZZY_PRODUCT = 0.16
 #: :func:`split_covariances` and :func:`error_moments` (one pass, no runs): 12-16 us a step (2 LOOP_STEP, 2 more for
@@ -251,9 +258,15 @@ def _steps_work(steps: int, runs: int, n: int, m: int, step: int, names: str, cu
     ``run x (n + m)`` units of its state and measurement entries and ``product x n(n + 2m)`` of its products with the
     matrices (the weights measured per function, the constants above), refused by ``names`` (the caller's arguments
     that set the steps and sizes) before the loop starts (:func:`fusion._limits.loop_work`)."""
+    loop_work((steps,), _step_units(runs, n, m, cube, m_cube, run, product, matrix), names, step=step)
+
+
+def _step_units(runs: int, n: int, m: int, cube: float = 0.0, m_cube: float = 0.0, run: float = 0.0,
+                product: float = 0.0, matrix: float = 0.0) -> int:
+    """The vectorised units of one step of ``_steps_work`` (without its ``step`` overhead), rounded up: a caller
+    that runs several such loops sums them (fuzz 41a C2)."""
     products = n * (n + 2 * m)
-    per_step = (matrix * products + cube * n ** 3 + m_cube * m ** 3 + runs * (run * (n + m) + product * products))
-    loop_work((steps,), math.ceil(per_step), names, step=step)
+    return math.ceil(matrix * products + cube * n ** 3 + m_cube * m ** 3 + runs * (run * (n + m) + product * products))
 
 
 def _gains_work(n_steps: int, n: int, per_step_r: bool, names: str, m: int = 0) -> None:

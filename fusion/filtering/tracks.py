@@ -38,10 +38,11 @@ from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 from fusion.filtering.kalman import (FUSE_TRACKS_CONVEX_MATRIX, FUSE_TRACKS_CONVEX_STEP, FUSE_TRACKS_CUBE,
                                     FUSE_TRACKS_FUZZY_CUBE, FUSE_TRACKS_FUZZY_MATRIX,
                                     FUSE_TRACKS_FUZZY_PRODUCT, FUSE_TRACKS_FUZZY_RUN, FUSE_TRACKS_MATRIX,
-                                    FUSE_TRACKS_PRINTED_CUBE, FUSE_TRACKS_RUN, FUSE_TRACKS_SPLIT_CUBE,
+                                    FUSE_TRACKS_PRINTED_CUBE, FUSE_TRACKS_RUN, FUSE_TRACKS_RUN_ENTRIES,
+                                    FUSE_TRACKS_SPLIT_CUBE,
                                     FUSE_TRACKS_SPLIT_MATRIX, FUSE_TRACKS_SPLIT_STEP, FUSE_TRACKS_STEP, LOCAL_TRACK_CUBE,
                                     LOCAL_TRACK_M_CUBE, LOCAL_TRACK_MATRIX, LOCAL_TRACK_PRODUCT, LOCAL_TRACK_RUN,
-                                    LOCAL_TRACK_STEP, _gains_work, _steps_work)
+                                    LOCAL_TRACK_STEP, _gains_work, _step_units, _steps_work)
 from fusion.filtering.kalman import GainSequence, _model, _per_step, _steps_allocation, filter_runs, gain_sequence, split_covariances
 
 __all__ = ["RULES", "LocalTrack", "local_track", "FusedTracks", "fuse_tracks"]
@@ -201,15 +202,30 @@ def _fuse_tracks_work(K: int, runs: int, n: int, rule: str, names: str) -> None:
     applied to every run; fuzzy clustering iterates on every run (the weights measured, ``fusion.filtering.kalman``).
     A caller that fuses tracks it builds or is given checks them here at its entry, naming its own arguments (fuzz
     40a C4)."""
+    step, weights = _fuse_tracks_weights(rule, n)
+    _steps_work(K, runs, n, 0, step, names, **weights)
+
+
+def _fuse_tracks_weights(rule: str, n: int) -> tuple[int, dict[str, float]]:
+    """The measured weights of :func:`fuse_tracks` with ``rule`` on ``n``-state tracks: its step's units and
+    ``_steps_work``'s weights (a linear rule's run counted as at least ``FUSE_TRACKS_RUN_ENTRIES`` entries, fuzz 41a
+    D1)."""
     split = rule in ("split", "printed")
-    _steps_work(K, runs, n, 0, FUSE_TRACKS_SPLIT_STEP if split else FUSE_TRACKS_CONVEX_STEP if rule == "convex"
-                else FUSE_TRACKS_STEP, names,
-                {"split": FUSE_TRACKS_SPLIT_CUBE, "printed": FUSE_TRACKS_PRINTED_CUBE,
-                 "fuzzy": FUSE_TRACKS_FUZZY_CUBE}.get(rule, FUSE_TRACKS_CUBE),
-                run=FUSE_TRACKS_FUZZY_RUN if rule == "fuzzy" else FUSE_TRACKS_RUN,
-                product=FUSE_TRACKS_FUZZY_PRODUCT if rule == "fuzzy" else 0.0,
-                matrix=FUSE_TRACKS_SPLIT_MATRIX if split else FUSE_TRACKS_FUZZY_MATRIX if rule == "fuzzy"
-                else FUSE_TRACKS_CONVEX_MATRIX if rule == "convex" else FUSE_TRACKS_MATRIX)
+    return (FUSE_TRACKS_SPLIT_STEP if split else FUSE_TRACKS_CONVEX_STEP if rule == "convex" else FUSE_TRACKS_STEP,
+            {"cube": {"split": FUSE_TRACKS_SPLIT_CUBE, "printed": FUSE_TRACKS_PRINTED_CUBE,
+                      "fuzzy": FUSE_TRACKS_FUZZY_CUBE}.get(rule, FUSE_TRACKS_CUBE),
+             "run": FUSE_TRACKS_FUZZY_RUN if rule == "fuzzy"
+             else FUSE_TRACKS_RUN * max(n, FUSE_TRACKS_RUN_ENTRIES) / max(n, 1),
+             "product": FUSE_TRACKS_FUZZY_PRODUCT if rule == "fuzzy" else 0.0,
+             "matrix": FUSE_TRACKS_SPLIT_MATRIX if split else FUSE_TRACKS_FUZZY_MATRIX if rule == "fuzzy"
+             else FUSE_TRACKS_CONVEX_MATRIX if rule == "convex" else FUSE_TRACKS_MATRIX})
+
+
+def _fuse_tracks_units(K: int, runs: int, n: int, rule: str) -> int:
+    """The units ``_fuse_tracks_work`` counts, without refusing: a caller that fuses the same tracks by several
+    rules sums them (fuzz 41a C2: each rule was checked alone, so five rules ran 33-37 CPU-s)."""
+    step, weights = _fuse_tracks_weights(rule, n)
+    return K * (step + _step_units(runs, n, 0, **weights))
 
 
 def fuse_tracks(

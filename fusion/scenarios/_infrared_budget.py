@@ -7,8 +7,8 @@ from collections.abc import Mapping
 
 from fusion._counts import allocation, input_allocation
 from fusion._frozen import constant
-from fusion._limits import work
-from fusion.filtering.tracks import _fuse_tracks_work
+from fusion._limits import LOOP_STEP, work
+from fusion.filtering.tracks import _fuse_tracks_units
 
 __all__: list[str] = []
 
@@ -29,12 +29,19 @@ def _scan_budget(K: int, names: str) -> None:
 #: us measured at 10,000 runs of 101 scans (the least of two calls, ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``,
 #: machine shared; 1.8 us in fuzz 40a's run of 110,000), weighed 150: the edge, 6.7 million, runs 6-12 CPU-s.
 _TRACKS_UNITS = 150
+#: Units of one scan of ``cartesian_tracks`` whatever its runs (the Python steps of its two filters): 222-260 us a scan
+#: measured at 1 run of 20,001 and 40,001 scans (fuzz 41a C3: 0.29 ms; 1 run of 120,001 scans, counted 1.8e7 units by
+#: the run-and-scan weight alone, ran 30-35 CPU-s), with 1.2 us a run and scan at 10,000 runs of 101 scans and 100 of
+#: 4,001 (the least of two calls, ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, machine shared): 25,000 units, so
+#: that 1 run is accepted up to 39,761 scans (about 9-10 CPU-s).
+_TRACKS_SCAN_UNITS = 25 * LOOP_STEP
 
 
 def _tracks_budget(runs: int, K: int, names: str) -> None:
     """Rules 17 and 9 of ``cartesian_tracks`` on ``runs`` runs of ``K`` scans, refused by ``names``:
-    ``_TRACKS_UNITS`` a run and scan; tracemalloc's peak 52 float64 a run and scan (9 arrays of 6)."""
-    work((runs, K), names, weight=_TRACKS_UNITS)
+    ``_TRACKS_SCAN_UNITS`` a scan and ``_TRACKS_UNITS`` a run and scan; tracemalloc's peak 52 float64 a run and scan
+    (9 arrays of 6)."""
+    work((K, _TRACKS_SCAN_UNITS + runs * _TRACKS_UNITS), names)
     allocation((runs, K, 6), names, arrays=9)
 
 
@@ -52,15 +59,18 @@ _READER_UNITS = constant({
 def _reader_budget(reader: str, runs: int, K: int, n: int, rules: Mapping[str, str], names: str) -> None:
     """Rules 9 and 17 of a reader of a simulation (``rule_errors``, ``cartesian_errors``), at its entry, naming its own
     arguments (fuzz 40a C4, C5: a valid ``simulate`` of 110,000 runs was refused by ``position``'s input budget,
-    naming ``angle_est``, after 18 CPU-s, and by ``fuse_tracks``' budget, naming ``a and b``, after 9): each rule's
-    ``fuse_tracks`` by its own rule (``_fuse_tracks_work``, ``n``-state tracks), the reader's measured work
+    naming ``angle_est``, after 18 CPU-s, and by ``fuse_tracks``' budget, naming ``a and b``, after 9): the sum of
+    its rules' ``fuse_tracks`` (``_fuse_tracks_units``, ``n``-state tracks; fuzz 41a C2) and the reader's measured work
     (``_READER_UNITS``), the (runs, K, 4) arrays it holds at once (tracemalloc's peak: 5 + 2 a rule for
     ``rule_errors``, 3.8 + 2.5 a rule for ``cartesian_errors``) and the input budget of the (runs, K, 4) and
     (runs, K, 3) tracks it passes to ``position`` and ``cartesian_to_spherical``."""
     units = _READER_UNITS[reader]
-    for rule in rules.values():
-        _fuse_tracks_work(K, runs, n, rule, names)
-    work((runs, K), names, weight=units["base"] + sum(units[rule] for rule in rules.values()))
+    # the rules' fuse_tracks summed with the reader's own work (fuzz 41a C2: each rule was checked alone, so the five
+    # rules on 1 run of 38,901 scans, each just inside, ran 33-37 CPU-s, 0.95 ms a scan): their Python steps and
+    # per-step matrix work (``_fuse_tracks_units`` of no run: 117,000 units a scan with every rule), their work per run
+    # and scan being in ``_READER_UNITS``' measured weights
+    fused = sum(_fuse_tracks_units(K, 0, n, rule) for rule in rules.values())
+    work((fused + runs * K * (units["base"] + sum(units[rule] for rule in rules.values())),), names)
     arrays = 5 + 2 * len(rules) if reader == "rule_errors" else 4 + (5 * len(rules) + 1) // 2
     allocation((runs, K, 4), names, arrays=arrays)
     input_allocation((runs, K, 4), names)

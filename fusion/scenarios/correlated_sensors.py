@@ -20,7 +20,7 @@ References
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
 from typing import Any
@@ -297,8 +297,13 @@ def _exact(R: np.ndarray) -> _ExactRisk:
                       claimed_naive=float(1.0 / np.sum(1.0 / np.diag(R))))
 
 
-def _scenarios(scenarios: Mapping[str, Mapping[str, Any]] | None) -> Mapping[str, Mapping[str, Any]]:
-    """The cases (default :data:`SCENARIOS`), each checked through the shared rule for nested records."""
+def _scenarios(scenarios: Mapping[str, Mapping[str, Any]] | None,
+               each: Callable[[str, int], None] | None = None) -> Mapping[str, Mapping[str, Any]]:
+    """The cases (default :data:`SCENARIOS`), each checked through the shared rule for nested records.
+
+    With ``each``, a case's covariance is not built: ``each(name, N)`` is called in turn with its number of sensors
+    N, the length of its ``own`` as converted (never its ``len()``: fuzz 41a C5), so that a caller counts its work
+    case by case before building any N x N covariance (fuzz 41a C6)."""
     sc = SCENARIOS if scenarios is None else scenarios
     if not isinstance(sc, Mapping):
         raise TypeError(f"scenarios must be a mapping of name to case, got {type(sc).__name__}")
@@ -310,7 +315,12 @@ def _scenarios(scenarios: Mapping[str, Mapping[str, Any]] | None) -> Mapping[str
             raise TypeError(f"scenarios must be keyed by case names (str), got {shown(name)}")
         record(case, path, ("own", "coupling", "env"))
         with within(path):
-            covariance(case["own"], case["coupling"], case["env"])
+            if each is None:
+                covariance(case["own"], case["coupling"], case["env"])
+            else:
+                N = as_array(case["own"], "own", ndim=1).size
+        if each is not None:
+            each(name, N)   # its refusal names the caller's arguments, not the case's path
     return {text(name, "scenarios keys"): case for name, case in sc.items()}  # names as plain texts (rule 19)
 
 
@@ -387,21 +397,27 @@ def coupling_study(
         runs x (3 N + 0.08 N**2)`` units a case, measured), or a case's N x ``runs`` draws beyond the input or memory
         budget, before any work.
     """
-    sc = _scenarios(scenarios)
     runs = count(runs, "runs", minimum=2)
     xv = scalar(x, "x")
     seed = check_seed(seed)
     grid = as_array(env_grid, "env_grid", ndim=1)
     if grid.size == 0 or np.any(grid < 0):
         raise ValueError("env_grid must be a non-empty sequence of SDs >= 0")
-    # rules 17 and 9 on every case's sensors N, runs and env_grid, before any work (fuzz 40a C8, D3)
+    # rules 17 and 9 on every case's sensors N, runs and env_grid, before any work (fuzz 40a C8, D3), case by case
+    # before any case's N x N covariance is built (fuzz 41a C6: 16 cases of N = 9,400 were refused after 8.5 CPU-s,
+    # 250,000 cases of N = 3 after 9-12), N the length of its converted own (fuzz 41a C5: its len() was read, which an
+    # array-like with only __array__ lacks and a lying __len__ understates)
     units = 0
-    for name, case in sc.items():
-        N = len(case["own"])
+
+    def count_case(name: str, N: int) -> None:
+        nonlocal units
         input_allocation((N, runs), f"runs and the sensors of case {shown(name)}")  # z, the fusions' input
         allocation((N, runs), f"runs and the sensors of case {shown(name)}", arrays=_COUPLING_ARRAYS)
         units += _coupling_case_units(N, runs, grid.size)
-    work((units,), "scenarios (their sensors), runs and env_grid")
+        work((units,), "scenarios (their sensors), runs and env_grid")
+
+    _scenarios(scenarios, count_case)
+    sc = _scenarios(scenarios)
     far_env = scalar(env_far, "env_far", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
     rows, sq, weights, curves, far = [], {}, {}, {}, {}
