@@ -3,6 +3,8 @@
 - :func:`bounded`: run a call under a wall-clock alarm and classify its outcome (the bad-input tests).
 - :func:`arrays`: the arrays in a result, in order; :func:`one_computation`: whether two results come from one
   study-cache entry (the chapters' tests).
+- :func:`cached_study`, :data:`CACHE_CALLS`, :func:`study_entry`: a tiny study behind the study cache and its entry
+  on disk (the cache's damaged-entry tests).
 """
 
 from __future__ import annotations
@@ -14,6 +16,8 @@ from typing import Any
 
 import numpy as np
 import pytest
+
+from fusion.book.study_cache import study_cache
 
 
 class _Timeout(Exception):
@@ -59,3 +63,32 @@ def one_computation(a: object, b: object) -> bool:
     base, fuzz 37a C1); a second computation would have memory of its own."""
     xs, ys = arrays(a), arrays(b)
     return len(xs) == len(ys) > 0 and all(x is y or (x.base is not None and x.base is y.base) for x, y in zip(xs, ys))
+
+
+# --- a tiny study behind the study cache (the cache's damaged-entry tests) -------------------------------------------
+
+#: The ``n`` of every computation of :func:`cached_study` (a hit adds nothing).
+CACHE_CALLS: list[int] = []
+
+
+def _tiny_study(n: int) -> np.ndarray:
+    CACHE_CALLS.append(n)
+    return np.arange(n) * 1.5
+
+
+#: :func:`_tiny_study` behind the study cache (a module-level function: only such a function reaches the disk).
+cached_study = study_cache(maxsize=4)(_tiny_study)
+
+
+def study_entry(tmp_path: Any, monkeypatch: pytest.MonkeyPatch) -> Any:
+    """Point the study cache at ``tmp_path``, compute ``cached_study(5)`` once and return its entry file (the
+    in-memory layer cleared, so that the next call reads the disk)."""
+    from fusion.book import study_cache as sc
+
+    monkeypatch.setenv(sc.ENV, str(tmp_path))
+    cached_study.cache_clear()
+    CACHE_CALLS.clear()
+    assert np.array_equal(cached_study(5), np.arange(5) * 1.5) and CACHE_CALLS == [5]
+    (entry,) = tmp_path.glob("*.pkl")
+    cached_study.cache_clear()
+    return entry

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 import pytest
+from _helpers import CACHE_CALLS, cached_study, study_entry
 
 
 def _ledger(evidence):
@@ -100,28 +101,7 @@ def test_median_interval_at_the_books_level_is_unchanged():
 
 # --- C2, C3: the study cache's entries ------------------------------------------------------------------------------
 
-_CALLS: list[int] = []
-
-
-def _cached_study(n: int) -> np.ndarray:
-    """Module-level (wrapped below): only a function its module holds under its name reaches the disk."""
-    _CALLS.append(n)
-    return np.arange(n) * 1.5
-
-
-def _cache(tmp_path, monkeypatch):
-    from fusion.book import study_cache as sc
-
-    global _cached_study
-    if not hasattr(_cached_study, "cache_clear"):
-        _cached_study = sc.study_cache(maxsize=4)(_cached_study)
-    monkeypatch.setenv(sc.ENV, str(tmp_path))
-    _cached_study.cache_clear()
-    _CALLS.clear()
-    assert np.array_equal(_cached_study(5), np.arange(5) * 1.5) and _CALLS == [5]
-    (entry,) = tmp_path.glob("*.pkl")
-    _cached_study.cache_clear()
-    return entry
+_CALLS, _cached_study, _cache = CACHE_CALLS, cached_study, study_entry   # one tiny cached study (tests/_helpers)
 
 
 class _Hang(BaseException):   # not caught as an unreadable entry

@@ -12,6 +12,7 @@ import time
 
 import numpy as np
 import pytest
+from _helpers import CACHE_CALLS, cached_study, study_entry
 
 
 def _refused_fast(f, match, **kw):
@@ -102,28 +103,7 @@ def test_table_james_stein_has_a_work_budget_and_the_dimension_ceiling_at_entry(
 
 # --- C6, D1 --------------------------------------------------------------------------------------------------------
 
-_CALLS: list[int] = []
-
-
-def _cached_study(n: int) -> np.ndarray:
-    """Module-level (wrapped below): only a function its module holds under its name reaches the disk."""
-    _CALLS.append(n)
-    return np.arange(n) * 1.5
-
-
-def _cache(tmp_path, monkeypatch):
-    from fusion.book import study_cache as sc
-
-    global _cached_study
-    if not hasattr(_cached_study, "cache_clear"):
-        _cached_study = sc.study_cache(maxsize=4)(_cached_study)
-    monkeypatch.setenv(sc.ENV, str(tmp_path))
-    _cached_study.cache_clear()
-    _CALLS.clear()
-    assert np.array_equal(_cached_study(5), np.arange(5) * 1.5) and _CALLS == [5]
-    (entry,) = tmp_path.glob("*.pkl")
-    _cached_study.cache_clear()
-    return entry
+_CALLS, _cached_study, _cache = CACHE_CALLS, cached_study, study_entry   # one tiny cached study (tests/_helpers)
 
 
 def _open_fds() -> int:
