@@ -335,7 +335,7 @@ def test_recommend_check_reads_no_more_records_than_it_checks():
     t0 = time.process_time()
     with pytest.raises(ValueError, match=r"^records has more than 5000000 items \(the work budget"):
         check(fresh, [])
-    assert time.process_time() - t0 < 1.0
+    assert time.process_time() - t0 < 4.0  # reading 5e6 dicts: 0.56 CPU-s measured; an endless read never ends
     assert next(drawn) == MAX_WORK // CHECK_RECORD + 1   # items read
 
 

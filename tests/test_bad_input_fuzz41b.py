@@ -62,8 +62,16 @@ def test_consistency_awf_counts_its_pair_arrays():
     cs._pair_budget((13_421, 100, 5), "X")
     with pytest.raises(ValueError, match=r"^X ask"):
         cs._pair_budget((13_422, 100, 5), "X")
-    X = np.zeros((40_000, 100, 5))
+    # refused before the pairs: readings of 2.6e6 values whose pair arrays are beyond the budget, within 1 CPU-s
+    X = np.zeros((2_000, 100, 13))
     _refused_fast(lambda: cs.consistency_awf(X, 1.0, "centred"), r"^X ask .*memory budget")
+    # the fuzz's own case: its 2e7 readings are converted and checked first (0.6-1.05 CPU-s measured, linear in X;
+    # CI failed a 1-s bound on it), then refused; it ran 12 CPU-s to a MemoryError before the fix
+    X = np.zeros((40_000, 100, 5))
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match=r"^X ask .*memory budget"):
+        cs.consistency_awf(X, 1.0, "centred")
+    assert time.process_time() - t0 < 4.0
     assert cs.consistency_awf(np.ones((3, 4, 5)), 1.0, "centred").mask.all()
 
 
