@@ -58,16 +58,17 @@ def test_benchmark_weighs_a_reading_by_its_methods(monkeypatch):
     monkeypatch.setattr(rbm, "_snapshot_errors", _ran)
     kw = dict(seeds=(1, 2), samples=20, levels=(0.0, 900.0), sigma=(0.5, 1.0, 1.5, 2.0))
     with pytest.raises(ValueError, match="^seeds, levels, faults, runs, samples and sigma"):
-        rbm.benchmark(runs=40_000, **kw)
+        rbm.benchmark(runs=120_000, **kw)  # beyond its STUDY_WORK entry (3e9; 40,000 were refused by MAX_WORK)
     with pytest.raises(Ran):  # the chapter's benchmark (3 seeds of 500 runs x 100 samples, 5 sensors)
         rbm.benchmark()
 
 
-@pytest.mark.parametrize("study, runs, names", [("regime_study", 700, "runs, samples and sigma"),
+@pytest.mark.parametrize("study, runs, names", [("regime_study", 2_100, "runs, samples and sigma"),
                                                  ("variance_change_study", 4_000, "runs, samples, sigma and changes")])
 def test_regime_studies_have_a_work_budget(monkeypatch, study, runs, names):
     # no work budget: 10**7 samples of 2 runs (some 400 CPU-s) were accepted; ~5 us and ~0.75 us a draw (the changes
-    # of variance_change_study counted too, fuzz 40a C6)
+    # of variance_change_study counted too, fuzz 40a C6); regime_study's budget is its STUDY_WORK entry (4e9: 2,000 runs
+    # x 1,000 x 4 at 500 units; 700 were refused by MAX_WORK before)
     from fusion.scenarios.lecture_weighting import regime
     monkeypatch.setattr(regime.np.random, "default_rng", _ran)
     with pytest.raises(ValueError, match=f"^{names} ask for"):
@@ -167,7 +168,7 @@ def test_awf_study_weighs_a_draw_by_its_measured_cost(monkeypatch):
     from fusion.scenarios.lecture_weighting import estimators
     monkeypatch.setattr(estimators.np.random, "default_rng", _ran)
     with pytest.raises(ValueError, match="^levels, runs, k_max and sigma ask for"):
-        estimators.awf_study(levels=(0.0, 900.0), k_max=100, runs=30_000, ks=(3, 5, 10), k_compare=10)
+        estimators.awf_study(levels=(0.0, 900.0), k_max=100, runs=180_000, ks=(3, 5, 10), k_compare=10)  # STUDY_WORK 7e9
     with pytest.raises(Ran):  # the chapter's (5 levels, 300 runs x 1,000 samples x 4 sensors)
         estimators.awf_study()
 
@@ -193,20 +194,63 @@ def test_consistency_study_weighs_a_pair_check(monkeypatch):
 
 
 
-def test_study_work_is_twice_the_book_call_it_serves():
-    # budget35's one rule for a budget above MAX_WORK: twice the book's own call, rounded up to a whole MAX_WORK
-    # (range_bearing's was 20 x MAX_WORK, about 200 CPU-s, for a book study of about 45)
-    from fusion._limits import MAX_WORK, STUDY_WORK, TRACKING_STUDY
+#: Each entry of STUDY_WORK, the stability record whose sweep reading serves it and the module whose budget it is.
+_SERVED = {"TRACKING_STUDY": ("chf-equal-kl", "fusion.scenarios.range_bearing"),
+           "AWF_STUDY": ("lec-awf-estimated", "fusion.scenarios.lecture_weighting.estimators"),
+           "REGIME_STUDY": ("lec-awf-adapts", "fusion.scenarios.lecture_weighting.regime"),
+           "READINGS_BENCHMARK": ("lec-belief-accuracy", "fusion.scenarios.lecture_weighting.readings_benchmark")}
+
+
+@pytest.mark.parametrize("key", sorted(_SERVED))
+def test_study_work_is_twice_the_book_call_it_serves(key, monkeypatch):
+    # budget35's one rule for a budget above MAX_WORK: twice the book's own call, rounded up to a whole MAX_WORK; the
+    # book's calls include the reseeding sweep's scaled primaries (at the runs factor stability.json stores): the
+    # served call is counted by the budget itself, stopped when it checks the entry
+    import importlib
+    import json
+
+    import fusion._limits as L
+    from fusion.book import claims as C
+    from fusion.book import stability as S
+
+    entry = L.STUDY_WORK[getattr(L, key)]
+    rid, module = _SERVED[key]
+    counted = []
+
+    def spy(shape, names, weight=1, limit=L.MAX_WORK):
+        units = real(shape, names, weight=weight, limit=10**30)
+        if limit == entry:
+            counted.append(units)
+            raise Ran
+        return real(shape, names, weight=weight, limit=limit)
+
+    real = L.work
+    monkeypatch.setattr(L, "work", spy)  # loop_work's
+    mod = importlib.import_module(module)
+    if hasattr(mod, "work"):
+        monkeypatch.setattr(mod, "work", spy)
+    readings = S.stochastic_readings()
+    rkey = next(k for k in readings if k[1] == rid)
+    root = S._ledger_dir(None).parent.parent
+    factor = json.loads((root / "book" / "ledger" / S.STABILITY_FILE).read_text())["records"][rid]["runs_factor"]
+    task = next(t for t in S.tasks({rkey: readings[rkey]}, [S.ROOT_SEED], factor) if t.scaled)
+    spec = next(s for cf in C.load_all(C.claims_dir()).values() for s in cf.records if s.id == rid)
+    with pytest.raises(Ran):
+        C.evaluate(spec, task.reading, task.seed, task.runs)
+    assert entry == -(-2 * counted[0] // L.MAX_WORK) * L.MAX_WORK
+    assert counted[0] > L.MAX_WORK  # an entry only for a call beyond MAX_WORK
+    # one entry a value: work() names the entry its limit equals
+    assert len(set(L.STUDY_WORK.values())) == len(L.STUDY_WORK) == len(_SERVED)
+
+
+def test_the_tracking_study_entry_refuses_beyond_it():
+    from fusion._limits import STUDY_WORK, TRACKING_STUDY
     from fusion.scenarios import range_bearing as rb
     from fusion.book.chapters.chernoff.settings import STUDY_RUNS
-    book = {TRACKING_STUDY:
-            rb._tracking_work(rb.RangeBearingScenario(), STUDY_RUNS, "runs")}
-    assert set(book) == set(STUDY_WORK)
-    for key, units in book.items():
-        assert STUDY_WORK[key] == -(-2 * units // MAX_WORK) * MAX_WORK
-    assert rb.TRACK_WORK == STUDY_WORK[next(iter(book))]
+    assert rb.TRACK_WORK == STUDY_WORK[TRACKING_STUDY]
+    assert rb._tracking_work(rb.RangeBearingScenario(), STUDY_RUNS, "runs") <= rb.TRACK_WORK / 2
     with pytest.raises(ValueError, match="STUDY_WORK: chapter 06's tracking study"):
-        rb.monte_carlo(rb.RangeBearingScenario(), 1, 2 * STUDY_RUNS + 20)
+        rb.monte_carlo(rb.RangeBearingScenario(), 1, 6 * STUDY_RUNS + 20)
 
 
 @pytest.mark.parametrize("study, bad, book", [

@@ -6,7 +6,9 @@ factor. A budget that refuses one of these readings makes the stored file irrepr
 ``thermocouples.paired_study`` refusing the primary of 8 records of Yang, Feng & Fan (2012) at 10x runs (its methods
 counted at ``fuse_epochs``' own pair weight: 2e9 and 6e9 units for calls that ran 2.2 and 3.0 CPU-s). Each task is
 evaluated up to its first draw (``numpy.random.default_rng`` raises), so no work runs: a refusal before it is an
-entry check's.
+entry check's. Eleven more were refused already before fix46 (chapter 06's tracking study at 3x runs, 1.28e10 units;
+three lecture studies at 10x, 1.35e9 to 3e9): the book's own calls, they have entries of ``fusion._limits.STUDY_WORK``
+under budget35's one rule (``tests/test_budget35.py``).
 """
 
 from __future__ import annotations
@@ -19,14 +21,6 @@ import pytest
 
 from fusion.book import claims as C
 from fusion.book import stability as S
-
-#: Records whose scaled primary was already refused before fix46's change (base 1915b5fa, the same probe): their
-#: studies are heavy (chapter 06's tracking study at 3x runs counts 1.3e10 units, beyond its STUDY_WORK entry; the
-#: lecture's weighting studies at 10x count 1.35e9 to 3e9). Reported, not fixed here; strict, so that a fix shows.
-_REFUSED_BEFORE = frozenset({
-    "chf-double-count", "chf-equal-kl", "chf-filter-design", "chf-gain-ci", "chf-gain-closed-form", "chf-gain-local",
-    "chf-gain-uniform", "chf-pso-rebuild", "lec-awf-adapts", "lec-awf-estimated", "lec-belief-accuracy"})
-
 
 class _Drawn(BaseException):
     """Raised at the first draw: the entry checks have passed."""
@@ -44,10 +38,7 @@ _SPECS = {spec.id: spec for cf in C.load_all(C.claims_dir()).values() for spec i
 
 def _params():
     for key in sorted(_READINGS):
-        rid = key[1]
-        marks = [pytest.mark.xfail(strict=True, raises=ValueError, reason="refused before fix46 (reported)")] \
-            if rid in _REFUSED_BEFORE else []
-        yield pytest.param(key, id=rid, marks=marks)
+        yield pytest.param(key, id=key[1])
 
 
 @pytest.mark.parametrize("key", list(_params()))

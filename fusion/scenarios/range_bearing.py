@@ -220,9 +220,9 @@ TRACK_FUSIONS = 5
 TRACK_SWARM_STEP = 13_000
 #: Units of one swarm particle times fusion sample of a generation (``_tracking_work``; measured 0.23-0.44).
 TRACK_SWARM_PAIR = 1
-#: Work budget of a tracking study (``_tracking_work``): the entry of ``fusion._limits.STUDY_WORK`` for the book's own
-#: study (chapter 06: 100 runs of the default 30-frame scenario, 4.26e9 units, about 45 CPU-s, cached and shared by
-#: workers), twice its count: 9 x ``MAX_WORK``, about 90 CPU-s on one core; a request of hours (8e6 runs) is refused.
+#: Work budget of a tracking study (``_tracking_work``): the entry of ``fusion._limits.STUDY_WORK`` for the book's
+#: largest own study (the reseeding sweep's 300 runs of the default 30-frame scenario, 1.28e10 units; chapter 06's
+#: 100 runs count 4.26e9, about 45 CPU-s), twice its count: 26 x ``MAX_WORK``; a request of hours is refused.
 TRACK_WORK = STUDY_WORK[TRACKING_STUDY]
 
 

@@ -19,6 +19,7 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, flag, inst
 from fusion._frozen import constant
 from fusion._validation import read_once
 from fusion._validation import derived_inputs
+from fusion._limits import AWF_STUDY, STUDY_WORK
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
 from fusion._counts import input_allocation
 from fusion._validation import LOOP_STEP, as_mask, distinct, distinct_printed, glue_part, loop_work
@@ -577,7 +578,8 @@ def awf_study(
     distinct(lv.tolist(), "levels")  # the estimates are keyed by (level, estimator)
     # rule 17: per level, 25 units a draw (run x sample x sensor), measured (budget35: 1.6 CPU-s for 2 x 2 passes of
     # 3,900 runs x 100 x 4, ~3x the 8 units counted before; 78,000 runs, ~32 CPU-s, were accepted)
-    loop_work((lv.size, 2), 25 * runs * k_max * n_sig, "levels, runs, k_max and sigma")
+    # (the reseeding sweep's 10x reading, lec-awf-estimated, counts 3e9: its entry of fusion._limits.STUDY_WORK)
+    loop_work((lv.size, 2), 25 * runs * k_max * n_sig, "levels, runs, k_max and sigma", limit=STUDY_WORK[AWF_STUDY])
     seed = _seed(seed)
     ks_chk = _ints(ks, "ks")
     if np.any(ks_chk > k_max):

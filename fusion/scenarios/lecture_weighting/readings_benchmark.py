@@ -19,7 +19,7 @@ from fusion._validation import LOOP_STEP, distinct, distinct_printed, general, l
 from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import instance_of, record, seeds as check_seeds
 from fusion._validation import seed as check_seed
-from fusion._limits import ROUND_OFF_TIE
+from fusion._limits import READINGS_BENCHMARK, ROUND_OFF_TIE, STUDY_WORK
 from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
 from fusion.readings.robust import robust_fuse
@@ -41,7 +41,8 @@ BENCH_SIGMA = (0.5, 1.0, 1.5, 2.0, 4.0)
 #: Units (about 10 ns, ``fusion._limits.MAX_WORK``) of one reading (run x sample x sensor) of one setup of
 #: :func:`benchmark`: its ~20 methods cost about 0.43 us a reading, measured (budget35, OPENBLAS_NUM_THREADS=1:
 #: 2.1 CPU-s for 8 setups of 7,679 runs x 20 samples x 4 sensors), so 45 units; the chapter's 12 setups of 500 x
-#: 100 x 5 readings count about 1.4e8 units (about 1.4 CPU-s).
+#: 100 x 5 readings count about 1.4e8 units (about 1.4 CPU-s); its budget is its entry of ``fusion._limits.STUDY_WORK``
+#: (the reseeding sweep's 5,000 runs count 1.35e9 units: 3e9).
 _BENCH_READING = 45
 
 
@@ -187,9 +188,10 @@ def benchmark(
     distinct(list(seeds), "seeds"), distinct([bool(f) for f in faults], "faults")
     distinct_printed(lv.tolist(), "levels", general, "labels a column")  # the chapter's f"X={X:g}" (fuzz 30b)
     # rule 17: ~20 methods per key, a reading weighing its measured cost (budget35: ~0.43 us, 45 units; 1.5e6 runs,
-    # about 400 CPU-s, were accepted), so the edge is about 10 CPU-s
+    # about 400 CPU-s, were accepted), so the edge is about 30 CPU-s (STUDY_WORK)
     loop_work((len(seeds), lv.size, len(faults)), _BENCH_READING * runs * samples * sig_chk.size,
-              "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP)
+              "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP,
+              limit=STUDY_WORK[READINGS_BENCHMARK])  # the reseeding sweep's 10x (lec-belief-accuracy): 1.35e9
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     results = {}

@@ -17,6 +17,7 @@ from fusion._frozen import constant
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, text,
                              tuple_of, validated_post_init)
 from fusion._validation import derived_inputs
+from fusion._limits import MAX_WORK, REGIME_STUDY, STUDY_WORK
 from fusion._validation import allocation, count, one_of, scalar, sequence, work
 from fusion._validation import text as text_of
 from fusion.readings import weighting as wt
@@ -142,7 +143,8 @@ REGIME_CONSTANT_ONLY: tuple[RegimeMethod, ...] = (_R.PER_SAMPLE_FORGETTING, _R.P
 #: (six scenarios of a dozen variance trackers each) and of :func:`variance_change_study`, measured (budget35,
 #: OPENBLAS_NUM_THREADS=1): about 5 us and 0.75 us a draw (2.1 and 0.28 CPU-s for the default 100 runs x 1,000
 #: samples x 4 sensors), so that the edge is about 10 CPU-s (without a work budget, 10**7 samples of 2 runs, some
-#: 400 CPU-s, were accepted).
+#: 400 CPU-s, were accepted); :func:`regime_study`'s budget is its entry of ``fusion._limits.STUDY_WORK`` (the
+#: reseeding sweep's 1,000 runs count 2e9 units, about 20 CPU-s: 4e9).
 _REGIME_DRAW = 500
 #: :func:`variance_change_study`'s cost is a draw's per change (fuzz 40a C6: 60 changes of 400 runs, 12 % of the budget
 #: at 75 units a draw, ran 37.6 CPU-s): 10 units a draw and 45 a draw and change, from 566, 451, 351 and 465 ns a draw
@@ -153,15 +155,16 @@ _CHANGE_DRAW, _CHANGE_DRAW_EACH = 10, 45
 
 
 def _draws(sigma: Sequence[float], samples: int, runs: int, seed: int,
-           weight: int, names: str = "runs, samples and sigma") -> tuple[np.ndarray, int, int, int]:
+           weight: int, names: str = "runs, samples and sigma",
+           limit: int = MAX_WORK) -> tuple[np.ndarray, int, int, int]:
     """The checked SDs (three or more), samples (20 or more), runs and seed of a study's (runs, samples, n) draws,
-    within the memory budget and the work budget at ``weight`` units a draw (rule 17), naming ``names`` in the work
-    refusal (the arguments that set ``weight`` too)."""
+    within the memory budget and the work budget (``limit``) at ``weight`` units a draw (rule 17), naming ``names``
+    in the work refusal (the arguments that set ``weight`` too)."""
     sig = _sigmas(sigma, minimum=3)
     samples = count(samples, "samples", minimum=20)
     runs = count(runs, "runs")
     allocation((runs, samples, sig.size), "runs, samples and sigma")
-    work((runs, samples, sig.size), names, weight=weight)
+    work((runs, samples, sig.size), names, weight=weight, limit=limit)
     return sig, samples, runs, _seed(seed)
 
 
@@ -366,7 +369,8 @@ def regime_study(
         Per scenario and method the squared errors, the MSE curve and the mean weight of sensor 1 against k; the final
         σ̂₁² per run.
     """
-    sig, samples, runs, seed = _draws(sigma, samples, runs, seed, _REGIME_DRAW)
+    # the reseeding sweep's 10x reading (lec-awf-adapts) counts 2e9: its entry of fusion._limits.STUDY_WORK
+    sig, samples, runs, seed = _draws(sigma, samples, runs, seed, _REGIME_DRAW, limit=STUDY_WORK[REGIME_STUDY])
     amplitude = scalar(amplitude, "amplitude")
     period, fast_period = (scalar(v, name, lo=0.0, lo_open=True)
                            for name, v in (("period", period), ("fast_period", fast_period)))
