@@ -180,6 +180,8 @@ def benchmark(
     bias = scalar(bias, "bias")
     sig_chk = _sigmas(sigma, minimum=3)
     allocation((runs, samples, sig_chk.size), "runs, samples and sigma")
+    # the checked AWF's (runs, samples, n, n) pair arrays, at entry by the callee's own rule (named here, not as X)
+    cs._pair_budget((runs, samples, sig_chk.size), "runs, samples and sigma")
     fault_sensor = _index(fault_sensor, sig_chk.size, "fault_sensor")
     fault_from = count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
     faults = [flag(f, f"faults[{i}]")  # fuzz 24a U8: one rule for a sequence argument, then for each flag
