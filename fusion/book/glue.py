@@ -154,8 +154,12 @@ def _longdouble_float(value: object, name: str) -> object:
     """A NumPy longdouble (a scalar or a 0-d array) as a Python float (fuzz 41b D3: ``.item()`` keeps a longdouble, so
     :func:`glue_all` glued ``np.longdouble('0.123456')`` unrounded and unconverted); ValueError naming ``name`` when
     the float would be another number, beyond float's range (``1e400`` overflows to inf, a non-zero ``1e-400``
-    underflows to 0); any other value unchanged."""
+    underflows to 0); a complex longdouble as a Python complex by the same rule on each part; any other value
+    unchanged."""
     v = value[()] if isinstance(value, np.ndarray) and value.ndim == 0 else value
+    if isinstance(v, np.clongdouble):
+        parts = (_longdouble_float(v.real, name), _longdouble_float(v.imag, name))
+        return complex(*parts)  # type: ignore[arg-type]
     if not isinstance(v, np.longdouble):
         return value
     f = float(v)
