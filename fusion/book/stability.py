@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import argparse
 import datetime as _dt
+import itertools
 import json
 import platform
 import subprocess
@@ -42,7 +43,7 @@ import numpy as np
 from fusion.book._json import JSONObject, read_object
 from fusion._results import ResultSpec, flag, instance, integer, number, text, validated_post_init
 from fusion._counts import COUNT_CEILINGS
-from fusion._limits import work
+from fusion._limits import MAX_WORK, work
 from fusion._validation import is_integer
 from fusion._validation import count, distinct, instance_of, iterable, seed as check_seed, seeds as check_seeds, sequence
 from fusion.book import claims as C
@@ -78,8 +79,12 @@ TASK_WORK = 2000
 #: Units of work of one reading (a ``(kind, runs)`` entry of a record) that :func:`tasks` checks before building any
 #: task: 7.2-8.0 us measured on this shared machine (CPU time, minimum of 3, 200,000 one-reading records), so 1,000
 #: units (fuzz 41b C1: 2,000,000 readings at one seed were checked for 19 CPU-s before the task budget refused them).
-#: :func:`tasks` counts the readings (a length per record, about 0.2 us each) before checking any of them.
+#: :func:`tasks` counts the readings (by iterating each record, not by its ``len()``, fuzz 42b C3) before checking any.
 READING_WORK = 1000
+#: Units of work of one record (a ``(source, record)`` key) that :func:`tasks` counts and checks, with or without
+#: readings (fuzz 42b D3: 5e6 records without readings were checked for 6.4 CPU-s, counted 0): 0.95 us measured on
+#: this shared machine (CPU time, minimum of 3, 10**6 records without readings at one seed), so 100 units.
+RECORD_WORK = 100
 
 #: Retries of a failed task before it is reported as failed.
 RETRIES = 2
@@ -326,21 +331,18 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
         Before any task is built (fuzz 40b C6, C7): ``runs_factor`` times a primary reading's runs beyond the ceiling
         of a run count (``10**7``: its task would be refused only on a worker, after the sweep), naming
         ``runs_factor``; more readings and tasks (seeds x readings, plus the scaled primaries) than the work budget
-        checks and builds in about 10 CPU-s (``READING_WORK`` units a reading, counted before any is checked, and
-        ``TASK_WORK`` units a task: about 330,000 readings at one seed, 500,000 tasks of the book's 512 readings),
-        naming ``readings`` and ``seed_list``.
+        checks and builds in about 10 CPU-s (``READING_WORK`` units a reading and ``RECORD_WORK`` a record, counted by
+        iterating them before any is checked, whatever their ``len()`` says, and ``TASK_WORK`` units a task: about
+        330,000 readings at one seed, 500,000 tasks of the book's 512 readings), naming ``readings`` and ``seed_list``;
+        a ``readings`` that yields more records or readings when read than when counted.
     """
     runs_factor = count(runs_factor, "runs_factor")
     seed_list = distinct(check_seeds(seed_list, "seed_list"), "seed_list")
     instance_of(readings, Mapping, "readings")
-    # counted before any reading is checked (fuzz 41b C1): a length per record; a record that is not a mapping is
-    # refused by _readings
-    n_readings = sum(len(rs) if isinstance(rs, Mapping) else 0 for rs in readings.values())
-    scaled = len(readings) if runs_factor > 1 else 0
-    work((n_readings * (READING_WORK + len(seed_list) * TASK_WORK) + scaled * TASK_WORK,),
-         f"readings and seed_list ({n_readings:,} readings, {READING_WORK:,} units each to check, x {len(seed_list):,} "
-         f"seeds, {TASK_WORK:,} units a task)")
-    readings = _readings(readings, runs_factor)
+    # counted before any reading is checked (fuzz 41b C1), from what iterating them yields (fuzz 42b C3: a Mapping whose
+    # __len__ lies), every record too (D3); _readings then reads no more than was counted
+    n_records, n_readings = _reading_count(readings, len(seed_list), runs_factor > 1)
+    readings = _readings(readings, runs_factor, (n_records, n_readings))
     if runs_factor > 1 and readings:
         top = max(rs["primary"][1] for rs in readings.values())
         if top * runs_factor > COUNT_CEILINGS["runs"]:
@@ -539,11 +541,44 @@ def run_batch(batch: Sequence[Task], root: str | None = None) -> list[TaskResult
     return out
 
 
-def _readings(readings: object, runs_factor: int) -> dict:
-    """Check the mapping of :func:`stochastic_readings` (rule 12): ``(source, record) -> {reading: (kind, runs)}``."""
+def _reading_count(readings: Mapping, seeds: int, scaled: bool) -> tuple[int, int]:
+    """The records and readings of ``readings`` as iterating it yields them (never its ``len()``, which a Mapping may
+    state falsely: fuzz 42b C3), refused by :func:`tasks`' work budget (rule 17, naming ``readings`` and ``seed_list``)
+    as soon as their count passes it, before any is checked: a record weighs ``RECORD_WORK`` units (and a scaled task's
+    ``TASK_WORK``), a reading ``READING_WORK`` plus a task's per seed."""
+    per_record = RECORD_WORK + (TASK_WORK if scaled else 0)
+    per_reading = READING_WORK + seeds * TASK_WORK
+    # the keys first, one past the budget at most (iterating them reads no value: 10**7 records in well under 1 CPU-s)
+    records = sum(1 for _ in itertools.islice(iter(readings), MAX_WORK // per_record + 1))
+    n = 0
+    units = records * per_record
+    for rs in itertools.islice(readings.values(), records if units <= MAX_WORK else 0):
+        if isinstance(rs, Mapping):  # one that is not is refused by _readings
+            left = max(0, (MAX_WORK - units) // per_reading + 1)  # the readings past the budget: one is enough
+            k = sum(1 for _ in itertools.islice(iter(rs), left))
+            n += k
+            units += k * per_reading
+        if units > MAX_WORK:
+            break
+    over = records * per_record > MAX_WORK  # the keys past the budget: no reading was counted
+    work((units,), f"readings and seed_list ({'at least ' if units > MAX_WORK and not over else ''}{n:,} readings, "
+         f"{READING_WORK:,} units each to check, x {seeds:,} seeds, {TASK_WORK:,} units a task, in "
+         f"{'at least ' if over else ''}{records:,} records, {RECORD_WORK:,} units each)")
+    return records, n
+
+
+def _readings(readings: object, runs_factor: int, counted: tuple[int, int] | None = None) -> dict:
+    """Check the mapping of :func:`stochastic_readings` (rule 12): ``(source, record) -> {reading: (kind, runs)}``;
+    ``counted``: the records and readings :func:`_reading_count` counted, beyond which nothing is read (a mapping
+    that yields more on a second pass is refused)."""
     instance_of(readings, Mapping, "readings")
     checked: dict = {}
+    records = n = 0
     for key, rs in readings.items():
+        records += 1
+        if counted is not None and records > counted[0]:
+            raise ValueError(f"readings yielded more than the {counted[0]:,} records counted before they were read (a "
+                             "mapping whose items change while it is read)")
         where = f"readings[{key!r}]"
         if not (isinstance(key, tuple) and len(key) == 2 and all(isinstance(x, str) for x in key)):
             raise TypeError(f"readings: every key must be a (source, record) pair of str, got {shown(key)}")
@@ -551,6 +586,10 @@ def _readings(readings: object, runs_factor: int) -> dict:
         if runs_factor > 1 and "primary" not in rs:
             raise ValueError(f"{where} lacks the 'primary' reading that runs_factor = {runs_factor} scales")
         for name, v in rs.items():
+            n += 1
+            if counted is not None and n > counted[1]:
+                raise ValueError(f"readings yielded more than the {counted[1]:,} readings counted before they were "
+                                 "read (a mapping whose items change while it is read)")
             if not (isinstance(name, str) and isinstance(v, (tuple, list)) and len(v) == 2 and isinstance(v[0], str)):
                 raise TypeError(f"{where}[{shown(name)}] must be a (kind, runs) pair, got {shown(v)}")
             if v[0] not in R.READING_KINDS:

@@ -1,0 +1,102 @@
+"""Fuzz 42b (book layer): work budgets that count what a function loops over, at its entry, before any work (rule 17):
+``table_james_stein``'s cells, counted by their measured cost before any ratio is checked (C1, C2);
+``stability.tasks``' records and readings as iterating them yields them (C3, D3); ``check_grid``'s cells (C4);
+``premise_study``'s networks, all at entry (C5); the loops of ``nested_values`` (C7), ``spread_check`` (C8),
+``swarm_study`` and ``within_se_counts`` (C9), ``scaling_study`` (C10), ``chosen_bias_study`` and ``snis_bias_study``
+(C11); the printing formatters name the float range, not rule 2's bound, for a value beyond it (D4)."""
+
+from __future__ import annotations
+
+import collections.abc as cabc
+import time
+
+import numpy as np
+import pytest
+
+from fusion._limits import MAX_WORK
+
+
+def _refused_fast(f, match, limit=1.0):
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match=match):
+        f()
+    assert time.process_time() - t0 < limit
+
+
+# --- C3, D3 ---------------------------------------------------------------------------------------------------------
+
+class _Lying(cabc.Mapping):
+    """A mapping whose ``__len__`` says 1 whatever it holds."""
+
+    def __init__(self, d):
+        self.d = d
+
+    def __getitem__(self, k):
+        return self.d[k]
+
+    def __iter__(self):
+        return iter(self.d)
+
+    def __len__(self):
+        return 1
+
+
+def test_tasks_counts_the_readings_it_reads_not_their_len():
+    """C3: a record whose Mapping says it holds 1 reading and holds 400,001 was counted 11,000 units, then 2,000,005
+    tasks were built (36 CPU-s). The readings are counted by iterating them: refused at once naming readings."""
+    from fusion.book import stability as S
+
+    inner = {f"r{i}": ("primary", 100) for i in range(400_001)}
+    _refused_fast(lambda: S.tasks({("src", "rec"): _Lying(inner)}, [1, 2, 3, 4, 5], 1),
+                  r"^readings and seed_list \(at least [\d,]+ readings")
+    outer = _Lying({("s", f"r{i}"): {"primary": ("primary", 100)} for i in range(400_000)})
+    _refused_fast(lambda: S.tasks(outer, [1], 1),
+                  r"^readings and seed_list \(at least [\d,]+ readings, .* in 400,000 records")
+    # within the budget, a lying len() changes nothing: every reading is read and becomes a task
+    small = {f"r{i}": ("primary", 100) for i in range(1000)}
+    assert len(S.tasks({("src", "rec"): _Lying(small)}, [1], 1)) == 1000
+
+
+def test_tasks_counts_records_without_readings():
+    """D3: 5e6 records without readings were counted 0 units and checked for 6.4 CPU-s (0.95 us a record measured:
+    100 units each). 10**7 records are the budget's edge; one more is refused by counting the keys alone."""
+    from fusion._limits import work
+    from fusion.book import stability as S
+
+    assert work((10**7 * S.RECORD_WORK,), "readings") == MAX_WORK
+    keys = [("s", f"r{i}") for i in range(10**7 + 1)]
+
+    class Keys(cabc.Mapping):  # 10**7 + 1 records, each empty, without a dict of them
+        def __getitem__(self, k):
+            return {}
+
+        def __iter__(self):
+            return iter(keys)
+
+        def __len__(self):
+            return len(keys)
+
+    _refused_fast(lambda: S.tasks(Keys(), [1], 1), r"^readings and seed_list \(0 readings.*at least 10,000,001 records")
+    assert S.tasks({("s", "r"): {}}, [1], 1) == []
+
+
+def test_tasks_refuses_readings_that_grow_while_read():
+    """A mapping that yields more readings when checked than when counted is refused, not read past the count."""
+    from fusion.book import stability as S
+
+    class Growing(cabc.Mapping):
+        def __init__(self):
+            self.passes = 0
+
+        def __getitem__(self, k):
+            return {"primary": ("primary", 100)}
+
+        def __iter__(self):
+            self.passes += 1
+            return iter([("s", f"r{i}") for i in range(3 if self.passes == 1 else 5)])
+
+        def __len__(self):
+            return 3
+
+    with pytest.raises(ValueError, match="^readings yielded more than the 3 records counted"):
+        S.tasks(Growing(), [1], 1)
