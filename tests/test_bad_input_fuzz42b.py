@@ -100,3 +100,30 @@ def test_tasks_refuses_readings_that_grow_while_read():
 
     with pytest.raises(ValueError, match="^readings yielded more than the 3 records counted"):
         S.tasks(Growing(), [1], 1)
+
+
+class _Ran(Exception):
+    """The call passed its entry checks and reached its work."""
+
+
+def _ran(*args, **kwargs):
+    raise _Ran
+
+
+# --- C1, C2 ---------------------------------------------------------------------------------------------------------
+
+def test_table_james_stein_weighs_a_cell_and_counts_the_ratios_first(monkeypatch):
+    """C1: 530,000 ratios at d = 3 (counted 1.8e3 units a cell, measured about 86 us) ran 42.9 CPU-s; C2: 5e6 ratios
+    were checked one by one for 12 CPU-s before the refusal. A cell weighs 9,000 units and the cells are counted
+    before any ratio is checked: 100,000 ratios (7.6 CPU-s measured) are accepted, 110,000 refused, 5e6 at once."""
+    from fusion.book.chapters.lecture_correlated import appendix as A
+
+    _refused_fast(lambda: A.table_james_stein(ds=(3,), ratios=np.zeros(5_000_000), runs=100),
+                  r"^ds, ratios and runs \(1 dimensions summing to 3 x 5,000,000 ratios")
+    _refused_fast(lambda: A.table_james_stein(ds=(3,), ratios=[0.0] * 530_000, runs=100), r"^ds, ratios and runs")
+    _refused_fast(lambda: A.table_james_stein(ds=(3,), ratios=[0.0] * 110_000, runs=100), r"^ds, ratios and runs")
+    monkeypatch.setattr(A.np.random, "default_rng", _ran)
+    with pytest.raises(_Ran):
+        A.table_james_stein(ds=(3,), ratios=[0.0] * 100_000, runs=100)
+    with pytest.raises(_Ran):  # the chapter's table
+        A.table_james_stein()

@@ -152,6 +152,12 @@ def glue_sequential(tab: pd.DataFrame) -> GlueValues:
 #: ratio 1000 (5.4e5 terms) 32 ms, 6 units a term.
 _JS_DRAW_WORK = 3
 _JS_TERM_WORK = 6
+#: Units of one (d, ratio) cell of :func:`table_james_stein` besides its elements and terms: a
+#: ``fusion.readings.biased.james_stein`` call with its checks, :func:`james_stein_risk`'s own checks and scipy's
+#: ``poisson.pmf`` call, a row. Measured (fuzz 42b C1: 530,000 cells ran 42.9 CPU-s, counted 1.8e3 units each; CPU time,
+#: minimum of 2, OPENBLAS_NUM_THREADS=1, shared machine): 72-88 us a cell at d = 3, 100 runs, ratio 0 (5,000 and 20,000
+#: ratios) and 120 us at d = 3 to 52 (50 x 400 cells, 27 us of them its 2,700 elements): 9 ``LOOP_STEP`` (90 us).
+_JS_CELL_WORK = 9 * LOOP_STEP
 
 
 def _js_terms(ratio: float) -> int:
@@ -222,25 +228,32 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
         ``runs`` below ``MIN_RUNS``; ``ds`` or ``ratios`` empty, an entry of ``ds`` below 2, above the ceiling of a
         dimension (``10**4``, as :func:`james_stein_risk`) or repeated, of ``ratios`` outside [0, ``MAX_JS_RATIO``];
         before any draw, the draws and estimates of every cell (``runs`` x the sum of ``ds`` x (3 + the ratios),
-        units of about 10 ns) and the exact risks' Poisson sums beyond the work budget
-        (``fusion._limits.MAX_WORK``), naming ``ds``, ``ratios`` and ``runs``.
+        units of about 10 ns), each cell's calls (9,000 units, measured) and the exact risks' Poisson sums beyond
+        the work budget (``fusion._limits.MAX_WORK``), naming ``ds``, ``ratios`` and ``runs``; the cells are
+        counted before any ratio is checked.
     """
     runs = count(runs, "runs", minimum=MIN_RUNS)  # R4: a Monte-Carlo column of fewer draws is one draw's noise
     seed = check_seed(seed)   # an integer seed (rule 11), named
     # james_stein_risk's ceiling of a dimension on every entry, at entry (fuzz 41b C5: ds = (10000, 10001) was refused
     # by it inside the loop, after the first d's Monte Carlo, naming its own d)
     ds = distinct(counts(ds, "ds", minimum=2, maximum=COUNT_CEILINGS["dimension"]), "ds")
-    ratios = [scalar(r, f"ratios[{i}]", lo=0.0, hi=MAX_JS_RATIO)
-              for i, r in enumerate(sequence(ratios, "ratios", minimum=1, what="ratio"))]
+    ratios = sequence(ratios, "ratios", minimum=1, what="ratio")
+    # the cells, counted before any ratio is checked (fuzz 42b C2: 5e6 ratios were checked one by one for 12 CPU-s
+    # before the work check refused them)
+    names = (f"ds, ratios and runs ({len(ds):,} dimensions summing to {sum(ds):,} x {len(ratios):,} ratios x "
+             f"{runs:,} runs)")
+    work((len(ds), len(ratios)), names, weight=_JS_CELL_WORK)
+    ratios = [scalar(r, f"ratios[{i}]", lo=0.0, hi=MAX_JS_RATIO) for i, r in enumerate(ratios)]
     for d in ds:
         allocation((d, runs), "ds and runs")
         input_allocation((d, runs), "ds and runs")  # the readings are rg.james_stein's input (fuzz 39a D1, class)
     # rule 17 (fuzz 41b C4: nothing counted the cells; ds = (10000, 9999), 60 ratios, 3,000 runs ran 35 CPU-s): per d,
     # its d x runs draws (_JS_DRAW_WORK units an element) and per ratio a James-Stein estimate over them (1 unit an
-    # element) and the exact risk's Poisson sum (_JS_TERM_WORK units a term, plus a loop step)
+    # element) and the exact risk's Poisson sum (_JS_TERM_WORK units a term), and each cell's calls (_JS_CELL_WORK,
+    # fuzz 42b C1: counted a loop step, 530,000 cells ran 42.9 CPU-s)
     terms = sum(_js_terms(r) for r in ratios)
-    work((runs * sum(ds) * (_JS_DRAW_WORK + len(ratios)) + len(ds) * (len(ratios) * LOOP_STEP + _JS_TERM_WORK * terms),),
-         f"ds, ratios and runs ({len(ds):,} dimensions summing to {sum(ds):,} x {len(ratios):,} ratios x {runs:,} runs)")
+    work((runs * sum(ds) * (_JS_DRAW_WORK + len(ratios))
+          + len(ds) * (len(ratios) * _JS_CELL_WORK + _JS_TERM_WORK * terms),), names)
     rows = []
     for d in ds:
         e = np.random.default_rng(seed + int(d)).normal(size=(int(d), runs))
