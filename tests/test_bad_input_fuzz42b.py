@@ -127,3 +127,22 @@ def test_table_james_stein_weighs_a_cell_and_counts_the_ratios_first(monkeypatch
         A.table_james_stein(ds=(3,), ratios=[0.0] * 100_000, runs=100)
     with pytest.raises(_Ran):  # the chapter's table
         A.table_james_stein()
+
+
+# --- C4 -------------------------------------------------------------------------------------------------------------
+
+def test_check_grid_weighs_a_cell(monkeypatch):
+    """C4: 400 x 250 cells of 2 runs x 2 samples x 3 sensors were counted 6e7 units (6 % of the budget) and ran 36 CPU-s
+    (347 us a cell measured, whatever its readings). A cell weighs 40,000 units, counted before any entry is
+    checked: 24,000 such cells (12 CPU-s measured) are accepted, 100,000 and 10**7 factors refused at once."""
+    from fusion.book.chapters.lecture_weighting.consistency import check_grid
+
+    kw = dict(runs=2, samples=2, window=(0, 1), sigma=(0.5, 1.0, 1.5))
+    names = r"^biases, eps_factors, runs, samples and sigma ask for"
+    _refused_fast(lambda: check_grid(eps_factors=np.linspace(0.5, 2, 400), biases=np.linspace(5, 50, 250), **kw), names)
+    _refused_fast(lambda: check_grid(eps_factors=np.linspace(0.5, 2, 10**7), biases=(5.0,), **kw), names)
+    monkeypatch.setattr(np.random, "default_rng", _ran)
+    with pytest.raises(_Ran):
+        check_grid(eps_factors=np.linspace(0.5, 2, 200), biases=np.linspace(5, 50, 120), **kw)
+    with pytest.raises(_Ran):  # the chapter's grid
+        check_grid()

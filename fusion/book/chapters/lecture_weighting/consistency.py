@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from fusion.book._few_runs import study_runs_named
 from fusion._counts import allocation, input_allocation, sequence
-from fusion._limits import work
+from fusion._limits import LOOP_STEP, work
 from fusion._validation import as_array, instance_of, scalar, std_scalar, window as check_window
 
 from collections.abc import Sequence
@@ -209,6 +209,15 @@ def _ci(d: np.ndarray) -> tuple[float, float, float]:
     return m, m - h, m + h
 
 
+#: Units of work (``fusion._limits.work``, about 10 ns) of one (ε, bias) cell of :func:`check_grid` besides its readings
+#: (two consistency fusions, their AWF, paired intervals and a row, whatever the readings), and of one bias besides its
+#: cells (a copy of the draws, an AWF and the running means). Measured (fuzz 42b C4: 100,000 cells at 2 runs x 2
+#: samples x 3 sensors, 6 % of the budget, ran 36 CPU-s; CPU time, minimum of 3, OPENBLAS_NUM_THREADS=1, shared
+#: machine): 347 us a cell (40 factors x 25 biases) and 455 us a bias of one cell (1 x 1,000), at that size.
+_GRID_CELL_WORK = 40 * LOOP_STEP
+_GRID_BIAS_WORK = 10 * LOOP_STEP
+
+
 def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[float, ...] = (5.0, 10.0, 20.0, 30.0, 50.0),
                runs: int = 100, seed: int = 2305, sigma: Sequence[float] = (0.5, 1.0, 1.5, 2.0, 4.0),
                x: float = 900.0, window: tuple[int, int] = (49, 80), samples: int = 100) -> pd.DataFrame:
@@ -252,8 +261,9 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
         ``window`` outside the samples; the draws (``runs`` x ``samples`` x sensors) beyond the memory budget
         (``fusion._counts.MAX_ELEMENTS``, 2 GiB), and so the consistency fusions' ``runs x samples x sensors x
         sensors`` pair arrays (eight at once), or the fusions of every cell (10 units a reading and sensor, at least
-        50 a reading) beyond the work budget (``fusion._limits.MAX_WORK``), naming ``runs``, ``samples`` and
-        ``sigma``.
+        50 a reading, and 40,000 a cell, measured) beyond the work budget (``fusion._limits.MAX_WORK``), naming
+        ``biases``, ``eps_factors``, ``runs``, ``samples`` and ``sigma`` (the cells counted before any entry of
+        ``biases`` or ``eps_factors`` is checked).
     """
     seed = check_seed(seed)
     from fusion.readings import consistency as cs
@@ -266,9 +276,13 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
     if sig.size < 3:
         raise ValueError(f"sigma must hold at least 3 sensors (sensor 3 is the faulty one), got {sig.size}")
     x = scalar(x, "x")
-    eps_factors = [scalar(f, f"eps_factors[{i}]", lo=0.0, lo_open=True)
-                   for i, f in enumerate(sequence(eps_factors, "eps_factors", minimum=1, what="factor"))]
-    biases = [scalar(b, f"biases[{i}]") for i, b in enumerate(sequence(biases, "biases", minimum=1, what="fault size"))]
+    eps_factors = sequence(eps_factors, "eps_factors", minimum=1, what="factor")
+    biases = sequence(biases, "biases", minimum=1, what="fault size")
+    names = "biases, eps_factors, runs, samples and sigma"
+    # the cells, counted before any entry is checked (fuzz 42b C4: each cell's calls were not counted)
+    work((len(biases), len(eps_factors)), names, weight=_GRID_CELL_WORK)
+    eps_factors = [scalar(f, f"eps_factors[{i}]", lo=0.0, lo_open=True) for i, f in enumerate(eps_factors)]
+    biases = [scalar(b, f"biases[{i}]") for i, b in enumerate(biases)]
     # every run's draws at once, before anything is drawn (fuzz 29b B3: 3e6 runs x 100 samples x 3 sensors passed the
     # work budget and drew 6.7 GiB); then the fusions of every cell
     allocation((runs, samples, sig.size), "runs, samples and sigma")
@@ -283,9 +297,11 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
     # sensors (200 and 1,000 runs, time.process_time, shared machine; fuzz 39a E4), and the checks grow with the pairs
     # of sensors (fuzz 41b C3: 2 runs of 400 sensors, 6 % of a budget counting n, ran 63 CPU-s): one fused cell
     # measured 82 units a reading at 5 sensors (200 runs), 490 at 50 (20 runs), 1,640 at 200 (2 runs), so 10 units a
-    # pair of sensors, at least 50 a reading: the edge 2,666 runs of the default grid (~10 CPU-s), 1 run at 400 sensors
-    work((len(biases), len(eps_factors), runs, samples, sig.size, max(5, sig.size)),
-         "biases, eps_factors, runs, samples and sigma", weight=10)
+    # pair of sensors, at least 50 a reading: the edge 2,666 runs of the default grid (~10 CPU-s), 1 run at 400 sensors;
+    # and each cell's and bias's own calls (fuzz 42b C4: 100,000 cells of 12 readings were counted 6e7, ran 36 CPU-s)
+    cells = len(biases) * len(eps_factors)
+    work((cells * (10 * runs * samples * sig.size * max(5, sig.size) + _GRID_CELL_WORK)
+          + len(biases) * _GRID_BIAS_WORK,), names)
     win = slice(*check_window(window, "window", samples))
     eps0 = 3 * np.sqrt(2) * sig.max()
     clean = x + np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
