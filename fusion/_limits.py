@@ -60,8 +60,13 @@ AWF_STUDY = "the reseeding sweep's primary of lec-awf-estimated at 10x runs (awf
 REGIME_STUDY = "the reseeding sweep's primary of lec-awf-adapts at 10x runs (regime_study, 1,000 runs)"
 #: The key of the lecture's readings benchmark (``lecture_weighting.readings_benchmark.benchmark``).
 READINGS_BENCHMARK = "the reseeding sweep's primary of lec-belief-accuracy at 10x runs (benchmark, 5,000 runs)"
+#: The key of chapter 06's designed networks (``fusion.book.chapters.chernoff.premise.premise_studies``, the six
+#: networks counted at its entry, fuzz 42b C5): 4.5e9 units at the sweep's 1,000 runs a network (about 46 CPU-s).
+PREMISE_STUDY = ("the reseeding sweep's primaries of chf-premise-eps and chf-premise-mixture at 10x runs "
+                 "(premise_study, 1,000 runs of each designed network)")
 STUDY_WORK: Mapping[str, int] = constant({TRACKING_STUDY: 26 * MAX_WORK, AWF_STUDY: 7 * MAX_WORK,
-                                          REGIME_STUDY: 4 * MAX_WORK, READINGS_BENCHMARK: 3 * MAX_WORK})
+                                          REGIME_STUDY: 4 * MAX_WORK, READINGS_BENCHMARK: 3 * MAX_WORK,
+                                          PREMISE_STUDY: 9 * MAX_WORK})
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
 #: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).

@@ -146,3 +146,44 @@ def test_check_grid_weighs_a_cell(monkeypatch):
         check_grid(eps_factors=np.linspace(0.5, 2, 200), biases=np.linspace(5, 50, 120), **kw)
     with pytest.raises(_Ran):  # the chapter's grid
         check_grid()
+
+
+# --- C5 -------------------------------------------------------------------------------------------------------------
+
+def test_premise_study_counts_every_network_at_entry(monkeypatch):
+    """C5: premise_study(777, 1000) ran the first networks for 11 CPU-s, then the feedback network's own budget refused
+    it (1.49e9 units). Every network is counted at entry, against the entry of STUDY_WORK for the reseeding sweep's 10x
+    primaries (1,000 runs a network: 4.5e9 units, 56 CPU-s measured with the budget lifted): 1,000 runs reach the first
+    draw; 2,100 runs, or a last network beyond the budget, are refused before the first network runs."""
+    import dataclasses
+
+    from fusion._limits import PREMISE_STUDY, STUDY_WORK
+    from fusion.book.chapters.chernoff import premise as P
+    from fusion.book.chapters.chernoff.studies import premise_study
+    from fusion.scenarios import fusion_networks as fn
+
+    scs = dict(fn.premise_scenarios() | fn.redundancy_scenarios())
+    assert 2 * P._premise_work(scs, 1000) <= STUDY_WORK[PREMISE_STUDY] < 2 * P._premise_work(scs, 1000) + MAX_WORK
+    monkeypatch.setattr(np.random, "default_rng", _ran)
+    _refused_fast(lambda: premise_study(4321, 2100), r"^runs and scenarios \(6 networks of 2,100 runs")
+    big = dataclasses.replace(scs[P.Network.OVERCONFIDENT], n_particles=200_000)  # the last network run
+    _refused_fast(lambda: premise_study(4321, 100, scs | {P.Network.OVERCONFIDENT: big}), r"^runs and scenarios")
+    _refused_fast(lambda: P.premise_studies(4321, 100, scs | {P.Network.OVERCONFIDENT: big}), r"^runs and scenarios")
+    with pytest.raises(_Ran):  # the sweep's 10x
+        premise_study(4321, 1000)
+
+
+# --- C7 -------------------------------------------------------------------------------------------------------------
+
+def test_nested_values_counts_its_ratios(monkeypatch):
+    """C7: 25,000 ratios ran 32.5 CPU-s (a 2-D Chernoff weight search each, 2.2-2.9 ms measured); nothing counted them.
+    A ratio weighs 250,000 units, counted before any entry is checked: 4,000 are accepted, 4,001 refused at once."""
+    from fusion.book.chapters.chernoff import premise as P
+
+    _refused_fast(lambda: P.nested_values(tuple(np.linspace(2, 100, 25_000))), r"^ks ask for")
+    _refused_fast(lambda: P.nested_values(tuple(np.linspace(2, 100, 4_001))), r"^ks ask for")
+    monkeypatch.setattr(P.ch, "gaussian_chernoff_weights", _ran)
+    with pytest.raises(_Ran):
+        P.nested_values(tuple(np.linspace(2, 100, 4_000)))
+    with pytest.raises(_Ran):  # the chapter's
+        P.nested_values()

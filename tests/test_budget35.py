@@ -198,7 +198,8 @@ def test_consistency_study_weighs_a_pair_check(monkeypatch):
 _SERVED = {"TRACKING_STUDY": ("chf-equal-kl", "fusion.scenarios.range_bearing"),
            "AWF_STUDY": ("lec-awf-estimated", "fusion.scenarios.lecture_weighting.estimators"),
            "REGIME_STUDY": ("lec-awf-adapts", "fusion.scenarios.lecture_weighting.regime"),
-           "READINGS_BENCHMARK": ("lec-belief-accuracy", "fusion.scenarios.lecture_weighting.readings_benchmark")}
+           "READINGS_BENCHMARK": ("lec-belief-accuracy", "fusion.scenarios.lecture_weighting.readings_benchmark"),
+           "PREMISE_STUDY": ("chf-premise-eps", "fusion.book.chapters.chernoff.premise")}
 
 
 @pytest.mark.parametrize("key", sorted(_SERVED))

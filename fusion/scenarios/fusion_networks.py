@@ -55,6 +55,7 @@ from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, instance, i
 from fusion._validation import is_integer
 from fusion._guards import own_underflow
 from fusion._validation import sequence, store_read, text_fields, work
+from fusion._limits import MAX_WORK
 from fusion._validation import seed as check_seed
 from fusion._validation import (_numeric, FloatArray, allocation, check_magnitude, count, instance_of, one_of,
                                 positive_scalar, std_scalar)
@@ -621,13 +622,29 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
         sized resolution (its change when every other node of the fine grid is dropped, at least
         ``KL_RESOLUTION_FLOOR``, at most ``KL_ROUND_OFF``) is a divergence the grid cannot tell from 0, stored as 0.
     """
+    return _network_study(sc, seed, runs)
+
+
+def _network_units(sc: NetworkScenario, runs: int) -> int:
+    """The units of work :func:`run_network_study` counts for ``runs`` runs of ``sc`` (rule 17: a frame-round of a run
+    weighs :func:`_network_round_units`), its memory refused by name (the particles and readings, and the product
+    mixtures): the one count of its entry and of a caller that sums several networks at its own entry (fuzz 42b C5)."""
+    B, N, Q, d = runs, len(sc.nodes), sc.n_particles, 2
+    allocation((B, N, Q + sc.frames, d), "runs, sc.nodes, sc.n_particles and sc.frames")  # the particles and z
+    return B * int(sc.frames) * int(sc.rounds) * _network_round_units(sc, B)
+
+
+@own_underflow
+def _network_study(sc: NetworkScenario, seed: int, runs: int, limit: int = MAX_WORK) -> NetworkStudy:
+    """:func:`run_network_study` within the work budget ``limit`` (``fusion._limits.MAX_WORK``; a caller's entry of
+    ``fusion._limits.STUDY_WORK`` that counted every network it runs at its own entry)."""
     instance_of(sc, NetworkScenario, "sc")
     seed = check_seed(seed)
     runs = count(runs, "runs", minimum=2)
     B, N, Q, d = runs, len(sc.nodes), sc.n_particles, 2
     allocation((B, N, Q + sc.frames, d), "runs, sc.nodes, sc.n_particles and sc.frames")  # the particles and z
     work((B, int(sc.frames), int(sc.rounds)), "runs, sc.nodes, sc.edges, sc.frames, sc.rounds and sc's particle, "
-         "sample, component and stage counts", weight=_network_round_units(sc, B))
+         "sample, component and stage counts", weight=_network_round_units(sc, B), limit=limit)  # as _network_units
     truth = np.asarray(sc.truth, dtype=float)
     pipes = _MIXTURES + _GAUSSIANS
     streams = []

@@ -25,7 +25,8 @@ from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch
 from fusion.scenarios.fusion_networks import (NETWORK_METHODS, Network, NetworkScenario, NetworkStudy,
-                                              premise_scenarios, redundancy_scenarios, run_network_study)
+                                              _network_study, _network_units, premise_scenarios, redundancy_scenarios)
+from fusion._limits import LOOP_STEP, PREMISE_STUDY, STUDY_WORK, count_text
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
 from fusion.book.chapters.chernoff.compare import _word
 from fusion.book.glue import GlueValues
@@ -131,6 +132,14 @@ _NEST_SERIES_BELOW = 1e-2
 _GREGORY = _gregory(14)
 
 
+#: Units of work (``fusion._limits.work``, about 10 ns) of one ratio of :func:`nested_values`: a 2-D Chernoff weight
+#: search (``fusion.estimates.chernoff.gaussian_chernoff_weights``) with its checks and the closed form. Measured (CPU
+#: time, minimum of 3, OPENBLAS_NUM_THREADS=1, shared machine): 2.2 to 2.9 ms a ratio (500 and 2,000 ratios in [2, 100],
+#: 2,000 in [1.001, 1e6]; 4,990 ratios, 13.0 CPU-s); the fuzz measured 1.3 ms (25,000 ratios, 32.5 CPU-s): 250
+#: ``LOOP_STEP``, so 4,000 ratios are the edge.
+_NESTED_RATIO_WORK = 250 * LOOP_STEP
+
+
 def nested_values(ks: tuple[float, ...] = (2.0, 10.0, 100.0, 1e4)) -> GlueValues:
     """Glue ``chf_nest_*``: the closed form :func:`nested_gaussian_weight` against the numerical Chernoff weights.
 
@@ -152,11 +161,14 @@ def nested_values(ks: tuple[float, ...] = (2.0, 10.0, 100.0, 1e4)) -> GlueValues
     ValueError
         ``ks`` is empty, an entry is not a finite ratio > 1, or an entry is repeated (the values are keyed by the
         entries' positions, and a repeated ratio would glue one result twice: the repeat rule of the chapter's
-        tables).
+        tables); more ratios than the work budget (``fusion._limits.MAX_WORK``) searches in about 10 CPU-s (250,000
+        units a ratio, measured: 4,000), counted before any entry is checked, naming ``ks``.
     """
     items = sequence(ks, "ks")
     if not items:
         raise ValueError("ks is empty (it must hold at least one variance ratio)")
+    # rule 17, before any entry is checked (fuzz 42b C7: 25,000 ratios ran 32.5 CPU-s, nothing counted them)
+    loop_work((len(items),), 0, "ks", step=_NESTED_RATIO_WORK)
     # the floats the reader returns, computed with and glued (fuzz 22b, FR3: a Decimal or a Fraction was used raw)
     items = [scalar(k, f"ks[{j}]", lo=1.0, lo_open=True) for j, k in enumerate(items)]
     distinct(items, "ks")
@@ -284,13 +296,51 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
         or a run count in it not an integer.
     ValueError
         ``seed`` negative, ``runs`` below 1; ``scenarios`` without one of :data:`PREMISE_NETWORKS`; ``more`` naming
-        another network or a run count below ``runs``.
+        another network or a run count below ``runs``; every network's runs together beyond their work budget (the
+        entry of ``fusion._limits.STUDY_WORK`` for the reseeding sweep's 1,000 runs a network), before the first
+        network runs, naming ``runs`` and ``scenarios``.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
     scs = _network_scenarios(scenarios)
     more = {} if more is None else _check_more(more, runs)
-    return {k: run_network_study(scs[k], seed + j, more.get(k, runs)) for j, k in enumerate(PREMISE_NETWORKS)}
+    _premise_work(scs, runs, more)
+    return {k: _network_study(scs[k], seed + j, more.get(k, runs), limit=STUDY_WORK[PREMISE_STUDY])
+            for j, k in enumerate(PREMISE_NETWORKS)}
+
+
+def _premise_work(scs: Mapping[str, NetworkScenario], runs: int, more: Mapping[str, int] | None = None) -> int:
+    """Refuse, before the first network runs, designed networks whose runs together are beyond their work budget.
+
+    Every network of :data:`PREMISE_NETWORKS` is counted as ``fusion.scenarios.fusion_networks.run_network_study``
+    counts it (its memory refused by name), and the sum is checked once (fuzz 42b C5: each network checked only its own
+    count, so 1,000 runs ran the first networks for 11 CPU-s before the feedback network's 1.49e9 units were refused).
+    The budget is the entry of ``fusion._limits.STUDY_WORK`` for the reseeding sweep's 10x primaries of chf-premise-eps
+    and chf-premise-mixture (1,000 runs a network: 4.5e9 units, about 46 CPU-s measured), twice their count.
+
+    Parameters
+    ----------
+    scs : mapping
+        The networks by key (checked: every key of :data:`PREMISE_NETWORKS`).
+    runs : int
+        Runs per network (checked).
+    more : mapping, optional
+        Network key -> its own runs (checked, as :func:`premise_studies`' ``more``).
+
+    Returns
+    -------
+    int
+        The units of work of every network.
+
+    Raises
+    ------
+    ValueError
+        Beyond the budget, naming ``runs`` and ``scenarios``.
+    """
+    more = {} if more is None else more
+    units = [_network_units(scs[k], more.get(k, runs)) for k in PREMISE_NETWORKS]
+    return work((sum(units),), f"runs and scenarios ({len(units)} networks of {runs:,} runs, "
+                f"{', '.join(count_text(u) for u in units)} units)", limit=STUDY_WORK[PREMISE_STUDY])
 
 
 def _network_scenarios(scenarios: object) -> Mapping[str, NetworkScenario]:

@@ -16,8 +16,8 @@ from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun, mo
 from fusion.book.chapters.chernoff.guard import DesignStudy, design_study, guarded_runs
 from fusion.book.chapters.chernoff.gaussian import GaussianChecks, common_information_check, gaussian_checks
 from fusion.book.chapters.chernoff.importance import IsVarianceStudy, is_variance_study
-from fusion.book.chapters.chernoff.premise import (PREMISE_MORE_RUNS, PREMISE_NETWORKS, _check_scenarios, _pcmp,
-                                                   premise_studies)
+from fusion.book.chapters.chernoff.premise import (PREMISE_MORE_RUNS, PREMISE_NETWORKS, _check_scenarios,
+                                                   _network_scenarios, _pcmp, _premise_work, premise_studies)
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS, STUDY_WORKERS, study_scenario
 from fusion.book.glue import GlueValues
 from fusion.book.ledger import MIN_RUNS
@@ -175,11 +175,16 @@ def premise_study(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any] |
     TypeError
         ``seed`` or ``runs`` not an integer, ``scenarios`` not a mapping of NetworkScenario.
     ValueError
-        ``seed`` negative, ``runs`` below 1, ``scenarios`` without one of :data:`PREMISE_NETWORKS`.
+        ``seed`` negative, ``runs`` below 1, ``scenarios`` without one of :data:`PREMISE_NETWORKS`; every network's
+        runs together beyond their work budget (the entry of ``fusion._limits.STUDY_WORK`` for the reseeding sweep's
+        1,000 runs a network), before the first network runs, naming ``runs`` and ``scenarios``.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
-    return _premise(seed, runs, None if scenarios is None else tuple(_check_scenarios(scenarios).items()))
+    scs = None if scenarios is None else _check_scenarios(scenarios)
+    # every network counted at entry, before the cache and the first network (fuzz 42b C5)
+    _premise_work(_network_scenarios(scs), runs, _premise_more(runs))
+    return _premise(seed, runs, None if scs is None else tuple(scs.items()))
 
 
 @study_cache(maxsize=2)
