@@ -187,3 +187,22 @@ def test_nested_values_counts_its_ratios(monkeypatch):
         P.nested_values(tuple(np.linspace(2, 100, 4_000)))
     with pytest.raises(_Ran):  # the chapter's
         P.nested_values()
+
+
+# --- C8 -------------------------------------------------------------------------------------------------------------
+
+def test_spread_check_counts_every_half_width(monkeypatch):
+    """C8: 5 half-widths at 3.7e6 draws ran 46 CPU-s: each learned_limit_check passed its own budget (9.8e8 units, 10.4
+    CPU-s), the loop over them was not counted. Every half-width's check is counted before any entry is checked
+    (5 x 750,000 draws, 9.9e8 units, ran 6.7 CPU-s; 5 x 3.7e6 refused at once)."""
+    from fusion.book.chapters.lecture_weighting import learning as LW
+    from fusion.scenarios.lecture_weighting import learning as SL
+
+    _refused_fast(lambda: LW.spread_check(log_ranges=(1.0, 2.0, 3.0, 4.0, 5.0), draws=3_700_000),
+                  r"^log_ranges and draws ask for")
+    _refused_fast(lambda: LW.spread_check(log_ranges=np.ones(10**6), draws=20), r"^log_ranges and draws ask for")
+    monkeypatch.setattr(SL.np.random, "default_rng", _ran)
+    with pytest.raises(_Ran):
+        LW.spread_check(log_ranges=(1.0, 2.0, 3.0, 4.0, 5.0), draws=750_000)
+    with pytest.raises(_Ran):  # the chapter's
+        LW.spread_check()

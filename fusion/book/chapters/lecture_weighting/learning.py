@@ -4,7 +4,8 @@ figures and glue."""
 from __future__ import annotations
 
 from fusion._counts import sequence
-from fusion._validation import instance_of, scalar
+from fusion._limits import work
+from fusion._validation import count, instance_of, scalar
 
 import numpy as np
 import pandas as pd
@@ -17,7 +18,8 @@ from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings import weighting as wt
-from fusion.scenarios.lecture_weighting.learning import LearnedLimitCheck, LearningStudy
+from fusion.scenarios.lecture_weighting.learning import (LearnedLimitCheck, LearningStudy, _CHECK_NS,
+                                                         _limit_check_units)
 from fusion._counts import seed as check_seed
 from fusion.book.chapters._defaults import study_defaults
 
@@ -287,13 +289,19 @@ def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 
     TypeError
         ``log_ranges`` not a sequence of numbers, ``draws`` or ``seed`` not an integer.
     ValueError
-        ``log_ranges`` empty (no row to show) or an entry not finite and positive, or beyond ``MAX_LOG_RANGE``.
+        ``log_ranges`` empty (no row to show) or an entry not finite and positive, or beyond ``MAX_LOG_RANGE``; every
+        half-width's check together (``draws`` x 33 variances, 8 units each, per half-width) beyond the work budget
+        (``fusion._limits.MAX_WORK``), counted before any entry is checked, naming ``log_ranges`` and ``draws``.
     """
     seed = check_seed(seed)
     from fusion.scenarios import lecture_weighting as sc
 
+    ranges = sequence(log_ranges, "log_ranges", minimum=1, what="half-width")
+    # rule 17: each half-width runs a whole check, counted before any entry is checked (fuzz 42b C8: 5 half-widths at
+    # 3.7e6 draws, each within the check's own budget, ran 46 CPU-s)
+    work((len(ranges), _limit_check_units(_CHECK_NS, count(draws, "draws"))), "log_ranges and draws")
     ranges = [scalar(a, f"log_ranges[{i}]", lo=0.0, lo_open=True, hi=sc.learning.MAX_LOG_RANGE)
-              for i, a in enumerate(sequence(log_ranges, "log_ranges", minimum=1, what="half-width"))]
+              for i, a in enumerate(ranges)]
     rows = []
     for a in ranges:
         r = sc.learned_limit_check(draws=draws, seed=seed, log_range=a)
