@@ -206,3 +206,44 @@ def test_spread_check_counts_every_half_width(monkeypatch):
         LW.spread_check(log_ranges=(1.0, 2.0, 3.0, 4.0, 5.0), draws=750_000)
     with pytest.raises(_Ran):  # the chapter's
         LW.spread_check()
+
+
+# --- C9 -------------------------------------------------------------------------------------------------------------
+
+def test_swarm_studies_count_every_n_and_variant_at_entry(monkeypatch):
+    """C9: swarm_study(1, (2,), 4500, 1000) ran 35.7 CPU-s (only memory was counted); (2, 3, 40) at 3,000 runs ran n = 2
+    and 3, then the n = 40 swarm refused naming swarm_options; within_se_counts ran n = 2 then refused naming r;
+    swarm_within_se named swarm_options. Every N and variant is counted at entry (a problem weighs its measured cost),
+    with the swarm's and SLSQP's own budgets of the largest N, naming the caller's arguments; 1,000 runs of n = 2 (the
+    edge, 8.0 CPU-s measured) and the book's calls are accepted."""
+    from fusion.book.chapters import chernoff_scaling as cs
+
+    _refused_fast(lambda: cs.swarm_study(1, ns=(2,), runs=4500, r=1000), r"^ns, runs and r ask for")
+    _refused_fast(lambda: cs.swarm_study(1, ns=(2, 3, 40), runs=3000, r=100), r"^ns, runs and r ask for")
+    _refused_fast(lambda: cs.within_se_counts(1, ns=(2, 40), runs=3000), r"^runs, the 1,000 importance samples and ns")
+    _refused_fast(lambda: cs.within_se_counts(1, ns=(2, 40), runs=600), r"^ns and runs ask for")
+    _refused_fast(lambda: cs.swarm_within_se(1, 40, 3000, 100), r"^n, runs and r ask for")
+    _refused_fast(lambda: cs.swarm_within_se(1, 2, 5000, 2), r"^n, runs and r ask for")  # the swarm's own loop
+    _refused_fast(lambda: cs.swarm_within_se(1, 395, 2, 2), r"^n, runs and r ask for")  # SLSQP's own budget
+    monkeypatch.setattr(cs.np.random, "default_rng", _ran)
+    for call in (lambda: cs.swarm_study(1, ns=(2,), runs=1000, r=1000), lambda: cs.swarm_study(1),
+                 lambda: cs.within_se_counts(1), lambda: cs.swarm_within_se(1, 10, 1000)):
+        with pytest.raises(_Ran):
+            call()
+
+
+# --- C10 ------------------------------------------------------------------------------------------------------------
+
+def test_scaling_study_has_a_work_budget(monkeypatch):
+    """C10: 4,000 sample sizes of 2 runs ran 54.9 CPU-s, 20,000 runs of 2 sizes 27.3 (only memory was counted). The
+    runs' exact exponents and each size's batch are weighed by their measured costs: both refused at once, 8,800 runs
+    of 2 sizes (about 11 CPU-s) and the book's study accepted."""
+    from fusion.book.chapters import chernoff_scaling as cs
+
+    _refused_fast(lambda: cs.scaling_study(1, rs=tuple(range(2, 40000, 10)), runs=2), r"^rs, n and runs ask for")
+    _refused_fast(lambda: cs.scaling_study(1, rs=(2, 3), runs=20000), r"^rs, n and runs ask for")
+    _refused_fast(lambda: cs.scaling_study(1, rs=(2, 3), runs=9000), r"^rs, n and runs ask for")
+    monkeypatch.setattr(cs.np.random, "default_rng", _ran)
+    for call in (lambda: cs.scaling_study(1, rs=(2, 3), runs=8800), lambda: cs.scaling_study(1)):
+        with pytest.raises(_Ran):
+            call()

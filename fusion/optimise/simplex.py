@@ -103,6 +103,12 @@ def simplex_row(e: FloatArray, n: int | None, name: str, given: object) -> Float
 _SLSQP_ITERATIONS, _FD_CALL = 300, 2500
 
 
+def _simplex_work(n: int, jac: bool, names: str) -> int:
+    """The work budget of one :func:`minimise_on_simplex` of ``n`` weights (with or without ``jac``), naming ``names``:
+    its own rule, and that of a caller that runs it in a loop and checks it at its entry (fuzz 42b C9)."""
+    return work((_SLSQP_ITERATIONS, n), names, weight=n * n // 20 + (0 if jac else _FD_CALL) + LOOP_STEP)
+
+
 def minimise_on_simplex(
     f: Callable[[FloatArray], float], n: int, jac: Callable[[FloatArray], FloatArray] | None = None,
     x0: ArrayLike | None = None, ftol: float = 1e-14,
@@ -147,7 +153,7 @@ def minimise_on_simplex(
     # rule 17: SLSQP's dense (n + 1)-row least squares an iteration (about 0.5 ns x n**3 measured, budget35: 0.1 s
     # an iteration at n = 600) and, without jac, n finite-difference calls of f (about 25 us each); without a
     # budget n = 50,000 was accepted (hours, and gigabytes of SLSQP workspace)
-    work((_SLSQP_ITERATIONS, n), "n", weight=n * n // 20 + (_FD_CALL if jac is None else 0) + LOOP_STEP)
+    _simplex_work(n, jac is not None, "n")
     ftol = tolerance(ftol, "ftol")  # fuzz 24a U2: inf, NaN or a negative one returned the start as the minimum
 
     def value(e: FloatArray) -> float:  # issue 35, class 3: NaN, non-numbers and vectors refused, naming f

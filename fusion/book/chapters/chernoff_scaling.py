@@ -19,6 +19,7 @@ from fusion._docstrings import with_sections
 from fusion._results import ResultSpec, array, dict_of, integer, mask, tuple_of, validated_post_init
 from fusion._shown import shown
 from fusion._validation import FloatArray, allocation, as_array, count, counts, distinct, instance_of, scalar
+from fusion._limits import work
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
@@ -162,6 +163,40 @@ def _problem_budget(n: int, runs: int, r: int, names: tuple[str, str, str], squa
     allocation((runs, r, n, 8), f"{runs_name}, {r_name} and {n_name}")
 
 
+#: Units of work (``fusion._limits.work``, about 10 ns) of one problem of :func:`gaussian_problems` through the swarm
+#: and its SLSQP reference on the same ``r`` samples (``_swarm_and_slsqp``, the swarm's default options): a fixed part,
+#: a part per node, SLSQP's dense steps (n³), per sample and per sample and node. Measured (fuzz 42b C9; CPU time,
+#: minimum of 2, OPENBLAS_NUM_THREADS=1, shared machine; swarm_within_se): 2.56 / 1.42 ms a problem at n = 2 and
+#: r = 1000 / 100, 4.42 / 3.00 ms at n = 10, 15.5 / 10.0 ms at n = 40, 10.7 ms at n = 5 and r = 4000, 45.5, 275 and
+#: 736 ms at n = 100, 200 and 300 (r = 100); the counts below are within 0.7x to 1.3x of each (the fuzz's 4,500 runs
+#: of n = 2, three variants, 35.7 CPU-s: counted 4.4e9).
+_PROBLEM_UNITS = 100_000
+_NODE_UNITS = 22_000
+_CUBE_UNITS = 3
+_SAMPLE_UNITS = 150
+_SAMPLE_NODE_UNITS = 15
+
+
+def _swarm_units(n: int, r: int) -> int:
+    """The units of one problem of ``n`` nodes and ``r`` samples through the swarm and SLSQP (the weights above)."""
+    return _PROBLEM_UNITS + _NODE_UNITS * n + _CUBE_UNITS * n**3 + _SAMPLE_UNITS * r + _SAMPLE_NODE_UNITS * r * n
+
+
+def _swarm_budget(runs: int, r: int, variants: dict[int, tuple[SwarmOptions, ...]], names: str) -> None:
+    """Rule 17 at the entry of a swarm study (fuzz 42b C9: each swarm checked only itself, after the smaller N ran):
+    every N's problems, once per swarm variant run on them (``variants``: N -> the options), weighed by
+    :func:`_swarm_units`; and the callees' own budgets of the largest N (each swarm's loop, SLSQP's weights), all
+    naming the caller's arguments ``names``."""
+    from fusion.optimise.simplex import _simplex_work
+    from fusion.optimise.swarm import _swarm_work
+
+    work((sum(runs * len(opts) * _swarm_units(n, r) for n, opts in variants.items()),), names)
+    for n, opts in variants.items():
+        for o in opts:
+            _swarm_work(runs, o.n_particles, o.iterations, n, names)
+    _simplex_work(max(variants), True, names)
+
+
 def _swarm_and_slsqp(w: FloatArray, m: FloatArray, c: FloatArray, seed: int, r: int,
                      swarm_options: SwarmOptions | None = None) -> list[ch.MixtureFusion]:
     """Steps E-G on the problems (w, m, c) of :func:`gaussian_problems`, the swarm and the SLSQP reference on the same
@@ -213,12 +248,17 @@ def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r:
         An argument not an integer, or ``ns`` not a sequence of integers.
     ValueError
         ``runs`` or ``r`` below 2, ``ns`` empty, an entry below 2, or an entry repeated (the study is keyed by N);
-        the largest N, ``runs`` and ``r`` beyond the memory budget (the SLSQP reference needs about 10.5 N² numbers).
+        the largest N, ``runs`` and ``r`` beyond the memory budget (the SLSQP reference needs about 10.5 N² numbers);
+        every N's problems, once per swarm variant, beyond the work budget (``fusion._limits.MAX_WORK``; a problem
+        weighs its measured cost, about 100,000 + 22,000 N + 3 N³ + 150 r + 15 r N units), or a swarm or SLSQP of the
+        largest N beyond its own, before any work, naming ``ns``, ``runs`` and ``r``.
     """
     seed = check_seed(seed)
     runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
     ns = tuple(distinct(counts(ns, "ns", minimum=2), "ns"))
     _problem_budget(max(ns), runs, r, ("ns", "runs", "r"), square=11)
+    _swarm_budget(runs, r, {n: tuple(SWARM_VARIANTS.values()) if n == max(ns) else (SwarmOptions(),) for n in ns},
+                  "ns, runs and r")
     gap: dict[tuple[int, str], FloatArray] = {}
     evals: dict[tuple[int, str], FloatArray] = {}
     corner: dict[tuple[int, str], np.ndarray] = {}
@@ -259,16 +299,22 @@ def swarm_within_se(seed: int, n: int, runs: int = 100, r: int = 1000) -> tuple[
         An argument not an integer.
     ValueError
         ``n``, ``runs`` or ``r`` below 2, or beyond the memory budget (the SLSQP reference needs about 10.5 n²
-        numbers, the samples' densities about 8 runs × r × n).
+        numbers, the samples' densities about 8 runs × r × n) or the work budget (``fusion._limits.MAX_WORK``, the
+        problems weighed as :func:`swarm_study`'s, the swarm's and SLSQP's own), naming ``n``, ``runs`` and ``r``.
     """
     seed = check_seed(seed)
     seed = count(seed, "seed", minimum=0, maximum=None)
     n, runs, r = count(n, "n", minimum=2), count(runs, "runs", minimum=2), count(r, "r", minimum=2)
     _problem_budget(n, runs, r, ("n", "runs", "r"), square=11)
+    _swarm_budget(runs, r, {n: (SwarmOptions(),)}, "n, runs and r")
     res = _swarm_and_slsqp(*gaussian_problems(np.random.default_rng([seed, n]), runs, n), seed, r)
     gap = np.array([x.objective - x.objective_reference for x in res])
     se = np.sqrt(np.maximum(1.0 / np.array([x.ess for x in res]) - 1.0 / r, 0.0))
     return gap, se
+
+
+#: Importance samples per problem of :func:`within_se_counts` (:func:`swarm_within_se`'s default).
+_WITHIN_R = 1000
 
 
 @_on_problems
@@ -289,13 +335,18 @@ def within_se_counts(seed: int, ns: tuple[int, ...] = (3, 5, 10), runs: int = 10
     TypeError
         An argument not an integer, or ``ns`` not a sequence of integers.
     ValueError
-        ``runs`` below 2, ``ns`` empty, an entry below 2, or an entry repeated (the glue keys are keyed by N).
+        ``runs`` below 2, ``ns`` empty, an entry below 2, or an entry repeated (the glue keys are keyed by N); every
+        N's problems (1,000 importance samples each) beyond the memory or work budget (as :func:`swarm_within_se`'s),
+        at entry, naming ``ns`` and ``runs``.
     """
     seed = check_seed(seed)
     out = {"chf_sw_within_runs": count(runs, "runs", minimum=2)}
     ns = distinct(counts(ns, "ns", minimum=2), "ns")
+    # every N at entry (fuzz 42b C9: n = 2 ran, then the largest N was refused naming r, not an argument here)
+    _problem_budget(max(ns), runs, _WITHIN_R, ("ns", "runs", f"the {_WITHIN_R:,} importance samples"), square=11)
+    _swarm_budget(runs, _WITHIN_R, {n: (SwarmOptions(),) for n in ns}, "ns and runs")
     for n in ns:
-        gap, se = swarm_within_se(seed, n, runs)
+        gap, se = swarm_within_se(seed, n, runs, _WITHIN_R)
         out[f"chf_sw_within_{n}"] = int(np.sum(np.abs(gap) < se))
     return out
 
@@ -479,6 +530,18 @@ def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2,
                          for j, s in enumerate(ss)}, index=pd.Index(list(ns), name="N"))
 
 
+#: Units of work (``fusion._limits.work``, about 10 ns) of :func:`scaling_study`: a run's exact Chernoff exponents (a
+#: fixed part and a part per node), an R's batch (its generators and the batch's own steps), a problem of a batch (fixed and
+#: per node) and a sample and node of it. Measured (fuzz 42b C10: 4,000 sizes of 2 runs ran 54.9 CPU-s, 20,000 runs of 2
+#: sizes 27.3, only memory counted; CPU time, minimum of 2, OPENBLAS_NUM_THREADS=1, shared machine): 0.98 / 3.1 ms a run
+#: at n = 3 / 10 (400 runs, rs = (2, 3)), 72 / 116 us a problem of a batch (20 against 2 sizes), 1.5 ms a size (398
+#: sizes of 2 runs), 86-96 ns a sample and node (rs = (2000, 4000), 200 runs); the counts are within 0.85x-1.15x of the
+#: fuzz's two calls and of these.
+_RUN_UNITS, _RUN_NODE_UNITS = 8_000, 30_000
+_SIZE_UNITS = 150 * 1000
+_BATCH_PROBLEM_UNITS, _BATCH_NODE_UNITS, _BATCH_SAMPLE_UNITS = 5_500, 600, 10
+
+
 def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000), n: int = 3, runs: int = 100
                   ) -> ScalingStudy:
     r"""The error of step G's exponents in R, against the exact Chernoff exponents (local Gaussians).
@@ -508,7 +571,9 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
     ValueError
         ``rs`` with fewer than two sizes (the study's slope in R needs two) or repeating an R (the study is keyed by
         R); ``runs``, ``n`` or an R below 2; ``n``, ``runs`` and the largest R beyond the memory budget (the Newton
-        steps need about 6.5 runs × n² numbers).
+        steps need about 6.5 runs × n² numbers); the runs' exact exponents and every R's batch beyond the work budget
+        (``fusion._limits.MAX_WORK``, weighed by their measured costs), before any draw, naming ``rs``, ``n`` and
+        ``runs``.
     TypeError
         A count that is not an integer (``rs`` included, entry by entry).
     """
@@ -518,6 +583,10 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
     if len(rs) < 2:
         raise ValueError(f"rs must hold at least two sample sizes (the slope of the error in R needs two), got {rs}")
     _problem_budget(n, runs, max(rs), ("n", "runs", "rs"), square=7 * runs)
+    # rule 17 (fuzz 42b C10): every run's exact exponents and every size's batch, weighed as measured above
+    work((runs * (_RUN_UNITS + _RUN_NODE_UNITS * n) + len(rs) * _SIZE_UNITS
+          + runs * sum(_BATCH_PROBLEM_UNITS + _BATCH_NODE_UNITS * n + _BATCH_SAMPLE_UNITS * r * n for r in rs),),
+         "rs, n and runs")
     w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
     exact = np.stack([ch.gaussian_chernoff_weights(m[k, :, 0], c[k, :, 0]).eps for k in range(runs)])
     err = np.empty((len(rs), runs))
