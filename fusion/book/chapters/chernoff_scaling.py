@@ -531,12 +531,12 @@ def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2,
 
 
 #: Units of work (``fusion._limits.work``, about 10 ns) of :func:`scaling_study`: a run's exact Chernoff exponents (a
-#: fixed part and a part per node), an R's batch (its generators and the batch's own steps), a problem of a batch (fixed and
-#: per node) and a sample and node of it. Measured (fuzz 42b C10: 4,000 sizes of 2 runs ran 54.9 CPU-s, 20,000 runs of 2
-#: sizes 27.3, only memory counted; CPU time, minimum of 2, OPENBLAS_NUM_THREADS=1, shared machine): 0.98 / 3.1 ms a run
-#: at n = 3 / 10 (400 runs, rs = (2, 3)), 72 / 116 us a problem of a batch (20 against 2 sizes), 1.5 ms a size (398
-#: sizes of 2 runs), 86-96 ns a sample and node (rs = (2000, 4000), 200 runs); the counts are within 0.85x-1.15x of the
-#: fuzz's two calls and of these.
+#: fixed part and a part per node), an R's batch (its generators and the batch's own steps), a problem of a batch
+#: (fixed and per node) and a sample and node of it. Measured (fuzz 42b C10: 4,000 sizes of 2 runs ran 54.9 CPU-s,
+#: 20,000 runs of 2 sizes 27.3, only memory counted; CPU time, minimum of 2, OPENBLAS_NUM_THREADS=1, shared machine):
+#: 0.98 / 3.1 ms a run at n = 3 / 10 (400 runs, rs = (2, 3)), 72 / 116 us a problem of a batch (20 against 2 sizes),
+#: 1.5 ms a size (398 sizes of 2 runs), 86-96 ns a sample and node (rs = (2000, 4000), 200 runs); the counts are
+#: within 0.85x-1.15x of the fuzz's two calls and of these.
 _RUN_UNITS, _RUN_NODE_UNITS = 8_000, 30_000
 _SIZE_UNITS = 150 * 1000
 _BATCH_PROBLEM_UNITS, _BATCH_NODE_UNITS, _BATCH_SAMPLE_UNITS = 5_500, 600, 10
