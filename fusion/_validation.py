@@ -399,8 +399,10 @@ def _lost_in_cast(value: object, v: float) -> bool:
         return False
 
 
-def _real_number(value: object, name: str, what: str = "a number") -> float:
-    """``float(value)`` for a real number; TypeError naming ``name`` otherwise (bool and complex included)."""
+def _real_number(value: object, name: str, what: str = "a number", bound: float | None = MAX_MAGNITUDE) -> float:
+    """``float(value)`` for a real number; TypeError naming ``name`` otherwise (bool and complex included). A number
+    beyond the float range is refused naming ``bound``, the caller's (rule 2's :data:`MAX_MAGNITUDE`), or the float
+    range itself when None (the printing formatters, which apply no rule-2 bound: fuzz 42b D4)."""
     if isinstance(value, (str, bytes, bool, np.bool_)) or value is None:
         raise TypeError(f"{name} must be {what}, got {shown(value)}")
     if isinstance(value, (complex, np.complexfloating)) or (isinstance(value, np.ndarray) and value.dtype.kind == "c"):
@@ -421,7 +423,10 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
                              f"value below the float range: {shown(value, 60)}")
         return v
     except OverflowError:  # a Python int or Fraction beyond the float range
-        raise ValueError(f"{name} must be {what} of magnitude at most {MAX_MAGNITUDE:g}, got one beyond the float "
+        if bound is None:
+            raise ValueError(f"{name} must be {what} of magnitude within the float range (at most "
+                             f"{float(np.finfo(float).max):.3g}), got one beyond it") from None
+        raise ValueError(f"{name} must be {what} of magnitude at most {bound:g}, got one beyond the float "
                          "range") from None
     except (TypeError, ValueError) as exc:
         if str(exc).startswith(f"{name} must be {what} of magnitude"):

@@ -247,3 +247,55 @@ def test_scaling_study_has_a_work_budget(monkeypatch):
     for call in (lambda: cs.scaling_study(1, rs=(2, 3), runs=8800), lambda: cs.scaling_study(1)):
         with pytest.raises(_Ran):
             call()
+
+
+# --- C11 ------------------------------------------------------------------------------------------------------------
+
+def _divisors(total, top):
+    return tuple(r for r in range(2, top + 1) if total % r == 0)
+
+
+@pytest.mark.parametrize("study, bad, edge", [
+    # 54 sizes of a 2e6 pool ran 58.8 CPU-s; a size costs a 60-step bisection over the pool (60 units a sample)
+    ("chosen_bias_study", dict(rs=_divisors(2_000_000, 1_000_000), total=2_000_000),
+     dict(rs=(2, 4, 5, 8), total=1_400_000)),
+    # 47 sizes of a 1e6 pool ran 2.4 CPU-s: lighter, but the pool size itself was not counted (1e7 x 62 sizes)
+    ("snis_bias_study", dict(rs=_divisors(10_000_000, 5_000_000), total=10_000_000), dict(rs=(2, 4), total=9_000_000)),
+])
+def test_block_studies_count_the_pool_and_its_sizes(monkeypatch, study, bad, edge):
+    """C11: the pool studies had no work budget on total x len(rs) (only divisibility and the count ceiling). The pool's
+    samples and a pass over them per size are counted before the draw: the fuzz's requests are refused at once, a pool
+    within the budget and the book's studies accepted."""
+    from fusion.book.chapters import chernoff_snis as S
+
+    _refused_fast(lambda: getattr(S, study)(np.random.default_rng(1), **bad), r"^rs and total ask for")
+    monkeypatch.setattr(S.mx, "gm_sample", _ran)
+    for kw in (edge, {}):
+        with pytest.raises(_Ran):
+            getattr(S, study)(np.random.default_rng(1), **kw)
+
+
+# --- D4 -------------------------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("value", ["decimal", "fraction", "longdouble"])
+def test_printing_formatters_name_the_float_range(value):
+    """D4: sci, fmt, rounded and roundoff refused a value beyond the float range stating rule 2's bound ("at most
+    1e+150"), which these formatters do not apply (sci(1e300) prints). They name the float range; scalar keeps rule 2."""
+    from decimal import Decimal
+    from fractions import Fraction
+
+    from fusion._validation import scalar
+    from fusion.book.chapters.lecture import sci as lecture_sci
+    from fusion.book.ledger import fmt
+    from fusion.book.tables import rounded, roundoff, sci
+
+    x = {"decimal": Decimal("1e400"), "fraction": Fraction(10**400, 3), "longdouble": np.longdouble("1e4000")}[value]
+    if value == "longdouble" and np.isinf(x):
+        pytest.skip("longdouble is float64 on this platform")
+    for f, name in ((sci, "x"), (fmt, "x"), (rounded, "value"), (roundoff, "value"), (lecture_sci, "value")):
+        with pytest.raises(ValueError, match=rf"^{name} must be a number of magnitude within the float range \(at most "
+                                             r"1\.8e\+308\), got one beyond it$"):
+            f(x)
+    assert sci(1e300) == "10³⁰⁰"  # printed, no rule-2 bound
+    with pytest.raises(ValueError, match=r"^x must be a number of magnitude at most 1e\+150"):
+        scalar(x, "x")

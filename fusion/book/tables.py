@@ -44,7 +44,7 @@ def _printed_number(value: object, name: str) -> float:
     if is_integer(value) and abs(int(value)) > _FLOAT_MAX:   # not rule 2's 1e150: a printed number has no such bound
         raise ValueError(f"{name} must be a number within the float range (magnitude at most {_FLOAT_MAX:.3g}), "
                          "got an integer beyond it")
-    v = _real_number(value, name)
+    v = _real_number(value, name, bound=None)  # beyond the float range named as such (fuzz 42b D4)
     if not math.isfinite(v):
         raise ValueError(f"{name} must be finite, got {shown(value)}")
     return v
@@ -540,7 +540,7 @@ def _significant(x: Any, digits: int, power: Callable[[str, int], str]) -> str:
     digits = count(digits, "digits")
     if is_integer(x):
         return str(_printable_integer(x, "x"))
-    x = _real_number(x, "x")  # TypeError naming x for text, complex, containers
+    x = _real_number(x, "x", bound=None)  # TypeError naming x for text, complex, containers; the float range
     word = _nonfinite_word(x)  # the rule of every number formatter (NONFINITE_RULE)
     if word is not None:
         return word

@@ -36,6 +36,7 @@ from numpy.typing import ArrayLike
 from fusion._docstrings import with_sections
 from fusion._validation import FloatArray, as_array, count, instance_of, positive_scalar, unit_scalar
 from fusion._counts import counts, distinct
+from fusion._limits import work
 from fusion.book.tables import rounded
 from fusion.estimates import mixtures as mx
 from fusion.book.glue import GlueValues
@@ -356,12 +357,26 @@ total : int
     Pool size.""")
 
 
-def _pool_blocks(rng: np.random.Generator, rs: tuple[int, ...], total: int) -> tuple[int, tuple[int, ...]]:
+#: Units of work (``fusion._limits.work``, about 10 ns) of a block study's pool sample (its draw and log densities)
+#: and of a sample per block size R, for :func:`snis_bias_study` and :func:`chosen_bias_study` (the latter's bisection
+#: runs 60 steps over the whole pool for every R). Measured (fuzz 42b C11: 54 sizes of a 2e6 pool ran 58.8 CPU-s, 47 of
+#: a 1e6 pool 25.4, snis_bias_study's 47 at 1e6 2.4; CPU time, minimum of 2, OPENBLAS_NUM_THREADS=1, shared machine):
+#: chosen 3.27 / 9.86 CPU-s for 1 / 10 sizes of a 1e6 pool, 6.2 for 2 of 2e6, 14.0 for 4 of 2e6; snis 1.06 / 1.26 and
+#: 1.52 (7.0 for 2 sizes of 9e6): the counts are within 0.8x-1.4x of these and of the fuzz's.
+_SNIS_POOL_UNITS, _SNIS_SIZE_UNITS = 100, 3
+_CHOSEN_POOL_UNITS, _CHOSEN_SIZE_UNITS = 350, 60
+
+
+def _pool_blocks(rng: np.random.Generator, rs: tuple[int, ...], total: int,
+                 units: tuple[int, int] = (_SNIS_POOL_UNITS, _SNIS_SIZE_UNITS)) -> tuple[int, tuple[int, ...]]:
     """The checked pool size ``total`` and block sizes ``rs`` of a block study (distinct, each R >= 2, dividing
-    ``total`` into at least two blocks), ``rs`` sorted; ``rng`` checked to be a Generator."""
+    ``total`` into at least two blocks), ``rs`` sorted; ``rng`` checked to be a Generator; the pool's samples and each
+    size's pass over them (``units``: a sample's, and a sample's per size) within the work budget (rule 17, fuzz 42b
+    C11), before anything is drawn, naming ``rs`` and ``total``."""
     instance_of(rng, np.random.Generator, "rng")
     total = count(total, "total")
     rs = tuple(sorted(distinct(counts(rs, "rs", minimum=2), "rs")))
+    work((total, units[0] + units[1] * len(rs)), "rs and total")
     if any(total % r for r in rs):
         raise ValueError(f"rs must divide total = {total}, got {rs}")
     if rs[-1] > total // 2:
@@ -409,7 +424,9 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
     TypeError
         ``rng`` not a Generator, ``rs``, ``total`` not integers, ``far_omega`` not a real number.
     ValueError
-        ``rs`` or ``total`` as the pool refuses them; ``far_omega`` outside [0, 1], equal to ω* at 4 decimals, or
+        ``rs`` or ``total`` as the pool refuses them (``rs`` not dividing ``total`` into two blocks or more; the pool's
+        samples and a pass over them per R beyond the work budget, ``fusion._limits.MAX_WORK``: 100 units a sample and
+        3 a sample per R, measured); ``far_omega`` outside [0, 1], equal to ω* at 4 decimals, or
         one whose :math:`\int p^2/g` is infinite (decided from the Gaussian components' tails) or not resolved by
         the quadrature grids up to half-width 72 (no two successive ones agree; checked before any sample is
         drawn).
@@ -532,8 +549,17 @@ def chosen_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (20, 80, 4
     ChosenBiasStudy
         One row per R: blocks, R × bias along c with ω* fixed and with ω chosen, their paired difference with its 95 %
         interval, and the mean absolute error of ω.
+
+    Raises
+    ------
+    TypeError
+        ``rng`` not a Generator, ``rs`` or ``total`` not integers.
+    ValueError
+        ``rs`` not distinct sizes of at least 2 dividing ``total`` into two blocks or more; the pool's samples and a
+        bisection over them per R beyond the work budget (``fusion._limits.MAX_WORK``: 350 units a sample and 60 a
+        sample per R, measured), before anything is drawn, naming ``rs`` and ``total``.
     """
-    total, rs = _pool_blocks(rng, rs, total)
+    total, rs = _pool_blocks(rng, rs, total, (_CHOSEN_POOL_UNITS, _CHOSEN_SIZE_UNITS))
     ref = toy_reference()
     w_star = ref.omega_star
     e = np.array([w_star, 1 - w_star])

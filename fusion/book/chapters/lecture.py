@@ -132,7 +132,7 @@ def sci(value: float, digits: int = 2) -> str:
     TypeError
         ``value`` is text (``"1"``), bytes, ``None``, a bool, complex or a container, naming ``value``.
     """
-    v = _real_number(value, "value")
+    v = _real_number(value, "value", bound=None)  # a printed number: the float range its only bound (fuzz 42b D4)
     digits = count(digits, "digits")  # 1 to 17 (a float64 holds 17 significant digits)
     word = _nonfinite_word(v)
     if word is not None:

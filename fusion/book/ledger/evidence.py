@@ -482,7 +482,7 @@ class Comparison:
         ValueError
             ``x`` is a finite number beyond the float range, or a non-zero one below it (naming ``x``).
         """
-        return self._text(_real_number(x, "x", "a real number"))
+        return self._text(_real_number(x, "x", "a real number", bound=None))  # the float range (fuzz 42b D4)
 
     def _mean(self, v: tuple[float, ...]) -> float:
         return float(np.mean(v)) if all(math.isfinite(x) for x in v) else math.inf
