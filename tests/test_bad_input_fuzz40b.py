@@ -292,7 +292,7 @@ def test_tasks_refuses_more_tasks_than_the_budget_builds_before_building_them():
     assert len(S.tasks(readings, S.seeds(20), 1)) == 20_000
     seed_list = S.seeds(501)
     t0 = time.process_time()
-    with pytest.raises(ValueError, match=r"^readings and seed_list \(1,000 readings.* x 501 seeds"):
+    with pytest.raises(ValueError, match=r"^readings and seed_list \(at least 99\d readings.* x 501 seeds"):
         S.tasks(readings, seed_list, 1)   # 501,000 tasks
     assert time.process_time() - t0 < 1.0
     with pytest.raises(ValueError, match=r"^readings and seed_list "):
