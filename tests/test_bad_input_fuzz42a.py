@@ -1,0 +1,74 @@
+"""Fuzz 42a (the package outside the book layer): a caller's ``len()`` bounds what is read (C1), a budget counts every
+loop a function runs, weighted by its measured cost (C2-C7), a valid producer's output is a valid reader's input (C8),
+and an in-range input never raises a raw OverflowError (C9)."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import pytest
+
+from fusion._limits import MAX_WORK
+
+
+def _refused_fast(f, *args, match: str, **kw) -> None:
+    t = time.process_time()
+    with pytest.raises(ValueError, match=match):
+        f(*args, **kw)
+    assert time.process_time() - t < 1.0
+
+
+class _Lying(Sequence):
+    """``len()`` is 3; ``__getitem__`` answers up to index ``n`` (never raising for ``n=None``)."""
+
+    def __init__(self, n):
+        self.n = n
+
+    def __len__(self):
+        return 3
+
+    def __getitem__(self, i):
+        if self.n is not None and i >= self.n:
+            raise IndexError(i)
+        return 1.0
+
+
+@pytest.mark.parametrize("n", [10**8, None])
+def test_lying_sequence_read_at_most_one_past_its_len(n):
+    """C1: read_once read a Sequence whose len() is 3 through its __getitem__ until IndexError (1e8 entries, 24 CPU-s;
+    an endless one for ever); now one entry past len() is read and the call refused naming the argument."""
+    from fusion.readings.fusion_set import fuse_epochs
+    from fusion.scenarios import infrared_radar
+
+    _refused_fast(infrared_radar.late_means, {"a": np.ones((3, 4))}, _Lying(n), match=r"^t has len\(\) 3 but more")
+    _refused_fast(fuse_epochs, _Lying(n), "mean", match=r"^x has len\(\) 3 but more")
+
+
+def test_honest_and_short_sequences():
+    """C1: an honest Sequence is read as its list; one with fewer items than its len() is refused by name."""
+    from fusion.readings.fusion_set import fuse_epochs
+
+    assert fuse_epochs(_Lying(3), "mean").values.tolist() == [1.0]
+    _refused_fast(fuse_epochs, _Lying(2), "mean", match=r"^x has len\(\) 3 but 2 items")
+
+
+def test_lying_mapping_read_at_most_one_past_its_len():
+    """C1: read_mapping read a Mapping's items until its iterator ended (an endless one for ever)."""
+    from fusion._guards import read_mapping
+
+    class Endless(Mapping):
+        def __len__(self):
+            return 1
+
+        def __iter__(self):
+            i = 0
+            while True:
+                yield i
+                i += 1
+
+        def __getitem__(self, k):
+            return 1.0
+
+    _refused_fast(read_mapping, Endless(), "scenarios", match=r"^scenarios has len\(\) 1 but more")
