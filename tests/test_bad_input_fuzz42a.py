@@ -72,3 +72,18 @@ def test_lying_mapping_read_at_most_one_past_its_len():
             return 1.0
 
     _refused_fast(read_mapping, Endless(), "scenarios", match=r"^scenarios has len\(\) 1 but more")
+
+
+def test_variance_change_study_counts_each_change_step():
+    """C2: a change's fixed ~0.7 ms step was not counted: 50,000 changes at the smallest draws (1 run x 20 samples x 3
+    sensors) were accepted and ran 36.9 CPU-s. Now 14,000 are refused at once; 13,500 (9.3 CPU-s) pass the budget
+    and reach the next check (a change_at outside the samples, named)."""
+    from fusion.scenarios.lecture_weighting.regime import variance_change_study
+
+    def changes(c):
+        return [(f"c{i}", {0: 2.0}) for i in range(c)]
+
+    kw = dict(sigma=(1.0, 1.0, 1.0), samples=20, runs=1)
+    _refused_fast(variance_change_study, changes=changes(14_000), change_at=10, **kw,
+                  match=r"^runs, samples, sigma and changes ask for 1.02e\+09 units")
+    _refused_fast(variance_change_study, changes=changes(13_500), change_at=20, **kw, match=r"^change_at")
