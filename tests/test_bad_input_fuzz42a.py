@@ -87,3 +87,83 @@ def test_variance_change_study_counts_each_change_step():
     _refused_fast(variance_change_study, changes=changes(14_000), change_at=10, **kw,
                   match=r"^runs, samples, sigma and changes ask for 1.02e\+09 units")
     _refused_fast(variance_change_study, changes=changes(13_500), change_at=20, **kw, match=r"^change_at")
+
+
+class _Flip:
+    """An ``own`` whose ``__array__`` gives 3 SDs on its first call and ``N`` after."""
+
+    def __init__(self, N):
+        self.calls, self.N = 0, N
+
+    def __array__(self, dtype=None, copy=None):
+        self.calls += 1
+        a = np.ones(3 if self.calls == 1 else self.N)
+        return a if dtype is None else a.astype(dtype)
+
+
+def test_coupling_study_runs_the_case_it_counted():
+    """C3: own was converted 1 + grid + 1 times: counted at N = 3, run at N = 2,000 (46.5 CPU-s). Now converted once
+    and run as counted."""
+    from fusion.scenarios.correlated_sensors import coupling_study
+
+    own = _Flip(2000)
+    s = coupling_study({"a": {"own": own, "coupling": np.ones(3), "env": 1.0}}, runs=2, env_grid=(0.0, 1.0))
+    assert own.calls == 1 and s.rows[0]["N"] == 3
+
+
+class _Growing(Mapping):
+    """A mapping of 1 case on its first iteration and 60 after."""
+
+    def __init__(self):
+        self.iters = 0
+
+    def _n(self):
+        return 1 if self.iters <= 1 else 60
+
+    def __iter__(self):
+        self.iters += 1
+        return iter([f"c{i}" for i in range(self._n())])
+
+    def __len__(self):
+        return self._n()
+
+    def __getitem__(self, k):
+        return {"own": (1.0, 2.0, 3.0), "coupling": (0.5, 0.5, 0.5), "env": 1.0}
+
+
+@pytest.mark.parametrize("study", ["coupling_study", "estimated_covariance_study"])
+def test_correlated_studies_read_the_mapping_once(study):
+    """C3 (and C6, which shares the reader): the mapping was iterated again after its cases were counted, so 60 cases
+    of N = 1,000 counted as one ran 48.6 CPU-s. Now its cases are read once and what runs is what was counted."""
+    from fusion.scenarios import correlated_sensors as cs
+
+    m = _Growing()
+    kw = dict(runs=2, env_grid=(0.0, 1.0)) if study == "coupling_study" else dict(ns=(10,), reps=2)
+    s = getattr(cs, study)(m, **kw)
+    assert m.iters == 1 and len(s.rows) == 1
+
+
+def _cases(c, N=3):
+    return {f"c{i}": {"own": np.linspace(1.0, 3.0, N), "coupling": np.ones(N), "env": 1.0} for i in range(c)}
+
+
+def test_estimated_covariance_study_sums_its_cases():
+    """C6 (a): each case was counted alone and without its fixed ~0.76 ms step: 20,000 cases of N = 3 (ns=(10, 30),
+    reps=400) were accepted and ran 38.6 CPU-s. Now 221,000 units a case, summed: 4,525 are refused at once; 4,524
+    (about 8.4 CPU-s at 1.85 ms a case) pass the budget and reach a bad 4,525th case, named."""
+    from fusion.scenarios.correlated_sensors import estimated_covariance_study
+
+    kw = dict(ns=(10, 30), reps=400)
+    _refused_fast(estimated_covariance_study, _cases(4525), **kw,
+                  match=r"^scenarios \(their sensors\), ns and reps ask for 1e\+09 units")
+    _refused_fast(estimated_covariance_study, {**_cases(4524), "wide": _cases(1, N=10)["c0"]}, **kw,
+                  match=r"^ns must exceed the number of sensors \(10\) of case 'wide'")
+
+
+def test_estimated_covariance_study_counts_before_any_covariance():
+    """C6 (b): every case's N x N covariance was built before the first count: 16 cases of N = 9,400 were refused
+    after 6.5 CPU-s. Now the first case is refused, before its covariance."""
+    from fusion.scenarios.correlated_sensors import estimated_covariance_study
+
+    _refused_fast(estimated_covariance_study, _cases(16, N=9400), ns=(9401,), reps=2,
+                  match=r"^scenarios \(their sensors\), ns and reps ask for 1.66e\+12 units")
