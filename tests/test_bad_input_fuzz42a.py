@@ -167,3 +167,25 @@ def test_estimated_covariance_study_counts_before_any_covariance():
 
     _refused_fast(estimated_covariance_study, _cases(16, N=9400), ns=(9401,), reps=2,
                   match=r"^scenarios \(their sensors\), ns and reps ask for 1.66e\+12 units")
+
+
+class _Ran(Exception):
+    pass
+
+
+def _ran(*args, **kwargs):
+    raise _Ran
+
+
+def test_benchmark_counts_every_key_pair_work(monkeypatch):
+    """C4: the checked AWF's n x n pair work (6 units a pair element) was counted for one key only: 12 keys of 1 run x
+    3,300 samples x 100 sensors were accepted (1.8e8 units by the readings) and ran 32.8 CPU-s. Now every key's: 6
+    keys (1.19e9 units) are refused at once, 5 (9.9e8, about 5-13 CPU-s) pass the budget and reach their first key."""
+    from fusion.scenarios.lecture_weighting import readings_benchmark as rbm
+
+    kw = dict(runs=1, samples=3300, levels=(0.0,), sigma=tuple(np.linspace(1.0, 2.0, 100)))
+    _refused_fast(rbm.benchmark, seeds=(1, 2, 3), faults=(False, True), **kw,
+                  match=r"^seeds, levels, faults, runs, samples and sigma ask for 1.19e\+09 units .*6 x 1 x 3,300")
+    monkeypatch.setattr(rbm, "_snapshot_errors", _ran)
+    with pytest.raises(_Ran):
+        rbm.benchmark(seeds=(1, 2, 3, 4, 5), faults=(False,), **kw)

@@ -168,6 +168,14 @@ def benchmark(
     -------
     dict
         ``{(seed, level, fault): {method key (:class:`BenchMethod`): per-run squared error, shape (runs,)}}``.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, named; before any work: the readings of every (seed, level, fault) key beyond the work budget
+        (45 units a reading, measured, and a step a key; its entry of ``fusion._limits.STUDY_WORK``), the checked AWF's
+        eight ``(runs, samples, n, n)`` pair arrays beyond the memory budget (naming runs, samples and sigma), or their
+        work at every key (6 units a pair element, measured) beyond ``fusion._validation.MAX_WORK``.
     """
     sigma = read_once(sigma, "sigma")  # a Sequence class read once (fuzz 31a C4)
     if isinstance(seeds, (str, bytes)):
@@ -180,8 +188,6 @@ def benchmark(
     bias = scalar(bias, "bias")
     sig_chk = _sigmas(sigma, minimum=3)
     allocation((runs, samples, sig_chk.size), "runs, samples and sigma")
-    # the checked AWF's (runs, samples, n, n) pair arrays, at entry by the callee's own rule (named here, not as X)
-    cs._pair_budget((runs, samples, sig_chk.size), "runs, samples and sigma")
     fault_sensor = _index(fault_sensor, sig_chk.size, "fault_sensor")
     fault_from = count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
     faults = [flag(f, f"faults[{i}]")  # fuzz 24a U8: one rule for a sequence argument, then for each flag
@@ -194,6 +200,16 @@ def benchmark(
     loop_work((len(seeds), lv.size, len(faults)), _BENCH_READING * runs * samples * sig_chk.size,
               "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP,
               limit=STUDY_WORK[READINGS_BENCHMARK])  # the reseeding sweep's 10x (lec-belief-accuracy): 1.35e9
+    # the checked AWF's (runs, samples, n, n) pair arrays, at entry by the callee's own rule (named here, not as X):
+    # their memory, and their work at every key (fuzz 42a C4: one key's was counted, so 12 keys of 1 run x 3,300
+    # samples x 100 sensors, 1.8e8 units by the readings, ran 32.8 CPU-s). A key of the benchmark measured the checked
+    # AWF's cost (2.7-5.9 units a pair element) and about 15-30 units a reading more (2,000 x 100 x 5, 200 x 100 x 10
+    # and 20, 50 x 100 x 40, 1 x 3,300 x 100, 1 x 1,000 x 180, 2 x 500 x 150: 0.11 to 1.4 CPU-s a key, the least of
+    # three, time.process_time, OPENBLAS_NUM_THREADS=1, machine shared), within the 45 units a reading and the
+    # callee's 6 a pair element counted; the sweep's 10x (12 keys of 5,000 x 100 x 5) counts 9e8 pair units
+    cs._pair_budget((runs, samples, sig_chk.size), "runs, samples and sigma",
+                    fusions=len(seeds) * lv.size * len(faults),
+                    fusion_names="seeds, levels, faults, runs, samples and sigma")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     results = {}
