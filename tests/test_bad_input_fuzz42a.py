@@ -189,3 +189,57 @@ def test_benchmark_counts_every_key_pair_work(monkeypatch):
     monkeypatch.setattr(rbm, "_snapshot_errors", _ran)
     with pytest.raises(_Ran):
         rbm.benchmark(seeds=(1, 2, 3, 4, 5), faults=(False,), **kw)
+
+
+class _ArrayOnly:
+    """Variances with only ``__array__`` (no len, no shape)."""
+
+    def __init__(self, v):
+        self.v = np.asarray(v, dtype=float)
+
+    def __array__(self, dtype=None, copy=None):
+        return self.v if dtype is None else self.v.astype(dtype)
+
+
+class _Growing2:
+    """``len()`` 2; ``__array__`` gives 2 variances on its first call and ``N`` after."""
+
+    def __init__(self, N):
+        self.calls, self.N = 0, N
+
+    def __len__(self):
+        return 2
+
+    def __array__(self, dtype=None, copy=None):
+        self.calls += 1
+        a = np.array([1.0, 4.0]) if self.calls == 1 else np.linspace(1.0, 4.0, self.N)
+        return a if dtype is None else a.astype(dtype)
+
+
+def test_learning_study_reads_each_set_once():
+    """C5: each r_sets entry was read 4 times (_sigmas, asarray, len, array): one with only __array__ raised a raw
+    TypeError "has no len()"; one giving 2 variances and then 3,000 was counted at 2 and drew (200, 2000, 3000) (raw
+    MemoryError). Now each is converted once and run as converted."""
+    from fusion.scenarios.lecture_weighting.learning import learning_study
+
+    kw = dict(runs=2, epochs=20, last=10)
+    s = learning_study(r_sets=(_ArrayOnly([1.0, 4.0]), (1.0, 2.0, 3.0)), **kw)
+    assert repr(s.rows) == repr(learning_study(r_sets=((1.0, 4.0), (1.0, 2.0, 3.0)), **kw).rows)  # NaN: by repr
+    g = _Growing2(5)
+    assert list(learning_study(r_sets=(g,), **kw).learned) == [2] and g.calls == 1
+
+
+def test_learning_study_counts_each_set_by_its_variances():
+    """C5 (the same reading): a set's work was counted as runs x epochs whatever its variances, so 1,000 sensors of 2
+    runs x 2,000 epochs counted 1e5 units (0.33 CPU-s run). Now 15 units a reading of each set: 17 sets of 1,000 to
+    1,016 sensors (1.03e9 units) are refused at once; 16 (9.7e8, about 5 CPU-s) pass the budget and reach the next
+    check (two sets of one size, named)."""
+    from fusion.scenarios.lecture_weighting.learning import learning_study
+
+    def sets(k):
+        return [np.linspace(1.0, 4.0, n) for n in range(1000, 1000 + k)]
+
+    _refused_fast(learning_study, r_sets=sets(17), runs=2, epochs=2000,
+                  match=r"^r_sets, runs and epochs ask for 1.03e\+09 units")
+    _refused_fast(learning_study, r_sets=sets(16) + [(1.0, 2.0), (1.0, 3.0)], runs=2, epochs=2000,
+                  match=r"^r_sets must hold sets of different sizes")
