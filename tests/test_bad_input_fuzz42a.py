@@ -243,3 +243,15 @@ def test_learning_study_counts_each_set_by_its_variances():
                   match=r"^r_sets, runs and epochs ask for 1.03e\+09 units")
     _refused_fast(learning_study, r_sets=sets(16) + [(1.0, 2.0), (1.0, 3.0)], runs=2, epochs=2000,
                   match=r"^r_sets must hold sets of different sizes")
+
+
+def test_awf_study_counts_the_length_of_ks():
+    """C7: len(ks) sets the (runs, len(ks), n) running means and every curve at two levels, uncounted: ks = [100] *
+    200,000 of 500 runs raised a raw MemoryError after 17.6 CPU-s. Now its memory and work (12 units a level, run and
+    entry, measured) are counted: refused at once; 416,666 entries of 100 runs pass the budget and reach the next
+    check (a k_compare outside ks, named)."""
+    from fusion.scenarios.lecture_weighting.estimators import awf_study
+
+    _refused_fast(awf_study, ks=[100] * 200_000, runs=500, match=r"^runs, ks and sigma ask for an array")
+    _refused_fast(awf_study, ks=[100] * 416_667, runs=100, match=r"^ks and runs ask for 1e\+09 units")
+    _refused_fast(awf_study, ks=[100] * 416_666, runs=100, k_compare=99, match=r"^k_compare must be one of ks")
