@@ -255,3 +255,22 @@ def test_awf_study_counts_the_length_of_ks():
     _refused_fast(awf_study, ks=[100] * 200_000, runs=500, match=r"^runs, ks and sigma ask for an array")
     _refused_fast(awf_study, ks=[100] * 416_667, runs=100, match=r"^ks and runs ask for 1e\+09 units")
     _refused_fast(awf_study, ks=[100] * 416_666, runs=100, k_compare=99, match=r"^k_compare must be one of ks")
+
+
+def test_infrared_readers_take_a_negative_range_estimate():
+    """C8: a valid simulation at sigma_range = 1,000 m has range estimates below 0 (min about -1,220 m); rule_errors,
+    rmse_by_rule and cartesian_tracks refused it naming an inner "r (range)" (none of their arguments), position its
+    range_est likewise. A negative range estimate is a filter's valid output: the position formula applies (the point
+    through the origin), its error is large and finite."""
+    from fusion.scenarios import infrared_radar as ir
+
+    sim = ir.simulate(np.random.default_rng(0), runs=50, sigma_range=1000.0)
+    assert sim.radar_range.est[..., 0].min() < 0 and sim.radar_range.z[..., 0].min() < 0
+    errors = ir.rule_errors(sim)
+    assert all(np.isfinite(e).all() for e in errors.values())
+    assert all(np.isfinite(e).all() for e in ir.rmse_by_rule(sim).values())
+    assert np.isfinite(ir.cartesian_tracks(sim).radar.est).all()
+    p = ir.position(np.array([[-5.0, 0.0]]), np.array([[0.1, 0.0, 0.2, 0.0]]))
+    np.testing.assert_allclose(p, -ir.position(np.array([[5.0, 0.0]]), np.array([[0.1, 0.0, 0.2, 0.0]])))
+    with pytest.raises(ValueError, match=r"r \(range\) must be non-negative"):  # a coordinate: still refused
+        ir.spherical_to_cartesian(-5.0, 0.1, 0.2)
