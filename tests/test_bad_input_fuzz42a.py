@@ -274,3 +274,17 @@ def test_infrared_readers_take_a_negative_range_estimate():
     np.testing.assert_allclose(p, -ir.position(np.array([[5.0, 0.0]]), np.array([[0.1, 0.0, 0.2, 0.0]])))
     with pytest.raises(ValueError, match=r"r \(range\) must be non-negative"):  # a coordinate: still refused
         ir.spherical_to_cartesian(-5.0, 0.1, 0.2)
+
+
+def test_slip_steps_band_squares_beyond_the_float_range():
+    """C9: (r / (p - h))**2 on floats raised a raw OverflowError at in-range inputs (rmse 1e150, published just above
+    half a unit; decimals 17 with rmse 1e145). The band is now computed exactly beyond the float range."""
+    from fractions import Fraction
+
+    from fusion.scenarios.two_sensor import slip_steps_band
+
+    lo, hi = slip_steps_band(1e150, 0.5000001)
+    assert lo <= hi and hi == int(Fraction(1e150 / (0.5000001 - 0.5)) ** 2)
+    lo, hi = slip_steps_band(1e145, 1.5e-17, decimals=17)
+    assert 0 < lo <= hi
+    assert slip_steps_band(3.0, 1.0) == (5, 36)  # within the float range: as before
