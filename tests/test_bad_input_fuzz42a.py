@@ -288,3 +288,42 @@ def test_slip_steps_band_squares_beyond_the_float_range():
     lo, hi = slip_steps_band(1e145, 1.5e-17, decimals=17)
     assert 0 < lo <= hi
     assert slip_steps_band(3.0, 1.0) == (5, 36)  # within the float range: as before
+
+
+class _ShrinkingLen(Sequence):
+    """``len()`` truthful on its first two calls, then 1; the items never change."""
+
+    def __init__(self, items):
+        self.items, self.calls = list(items), 0
+
+    def __len__(self):
+        self.calls += 1
+        return len(self.items) if self.calls <= 2 else 1
+
+    def __getitem__(self, i):
+        return self.items[i]
+
+
+def test_wavelet_studies_count_the_list_they_run():
+    """C12 and C14: mechanism_study counted configs by a second len() and iterated the argument (600 configs counted
+    as 1 ran 35.2 CPU-s); signal_study likewise its signals. Now the list read is what is counted and run."""
+    from fusion.scenarios import wavelet_sensors as ws
+
+    _refused_fast(ws.mechanism_study, configs=_ShrinkingLen(list(ws.CONFIGS) * 60),
+                  match=r"^configs, runs, gains and length ask for")
+    _refused_fast(ws.signal_study, signals=_ShrinkingLen(list(ws.SIGNALS) * 20),
+                  match=r"^signals, modes, normalisers, runs, gains and length ask for")
+
+
+def test_variance_study_counts_its_readings():
+    """C14: each reading runs a pass over the draws (93 us a reading at 2 runs x 4 sensors x 64 samples, up to ~10
+    units a sample), uncounted: 450,000 readings were accepted and ran 46.2 CPU-s. Now refused at once by their
+    number; with the draws, 83,000 passes (82,999 readings and the oracle, about 8 CPU-s) are accepted and reach the
+    next check (a bad mode, named), one more is refused."""
+    from fusion.scenarios.wavelet_sensors import variance_study
+
+    kw = dict(runs=2, length=64)
+    _refused_fast(variance_study, readings=["batch"] * 450_000, **kw, match=r"^readings ask for 4.5e\+09 units")
+    _refused_fast(variance_study, readings=["batch"] * 83_000, **kw,
+                  match=r"^readings, runs, gains and length ask for 1e\+09 units")
+    _refused_fast(variance_study, readings=["batch"] * 82_999, mode="medium", **kw, match=r"^mode")

@@ -177,7 +177,7 @@ def test_wavelet_variance_study_has_a_work_budget(monkeypatch):
     # no work budget: 690,000 runs (about 31 CPU-s) were accepted; ~0.2 us a sample, refused before the draws
     from fusion.scenarios import wavelet_sensors as ws
     monkeypatch.setattr(ws, "check_magnitude", _ran)
-    with pytest.raises(ValueError, match="^runs, gains and length ask for"):
+    with pytest.raises(ValueError, match="^readings, runs, gains and length ask for"):  # each reading too (42a C14)
         ws.variance_study(length=128, runs=200_000, gains=(1.0, 2.0, 3.0), sigma=(1.0, 1.0, 1.0))
     with pytest.raises(Ran):  # the chapter's (window 64, 300 runs of the default case)
         ws.variance_study(window=64, runs=300)
