@@ -327,3 +327,29 @@ def test_variance_study_counts_its_readings():
     _refused_fast(variance_study, readings=["batch"] * 83_000, **kw,
                   match=r"^readings, runs, gains and length ask for 1e\+09 units")
     _refused_fast(variance_study, readings=["batch"] * 82_999, mode="medium", **kw, match=r"^mode")
+
+
+class _Window(Sequence):
+    """A pair (first, last) of samples: ``a`` on its first read, ``b`` after."""
+
+    def __init__(self, a, b):
+        self.a, self.b, self.n = a, b, 0
+
+    def __len__(self):
+        return 2
+
+    def __getitem__(self, i):
+        if i == 0:
+            self.n += 1
+        return (self.a if self.n <= 1 else self.b)[i]
+
+
+def test_paired_study_reads_the_failure_once():
+    """C11: failure["samples"] was read by random_failure (the failure injected on samples 50-80) and again for the
+    record (window (1, 100) and the member shares of that window: plausible wrong numbers). Now read once."""
+    from fusion.scenarios import thermocouples as T
+
+    M = {"o": {"method": "optimal_fusion_set"}, "m": {"method": "mean"}}
+    plain = T.paired_study(1, 3, M, failure={"samples": (50, 80)})
+    r = T.paired_study(1, 3, M, failure={"samples": _Window((50, 80), (1, 100))})
+    assert r.window == plain.window == (50, 80) and r.failed_member_share == plain.failed_member_share

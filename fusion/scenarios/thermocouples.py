@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from fusion._frozen import constant
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, integer, number, same_keys, text, tuple_of,
                              validated_post_init)
-from fusion._validation import read_once
+from fusion._validation import read_mapping, read_once
 from fusion._validation import derived_inputs
 from fusion._validation import LOOP_STEP, distinct, loop_work, one_of, work
 from fusion._validation import allocation, record, seed as check_seed
@@ -567,11 +567,14 @@ def paired_study(
     n_runs = count(n_runs, "n_runs")
     seed = check_seed(seed)
     methods = _check_methods(methods)
+    failure = read_mapping(failure, "failure")
     instance_of(failure, (Mapping, type(None)), "failure")
     if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name
         record(failure, "failure", (), ("sensors", "samples", "biases"))
     failure_mode = one_of(failure_mode, FAILURE_MODES, "failure_mode")   # TypeError for a non-str (issue 35)
-    fail = dict(failure or {})
+    # each entry read once, the same items injected and recorded (fuzz 42a C11: a Sequence giving (50, 80) and then
+    # (1, 100) was injected on samples 50-80 and recorded as the window (1, 100), its member shares of other samples)
+    fail = {k: read_once(v, k) for k, v in (failure or {}).items()}  # a list, tuple or array: fixed values
     # every method fuses the clean epochs, then the failed ones (those the failure changed: at most every epoch, 31 of
     # 100 samples by default), so two fusions a method; an optimal set with options only runs the default set for its
     # members (_paired_errors). Counted before the draws by monte_carlo's rules: simulate's memory, each method's
