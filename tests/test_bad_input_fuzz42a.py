@@ -353,3 +353,22 @@ def test_paired_study_reads_the_failure_once():
     plain = T.paired_study(1, 3, M, failure={"samples": (50, 80)})
     r = T.paired_study(1, 3, M, failure={"samples": _Window((50, 80), (1, 100))})
     assert r.window == plain.window == (50, 80) and r.failed_member_share == plain.failed_member_share
+
+
+def test_late_means_counts_a_converted_value_not_its_shape():
+    """C13: a value whose class says shape (2, 4) and whose __array__ gives (2**22, 4) was counted as 8 entries: 100
+    such methods ended in a raw MemoryError after 17.1 CPU-s. Now every value that is not an ndarray, list or tuple is
+    counted as converted: refused naming rmse once the arrays held pass the memory budget."""
+    from fusion.scenarios import infrared_radar as ir
+
+    K = 2**20
+    B = np.ones((K, 4))
+
+    class Lying:
+        shape = (2, 4)
+
+        def __array__(self, dtype=None, copy=None):
+            return B
+
+    _refused_fast(ir.late_means, {f"a{i}": Lying() for i in range(70)}, np.arange(K) * 0.1,
+                  match=r"^rmse \(its methods and scans\) ask for an array of 2.73e\+08 elements")

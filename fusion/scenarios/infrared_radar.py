@@ -617,17 +617,19 @@ def late_means(rmse: dict[str, FloatArray], t: ArrayLike, t_min: float = 2.0) ->
                                                              if n is not None))
     work((units,), "rmse (its methods and scans)")
     # an array-like with only __array__ has no size before it is converted (fuzz 41a C7: 400 methods of 2**23 entries
-    # were not counted, and ended in a MemoryError after 7.5-10.8 CPU-s): each is converted once, one at a time, before
-    # any check, and counted, its array held to the memory budget, refused as soon as the running total passes either
+    # were not counted, and ended in a MemoryError after 7.5-10.8 CPU-s), and one with a shape may lie (fuzz 42a C13):
+    # each value not an ndarray, list or tuple is converted once, one at a time, before any check, and counted, its
+    # array held to the memory budget, refused as soon as the running total passes either
     values, held = [], 0
     for (name, r), given in zip(rmse.items(), entries):
-        if given is None:
+        if not isinstance(r, (np.ndarray, list, tuple)):  # its shape may lie (fuzz 42a C13): the converted array counts
             try:
                 r = np.asarray(r)
             except Exception:  # noqa: BLE001 (the check below converts it again and names it)
                 pass
             else:
-                units, held = units + 2 * r.size, held + r.size
+                counted = 0 if given is None else math.ceil(min(given, MAX_INPUT_ELEMENTS + 1))
+                units, held = units + 2 * max(r.size - counted, 0), held + r.size
                 work((units,), "rmse (its methods and scans)")
                 allocation((held,), "rmse (its methods and scans)")
         values.append((name, r))
