@@ -372,3 +372,36 @@ def test_late_means_counts_a_converted_value_not_its_shape():
 
     _refused_fast(ir.late_means, {f"a{i}": Lying() for i in range(70)}, np.arange(K) * 0.1,
                   match=r"^rmse \(its methods and scans\) ask for an array of 2.73e\+08 elements")
+
+
+def _bench_results(seeds, methods):
+    a = np.ones(3)
+    return {(s, 0.0, False): {f"m{i}": a for i in range(methods)} for s in range(1, seeds + 1)}
+
+
+def test_seed_stability_has_a_budget(monkeypatch):
+    """C10: seed_stability had no budget and looped over the pairs of methods in Python (3,500 methods of 2 seeds ran
+    51.4 CPU-s). Now vectorised and counted before any array is converted (3 units a pair, 1,000 a method, 2,000 a
+    seed, measured): 14 seeds of 5,000 methods (1.12e9 units) are refused at once, 12 (9.6e8) pass; 7,000 methods
+    are refused by the memory of their (m, m) pair arrays."""
+    from fusion.scenarios.lecture_weighting import readings_benchmark as rbm
+
+    _refused_fast(rbm.seed_stability, _bench_results(14, 5000),
+                  match=r"^results \(its scenarios, seeds and methods\) ask for 1.12e\+09 units")
+    _refused_fast(rbm.seed_stability, _bench_results(2, 7000), match=r"^results \(its methods\) ask for an array")
+    monkeypatch.setattr(rbm, "_tied_ranks", _ran)
+    with pytest.raises(_Ran):
+        rbm.seed_stability(_bench_results(12, 5000))
+
+
+def test_seed_stability_is_unchanged_by_the_vectorised_pairs():
+    """C10: the pairs' counts, computed by a Python loop before, are the same numbers vectorised (a small case
+    counted by hand: m0 < m1 < m2 resolved at the first seed, the second seed reverses m1 and m2)."""
+    from fusion.scenarios.lecture_weighting.readings_benchmark import seed_stability
+
+    z = np.zeros(4)
+    res = {(1, 0.0, False): {"m0": z + 1.0, "m1": z + 2.0, "m2": z + 3.0},
+           (2, 0.0, False): {"m0": z + 1.0, "m1": z + 3.0, "m2": z + 2.0}}
+    s = seed_stability(res)
+    assert (s.n_sig, s.n_rev, s.n_stable, s.seeds) == (3, 1, 0, (1, 2))
+    np.testing.assert_array_equal(s.ranks[(0.0, False)], [[1, 2, 3], [1, 3, 2]])
