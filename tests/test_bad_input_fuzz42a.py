@@ -405,3 +405,23 @@ def test_seed_stability_is_unchanged_by_the_vectorised_pairs():
     s = seed_stability(res)
     assert (s.n_sig, s.n_rev, s.n_stable, s.seeds) == (3, 1, 0, (1, 2))
     np.testing.assert_array_equal(s.ranks[(0.0, False)], [[1, 2, 3], [1, 3, 2]])
+
+
+def test_variance_change_study_reads_a_change_mapping_within_its_len():
+    """Fuzz 42a D1 (the class of C1): a change's {sensor: SD} Mapping was iterated to its end (an endless one for
+    ever); now at most len() + 1 pairs are read and a len() that lies is refused by name."""
+    from fusion.scenarios.lecture_weighting.regime import variance_change_study
+
+    class Endless(Mapping):
+        def __len__(self):
+            return 1
+
+        def __iter__(self):
+            while True:
+                yield 0
+
+        def __getitem__(self, k):
+            return 2.0
+
+    _refused_fast(variance_change_study, sigma=(1.0, 1.0, 1.0), samples=20, runs=1, change_at=10,
+                  changes=[("c", Endless())], match=r"^changes has len\(\) 1 but more")

@@ -18,7 +18,7 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, 
                              tuple_of, validated_post_init)
 from fusion._validation import derived_inputs
 from fusion._limits import LOOP_STEP, MAX_WORK, REGIME_STUDY, STUDY_WORK
-from fusion._validation import allocation, count, one_of, scalar, sequence, work
+from fusion._validation import allocation, count, one_of, read_mapping, scalar, sequence, work
 from fusion._validation import text as text_of
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
@@ -603,7 +603,7 @@ def variance_change_study(
                 and isinstance(item[1], Mapping)):
             raise ValueError(f"changes must hold (name, {{sensor: SD}}) pairs, got {shown(item)}")
         new = sig.copy()
-        for i, v in item[1].items():
+        for i, v in read_mapping(item[1], "changes").items():  # read once, at most len() + 1 pairs (fuzz 42a D1)
             new[_index(i, n, "changes")] = v
         after_sd[text_of(item[0], "changes names")] = _sigmas(new, "changes", minimum=3)  # plain texts (rule 19)
     after = np.arange(K) >= change_at
