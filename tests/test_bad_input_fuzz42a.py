@@ -425,3 +425,18 @@ def test_variance_change_study_reads_a_change_mapping_within_its_len():
 
     _refused_fast(variance_change_study, sigma=(1.0, 1.0, 1.0), samples=20, runs=1, change_at=10,
                   changes=[("c", Endless())], match=r"^changes has len\(\) 1 but more")
+
+
+def test_scale_sweep_accepts_the_sweep_reading_it_serves(monkeypatch):
+    """Fuzz 42b C6: the optimal fusion set's measured cost (42-385,151 units an epoch at 3-900 readings) was counted
+    1.6-2.1x (20 a reading, 1 a pair), so the reseeding sweep's 10x reading of yang-weights-reasonable (9 scales of
+    5,000 runs, 6.7 CPU-s) was refused. At 14 a reading and 1/2 a pair it passes (8.6e8 units); 5,001 runs are
+    refused at once (by fuse_epochs' own limit of each method, 20 units a pair)."""
+    from fusion.scenarios import thermocouples as tc
+
+    scales = (0.125, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0)  # chapter 01's SCALES
+    _refused_fast(tc.scale_sweep, 777, 5001, scales, match=r"^n_runs, n_samples, n_sensors and methods")
+    monkeypatch.setattr(tc, "simulate", _ran)
+    for failure, window in ((None, None), ({}, (50, 80))):
+        with pytest.raises(_Ran):
+            tc.scale_sweep(777, 5000, scales, failure=failure, window=window)

@@ -250,8 +250,11 @@ _METHOD_CALL = 8 * LOOP_STEP
 #: Units (about 10 ns each) of one epoch of ``n`` readings fused by each method of ``fuse_epochs``, as (a reading,
 #: a pair of readings): measured on this shared machine (OPENBLAS_NUM_THREADS=1, time.process_time, minimum of 2;
 #: n = 3, 10, 30, 100, 300 and 900 readings, 2e6 to 1 epochs) and rounded up to the largest per reading at small n
-#: and per pair at large n. The optimal fusion set: 143-200 ns a reading at n <= 10, 6-8 ns a pair at n >= 100 (its
-#: 500,000 epochs of 10 readings, 0.89 CPU-s: 300 units an epoch counts 1.5 s); the fusion-set weights 90-112 ns a
+#: and per pair at large n. The optimal fusion set (re-measured, fuzz 42b C6: its 20 units a reading and 1 a pair
+#: counted its epochs 1.6-2.1x, so the reseeding sweep's 10x reading of yang-weights-reasonable, 9 scales x 500,000
+#: epochs of 10, was refused though it runs 6.7 CPU-s): 42, 164, 789, 5,439, 45,434 and 385,151 units an epoch at
+#: n = 3, 10, 30, 100, 300 and 900 (1e6 to 60 epochs), so 14 a reading and 1/2 a pair (47, 190, 870, 6,400, 49,200
+#: and 417,600: 8-18 % above); the fusion-set weights 90-112 ns a
 #: reading, 3.4-3.8 ns a pair; the support degree 35-50 ns a reading, 1.8-2.2 ns a pair; the belief degree (its
 #: eigendecomposition included) 480-820 ns a reading at n <= 10, 70-160 ns a pair up to n = 900; the mean 2-6 ns a
 #: reading. ``fuse_epochs``' own budget (``PAIR_WORK``, 20 units a pair) stays each method's limit (``epochs_limit``):
@@ -259,7 +262,7 @@ _METHOD_CALL = 8 * LOOP_STEP
 #: 6 methods of 5,000 runs, counted 6e9 units and ran 3.0 CPU-s).
 _EPOCH_UNITS: Mapping[str, tuple[Fraction, Fraction]] = constant({
     "mean": (Fraction(1), Fraction(0)),
-    "optimal_fusion_set": (Fraction(20), Fraction(1)),
+    "optimal_fusion_set": (Fraction(14), Fraction(1, 2)),
     "fusion_set_weights": (Fraction(12), Fraction(1, 2)),
     "support_degree": (Fraction(5), Fraction(1, 4)),
     "belief_degree": (Fraction(30), Fraction(16)),
