@@ -440,3 +440,16 @@ def test_scale_sweep_accepts_the_sweep_reading_it_serves(monkeypatch):
     for failure, window in ((None, None), ({}, (50, 80))):
         with pytest.raises(_Ran):
             tc.scale_sweep(777, 5000, scales, failure=failure, window=window)
+
+
+def test_architecture_study_counts_its_steps():
+    """Fuzz 42b D1: architecture_study's steps (6.3-6.6 ms each whatever the runs, measured) were not counted, so 2
+    runs at T = 0.01 s (26,100 steps, about 170 CPU-s) counted 1e8 units. Now counted, within the function's entry of
+    STUDY_WORK (the sweep's 10x reading of ci-fig4-convex-part, 1.08e9 units, 10.9 CPU-s), named by its key."""
+    from fusion.scenarios.two_sensor import architecture
+
+    R = np.diag([2500.0, 900.0])
+    Q = np.diag([0.0, 1.0, 0.0, 1.0])
+    _refused_fast(architecture.architecture_study, np.random.default_rng(0), R, R, Q, runs=2, nees_runs=2, T=0.01,
+                  match=r"^runs, nees_runs and T ask for 1.83e\+10 units .*STUDY_WORK: the reseeding sweep's primary "
+                        r"of ci-fig4-convex-part")
