@@ -15,6 +15,7 @@ import dataclasses as _dataclasses
 import functools as _functools
 import inspect as _inspect
 import re as _re
+from itertools import islice as _islice
 from collections.abc import Callable
 from math import isfinite as _isfinite
 
@@ -249,18 +250,36 @@ def value_copy(v: object) -> object:
 _STABLE = (np.ndarray, list, tuple, int, float, complex, np.generic, str, bytes, bytearray, type(None), _Mapping)
 
 
-def _materialised(x: _Sequence, budget: list[int], depth: int = 0) -> list:
+class _LengthLie(ValueError):
+    """A sequence whose ``len()`` disagrees with its items (raised by :func:`_materialised`, passed on as it is)."""
+
+
+def _items(x: _Sequence, name: str) -> list:
+    """The items of the sequence ``x``, at most ``len(x)`` + 1 of them read (fuzz 42a C1): a ``__len__`` that lies
+    (3, over a ``__getitem__`` answering up to index ``10**8``, or never raising IndexError) is refused by name after
+    one item past it, as ``fusion._validation.sequence`` does, never read in full (24 CPU-s) or for ever."""
+    n = len(x)
+    out = list(_islice(iter(x), n + 1))
+    if len(out) != n:
+        raise _LengthLie(f"{name} has len() {n} but {'more' if len(out) > n else len(out)} items (a sequence's "
+                         "len() must count its items)")
+    return out
+
+
+def _materialised(x: _Sequence, budget: list[int], depth: int = 0, name: str = "x") -> list:
     """A sequence argument (not a list, tuple, array or text) as the list of its entries, read in one pass; its
     entries that are such sequences too, likewise (down to ``fusion._nesting.MAX_NESTING`` levels; deeper ones are
     left to the checks, which refuse them by name). ``budget`` (a one-entry list) is the number of entries that may
     still be read: a nested sequence longer than what is left is not read (fuzz 33a C1: ``deque([range(10**7)] * 5)``),
-    and the input budget then refuses the whole by its lengths (``fusion._validation.input_size``)."""
-    out = list(x)
+    and the input budget then refuses the whole by its lengths (``fusion._validation.input_size``). Each sequence is
+    read by :func:`_items`: at most its ``len()`` + 1 items, a ``len()`` that disagrees with them refused naming
+    ``name`` (fuzz 42a C1)."""
+    out = _items(x, name)
     for i, v in enumerate(out):
         if depth < 64 and isinstance(v, _Sequence) and not isinstance(v, _STABLE) and not _array_like(v):
             if len(v) > budget[0]:  # beyond the budget with the entries read so far: left unread, refused by length
                 break
-            out[i] = _materialised(v, budget, depth + 1)
+            out[i] = _materialised(v, budget, depth + 1, f"{name}[{i}]")
         else:
             budget[0] -= 1
     return out
@@ -297,13 +316,17 @@ def read_mapping(m: object, name: str) -> object:
     ------
     TypeError
         Reading its items raised (the argument's own exception, rule 15), naming ``name``.
+    ValueError
+        Its ``len()`` disagrees with its items (at most ``len()`` + 1 of them read, fuzz 42a C1), naming ``name``.
     """
     if type(m) is dict or not isinstance(m, _Mapping):
         return m
     try:
-        return dict(list(m.items()))
+        return dict(_items(m.items(), name))
     except MemoryError:
         raise
+    except _LengthLie as exc:  # a plain ValueError for the caller
+        raise ValueError(str(exc)) from None
     except Exception as exc:  # noqa: BLE001 (rule 15: the argument's own exception, named and chained)
         raise TypeError(f"{name} could not be read as a mapping: it raised {type(exc).__name__}: "
                         f"{str(exc):.200}") from exc
@@ -341,7 +364,8 @@ def read_once(x: object, name: str) -> object:
     TypeError
         The conversion raised (the argument's own exception, rule 15), naming ``name``.
     ValueError
-        A shape beyond the input budget (rule 9), naming ``name``.
+        A shape beyond the input budget (rule 9), or a sequence whose ``len()`` disagrees with its items (at most
+        ``len()`` + 1 of them read, fuzz 42a C1), naming ``name``.
     """
     if isinstance(x, _STABLE):
         return x
@@ -356,11 +380,13 @@ def read_once(x: object, name: str) -> object:
         if not array_like:  # a sequence without numpy's protocols (a range, a deque, a Sequence class): its entries
             n = len(x)      # read in one pass, as the list they make (fuzz 31a C4)
             if n <= MAX_INPUT_ELEMENTS:
-                out = _materialised(x, [MAX_INPUT_ELEMENTS])
+                out = _materialised(x, [MAX_INPUT_ELEMENTS], name=name)
         else:
             return np.asarray(x)
     except MemoryError:
         raise
+    except _LengthLie as exc:  # a plain ValueError for the caller
+        raise ValueError(str(exc)) from None
     except Exception as exc:  # noqa: BLE001 (rule 15: the argument's own exception, named and chained)
         raise TypeError(f"{name} could not be converted to an array: it raised {type(exc).__name__}: "
                         f"{str(exc):.200}") from exc

@@ -64,9 +64,15 @@ READINGS_BENCHMARK = "the reseeding sweep's primary of lec-belief-accuracy at 10
 #: networks counted at its entry, fuzz 42b C5): 4.5e9 units at the sweep's 1,000 runs a network (about 46 CPU-s).
 PREMISE_STUDY = ("the reseeding sweep's primaries of chf-premise-eps and chf-premise-mixture at 10x runs "
                  "(premise_study, 1,000 runs of each designed network)")
+#: The key of the two-sensor architecture study (``two_sensor.architecture.architecture_study``): chapter 05's
+#: identical pair at the reseeding sweep's 10x (ci-fig4-convex-part, 2,000 path and 2,000 NEES runs, 7 filter banks of
+#: fixed weights) counts 1.08e9 units and ran 10.9 CPU-s (fuzz 42b D1); its entry, 3e9, equals the readings
+#: benchmark's, so its refusal names it by ``work``'s ``served``.
+ARCHITECTURE_STUDY = ("the reseeding sweep's primary of ci-fig4-convex-part at 10x runs (architecture_study, 2,000 runs "
+                      "and 2,000 NEES runs)")
 STUDY_WORK: Mapping[str, int] = constant({TRACKING_STUDY: 26 * MAX_WORK, AWF_STUDY: 7 * MAX_WORK,
                                           REGIME_STUDY: 4 * MAX_WORK, READINGS_BENCHMARK: 3 * MAX_WORK,
-                                          PREMISE_STUDY: 9 * MAX_WORK})
+                                          PREMISE_STUDY: 9 * MAX_WORK, ARCHITECTURE_STUDY: 3 * MAX_WORK})
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
 #: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).
@@ -102,7 +108,8 @@ def count_text(n: int) -> str:
     return f"{int(str(n)[:3]) / 100:.3g}e+{len(str(n)) - 1}"
 
 
-def work(shape: tuple[int, ...], names: str, weight: float = 1, limit: int = MAX_WORK) -> int:
+def work(shape: tuple[int, ...], names: str, weight: float = 1, limit: int = MAX_WORK,
+         served: str | None = None) -> int:
     """Refuse a call whose work, ``weight`` times the product of the counts in ``shape``, is beyond :data:`MAX_WORK`
     (rule 17).
 
@@ -123,6 +130,9 @@ def work(shape: tuple[int, ...], names: str, weight: float = 1, limit: int = MAX
     limit : int
         The budget (:data:`MAX_WORK`; a larger one only from :data:`STUDY_WORK`, where the book's own call counts
         more, as the tracking study of ``fusion.scenarios.range_bearing``, named in the message).
+    served : str, optional
+        The key of :data:`STUDY_WORK` whose entry ``limit`` is, named in the message (by default the first key whose
+        entry equals ``limit``: two entries may be equal).
 
     Returns
     -------
@@ -143,7 +153,7 @@ def work(shape: tuple[int, ...], names: str, weight: float = 1, limit: int = MAX
         dims = " x ".join(f"{int(d):,}" for d in shape) + (
             "" if weight == 1 else f", {int(weight):,} units each" if float(weight).is_integer()
             else f", {float(weight):.3g} units each")
-        served = [k for k, v in STUDY_WORK.items() if v == limit]
+        served = [served] if served else [k for k, v in STUDY_WORK.items() if v == limit]
         budget = ("fusion._validation.MAX_WORK, about 10 CPU-s" if limit == MAX_WORK
                   else f"about {limit / MAX_WORK * 10:.0f} CPU-s"
                   + (f", fusion._limits.STUDY_WORK: {served[0]}" if served else ""))

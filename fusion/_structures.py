@@ -53,8 +53,9 @@ def record(value: object, name: str, required: tuple[str, ...], optional: tuple[
     missing = [k for k in required if k not in value]
     if missing:
         raise ValueError(f"{name} lacks the keys {missing} (it must hold {list(required)})")
-    if not extra:
-        unknown = [k for k in value if k not in required and k not in optional]
+    if not extra:  # a set of the allowed keys: linear in the keys (fuzz 42a C10: 5,000 methods took 0.1 s a record)
+        allowed = set(required) | set(optional)
+        unknown = [k for k in value if k not in allowed]
         if unknown:
             raise ValueError(f"{name} has unknown keys {shown(unknown)} (allowed: {list(required) + list(optional)})")
     return value

@@ -51,14 +51,15 @@ _PAIR_ARRAYS = 8
 _PAIR_WORK = 6
 
 
-def _pair_budget(shape: tuple[int, ...], names: str, fusions: int = 1) -> None:
+def _pair_budget(shape: tuple[int, ...], names: str, fusions: int = 1, fusion_names: str | None = None) -> None:
     """Refuse, before any work, ``fusions`` calls of :func:`consistency_awf` on readings of ``shape`` (..., K, n) whose
     ``(..., K, n, n)`` pair arrays (``_PAIR_ARRAYS`` of them at once) exceed the memory budget or whose work
-    (``_PAIR_WORK`` units a pair element, each call) exceeds the work budget: ValueError naming ``names``. The one
-    rule of the function and of a caller that runs it (``check_grid`` of chapter 02, at its entry)."""
+    (``_PAIR_WORK`` units a pair element, each call) exceeds the work budget: ValueError naming ``names`` (the work
+    refusal naming ``fusion_names`` when given: the arguments that set ``fusions`` too). The one rule of the function
+    and of a caller that runs it (``check_grid`` of chapter 02, the readings benchmark's keys, at their entry)."""
     pairs = tuple(int(d) for d in shape) + (int(shape[-1]),)
     allocation(pairs, names, arrays=_PAIR_ARRAYS)
-    work((int(fusions),) + pairs, names, weight=_PAIR_WORK)
+    work((int(fusions),) + pairs, fusion_names or names, weight=_PAIR_WORK)
 
 
 def _label_counts(labels: NDArray[np.int_]) -> NDArray[np.int_]:

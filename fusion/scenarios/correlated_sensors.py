@@ -35,7 +35,7 @@ from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
 from fusion._counts import input_allocation
-from fusion._validation import text
+from fusion._validation import read_mapping, read_once, text
 from fusion._validation import LOOP_STEP, counts, distinct, work
 from fusion.readings import correlated as co
 from fusion._shown import shown
@@ -214,17 +214,22 @@ def covariance(own: ArrayLike, coupling: ArrayLike, env: float) -> np.ndarray:
         overflows (``own``, ``coupling`` and ``env`` each in range, their squares not); three N x N arrays beyond the
         memory budget (N above 9,459), before any of them.
     """
+    s, c, e = _case_arrays(own, coupling, env)
+    # rule 9 (fuzz 40a C8's probe): the N x N diagonal, outer product and sum held at once, before any of them (20,000
+    # sensors allocated 3.2 GB for 9.3 CPU-s, 100,000 raised a raw MemoryError)
+    allocation((s.size, s.size), "own and coupling (their length N)", arrays=3)
+    return np.diag(s**2) + e**2 * np.outer(c, c)
+
+
+def _case_arrays(own: ArrayLike, coupling: ArrayLike, env: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """:func:`covariance`'s arguments checked and converted (each read once), without building the N x N matrix."""
     s = as_array(own, "own", ndim=1)
     if s.size < 1 or np.any(s <= 0):
         raise ValueError(f"own must hold positive standard deviations, got {s}")
     c = as_array(coupling, "coupling", ndim=1)
     if c.shape != s.shape:
         raise ValueError(f"coupling must have the length of own ({s.size}), got {c.size}")
-    e = scalar(env, "env", lo=0.0)
-    # rule 9 (fuzz 40a C8's probe): the N x N diagonal, outer product and sum held at once, before any of them (20,000
-    # sensors allocated 3.2 GB for 9.3 CPU-s, 100,000 raised a raw MemoryError)
-    allocation((s.size, s.size), "own and coupling (their length N)", arrays=3)
-    return np.diag(s**2) + e**2 * np.outer(c, c)
+    return s, c, scalar(env, "env", lo=0.0)
 
 
 def oriented_covariance(angles: Sequence[float] = (0.0, 60.0, 120.0), sd: Sequence[float] = (1.0, 3.0),
@@ -297,31 +302,52 @@ def _exact(R: np.ndarray) -> _ExactRisk:
                       claimed_naive=float(1.0 / np.sum(1.0 / np.diag(R))))
 
 
-def _scenarios(scenarios: Mapping[str, Mapping[str, Any]] | None,
-               each: Callable[[str, int], None] | None = None) -> Mapping[str, Mapping[str, Any]]:
-    """The cases (default :data:`SCENARIOS`), each checked through the shared rule for nested records.
+@dataclass(frozen=True)
+class _Case:
+    """A case of a study, read once (:func:`_scenarios`): its key, its checked arrays and the case as given."""
 
-    With ``each``, a case's covariance is not built: ``each(name, N)`` is called in turn with its number of sensors
-    N, the length of its ``own`` as converted (never its ``len()``: fuzz 41a C5), so that a caller counts its work
-    case by case before building any N x N covariance (fuzz 41a C6)."""
-    sc = SCENARIOS if scenarios is None else scenarios
+    name: str
+    own: np.ndarray
+    coupling: np.ndarray
+    env: float
+    given: Mapping[str, Any]
+
+    @property
+    def N(self) -> int:
+        """Its number of sensors, the length of its converted ``own``."""
+        return self.own.size
+
+
+def _scenarios(scenarios: Mapping[str, Mapping[str, Any]] | None,
+               each: Callable[[_Case], None] | None = None) -> list[_Case]:
+    """The cases (default :data:`SCENARIOS`), each checked through the shared rule for nested records, read ONCE.
+
+    The mapping is read once (``fusion._validation.read_mapping``), each case's record once, and its ``own`` and
+    ``coupling`` converted once (``read_once``): a caller counts its work from the arrays returned, summed over the
+    cases, before building any N x N covariance, and computes with the same arrays (fuzz 42a C3: an ``own`` whose
+    ``__array__`` gave 3 entries on its first call and 2,000 after was counted at N = 3 and run at 2,000, 46.5 CPU-s;
+    a mapping of 1 case on its first iteration and 60 after was counted as one; C6). ``each(case)``, when given, is
+    called on each case as soon as it is read, so that a caller counts the cases' work in turn and refuses a request
+    beyond its budget at the first case past it (fuzz 41a C6: 250,000 cases of N = 3), not after reading them all."""
+    sc = SCENARIOS if scenarios is None else read_mapping(scenarios, "scenarios")
     if not isinstance(sc, Mapping):
         raise TypeError(f"scenarios must be a mapping of name to case, got {type(sc).__name__}")
     if not sc:
         raise ValueError("scenarios must be a non-empty mapping of name to case")
+    cases = []
     for name, case in sc.items():
         path = f"scenarios[{name!r}]"
         if not isinstance(name, str):
             raise TypeError(f"scenarios must be keyed by case names (str), got {shown(name)}")
+        case = read_mapping(case, path)
         record(case, path, ("own", "coupling", "env"))
         with within(path):
-            if each is None:
-                covariance(case["own"], case["coupling"], case["env"])
-            else:
-                N = as_array(case["own"], "own", ndim=1).size
+            given = {k: read_once(v, k) if k in ("own", "coupling") else v for k, v in case.items()}
+            own, coupling, env = _case_arrays(given["own"], given["coupling"], given["env"])
+        cases.append(_Case(text(name, "scenarios keys"), own, coupling, env, given))  # names as plain texts (rule 19)
         if each is not None:
-            each(name, N)   # its refusal names the caller's arguments, not the case's path
-    return {text(name, "scenarios keys"): case for name, case in sc.items()}  # names as plain texts (rule 19)
+            each(cases[-1])  # its refusal names the caller's arguments, not the case's path
+    return cases
 
 
 #: The (N, runs) arrays :func:`coupling_study` holds at once for a case of N sensors (the draws, z, and the fusions'
@@ -343,6 +369,13 @@ def _coupling_case_units(N: int, runs: int, grid: int) -> int:
     """
     return ((grid + 1) * (28_000 + 4 * N * N + (16 * N**3 + 999) // 1000) + 30 * N * N + (4 * N**3 + 99) // 100
             + runs * (3 * N + (8 * N * N + 99) // 100))
+
+
+#: Units of a case's fixed step in :func:`estimated_covariance_study` (its covariance, Cholesky factor, exact MSEs and
+#: the misstated pair; fuzz 42a C6): 0.76 ms a case of N = 3 (2,000 cases of 2 reps at n = 4), 0.85 ms at N = 30
+#: (``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls, machine shared with other jobs), 75
+#: ``LOOP_STEP``: 2,000 cases of N = 3 with ``ns=(10, 30), reps=400`` ran 3.7 CPU-s (1.85 ms a case, counted 2.2 ms).
+_ESTIMATED_CASE_STEP = 75 * LOOP_STEP
 
 
 @derived_inputs()
@@ -407,22 +440,25 @@ def coupling_study(
     # before any case's N x N covariance is built (fuzz 41a C6: 16 cases of N = 9,400 were refused after 8.5 CPU-s,
     # 250,000 cases of N = 3 after 9-12), N the length of its converted own (fuzz 41a C5: its len() was read, which an
     # array-like with only __array__ lacks and a lying __len__ understates)
+    # (fuzz 42a C3: the mapping and each case read once, counted as converted, and run as counted)
     units = 0
 
-    def count_case(name: str, N: int) -> None:
+    def count_case(case: _Case) -> None:
         nonlocal units
-        input_allocation((N, runs), f"runs and the sensors of case {shown(name)}")  # z, the fusions' input
-        allocation((N, runs), f"runs and the sensors of case {shown(name)}", arrays=_COUPLING_ARRAYS)
-        units += _coupling_case_units(N, runs, grid.size)
+        where = f"runs and the sensors of case {shown(case.name)}"
+        input_allocation((case.N, runs), where)  # z, the fusions' input
+        allocation((case.N, runs), where, arrays=_COUPLING_ARRAYS)
+        units += _coupling_case_units(case.N, runs, grid.size)
         work((units,), "scenarios (their sensors), runs and env_grid")
 
-    _scenarios(scenarios, count_case)
-    sc = _scenarios(scenarios)
+    cases = _scenarios(scenarios, count_case)
     far_env = scalar(env_far, "env_far", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
     rows, sq, weights, curves, far = [], {}, {}, {}, {}
-    for name, case in sc.items():
-        R = covariance(case["own"], case["coupling"], case["env"])
+    for case in cases:
+        name, own, coupling = case.name, case.own, case.coupling
+        with within(f"scenarios[{name!r}]"):
+            R = covariance(own, coupling, case.env)
         N = R.shape[0]
         H = np.ones((N, 1))
         ex = _exact(R)
@@ -435,17 +471,17 @@ def coupling_study(
         sq[name] = (sg, sn)
         weights[name] = (ex.K, ex.Kn)
         curves[name] = np.array([(lambda e: e.mse_naive / e.mse_gls)(
-            _exact(covariance(case["own"], case["coupling"], ev))) for ev in grid])
-        ef = _exact(covariance(case["own"], case["coupling"], far_env))
+            _exact(covariance(own, coupling, ev))) for ev in grid])
+        ef = _exact(covariance(own, coupling, far_env))
         far[name] = ef.mse_naive / ef.mse_gls
-        rows.append({"case": name, "N": N, ENV_SD: float(case["env"]),
+        rows.append({"case": name, "N": N, ENV_SD: float(case.env),
                      MIN_GLS_WEIGHT: float(ex.K.min()), EXACT_MSE_GLS: ex.mse_gls,
                      EXACT_MSE_NAIVE: ex.mse_naive, NAIVE_OVER_GLS: ex.mse_naive / ex.mse_gls,
                      MC_MSE_GLS: float(sg.mean()), MC_MSE_NAIVE: float(sn.mean()),
                      NAIVE_NEES: float(np.mean(sn) / ex.claimed_naive),
                      LDL_VS_GLS: diffs[0], EIGEN_VS_GLS: diffs[1]})
     return CouplingStudy(rows=rows, sq=sq, weights=weights, env_grid=grid, curves=curves, far=far, env_far=far_env,
-                         runs=int(runs), seed=int(seed), scenarios={k: dict(v) for k, v in sc.items()})
+                         runs=int(runs), seed=int(seed), scenarios={c.name: c.given for c in cases})
 
 
 def estimated_covariance_study(
@@ -487,9 +523,9 @@ def estimated_covariance_study(
     ------
     ValueError
         Bad scenario entries, an n not above the number of sensors or repeated, ``reps`` < 2, a bad
-        ``misstate``, or reps x sensors² x sum(ns) beyond the work budget (``fusion._validation.MAX_WORK``).
+        ``misstate``, or the cases' work beyond the work budget (``fusion._validation.MAX_WORK``; 75,000 units a case,
+        1,000 a case and n, and reps x sensors² x sum(ns), summed over the cases), before any case's covariance.
     """
-    sc = _scenarios(scenarios)
     nv = counts(ns, "ns")  # a non-empty list, tuple or 1-D array of counts (TypeError otherwise)
     distinct(nv, "ns")  # each row's columns are keyed by n: a repeated size would collapse two of them
     reps = count(reps, "reps", minimum=2)
@@ -497,16 +533,28 @@ def estimated_covariance_study(
     f = scalar(misstate, "misstate", lo=0.0, lo_open=True)
     if f >= 1:
         raise ValueError(f"misstate must be below 1, got {f}")
-    rng = np.random.default_rng(seed)
-    rows = []
-    for name, case in sc.items():
-        R = covariance(case["own"], case["coupling"], case["env"])
-        N = R.shape[0]
+    # rule 17 on every case, summed, as each is read and before any N x N covariance is built (fuzz 42a C6: each case
+    # was counted alone, after every case's covariance was built; 20,000 cases of N = 3 ran 38.6 CPU-s, 16 of
+    # N = 9,400 were refused after 6.5 CPU-s): a case's fixed step and, per n, a loop step and reps x N x N x n
+    units = 0
+
+    def count_case(case: _Case) -> None:
+        nonlocal units
+        name, N = case.name, case.N
         if min(nv) <= N:
             raise ValueError(f"ns must exceed the number of sensors ({N}) of case {shown(name)}, got {min(nv)}")
         allocation((reps, N, max(nv)), "reps, ns and the sensors of case " + repr(name))
-        # rule 17: a loop step per n, each drawing and multiplying reps x N x N x n (the sum of ns counts)
-        work((len(nv) * LOOP_STEP + reps * N * N * sum(nv),), "ns, reps and the sensors of case " + repr(name))
+        units += _ESTIMATED_CASE_STEP + len(nv) * LOOP_STEP + reps * N * N * sum(nv)
+        work((units,), "scenarios (their sensors), ns and reps")
+
+    cases = _scenarios(scenarios, count_case)
+    rng = np.random.default_rng(seed)
+    rows = []
+    for case in cases:
+        name = case.name
+        with within(f"scenarios[{name!r}]"):
+            R = covariance(case.own, case.coupling, case.env)
+        N = R.shape[0]
         ex = _exact(R)
         row = {"case": name, NAIVE_OVER_GLS: ex.mse_naive / ex.mse_gls}
         C = np.linalg.cholesky(R)
@@ -524,9 +572,9 @@ def estimated_covariance_study(
             row[NAIVE_HAT_OVER_GLS_HAT.format(n=n)] = float(mse_n.mean() / mse.mean())
         worst = 0.0
         for sign in (-1.0, 1.0):
-            c = np.array(case["coupling"], dtype=float)
+            c = case.coupling.copy()
             c[-1] *= 1.0 + sign * f
-            Km = _exact(covariance(case["own"], c, case["env"])).K
+            Km = _exact(covariance(case.own, c, case.env)).K
             worst = max(worst, float(Km @ R @ Km) / ex.mse_gls)
         row[MISSTATED_OVER_GLS] = worst
         rows.append(row)

@@ -106,7 +106,8 @@ def spherical_to_cartesian(r: ArrayLike, az: ArrayLike, el: ArrayLike) -> FloatA
     Raises
     ------
     ValueError
-        Non-finite inputs.
+        Non-finite inputs, a negative range ``r`` (a coordinate; the track readers, :func:`position`, take a filter's
+        negative range estimate as it is), or shapes that do not broadcast.
     """
     r, az, el = (as_array(v, n, nonempty=False) for v, n in ((r, "r"), (az, "az"), (el, "el")))
     if np.any(r < 0):
@@ -115,7 +116,13 @@ def spherical_to_cartesian(r: ArrayLike, az: ArrayLike, el: ArrayLike) -> FloatA
         np.broadcast_shapes(r.shape, az.shape, el.shape)
     except ValueError:
         raise ValueError(f"r, az and el must broadcast together, got shapes {r.shape}, {az.shape}, {el.shape}") from None
-    r, az, el = np.broadcast_arrays(r, az, el)  # the three coordinates stacked below share one shape
+    return _cartesian(*np.broadcast_arrays(r, az, el))  # the three coordinates stacked share one shape
+
+
+def _cartesian(r: FloatArray, az: FloatArray, el: FloatArray) -> FloatArray:
+    """:func:`spherical_to_cartesian`'s formula on checked arrays of one shape, any sign of ``r``: a filter's range
+    estimate or a noisy range measurement below 0 is a valid reading (its point lies through the origin, its error
+    large; fuzz 42a C8: the readers refused a valid simulation at sigma_range = 1,000 m naming ``r``)."""
     c = r * np.cos(el)
     return np.stack([c * np.cos(az), c * np.sin(az), r * np.sin(el)], axis=-1)
 
@@ -426,7 +433,8 @@ def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
     """Cartesian position (..., 3) from range tracks (..., 2) and angle tracks (..., 4).
 
     Uses the range of ``range_est[..., 0]`` and the angles ``angle_est[..., 0]`` (azimuth) and
-    ``angle_est[..., 2]`` (elevation) in :func:`spherical_to_cartesian`.
+    ``angle_est[..., 2]`` (elevation) in the formula of :func:`spherical_to_cartesian`. A negative range estimate
+    (a filter's output under a large range noise) is used as it is: its position lies through the origin.
 
     Parameters
     ----------
@@ -452,7 +460,7 @@ def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
                          f"got {r.shape} and {a.shape}")
     if not (np.all(np.isfinite(r)) and np.all(np.isfinite(a))):
         raise ValueError("range and angle tracks must be finite")
-    return spherical_to_cartesian(r[..., 0], a[..., 0], a[..., 2])
+    return _cartesian(r[..., 0], a[..., 0], a[..., 2])
 
 
 class IrMethod(StrEnum):
@@ -516,8 +524,9 @@ def _rule_subset(rules: Sequence[str] | None) -> dict[IrMethod, str]:
 def rule_errors(sim: IrRadarRuns, rules: Sequence[str] | None = None) -> dict[IrMethod, FloatArray]:
     """Errors of each sensor alone, each rule of :data:`RULES`, and the unfiltered reference.
 
-    Every rule fuses the two angle tracks; positions use the radar's range track. The reference
-    :data:`PER_SCAN` takes each scan's raw infrared angles with the radar's raw range (no filter).
+    Every rule fuses the two angle tracks; positions use the radar's range track (:func:`position`: a negative range
+    estimate as it is). The reference :data:`PER_SCAN` takes each scan's raw infrared angles with the radar's raw
+    range (no filter).
 
     Parameters
     ----------
@@ -545,7 +554,7 @@ def rule_errors(sim: IrRadarRuns, rules: Sequence[str] | None = None) -> dict[Ir
     for name, rule in subset.items():
         angle_tracks[name] = fuse_tracks(sim.ir, sim.radar, rule).est
     out = {name: _errors(sim, position(sim.radar_range.est, est), est[..., 0::2]) for name, est in angle_tracks.items()}
-    raw = spherical_to_cartesian(sim.radar_range.z[..., 0], sim.ir.z[..., 0], sim.ir.z[..., 1])
+    raw = _cartesian(sim.radar_range.z[..., 0], sim.ir.z[..., 0], sim.ir.z[..., 1])  # a range below 0: as measured
     out[PER_SCAN] = _errors(sim, raw, sim.ir.z)
     return out
 
@@ -608,17 +617,19 @@ def late_means(rmse: dict[str, FloatArray], t: ArrayLike, t_min: float = 2.0) ->
                                                              if n is not None))
     work((units,), "rmse (its methods and scans)")
     # an array-like with only __array__ has no size before it is converted (fuzz 41a C7: 400 methods of 2**23 entries
-    # were not counted, and ended in a MemoryError after 7.5-10.8 CPU-s): each is converted once, one at a time, before
-    # any check, and counted, its array held to the memory budget, refused as soon as the running total passes either
+    # were not counted, and ended in a MemoryError after 7.5-10.8 CPU-s), and one with a shape may lie (fuzz 42a C13):
+    # each value not an ndarray, list or tuple is converted once, one at a time, before any check, and counted, its
+    # array held to the memory budget, refused as soon as the running total passes either
     values, held = [], 0
     for (name, r), given in zip(rmse.items(), entries):
-        if given is None:
+        if not isinstance(r, (np.ndarray, list, tuple)):  # its shape may lie (fuzz 42a C13): the converted array counts
             try:
                 r = np.asarray(r)
             except Exception:  # noqa: BLE001 (the check below converts it again and names it)
                 pass
             else:
-                units, held = units + 2 * r.size, held + r.size
+                counted = 0 if given is None else math.ceil(min(given, MAX_INPUT_ELEMENTS + 1))
+                units, held = units + 2 * max(r.size - counted, 0), held + r.size
                 work((units,), "rmse (its methods and scans)")
                 allocation((held,), "rmse (its methods and scans)")
         values.append((name, r))
@@ -922,7 +933,7 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
     zr = sim.radar_range.z[..., 0]
     tracks = []
     for angles, s in ((sim.radar.z, sa), (sim.ir.z, si)):
-        z = spherical_to_cartesian(zr, angles[..., 0], angles[..., 1])          # (runs, K, 3)
+        z = _cartesian(zr, angles[..., 0], angles[..., 1])          # (runs, K, 3); a range below 0: as measured
         R_own = cov(Jt, (0.0, s, s))
         x0 = np.zeros((z.shape[0], 6))
         x0[:, 0::2] = z[:, 0]

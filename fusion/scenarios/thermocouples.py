@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from fusion._frozen import constant
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, integer, number, same_keys, text, tuple_of,
                              validated_post_init)
-from fusion._validation import read_once
+from fusion._validation import read_mapping, read_once
 from fusion._validation import derived_inputs
 from fusion._validation import LOOP_STEP, distinct, loop_work, one_of, work
 from fusion._validation import allocation, record, seed as check_seed
@@ -250,8 +250,11 @@ _METHOD_CALL = 8 * LOOP_STEP
 #: Units (about 10 ns each) of one epoch of ``n`` readings fused by each method of ``fuse_epochs``, as (a reading,
 #: a pair of readings): measured on this shared machine (OPENBLAS_NUM_THREADS=1, time.process_time, minimum of 2;
 #: n = 3, 10, 30, 100, 300 and 900 readings, 2e6 to 1 epochs) and rounded up to the largest per reading at small n
-#: and per pair at large n. The optimal fusion set: 143-200 ns a reading at n <= 10, 6-8 ns a pair at n >= 100 (its
-#: 500,000 epochs of 10 readings, 0.89 CPU-s: 300 units an epoch counts 1.5 s); the fusion-set weights 90-112 ns a
+#: and per pair at large n. The optimal fusion set (re-measured, fuzz 42b C6: its 20 units a reading and 1 a pair
+#: counted its epochs 1.6-2.1x, so the reseeding sweep's 10x reading of yang-weights-reasonable, 9 scales x 500,000
+#: epochs of 10, was refused though it runs 6.7 CPU-s): 42, 164, 789, 5,439, 45,434 and 385,151 units an epoch at
+#: n = 3, 10, 30, 100, 300 and 900 (1e6 to 60 epochs), so 14 a reading and 1/2 a pair (47, 190, 870, 6,400, 49,200
+#: and 417,600: 8-18 % above); the fusion-set weights 90-112 ns a
 #: reading, 3.4-3.8 ns a pair; the support degree 35-50 ns a reading, 1.8-2.2 ns a pair; the belief degree (its
 #: eigendecomposition included) 480-820 ns a reading at n <= 10, 70-160 ns a pair up to n = 900; the mean 2-6 ns a
 #: reading. ``fuse_epochs``' own budget (``PAIR_WORK``, 20 units a pair) stays each method's limit (``epochs_limit``):
@@ -259,7 +262,7 @@ _METHOD_CALL = 8 * LOOP_STEP
 #: 6 methods of 5,000 runs, counted 6e9 units and ran 3.0 CPU-s).
 _EPOCH_UNITS: Mapping[str, tuple[Fraction, Fraction]] = constant({
     "mean": (Fraction(1), Fraction(0)),
-    "optimal_fusion_set": (Fraction(20), Fraction(1)),
+    "optimal_fusion_set": (Fraction(14), Fraction(1, 2)),
     "fusion_set_weights": (Fraction(12), Fraction(1, 2)),
     "support_degree": (Fraction(5), Fraction(1, 4)),
     "belief_degree": (Fraction(30), Fraction(16)),
@@ -567,11 +570,14 @@ def paired_study(
     n_runs = count(n_runs, "n_runs")
     seed = check_seed(seed)
     methods = _check_methods(methods)
+    failure = read_mapping(failure, "failure")
     instance_of(failure, (Mapping, type(None)), "failure")
     if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name
         record(failure, "failure", (), ("sensors", "samples", "biases"))
     failure_mode = one_of(failure_mode, FAILURE_MODES, "failure_mode")   # TypeError for a non-str (issue 35)
-    fail = dict(failure or {})
+    # each entry read once, the same items injected and recorded (fuzz 42a C11: a Sequence giving (50, 80) and then
+    # (1, 100) was injected on samples 50-80 and recorded as the window (1, 100), its member shares of other samples)
+    fail = {k: read_once(v, k) for k, v in (failure or {}).items()}  # a list, tuple or array: fixed values
     # every method fuses the clean epochs, then the failed ones (those the failure changed: at most every epoch, 31 of
     # 100 samples by default), so two fusions a method; an optimal set with options only runs the default set for its
     # members (_paired_errors). Counted before the draws by monte_carlo's rules: simulate's memory, each method's

@@ -515,7 +515,8 @@ def _stream_metrics(produce: Any, truth: np.ndarray, blocks: list[slice], each: 
 
 
 def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence[float], seed: int,
-                 kind: Signal | str = Signal.TWO_TONES, weight: int = 0, configs: int = 0) -> tuple[np.ndarray, ...]:
+                 kind: Signal | str = Signal.TWO_TONES, weight: int = 0, configs: int = 0,
+                 readings: int = 0) -> tuple[np.ndarray, ...]:
     runs = count(runs, "runs", minimum=2)
     g = as_array(gains, "gains", ndim=1)
     sig = as_array(sigma, "sigma", ndim=1)
@@ -530,7 +531,11 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
     S = measurand(kind, length)
     allocation((runs, g.size, S.size), "runs, gains and length")  # the memory budget, before the noise is drawn
     if weight:  # rule 17: the caller's work at ``weight`` units a sample (variance_study: 690,000 runs, ~31 CPU-s, ran)
-        work((runs, g.size, S.size), "runs, gains and length", weight=weight)
+        if readings:  # and each of its readings' passes, summed (variance_study, fuzz 42a C14)
+            N = runs * g.size * S.size
+            work((weight * N + readings * (_READING_STEP + _READING_SAMPLE * N),), "readings, runs, gains and length")
+        else:
+            work((runs, g.size, S.size), "runs, gains and length", weight=weight)
     if configs:  # rule 17 (fuzz 35a D3): mechanism_study's loop over its settings, at their measured cost
         loop_work((configs,), _MECH_SAMPLE * runs * g.size * S.size, "configs, runs, gains and length", step=_MECH_STEP)
     noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size))
@@ -548,6 +553,13 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
 #: statistics, ~0.57 ms measured at length 64) and of one sample of a setting (~0.06-0.1 us measured at length 1024,
 #: 100-2,000 runs): 60,000 runs (~250 CPU-s) and 10**6 settings (~12 min) were accepted (fuzz 35a D3).
 _MECH_STEP, _MECH_SAMPLE = 60 * LOOP_STEP, 10
+#: Units of :func:`variance_study`: 10 a sample for its denoising and reference metrics, and per reading (the oracle
+#: too) a step and 4 units a sample (fuzz 42a C14: the readings were not counted; 450,000 of 2 runs x 64 samples were
+#: accepted and ran 46.2 CPU-s). Measured (``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls,
+#: machine shared): 93 us a reading of 2 runs x 2 sensors x 64 samples (2,000 readings); at 100 runs x 4 x 1,024 a
+#: reading 1.0 ("equal"), 3.1, 5.6, 7.6 and 9.8 ("window") units a sample, at 1,000 runs 1.2 ("batch"); the whole
+#: default call (5 readings, 300 and 1,000 runs) 19.7 and 14.4 units a sample, counted 34.
+_READING_STEP, _READING_SAMPLE = 10 * LOOP_STEP, 4
 
 
 def _blocks(runs: int, per_run: int) -> list[slice]:
@@ -638,7 +650,7 @@ def signal_study(
         (``fusion._validation.MAX_WORK``: signals x modes x (normalisers + 1) x runs x sensors x length x 20).
     """
     gains = read_once(gains, "gains")  # a Sequence class read once (fuzz 31a C4)
-    _names(signals, "signals", _SIGNAL_KEYS)
+    signals = _names(signals, "signals", _SIGNAL_KEYS)  # the list read is what is counted and run (fuzz 42a C14)
     modes, normalisers = _names(modes, "modes", ("hard", "soft")), _names(normalisers, "normalisers", wv.NORMALISERS)
     # rule 17, before any draw: every case denoises and fuses runs x sensors x samples (an undecimated transform
     # at a few levels, ~20 vectorised operations per sample); "max" adds the fuse-first order
@@ -855,7 +867,10 @@ def mechanism_study(
     if count(length, "length", minimum=64) % 64:  # fuzz 35a D1: bias_share_period[64] needs whole periods of 64
         raise ValueError("length must be a multiple of 64 (the bias's share at the tone's period 64, "
                          f"MechanismStudy.bias_share_period, needs whole periods), got {int(length)}")
-    if not sequence(configs, "configs"):
+    # the list sequence() reads is what is counted and iterated, each config read once (fuzz 42a C12: a len() true on
+    # its first call and 1 after counted 600 configs as 1, 35.2 CPU-s)
+    configs = [read_mapping(c, f"configs[{i}]") for i, c in enumerate(sequence(configs, "configs"))]
+    if not configs:
         raise ValueError("configs must be a non-empty sequence of dicts")
     g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed, kind, configs=len(configs))
     for i, c in enumerate(configs):
@@ -942,12 +957,16 @@ def variance_study(
     Raises
     ------
     ValueError
-        Bad lengths or values, an empty or unknown ``readings``, an unknown ``mode``.
+        Bad lengths or values, an empty or unknown ``readings``, an unknown ``mode``; the draws and every reading's
+        pass beyond the work budget (10 units a sample, and 4 a sample and 10,000 a reading, the oracle too:
+        measured), naming readings, runs, gains and length, before any draw.
     """
-    g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed, weight=25)  # ~0.2 us a sample (budget35)
+    readings = sequence(readings, "readings")  # read once; its length bounded by a reading's step before its names
+    loop_work((len(readings),), 0, "readings", step=_READING_STEP)
+    readings = _names(readings, "readings", wv.VARIANCES)  # counted below, each reading and the oracle
+    g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed, weight=10, readings=len(readings) + 1)
     window = count(window, "window", minimum=2)
     mode, normaliser = one_of(mode, ("hard", "soft"), "mode"), one_of(normaliser, ("max", "max-raw"), "normaliser")
-    readings = _names(readings, "readings", wv.VARIANCES)
     R_, n, size = noise.shape
     blocks = _blocks(R_, n * size)
     den = np.empty_like(noise)

@@ -536,6 +536,12 @@ class AwfStudy:
     __post_init__ = validated_post_init
 
 
+#: Units of :func:`awf_study`'s work per level, run and entry of ``ks`` (fuzz 42a C7): 3.5 and 8.4 units at 4 sensors
+#: (20,000 and 100,000 entries of 100 runs), 12 at 40, 6 at 400 (20,000 entries of 10 runs), over the same call with
+#: one entry (``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls, machine shared): 12 units.
+_AWF_K = 12
+
+
 @derived_inputs()
 def awf_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
@@ -567,6 +573,14 @@ def awf_study(
     -------
     AwfStudy
         Per level and estimator the rows and bands of the variance estimates, and per level each method's MSE against k.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, named; before any draw: the draws beyond the memory budget or their work at every level (25
+        units a draw, measured) beyond its entry of ``fusion._limits.STUDY_WORK``; the running means at ``ks``
+        (``runs x len(ks) x n``) beyond the memory budget, or their work at two levels (12 units a run and entry of
+        ``ks``, measured) beyond ``fusion._validation.MAX_WORK``.
     """
     sigma = read_once(sigma, "sigma")  # a Sequence class read once (fuzz 31a C4)
     n_sig = _sigmas(sigma, minimum=4).size
@@ -584,6 +598,10 @@ def awf_study(
     ks_chk = _ints(ks, "ks")
     if np.any(ks_chk > k_max):
         raise ValueError(f"ks must be <= k_max = {k_max}")
+    # rules 9 and 17 on the length of ks (fuzz 42a C7: uncounted, ks = [100] * 200,000 of 500 runs raised a raw
+    # MemoryError after 17.6 CPU-s): the running means at ks, (runs, len(ks), n), and each curve at them, at two levels
+    allocation((runs, ks_chk.size, n_sig), "runs, ks and sigma")
+    work((2, runs, ks_chk.size), "ks and runs", weight=_AWF_K)
     k_compare = count(k_compare, "k_compare")
     if k_compare not in ks_chk:
         raise ValueError(f"k_compare must be one of ks, got {shown(k_compare)}")

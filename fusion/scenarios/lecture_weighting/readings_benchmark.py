@@ -2,7 +2,7 @@ r"""Every readings-level method of the lecture on one shared setup, over seeds (
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
 from typing import Any
@@ -12,10 +12,10 @@ import numpy as np
 from fusion._results import ResultSpec, array, dict_of, instance, integer, number, same_keys, tuple_of
 from fusion._results import flag as flag_spec, validated_post_init  # flag: the argument check of _validation
 from fusion import readings as rd
-from fusion._validation import read_once
+from fusion._validation import read_mapping, read_once
 from fusion._validation import derived_inputs
 from fusion._validation import flag
-from fusion._validation import LOOP_STEP, distinct, distinct_printed, general, loop_work, sequence
+from fusion._validation import LOOP_STEP, distinct, distinct_printed, general, loop_work, sequence, work
 from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import instance_of, record, seeds as check_seeds
 from fusion._validation import seed as check_seed
@@ -168,6 +168,14 @@ def benchmark(
     -------
     dict
         ``{(seed, level, fault): {method key (:class:`BenchMethod`): per-run squared error, shape (runs,)}}``.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, named; before any work: the readings of every (seed, level, fault) key beyond the work budget
+        (45 units a reading, measured, and a step a key; its entry of ``fusion._limits.STUDY_WORK``), the checked AWF's
+        eight ``(runs, samples, n, n)`` pair arrays beyond the memory budget (naming runs, samples and sigma), or their
+        work at every key (6 units a pair element, measured) beyond ``fusion._validation.MAX_WORK``.
     """
     sigma = read_once(sigma, "sigma")  # a Sequence class read once (fuzz 31a C4)
     if isinstance(seeds, (str, bytes)):
@@ -180,8 +188,6 @@ def benchmark(
     bias = scalar(bias, "bias")
     sig_chk = _sigmas(sigma, minimum=3)
     allocation((runs, samples, sig_chk.size), "runs, samples and sigma")
-    # the checked AWF's (runs, samples, n, n) pair arrays, at entry by the callee's own rule (named here, not as X)
-    cs._pair_budget((runs, samples, sig_chk.size), "runs, samples and sigma")
     fault_sensor = _index(fault_sensor, sig_chk.size, "fault_sensor")
     fault_from = count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
     faults = [flag(f, f"faults[{i}]")  # fuzz 24a U8: one rule for a sequence argument, then for each flag
@@ -194,6 +200,16 @@ def benchmark(
     loop_work((len(seeds), lv.size, len(faults)), _BENCH_READING * runs * samples * sig_chk.size,
               "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP,
               limit=STUDY_WORK[READINGS_BENCHMARK])  # the reseeding sweep's 10x (lec-belief-accuracy): 1.35e9
+    # the checked AWF's (runs, samples, n, n) pair arrays, at entry by the callee's own rule (named here, not as X):
+    # their memory, and their work at every key (fuzz 42a C4: one key's was counted, so 12 keys of 1 run x 3,300
+    # samples x 100 sensors, 1.8e8 units by the readings, ran 32.8 CPU-s). A key of the benchmark measured the checked
+    # AWF's cost (2.7-5.9 units a pair element) and about 15-30 units a reading more (2,000 x 100 x 5, 200 x 100 x 10
+    # and 20, 50 x 100 x 40, 1 x 3,300 x 100, 1 x 1,000 x 180, 2 x 500 x 150: 0.11 to 1.4 CPU-s a key, the least of
+    # three, time.process_time, OPENBLAS_NUM_THREADS=1, machine shared), within the 45 units a reading and the
+    # callee's 6 a pair element counted; the sweep's 10x (12 keys of 5,000 x 100 x 5) counts 9e8 pair units
+    cs._pair_budget((runs, samples, sig_chk.size), "runs, samples and sigma",
+                    fusions=len(seeds) * lv.size * len(faults),
+                    fusion_names="seeds, levels, faults, runs, samples and sigma")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     results = {}
@@ -208,17 +224,21 @@ def benchmark(
     return results
 
 
-def _benchmark_results(results: object) -> dict[tuple[int, float, bool], dict[str, np.ndarray]]:
+def _benchmark_results(results: object, count: Callable[[int, int, int], None] | None = None,
+                       ) -> dict[tuple[int, float, bool], dict[str, np.ndarray]]:
     """The output of :func:`benchmark`, checked entry by entry (rule 12 of the shared validation).
 
     Keys ``(seed, level, fault)`` covering every (seed, scenario) pair; values dicts of one set of
-    methods, each a non-empty 1-D array of finite squared errors.
+    methods, each a non-empty 1-D array of finite squared errors. The mapping is read once; its keys and methods are
+    checked first and ``count(seeds, scenarios, methods)``, when given, called before any array is converted (a
+    caller's work budget, fuzz 42a C10).
     """
+    results = read_mapping(results, "results")
     if not isinstance(results, Mapping):  # any mapping, as the package's other checks (a read-only one included)
         raise TypeError(f"results must be a mapping (a dict from benchmark), got {type(results).__name__}")
     if not results:
         raise ValueError("results is empty")
-    out, methods = {}, None
+    methods: list | None = None
     for key, entry in results.items():
         path = f"results[{key!r}]"
         if not isinstance(key, tuple) or len(key) != 3:
@@ -231,13 +251,15 @@ def _benchmark_results(results: object) -> dict[tuple[int, float, bool], dict[st
         if methods is None:
             methods = list(entry)
         record(entry, path, tuple(methods))
-        out[key] = {m: as_array(entry[m], f"{path}[{m!r}]", ndim=1, nonnegative=True) for m in methods}
-    seeds = {k[0] for k in out}
-    scen = {k[1:] for k in out}
-    if len(out) != len(seeds) * len(scen):
+    seeds = {k[0] for k in results}
+    scen = {k[1:] for k in results}
+    if len(results) != len(seeds) * len(scen):
         raise ValueError(f"results must hold every (seed, scenario) pair: {len(seeds)} seeds x {len(scen)} scenarios, "
-                         f"got {len(out)} entries")
-    return out
+                         f"got {len(results)} entries")
+    if count is not None:
+        count(len(seeds), len(scen), len(methods or ()))
+    return {key: {m: as_array(entry[m], f"results[{key!r}][{m!r}]", ndim=1, nonnegative=True) for m in methods or ()}
+            for key, entry in results.items()}
 
 
 def _stability_relation(values: Mapping[str, Any], cls: str) -> None:
@@ -302,6 +324,14 @@ class SeedStability:
     __post_init__ = validated_post_init
 
 
+#: (m, m) arrays of m methods :func:`seed_stability` holds at once (a seed's ranks and pairs: the differences, the
+#: masks, the signs; fuzz 42a C10), and its units per scenario and seed: 3 a pair of methods, 1,000 a method (its mean
+#: and SE), a step. Measured (``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls, machine
+#: shared; the conversion of the arrays apart): 3.0, 2.2 and 1.8 units a pair at 3,500 methods of 2 seeds, 1,000 of 20
+#: seeds x 2 scenarios and 2,000 of 3 x 2; 4 us a method and 20 us a seed at 50 methods of 2,000 seeds and 2 of 80,000.
+_SEED_PAIR_ARRAYS, _SEED_PAIR, _SEED_METHOD, _SEED_STEP = 6, 3, 1000, 2 * LOOP_STEP
+
+
 def _tied_ranks(values: np.ndarray) -> np.ndarray:
     """Rank 1 for the smallest value; values tied up to round-off (``fusion._limits.ROUND_OFF_TIE``, the
     rulebook's tie rule) share the best rank of the tie (1, 1, 3): the order of two methods that are one estimator
@@ -331,28 +361,39 @@ def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]]
     SeedStability
         Per scenario each method's rank at every seed, how many scenarios keep one ranking, and how many pairs resolved
         at the first seed reverse.
+
+    Raises
+    ------
+    ValueError
+        A bad entry of ``results``, named; its scenarios x seeds x (3 methods² + 1,000 methods + 2,000) units (measured)
+        beyond the work budget, or six (methods, methods) arrays beyond the memory budget, before any array is read.
     """
-    results = _benchmark_results(results)
     n_se = scalar(n_se, "n_se", lo=0.0, lo_open=True)
-    seeds = sorted({k[0] for k in results}, key=[k[0] for k in results].index)
+
+    def count(n_seeds: int, n_scen: int, m: int) -> None:
+        # rules 9 and 17 before any array is converted (fuzz 42a C10: no budget; 3,500 methods of 2 seeds ran 51.4
+        # CPU-s in a Python loop over the pairs, now vectorised): each (scenario, seed) ranks and compares every pair
+        allocation((m, m), "results (its methods)", arrays=_SEED_PAIR_ARRAYS)
+        work((n_scen * n_seeds * (_SEED_PAIR * m * m + _SEED_METHOD * m + _SEED_STEP),),
+             "results (its scenarios, seeds and methods)")
+
+    results = _benchmark_results(results, count)
+    seeds = list(dict.fromkeys(k[0] for k in results))  # in order of first appearance, in linear time (fuzz 42a C10)
     scen = sorted({k[1:] for k in results})
     methods = list(results[(seeds[0], *scen[0])])
     ranks = {}
+    n_sig = n_rev = 0
+    upper = np.triu(np.ones((len(methods),) * 2, dtype=bool), k=1)  # each pair (a, b) once, a before b
     for s in scen:
         mses = np.array([[results[(sd, *s)][m].mean() for m in methods] for sd in seeds])
         ranks[s] = np.array([_tied_ranks(row) for row in mses])
-    n_sig = n_rev = 0
-    for s in scen:
         r0 = results[(seeds[0], *s)]
-        mse0 = {m: r0[m].mean() for m in methods}
-        se0 = {m: r0[m].std() / np.sqrt(r0[m].size) for m in methods}
-        for i, a in enumerate(methods):
-            for b in methods[i + 1:]:
-                if abs(mse0[a] - mse0[b]) > n_se * np.hypot(se0[a], se0[b]):
-                    n_sig += 1
-                    sign = np.sign(mse0[a] - mse0[b])
-                    n_rev += sum(int(np.sign(results[(sd, *s)][a].mean() - results[(sd, *s)][b].mean()) != sign)
-                                 for sd in seeds[1:])
+        se0 = np.array([r0[m].std() / np.sqrt(r0[m].size) for m in methods])
+        sign = np.sign(mses[0][:, None] - mses[0][None, :])
+        resolved = upper & (np.abs(mses[0][:, None] - mses[0][None, :]) > n_se * np.hypot(se0[:, None], se0[None, :]))
+        n_sig += int(resolved.sum())
+        for row in mses[1:]:
+            n_rev += int((resolved & (np.sign(row[:, None] - row[None, :]) != sign)).sum())
     n_stable = sum(int(np.all(ranks[s] == ranks[s][0])) for s in scen)
     return SeedStability(seeds=tuple(seeds), scenarios=tuple(scen), methods=tuple(methods), ranks=ranks, n_stable=n_stable, n_sig=n_sig,
                          n_rev=n_rev)

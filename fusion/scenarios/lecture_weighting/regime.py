@@ -17,8 +17,8 @@ from fusion._frozen import constant
 from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, integer, number, same_keys, text,
                              tuple_of, validated_post_init)
 from fusion._validation import derived_inputs
-from fusion._limits import MAX_WORK, REGIME_STUDY, STUDY_WORK
-from fusion._validation import allocation, count, one_of, scalar, sequence, work
+from fusion._limits import LOOP_STEP, MAX_WORK, REGIME_STUDY, STUDY_WORK
+from fusion._validation import allocation, count, one_of, read_mapping, scalar, sequence, work
 from fusion._validation import text as text_of
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
@@ -152,6 +152,12 @@ _REGIME_DRAW = 500
 #: ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, machine shared with other jobs; the default 3 changes: 145 units,
 #: 1.35 us a draw, so the edge is about 9 CPU-s).
 _CHANGE_DRAW, _CHANGE_DRAW_EACH = 10, 45
+#: Units of one change's fixed step in :func:`variance_change_study` whatever its draws (fuzz 42a C2: its checks, its
+#: SDs, five fusions' Python and numpy calls): 0.69, 0.68 and 0.71 ms a change with 100, 1,000 and 4,000 changes of
+#: 1 run x 20 samples x 3 sensors (the least of two calls, ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, machine
+#: shared with other jobs), 70 ``LOOP_STEP``: uncounted, 50,000 changes at those draws were accepted (1.35e8 units)
+#: and ran 36.9 CPU-s; now at most about 13,700 are accepted (13,500 ran 9.3 CPU-s).
+_CHANGE_STEP = 70 * LOOP_STEP
 
 
 def _draws(sigma: Sequence[float], samples: int, runs: int, seed: int,
@@ -574,8 +580,8 @@ def variance_change_study(
     Raises
     ------
     ValueError
-        A bad argument, named; ``runs x samples x n`` draws at ``10 + 45 x len(changes)`` units each (measured)
-        beyond the work budget, naming runs, samples, sigma and changes, before any work.
+        A bad argument, named; ``runs x samples x n`` draws at ``10 + 45 x len(changes)`` units each and 70,000
+        units a change (measured) beyond the work budget, naming runs, samples, sigma and changes, before any work.
     """
     # the list sequence() returns is what is counted and iterated (fuzz 41a C4: a len() that changed between reads was
     # counted as 1 change while the loop ran all 100)
@@ -583,8 +589,10 @@ def variance_change_study(
     if isinstance(given, (str, bytes, Mapping)) or len(changes) == 0:
         raise ValueError(f"changes must be a non-empty sequence of (name, {{sensor: SD}}) pairs, got {shown(given)}")
     # rule 17: every change runs the five fusions on every draw, so the changes are counted before any work
-    sig, samples, runs, seed = _draws(sigma, samples, runs, seed, _CHANGE_DRAW + _CHANGE_DRAW_EACH * len(changes),
-                                      "runs, samples, sigma and changes")
+    weight = _CHANGE_DRAW + _CHANGE_DRAW_EACH * len(changes)
+    sig, samples, runs, seed = _draws(sigma, samples, runs, seed, weight, "runs, samples, sigma and changes")
+    # and each change's fixed step, whatever its draws (fuzz 42a C2)
+    work((runs * samples * sig.size * weight + len(changes) * _CHANGE_STEP,), "runs, samples, sigma and changes")
     change_at = _index(change_at, samples, "change_at")
     forgetting, forgetting_alt = (_forgetting(v, name)
                                   for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))
@@ -595,7 +603,7 @@ def variance_change_study(
                 and isinstance(item[1], Mapping)):
             raise ValueError(f"changes must hold (name, {{sensor: SD}}) pairs, got {shown(item)}")
         new = sig.copy()
-        for i, v in item[1].items():
+        for i, v in read_mapping(item[1], "changes").items():  # read once, at most len() + 1 pairs (fuzz 42a D1)
             new[_index(i, n, "changes")] = v
         after_sd[text_of(item[0], "changes names")] = _sigmas(new, "changes", minimum=3)  # plain texts (rule 19)
     after = np.arange(K) >= change_at

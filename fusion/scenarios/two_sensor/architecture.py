@@ -24,6 +24,7 @@ from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios.two_sensor.case import _central_start, _path_and_model_measurements, trajectory
 from fusion.scenarios.two_sensor.study import run_rmse
 from fusion._shown import shown
+from fusion._limits import ARCHITECTURE_STUDY, LOOP_STEP, MAX_WORK, STUDY_WORK
 
 __all__ = ["Architecture", "ArchRule", "ARCH_RULES", "fixed_weight_rule", "ArchitectureStudy", "architecture_study",
            "QScaling", "q_scaling_study"]
@@ -187,10 +188,14 @@ class _PairedRuns(NamedTuple):
     truth: FloatArray     # the true states of those runs
 
 
-#: Units (about 10 ns, ``fusion._limits.MAX_WORK``) of one step of one path run and of one model-following (NEES)
-#: run of :func:`architecture_study`, every architecture and rule: measured 6.9 and 12.6 us (budget35,
-#: OPENBLAS_NUM_THREADS=1: 0.73 and 1.33 CPU-s for 2,000 runs of 53 steps).
-_RUN_STEP, _NEES_RUN_STEP = 700, 1300
+#: Units (about 10 ns, ``fusion._limits.MAX_WORK``) of :func:`architecture_study` (fuzz 42b D1, re-measured: the
+#: steps' own cost, 6.3-6.6 ms a step whatever the runs, was not counted, so 261 steps of 2 runs ran 1.7 CPU-s and 26,100
+#: would run about 170): a step 700 ``LOOP_STEP`` and 50 more for each filter bank of a fixed weight (10.1 ms a step with
+#: 7 of them); a step of a path run 350 units, of a model-following (NEES) run 850 and 50 more a bank (3.3 and 8.3 us;
+#: 11.3 with 7 banks). Measured at T = 1 (261 steps), 2 and 402 runs, the least of two calls, ``time.process_time``,
+#: ``OPENBLAS_NUM_THREADS=1``, machine shared; chapter 05's identical pair at 2,000 and 2,000 runs with 7 banks ran
+#: 10.9 CPU-s (counted 1.08e9), its anisotropic pair with 2 banks 9.0 (8.9e8).
+_ARCH_STEP, _BANK_STEP, _RUN_STEP, _NEES_RUN_STEP, _NEES_BANK = 700 * LOOP_STEP, 50 * LOOP_STEP, 350, 850, 50
 
 
 #: Float64 values per run and step that the run studies hold at once at their peak (the measurements, truths, both
@@ -202,7 +207,8 @@ _HELD = 64
 
 def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int, nees_runs: int,
                  T: float, velocity_sigma: float, t_steady: float, scales: int | None = None,
-                 step_units: tuple[int, int] | None = None) -> _PairedRuns:
+                 step_units: tuple[int, int, int] | None = None, names: str = "runs, nees_runs and T",
+                 limit: int = MAX_WORK, served: str | None = None) -> _PairedRuns:
     """Validate the run studies' common arguments and draw their measurements on the path of :func:`trajectory`
     and on targets that follow the model (:func:`_path_and_model_measurements`); ``scales``: the number of filter
     banks the caller runs on them, checked against the work budget (rule 17) before anything is drawn."""
@@ -222,9 +228,10 @@ def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: Arra
         # rule 17: one filter bank per scale, a loop step per sample over every run's 4-state filter
         loop_work((scales, t.size), 16 * (runs + nees_runs), "scales, runs, nees_runs and T")
     if step_units is not None:
-        # rule 17: the study's architectures and rules at their measured cost a step of a path run and of a model
-        # run (``step_units``), before the draws
-        work((t.size, step_units[0] * runs + step_units[1] * nees_runs), "runs, nees_runs and T")
+        # rule 17: the study's architectures and rules at their measured cost a step, a step of a path run and of a
+        # model run (``step_units``), before the draws, naming ``names``, within ``limit``
+        work((t.size, step_units[0] + step_units[1] * runs + step_units[2] * nees_runs), names, limit=limit,
+             served=served)
     z, Xm = _path_and_model_measurements(rng, X, model.F, Q, R1, R2, runs, nees_runs)
     truth = np.concatenate([np.broadcast_to(X, (runs, t.size, 4)), Xm])
     return _PairedRuns(runs, nees_runs, R1, R2, Q, model.F, model.H, np.diag([0.0, s2, 0.0, s2]), steady, z, truth)
@@ -277,23 +284,28 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     ------
     ValueError
         Covariances not valid, counts not positive, ``t_steady`` beyond the path, a weight outside (0, 1];
-        ``runs`` and ``nees_runs`` over the steps of ``T`` beyond the work budget (``fusion._limits.MAX_WORK``,
-        each run's step at its measured cost).
+        the steps of ``T``, each run's step and the fixed-weight filter banks beyond the work budget (its entry of
+        ``fusion._limits.STUDY_WORK``, 3e9 units: 700,000 a step, 50,000 more a bank; 350 a step of a path run,
+        850 and 50 a bank a step of a model run, measured), before any draw.
     """
     from fusion.filtering.feedback import fusion_loop
 
     omegas, placed = (_unit_weights(w, nm) for w, nm in ((printed_omegas, "printed_omegas"),
                                                           (placement_omegas, "placement_omegas")))
 
+    # rule 17 before the draws: every step, every run's step, and a filter bank per printed (twice) and placement
+    # omega at their measured cost (78,000 NEES runs, ~50 CPU-s, were accepted: budget35; the steps: fuzz 42b D1); the
+    # budget is its entry of fusion._limits.STUDY_WORK (the reseeding sweep's 10x reading of chapter 05, 1.08e9)
+    banks = 2 * len(omegas) + len(placed)
     p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady,
-                     step_units=(_RUN_STEP, _NEES_RUN_STEP))  # 78,000 NEES runs, ~50 CPU-s, were accepted (budget35)
+                     step_units=(_ARCH_STEP + banks * _BANK_STEP, _RUN_STEP, _NEES_RUN_STEP + banks * _NEES_BANK),
+                     names="runs, nees_runs and T" if not banks else
+                     "printed_omegas, placement_omegas, runs, nees_runs and T",
+                     limit=STUDY_WORK[ARCHITECTURE_STUDY], served=ARCHITECTURE_STUDY)
     runs, nees_runs, R1, R2, Q, F, H, steady, z, truth = (p.runs, p.nees_runs, p.R1, p.R2, p.Q, p.F, p.H, p.steady,
                                                           p.z, p.truth)
     x0 = [np.column_stack([zj[:, 0, 0], np.zeros(runs + nees_runs), zj[:, 0, 1], np.zeros(runs + nees_runs)])
           for zj in z]
-    # rule 17: a filter bank per printed (twice) and placement omega, a loop step per sample over every run
-    loop_work((2 * len(omegas) + len(placed), steady.size), 16 * (runs + nees_runs),
-              "printed_omegas, placement_omegas, runs, nees_runs and T")
     P0d = p.P0d
     P0i = [np.diag([R[0, 0], 0.0, R[1, 1], 0.0]) for R in (R1, R2)]
     out_rmse: dict[tuple[Architecture, str], FloatArray] = {}

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from fractions import Fraction
+import math
 
 from dataclasses import dataclass
 from typing import Any
@@ -383,7 +385,8 @@ def slip_steps_band(rmse: float, published: float, decimals: int = 0) -> tuple[i
     Returns
     -------
     (int, int)
-        The smallest and largest :math:`n` (inclusive); ``lo > hi`` if no integer fits.
+        The smallest and largest :math:`n` (inclusive); ``lo > hi`` if no integer fits. Integers of any size (an
+        ``rmse`` of 1e150 gives 300 digits and more).
 
     Raises
     ------
@@ -394,9 +397,19 @@ def slip_steps_band(rmse: float, published: float, decimals: int = 0) -> tuple[i
     d = count(decimals, "decimals", minimum=0)
     half = 0.5 * 10.0 ** (-d)
     p = scalar(published, "published", half, np.inf, lo_open=True)
-    lo = int(np.floor((r / (p + half)) ** 2)) + 1      # r/sqrt(n) < p + h (the upper end rounds up)
-    hi = int(np.floor((r / (p - half)) ** 2))          # r/sqrt(n) >= p - h
+    lo = _floor_square(r / (p + half)) + 1      # r/sqrt(n) < p + h (the upper end rounds up)
+    hi = _floor_square(r / (p - half))          # r/sqrt(n) >= p - h
     return lo, hi
+
+
+def _floor_square(q: float) -> int:
+    """``floor(q**2)`` of a finite float ``q``; a square beyond the float range (``q`` above about 1.3e154: an
+    ``rmse`` of 1e150 over a published value just above half a unit) exactly, as an integer (fuzz 42a C9: a raw
+    OverflowError)."""
+    try:
+        return int(np.floor(q**2))
+    except OverflowError:
+        return math.floor(Fraction(q) ** 2)
 
 
 def rmse_variants(est: ArrayLike, truth: ArrayLike, steps: ArrayLike) -> dict[str, tuple[float, float]]:
