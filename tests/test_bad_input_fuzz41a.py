@@ -5,10 +5,11 @@ any of that work (C2-C7; the weights measured, see each function's comment)."""
 from __future__ import annotations
 
 import time
-from collections.abc import Sequence
 
 import numpy as np
 import pytest
+
+from _helpers import ShrinkingLen as _ShrinkingLen  # one helper for fuzz 41a and 42a
 
 from fusion._limits import MAX_WORK
 
@@ -40,20 +41,6 @@ class _LyingLen(_ArrayOnly):
 
     def __getitem__(self, i):
         return self.a[i]
-
-
-class _ShrinkingLen(Sequence):
-    """``len()`` truthful on its first two calls, then 1; the items never change."""
-
-    def __init__(self, items):
-        self.items, self.calls = list(items), 0
-
-    def __len__(self):
-        self.calls += 1
-        return len(self.items) if self.calls <= 2 else 1
-
-    def __getitem__(self, i):
-        return self.items[i]
 
 
 def test_infrared_readers_sum_their_rules():

@@ -10,6 +10,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pytest
 
+from _helpers import ShrinkingLen as _ShrinkingLen  # one helper for fuzz 41a and 42a
+
 from fusion._limits import MAX_WORK
 
 
@@ -288,20 +290,6 @@ def test_slip_steps_band_squares_beyond_the_float_range():
     lo, hi = slip_steps_band(1e145, 1.5e-17, decimals=17)
     assert 0 < lo <= hi
     assert slip_steps_band(3.0, 1.0) == (5, 36)  # within the float range: as before
-
-
-class _ShrinkingLen(Sequence):
-    """``len()`` truthful on its first two calls, then 1; the items never change."""
-
-    def __init__(self, items):
-        self.items, self.calls = list(items), 0
-
-    def __len__(self):
-        self.calls += 1
-        return len(self.items) if self.calls <= 2 else 1
-
-    def __getitem__(self, i):
-        return self.items[i]
 
 
 def test_wavelet_studies_count_the_list_they_run():
