@@ -40,3 +40,44 @@ def test_c3_read_mapping_len_maxsize_is_the_documented_value_error():
 def test_c3_public_caller_len_maxsize():
     from fusion.scenarios.lecture_weighting.readings_benchmark import seed_stability
     _refused_fast(seed_stability, _HugeLen(), match=r"results has len\(\) .* but 2 items")
+
+
+def _fast(f, *args, **kw):
+    t = time.process_time()
+    out = f(*args, **kw)
+    assert time.process_time() - t < 1.0
+    return out
+
+
+def test_c1_window_beyond_samples_same_numbers_without_padding():
+    from fusion.readings import wavelet as wv
+    rng = np.random.default_rng(0)
+    X = rng.normal(size=(100, 64))
+    Y = X + 0.1 * rng.normal(size=X.shape)
+    same = wv.variance_estimates(X, Y, np.ones(100), "window", window=64)
+    for w in (65, 10**7):   # 10**7 padded each row to 10**7 samples: a raw MemoryError (7.45 GiB)
+        got = _fast(wv.variance_estimates, X, Y, np.ones(100), "window", window=w)
+        np.testing.assert_array_equal(got, same)
+
+
+def test_c1_fuse_denoised_window_beyond_samples():
+    from fusion.readings import wavelet as wv
+    rng = np.random.default_rng(1)
+    X = rng.normal(size=(60, 3, 32))
+    D = X + 0.1 * rng.normal(size=X.shape)
+    a = wv.fuse_denoised(X, D, variance="window", window=32)
+    b = _fast(wv.fuse_denoised, X, D, variance="window", window=10**7)
+    np.testing.assert_array_equal(a.fused, b.fused)
+
+
+def test_c1_variance_study_window_beyond_samples():
+    import dataclasses
+    from fusion.scenarios import wavelet_sensors as ws
+    kw = dict(length=64, runs=20, readings=("window",), seed=3)
+    a = ws.variance_study(window=64, **kw)
+    b = _fast(ws.variance_study, window=10**7, **kw)   # a raw MemoryError (5.96 GiB) before
+    for f in dataclasses.fields(a):
+        if f.name != "window":
+            np.testing.assert_array_equal(getattr(a, f.name), getattr(b, f.name), err_msg=f.name)
+    assert b.window == 10**7
+
