@@ -81,3 +81,22 @@ def test_c1_variance_study_window_beyond_samples():
             np.testing.assert_array_equal(getattr(a, f.name), getattr(b, f.name), err_msg=f.name)
     assert b.window == 10**7
 
+
+@pytest.mark.parametrize("seed, sigma_range", [(1, 5000.0), (2, 5000.0), (1, 50000.0)])
+def test_c4_cartesian_round_trip_at_a_large_range_noise(seed, sigma_range):
+    from fusion.scenarios import infrared_radar as m
+    sim = m.simulate(np.random.default_rng(seed), runs=20, sigma_range=sigma_range)
+    out = m.cartesian_errors(sim, m.cartesian_tracks(sim))   # was "P1i must be symmetric" ("P1 ..." at 50,000 m)
+    assert all(np.isfinite(v).all() for v in out.values())
+
+
+def test_c4_symmetrised_only_where_a_reader_refuses():
+    from fusion.scenarios import infrared_radar as m
+    sim = m.simulate(np.random.default_rng(1), runs=5, sigma_range=5000.0)
+    tr = m.cartesian_tracks(sim)
+    for t in (tr.radar, tr.ir):
+        for P in (t.Pd, t.Pi, t.gains.P):
+            asym = np.abs(P - np.swapaxes(P, -1, -2)).max(axis=(-2, -1))
+            assert (asym <= 1e-9 * np.abs(P).max(axis=(-2, -1))).all()
+    assert (tr.radar.Pd != np.swapaxes(tr.radar.Pd, -1, -2)).any()   # the steps within the tolerance: kept as computed
+

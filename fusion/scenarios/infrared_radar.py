@@ -43,7 +43,7 @@ from fusion._counts import allocation, input_allocation
 from fusion._validation import LOOP_STEP, loop_work
 from fusion._validation import flag, text
 from fusion._options import text_key
-from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
+from fusion.filtering.tracks import LocalTrack, _symmetric_parts, fuse_tracks, local_track
 from fusion.scenarios._infrared_budget import _reader_budget, _scan_budget, _tracks_budget
 from fusion.filtering.kalman import cv_model
 from fusion._shown import shown
@@ -939,7 +939,8 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
         x0[:, 0::2] = z[:, 0]
         P0d = np.kron(np.eye(3), np.diag([0.0, sv**2])) + H.T @ R_range[0] @ H
         P0i = H.T @ R_own[0] @ H
-        tracks.append(local_track(z, F, H, Q, R_own, x0, P0d, P0i, R_shared=R_range))
+        # its parts symmetric where a reader would refuse them (fuzz 43 C4: range noise 5,000 m)
+        tracks.append(_symmetric_parts(local_track(z, F, H, Q, R_own, x0, P0d, P0i, R_shared=R_range)))
     meas = np.stack([zr, sim.radar.z[..., 0], sim.radar.z[..., 1]], axis=-1)
     R_meas = cov(conversion_jacobian(meas), (sr, sa, sa))
     R_true = R_range + cov(Jt, (0.0, sa, sa))
