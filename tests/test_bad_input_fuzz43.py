@@ -100,3 +100,23 @@ def test_c4_symmetrised_only_where_a_reader_refuses():
             assert (asym <= 1e-9 * np.abs(P).max(axis=(-2, -1))).all()
     assert (tr.radar.Pd != np.swapaxes(tr.radar.Pd, -1, -2)).any()   # the steps within the tolerance: kept as computed
 
+
+class _Ran(Exception):
+    pass
+
+
+def _ran(*a, **k):
+    raise _Ran
+
+
+def test_c2_scaling_study_counts_its_dense_algebra(monkeypatch):
+    """At n = 1,000 a run of rs = (2, 3) ran 9.6 CPU-s but was counted 0.3 s: 30 runs (about 290 CPU-s) were accepted.
+    Refused at once now; n = 700 (counted 4.9e8 a run): two runs accepted, three refused; the book's call accepted."""
+    from fusion.book.chapters import chernoff_scaling as cs
+
+    _refused_fast(cs.scaling_study, 1, rs=(2, 3), n=1000, runs=30, match=r"^rs, n and runs ask for")
+    _refused_fast(cs.scaling_study, 1, rs=(2, 3), n=700, runs=3, match=r"^rs, n and runs ask for")
+    monkeypatch.setattr(cs.np.random, "default_rng", _ran)
+    for call in (lambda: cs.scaling_study(1, rs=(2, 3), n=700, runs=2), lambda: cs.scaling_study(1)):
+        with pytest.raises(_Ran):
+            call()

@@ -540,6 +540,14 @@ def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2,
 _RUN_UNITS, _RUN_NODE_UNITS = 8_000, 30_000
 _SIZE_UNITS = 150 * 1000
 _BATCH_PROBLEM_UNITS, _BATCH_NODE_UNITS, _BATCH_SAMPLE_UNITS = 5_500, 600, 10
+#: Units of a run's exact exponents and of a batch problem at a large n (fuzz 43 C2: the linear weights above, measured
+#: at n = 3 and 10, counted n = 1,000 at 0.3 s a run for 9.6 CPU-s, so 30 runs, about 290 CPU-s, were accepted): each
+#: grows as n² (dense n x n Newton solves and Gaussian algebra) and is counted as the largest of its linear count,
+#: ``_DENSE_SQUARE_UNITS`` n² and ``_DENSE_CUBE_UNITS`` n³ (the solves' n³ beyond the measured n). Measured (CPU time,
+#: minimum of 2, OPENBLAS_NUM_THREADS=1, shared machine, 2 runs): the exact exponents of a run 0.052 / 0.118 / 0.656
+#: / 2.05 s and a batch problem 0.025 / 0.109 / 0.515 / 2.07 s at n = 100 / 200 / 400 / 800, i.e. 245-520 units an
+#: n², 320 for both at n = 800 (0.40 an n³ there).
+_DENSE_SQUARE_UNITS, _DENSE_CUBE_UNITS = 330, 0.4
 
 
 def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000), n: int = 3, runs: int = 100
@@ -572,8 +580,8 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
         ``rs`` with fewer than two sizes (the study's slope in R needs two) or repeating an R (the study is keyed by
         R); ``runs``, ``n`` or an R below 2; ``n``, ``runs`` and the largest R beyond the memory budget (the Newton
         steps need about 6.5 runs × n² numbers); the runs' exact exponents and every R's batch beyond the work budget
-        (``fusion._limits.MAX_WORK``, weighed by their measured costs), before any draw, naming ``rs``, ``n`` and
-        ``runs``.
+        (``fusion._limits.MAX_WORK``, weighed by their measured costs, about 330 n² units a run and a batch problem
+        at a large n: at n = 1,000 one run of two sizes), before any draw, naming ``rs``, ``n`` and ``runs``.
     TypeError
         A count that is not an integer (``rs`` included, entry by entry).
     """
@@ -584,8 +592,11 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
         raise ValueError(f"rs must hold at least two sample sizes (the slope of the error in R needs two), got {rs}")
     _problem_budget(n, runs, max(rs), ("n", "runs", "rs"), square=7 * runs)
     # rule 17 (fuzz 42b C10): every run's exact exponents and every size's batch, weighed as measured above
-    work((runs * (_RUN_UNITS + _RUN_NODE_UNITS * n) + len(rs) * _SIZE_UNITS
-          + runs * sum(_BATCH_PROBLEM_UNITS + _BATCH_NODE_UNITS * n + _BATCH_SAMPLE_UNITS * r * n for r in rs),),
+    # and each run's and problem's dense n x n algebra at a large n (fuzz 43 C2)
+    dense = max(_DENSE_SQUARE_UNITS * n * n, int(_DENSE_CUBE_UNITS * n**3))
+    work((runs * max(_RUN_UNITS + _RUN_NODE_UNITS * n, dense) + len(rs) * _SIZE_UNITS
+          + runs * sum(max(_BATCH_PROBLEM_UNITS + _BATCH_NODE_UNITS * n, dense) + _BATCH_SAMPLE_UNITS * r * n
+                       for r in rs),),
          "rs, n and runs")
     w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
     exact = np.stack([ch.gaussian_chernoff_weights(m[k, :, 0], c[k, :, 0]).eps for k in range(runs)])
