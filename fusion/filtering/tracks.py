@@ -105,7 +105,7 @@ _SYMMETRY_RTOL = 1e-9
 
 
 def _symmetric_steps(P: FloatArray) -> FloatArray:
-    """``P`` (K, n, n) with each step asymmetric by more than :data:`_SYMMETRY_RTOL` of its largest entry replaced by
+    """``P`` (K, n, n) with each step asymmetric by more than ``_SYMMETRY_RTOL`` of its largest entry replaced by
     its symmetric part; ``P`` itself (the same object) when there is none."""
     PT = np.swapaxes(P, -1, -2)
     scale = np.maximum(np.abs(P).max(axis=(-2, -1)), np.finfo(float).tiny)
@@ -118,7 +118,7 @@ def _symmetric_steps(P: FloatArray) -> FloatArray:
 
 
 def _symmetric_parts(track: LocalTrack) -> LocalTrack:
-    """``track`` with each step of ``Pd``, ``Pi`` and ``gains.P`` whose asymmetry exceeds :data:`_SYMMETRY_RTOL` of
+    """``track`` with each step of ``Pd``, ``Pi`` and ``gains.P`` whose asymmetry exceeds ``_SYMMETRY_RTOL`` of
     its largest entry replaced by its symmetric part; every other step kept to the bit (a track without one: the
     same object).
 
