@@ -419,7 +419,9 @@ def _real_number(value: object, name: str, what: str = "a number", bound: float 
             raise OverflowError
         if v == 0.0 and not isinstance(value, (float, int)) and _nonzero(value):
             # a Fraction, Decimal or longdouble below the float range (Fraction(1, 10**400)) would become an exact zero
-            raise ValueError(f"{name} must be {what} of magnitude at least {MIN_MAGNITUDE:g} (or zero), got a non-zero "
+            # the printing formatters (bound None) apply no rule-2 bound: the float range's own (fuzz 43 D1)
+            low = f"{MIN_MAGNITUDE:g}" if bound is not None else f"{float(np.finfo(float).smallest_subnormal):.2g}"
+            raise ValueError(f"{name} must be {what} of magnitude at least {low} (or zero), got a non-zero "
                              f"value below the float range: {shown(value, 60)}")
         return v
     except OverflowError:  # a Python int or Fraction beyond the float range

@@ -120,3 +120,17 @@ def test_c2_scaling_study_counts_its_dense_algebra(monkeypatch):
     for call in (lambda: cs.scaling_study(1, rs=(2, 3), n=700, runs=2), lambda: cs.scaling_study(1)):
         with pytest.raises(_Ran):
             call()
+
+
+@pytest.mark.parametrize("value", [np.longdouble("1e-400"), __import__("fractions").Fraction(1, 10**400),
+                                   __import__("decimal").Decimal("1e-400")])
+def test_d1_formatters_state_the_float_range_at_the_lower_end(value):
+    """The printing formatters apply no rule-2 bound (they print 1e-200 and 5e-324): a value below the float range
+    is refused stating the float range's lower end, not rule 2's 1e-150."""
+    from fusion.book import tables
+    from fusion.book.chapters.lecture import sci
+    assert sci(1e-200) and sci(5e-324)
+    for f in (sci, tables.sci, tables.rounded):
+        with pytest.raises(ValueError, match=r"magnitude at least 4\.9e-324 \(or zero\)") as info:
+            f(value)
+        assert "1e-150" not in str(info.value)
