@@ -162,10 +162,10 @@ def test_glue_all_glues_a_longdouble_as_a_rounded_float(monkeypatch, value):
 
 
 @pytest.mark.parametrize("text, match", [("1e-400", "a number within float's range"), ("-1e-400", "a number within"),
-                                         ("1e400", "finite"), ("-1e400", "finite")])
+                                         ("1e400", "a number within"), ("-1e400", "a number within")])
 def test_glue_all_refuses_a_longdouble_beyond_float_range(monkeypatch, text, match):
-    """D3: a longdouble that float cannot hold would be glued as 0 (beyond its largest value the finite check, which
-    reads it as a complex number, already refused it as infinite): refused by name, nothing glued."""
+    """D3: a longdouble that float cannot hold would be glued as 0: refused by name, nothing glued; beyond its largest
+    value by the same range rule (fuzz 43 D2: the finite check read it as a complex number, refusing it as infinite)."""
     from fusion.book import glue as G
 
     glued = []

@@ -134,3 +134,16 @@ def test_d1_formatters_state_the_float_range_at_the_lower_end(value):
         with pytest.raises(ValueError, match=r"magnitude at least 4\.9e-324 \(or zero\)") as info:
             f(value)
         assert "1e-150" not in str(info.value)
+
+
+@pytest.mark.parametrize("value, shown", [
+    (np.clongdouble(np.longdouble("1e400")), r"np\.clongdouble\('1e\+400\+0j'\)"),
+    (np.clongdouble(np.longdouble("1e-400") + 1j), r"np\.clongdouble\('1e-400\+1j'\)"),
+    (np.longdouble("1e400"), r"np\.longdouble\('1e\+400'\)"),
+])
+def test_d2_glue_all_refuses_a_longdouble_beyond_float_range_by_its_range(value, shown):
+    """A finite (complex) longdouble beyond the float range is refused by the range rule, showing the value given
+    (the complex one was refused as "must be finite", or showing its real part)."""
+    from fusion.book.glue import glue_all
+    with pytest.raises(ValueError, match=r"^values\['k'\] must be a number within float's range .*got " + shown):
+        glue_all({"k": value})

@@ -158,7 +158,11 @@ def _longdouble_float(value: object, name: str) -> object:
     unchanged."""
     v = value[()] if isinstance(value, np.ndarray) and value.ndim == 0 else value
     if isinstance(v, np.clongdouble):
-        parts = (_longdouble_float(v.real, name), _longdouble_float(v.imag, name))
+        try:
+            parts = (_longdouble_float(v.real, name), _longdouble_float(v.imag, name))
+        except ValueError:   # the value given shown, not its part (fuzz 43 D2)
+            raise ValueError(f"{name} must be a number within float's range (a complex longdouble is glued as a "
+                             f"complex), got {shown(v)}") from None
         return complex(*parts)  # type: ignore[arg-type]
     if not isinstance(v, np.longdouble):
         return value
@@ -304,6 +308,9 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     plain = {}  # keys and text values as their plain str (rule 19): a (str, Enum) member is glued as its text
     for key, value in values.items():  # every value checked before any is glued
         key = _glue_key(key, "values")
+        v = value[()] if isinstance(value, np.ndarray) and value.ndim == 0 else value
+        if isinstance(v, (np.longdouble, np.clongdouble)) and np.isfinite(v):  # a finite 1e400: refused by its range
+            _longdouble_float(value, f"values[{shown(key)}]")                   # first, not as infinite (fuzz 43 D2)
         _check_finite(key, value)
         value = _longdouble_float(value, f"values[{shown(key)}]")   # then rounded at decimals as any float
         plain[key] = text(value, f"values[{shown(key)}]") if isinstance(value, str) else value
