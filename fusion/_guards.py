@@ -15,7 +15,6 @@ import dataclasses as _dataclasses
 import functools as _functools
 import inspect as _inspect
 import re as _re
-import sys as _sys
 from itertools import islice as _islice
 from collections.abc import Callable
 from math import isfinite as _isfinite
@@ -252,7 +251,8 @@ _STABLE = (np.ndarray, list, tuple, int, float, complex, np.generic, str, bytes,
 
 
 class _LengthLie(ValueError):
-    """A sequence whose ``len()`` disagrees with its items (raised by :func:`_materialised`, passed on as it is)."""
+    """A sequence whose ``len()`` disagrees with its items, or is beyond the input budget (raised by :func:`_items`,
+    passed on as it is)."""
 
 
 def _items(x: _Sequence, name: str) -> list:
@@ -260,9 +260,17 @@ def _items(x: _Sequence, name: str) -> list:
     (3, over a ``__getitem__`` answering up to index ``10**8``, or never raising IndexError) is refused by name after
     one item past it, as ``fusion._validation.sequence`` does, never read in full (24 CPU-s) or for ever. The stop
     is capped at ``sys.maxsize`` (islice's largest; fuzz 43 C3: a legal ``len()`` of ``sys.maxsize`` overflowed it
-    and was refused as a TypeError instead of this ValueError)."""
+    and was refused as a TypeError instead of this ValueError). A ``len()`` beyond the input budget
+    (``fusion._limits.MAX_INPUT_ELEMENTS``) is refused by name before any item is read (fuzz 44 C1: a mapping of
+    ``len()`` ``sys.maxsize`` whose items never end was read without bound), so at most that budget + 1 items are
+    ever read."""
+    from fusion._limits import MAX_INPUT_ELEMENTS
+
     n = len(x)
-    out = list(_islice(iter(x), min(n + 1, _sys.maxsize)))
+    if n > MAX_INPUT_ELEMENTS:
+        raise _LengthLie(f"{name} has len() {n:.3g}, beyond the input budget (at most {MAX_INPUT_ELEMENTS:,} "
+                         "entries, fusion._validation.MAX_INPUT_ELEMENTS)")
+    out = list(_islice(iter(x), n + 1))
     if len(out) != n:
         raise _LengthLie(f"{name} has len() {n} but {'more' if len(out) > n else len(out)} items (a sequence's "
                          "len() must count its items)")
@@ -320,7 +328,8 @@ def read_mapping(m: object, name: str) -> object:
     TypeError
         Reading its items raised (the argument's own exception, rule 15), naming ``name``.
     ValueError
-        Its ``len()`` disagrees with its items (at most ``len()`` + 1 of them read, fuzz 42a C1), naming ``name``.
+        Its ``len()`` is beyond the input budget (refused before reading, fuzz 44 C1) or disagrees with its items
+        (at most ``len()`` + 1 of them read, fuzz 42a C1), naming ``name``.
     """
     if type(m) is dict or not isinstance(m, _Mapping):
         return m

