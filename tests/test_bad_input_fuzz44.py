@@ -53,3 +53,23 @@ def test_c1_mapping_len_within_budget_still_read_and_lie_refused():
         def __iter__(self):
             return iter(["a", "b"])
     assert read_mapping(Two(2), "m") == {"a": 1.0, "b": 1.0}
+
+
+def test_c5_cost_table_columns_counted_by_the_work_budget():
+    from fusion._limits import work
+    from fusion.book.chapters import chernoff_scaling as cs
+    _refused_fast(cs.cost_table, (1,), range(1, 1_000_001), match=r"ns and ss ask for .* units of work")
+    # the edge just inside: accepted by the same count (running it takes about 8 CPU-s)
+    assert work((833_333, 1 + cs._COST_COLUMN_CELLS), "ns and ss", weight=cs._COST_CELL_UNITS) <= 10**9
+    assert cs.cost_table((1, 2), range(1, 1001)).shape == (2, 1000)
+
+
+def test_c4_gaussian_problems_dimension_counted_by_the_work_budget():
+    import numpy as np
+    from fusion._limits import dense_work
+    from fusion.book.chapters import chernoff_scaling as cs
+    _refused_fast(cs.gaussian_problems, np.random.default_rng(0), 1, 1, 5000, match=r"runs, n and d ask for")
+    _refused_fast(cs.gaussian_problems, np.random.default_rng(0), 1, 1, 2715, match=r"runs, n and d ask for")
+    assert dense_work(1, 2714, "runs, n and d", cs._PROBLEM_CUBE_UNITS) <= 10**9  # the edge (about 7 CPU-s)
+    w, m, c = cs.gaussian_problems(np.random.default_rng(0), 2, 3, 40)
+    assert c.shape == (2, 3, 1, 40, 40)

@@ -19,7 +19,7 @@ from fusion._docstrings import with_sections
 from fusion._results import ResultSpec, array, dict_of, integer, mask, tuple_of, validated_post_init
 from fusion._shown import shown
 from fusion._validation import FloatArray, allocation, as_array, count, counts, distinct, instance_of, scalar
-from fusion._limits import work
+from fusion._limits import dense_work, work
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
@@ -34,6 +34,14 @@ __all__ = ['within_se_counts', 'gaussian_problems', 'SWARM_VARIANTS', 'SwarmStud
 
 
 # ---------------------------------------------------------------------------------------------- step G: N sensors
+
+
+#: Units of work of one ``d**3`` of :func:`gaussian_problems` (the einsum ``A A^T`` of a problem and node, numpy's
+#: own loop, not BLAS). Measured (fuzz 44 C4: d = 5,000 was accepted and ran 66.4 CPU-s, only its memory counted;
+#: CPU time, minimum of 2, OPENBLAS_NUM_THREADS=1, shared machine, runs = n = 1): 0.051 / 0.47 / 2.48 s at
+#: d = 600 / 1,200 / 2,000, i.e. 0.024 / 0.027 / 0.031 units a ``d**3``, growing with d (0.053 at the fuzz's 5,000);
+#: counted as 0.05, so the accepted edge (d = 2,714 at runs = n = 1) costs about 10 CPU-s.
+_PROBLEM_CUBE_UNITS = 0.05
 
 
 def gaussian_problems(rng: np.random.Generator, runs: int, n: int, d: int = 2) -> tuple[FloatArray, FloatArray,
@@ -56,10 +64,17 @@ def gaussian_problems(rng: np.random.Generator, runs: int, n: int, d: int = 2) -
     -------
     weights, means, covs : ndarrays of shapes (runs, n, 1), (runs, n, 1, d), (runs, n, 1, d, d)
         The arrays of :func:`fusion.estimates.chernoff.fuse_mixtures_batch`.
+
+    Raises
+    ------
+    ValueError
+        ``runs``, ``n`` or ``d`` below 1, or ``runs x n`` matrices of ``d x d`` beyond the memory or work budget
+        (``fusion._limits.dense_work``: at ``runs = n = 1``, ``d`` up to 2,714).
     """
     instance_of(rng, np.random.Generator, "rng")
     runs, n, d = count(runs, "runs"), count(n, "n"), count(d, "d")
     allocation((runs, n, d, d), "runs, n and d")
+    dense_work(runs * n, d, "runs, n and d", _PROBLEM_CUBE_UNITS)  # the A A^T of each problem and node (fuzz 44 C4)
     means = rng.standard_normal((runs, n, 1, d))
     A = rng.standard_normal((runs, n, 1, d, d))
     s2 = 4.0 ** rng.uniform(-1, 1, (runs, n, 1, 1, 1))
@@ -505,6 +520,14 @@ def _evaluations(n: int, s: int, names: str) -> int:
     return total
 
 
+#: Units of work of :func:`cost_table`: a cell (N, S), and a column (one S) as that many cells. Measured (fuzz 44 C5:
+#: ns = (1,) against 4,000,000 S was accepted and ran 45.8 CPU-s, nothing counted; CPU time, minimum of 2,
+#: OPENBLAS_NUM_THREADS=1, shared machine): 9.4-9.9 us a column of one row (1e5 and 3e5 columns), 0.83 us a cell of
+#: one column (3e5 rows), 1.7 us a cell of 30 x 10,000; counted as 150 units a cell and 7 cells (1,050 units) a
+#: column, within 1x-1.8x of these, so the accepted edge (about 830,000 columns of one row) costs about 10 CPU-s.
+_COST_CELL_UNITS, _COST_COLUMN_CELLS = 150, 7
+
+
 def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2, 3)) -> pd.DataFrame:
     """Component densities per importance sample (:func:`density_evaluations`) for every N (rows) and S (columns).
 
@@ -523,9 +546,11 @@ def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2,
         ``ns`` or ``ss`` is not a sequence of integers.
     ValueError
         ``ns`` or ``ss`` is empty, holds an entry below 1, or repeats an entry (the rows and columns are keyed by them);
-        an entry of ``ns`` and one of ``ss`` whose S^N is beyond the float range (:func:`density_evaluations`).
+        an entry of ``ns`` and one of ``ss`` whose S^N is beyond the float range (:func:`density_evaluations`);
+        ``len(ns)`` and ``len(ss)`` beyond the work budget (``fusion._limits.work``, about 830,000 columns of one row).
     """
     ns, ss = distinct(counts(ns, "ns"), "ns"), distinct(counts(ss, "ss"), "ss")  # each entry named (ns[0])
+    work((len(ss), len(ns) + _COST_COLUMN_CELLS), "ns and ss", weight=_COST_CELL_UNITS)  # fuzz 44 C5
     return pd.DataFrame({f"S = {s}": [_evaluations(n, s, f"ns[{i}] = {n} and ss[{j}] = {s}") for i, n in enumerate(ns)]
                          for j, s in enumerate(ss)}, index=pd.Index(list(ns), name="N"))
 
