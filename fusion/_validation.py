@@ -402,7 +402,9 @@ def _lost_in_cast(value: object, v: float) -> bool:
 def _real_number(value: object, name: str, what: str = "a number", bound: float | None = MAX_MAGNITUDE) -> float:
     """``float(value)`` for a real number; TypeError naming ``name`` otherwise (bool and complex included). A number
     beyond the float range is refused naming ``bound``, the caller's (rule 2's :data:`MAX_MAGNITUDE`), or the float
-    range itself when None (the printing formatters, which apply no rule-2 bound: fuzz 42b D4)."""
+    range itself when None (the printing formatters, which apply no rule-2 bound: fuzz 42b D4). With None, a value
+    ``float()`` may not hold exactly (a Decimal, Fraction or longdouble) below float's normal numbers (2.2e-308) is
+    refused naming ``name`` (fuzz 44 C3: it was printed as its float on the subnormal grid); a float is exact there."""
     if isinstance(value, (str, bytes, bool, np.bool_)) or value is None:
         raise TypeError(f"{name} must be {what}, got {shown(value)}")
     if isinstance(value, (complex, np.complexfloating)) or (isinstance(value, np.ndarray) and value.dtype.kind == "c"):
@@ -417,11 +419,15 @@ def _real_number(value: object, name: str, what: str = "a number", bound: float 
         v = float(value)  # type: ignore[arg-type]
         if _lost_in_cast(value, v):  # Decimal('1e400') or np.longdouble('1e4000') -> inf
             raise OverflowError
+        if bound is None and abs(v) < MIN_NORMAL and not _float_exact(value) and (v != 0.0 or _nonzero(value)):
+            # the printing formatters (bound None) apply no rule-2 bound (fuzz 43 D1); a Fraction, Decimal or
+            # longdouble below float's normal numbers becomes a float on the subnormal grid (Decimal('3e-324') printed
+            # as 4.94e-324, fuzz 44 C3) or zero: refused, a Python float (exact) printed as it is
+            raise ValueError(f"{name} must be {what} of magnitude at least {MIN_NORMAL:.2g} (or zero), the float "
+                             f"range's normal numbers, got a non-zero value below them: {shown(value, 60)}")
         if v == 0.0 and not isinstance(value, (float, int)) and _nonzero(value):
             # a Fraction, Decimal or longdouble below the float range (Fraction(1, 10**400)) would become an exact zero
-            # the printing formatters (bound None) apply no rule-2 bound: the float range's own (fuzz 43 D1)
-            low = f"{MIN_MAGNITUDE:g}" if bound is not None else f"{float(np.finfo(float).smallest_subnormal):.2g}"
-            raise ValueError(f"{name} must be {what} of magnitude at least {low} (or zero), got a non-zero "
+            raise ValueError(f"{name} must be {what} of magnitude at least {MIN_MAGNITUDE:g} (or zero), got a non-zero "
                              f"value below the float range: {shown(value, 60)}")
         return v
     except OverflowError:  # a Python int or Fraction beyond the float range
@@ -438,6 +444,15 @@ def _real_number(value: object, name: str, what: str = "a number", bound: float 
         raise
     except Exception as exc:  # rule 15: the argument's own exception (its __float__ raised)
         raise _conversion_error(name, exc) from exc
+
+
+def _float_exact(value: object) -> bool:
+    """Whether ``value`` is a float, an integer or a numpy float (scalar or array) of at most 64 bits: ``float()``
+    holds it exactly, its subnormals included (a Decimal, Fraction or longdouble may not be held)."""
+    if isinstance(value, (float, int, np.integer)):
+        return True
+    dtype = getattr(value, "dtype", None) if isinstance(value, (np.generic, np.ndarray)) else None
+    return dtype is not None and dtype.kind in "fiu" and dtype.itemsize <= 8
 
 
 def _nonzero(value: object) -> bool:

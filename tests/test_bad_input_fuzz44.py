@@ -73,3 +73,29 @@ def test_c4_gaussian_problems_dimension_counted_by_the_work_budget():
     assert dense_work(1, 2714, "runs, n and d", cs._PROBLEM_CUBE_UNITS) <= 10**9  # the edge (about 7 CPU-s)
     w, m, c = cs.gaussian_problems(np.random.default_rng(0), 2, 3, 40)
     assert c.shape == (2, 3, 1, 40, 40)
+
+
+@pytest.mark.parametrize("value", ["Decimal('3e-324')", "Decimal('1.23e-322')", "Decimal('-1e-310')",
+                                   "np.longdouble('3e-324')", "Fraction(3, 10**324)"])
+def test_c3_formatters_refuse_an_inexact_number_below_the_normal_floats(value):
+    """A Decimal, Fraction or longdouble below float's normal numbers became a float on the subnormal grid and was
+    printed as another number (Decimal('3e-324') as 4.94e-324)."""
+    from decimal import Decimal  # noqa: F401 (used by eval)
+    from fractions import Fraction  # noqa: F401
+    import numpy as np
+    from fusion.book import tables
+    from fusion.book.chapters.lecture import sci
+    v = eval(value)
+    for f, name in ((sci, "value"), (tables.sci, "x")):
+        with pytest.raises(ValueError, match=rf"^{name} must be a number of magnitude at least 2\.2e-308 \(or zero\), "
+                                             "the float range's normal numbers"):
+            f(v, 3)
+
+
+def test_c3_exact_floats_below_the_normal_floats_still_printed():
+    from decimal import Decimal
+    import numpy as np
+    from fusion.book import tables
+    from fusion.book.chapters.lecture import sci
+    assert sci(5e-324, 3) == "4.94 × 10⁻³²⁴" and tables.sci(np.float64(5e-324), 3) == "4.94×10⁻³²⁴"
+    assert sci(Decimal("2.3e-308"), 3) == "2.30 × 10⁻³⁰⁸"
