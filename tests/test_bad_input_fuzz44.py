@@ -99,3 +99,16 @@ def test_c3_exact_floats_below_the_normal_floats_still_printed():
     from fusion.book.chapters.lecture import sci
     assert sci(5e-324, 3) == "4.94 × 10⁻³²⁴" and tables.sci(np.float64(5e-324), 3) == "4.94×10⁻³²⁴"
     assert sci(Decimal("2.3e-308"), 3) == "2.30 × 10⁻³⁰⁸"
+
+
+def test_c2_cartesian_tracks_refuses_parts_its_reader_refuses_naming_sim():
+    """At sigma_range = 2e5 m the infrared's Pd had an eigenvalue of -3.6e-7 of its largest entry and
+    cartesian_errors refused it as "P1d must be positive semidefinite" (an internal name); 1e5 m is fused."""
+    import numpy as np
+    from fusion.scenarios import infrared_radar as m
+    sim = m.simulate(np.random.default_rng(1), runs=3, sigma_range=2e5)
+    with pytest.raises(ValueError, match=r"^sim \(its sigma_range = 200000\.0 m\) gives Cartesian tracks that cannot "
+                                         r"be fused: the infrared track's covariance part Pd"):
+        m.cartesian_tracks(sim)
+    ok = m.simulate(np.random.default_rng(1), runs=3, sigma_range=1e5)
+    m.cartesian_errors(ok, m.cartesian_tracks(ok))  # the same producer -> reader round trip, fused

@@ -44,7 +44,7 @@ from fusion._validation import LOOP_STEP, loop_work
 from fusion._validation import flag, text
 from fusion._options import text_key
 from fusion.filtering.tracks import LocalTrack, _symmetric_parts, fuse_tracks, local_track
-from fusion.scenarios._infrared_budget import _reader_budget, _scan_budget, _tracks_budget
+from fusion.scenarios._infrared_budget import _reader_budget, _scan_budget, _semidefinite_tracks, _tracks_budget
 from fusion.filtering.kalman import cv_model
 from fusion._shown import shown
 
@@ -908,7 +908,7 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
     ValueError
         ``sigma_acc`` or ``velocity_sigma`` not positive; ``sim``'s runs times scans beyond the work or memory budget
         (25,000 units a scan, 150 units and 54 float64 a run and scan: 1 run up to 39,761 scans, many runs about 5
-        million run-scans), refused before any work.
+        million run-scans), refused before any work; its ``sigma_range`` giving parts not semidefinite (2e5 m), naming sim.
 
     References
     ----------
@@ -941,6 +941,7 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
         P0i = H.T @ R_own[0] @ H
         # its parts symmetric where a reader would refuse them (fuzz 43 C4: range noise 5,000 m)
         tracks.append(_symmetric_parts(local_track(z, F, H, Q, R_own, x0, P0d, P0i, R_shared=R_range)))
+    _semidefinite_tracks(tracks, sr)  # the reader's semidefinite rule, naming sim (fuzz 44 C2: sigma_range 2e5 m)
     meas = np.stack([zr, sim.radar.z[..., 0], sim.radar.z[..., 1]], axis=-1)
     R_meas = cov(conversion_jacobian(meas), (sr, sa, sa))
     R_true = R_range + cov(Jt, (0.0, sa, sa))
