@@ -16,7 +16,9 @@ import pytest
 from fusion._limits import MAX_WORK
 
 
-def _refused_fast(f, match, limit=1.0):
+def _refused_fast(f, match, limit=3.0):
+    # a refusal before the work: the cases' own conversion costs up to 0.6 CPU-s on a quiet machine, and a loaded
+    # CI doubled a 1-s bound's reading; the work refused would take 30 CPU-s and more
     t0 = time.process_time()
     with pytest.raises(ValueError, match=match):
         f()
@@ -134,13 +136,13 @@ def test_table_james_stein_weighs_a_cell_and_counts_the_ratios_first(monkeypatch
 def test_check_grid_weighs_a_cell(monkeypatch):
     """C4: 400 x 250 cells of 2 runs x 2 samples x 3 sensors were counted 6e7 units (6 % of the budget) and ran 36 CPU-s
     (347 us a cell measured, whatever its readings). A cell weighs 40,000 units, counted before any entry is
-    checked: 24,000 such cells (12 CPU-s measured) are accepted, 100,000 and 10**7 factors refused at once."""
+    checked: 24,000 such cells (12 CPU-s measured) are accepted, 100,000 and 10**6 factors refused at once."""
     from fusion.book.chapters.lecture_weighting.consistency import check_grid
 
     kw = dict(runs=2, samples=2, window=(0, 1), sigma=(0.5, 1.0, 1.5))
     names = r"^biases, eps_factors, runs, samples and sigma ask for"
     _refused_fast(lambda: check_grid(eps_factors=np.linspace(0.5, 2, 400), biases=np.linspace(5, 50, 250), **kw), names)
-    _refused_fast(lambda: check_grid(eps_factors=np.linspace(0.5, 2, 10**7), biases=(5.0,), **kw), names)
+    _refused_fast(lambda: check_grid(eps_factors=np.linspace(0.5, 2, 10**6), biases=(5.0,), **kw), names)
     monkeypatch.setattr(np.random, "default_rng", _ran)
     with pytest.raises(_Ran):
         check_grid(eps_factors=np.linspace(0.5, 2, 200), biases=np.linspace(5, 50, 120), **kw)

@@ -18,7 +18,7 @@ def _refused_fast(f, *args, match: str, **kw) -> None:
     t = time.process_time()
     with pytest.raises(ValueError, match=match):
         f(*args, **kw)
-    assert time.process_time() - t < 1.0
+    assert time.process_time() - t < 3.0  # the cases' own conversion: up to 0.3 CPU-s quiet, doubled under load
 
 
 class _Endless(Mapping):
