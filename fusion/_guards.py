@@ -258,12 +258,11 @@ class _LengthLie(ValueError):
 def _items(x: _Sequence, name: str) -> list:
     """The items of the sequence ``x``, at most ``len(x)`` + 1 of them read (fuzz 42a C1): a ``__len__`` that lies
     (3, over a ``__getitem__`` answering up to index ``10**8``, or never raising IndexError) is refused by name after
-    one item past it, as ``fusion._validation.sequence`` does, never read in full (24 CPU-s) or for ever. The stop
-    is capped at ``sys.maxsize`` (islice's largest; fuzz 43 C3: a legal ``len()`` of ``sys.maxsize`` overflowed it
-    and was refused as a TypeError instead of this ValueError). A ``len()`` beyond the input budget
+    one item past it, as ``fusion._validation.sequence`` does, never read in full (24 CPU-s) or for ever. A ``len()``
+    beyond the input budget
     (``fusion._limits.MAX_INPUT_ELEMENTS``) is refused by name before any item is read (fuzz 44 C1: a mapping of
-    ``len()`` ``sys.maxsize`` whose items never end was read without bound), so at most that budget + 1 items are
-    ever read."""
+    ``len()`` ``sys.maxsize`` whose items never end was read without bound; such a ``len()`` had overflowed
+    ``islice``'s stop before, fuzz 43 C3), so at most that budget + 1 items are ever read."""
     from fusion._limits import MAX_INPUT_ELEMENTS
 
     n = len(x)
