@@ -22,6 +22,11 @@ from fusion._validation import FloatArray, _magnitude_problem, _numeric, as_stat
 
 _TINY = float(np.finfo(float).tiny)
 _EPS = float(np.finfo(float).eps)
+COVARIANCE_RTOL = 1e-9
+"""The covariance readers' tolerance, relative to a matrix's largest entry: its asymmetry (every reader) and, for
+:func:`as_semidefinite`, its most negative eigenvalue. The default ``rtol`` of the readers here; producers that
+repair or refuse round-off before a reader sees it (``fusion.filtering.tracks._symmetric_steps``,
+``fusion.scenarios._infrared_budget._semidefinite_tracks``) import it, so producer and reader keep one rule."""
 SINGULAR_MARGIN = 2.0
 """The margin of positive definiteness, in units of ``n * eps``: a matrix whose correlation matrix
 ``D^-1/2 P D^-1/2`` (``D`` its diagonal) has its smallest eigenvalue within ``SINGULAR_MARGIN * n * eps`` of
@@ -216,7 +221,7 @@ def _finite_symmetric(arr: FloatArray, name: str, rtol: float) -> tuple[FloatArr
     return 0.5 * (arr + np.swapaxes(arr, -1, -2)), scale
 
 
-def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: float = 1e-9) -> FloatArray:
+def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: float = COVARIANCE_RTOL) -> FloatArray:
     """Return ``P`` as a finite, symmetric, positive-definite (dim, dim) float matrix.
 
     A scalar or a 1x1 input is accepted for dimension one.
@@ -267,7 +272,7 @@ def _covariance_magnitude(arr: FloatArray, name: str) -> None:
 
 
 
-def as_covariances(P: ArrayLike, dim: int | None = None, name: str = "covs", rtol: float = 1e-9) -> FloatArray:
+def as_covariances(P: ArrayLike, dim: int | None = None, name: str = "covs", rtol: float = COVARIANCE_RTOL) -> FloatArray:
     """A stack of covariances, shape (..., dim, dim), each checked by the rule of :func:`as_covariance`.
 
     The batched form of that rule (finite, symmetric, positive definite, variances within the magnitude rule), for
@@ -328,7 +333,7 @@ _F64 = np.dtype(np.float64)
 
 
 def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1", "P2"),
-                    dim: int | None = None, rtol: float = 1e-9, weight: float = 0.0) -> tuple[FloatArray, FloatArray]:
+                    dim: int | None = None, rtol: float = COVARIANCE_RTOL, weight: float = 0.0) -> tuple[FloatArray, FloatArray]:
     """Two symmetric positive-definite covariances of one size, validated in one stacked pass.
 
     The same checks as :func:`as_covariance` on each (shape, NaN/inf, symmetry, positive
@@ -420,7 +425,7 @@ def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1"
     return A, B
 
 
-def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9) -> FloatArray:
+def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = COVARIANCE_RTOL) -> FloatArray:
     """Return ``P`` as a finite, symmetric, positive-semidefinite (dim, dim) float matrix.
 
     For process noise, which is often of low rank (e.g. white acceleration).

@@ -32,6 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._counts import allocation
+from fusion._covariances import COVARIANCE_RTOL
 from fusion._limits import LOOP_STEP, loop_work
 from fusion._results import ResultSpec, array, trusted, validated_post_init
 from fusion._frozen import frozen_arrays
@@ -705,8 +706,9 @@ def nees(errors: ArrayLike, covariances: ArrayLike) -> FloatArray:
         np.broadcast_shapes(e.shape[:-1], P.shape[:-2])
     except ValueError:
         raise ValueError(f"errors {e.shape} and covariances {P.shape} do not broadcast") from None
-    if not np.allclose(P, np.swapaxes(P, -1, -2), rtol=1e-9, atol=0.0):
-        raise ValueError("covariances must be symmetric")
+    if P.size and (np.abs(P - np.swapaxes(P, -1, -2)).max(axis=(-2, -1))
+                   > COVARIANCE_RTOL * np.maximum(np.abs(P).max(axis=(-2, -1)), np.finfo(float).tiny)).any():
+        raise ValueError("covariances must be symmetric")   # the covariance readers' rule (each matrix's scale)
     try:
         L = np.linalg.cholesky(P)
     except np.linalg.LinAlgError:

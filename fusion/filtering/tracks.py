@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._covariances import COVARIANCE_RTOL
 from fusion._frozen import frozen_arrays
 from fusion._limits import LOOP_STEP
 from fusion._results import ResultSpec, array, nested, trusted, validated_post_init
@@ -100,8 +101,8 @@ def _split_sums(Pd: FloatArray, Pi: FloatArray, P: FloatArray, cls: str) -> None
 
 
 #: Relative asymmetry (of a step's largest entry) above which ``_symmetric_parts`` symmetrises a step: the
-#: tolerance of ``fusion._covariances.as_semidefinite``, which refuses such a covariance part.
-_SYMMETRY_RTOL = 1e-9
+#: covariance readers' tolerance (``fusion._covariances.as_semidefinite`` refuses such a covariance part).
+_SYMMETRY_RTOL = COVARIANCE_RTOL
 
 
 def _symmetric_steps(P: FloatArray) -> FloatArray:

@@ -8,6 +8,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from fusion._counts import allocation, input_allocation
+from fusion._covariances import COVARIANCE_RTOL
 from fusion._frozen import constant
 from fusion._limits import LOOP_STEP, work
 from fusion._shown import shown
@@ -81,7 +82,7 @@ def _reader_budget(reader: str, runs: int, K: int, n: int, rules: Mapping[str, s
 
 #: The relative eigenvalue tolerance of the reader's semidefinite check (``fusion._covariances.as_semidefinite``'s
 #: default ``rtol``): a part with an eigenvalue below ``-_SEMIDEFINITE_RTOL`` times its largest entry is refused there.
-_SEMIDEFINITE_RTOL = 1e-9
+_SEMIDEFINITE_RTOL = COVARIANCE_RTOL
 
 
 def _semidefinite_tracks(tracks: Sequence[object], sigma_range: float) -> None:
