@@ -1,0 +1,48 @@
+"""Fuzz 45: Gaussian problems counted by the memory they hold at once (C1), a cost table's float range decided by
+its largest cell before the table is built (C2), sampling instants that would repeat refused by name (C4) and
+``rounded`` of a finite number below the normal floats rounded to zero (D1)."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+
+
+def _refused_fast(f, *args, match: str, **kw) -> None:
+    t = time.process_time()
+    with pytest.raises(ValueError, match=match):
+        f(*args, **kw)
+    assert time.process_time() - t < 1.0
+
+
+@pytest.mark.parametrize("runs, n, d", [(2**22, 1, 8), (10**7, 26, 1)])
+def test_c1_gaussian_problems_memory_counts_the_arrays_held_at_once(runs, n, d):
+    from fusion.book.chapters import chernoff_scaling as cs
+    _refused_fast(cs.gaussian_problems, np.random.default_rng(0), runs, n, d,
+                  match=r"runs, n and d ask for .* arrays of .* held at once")
+
+
+def test_c1_gaussian_problems_edge_inside_accepted():
+    from fusion._counts import MAX_ELEMENTS, allocation
+    from fusion._limits import dense_work
+    from fusion.book.chapters import chernoff_scaling as cs
+    for d, arrays in ((1, 6), (2, 4), (8, 4)):
+        runs = MAX_ELEMENTS // (arrays * d * d)
+        allocation((runs, 1, d, d), "runs, n and d", cs._problem_arrays(d))  # the edge just inside: accepted
+        assert dense_work(runs, d, "runs, n and d", cs._PROBLEM_CUBE_UNITS) <= 10**9
+        with pytest.raises(ValueError, match="runs, n and d"):
+            allocation((runs + 1, 1, d, d), "runs, n and d", cs._problem_arrays(d))
+    w, m, c = cs.gaussian_problems(np.random.default_rng(0), 3, 2, 1)
+    assert c.shape == (3, 2, 1, 1, 1)
+
+
+def test_c2_cost_table_float_range_decided_before_the_table():
+    from fusion.book.chapters import chernoff_scaling as cs
+    # 30 rows x 180,000 columns, within the work budget; the last column's last cell beyond the float range
+    _refused_fast(cs.cost_table, tuple(range(1, 30)) + (45,), tuple(range(1, 180_000)) + (10**7,),
+                  match=r"ns\[29\] = 45 and ss\[179999\] = 10000000 give S\^N")
+    t = cs.cost_table((1, 2, 45), (10**6, 2))  # the largest cell within the range: every cell is
+    assert t.loc[45, "S = 1000000"] == 10**270 + 45 * 10**6
+
