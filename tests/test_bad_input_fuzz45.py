@@ -46,3 +46,17 @@ def test_c2_cost_table_float_range_decided_before_the_table():
     t = cs.cost_table((1, 2, 45), (10**6, 2))  # the largest cell within the range: every cell is
     assert t.loc[45, "S = 1000000"] == 10**270 + 45 * 10**6
 
+
+@pytest.mark.parametrize("first, period, end", [(1e6, 1e-10, 1e6 + 1e-8), (1e12, 1e-4, 1e12 + 1e-2)])
+def test_c4_sample_times_refuses_a_period_that_repeats_instants(first, period, end):
+    from fusion.registration import methods as reg
+    _refused_fast(reg.sample_times, first, period, end, match=r"period = .* first = .* end = .* would repeat")
+
+
+def test_c4_sample_times_distinct_instants_still_read():
+    from fusion.registration import methods as reg
+    t = reg.sample_times(1e6, 2.4e-10, 1e6 + 1e-8)  # about twice the spacing there (1.16e-10): distinct
+    assert (np.diff(t) > 0).all() and t.size == 42
+    assert reg.two_point(t, np.arange(t.size, dtype=float), t[:3]).shape == (3,)
+    assert reg.sample_times(5.0, 1.0, 5.0).tolist() == [5.0]
+
