@@ -60,3 +60,20 @@ def test_c4_sample_times_distinct_instants_still_read():
     assert reg.two_point(t, np.arange(t.size, dtype=float), t[:3]).shape == (3,)
     assert reg.sample_times(5.0, 1.0, 5.0).tolist() == [5.0]
 
+
+@pytest.mark.parametrize("value", ["Decimal('1e-310')", "Decimal('-1e-310')", "np.longdouble('1e-310')",
+                                   "Fraction(3, 10**324)", "np.array(np.longdouble('-2e-308'))"])
+def test_d1_rounded_rounds_an_inexact_number_below_the_normal_floats_to_zero(value):
+    """Rounded to at most 17 decimals, a number below 2.2e-308 is exactly zero; the significant-digit formatters
+    still refuse it (its float is not it)."""
+    from decimal import Decimal  # noqa: F401 (used by eval)
+    from fractions import Fraction  # noqa: F401
+    from fusion.book import tables
+    v = eval(value)
+    for decimals in (0, 4, 17):
+        r = tables.rounded(v, decimals)
+        assert r == 0.0 and str(r) == "0.0"
+    with pytest.raises(ValueError, match="decimals"):
+        tables.rounded(v, 18)
+    with pytest.raises(ValueError, match=r"^x must be a number of magnitude at least 2\.2e-308"):
+        tables.sci(v, 3)
