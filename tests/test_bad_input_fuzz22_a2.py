@@ -79,6 +79,9 @@ def test_l_scalar_reader_and_the_formatters_refuse_it(v: np.longdouble) -> None:
         warnings.simplefilter("error")
         for f, name in ((lambda: _real_number(v, "x"), "x"), (lambda: T.sci(v), "x"), (lambda: L.fmt(v), "x"),
                         (lambda: T.rounded(v), "value")):
+            if abs(v) < 1 and name == "value":  # rounded to decimals, one below the float range is exactly 0.0
+                assert f() == 0.0  # (fuzz 45 D1)
+                continue
             with _named(ValueError, name) as info:
                 f()
             assert "float range" in str(info.value) and "finite" not in str(info.value)

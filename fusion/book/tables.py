@@ -8,6 +8,7 @@ decimals, so that their text is identical from run to run and machine to machine
 from __future__ import annotations
 
 import decimal
+import fractions
 import math
 import re
 from collections.abc import Callable, Collection, Sequence
@@ -16,7 +17,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from fusion._limits import inexact_integer
+from fusion._limits import MIN_NORMAL, inexact_integer
 from fusion._validation import integer, is_integer
 from fusion._validation import text as text_argument
 from fusion._validation import _real_number, as_array, count, distinct, sequence
@@ -70,13 +71,32 @@ def rounded(value: float, decimals: int = 4) -> float:
     TypeError
         ``value`` not a real number, ``decimals`` not an integer.
     ValueError
-        ``value`` NaN or infinite; ``decimals`` negative. Any finite magnitude is rounded (a subnormal to 0.0),
-        the one rule of the book's formatters (``_printed_number``).
+        ``value`` NaN or infinite; ``decimals`` negative or above 17. Any finite magnitude is rounded (a subnormal
+        to 0.0), the one rule of the book's formatters (``_printed_number``); a ``Decimal``, ``Fraction`` or
+        ``longdouble`` below float's normal numbers (2.2e-308), which those formatters refuse (its float is not
+        it), is rounded exactly: to 0.0 at any decimals accepted.
     """
-    value = _printed_number(value, "value")
+    try:
+        value = _printed_number(value, "value")
+    except ValueError:
+        if not _below_normal_floats(value):
+            raise
+        count(decimals, "decimals", minimum=0)
+        return 0.0  # |value| < 2.2e-308 < half of 10**-17 (the most decimals accepted): exactly zero (fuzz 45 D1)
     decimals = count(decimals, "decimals", minimum=0)
     r = round(value, decimals)
     return 0.0 if r == 0 else r
+
+
+def _below_normal_floats(value: object) -> bool:
+    """Whether ``value`` is a finite ``Decimal``, ``Fraction`` or numpy float (0-d array included) of magnitude below
+    float's normal numbers, compared exactly (not through its float)."""
+    if not isinstance(value, (decimal.Decimal, fractions.Fraction, np.floating, np.ndarray)):
+        return False
+    try:
+        return bool(math.isfinite(value) and abs(value) < MIN_NORMAL)  # type: ignore[arg-type,operator]
+    except (TypeError, ValueError, ArithmeticError):  # a signalling NaN, an array of more than one number
+        return False
 
 
 def _roundings(ours: float, decimals: int) -> tuple[float, ...]:

@@ -119,7 +119,8 @@ def sample_times(first: float, period: float, end: float) -> FloatArray:
     Raises
     ------
     ValueError
-        ``period`` not positive, non-finite bounds or ``end < first``.
+        ``period`` not positive, non-finite bounds or ``end < first``; ``period`` so small against the floats at
+        ``first`` and ``end`` that two instants would round to the same float (they must strictly increase).
     """
     period = positive_scalar(period, "period")
     first, end = scalar(first, "first"), scalar(end, "end")
@@ -127,7 +128,16 @@ def sample_times(first: float, period: float, end: float) -> FloatArray:
         raise ValueError(f"need first <= end, got first={shown(first)}, end={shown(end)}")
     grid_points(end - first, period, "first, end and period")  # rule 9: refused by name before np.arange
     n = int(np.floor((end - first) / period + 1e-9)) + 1
-    return first + period * np.arange(n)
+    t = first + period * np.arange(n)
+    # a period below the spacing of floats at first/end rounds some instants onto their predecessor, which every
+    # reader (two_point, three_point, spline_register) refuses as not strictly increasing (fuzz 45 C4: 1e6, 1e-10,
+    # 1e6 + 1e-8 gave 14 repeats); O(n) on instants the grid budget already bounds
+    if n > 1 and not (t[1:] > t[:-1]).all():
+        spacing = float(np.spacing(max(abs(first), abs(end))))
+        raise ValueError(f"period = {shown(period)} s is too small against the spacing of floats at first = "
+                         f"{shown(first)} s and end = {shown(end)} s ({shown(spacing)} s): the instants first + j "
+                         f"period would repeat; they must strictly increase")
+    return t
 
 
 # --------------------------------------------------------------------------- interpolation

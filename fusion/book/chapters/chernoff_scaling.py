@@ -44,6 +44,18 @@ __all__ = ['within_se_counts', 'gaussian_problems', 'SWARM_VARIANTS', 'SwarmStud
 _PROBLEM_CUBE_UNITS = 0.05
 
 
+def _problem_arrays(d: int) -> int:
+    """The ``(runs, n, d, d)`` arrays :func:`gaussian_problems` holds at once, rounded up (fuzz 45 C1).
+
+    Measured (``tracemalloc`` peak over one array's bytes, shared machine): 6.00 / 4.00 / 3.56 / 3.38 / 3.16 / 3.09
+    / 3.09 at d = 1 / 2 / 3 / 4 / 8 / 16 / 64 (runs x n = 1e6 .. 40), fitted exactly by ``3 d^2 + d + 2`` float64 a
+    problem and node (``A``, the einsum, its quotient by d and the mean, weight and scale arrays) over ``d^2``;
+    rounded up: 6 at d = 1, else 4. Only one array of the shape was counted before: runs = 2**22, n = 1, d = 8 ran
+    17.6 CPU-s into a MemoryError under a 6 GiB address limit.
+    """
+    return -(-(3 * d * d + d + 2) // (d * d))
+
+
 def gaussian_problems(rng: np.random.Generator, runs: int, n: int, d: int = 2) -> tuple[FloatArray, FloatArray,
                                                                                          FloatArray]:
     r"""Random fusion problems: ``n`` local Gaussian posteriors (one component each) per run, as mixture arrays.
@@ -68,12 +80,13 @@ def gaussian_problems(rng: np.random.Generator, runs: int, n: int, d: int = 2) -
     Raises
     ------
     ValueError
-        ``runs``, ``n`` or ``d`` below 1, or ``runs x n`` matrices of ``d x d`` beyond the memory or work budget
-        (``fusion._limits.dense_work``: at ``runs = n = 1``, ``d`` up to 2,714).
+        ``runs``, ``n`` or ``d`` below 1, or ``runs x n`` matrices of ``d x d`` beyond the memory budget (4 arrays
+        of them held at once, 6 at ``d = 1``) or the work budget (``fusion._limits.dense_work``: at
+        ``runs = n = 1``, ``d`` up to 2,714).
     """
     instance_of(rng, np.random.Generator, "rng")
     runs, n, d = count(runs, "runs"), count(n, "n"), count(d, "d")
-    allocation((runs, n, d, d), "runs, n and d")
+    allocation((runs, n, d, d), "runs, n and d", _problem_arrays(d))
     dense_work(runs * n, d, "runs, n and d", _PROBLEM_CUBE_UNITS)  # the A A^T of each problem and node (fuzz 44 C4)
     means = rng.standard_normal((runs, n, 1, d))
     A = rng.standard_normal((runs, n, 1, d, d))
@@ -551,6 +564,10 @@ def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2,
     """
     ns, ss = distinct(counts(ns, "ns"), "ns"), distinct(counts(ss, "ss"), "ss")  # each entry named (ns[0])
     work((len(ss), len(ns) + _COST_COLUMN_CELLS), "ns and ss", weight=_COST_CELL_UNITS)  # fuzz 44 C5
+    # S^N + N S grows with both, so the largest cell decides the float range before any is built (fuzz 45 C2: the
+    # largest S last was refused after 9.4-10.0 CPU-s of the rest of the table)
+    i, j = ns.index(max(ns)), ss.index(max(ss))
+    _evaluations(ns[i], ss[j], f"ns[{i}] = {ns[i]} and ss[{j}] = {ss[j]}")
     return pd.DataFrame({f"S = {s}": [_evaluations(n, s, f"ns[{i}] = {n} and ss[{j}] = {s}") for i, n in enumerate(ns)]
                          for j, s in enumerate(ss)}, index=pd.Index(list(ns), name="N"))
 
