@@ -1,0 +1,47 @@
+"""Fuzz 45b's findings on the book layer, fixed by fix52b: C2 (the cache log), C6 (record_status), C7 (glue_all)."""
+
+from __future__ import annotations
+
+import os
+import time
+
+import pytest
+
+from fusion.book import study_cache as sc_mod
+
+
+def _log_path(tmp_path, case: str) -> str:
+    if case == "dangling":
+        log = tmp_path / "log.jsonl"
+        os.symlink(tmp_path / "missing" / "x.log", log)
+        return str(log)
+    if case == "longname":
+        return str(tmp_path / ("a" * 300))
+    return {"proc": "/proc/version", "procdir": "/proc/self/newlog"}[case]
+
+
+@pytest.mark.parametrize("case", ["dangling", "longname", "proc", "procdir"])
+def test_c2_a_log_that_cannot_be_appended_to_is_named_before_the_work(tmp_path, monkeypatch, case) -> None:
+    """C2: these logs passed the environment check; the study ran, then ``open(log, "a")`` raised an OS error."""
+    monkeypatch.setenv(sc_mod.ENV, str(tmp_path / "cache"))
+    monkeypatch.setenv(sc_mod.LOG_ENV, _log_path(tmp_path, case))
+    calls: list[int] = []
+
+    @sc_mod.study_cache(0)
+    def double(x: int) -> int:
+        calls.append(x)
+        return 2 * x
+
+    with pytest.raises(ValueError, match=f"^the environment variable {sc_mod.LOG_ENV} "):
+        double(1)
+    assert calls == []
+    monkeypatch.setenv(sc_mod.LOG_ENV, str(tmp_path / "log.txt"))   # a new file in an existing directory: valid
+    assert double(1) == 2
+    assert calls == [1]
+
+
+def test_c2_a_log_made_unusable_after_the_check_is_named(tmp_path, monkeypatch) -> None:
+    """C2: the write itself converts an OS error (the log's folder removed after the check) to the named ValueError."""
+    monkeypatch.setenv(sc_mod.LOG_ENV, str(tmp_path / "gone" / "log.jsonl"))
+    with pytest.raises(ValueError, match=f"^the environment variable {sc_mod.LOG_ENV} "):
+        sc_mod._log("f", {}, "computed", 0.0)
