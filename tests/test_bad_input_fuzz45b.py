@@ -45,3 +45,19 @@ def test_c2_a_log_made_unusable_after_the_check_is_named(tmp_path, monkeypatch) 
     monkeypatch.setenv(sc_mod.LOG_ENV, str(tmp_path / "gone" / "log.jsonl"))
     with pytest.raises(ValueError, match=f"^the environment variable {sc_mod.LOG_ENV} "):
         sc_mod._log("f", {}, "computed", 0.0)
+
+
+def test_c6_record_status_counts_its_readings_by_the_work_budget() -> None:
+    """C6: 10**7 readings (the sequence ceiling) were accepted and checked for ~70 CPU-s; now refused at entry."""
+    from fusion._limits import MAX_WORK, work
+    from fusion.book import rulebook as R
+    edge = MAX_WORK // R._STATUS_READING
+    assert work((edge,), "readings", weight=R._STATUS_READING) <= MAX_WORK   # just inside: accepted (not run: ~9 s)
+    reading = ("open-choice", "reproduced", 100)
+    for n in (edge + 1, 10**7):
+        big = [reading] * n
+        t = time.process_time()
+        with pytest.raises(ValueError, match="^readings ask for .* work budget"):
+            R.record_status("reproduced", big, 100, False)
+        assert time.process_time() - t < 1.0
+    assert R.record_status("reproduced", [reading] * 1000, 100, False) == ("reproduced", 1000, 1000)
