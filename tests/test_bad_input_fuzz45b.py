@@ -61,3 +61,25 @@ def test_c6_record_status_counts_its_readings_by_the_work_budget() -> None:
             R.record_status("reproduced", big, 100, False)
         assert time.process_time() - t < 1.0
     assert R.record_status("reproduced", [reading] * 1000, 100, False) == ("reproduced", 1000, 1000)
+
+
+def test_c7_glue_all_counts_its_values_by_the_work_budget() -> None:
+    """C7: 10**6 floats were accepted and glued for ~100 CPU-s; now refused at entry, as a table of too many cells
+    and a list of too many entries are."""
+    import numpy as np
+    import pandas as pd
+
+    from fusion._limits import MAX_WORK, work
+    from fusion.book import glue as G
+    edge = MAX_WORK // G._GLUE_VALUE
+    assert work((edge,), "values", weight=G._GLUE_VALUE) <= MAX_WORK   # just inside: accepted (not run: ~7 s)
+    cells = (MAX_WORK - G._GLUE_VALUE - G._GLUE_TABLE) // G._GLUE_CELL
+    assert G._GLUE_VALUE + G._glue_work(pd.DataFrame(np.zeros((cells, 1))).style) <= MAX_WORK
+    too_big = ({f"k{i}": i / 7 for i in range(edge + 1)}, {f"k{i}": i / 7 for i in range(10**6)},
+               {"k": pd.DataFrame(np.zeros((cells + 1, 1))).style},
+               {"k": [0.5] * ((MAX_WORK - G._GLUE_VALUE) // G._GLUE_ENTRY + 1)})
+    for values in too_big:
+        t = time.process_time()
+        with pytest.raises(ValueError, match="^values .*work budget"):
+            G.glue_all(values, decimals=3)
+        assert time.process_time() - t < 1.0
