@@ -18,6 +18,7 @@ from pandas.api.extensions import ExtensionArray
 from matplotlib.figure import Figure
 from pandas.io.formats.style import Styler
 
+from fusion._limits import work
 from fusion._validation import count, read_mapping, text
 from fusion.book.tables import rounded
 from fusion._shown import shown
@@ -266,6 +267,29 @@ def _finite(value: object, key: str = "key") -> bool:
     return True
 
 
+#: Units of work (``fusion._limits.work``, about 10 ns each) of what :func:`glue_all` checks and glues, measured outside
+#: a kernel (CPU time, minimum of 3, shared machine; fuzz 45b C7: 10**6 floats were accepted and ran ~100 CPU-s).
+#: A value: 54-67 us (10,000 floats, texts or 3-lists; fuzz 45b measured 103 us), weighed 100 us for a kernel's
+#: display message. An entry of a list, tuple, set or dict value: 2.1 us (one list of 10**6 floats, 2.12 CPU-s; a
+#: numeric array is vectorised: 10**7 entries in 0.01 s). A DataFrame: 1.0-2.7 ms (10 x 2 to 10**6 cells, its text
+#: truncated). A Styler: 0.9 ms at 10 x 2, then 5.6-12.6 us a cell (10**4 cells 126 ms, 10**6 cells 5.6 s). A figure:
+#: 31-34 ms (one axes, audited and saved as PNG). The book's largest call glues 118 values (1.2e6 units).
+_GLUE_VALUE, _GLUE_ENTRY, _GLUE_TABLE, _GLUE_CELL, _GLUE_FIGURE = 10_000, 300, 300_000, 1_000, 5_000_000
+
+
+def _glue_work(value: object) -> int:
+    """The units of work of gluing ``value`` (``_GLUE_VALUE`` and the weights beside it), beyond ``_GLUE_VALUE``."""
+    if isinstance(value, Figure):
+        return _GLUE_FIGURE
+    if isinstance(value, Styler):
+        return _GLUE_TABLE + _GLUE_CELL * int(value.data.size)
+    if isinstance(value, pd.DataFrame):
+        return _GLUE_TABLE
+    if isinstance(value, (list, tuple, set, frozenset, dict)):
+        return _GLUE_ENTRY * len(value)
+    return 0
+
+
 def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     """Glue every ``key: value`` pair with ``display=False``.
 
@@ -298,11 +322,15 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         ``values[key]``; checked for every value before any is glued, whatever ``decimals``. Containers nested
         more than 64 deep (``fusion._nesting.MAX_NESTING``; their text recurses), naming ``values[key]``; a
         container that holds itself is accepted (its text prints ``[...]`` there). A NumPy longdouble beyond float's
-        range (it would be glued as inf or 0), naming ``values[key]``.
+        range (it would be glued as inf or 0), naming ``values[key]``. More values (weighed by kind: tables by their
+        cells, lists by their entries, figures) than the work budget glues, naming ``values``, before any is read.
     """
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")
     values = read_mapping(values, "values")  # its values checked and glued as one read (fuzz 31a C3)
+    work((len(values),), "values", weight=_GLUE_VALUE)   # by their number, then their kinds: before any is read
+    work((len(values) * _GLUE_VALUE + sum(_glue_work(v) for v in values.values()),), "values (their tables, "
+         "figures and containers)")
     if decimals is not None:
         decimals = count(decimals, "decimals", minimum=0)
     plain = {}  # keys and text values as their plain str (rule 19): a (str, Enum) member is glued as its text

@@ -100,7 +100,7 @@ from scipy import stats
 
 from fusion._validation import _numeric, _real_number, check_magnitude, count, scalar, sequence, shown
 from fusion._validation import flag, input_eps, one_of, read_once, text, text_fields
-from fusion._limits import ROUND_OFF_TIE
+from fusion._limits import ROUND_OFF_TIE, work
 from fusion.book.tables import sci
 
 __all__ = [
@@ -888,6 +888,13 @@ def counted(kind: str, runs: int | None, primary_runs: int | None, status: str |
     return True, ""
 
 
+#: Units of work (``fusion._limits.work``, about 10 ns each) of one reading :func:`record_status` checks and counts:
+#: 6.1-6.6 us measured (CPU time, minimum of 3, 100,000 readings of each kind, shared machine), so the budget's edge
+#: (1.4e6 readings) runs about 9 CPU-s (fuzz 45b C6: 10**7 readings, the sequence ceiling, ran ~70 CPU-s); a record
+#: of the book has a handful.
+_STATUS_READING = 700
+
+
 def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]], primary_runs: int | None,
                   assumptions: bool) -> tuple[str, int, int]:
     """A record's status from its primary reading's status and its other readings (R5).
@@ -917,7 +924,8 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     ------
     ValueError
         ``primary`` or a reading's status is not one of :data:`STATUSES`; ``primary_runs`` is below 1 (checked
-        even when there are no readings); a reading's kind or runs as :func:`counted` refuses them.
+        even when there are no readings); a reading's kind or runs as :func:`counted` refuses them; more readings
+        than the work budget checks (``_STATUS_READING`` units each), refused before any is read.
     TypeError
         ``readings`` is not a sequence of triples (tuples or lists); ``primary`` is not a str; ``assumptions`` is not a bool;
         ``primary_runs`` is neither an integer nor None.
@@ -928,8 +936,9 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     if primary not in STATUSES:
         raise ValueError(f"primary must be one of {STATUSES}, got {shown(primary)}")
     readings = read_once(readings, "readings")  # a Sequence class read once, as a list (fuzz 31a C4)
-    if isinstance(readings, (str, bytes)) or not all(isinstance(x, (tuple, list)) and len(x) == 3
-                                                     for x in sequence(readings, "readings")):
+    items = () if isinstance(readings, (str, bytes)) else sequence(readings, "readings")
+    work((len(items),), "readings", weight=_STATUS_READING)   # before any is read (fuzz 45b C6)
+    if isinstance(readings, (str, bytes)) or not all(isinstance(x, (tuple, list)) and len(x) == 3 for x in items):
         raise TypeError(f"readings must be a sequence of (kind, status, runs) tuples, got {shown(readings)}")
     readings = [tuple(x) for x in readings]  # a list triple is a triple (readings read back from JSON are lists)
     if any(not isinstance(st, str) or str.__str__(st) not in STATUSES for _, st, _ in readings):

@@ -437,8 +437,12 @@ def _log(qualname: str, arguments: dict[str, Any], event: str, cpu: float) -> No
         return
     line = json.dumps({"qualname": qualname, "args": {k: repr(v)[:200] for k, v in arguments.items()},
                        "pid": os.getpid(), "cpu": round(cpu, 3), "event": event})
-    with open(path, "a", encoding="utf-8") as fh:
-        fh.write(line + "\n")
+    try:   # checked by _environment before the work; a log made unusable since is still named (fuzz 45b C2)
+        with open(path, "a", encoding="utf-8") as fh:
+            fh.write(line + "\n")
+    except OSError as exc:
+        raise ValueError(f"the environment variable {LOG_ENV} must name a file to which lines can be appended, got "
+                         f"{shown(path)} ({type(exc).__name__}: {exc.strerror})") from None
 
 
 #: Bytes of the BLAKE2b digest of an entry's payload, stored before it (fuzz 40b C3: a changed float in a stored
@@ -550,7 +554,30 @@ def _environment() -> Path | None:
                          or (os.path.exists(log) and not os.path.isfile(log))):   # a FIFO, a device (fuzz 34a C3)
         raise ValueError(f"the environment variable {LOG_ENV} must name a regular file in an existing directory, got "
                          f"{shown(log)}")
+    if root and log:
+        _appendable(log)
     return Path(root) if root else None
+
+
+def _appendable(log: str) -> None:
+    """Open ``log`` for append as :func:`_log`'s ``open(log, "a")`` will (created if missing, never blocking, then
+    sought to its end) and close it, or ValueError naming :data:`LOG_ENV` before any work (fuzz 45b C2: a dangling
+    symlink, a 300-character name, ``/proc/version`` (opened for writing as root, then its seek refused, EINVAL) or a
+    new file in ``/proc/self`` passed the checks above, and the OS error came after the study, naming nothing)."""
+    fd = -1
+    try:
+        fd = os.open(log, os.O_WRONLY | os.O_APPEND | os.O_CREAT | _NONBLOCK, 0o666)
+        os.lseek(fd, 0, os.SEEK_END)
+        regular = _regular(fd)
+    except OSError as exc:
+        raise ValueError(f"the environment variable {LOG_ENV} must name a file to which lines can be appended, got "
+                         f"{shown(log)} ({type(exc).__name__}: {exc.strerror})") from None
+    finally:
+        if fd >= 0:
+            os.close(fd)
+    if not regular:   # swapped in after the checks above
+        raise ValueError(f"the environment variable {LOG_ENV} must name a regular file in an existing directory, got "
+                         f"{shown(log)}")
 
 
 def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any], compute: Callable[[], Any]) -> Any:
