@@ -211,6 +211,37 @@ def _grubbs(s: FloatArray, alpha: float) -> FloatArray:
     return np.where(keep, s, 0.0).sum(axis=1) / keep.sum(axis=1)
 
 
+#: The n x n float64 arrays the pairwise kernel of each method of :func:`robust_fuse` holds at once for one row (absent:
+#: no pairwise kernel), declared to the shared reading conversion (``pairs`` of ``fusion._validation.as_reading_rows``,
+#: as ``fusion_set.fuse_epochs`` does, rules 9 and 17): ``"uniform_set"``'s membership (eq. 5) holds the n x n
+#: distances of a row (fuzz 45b C5: 100,000 readings asked for a 74.5 GiB array, refused only by a MemoryError).
+_PAIRS = {"uniform_set": 1}
+
+
+def _robust_limit(rows: int, n: int, method: str, names: str) -> int:
+    """Refuse, naming ``names``, what :func:`robust_fuse` refuses of ``rows`` epochs of ``n`` readings fused by
+    ``method`` beyond their linear cost: the input budget, the pairwise kernel of :data:`_PAIRS` (memory and work, by
+    ``fusion._counts.pairwise``) and the Grubbs passes (up to one a reading of a row, each over the whole array).
+    :func:`robust_fuse` calls it on its ``x``; a caller that draws the readings itself calls it at its entry, once
+    per method, before the draws (``fusion.book.chapters.ofs_fair.fair_study``).
+
+    Returns
+    -------
+    int
+        The units of work of the super-linear part (0 for a method without one).
+    """
+    from fusion._counts import input_allocation, pairwise
+
+    input_allocation((rows, n), names)
+    if method in _PAIRS:
+        return pairwise(n, names, _PAIRS[method], rows=rows)
+    if method == "grubbs":
+        # rule 17 (fuzz 36a C6, 37a C4): up to one pass per reading of a row, each a t quantile (~50 us) and its
+        # passes over the whole (epochs, readings) array; the worst case is refused
+        return loop_work((max(n - 3, 0),), _grubbs_pass(rows * n), names, step=5 * LOOP_STEP)
+    return 0
+
+
 def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None = None, cut: float = 0.1,
                 c: float = 1.345, alpha: float = 0.05, c_biweight: float = 4.685, k: float = 3.0) -> FloatArray:
     r"""Fuse each row of readings with a standard location estimator.
@@ -249,10 +280,13 @@ def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None
     ------
     ValueError
         Unknown method, non-finite readings, ``sigma`` missing or of the wrong length, or an
-        option out of range.
+        option out of range; ``"uniform_set"`` on a ``x`` whose n x n distances of a row (eq. 5) are beyond the
+        memory or the work budget (``fusion._counts.pairwise``, ``PAIR_WORK`` units a pair: one epoch of 7,071
+        readings, 100 epochs of 707), refused naming ``x`` before any of them; ``"grubbs"`` beyond its budget (see
+        ``alpha``).
     """
     method = one_of(method, tuple(ROBUST_METHODS), "method")
-    s = as_reading_rows(x)
+    s = as_reading_rows(x, pairs=_PAIRS.get(method, 0))  # a pairwise kernel refused by x before any of it
     # every option is checked whatever the method (fuzz 24a D4): a bad value is the caller's mistake even where
     # this method ignores it
     cut = scalar(cut, "cut", 0.0, 0.5, hi_open=True)
@@ -272,10 +306,7 @@ def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None
     if method == "huber":
         return _huber(s, c)
     if method == "grubbs":
-        # rule 17 (fuzz 36a C6, 37a C4): up to one pass per reading of a row, each a t quantile (~50 us) and its
-        # passes over the whole (epochs, readings) array; the worst case is refused by x
-        loop_work((max(s.shape[1] - 3, 0),), _grubbs_pass(s.size), "x (its readings per epoch and epochs)",
-                  step=5 * LOOP_STEP)
+        _robust_limit(*s.shape, method, "x (its readings per epoch and epochs)")  # its worst case, by x
         return _grubbs(s, alpha)
     if method == "biweight":
         return _biweight(s, c_biweight)

@@ -625,12 +625,14 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
     return _network_study(sc, seed, runs)
 
 
-def _network_units(sc: NetworkScenario, runs: int) -> int:
+def _network_units(sc: NetworkScenario, runs: int,
+                   names: str = "runs, sc.nodes, sc.n_particles and sc.frames") -> int:
     """The units of work :func:`run_network_study` counts for ``runs`` runs of ``sc`` (rule 17: a frame-round of a run
     weighs :func:`_network_round_units`), its memory refused by name (the particles and readings, and the product
-    mixtures): the one count of its entry and of a caller that sums several networks at its own entry (fuzz 42b C5)."""
+    mixtures): the one count of its entry and of a caller that sums several networks at its own entry (fuzz 42b C5),
+    which names its own arguments by ``names`` (fuzz 45b C3)."""
     B, N, Q, d = runs, len(sc.nodes), sc.n_particles, 2
-    allocation((B, N, Q + sc.frames, d), "runs, sc.nodes, sc.n_particles and sc.frames")  # the particles and z
+    allocation((B, N, Q + sc.frames, d), names)  # the particles and z
     return B * int(sc.frames) * int(sc.rounds) * _network_round_units(sc, B)
 
 

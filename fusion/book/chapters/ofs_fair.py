@@ -31,7 +31,8 @@ from fusion.book._few_runs import runs_named
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
-from fusion.readings.robust import ROBUST_METHODS, robust_fuse
+from fusion.readings._row_blocks import epochs_limit
+from fusion.readings.robust import _robust_limit, ROBUST_METHODS, robust_fuse
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
 from fusion._counts import allocation, distinct, sequence
@@ -162,20 +163,56 @@ SIZE, COUNT, SPREAD = "fault size (σ), 2 faulty sensors", "faulty sensors (bias
 #: Name of the opposite-sign sweep: two faulty sensors, one biased by +b, one by -b.
 OPPOSITE = "fault size (σ), 2 faulty sensors of opposite signs"
 
-#: Units of work (rule 17, ``fusion._limits.work``) of one reading fused by one method at one sweep point of
-#: :func:`fair_study`: measured 80 ns a reading, method and point on this machine (the default sweeps, 23 points x
-#: 11 methods, ran 20 CPU-s at 1,000 runs x 100 samples x 10 sensors), so that the budget stops a study near half a
-#: minute (about 1,300 runs of the default sweeps; the book's 100 and the ledger's 500 stay well inside).
+#: Units of work (rule 17, ``fusion._limits.work``) of one reading fused by one method at one sweep point, the
+#: average over the methods of :data:`FAIR_METHODS`: measured 80 ns a reading, method and point on this machine (the
+#: default sweeps, 23 points x 11 methods, ran 20 CPU-s at 1,000 runs x 100 samples x 10 sensors). :func:`fair_study`
+#: weighs each method by its own cost (:data:`_FAIR_WEIGHTS`); :func:`fault_shapes_study`'s four cheaper fusions by
+#: this average.
 FAIR_WORK = 3
 
+#: Units of work of one reading fused by each method at one sweep point of :func:`fair_study` (fuzz 45b C4: the
+#: average :data:`FAIR_WORK` let ``methods=("huber",)`` at the budget's edge run 72 CPU-s). Measured with
+#: ``time.process_time`` (``OPENBLAS_NUM_THREADS=1``, minimum of 3, the machine shared with other jobs) on
+#: ``fair_errors`` of 400 runs x 100 samples x 10 sensors with two sensors biased by 3 sigma, in ns a reading:
+#: optimal_fusion_set 193, uniform_set 64, mean 18, median 31, trimmed_mean 35, trimmed_mean_25 42, huber 226,
+#: biweight 233, grubbs 103, mad_reject 50, inverse_variance 20; one unit is 10 ns, rounded up, and huber and biweight
+#: at the largest fuzz 45b measured over its data (IRLS iterations depend on it: up to 291 ns a reading). The two
+#: optimal-set methods' pairwise part is :data:`_FAIR_PAIR_WEIGHTS`'s (here the linear part, fitted at 10 sensors).
+_FAIR_WEIGHTS = {"optimal_fusion_set": 10, "uniform_set": 4, "mean": 2, "median": 4, "trimmed_mean": 4,
+                 "trimmed_mean_25": 5, "huber": 30, "biweight": 30, "grubbs": 11, "mad_reject": 5,
+                 "inverse_variance": 2}
+#: Units of work of one pair of readings of a row in the n x n kernel of the optimal-set methods (fuzz 45b C5: their
+#: cost grows as n**2, 10,000 sensors ran 16 CPU-s at 80 runs counted as 2.4e6 linear units). Measured as above on
+#: 4,000 x 100, 40 x 1,000 and 5 x 3,000 readings: optimal_fusion_set 6.1, 4.9 and 9.7 ns a pair, uniform_set 1.2,
+#: 0.8 and 1.5 ns a pair (with :data:`_FAIR_WEIGHTS`' linear part: 2.0 and 0.6 us a row of 10 measured, 2.0 and 0.6
+#: counted).
+_FAIR_PAIR_WEIGHTS = {"optimal_fusion_set": 1.0, "uniform_set": 0.2}
 
-def _budget(shape: tuple[int, int, int], points: int, methods: int, names: tuple[str, str]) -> None:
+
+def _budget(shape: tuple[int, int, int], points: int, methods: Sequence[str], names: tuple[str, str]) -> None:
     """Refuse a fair study whose draws, of ``shape`` (runs, samples, sensors), are beyond the memory budget or whose
-    ``points`` x ``methods`` fusions of them are beyond the work budget (:data:`FAIR_WORK`), naming ``names`` (the
+    ``points`` fusions of them by each of ``methods`` are beyond the work budget (each method weighed by its own
+    cost, :data:`_FAIR_WEIGHTS` a reading and :data:`_FAIR_PAIR_WEIGHTS` a pair of a row), naming ``names`` (the
     memory's, the work's): :func:`fair_study` and its cached entries (``fusion.book.chapters.ofs.fair``) call it
-    before anything is drawn, each naming its own arguments."""
+    before anything is drawn, each naming its own arguments. Each method's own refusal of one point's readings
+    (its pairwise kernel, Grubbs' passes: what ``fuse_epochs`` and ``robust_fuse`` would refuse after the draws)
+    is checked here too, and its super-linear units added."""
     allocation(shape, names[0])
-    work((points, methods, *shape, FAIR_WORK), names[1])
+    runs, samples, n = (int(v) for v in shape)
+    rows = runs * samples
+    per_point = 0.0
+    for m in methods:
+        units = rows * n * (_FAIR_WEIGHTS[m] + n * _FAIR_PAIR_WEIGHTS.get(m, 0.0))
+        if m in ("optimal_fusion_set", "mean"):
+            epochs_limit(rows, n, m, names[1])
+        else:
+            # the refusal of one point's fusion; its units are the shared kernel count (PAIR_WORK a pair, for any
+            # caller): the measured weights above count this study, but Grubbs' worst case (a pass a reading of a
+            # row, when every pass drops one) is beyond its measured clean-data cost
+            worst = _robust_limit(rows, n, "trimmed_mean" if m == "trimmed_mean_25" else m, names[1])
+            units = max(units, worst) if m == "grubbs" else units
+        per_point += units
+    work((points, rows, n), names[1], weight=max(per_point / (rows * n), 1e-9))
 
 
 def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequence[float] = (0, 1, 2, 3, 4, 6, 8, 10),
@@ -226,8 +263,9 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
         of range (a count beyond ``n_sensors``, a spread below 1, a size not finite), ``sizes`` or ``opposite``
         given points with fewer than two sensors (each of their points biases two), ``methods`` empty, unknown or
         repeated; the draws beyond the memory budget (naming ``n_runs, n_samples and n_sensors``) or the study
-        beyond the work budget (``fusion._limits.MAX_WORK``, ``FAIR_WORK`` units a reading, method and point),
-        refused before anything is drawn.
+        beyond the work budget (``fusion._limits.MAX_WORK``; each method weighed by its measured cost a reading and
+        point, the optimal-set methods' n x n kernel by its pairs: about 360 runs of the default sweeps, 2,000 of
+        ``methods=("mean",)``), refused before anything is drawn.
     """
     seed = check_seed(seed)
     n_runs, n_samples, n_sensors = (count(v, k) for v, k in ((n_runs, "n_runs"), (n_samples, "n_samples"),
@@ -250,7 +288,7 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
                              f"n_sensors >= 2 or {name}=()")
     # the memory and work budgets before anything is drawn (fuzz 26d D3): the draws are one (n_runs, n_samples,
     # n_sensors) array, and every sweep point runs every method over it
-    _budget((n_runs, n_samples, n_sensors), len(sizes) + len(counts) + len(opposite) + len(spreads), len(methods),
+    _budget((n_runs, n_samples, n_sensors), len(sizes) + len(counts) + len(opposite) + len(spreads), methods,
             ("n_runs, n_samples and n_sensors", "n_runs, n_samples, n_sensors, the sweeps and methods"))
     rng = np.random.default_rng(count(seed, "seed", minimum=0, maximum=None))
     e = rng.standard_normal((n_runs, n_samples, n_sensors))

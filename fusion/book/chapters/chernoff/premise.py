@@ -32,6 +32,7 @@ from fusion.book.chapters.chernoff.compare import _word
 from fusion.book.glue import GlueValues
 from fusion.book.study_cache import process_cache
 from fusion._counts import count, seed as check_seed
+from fusion._guards import read_mapping
 from fusion._shown import shown
 
 __all__ = ["premise_robust_values", "PREMISE_MORE_RUNS", "PREMISE_NETWORKS", "PREMISE_LABELS", "premise_studies", "premise_table",
@@ -298,18 +299,22 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
         ``seed`` negative, ``runs`` below 1; ``scenarios`` without one of :data:`PREMISE_NETWORKS`; ``more`` naming
         another network or a run count below ``runs``; every network's runs together beyond their work budget (the
         entry of ``fusion._limits.STUDY_WORK`` for the reseeding sweep's 1,000 runs a network), before the first
-        network runs, naming ``runs`` and ``scenarios``.
+        network runs, naming ``runs`` and ``scenarios`` (and ``more`` when it is given). ``scenarios`` and ``more``
+        are read once, at entry: the networks counted are the networks run.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
     scs = _network_scenarios(scenarios)
     more = {} if more is None else _check_more(more, runs)
-    _premise_work(scs, runs, more)
+    # the networks counted are the networks run (fuzz 45b C1): scs and more are plain dicts read once at entry; a
+    # refusal that more's runs cause names more (fuzz 45b C3)
+    _premise_work(scs, runs, more, "runs, scenarios and more" if more else "runs and scenarios")
     return {k: _network_study(scs[k], seed + j, more.get(k, runs), limit=STUDY_WORK[PREMISE_STUDY])
             for j, k in enumerate(PREMISE_NETWORKS)}
 
 
-def _premise_work(scs: Mapping[str, NetworkScenario], runs: int, more: Mapping[str, int] | None = None) -> int:
+def _premise_work(scs: Mapping[str, NetworkScenario], runs: int, more: Mapping[str, int] | None = None,
+                  names: str = "runs and scenarios") -> int:
     """Refuse, before the first network runs, designed networks whose runs together are beyond their work budget.
 
     Every network of :data:`PREMISE_NETWORKS` is counted as ``fusion.scenarios.fusion_networks.run_network_study``
@@ -326,6 +331,9 @@ def _premise_work(scs: Mapping[str, NetworkScenario], runs: int, more: Mapping[s
         Runs per network (checked).
     more : mapping, optional
         Network key -> its own runs (checked, as :func:`premise_studies`' ``more``).
+    names : str
+        The caller's arguments that set the networks and runs, named in a refusal (``more`` too where the caller
+        passed it: fuzz 45b C3 named ``runs and scenarios``, and its memory ``sc.nodes``, for ``more``'s runs).
 
     Returns
     -------
@@ -335,11 +343,11 @@ def _premise_work(scs: Mapping[str, NetworkScenario], runs: int, more: Mapping[s
     Raises
     ------
     ValueError
-        Beyond the budget, naming ``runs`` and ``scenarios``.
+        Beyond the memory or the work budget, naming ``names``.
     """
     more = {} if more is None else more
-    units = [_network_units(scs[k], more.get(k, runs)) for k in PREMISE_NETWORKS]
-    return work((sum(units),), f"runs and scenarios ({len(units)} networks of {runs:,} runs, "
+    units = [_network_units(scs[k], more.get(k, runs), names) for k in PREMISE_NETWORKS]
+    return work((sum(units),), f"{names} ({len(units)} networks of {runs:,} runs, "
                 f"{', '.join(count_text(u) for u in units)} units)", limit=STUDY_WORK[PREMISE_STUDY])
 
 
@@ -351,6 +359,9 @@ def _network_scenarios(scenarios: object) -> Mapping[str, NetworkScenario]:
 def _check_scenarios(scenarios: object, name: str = "scenarios") -> Mapping[str, NetworkScenario]:
     """``scenarios`` of :func:`premise_studies`: a mapping of NetworkScenario holding every network of
     :data:`PREMISE_NETWORKS` (issue 35: another object failed with an AttributeError or a KeyError)."""
+    # read once (fuzz 45b C1): a Mapping whose __getitem__ gave the designed networks to the entry's count and
+    # 400-frame copies to the run (2.4e9 units counted as 9e6) is the plain dict of what it gave here
+    scenarios = read_mapping(scenarios, name)
     mapping_of(scenarios, name, "network scenario", values=NetworkScenario, maker="premise_scenarios")
     missing = [str(k) for k in PREMISE_NETWORKS if k not in scenarios]  # type: ignore[operator]
     if missing:
@@ -365,6 +376,7 @@ def _check_more(more: object, runs: int) -> dict[str, int]:
     ``runs`` (fuzz 26b D3: a smaller one ran the network fewer times than ``runs``, silently)."""
     if not isinstance(more, Mapping):
         raise TypeError(f"more must be a mapping of network key to runs, got {type(more).__name__}")
+    more = read_mapping(more, "more")  # its keys checked are its keys counted and run (fuzz 45b C1)
     unknown = [k for k in more if k not in PREMISE_NETWORKS]
     if unknown:
         raise ValueError(f"more names networks that are not of PREMISE_NETWORKS: {shown(unknown, 120)}")

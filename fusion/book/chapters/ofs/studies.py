@@ -204,7 +204,7 @@ def fair(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
     """
     seed = check_seed(seed)
     runs = _runs(runs)
-    ofs_fair._budget((runs, *_RUN_SHAPE), sum(_FAIR_POINTS.values()), len(ofs_fair.FAIR_METHODS), ("runs", "runs"))
+    ofs_fair._budget((runs, *_RUN_SHAPE), sum(_FAIR_POINTS.values()), ofs_fair.FAIR_METHODS, ("runs", "runs"))
     return _fair(seed, runs)
 
 
@@ -236,7 +236,7 @@ def fair_weights(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
     """
     seed = check_seed(seed)
     runs = _runs(runs)
-    ofs_fair._budget((runs, *_RUN_SHAPE), sum(_FAIR_POINTS.values()) - _FAIR_POINTS["opposite"], len(_WEIGHT_METHODS),
+    ofs_fair._budget((runs, *_RUN_SHAPE), sum(_FAIR_POINTS.values()) - _FAIR_POINTS["opposite"], _WEIGHT_METHODS,
                      ("runs", "runs"))
     return _fair_weights(seed, runs)
 
