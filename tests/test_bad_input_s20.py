@@ -45,3 +45,12 @@ def test_nees_refuses_what_the_readers_refuse() -> None:
     batch = np.stack([np.eye(2) * 1e6, P])
     with pytest.raises(ValueError, match="covariances must be symmetric"):
         nees(np.ones((2, 2)), batch)
+
+
+@pytest.mark.parametrize("method", ["uniform_set", "optimal_fusion_set"])
+def test_fair_errors_names_z_for_its_methods_limits(method: str) -> None:
+    # the inner fusion named its own ``x`` (fix52a's report); the entry checks each method's limits naming z
+    from fusion.book.chapters.ofs_fair import fair_errors
+
+    with pytest.raises(ValueError, match=r"^z \(30,000 readings"):
+        fair_errors(np.zeros((1, 1, 30_000)), np.ones(30_000), methods=(method,))

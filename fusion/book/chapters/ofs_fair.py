@@ -104,13 +104,17 @@ def fair_errors(z: ArrayLike, sigma: ArrayLike, truth: float = 900.0,
     Raises
     ------
     ValueError
-        ``z`` not three-dimensional, ``methods`` empty, a method not of :data:`FAIR_METHODS` or one named twice.
+        ``z`` not three-dimensional, ``methods`` empty, a method not of :data:`FAIR_METHODS` or one named twice;
+        ``z`` beyond a method's own limits (its pairwise kernel, Grubbs' passes) or the work budget, named ``z``.
     """
     methods = _methods(methods)
     arr = as_array(z, "z", ndim=3)
     if np.any(as_array(sigma, "sigma", shape=(arr.shape[-1],)) <= 0):
         raise ValueError("sigma must be positive (one standard deviation per sensor)")
     truth = scalar(truth, "truth")
+    # each method's limits and the work of this one point, by the study's rule, before any fusion and naming z (the
+    # inner fusions named their own ``x``: 30,000 sensors refused as "x (30,000 readings, ...)")
+    _budget(arr.shape, 1, methods, ("z", "z"))
     flat = arr.reshape(-1, arr.shape[-1])
     out: dict[str, FloatArray] = {}
     for m in methods:
