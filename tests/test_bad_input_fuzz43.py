@@ -84,21 +84,32 @@ def test_c1_variance_study_window_beyond_samples():
 
 @pytest.mark.parametrize("seed, sigma_range", [(1, 5000.0), (2, 5000.0), (1, 50000.0)])
 def test_c4_cartesian_round_trip_at_a_large_range_noise(seed, sigma_range):
+    # was "P1i must be symmetric" ("P1 ..." at 50,000 m); since fuzz 45a C3 refused by the producer naming sim: the
+    # radar's Cartesian track is not accurate there (its split off by 4.7e-6 of its scale at 5,000 m, 1.4e-3 at 50,000
+    # m; against the recursion in long double its Pd is off by 3.1e-6 and 1.1e-3, above 1e-6)
     from fusion.scenarios import infrared_radar as m
     sim = m.simulate(np.random.default_rng(seed), runs=20, sigma_range=sigma_range)
-    out = m.cartesian_errors(sim, m.cartesian_tracks(sim))   # was "P1i must be symmetric" ("P1 ..." at 50,000 m)
-    assert all(np.isfinite(v).all() for v in out.values())
+    with pytest.raises(ValueError, match=r"^sim \(its sigma_range\) and velocity_sigma too large for the model's noise"):
+        m.cartesian_tracks(sim)
 
 
 def test_c4_symmetrised_only_where_a_reader_refuses():
+    # the accepted range noises no longer reach an asymmetry above 1e-9 (2,000 m: 1.2e-10), so one step of a track at
+    # 1,000 m is made asymmetric by 1e-8 of its largest entry: that step alone is symmetrised, the others kept
+    from fusion._results import trusted
+    from fusion.filtering.tracks import _symmetric_parts
     from fusion.scenarios import infrared_radar as m
-    sim = m.simulate(np.random.default_rng(1), runs=5, sigma_range=5000.0)
-    tr = m.cartesian_tracks(sim)
-    for t in (tr.radar, tr.ir):
-        for P in (t.Pd, t.Pi, t.gains.P):
-            asym = np.abs(P - np.swapaxes(P, -1, -2)).max(axis=(-2, -1))
-            assert (asym <= 1e-9 * np.abs(P).max(axis=(-2, -1))).all()
-    assert (tr.radar.Pd != np.swapaxes(tr.radar.Pd, -1, -2)).any()   # the steps within the tolerance: kept as computed
+    sim = m.simulate(np.random.default_rng(1), runs=5, sigma_range=1000.0)
+    radar = m.cartesian_tracks(sim).radar
+    Pd = np.array(radar.Pd)
+    Pd[3, 0, 1] += 1e-8 * np.abs(Pd[3]).max()
+    # the private constructor: the class itself refuses the asymmetric part a recursion can return
+    t = _symmetric_parts(trusted(type(radar), z=radar.z, gains=radar.gains, est=radar.est, Pd=Pd, Pi=radar.Pi))
+    for P in (t.Pd, t.Pi, t.gains.P):
+        asym = np.abs(P - np.swapaxes(P, -1, -2)).max(axis=(-2, -1))
+        assert (asym <= 1e-9 * np.abs(P).max(axis=(-2, -1))).all()
+    assert (t.Pd[3] == t.Pd[3].T).all()
+    np.testing.assert_array_equal(np.delete(t.Pd, 3, axis=0), np.delete(radar.Pd, 3, axis=0))
 
 
 class _Ran(Exception):

@@ -43,7 +43,7 @@ from fusion._counts import allocation, input_allocation
 from fusion._validation import LOOP_STEP, loop_work
 from fusion._validation import flag, text
 from fusion._options import text_key
-from fusion.filtering.tracks import LocalTrack, _symmetric_parts, fuse_tracks, local_track
+from fusion.filtering.tracks import LocalTrack, _named_track, _symmetric_parts, fuse_tracks
 from fusion.scenarios._infrared_budget import _reader_budget, _scan_budget, _semidefinite_tracks, _tracks_budget
 from fusion.filtering.kalman import cv_model
 from fusion._shown import shown
@@ -388,8 +388,8 @@ def simulate(
     Raises
     ------
     ValueError
-        ``runs`` not positive, fewer than three samples, a noise level not positive, or bad
-        geometry (see :func:`truth`).
+        ``runs`` not positive, fewer than three samples, a noise level not positive, bad geometry (see :func:`truth`),
+        ``rate_sigma`` or ``range_rate_sigma`` so large that a track's covariances are not accurate (``local_track``).
     """
     as_rng(rng)
     runs = count(runs, "runs")
@@ -418,11 +418,11 @@ def simulate(
     for s in (std_scalar(sigma_ir, "sigma_ir"), std_scalar(sigma_angle, "sigma_angle")):
         z = angles + s * rng.standard_normal((runs, t.size, 2))
         x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)])
-        tracks.append(local_track(z, F, H, Q, np.diag([s**2, s**2]), x0, P0d, np.diag([s**2, 0.0, s**2, 0.0])))
+        tracks.append(_named_track("rate_sigma", z, F, H, Q, np.diag([s**2, s**2]), x0, P0d, np.diag([s**2, 0.0, s**2, 0.0])))
     sr = std_scalar(sigma_range, "sigma_range")
     zr = sph[None, :, :1] + sr * rng.standard_normal((runs, t.size, 1))
     Fr, Hr = F[:2, :2], H[:1, :2]
-    rng_track = local_track(zr, Fr, Hr, white_acceleration(T, acc["range"]), np.array([[sr**2]]),
+    rng_track = _named_track("range_rate_sigma", zr, Fr, Hr, white_acceleration(T, acc["range"]), np.array([[sr**2]]),
                             np.column_stack([zr[:, 0, 0], np.zeros(runs)]),
                             np.diag([0.0, range_rate_sigma**2]), np.diag([sr**2, 0.0]))
     return trusted(IrRadarRuns, t=t, pos=pos, sph=sph, ir=tracks[0], radar=tracks[1], radar_range=rng_track,
@@ -940,7 +940,7 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
         P0d = np.kron(np.eye(3), np.diag([0.0, sv**2])) + H.T @ R_range[0] @ H
         P0i = H.T @ R_own[0] @ H
         # its parts symmetric where a reader would refuse them (fuzz 43 C4: range noise 5,000 m)
-        tracks.append(_symmetric_parts(local_track(z, F, H, Q, R_own, x0, P0d, P0i, R_shared=R_range)))
+        tracks.append(_symmetric_parts(_named_track("sim (its sigma_range) and velocity_sigma", z, F, H, Q, R_own, x0, P0d, P0i, R_shared=R_range)))
     _semidefinite_tracks(tracks, sr)  # the reader's semidefinite rule, naming sim (fuzz 44 C2: sigma_range 2e5 m)
     meas = np.stack([zr, sim.radar.z[..., 0], sim.radar.z[..., 1]], axis=-1)
     R_meas = cov(conversion_jacobian(meas), (sr, sa, sa))

@@ -20,7 +20,7 @@ from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_sem
                                 nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar, work)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees
 from fusion.scenarios.two_sensor.case import _PARAMS
-from fusion.filtering.tracks import fuse_tracks, local_track
+from fusion.filtering.tracks import _named_track, fuse_tracks
 from fusion.scenarios.two_sensor.case import _central_start, _path_and_model_measurements, trajectory
 from fusion.scenarios.two_sensor.study import run_rmse
 from fusion._shown import shown
@@ -342,7 +342,7 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     Rc = np.zeros((4, 4))
     Rc[:2, :2], Rc[2:, 2:] = R1, R2
     # fuzzy clustering reports no covariance: independent local filters only, and no NEES or reported P
-    local = [local_track(z[j], F, H, Q, R, x0[j], P0d, P0i[j]) for j, R in enumerate((R1, R2))]
+    local = [_named_track("velocity_sigma", z[j], F, H, Q, R, x0[j], P0d, P0i[j]) for j, R in enumerate((R1, R2))]
     e_fz = fuse_tracks(local[0], local[1], "fuzzy").est - truth
     out_rmse[(A.INDEPENDENT, ArchRule.FUZZY)] = run_rmse(e_fz[:runs], 0.0, steady, 0)
     out_model[(A.INDEPENDENT, ArchRule.FUZZY)] = run_rmse(e_fz[runs:], 0.0, steady, 0)
@@ -440,7 +440,8 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
         tracks = []
         for zj, R in zip(z, (R1, R2)):
             x0 = np.column_stack([zj[:, 0, 0], np.zeros(runs + nees_runs), zj[:, 0, 1], np.zeros(runs + nees_runs)])
-            tracks.append(local_track(zj, F, H, c * Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
+            tracks.append(_named_track("velocity_sigma", zj, F, H, c * Q, R, x0, P0d,
+                                       np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
         f = fuse_tracks(tracks[0], tracks[1], "ci")
         e = f.est - truth
         out_path[c] = run_rmse(e[:runs], 0.0, steady, 0)

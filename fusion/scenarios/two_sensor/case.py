@@ -18,7 +18,7 @@ from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_sem
 from fusion._validation import LOOP_STEP, loop_work, work
 from fusion._limits import DENSE_CUBE, dense_work
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence
-from fusion.filtering.tracks import LocalTrack, local_track
+from fusion.filtering.tracks import LocalTrack, _named_track
 
 __all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario"]
 
@@ -310,7 +310,8 @@ def two_sensor_scenario(
         R = diagonal_covariance(R, 2, name)
         z = X[None, :, [0, 2]] + rng.standard_normal((runs, t.size, 2)) * np.sqrt(np.diag(R))
         x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)])
-        tracks.append(local_track(z, F, H, Q, R, x0, np.diag([0.0, s2, 0.0, s2]), np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
+        tracks.append(_named_track("velocity_sigma", z, F, H, Q, R, x0, np.diag([0.0, s2, 0.0, s2]),
+                                   np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
     a, b = tracks
     Hc = np.vstack([H, H])
     Rc = np.zeros((4, 4))

@@ -20,7 +20,7 @@ from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, count, diagonal_covariance, index, instance_of,
                                 nonnegative_scalar, positive_scalar, scalar, std_scalar)
 from fusion.filtering.kalman import cv_model, nees, rmse_per_step
-from fusion.filtering.tracks import fuse_tracks, local_track
+from fusion.filtering.tracks import _named_track, fuse_tracks
 from fusion.scenarios.two_sensor.case import Scenario, model_truth
 
 __all__ = ["FusionStudy", "fusion_study", "run_rmse", "NeesStudy", "nees_study", "slip_steps_band", "rmse_variants", "SLIP_STEPS",
@@ -354,7 +354,7 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     for R in (R1, R2):
         z = Xm[:, :, [0, 2]] + rng.standard_normal((runs, n_steps, 2)) * np.sqrt(np.diag(R))
         x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)]) + x_start * [0, 1, 0, 1]
-        tracks.append(local_track(z, F, H, Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
+        tracks.append(_named_track("velocity_sigma", z, F, H, Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
     steady = np.arange(n_steps) * T >= t_steady
     out: dict[str, float] = {NeesRule.LOCAL: float(np.mean(nees(tracks[0].est - Xm, tracks[0].gains.P)[:, steady]))}
     est: dict[str, FloatArray] = {NeesRule.LOCAL: tracks[0].est, "truth": Xm}

@@ -18,7 +18,7 @@ from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS
 from fusion.filtering.kalman import cv_model, rmse_per_step
 from fusion.filtering.kalman import nees as kalman_nees
-from fusion.filtering.tracks import fuse_tracks, local_track
+from fusion.filtering.tracks import _named_track, fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import NeesRule
 from fusion.book.chapters.ci.text import nees_band
@@ -139,7 +139,7 @@ def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: Arr
     for R, v in zip((R1, R2), noise):
         z = Xm[:, :, [0, 2]] + v
         x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)]) + x_start * [0, 1, 0, 1]
-        tracks.append(local_track(z, F, H, Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
+        tracks.append(_named_track("velocity_sigma", z, F, H, Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
     out = {NeesRule.LOCAL: kalman_nees(tracks[0].est - Xm, tracks[0].gains.P).mean(axis=0)}
     for name, rule, w in two_sensor.NEES_RULES:
         f = fuse_tracks(tracks[0], tracks[1], rule, omega=w)
