@@ -197,6 +197,16 @@ def _singular_message(name: str) -> str:
             f"an eigenvalue within {SINGULAR_MARGIN:g} n eps of zero, relative to its largest)")
 
 
+def asymmetric(P: FloatArray, rtol: float = COVARIANCE_RTOL) -> bool:
+    """Whether any matrix of the finite stack ``P`` (..., n, n) is asymmetric beyond ``rtol`` of its own largest
+    entry: the readers' symmetry rule for a stack whose matrices may differ in scale (each judged by its own, so a
+    large matrix does not hide a small one's asymmetry). An empty stack is symmetric."""
+    if P.size == 0:
+        return False
+    scale = np.maximum(np.abs(P).max(axis=(-2, -1)), _TINY)
+    return bool((np.abs(P - np.swapaxes(P, -1, -2)).max(axis=(-2, -1)) > rtol * scale).any())
+
+
 def _finite_symmetric(arr: FloatArray, name: str, rtol: float) -> tuple[FloatArray, float]:
     """Check a square matrix for NaN/inf and asymmetry; return its symmetric part and its scale.
 

@@ -76,6 +76,7 @@ import numpy as np
 
 from fusion._frozen import ReadOnlyMapping, frozen_value, protect_frames, restore_frozen  # noqa: F401 (ReadOnlyMapping re-exported)
 from fusion import _validation
+from fusion._covariances import COVARIANCE_RTOL, asymmetric
 from fusion._validation import _numeric, as_array, instance_of, shown
 
 __all__: list[str] = []  # private module: nothing public
@@ -319,16 +320,16 @@ def arrays(keys: tuple[Any, ...], *dims: Dim) -> NumbersSpec:
 
 #: Relative tolerance of the symmetry and semidefiniteness checks of covariance stacks (computed values:
 #: rounding leaves asymmetries and negative eigenvalues of a few ulps of the largest entry).
-RTOL = 1e-9
+RTOL = COVARIANCE_RTOL   # the covariance readers' tolerance (fusion._covariances), one rule for producer and reader
 
 
 def _covariances(arr: np.ndarray, label: str) -> None:
     """A stack (..., n, n) of symmetric positive-semidefinite matrices (each to ``RTOL`` of its largest entry)."""
     if arr.shape[-1] != arr.shape[-2]:
         raise ValueError(f"{label}: covariances must be square matrices, got shape {arr.shape}")
-    scale = np.maximum(np.abs(arr).max(axis=(-2, -1)), np.finfo(float).tiny)
-    if (np.abs(arr - np.swapaxes(arr, -1, -2)).max(axis=(-2, -1)) > RTOL * scale).any():
+    if asymmetric(arr, RTOL):
         raise ValueError(f"{label}: every matrix must be symmetric (a covariance)")
+    scale = np.maximum(np.abs(arr).max(axis=(-2, -1)), np.finfo(float).tiny)
     sym = 0.5 * (arr + np.swapaxes(arr, -1, -2))
     if (np.linalg.eigvalsh(sym).min(axis=-1) < -RTOL * scale).any():
         raise ValueError(f"{label}: every matrix must be positive semidefinite (a covariance)")

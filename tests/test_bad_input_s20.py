@@ -54,3 +54,22 @@ def test_fair_errors_names_z_for_its_methods_limits(method: str) -> None:
 
     with pytest.raises(ValueError, match=r"^z \(30,000 readings"):
         fair_errors(np.zeros((1, 1, 30_000)), np.ones(30_000), methods=(method,))
+
+
+def test_mixture_readers_read_symmetry_by_the_covariance_rule() -> None:
+    # fuzz 46a C5: np.allclose's absolute 1e-8 accepted a 9 % asymmetric small covariance, and gm_logpdf then
+    # depended on which triangle held the entry
+    from fusion.estimates.chernoff.mixture import fuse_mixtures_batch
+    from fusion.estimates.mixtures import GaussianMixture
+
+    A = np.array([[1e-7, 0.0], [9e-9, 1e-7]])
+    with pytest.raises(ValueError, match="covs must be symmetric"):
+        GaussianMixture([1.0], [[0.0, 0.0]], [A])
+    w = np.full((1, 2, 1), 1.0)
+    m = np.zeros((1, 2, 1, 2))
+    c = np.broadcast_to(A, (1, 2, 1, 2, 2)).copy()
+    with pytest.raises(ValueError, match="covs must be symmetric"):
+        fuse_mixtures_batch(w, m, c, [np.random.default_rng(0)], n_samples=10)
+    # within the tolerance of its own scale: accepted (a large matrix elsewhere does not matter)
+    B = np.array([[1e-7, 1e-9], [1e-9 * (1 + 1e-12), 1e-7]])
+    GaussianMixture([0.5, 0.5], [[0.0, 0.0], [1.0, 1.0]], [B, 1e6 * np.eye(2)])

@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._counts import allocation
-from fusion._covariances import COVARIANCE_RTOL
+from fusion._covariances import asymmetric
 from fusion._limits import LOOP_STEP, loop_work
 from fusion._results import ResultSpec, array, trusted, validated_post_init
 from fusion._frozen import frozen_arrays
@@ -706,9 +706,8 @@ def nees(errors: ArrayLike, covariances: ArrayLike) -> FloatArray:
         np.broadcast_shapes(e.shape[:-1], P.shape[:-2])
     except ValueError:
         raise ValueError(f"errors {e.shape} and covariances {P.shape} do not broadcast") from None
-    if P.size and (np.abs(P - np.swapaxes(P, -1, -2)).max(axis=(-2, -1))
-                   > COVARIANCE_RTOL * np.maximum(np.abs(P).max(axis=(-2, -1)), np.finfo(float).tiny)).any():
-        raise ValueError("covariances must be symmetric")   # the covariance readers' rule (each matrix's scale)
+    if asymmetric(P):   # the covariance readers' rule (each matrix's scale)
+        raise ValueError("covariances must be symmetric")
     try:
         L = np.linalg.cholesky(P)
     except np.linalg.LinAlgError:
