@@ -973,7 +973,8 @@ _REEXPORTED = {
     "fusion._selections": ("as_mask", "frame_slice", "selection", "window"),
     "fusion._covariances": ("_SMALL_PAIR", "_TINY", "_covariance_magnitude", "_finite_symmetric", "as_covariance",
                             "as_covariances", "as_semidefinite", "check_invertible", "computed_part",
-                            "refuse_singular", "covariance_pair", "diagonal_covariance", "gaussian_pair"),
+                            "refuse_singular", "covariance_pair", "diagonal_covariance", "gaussian_pair",
+                            "COVARIANCE_RTOL", "asymmetric"),
 }
 
 

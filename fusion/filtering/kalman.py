@@ -346,6 +346,16 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
         ``Q`` not symmetric positive semidefinite, ``R`` (any step) or ``P0`` not symmetric positive
         definite, or of the wrong size; ``n_steps`` beyond the work budget.
 
+    Notes
+    -----
+    Accuracy: the covariance form (Joseph's, as filterpy) loses precision when the prior is far above the
+    posterior; its error relative to the result grows with that ratio (measured against an exact rational
+    recursion, constant-velocity model, T = 1, R = I: relative error 4e-10 at P0 = 1e10 I, 8e-6 at P0/R = 1e12,
+    7e-4 at 1e14, 21 % at 1e16; fuzz 46b D1). No refusal: the cheap first-order bound (machine epsilon times the
+    largest ratio of a predicted variance to its update) over-refuses accurate calls by up to 1e4 (a precise
+    measurement of a directly observed state is accurate in Joseph's form); :func:`fusion.filtering.tracks.local_track`
+    checks its own split instead. Give a prior within about 1e10 of the measurement noise.
+
     References
     ----------
     * Kalman, R. E. (1960). A new approach to linear filtering and prediction problems.

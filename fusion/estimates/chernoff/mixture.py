@@ -33,9 +33,8 @@ from fusion.estimates.chernoff._timings import FusionTimings
 from fusion.estimates.chernoff._sampling import _mixture_mean, _moments_batch, _sample_mixture  # noqa: F401
 from fusion._timing import LapTimer
 from fusion.estimates.chernoff._product import product_size
-from fusion._covariances import asymmetric
 from fusion._validation import (MAX_MAGNITUDE, FloatArray, _covariance_magnitude, _numeric, allocation, as_array, as_rng,
-                                as_rngs, count, derived_inputs, flag, instance_of, one_of, read_once, refuse_singular,
+                                as_rngs, asymmetric, count, derived_inputs, flag, instance_of, one_of, read_once, refuse_singular,
                                 renormalised, sums_to_one, work)
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
