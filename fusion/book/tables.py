@@ -59,7 +59,8 @@ def rounded(value: float, decimals: int = 4) -> float:
     value : float
         The number.
     decimals : int
-        Decimals kept (Python's ``round``, half to even).
+        Decimals kept (Python's ``round``, half to even; a ``Decimal`` or ``Fraction`` is rounded as it is, not
+        through its float: ``Decimal("2.675")`` to 2.68).
 
     Returns
     -------
@@ -76,6 +77,7 @@ def rounded(value: float, decimals: int = 4) -> float:
         ``longdouble`` below float's normal numbers (2.2e-308), which those formatters refuse (its float is not
         it), is rounded exactly: to 0.0 at any decimals accepted.
     """
+    exact = _exact(value)
     try:
         value = _printed_number(value, "value")
     except ValueError:
@@ -84,8 +86,35 @@ def rounded(value: float, decimals: int = 4) -> float:
         count(decimals, "decimals", minimum=0)
         return 0.0  # |value| < 2.2e-308 < half of 10**-17 (the most decimals accepted): exactly zero (fuzz 45 D1)
     decimals = count(decimals, "decimals", minimum=0)
-    r = round(value, decimals)
+    r = round(value, decimals) if exact is None or abs(value) < 1e-20 else float(round(exact, decimals))
     return 0.0 if r == 0 else r
+
+
+#: The exact number types the formatters round as they are, not through their nearest float (fuzz 46b D3:
+#: ``rounded(Decimal("2.675"), 2)`` gave 2.67, the rounding of the float 2.67499999999999982236431605997495353221893310546875).
+_EXACT_TYPES = (decimal.Decimal, fractions.Fraction)
+
+
+def _exact(value: object) -> fractions.Fraction | None:
+    """``value`` as a Fraction when it is a finite ``Decimal`` or ``Fraction`` (exactly), else None."""
+    if not isinstance(value, _EXACT_TYPES):
+        return None
+    try:
+        return fractions.Fraction(value)
+    except (ValueError, OverflowError, ArithmeticError):  # NaN or an infinity: the callers' finiteness rule decides
+        return None
+
+
+def _exact_significant(value: object, x: float, digits: int) -> float:
+    """A finite nonzero ``x = float(value)``, or, for an exact ``value`` and ``digits`` <= 15 (float's decimal
+    digits: the float of a ``digits``-digit decimal prints back as it), the float of ``value`` rounded exactly, half to
+    even, to ``digits`` significant digits (``x`` again when that rounding leaves the float range)."""
+    q = _exact(value) if digits <= 15 else None
+    if q is None:
+        return x
+    ctx = decimal.Context(prec=digits, rounding=decimal.ROUND_HALF_EVEN, Emax=decimal.MAX_EMAX, Emin=decimal.MIN_EMIN)
+    r = float(ctx.divide(decimal.Decimal(q.numerator), decimal.Decimal(q.denominator)))
+    return r if math.isfinite(r) else x
 
 
 def _below_normal_floats(value: object) -> bool:
@@ -510,7 +539,8 @@ def sci(x: float, digits: int = 4) -> str:
     x : float
         The number.
     digits : int
-        Significant digits of a float (``{:g}`` rules: plain below 10⁴ᵈ, else a power of ten).
+        Significant digits of a float (``{:g}`` rules: plain below 10⁴ᵈ, else a power of ten); a ``Decimal`` or
+        ``Fraction`` is rounded as it is (half to even), not through its float, up to 15 digits.
 
     Returns
     -------
@@ -560,12 +590,14 @@ def _significant(x: Any, digits: int, power: Callable[[str, int], str]) -> str:
     digits = count(digits, "digits")
     if is_integer(x):
         return str(_printable_integer(x, "x"))
+    given = x
     x = _real_number(x, "x", bound=None)  # TypeError naming x for text, complex, containers; the float range
     word = _nonfinite_word(x)  # the rule of every number formatter (NONFINITE_RULE)
     if word is not None:
         return word
     if x == 0:
         return "0"
+    x = _exact_significant(given, x, digits)  # a Decimal or Fraction rounded as it is (fuzz 46b D3)
     text = f"{x:.{digits}g}"
     if "e" in text:
         mant, exp = text.split("e")

@@ -211,17 +211,11 @@ def _window_mean(z: FloatArray, window: int) -> FloatArray:
     numbers to the bit (one block either way, its first ``I`` prefix sums and the divisors ``1..I``), without padding
     each row to ``window`` samples (fuzz 43 C1: ``window=10**7`` over 64 samples allocated rows x 10**7 floats, a raw
     MemoryError at 100 rows, 6.5 CPU-s at 8)."""
+    from fusion.readings._windows import block_sums
+
     I = z.shape[-1]
     window = min(window, max(I, 1))
-    nb = -(-I // window)
-    pad = np.zeros((*z.shape[:-1], nb * window - I))
-    blocks = np.concatenate([z, pad], axis=-1).reshape(*z.shape[:-1], nb, window)
-    pre = np.cumsum(blocks, axis=-1)                                        # sum of block j up to offset r
-    suf = np.cumsum(blocks[..., ::-1], axis=-1)[..., ::-1]                  # sum of block j from offset r on
-    tail = np.zeros_like(pre)
-    tail[..., 1:, :-1] = suf[..., :-1, 1:]                                   # block j-1 from offset r+1 on
-    sums = (pre + tail).reshape(*z.shape[:-1], nb * window)[..., :I]
-    return sums / np.minimum(np.arange(1, I + 1), window)
+    return block_sums(z, window) / np.minimum(np.arange(1, I + 1), window)
 
 
 @derived_inputs()

@@ -58,6 +58,7 @@ from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude,
                                 std_scalar)
 from fusion._shown import shown
 from fusion.readings._moments import _estimates_from, _moment_stack
+from fusion.readings._windows import window_sums
 
 __all__ = ["LSLearning", "optimal_weights", "minimum_variance", "inverse_variance_weights", "running_variances",
            "variance_estimates", "running_means", "AWFResult", "awf", "learned_variances", "corrected_variances",
@@ -706,7 +707,11 @@ def running_average(Z: ArrayLike, memory: Memory = "growing", forgetting: float 
         Forgetting factor :math:`\lambda \in (0, 1)` (``memory="forgetting"``); the effective
         memory is about :math:`1/(1-\lambda)` samples.
     window : int
-        Window length :math:`w \ge 1` (``memory="window"``); shorter at the start.
+        Window length :math:`w \ge 1` (``memory="window"``); shorter at the start. A window's sum is the
+        difference of two cumulative sums where the a-posteriori bound of its round-off (``eps`` x its terms x
+        its largest \|cumulative sum\|) is within :math:`10^{-8}` of its largest \|value\|; otherwise (a large
+        value that has left the window, whose round-off the cumulative sums keep) it is summed from its own samples,
+        with the round-off of a direct sum (about ``eps`` x :math:`w` x its \|values\|).
     axis : int
         Time axis.
 
@@ -740,9 +745,7 @@ def running_average(Z: ArrayLike, memory: Memory = "growing", forgetting: float 
     if memory == "growing":
         out = np.cumsum(A, axis=0) / np.arange(1, K + 1, dtype=float).reshape(shape)
     elif memory == "window":
-        c = np.cumsum(A, axis=0)
-        if K > window:
-            c[window:] = c[window:] - c[:-window]
+        c = window_sums(A, window)
         out = c / np.minimum(np.arange(1, K + 1), window).astype(float).reshape(shape)
     else:
         from scipy.signal import lfilter
@@ -766,9 +769,9 @@ def tracking_variances(X: ArrayLike, estimator: Literal["lecture", "centred", "s
     itself when that varies in time (the cross-moment estimators cancel it). With
     ``memory="growing"`` the first two equal :func:`running_variances`. The ``"centred"`` and ``"sample"``
     estimates are computed, as there, from the readings minus each sensor's median reading (shift invariant in
-    floating point); the ``"lecture"`` one from the raw moments, by its definition. A sliding window is a
-    difference of cumulative sums: a reading that has left it keeps there the round-off of its squared deviation
-    from the median (about :math:`10^{-16}(X - c_p)^2/w`, 0.3 for a spike of :math:`10^8` and ``window=50``).
+    floating point); the ``"lecture"`` one from the raw moments, by its definition. A sliding window's
+    averages are those of :func:`running_average`: a reading that has left the window no longer counts there, to
+    the round-off stated there.
 
     Parameters
     ----------

@@ -25,7 +25,7 @@ from fusion.book.glue import GlueValues
 from fusion.book.study_cache import process_cache
 from fusion.book.ledger import (EVIDENCE_TYPES, Comparison, Conjunction, Evidence,  # noqa: F401 (readings' return hints)
                                 Unverifiable, ledger_dir)
-from fusion.book.tables import _SUPERSCRIPT, _frame, _nonfinite_word, rounded  # noqa: F401 (_frame: the chapters' table rule)
+from fusion.book.tables import _SUPERSCRIPT, _exact_significant, _frame, _nonfinite_word, rounded  # noqa: F401 (_frame: the chapters' table rule)
 from fusion._counts import count, seed as check_seed
 from fusion._options import text
 from fusion._paths import file_text, notebook_markdown
@@ -139,6 +139,7 @@ def sci(value: float, digits: int = 2) -> str:
         return word
     if v == 0.0:
         return "0"  # also for -0.0: "0 is written 0", as ledger.fmt and tables.sci print it (fuzz 19, E8)
+    v = _exact_significant(value, v, digits)  # a Decimal or Fraction rounded as it is (fuzz 46b D3)
     e = int(np.floor(np.log10(abs(v))))
     # 10.0**e underflows to 0 below 1e-323 (a subnormal value: 5e-324): scale up first (fuzz 20, A)
     m = round(v / 10.0**e, digits - 1) if e > -300 else round((v * 1e300) / 10.0 ** (e + 300), digits - 1)
