@@ -315,7 +315,7 @@ def grid_search(
 
 
 def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.0, xatol: float = 1e-8) -> OptimumResult:
-    """Bounded Brent minimisation (scipy), plus the two end points.
+    r"""Bounded Brent minimisation (scipy), plus the two end points.
 
     :func:`scipy.optimize.minimize_scalar` with ``method="bounded"`` never evaluates the end
     points, so they are evaluated too and kept if better (a minimum on the boundary is common
@@ -329,7 +329,13 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     lo, hi : float
         Search interval, ``lo < hi`` (finite).
     xatol : float
-        Absolute tolerance on the argument.
+        Absolute tolerance on the argument: the search runs on the offset :math:`u = x - lo` in
+        :math:`[0, hi - lo]` and stops, as scipy's does, once the bracket is within about
+        :math:`2\,(\sqrt{\epsilon}\,|u| + xatol/3)` of its midpoint (:math:`\epsilon` the float64 machine
+        epsilon), so the tolerance does not grow with the size of ``lo`` (fuzz 46b C4: on
+        [1e8, 1e8 + 1] scipy's term :math:`\sqrt{\epsilon}\,|x|` = 1.5 stopped it at its first golden-section
+        point); it grows only with the distance from ``lo``. With ``lo = 0`` (the default) the search
+        is scipy's on ``x`` bit for bit.
 
     Returns
     -------
@@ -350,11 +356,19 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     """
     lo, hi = _check(lo, hi, f)
     xatol = tolerance(xatol, "xatol")
+    width = hi - lo  # finite: lo and hi are at most 1e150 in magnitude (``fusion._validation.scalar``)
+
+    def point(u: float) -> float:
+        """The argument at offset ``u`` from ``lo``, inside [lo, hi] (``lo + width`` may round past ``hi``)."""
+        return min(lo + u, hi)
+
     def checked(x: float) -> float:
         return _one_value(f(x))
 
-    res = minimize_scalar(checked, bounds=(lo, hi), method="bounded", options={"xatol": xatol})
-    best_x, best_f = float(res.x), float(res.fun)
+    # the offset from lo, not x: scipy's relative term sqrt(eps) |x| is then sqrt(eps) |x - lo| (fuzz 46b C4)
+    res = minimize_scalar(lambda u: checked(point(float(u))), bounds=(0.0, width), method="bounded",
+                          options={"xatol": xatol})
+    best_x, best_f = point(float(res.x)), float(res.fun)
     for end in (lo, hi):
         v = checked(end)
         if improves(v, best_f):
