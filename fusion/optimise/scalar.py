@@ -9,8 +9,8 @@ r"""Scalar optimisers for the covariance-intersection weight (Wang & Tang 2024).
 * :func:`bounded_minimum`: :func:`scipy.optimize.minimize_scalar` (bounded Brent), the baseline.
 
 All minimise a function of one variable on [0, 1] and report how many times they evaluated
-it, the machine-independent measure of their cost. Objective values within a relative
-1e-9 of each other count as equal, the first one found winning: round-off, which differs
+it, the machine-independent measure of their cost. Objective values within 1e-9 of each other, relative to their
+magnitude above 1 and absolute below (``1e-9 * max(|v|, 1)``), count as equal, the first one found winning: round-off, which differs
 between BLAS builds and thread counts, never decides (a flat objective gives the same answer on
 every machine).
 
@@ -115,7 +115,7 @@ def fruit_fly(
 
     Notes
     -----
-    A fly replaces the swarm's best only if it is better by more than a relative 1e-9, and
+    A fly replaces the swarm's best only if it is better by more than ``1e-9 * max(|best|, 1)``, and
     among flies within that tolerance of each other the first wins: on a flat objective the
     swarm stays where its first generation put it, on every machine.
 
@@ -277,7 +277,8 @@ def grid_search(
     r"""Exhaustive search on ``n`` evenly spaced points of [lo, hi].
 
     The grid is :math:`x_j = lo + j\,(hi - lo)/(n - 1)`, :math:`j = 0..n-1`; the first grid point whose
-    value is within a relative 1e-9 of the smallest is returned (on a flat objective: ``lo``).
+    value is within ``1e-9 * max(|smallest|, 1)`` of the smallest is returned (on a flat objective: ``lo``; below 1
+    the margin is absolute, so an objective that varies by less than 1e-9 ties: give it in units of order one).
 
     Parameters
     ----------
@@ -320,7 +321,7 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     :func:`scipy.optimize.minimize_scalar` with ``method="bounded"`` never evaluates the end
     points, so they are evaluated too and kept if better (a minimum on the boundary is common
     for the covariance-intersection weight). An end point replaces Brent's answer only if it is
-    lower by more than a relative 1e-9.
+    lower by more than ``1e-9 * max(|value|, 1)``.
 
     Parameters
     ----------
