@@ -3,8 +3,8 @@
 Two evaluations of one objective on two machines (or with another BLAS kernel or thread
 count) may differ in the last bits. An optimiser that compares such values with ``<`` then
 takes another path, and a flat objective is minimised by noise. Here values within
-``rtol * max(|v|, 1)`` of each other (relative above 1, absolute below) are *ties*, broken by order (the first one wins), and an
-improvement counts only when it exceeds that tolerance. A decision can still change only
+``rtol * max(|v|, 1)`` of each other (relative above 1, absolute below) are *ties*, broken by
+order (the first one wins), and an improvement counts only when it exceeds that tolerance. A decision can still change only
 if a true difference lies within round-off of the tolerance itself, which is rare.
 
 Below 1 the tolerance is absolute, so the objective's units matter there: an objective whose values over the
