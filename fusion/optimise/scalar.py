@@ -9,8 +9,8 @@ r"""Scalar optimisers for the covariance-intersection weight (Wang & Tang 2024).
 * :func:`bounded_minimum`: :func:`scipy.optimize.minimize_scalar` (bounded Brent), the baseline.
 
 All minimise a function of one variable on [0, 1] and report how many times they evaluated
-it, the machine-independent measure of their cost. Objective values within a relative
-1e-9 of each other count as equal, the first one found winning: round-off, which differs
+it, the machine-independent measure of their cost. Objective values within 1e-9 of each other, relative to their
+magnitude above 1 and absolute below (``1e-9 * max(|v|, 1)``), count as equal, the first one found winning: round-off, which differs
 between BLAS builds and thread counts, never decides (a flat objective gives the same answer on
 every machine).
 
@@ -115,7 +115,7 @@ def fruit_fly(
 
     Notes
     -----
-    A fly replaces the swarm's best only if it is better by more than a relative 1e-9, and
+    A fly replaces the swarm's best only if it is better by more than ``1e-9 * max(|best|, 1)``, and
     among flies within that tolerance of each other the first wins: on a flat objective the
     swarm stays where its first generation put it, on every machine.
 
@@ -277,7 +277,8 @@ def grid_search(
     r"""Exhaustive search on ``n`` evenly spaced points of [lo, hi].
 
     The grid is :math:`x_j = lo + j\,(hi - lo)/(n - 1)`, :math:`j = 0..n-1`; the first grid point whose
-    value is within a relative 1e-9 of the smallest is returned (on a flat objective: ``lo``).
+    value is within ``1e-9 * max(|smallest|, 1)`` of the smallest is returned (on a flat objective: ``lo``; below 1
+    the margin is absolute, so an objective that varies by less than 1e-9 ties: give it in units of order one).
 
     Parameters
     ----------
@@ -315,12 +316,12 @@ def grid_search(
 
 
 def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.0, xatol: float = 1e-8) -> OptimumResult:
-    """Bounded Brent minimisation (scipy), plus the two end points.
+    r"""Bounded Brent minimisation (scipy), plus the two end points.
 
     :func:`scipy.optimize.minimize_scalar` with ``method="bounded"`` never evaluates the end
     points, so they are evaluated too and kept if better (a minimum on the boundary is common
     for the covariance-intersection weight). An end point replaces Brent's answer only if it is
-    lower by more than a relative 1e-9.
+    lower by more than ``1e-9 * max(|value|, 1)``.
 
     Parameters
     ----------
@@ -329,7 +330,13 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     lo, hi : float
         Search interval, ``lo < hi`` (finite).
     xatol : float
-        Absolute tolerance on the argument.
+        Absolute tolerance on the argument: the search runs on the offset :math:`u = x - lo` in
+        :math:`[0, hi - lo]` and stops, as scipy's does, once the bracket is within about
+        :math:`2\,(\sqrt{\epsilon}\,|u| + xatol/3)` of its midpoint (:math:`\epsilon` the float64 machine
+        epsilon), so the tolerance does not grow with the size of ``lo`` (fuzz 46b C4: on
+        [1e8, 1e8 + 1] scipy's term :math:`\sqrt{\epsilon}\,|x|` = 1.5 stopped it at its first golden-section
+        point); it grows only with the distance from ``lo``. With ``lo = 0`` (the default) the search
+        is scipy's on ``x`` bit for bit.
 
     Returns
     -------
@@ -350,11 +357,19 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     """
     lo, hi = _check(lo, hi, f)
     xatol = tolerance(xatol, "xatol")
+    width = hi - lo  # finite: lo and hi are at most 1e150 in magnitude (``fusion._validation.scalar``)
+
+    def point(u: float) -> float:
+        """The argument at offset ``u`` from ``lo``, inside [lo, hi] (``lo + width`` may round past ``hi``)."""
+        return min(lo + u, hi)
+
     def checked(x: float) -> float:
         return _one_value(f(x))
 
-    res = minimize_scalar(checked, bounds=(lo, hi), method="bounded", options={"xatol": xatol})
-    best_x, best_f = float(res.x), float(res.fun)
+    # the offset from lo, not x: scipy's relative term sqrt(eps) |x| is then sqrt(eps) |x - lo| (fuzz 46b C4)
+    res = minimize_scalar(lambda u: checked(point(float(u))), bounds=(0.0, width), method="bounded",
+                          options={"xatol": xatol})
+    best_x, best_f = point(float(res.x)), float(res.fun)
     for end in (lo, hi):
         v = checked(end)
         if improves(v, best_f):

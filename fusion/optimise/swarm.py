@@ -119,7 +119,7 @@ def particle_swarm(
 
     Notes
     -----
-    Fitness values within a relative 1e-9 of each other count as equal (a particle's or the
+    Fitness values within ``1e-9 * max(|value|, 1)`` of each other count as equal (a particle's or the
     swarm's best changes only on a larger improvement; among equals the first particle wins), so
     round-off, which differs between BLAS builds and thread counts, never decides.
     """
