@@ -42,3 +42,37 @@ def test_c1_fuzz_calls_refused_before_the_passes():
         _refused_fast(lambda: robust_fuse(z, method), "^x")
     # well inside: the same data, a tenth of the edge, still fused
     assert np.all(np.isfinite(robust_fuse(z[:34_000], "biweight")))
+
+
+# --- C4, C4b -------------------------------------------------------------------------------------------------------
+
+def test_c4_fair_study_weighs_rows_of_few_sensors(monkeypatch):
+    # biweight alone at 3 sensors, one point, 111,111 runs (counted at 300 ns a reading, its edge) ran 89.6 CPU-s:
+    # a row of 3 costs up to 7.3 us (IRLS passes), now refused before the draws naming n_runs
+    from fusion.book.chapters import ofs_fair
+    monkeypatch.setattr(np.random, "default_rng", lambda *a, **k: (_ for _ in ()).throw(AssertionError("drawn")))
+    one = dict(n_samples=100, n_sensors=3, sizes=(1.0,), counts=(), spreads=(), opposite=())
+    for method in ("huber", "biweight"):
+        _refused_fast(lambda: ofs_fair.fair_study(0, n_runs=111_111, methods=(method,), **one), r"^n_runs, n_samples")
+        # one point: the worst case of robust_fuse binds (344,655 rows of 3); 23 points: the row's measured cost
+        ofs_fair._budget((3_446, 100, 3), 1, (method,), ("a", "b"))
+        with pytest.raises(ValueError, match="^b"):
+            ofs_fair._budget((3_447, 100, 3), 1, (method,), ("a", "b"))
+        ofs_fair._budget((543, 100, 3), 23, (method,), ("a", "b"))
+        with pytest.raises(ValueError, match="^b"):
+            ofs_fair._budget((544, 100, 3), 23, (method,), ("a", "b"))
+    # the optimal set at 2 sensors: 325 ns a row measured, 240 counted before (a reading and a pair only), now 540;
+    # mad_reject 151 ns a row, 100 counted before, now 220
+    for method, edge in (("optimal_fusion_set", 8_051), ("mad_reject", 19_762)):
+        ofs_fair._budget((edge, 100, 2), 23, (method,), ("a", "b"))
+        with pytest.raises(ValueError, match="^b"):
+            ofs_fair._budget((edge + 1, 100, 2), 23, (method,), ("a", "b"))
+
+
+def test_c4b_fair_errors_refuses_biweight_rows_of_three_by_z():
+    # (11.1e6, 1, 3) ran 87.4 CPU-s; beyond the worst case of its one point (344,655 rows of 3), refused naming z
+    from fusion.book.chapters import ofs_fair
+    z = 900 + np.random.default_rng(0).standard_normal((400_000, 1, 3))
+    z[:, :, 0] += 1.0
+    for method in ("huber", "biweight"):
+        _refused_fast(lambda: ofs_fair.fair_errors(z, np.ones(3), methods=(method,)), "^z")
