@@ -182,9 +182,27 @@ FAIR_WORK = 3
 #: biweight 233, grubbs 103, mad_reject 50, inverse_variance 20; one unit is 10 ns, rounded up, and huber and biweight
 #: at the largest fuzz 45b measured over its data (IRLS iterations depend on it: up to 291 ns a reading). The two
 #: optimal-set methods' pairwise part is :data:`_FAIR_PAIR_WEIGHTS`'s (here the linear part, fitted at 10 sensors).
+#: Fuzz 46a C4: fitted at 10 sensors only, huber and biweight cost up to 7.3 us a row of 3 (counted 0.9), so
+#: ``methods=("biweight",)`` at 3 sensors at the edge ran 89.6 CPU-s. Each method is now weighed a row
+#: (:data:`_FAIR_ROW_WEIGHTS`) plus a reading (here), fitted on ``fair_errors`` (as above, the maximum of two data:
+#: two sensors +3 sigma, or sensor 0 +1 sigma) at 2, 3, 4, 5, 6, 7, 8, 10, 15 and 30 sensors, in ns a row at n = 2, 3,
+#: 10 and 30:
+#: optimal_fusion_set 325, 503, 1576, 8237; uniform_set 166, 182, 560, 2040; mean 42, 54, 137, 360; median 77, 86,
+#: 260, 750; trimmed_mean 75, 94, 344, 1049; huber 176, 4794, 2514, 5312; biweight 3701, 7266, 2410, 4530; grubbs 59,
+#: 75, 1043, 3150; mad_reject 151, 171, 603, 1650; inverse_variance 54, 63, 131, 360 (huber up to 6,523 at 5 sensors).
 _FAIR_WEIGHTS = {"optimal_fusion_set": 10, "uniform_set": 4, "mean": 2, "median": 4, "trimmed_mean": 4,
-                 "trimmed_mean_25": 5, "huber": 30, "biweight": 30, "grubbs": 11, "mad_reject": 5,
+                 "trimmed_mean_25": 5, "huber": 18, "biweight": 18, "grubbs": 11, "mad_reject": 6,
                  "inverse_variance": 2}
+#: Units of work of one row (epoch) fused by each method at one sweep point of :func:`fair_study`, beside
+#: :data:`_FAIR_WEIGHTS`' per reading (the fit above: e.g. optimal_fusion_set 30 + 10 n + n**2 units, 540 ns counted at
+#: 2 sensors against 325 measured, 2.3 us at 10 against 1.6; huber 120 + 18 n, 3.0 us at 10 against 2.5, 6.6 at 30
+#: against 5.3).
+_FAIR_ROW_WEIGHTS = {"optimal_fusion_set": 30, "uniform_set": 12, "mean": 1, "median": 1, "trimmed_mean": 1,
+                     "trimmed_mean_25": 0, "huber": 120, "biweight": 120, "grubbs": 0, "mad_reject": 10,
+                     "inverse_variance": 2}
+#: Units of a row of at most :data:`_FAIR_FEW` readings fused by huber or biweight: the MAD scale of so few readings
+#: lets some rows iterate to the 500-pass cap (fuzz 46a C4; measured up to 7.3 us a row, 3 sensors, above).
+_FAIR_FEW, _FAIR_FEW_IRLS = 5, 800
 #: Units of work of one pair of readings of a row in the n x n kernel of the optimal-set methods (fuzz 45b C5: their
 #: cost grows as n**2, 10,000 sensors ran 16 CPU-s at 80 runs counted as 2.4e6 linear units). Measured as above on
 #: 4,000 x 100, 40 x 1,000 and 5 x 3,000 readings: optimal_fusion_set 6.1, 4.9 and 9.7 ns a pair, uniform_set 1.2,
@@ -196,7 +214,8 @@ _FAIR_PAIR_WEIGHTS = {"optimal_fusion_set": 1.0, "uniform_set": 0.2}
 def _budget(shape: tuple[int, int, int], points: int, methods: Sequence[str], names: tuple[str, str]) -> None:
     """Refuse a fair study whose draws, of ``shape`` (runs, samples, sensors), are beyond the memory budget or whose
     ``points`` fusions of them by each of ``methods`` are beyond the work budget (each method weighed by its own
-    cost, :data:`_FAIR_WEIGHTS` a reading and :data:`_FAIR_PAIR_WEIGHTS` a pair of a row), naming ``names`` (the
+    cost, :data:`_FAIR_ROW_WEIGHTS` a row, :data:`_FAIR_WEIGHTS` a reading and :data:`_FAIR_PAIR_WEIGHTS` a pair of
+    a row), naming ``names`` (the
     memory's, the work's): :func:`fair_study` and its cached entries (``fusion.book.chapters.ofs.fair``) call it
     before anything is drawn, each naming its own arguments. Each method's own refusal of one point's readings
     (its pairwise kernel, Grubbs' passes: what ``fuse_epochs`` and ``robust_fuse`` would refuse after the draws)
@@ -206,7 +225,9 @@ def _budget(shape: tuple[int, int, int], points: int, methods: Sequence[str], na
     rows = runs * samples
     per_point = 0.0
     for m in methods:
-        units = rows * n * (_FAIR_WEIGHTS[m] + n * _FAIR_PAIR_WEIGHTS.get(m, 0.0))
+        units = rows * (_FAIR_ROW_WEIGHTS[m] + n * (_FAIR_WEIGHTS[m] + n * _FAIR_PAIR_WEIGHTS.get(m, 0.0)))
+        if m in ("huber", "biweight") and n <= _FAIR_FEW:
+            units = max(units, rows * _FAIR_FEW_IRLS)
         if m in ("optimal_fusion_set", "mean"):
             epochs_limit(rows, n, m, names[1])
         else:
