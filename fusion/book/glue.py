@@ -18,7 +18,7 @@ from pandas.api.extensions import ExtensionArray
 from matplotlib.figure import Figure
 from pandas.io.formats.style import Styler
 
-from fusion._limits import work
+from fusion._limits import MAX_WORK, work
 from fusion._validation import count, read_mapping, text
 from fusion.book.tables import rounded
 from fusion._shown import shown
@@ -93,10 +93,11 @@ def _checked_keep(store: object, values: object) -> dict[str, Any]:
     return values  # type: ignore[return-value]
 
 
-def _check_finite(key: str, value: object) -> None:
+def _check_finite(key: str, value: object, meter: _Meter | None = None, counted: bool = False) -> None:
     """The book's finiteness rule of a glued value (:func:`glue_all` and the chapters' ``keep``): ValueError naming
-    ``values[key]`` for a value :func:`_finite` refuses (TypeError naming it for a value of a type it does not take)."""
-    if not _finite(value, key):
+    ``values[key]`` for a value :func:`_finite` refuses (TypeError naming it for a value of a type it does not take).
+    ``meter`` and ``counted``: :func:`_finite`'s."""
+    if not _finite(value, key, meter, counted):
         raise ValueError(f"values[{shown(key)}] must be finite, got {shown(value)} (a glued number is printed in the book)")
 
 
@@ -203,7 +204,7 @@ _GLUE_LEAVES = (type(None), str, bytes, numbers.Number, np.generic, datetime.dat
 _GLUE_CONTAINERS = (list, tuple, set, frozenset, Mapping, pd.Series, pd.Index, np.ndarray, ExtensionArray)
 
 
-def _finite(value: object, key: str = "key") -> bool:
+def _finite(value: object, key: str = "key", meter: _Meter | None = None, counted: bool = False) -> bool:
     """False for a number that is NaN or infinite, and for a missing-value marker (``pd.NA``, ``NaT``).
 
     Numbers are floats, complex numbers, NumPy scalars, Decimals (a signalling NaN included) and numeric arrays
@@ -219,11 +220,17 @@ def _finite(value: object, key: str = "key") -> bool:
         a deque, ``array.array``, dict view, generator, masked array (whose text prints ``--``), ...,
         naming ``values[key]``.
     ValueError
-        Containers nested more than ``fusion._nesting.MAX_NESTING`` (64) deep, naming ``values[key]``.
+        Containers nested more than ``fusion._nesting.MAX_NESTING`` (64) deep, naming ``values[key]``; entries
+        beyond ``meter``'s allowance (fuzz 46a C2, C3), naming ``values[key]``, when a container is reached, before
+        its entries are visited.
+
+    ``meter`` (a fresh one when None) is charged for the entries of every container reached (``_container_work``)
+    but ``value`` itself when ``counted`` (its caller counted it: ``_glue_work``).
     """
-    todo, seen = [(value, 0)], set()  # each value with the number of containers around it
-    while todo:
-        v, depth = todo.pop()
+    meter = _Meter() if meter is None else meter
+    todo, seen = [(value, 0, counted)], set()  # each value with the number of containers around it, and whether
+    while todo:                                # its entries are already counted
+        v, depth, done = todo.pop()
         if v is pd.NA or v is pd.NaT:
             return False
         if isinstance(v, np.ma.MaskedArray) or not isinstance(v, _GLUE_LEAVES + _GLUE_CONTAINERS):
@@ -236,6 +243,8 @@ def _finite(value: object, key: str = "key") -> bool:
             seen.add(id(v))
             if depth >= MAX_NESTING:  # its text would recurse (fuzz 30a D4: a RecursionError in the kernel)
                 raise nesting_error(f"values[{shown(key)}]", itself=False)
+            if not done:  # charged before its entries are visited (fuzz 46a C2, C3)
+                meter.charge(*_container_work(v), key)
         inner = depth + 1
         if isinstance(v, Decimal):
             if not v.is_finite():
@@ -244,14 +253,14 @@ def _finite(value: object, key: str = "key") -> bool:
             if np.isnat(v):
                 return False
         elif isinstance(v, (pd.Series, pd.Index)):
-            todo.append((v.to_numpy(), inner))
+            todo.append((v.to_numpy(), inner, True))
         elif isinstance(v, ExtensionArray):   # its entries as objects: pd.NA, NaN, NaT, as the Series shows them
-            todo.append((np.asarray(v, dtype=object), inner))
+            todo.append((np.asarray(v, dtype=object), inner, True))
         elif isinstance(v, np.ndarray):
             if v.dtype.names:
-                todo += [(v[n], inner) for n in v.dtype.names]
+                todo += [(v[n], inner, True) for n in v.dtype.names]
             elif v.dtype.kind == "O":
-                todo += [(e, inner) for e in v.flat]
+                todo += [(e, inner, False) for e in v.flat]
             elif v.dtype.kind in "mM":
                 if np.isnat(v).any():
                     return False
@@ -261,9 +270,9 @@ def _finite(value: object, key: str = "key") -> bool:
             if not cmath.isfinite(v):
                 return False
         elif isinstance(v, Mapping):
-            todo += [(e, inner) for e in v.values()]
+            todo += [(e, inner, False) for e in v.values()]
         elif isinstance(v, (list, tuple, set, frozenset)):
-            todo += [(e, inner) for e in v]
+            todo += [(e, inner, False) for e in v]
     return True
 
 
@@ -275,10 +284,59 @@ def _finite(value: object, key: str = "key") -> bool:
 #: truncated). A Styler: 0.9 ms at 10 x 2, then 5.6-12.6 us a cell (10**4 cells 126 ms, 10**6 cells 5.6 s). A figure:
 #: 31-34 ms (one axes, audited and saved as PNG). The book's largest call glues 118 values (1.2e6 units).
 _GLUE_VALUE, _GLUE_ENTRY, _GLUE_TABLE, _GLUE_CELL, _GLUE_FIGURE = 10_000, 300, 300_000, 1_000, 5_000_000
+#: Fuzz 46a C2, C3 (measured as above, 10**6 entries, minimum of 3, shared machine under load ~11): an entry of an
+#: object array, object Series or Index, or pandas extension array (``pd.array``, Categorical; visited as objects,
+#: one by one): 1.0-1.3 us visited by :func:`_finite`, 1.1-1.3 us glued (its text is truncated): 200 units. An
+#: entry of a container inside a value (a list of lists): 1.7 us visited, 3.5 us glued (1000 lists of 1000 floats,
+#: 3.46 CPU-s: the text prints every inner list): 400 units. A numeric array: 0 (vectorised, ~1 ns an entry).
+_GLUE_OBJECT, _GLUE_NESTED = 200, 400
+#: The entries :func:`_finite` may reach inside containers the caller did not count (a list of lists) in one call:
+#: they are counted as they are reached, so the ones visited before a refusal cost at most 10**6 x 1.7 us, ~1.7
+#: CPU-s (fuzz 46a C2: 4500 lists of 4500 floats ran 37.7 CPU-s, counted as 4500 entries).
+_GLUE_VISITS = 10**6
+#: The containers whose own entries ``_glue_work`` counts when a value is one (a dict, not any mapping).
+_GLUE_COUNTED = (list, tuple, set, frozenset, dict, pd.Series, pd.Index, ExtensionArray, np.ndarray)
+
+
+def _container_work(v: object) -> tuple[int, int]:
+    """The entries of the container ``v`` that :func:`_finite` visits one by one and the units of each (``_GLUE_*``):
+    a list, tuple, set or mapping its length at ``_GLUE_NESTED``; an object array, an object (or non-NumPy dtype)
+    Series or Index, an extension array its size at ``_GLUE_OBJECT``, known without visiting; a structured array
+    holding objects at most one object per 8 bytes of an element; a numeric array 0 (vectorised)."""
+    if isinstance(v, (pd.Series, pd.Index)):
+        numeric = isinstance(v.dtype, np.dtype) and v.dtype.kind != "O"
+        return (0 if numeric else len(v)), _GLUE_OBJECT
+    if isinstance(v, ExtensionArray):
+        return len(v), _GLUE_OBJECT
+    if isinstance(v, np.ndarray):
+        return (int(v.size) * max(1, v.dtype.itemsize // 8) if v.dtype.hasobject else 0), _GLUE_OBJECT
+    return len(v), _GLUE_NESTED  # type: ignore[arg-type]
+
+
+class _Meter:
+    """What :func:`_finite` may still visit in one call: ``units`` of the work budget (``fusion._limits.MAX_WORK``
+    by default) and ``entries`` (``_GLUE_VISITS``)."""
+
+    def __init__(self, units: int = MAX_WORK) -> None:
+        self.units, self.entries = units, _GLUE_VISITS
+
+    def charge(self, n: int, weight: int, key: str) -> None:
+        """Take ``n`` entries of ``weight`` units each; ValueError naming ``values[key]`` beyond either allowance."""
+        if n == 0:
+            return
+        self.units -= n * weight
+        self.entries -= n
+        if self.units < 0 or self.entries < 0:
+            raise ValueError(f"values[{shown(key)}] ask for more work than the work budget allows (fusion."
+                             f"_validation.MAX_WORK, about 10 CPU-s): a container inside it (or with the values "
+                             f"before it) holds {n:,} more entries ({weight:,} units each) than remain of the "
+                             f"budget or of the {_GLUE_VISITS:,} entries visited inside containers in one call")
 
 
 def _glue_work(value: object) -> int:
-    """The units of work of gluing ``value`` (``_GLUE_VALUE`` and the weights beside it), beyond ``_GLUE_VALUE``."""
+    """The units of work of gluing ``value`` (``_GLUE_VALUE`` and the weights beside it), beyond ``_GLUE_VALUE``:
+    a container by its own entries (``_container_work``, a list's at ``_GLUE_ENTRY``); what is inside them is
+    counted as :func:`_finite` reaches it."""
     if isinstance(value, Figure):
         return _GLUE_FIGURE
     if isinstance(value, Styler):
@@ -287,6 +345,9 @@ def _glue_work(value: object) -> int:
         return _GLUE_TABLE
     if isinstance(value, (list, tuple, set, frozenset, dict)):
         return _GLUE_ENTRY * len(value)
+    if isinstance(value, _GLUE_COUNTED):
+        n, weight = _container_work(value)
+        return n * weight
     return 0
 
 
@@ -323,14 +384,18 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         more than 64 deep (``fusion._nesting.MAX_NESTING``; their text recurses), naming ``values[key]``; a
         container that holds itself is accepted (its text prints ``[...]`` there). A NumPy longdouble beyond float's
         range (it would be glued as inf or 0), naming ``values[key]``. More values (weighed by kind: tables by their
-        cells, lists by their entries, figures) than the work budget glues, naming ``values``, before any is read.
+        cells, lists by their entries, object and extension arrays, object Series and Index by their size, figures)
+        than the work budget glues, naming ``values``, before any is read; entries of containers inside a value (a
+        list of lists) beyond the rest of the budget or beyond 10**6 in one call, counted as they are reached,
+        naming ``values[key]``.
     """
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")
     values = read_mapping(values, "values")  # its values checked and glued as one read (fuzz 31a C3)
     work((len(values),), "values", weight=_GLUE_VALUE)   # by their number, then their kinds: before any is read
-    work((len(values) * _GLUE_VALUE + sum(_glue_work(v) for v in values.values()),), "values (their tables, "
-         "figures and containers)")
+    units = work((len(values) * _GLUE_VALUE + sum(_glue_work(v) for v in values.values()),), "values (their "
+                 "tables, figures and containers)")
+    meter = _Meter(MAX_WORK - units)  # what is inside their containers, counted as it is reached (fuzz 46a C2)
     if decimals is not None:
         decimals = count(decimals, "decimals", minimum=0)
     plain = {}  # keys and text values as their plain str (rule 19): a (str, Enum) member is glued as its text
@@ -339,7 +404,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         v = value[()] if isinstance(value, np.ndarray) and value.ndim == 0 else value
         if isinstance(v, (np.longdouble, np.clongdouble)) and np.isfinite(v):  # a finite 1e400: refused by its range
             _longdouble_float(value, f"values[{shown(key)}]")                   # first, not as infinite (fuzz 43 D2)
-        _check_finite(key, value)
+        _check_finite(key, value, meter, counted=isinstance(value, _GLUE_COUNTED))
         value = _longdouble_float(value, f"values[{shown(key)}]")   # then rounded at decimals as any float
         plain[key] = text(value, f"values[{shown(key)}]") if isinstance(value, str) else value
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
