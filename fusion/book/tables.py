@@ -77,7 +77,7 @@ def rounded(value: float, decimals: int = 4) -> float:
         ``longdouble`` below float's normal numbers (2.2e-308), which those formatters refuse (its float is not
         it), is rounded exactly: to 0.0 at any decimals accepted.
     """
-    exact = _exact(value)
+    given = value
     try:
         value = _printed_number(value, "value")
     except ValueError:
@@ -86,13 +86,26 @@ def rounded(value: float, decimals: int = 4) -> float:
         count(decimals, "decimals", minimum=0)
         return 0.0  # |value| < 2.2e-308 < half of 10**-17 (the most decimals accepted): exactly zero (fuzz 45 D1)
     decimals = count(decimals, "decimals", minimum=0)
-    r = round(value, decimals) if exact is None or abs(value) < 1e-20 else float(round(exact, decimals))
+    # the exact value only once the float range is checked: a Decimal of exponent 1e7 is a Fraction of ten million
+    # digits (fuzz 47 C1: 6.1 CPU-s before its refusal); within the range and above 1e-20 it is a few hundred at most
+    r = round(value, decimals) if abs(value) < 1e-20 else _rounded_exact(given, value, decimals)
     return 0.0 if r == 0 else r
 
 
 #: The exact number types the formatters round as they are, not through their nearest float (fuzz 46b D3:
 #: ``rounded(Decimal("2.675"), 2)`` gave 2.67, the rounding of the float 2.67499999999999982236431605997495353221893310546875).
 _EXACT_TYPES = (decimal.Decimal, fractions.Fraction)
+
+
+def _rounded_exact(given: object, value: float, decimals: int) -> float:
+    """``given`` rounded half to even to ``decimals`` decimals as it is when it is a finite ``Decimal`` (by
+    ``quantize``: linear in its digits, where a Fraction of 200,000 digits took a CPU-second) or ``Fraction``,
+    else its float ``value`` by Python's ``round``; ``given`` within the float range (its float ``value`` finite)."""
+    if isinstance(given, decimal.Decimal) and given.is_finite():
+        ctx = decimal.Context(prec=400, rounding=decimal.ROUND_HALF_EVEN)  # 309 integer digits + 17 decimals fit
+        return float(given.quantize(decimal.Decimal(1).scaleb(-decimals), context=ctx))
+    exact = _exact(given)
+    return round(value, decimals) if exact is None else float(round(exact, decimals))
 
 
 def _exact(value: object) -> fractions.Fraction | None:
@@ -109,10 +122,15 @@ def _exact_significant(value: object, x: float, digits: int) -> float:
     """A finite nonzero ``x = float(value)``, or, for an exact ``value`` and ``digits`` <= 15 (float's decimal
     digits: the float of a ``digits``-digit decimal prints back as it), the float of ``value`` rounded exactly, half to
     even, to ``digits`` significant digits (``x`` again when that rounding leaves the float range)."""
-    q = _exact(value) if digits <= 15 else None
-    if q is None:
+    if digits > 15 or not isinstance(value, _EXACT_TYPES):
         return x
     ctx = decimal.Context(prec=digits, rounding=decimal.ROUND_HALF_EVEN, Emax=decimal.MAX_EMAX, Emin=decimal.MIN_EMIN)
+    if isinstance(value, decimal.Decimal):  # rounded as it is, linear in its digits (a Fraction of them is not)
+        r = float(ctx.plus(value)) if value.is_finite() else x
+        return r if math.isfinite(r) else x
+    q = _exact(value)
+    if q is None:
+        return x
     r = float(ctx.divide(decimal.Decimal(q.numerator), decimal.Decimal(q.denominator)))
     return r if math.isfinite(r) else x
 
