@@ -36,3 +36,13 @@ def test_rounded_and_sci_round_a_long_decimal_in_linear_time() -> None:
     assert rounded(Decimal("1e-10000000"), 2) == 0.0
     assert rounded(Decimal("2.675"), 2) == 2.68 and rounded(Decimal("-2.675"), 2) == -2.68
     assert rounded(Decimal("1.7e308"), 17) == 1.7e308
+
+
+@pytest.mark.parametrize("lo", [-1e8, -1e6, -1e4, -1.0, 0.0])
+def test_bounded_minimum_keeps_xatol_on_an_interval_holding_zero(lo: float) -> None:
+    # C2 (a regression of a7919f43): the offset from lo made scipy's relative term grow with the distance from lo:
+    # |x - 0.3| on [-1e8, 1] returned 1.0 (fun 0.7), on [-1e6, 1] 0.30601
+    from fusion.optimise.scalar import bounded_minimum
+
+    r = bounded_minimum(lambda x: abs(x - 0.3), lo, 1.0)
+    assert abs(r.x - 0.3) < 1e-8

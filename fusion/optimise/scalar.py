@@ -330,13 +330,15 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     lo, hi : float
         Search interval, ``lo < hi`` (finite).
     xatol : float
-        Absolute tolerance on the argument: the search runs on the offset :math:`u = x - lo` in
-        :math:`[0, hi - lo]` and stops, as scipy's does, once the bracket is within about
+        Absolute tolerance on the argument: the search runs on the offset :math:`u = x - s` from the point
+        :math:`s` of [lo, hi] nearest 0 and stops, as scipy's does, once the bracket is within about
         :math:`2\,(\sqrt{\epsilon}\,|u| + xatol/3)` of its midpoint (:math:`\epsilon` the float64 machine
-        epsilon), so the tolerance does not grow with the size of ``lo`` (fuzz 46b C4: on
+        epsilon). :math:`|x - s| \le |x|` for every x of the interval, so the tolerance is never wider than
+        scipy's on ``x`` and does not grow with the size of ``lo`` when the interval is far from 0 (fuzz 46b C4: on
         [1e8, 1e8 + 1] scipy's term :math:`\sqrt{\epsilon}\,|x|` = 1.5 stopped it at its first golden-section
-        point); it grows only with the distance from ``lo``. With ``lo = 0`` (the default) the search
-        is scipy's on ``x`` bit for bit.
+        point). An interval holding 0 (the default [0, 1]) is searched as scipy's on ``x``, bit for bit; there
+        the tolerance grows with :math:`|x|` only (fuzz 47 C2: an offset from ``lo`` made it grow with the
+        distance from ``lo``, 0.7 off on [-1e8, 1]).
 
     Returns
     -------
@@ -357,17 +359,18 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     """
     lo, hi = _check(lo, hi, f)
     xatol = tolerance(xatol, "xatol")
-    width = hi - lo  # finite: lo and hi are at most 1e150 in magnitude (``fusion._validation.scalar``)
+    shift = min(max(0.0, lo), hi)  # the point of [lo, hi] nearest 0: |x - shift| <= |x| on the interval
 
     def point(u: float) -> float:
-        """The argument at offset ``u`` from ``lo``, inside [lo, hi] (``lo + width`` may round past ``hi``)."""
-        return min(lo + u, hi)
+        """The argument at offset ``u`` from ``shift``, inside [lo, hi] (``shift + u`` may round past an end)."""
+        return min(max(shift + u, lo), hi)
 
     def checked(x: float) -> float:
         return _one_value(f(x))
 
-    # the offset from lo, not x: scipy's relative term sqrt(eps) |x| is then sqrt(eps) |x - lo| (fuzz 46b C4)
-    res = minimize_scalar(lambda u: checked(point(float(u))), bounds=(0.0, width), method="bounded",
+    # the offset from shift, not x: scipy's relative term sqrt(eps) |x| is then sqrt(eps) |x - shift| (fuzz 46b C4,
+    # fuzz 47 C2); lo and hi are at most 1e150 in magnitude (``fusion._validation.scalar``), so the bounds are finite
+    res = minimize_scalar(lambda u: checked(point(float(u))), bounds=(lo - shift, hi - shift), method="bounded",
                           options={"xatol": xatol})
     best_x, best_f = point(float(res.x)), float(res.fun)
     for end in (lo, hi):
