@@ -22,7 +22,7 @@ from fusion._validation import seed as check_seed
 from fusion._limits import READINGS_BENCHMARK, ROUND_OFF_TIE, STUDY_WORK
 from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
-from fusion.readings.robust import robust_fuse
+from fusion.readings.robust import _robust_limit, robust_fuse
 from fusion.scenarios._lecture_checks import _index, _sigmas, _values
 from fusion._shown import shown
 
@@ -44,6 +44,9 @@ BENCH_SIGMA = (0.5, 1.0, 1.5, 2.0, 4.0)
 #: 100 x 5 readings count about 1.4e8 units (about 1.4 CPU-s); its budget is its entry of ``fusion._limits.STUDY_WORK``
 #: (the reseeding sweep's 5,000 runs count 1.35e9 units: 3e9).
 _BENCH_READING = 45
+#: The methods of :func:`fusion.readings.robust.robust_fuse` the benchmark applies to the readings at k = K (median,
+#: biweight): their own limits are checked at its entry.
+_BENCH_ROBUST = ("median", "biweight")
 
 
 class BenchMethod(StrEnum):
@@ -117,8 +120,8 @@ def _snapshot_errors(X: np.ndarray, truth: float, sigma: np.ndarray, eps: float)
         BenchMethod.OPTIMAL_FUSION_SET: rd.fuse_epochs(xK, "optimal_fusion_set").values,
         BenchMethod.SUPPORT_DEGREE: rd.fuse_epochs(xK, "support_degree").values,
         # what a practitioner would use to resist an abnormal reading without any model (fusion.readings.robust)
-        BenchMethod.MEDIAN: robust_fuse(xK, "median"),
-        BenchMethod.BIWEIGHT: robust_fuse(xK, "biweight"),
+        BenchMethod.MEDIAN: robust_fuse(xK, _BENCH_ROBUST[0]),
+        BenchMethod.BIWEIGHT: robust_fuse(xK, _BENCH_ROBUST[1]),
     }
     return {name: (v - truth) ** 2 for name, v in est.items()}
 
@@ -175,7 +178,9 @@ def benchmark(
         A bad argument, named; before any work: the readings of every (seed, level, fault) key beyond the work budget
         (45 units a reading, measured, and a step a key; its entry of ``fusion._limits.STUDY_WORK``), the checked AWF's
         eight ``(runs, samples, n, n)`` pair arrays beyond the memory budget (naming runs, samples and sigma), or their
-        work at every key (6 units a pair element, measured) beyond ``fusion._validation.MAX_WORK``.
+        work at every key (6 units a pair element, measured) beyond ``fusion._validation.MAX_WORK``, or the
+        ``(runs, len(sigma))`` readings at k = K beyond what :func:`fusion.readings.robust.robust_fuse` takes for the
+        median and the biweight (its worst case: 344,655 runs of 3 sensors), naming runs and sigma.
     """
     sigma = read_once(sigma, "sigma")  # a Sequence class read once (fuzz 31a C4)
     if isinstance(seeds, (str, bytes)):
@@ -210,6 +215,11 @@ def benchmark(
     cs._pair_budget((runs, samples, sig_chk.size), "runs, samples and sigma",
                     fusions=len(seeds) * lv.size * len(faults),
                     fusion_names="seeds, levels, faults, runs, samples and sigma")
+    # each robust baseline's own refusal of the (runs, n) readings it fuses at k = K, at entry (fuzz 47 C4: the
+    # biweight's worst-case IRLS limit refused 344,656 runs x 3 sensors after ~10 CPU-s of the other methods)
+    for m in _BENCH_ROBUST:
+        _robust_limit(runs, sig_chk.size, m, "runs and sigma (the readings at k = K fused by the median and the "
+                      "biweight)")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     results = {}
