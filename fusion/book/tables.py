@@ -103,7 +103,8 @@ def _rounded_exact(given: object, value: float, decimals: int) -> float:
     else its float ``value`` by Python's ``round``; ``given`` within the float range (its float ``value`` finite)."""
     if isinstance(given, decimal.Decimal) and given.is_finite():
         ctx = decimal.Context(prec=400, rounding=decimal.ROUND_HALF_EVEN)  # 309 integer digits + 17 decimals fit
-        return float(given.quantize(decimal.Decimal(1).scaleb(-decimals), context=ctx))
+        step = decimal.Decimal((0, (1,), -decimals))  # 10**-decimals exactly, whatever the caller's context (fuzz 48 C5)
+        return float(given.quantize(step, context=ctx))
     exact = _exact(given)
     return round(value, decimals) if exact is None else float(round(exact, decimals))
 
@@ -131,7 +132,11 @@ def _exact_significant(value: object, x: float, digits: int) -> float:
     q = _exact(value)
     if q is None:
         return x
-    r = float(ctx.divide(decimal.Decimal(q.numerator), decimal.Decimal(q.denominator)))
+    # exact half-to-even rounding at the digits' place, by the Fraction's own round (a Decimal division of its
+    # numerator and denominator was superlinear: Fraction(3**N + 1, 3**N) at N = 2.5e6 took 39 CPU-s, fuzz 48 C3);
+    # the place from the float x, exact but at a power of ten, where :g's digits decide alike
+    place = digits - 1 - math.floor(math.log10(abs(x)))
+    r = float(round(q, place))
     return r if math.isfinite(r) else x
 
 
@@ -156,8 +161,8 @@ def _roundings(ours: float, decimals: int) -> tuple[float, ...]:
     ``fusion.book.ledger.PublishedValues`` and of :func:`side_by_side`.
     """
     r = round(ours, decimals)
-    with decimal.localcontext() as ctx:
-        ctx.prec = 2000  # exact for any double (at most 767 significant digits) times 10**17
+    # exact for any double (at most 767 significant digits) times 10**17, whatever the caller's context (fuzz 48 C5)
+    with decimal.localcontext(decimal.Context(prec=2000, Emax=decimal.MAX_EMAX, Emin=decimal.MIN_EMIN)):
         x = decimal.Decimal(ours).scaleb(decimals)
         if abs(x % 1) != decimal.Decimal("0.5"):  # not a tie: the ordinary rounding decides
             return (r,)
