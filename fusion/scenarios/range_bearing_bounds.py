@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._shown import shown
 from fusion._results import NONNEGATIVE, ResultSpec, array, validated_post_init
 from fusion._validation import FloatArray, as_array, instance_of
 from fusion._validation import flag
@@ -207,44 +208,51 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
     iu = np.triu_indices(n, 1)
     stack = np.vstack([eye] * n)
     rhs = np.vstack([np.zeros((4 * n, 4)), eye])
-    for k in range(sc.frames):
-        x = F @ x
-        refuse_on_sensor(sc, x[[0, 2]], "sc", f"the nominal trajectory from sc.x0 at frame {k}",
-                         "so the filters cannot be linearised")
-        Pp = np.einsum("ab,ijbc,dc->ijad", F, P, F) + Qx
-        dx, dy = x[0] - S[:, 0], x[2] - S[:, 1]
-        r2 = dx**2 + dy**2
-        H = np.zeros((n, 2, 4))
-        H[:, 0, 0], H[:, 0, 2] = dx / np.sqrt(r2), dy / np.sqrt(r2)
-        H[:, 1, 0], H[:, 1, 2] = -dy / r2, dx / r2
-        Kg = np.stack([Pp[i, i] @ H[i].T @ np.linalg.inv(H[i] @ Pp[i, i] @ H[i].T + R) for i in range(n)])
-        A = eye - Kg @ H
-        P = np.einsum("iab,ijbc,jdc->ijad", A, Pp, A)
-        for i in range(n):
-            P[i, i] += Kg[i] @ R @ Kg[i].T
-        Hc = H.reshape(2 * n, 4)
-        Pc = F @ Pc @ F.T + Q
-        Kc = Pc @ Hc.T @ np.linalg.inv(Hc @ Pc @ Hc.T + np.kron(np.eye(n), R))
-        Pc = (eye - Kc @ Hc) @ Pc
-        Ji = np.linalg.inv(P[np.arange(n), np.arange(n)])
-        Jinv = np.linalg.inv(Ji.sum(axis=0))
-        C = Jinv @ np.einsum("iab,ijbc,jcd->ad", Ji, P, Ji) @ Jinv
-        out["nees"][k] = np.trace(np.linalg.solve(Jinv, C))
-        d = np.array([[np.diag(P[i, j]) for j in range(n)] for i in range(n)])  # (n, n, 4) variances/covariances
-        corr = d[iu] / np.sqrt(d[iu[0], iu[0]] * d[iu[1], iu[1]])
-        out["cp"][k] = corr[:, [0, 2]].mean()
-        out["cv"][k] = corr[:, [1, 3]].mean()
-        # the best linear unbiased combination: min W big W^T subject to W stack = I, by its KKT system, which stays
-        # regular where the joint covariance big is singular (at the first frame, when the nodes share the prior:
-        # rank 4 + 2n < 4n); (stack^T big^-1 stack)^-1 solved a singular system there, and whether LAPACK noticed
-        # depended on the BLAS kernel (OpenBLAS's Haswell kernel raised, SkylakeX's returned a number)
-        big = P.transpose(0, 2, 1, 3).reshape(4 * n, 4 * n)
-        kkt = np.block([[big, stack], [stack.T, np.zeros((4, 4))]])
-        Cb = -np.linalg.solve(kkt, rhs)[4 * n:]
-        with np.errstate(invalid="ignore"):  # a negative variance (round-off at tiny noise): refused by the record
-            out["ru"][k] = np.sqrt(C[0, 0] + C[2, 2])
-            out["rb"][k] = np.sqrt(Cb[0, 0] + Cb[2, 2])
-            out["rc"][k] = np.sqrt(Pc[0, 0] + Pc[2, 2])
+    k = 0
+    try:
+        for k in range(sc.frames):
+            x = F @ x
+            refuse_on_sensor(sc, x[[0, 2]], "sc", f"the nominal trajectory from sc.x0 at frame {k}",
+                             "so the filters cannot be linearised")
+            Pp = np.einsum("ab,ijbc,dc->ijad", F, P, F) + Qx
+            dx, dy = x[0] - S[:, 0], x[2] - S[:, 1]
+            r2 = dx**2 + dy**2
+            H = np.zeros((n, 2, 4))
+            H[:, 0, 0], H[:, 0, 2] = dx / np.sqrt(r2), dy / np.sqrt(r2)
+            H[:, 1, 0], H[:, 1, 2] = -dy / r2, dx / r2
+            Kg = np.stack([Pp[i, i] @ H[i].T @ np.linalg.inv(H[i] @ Pp[i, i] @ H[i].T + R) for i in range(n)])
+            A = eye - Kg @ H
+            P = np.einsum("iab,ijbc,jdc->ijad", A, Pp, A)
+            for i in range(n):
+                P[i, i] += Kg[i] @ R @ Kg[i].T
+            Hc = H.reshape(2 * n, 4)
+            Pc = F @ Pc @ F.T + Q
+            Kc = Pc @ Hc.T @ np.linalg.inv(Hc @ Pc @ Hc.T + np.kron(np.eye(n), R))
+            Pc = (eye - Kc @ Hc) @ Pc
+            Ji = np.linalg.inv(P[np.arange(n), np.arange(n)])
+            Jinv = np.linalg.inv(Ji.sum(axis=0))
+            C = Jinv @ np.einsum("iab,ijbc,jcd->ad", Ji, P, Ji) @ Jinv
+            out["nees"][k] = np.trace(np.linalg.solve(Jinv, C))
+            d = np.array([[np.diag(P[i, j]) for j in range(n)] for i in range(n)])  # (n, n, 4) variances/covariances
+            corr = d[iu] / np.sqrt(d[iu[0], iu[0]] * d[iu[1], iu[1]])
+            out["cp"][k] = corr[:, [0, 2]].mean()
+            out["cv"][k] = corr[:, [1, 3]].mean()
+            # the best linear unbiased combination: min W big W^T subject to W stack = I, by its KKT system, which stays
+            # regular where the joint covariance big is singular (at the first frame, when the nodes share the prior:
+            # rank 4 + 2n < 4n); (stack^T big^-1 stack)^-1 solved a singular system there, and whether LAPACK noticed
+            # depended on the BLAS kernel (OpenBLAS's Haswell kernel raised, SkylakeX's returned a number)
+            big = P.transpose(0, 2, 1, 3).reshape(4 * n, 4 * n)
+            kkt = np.block([[big, stack], [stack.T, np.zeros((4, 4))]])
+            Cb = -np.linalg.solve(kkt, rhs)[4 * n:]
+            with np.errstate(invalid="ignore"):  # a negative variance (round-off at tiny noise): refused by the record
+                out["ru"][k] = np.sqrt(C[0, 0] + C[2, 2])
+                out["rb"][k] = np.sqrt(Cb[0, 0] + Cb[2, 2])
+                out["rc"][k] = np.sqrt(Pc[0, 0] + Pc[2, 2])
+    except np.linalg.LinAlgError:  # a singular innovation or information matrix (fuzz 48 C4: p0_std 1e7 m against
+        # sigma_r 1e-2 m): the covariances are not representable, as a non-finite record is (fuzz 28a C6)
+        raise ValueError(f"sc (its noise levels sigma_r = {shown(sc.sigma_r)} m, sigma_theta = "
+                         f"{shown(sc.sigma_theta)} rad and its prior P0) gives filters whose covariances are singular "
+                         f"to working precision at frame {k}: not representable") from None
     return LinearisedErrors(out["nees"], out["cp"], out["cv"], out["ru"], out["rb"], out["rc"])
 
 
