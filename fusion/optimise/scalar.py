@@ -33,6 +33,7 @@ from fusion._validation import allocation, as_array, as_callable, as_rng, as_rng
 from fusion._objectives import finite_optimum, objective_values
 from fusion._validation import argument_copy, flag, loop_work, tolerance, value_copy
 from fusion._nesting import shape_of
+from fusion._shown import shown
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
 
@@ -348,8 +349,9 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     Raises
     ------
     ValueError
-        Bounds not finite or ``hi <= lo``; an objective returning NaN, more than one number, or
-        infinite at every point tried.
+        Bounds not finite or ``hi <= lo``; an interval so wide against ``xatol`` that scipy's 500 iterations
+        end before the tolerance (about ``(hi - lo) / xatol > 1e100``); an objective returning NaN, more than one
+        number, or infinite at every point tried.
     TypeError
         An objective returning something other than a real number.
 
@@ -370,8 +372,13 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
 
     # the offset from shift, not x: scipy's relative term sqrt(eps) |x| is then sqrt(eps) |x - shift| (fuzz 46b C4,
     # fuzz 47 C2); lo and hi are at most 1e150 in magnitude (``fusion._validation.scalar``), so the bounds are finite
-    res = minimize_scalar(lambda u: checked(point(float(u))), bounds=(lo - shift, hi - shift), method="bounded",
-                          options={"xatol": xatol})
+    with np.errstate(over="ignore", invalid="ignore"):  # scipy's parabola steps overflow on a 1e150-wide interval
+        res = minimize_scalar(lambda u: checked(point(float(u))), bounds=(lo - shift, hi - shift), method="bounded",
+                              options={"xatol": xatol})
+    if not res.success:  # scipy's 500 iterations ran out: a golden section shrinks the interval 0.618x a step, so
+        # an interval wider than about 1e100 x xatol cannot reach it (fuzz 48 C6: [-1e150, 1e150] returned 9.9e7 for 0.3)
+        raise ValueError(f"lo and hi: the interval [{shown(lo)}, {shown(hi)}] is too wide for xatol = {shown(xatol)}: "
+                         f"the bounded search ran out of its {res.nfev} evaluations before reaching it")
     best_x, best_f = point(float(res.x)), float(res.fun)
     for end in (lo, hi):
         v = checked(end)
