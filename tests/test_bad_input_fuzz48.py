@@ -1,0 +1,50 @@
+"""Fuzz 48's findings (issue 35) fixed this session: C3-C6 (C1, C2 left open: glue_all's memo inside a cycle)."""
+
+from __future__ import annotations
+
+import decimal
+import time
+from decimal import Decimal
+from fractions import Fraction
+
+import pytest
+
+from fusion.book.tables import _roundings, rounded, sci
+
+
+def test_sci_rounds_a_long_fraction_in_near_linear_time() -> None:
+    # C3: a Decimal division of the numerator and denominator was superlinear (N = 1e6: 6.3 CPU-s)
+    q = Fraction(3**1_000_000 + 1, 3**1_000_000)
+    t = time.process_time()
+    assert sci(q, 4) == "1"
+    assert time.process_time() - t < 0.5
+    assert sci(Fraction(2675, 1000), 3) == "2.68" and sci(Fraction(99995, 10000), 4) == "10"
+    assert sci(Fraction(-5, 2), 1) == "-2" and sci(Fraction(1, 3), 3) == "0.333"
+
+
+def test_rounding_does_not_depend_on_the_callers_decimal_context() -> None:
+    # C5: the rounding step was built in the caller's context (prec 3: 1.23457 for 1.23456789; prec 1: a bare
+    # decimal.InvalidOperation)
+    with decimal.localcontext(decimal.Context(prec=3, Emin=-3)):
+        assert rounded(Decimal("1.23456789"), 10) == 1.23456789
+        assert _roundings(0.125, 2) == (0.12, 0.13)
+    with decimal.localcontext(decimal.Context(prec=1, Emin=-3)):
+        assert rounded(Decimal("2.675"), 10) == 2.675 and rounded(Decimal("2.675"), 2) == 2.68
+
+
+def test_linearised_errors_names_sc_for_singular_covariances() -> None:
+    # C4: a bare numpy LinAlgError "Singular matrix" from np.linalg.inv
+    from fusion.scenarios.range_bearing import RangeBearingScenario, linearised_errors
+
+    for kw in ({"p0_std": (1e7,) * 4, "sigma_r": 1e-2}, {"sigma_r": 1e-8}):
+        with pytest.raises(ValueError, match=r"^sc \(its noise levels"):
+            linearised_errors(RangeBearingScenario(**kw))
+
+
+def test_bounded_minimum_refuses_an_interval_its_iterations_cannot_reach() -> None:
+    # C6: scipy's 500 iterations ran out on [-1e150, 1e150] and its x (9.9e7 for 0.3) was returned
+    from fusion.optimise.scalar import bounded_minimum
+
+    with pytest.raises(ValueError, match=r"^lo and hi: the interval"):
+        bounded_minimum(lambda x: abs(x - 0.3), -1e150, 1e150)
+    assert abs(bounded_minimum(lambda x: abs(x - 0.3), -1e100, 1e100).x - 0.3) < 1e-8
