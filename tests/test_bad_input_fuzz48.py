@@ -48,3 +48,27 @@ def test_bounded_minimum_refuses_an_interval_its_iterations_cannot_reach() -> No
     with pytest.raises(ValueError, match=r"^lo and hi: the interval"):
         bounded_minimum(lambda x: abs(x - 0.3), -1e150, 1e150)
     assert abs(bounded_minimum(lambda x: abs(x - 0.3), -1e100, 1e100).x - 0.3) < 1e-8
+
+
+def test_glue_all_refuses_a_container_of_a_cycle_reached_by_two_paths() -> None:
+    # C1, C2: a container's printed size was memoised while an outer container of its cycle was open (printed [...]
+    # there) and charged so at a second path, where it prints in full: 38.7 CPU-s accepted; 20 such pairs printed
+    # 1,200 deep past the nesting check. A container holding itself, or shared outside any cycle, is still glued.
+    from fusion.book.glue import _finite
+
+    inner = [0.5] * 1000
+    big = [inner] * 300
+    Y: list = [None, big]
+    X = [Y]
+    Y[0] = X
+    t = time.process_time()
+    with pytest.raises(ValueError, match=r"^values\['k'\] must not reach a container of a cycle"):
+        _finite([X] * 60 + [Y], "k")
+    assert time.process_time() - t < 3.0
+    a: list = []
+    a.append(a)
+    assert _finite({"x": [a, a]}, "k")
+    c = [1.0]
+    d: list = [c, None]
+    d[1] = d
+    assert _finite([d, c, d], "k")

@@ -251,11 +251,14 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
     todo: list[tuple[Any, int, bool, list[int] | None]] = [(value, 0, counted, None)]
     printed: dict[int, list[int]] = {}   # by id, the containers reached: complete, or open (their entries visited)
     open_ids: set[int] = set()
+    open_stack: list[int] = []           # the open containers, outermost first (the walk is depth first)
+    tainted: set[int] = set()            # containers whose memo counted an outer open container as [...] (fuzz 48)
     pinned: list[object] = []            # the containers reached, kept alive: no id is reused during the call
     while todo:
         v, depth, done, outer = todo.pop()
         if v is _EXIT:                   # every entry of the container ``depth`` (its id) visited
             open_ids.discard(depth)
+            open_stack.pop()
             _add_printed(outer, printed[depth])
             continue
         if v is pd.NA or v is pd.NaT:
@@ -267,7 +270,14 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
         here = None
         if isinstance(v, _GLUE_CONTAINERS):
             if id(v) in open_ids:  # a container that holds itself: its text prints [...] there
+                # the containers opened inside it print it as [...] here but in full from outside the cycle: their
+                # memoised sizes hold for this path only (fuzz 48 C1, C2)
+                tainted.update(open_stack[open_stack.index(id(v)) + 1:])
                 continue
+            if id(v) in tainted:   # such a container reached again: its printed size depends on the path
+                raise ValueError(f"values[{shown(key)}] must not reach a container of a cycle of containers by more "
+                                 f"than one path: its printed size depends on the path (a {type(v).__name__} inside "
+                                 f"the cycle printed [...] on one path and in full on another)")
             if id(v) in printed:   # reached again by another path, printed again in full: its memoised size
                 entries, units, levels = printed[id(v)]
                 if depth + levels > MAX_NESTING:  # its deepest container nested MAX_NESTING deep or more
@@ -281,6 +291,7 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
             meter.charge(n, weight, key)  # charged before its entries are visited (fuzz 46a C2, C3)
             pinned.append(v)
             open_ids.add(id(v))
+            open_stack.append(id(v))
             here = printed[id(v)] = [n, n * weight, 1]
             todo.append((_EXIT, id(v), True, outer))
         inner = depth + 1
@@ -432,8 +443,9 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         structured array (not a DataFrame or Styler, whose tables print a missing cell as a word), naming
         ``values[key]``; checked for every value before any is glued, whatever ``decimals``. Containers nested
         more than 64 deep (``fusion._nesting.MAX_NESTING``; their text recurses), naming ``values[key]``; a
-        container that holds itself is accepted (its text prints ``[...]`` there). A NumPy longdouble beyond float's
-        range (it would be glued as inf or 0), naming ``values[key]``. More values (weighed by kind: tables by their
+        container that holds itself is accepted (its text prints ``[...]`` there), but a container of such a cycle
+        reached again by another path is refused (its text's size depends on the path). A NumPy longdouble beyond
+        float's range (it would be glued as inf or 0), naming ``values[key]``. More values (weighed by kind: tables by their
         cells, lists by their entries, object and extension arrays, object Series and Index by their size, figures)
         than the work budget glues, naming ``values``, before any is read; entries of containers inside a value (a
         list of lists) beyond the rest of the budget or beyond 10**6 in one call, counted as they are reached and
