@@ -20,9 +20,10 @@ from fusion._validation import FloatArray
 __all__: list[str] = []
 
 #: Largest a-posteriori round-off bound of a prefix-sum difference accepted, relative to the window's largest
-#: ``|value|`` (a lower bound of the scale its direct sum's round-off refers to). The book's window calls (the
-#: regime study of notebook 02 appendix, 100-sample windows over 600 samples) reach at most about 1e-13 (measured by
-#: fix53a); a window whose bound exceeds 1e-10 is summed directly.
+#: ``|value|`` (a lower bound of the scale its direct sum's round-off refers to); a window whose bound exceeds it is
+#: summed directly. The book's window calls (notebook 02's 16 calls, 1000 x 100 x 12 stacks, 100-sample windows)
+#: reach at most 2.4e-10 (measured by fix53a), 42x inside: none is recomputed. At 1e-10, 18,744 of the book's
+#: windows would be, their bits changed by up to 6.6e-13.
 WINDOW_RTOL = 1e-8
 
 
