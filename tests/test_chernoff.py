@@ -379,8 +379,10 @@ def test_bad_input_raises() -> None:
         ch.fuse_mixtures([gA, gB], np.random.default_rng(0), eps0=[0.9, 0.9])
     with pytest.raises(ValueError, match="columns"):
         ch.is_objective(np.zeros((4, 2)), np.zeros(4), [0.2, 0.3, 0.5])
-    with pytest.raises(ValueError, match="SeedSequence"):
-        dist.run_tracking(SMALL, 3)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="seed must be a SeedSequence, got int"):
+        dist.run_tracking(SMALL, 3)
+    with pytest.raises(TypeError, match=r"seeds\[1\] must be a SeedSequence, got int"):
+        dist.run_tracking_batch(SMALL, [np.random.SeedSequence(0), 3])  # type: ignore[arg-type]
 
 
 # --- optional cross-check against an independent implementation ------------------------------

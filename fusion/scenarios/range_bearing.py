@@ -98,8 +98,7 @@ def run_tracking(
         with evaluations and timings.
     """
     instance_of(sc, RangeBearingScenario, "sc")
-    if not isinstance(seed, np.random.SeedSequence):
-        raise ValueError("seed must be a numpy.random.SeedSequence")
+    instance_of(seed, np.random.SeedSequence, "seed")  # a wrong type is a TypeError (fuzz 48 D2: an int seed)
     return run_tracking_batch(sc, [seed], all_nodes=[flag(all_nodes, "all_nodes")], swarm_options=swarm_options)[0]
 
 
@@ -152,9 +151,8 @@ def run_tracking_batch(
     workers = check_workers(workers, "workers")  # at most the machine's CPUs (rule 9)
     if not seeds:
         raise ValueError("seeds is empty: at least one SeedSequence is needed")
-    for s in seeds:
-        if not isinstance(s, np.random.SeedSequence):
-            raise ValueError("seeds must hold numpy.random.SeedSequence objects")
+    for i, s in enumerate(seeds):
+        instance_of(s, np.random.SeedSequence, f"seeds[{i}]")
     flags = [False] * len(seeds) if all_nodes is None else [flag(f, f"all_nodes[{i}]")
                                                                 for i, f in enumerate(sequence(all_nodes, "all_nodes"))]
     if len(flags) != len(seeds):
