@@ -253,11 +253,13 @@ def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: f
     if dim is not None and arr.shape[0] != dim:
         raise ValueError(f"{name} must be {dim}x{dim} to match the state, got {arr.shape}")
     sym, _ = _finite_symmetric(arr, name, rtol)
-    factor, info = _potrf(arr, lower=1, clean=0)
+    # the matrix returned is judged: the symmetric part, not the lower triangle of an asymmetric input (fuzz 49a C5:
+    # [[1, 1 + 5e-10], [1 - 1e-10, 1]] passed on its lower triangle while its symmetric part, returned, is indefinite)
+    factor, info = _potrf(sym, lower=1, clean=0)
     if info != 0:  # LAPACK Cholesky: info > 0 if not positive definite
         raise ValueError(f"{name} must be positive definite")
-    _covariance_magnitude(arr, name)
-    if singular_mask(arr, factor):  # Cholesky can succeed by rounding on an exactly singular matrix
+    _covariance_magnitude(sym, name)
+    if singular_mask(sym, factor):  # Cholesky can succeed by rounding on an exactly singular matrix
         raise ValueError(_singular_message(name))
     return sym
 

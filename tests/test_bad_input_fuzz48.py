@@ -72,3 +72,23 @@ def test_glue_all_refuses_a_container_of_a_cycle_reached_by_two_paths() -> None:
     d: list = [c, None]
     d[1] = d
     assert _finite([d, c, d], "k")
+
+
+def test_fuzz49a_c5_positive_definiteness_is_judged_on_the_symmetric_part_returned() -> None:
+    """Within the asymmetry tolerance, the symmetric part (what the readers return) is judged, not the lower triangle:
+    [[1, 1 + 5e-10], [1 - 1e-10, 1]] has a positive-definite lower triangle and an indefinite symmetric part."""
+    import numpy as np
+    import pytest
+    from fusion._covariances import as_covariance, as_covariances, covariance_pair
+    from fusion.estimates import covariance_intersection
+
+    P1 = np.array([[1.0, 1.0 + 5e-10], [1.0 - 1e-10, 1.0]])
+    assert np.linalg.eigvalsh(0.5 * (P1 + P1.T)).min() < 0 < np.linalg.cholesky(P1)[1, 1]
+    for call in (lambda: as_covariance(P1, name="P1"), lambda: covariance_pair(P1, np.eye(2)),
+                 lambda: covariance_intersection(np.zeros(2), P1, np.ones(2), np.eye(2), omega=1.0)):
+        with pytest.raises(ValueError, match="P1 must be positive definite"):
+            call()
+    with pytest.raises(ValueError, match=r"covs\[1\] must be positive definite"):
+        as_covariances(np.stack([np.eye(2), P1]), name="covs")
+    Q = np.array([[2.0, 1.0 + 1e-12], [1.0, 2.0]])   # a valid one within the tolerance: its symmetric part
+    assert np.array_equal(as_covariance(Q), 0.5 * (Q + Q.T))
