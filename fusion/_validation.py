@@ -101,6 +101,7 @@ from __future__ import annotations
 
 import dataclasses as _dataclasses
 import datetime as _dt
+import decimal as _decimal
 import functools as _functools
 import importlib
 import inspect as _inspect
@@ -200,6 +201,8 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
             raise _complex_error(name) from None
         if is_ragged(exc):  # numpy's message names nothing: the one rule of a ragged or self-containing list
             raise ragged_error(name) from None
+        if "signaling NaN" in str(exc):  # a Decimal('sNaN') entry is a NaN, a bad value (fuzz 49a D1)
+            raise ValueError(f"{name} contains NaN or infinite values (a signalling NaN)") from None
         raise TypeError(f"{name} must be numeric (array_like of numbers): {exc}") from None
     except MemoryError:
         raise
@@ -415,6 +418,8 @@ def _real_number(value: object, name: str, what: str = "a number", bound: float 
         raise TypeError(f"{name} must be {what}, got a date or duration {shown(value)} (convert it to seconds first)")
     if isinstance(value, np.ndarray) and value.dtype.kind not in "fiu":  # an object array: arithmetic on it is Python's
         raise TypeError(f"{name} must be {what}, got an array of dtype {value.dtype}")
+    if isinstance(value, _decimal.Decimal) and value.is_snan():  # float() refuses a signalling NaN: it is a NaN
+        return float("nan")   # (a bad value, the callers' finiteness rule names it; fuzz 49a D1: it was a TypeError)
     try:
         v = float(value)  # type: ignore[arg-type]
         if _lost_in_cast(value, v):  # Decimal('1e400') or np.longdouble('1e4000') -> inf

@@ -92,3 +92,20 @@ def test_fuzz49a_c5_positive_definiteness_is_judged_on_the_symmetric_part_return
         as_covariances(np.stack([np.eye(2), P1]), name="covs")
     Q = np.array([[2.0, 1.0 + 1e-12], [1.0, 2.0]])   # a valid one within the tolerance: its symmetric part
     assert np.array_equal(as_covariance(Q), 0.5 * (Q + Q.T))
+
+
+def test_fuzz49a_d1_a_signalling_nan_decimal_is_a_nan() -> None:
+    """Decimal('sNaN') is a NaN (a bad value: ValueError naming the argument, '—' where a NaN prints as a dash), not
+    a wrong type: float() refuses it, which the readers turned into a TypeError."""
+    from decimal import Decimal
+    import pytest
+    from fusion._validation import as_array, positive_scalar
+    from fusion.book.ledger import fmt
+    from fusion.book.tables import rounded, sci
+
+    s = Decimal("sNaN")
+    for call, name in ((lambda: rounded(s), "value"), (lambda: positive_scalar(s, "x"), "x"),
+                       (lambda: as_array([1.0, s], "x"), "x")):
+        with pytest.raises(ValueError, match=f"^{name} "):
+            call()
+    assert sci(s) == sci(Decimal("NaN")) and fmt(s) == fmt(Decimal("NaN"))
