@@ -209,11 +209,35 @@ def stochastic_readings(root: Path | None = None) -> dict[tuple[str, str], dict[
                 continue
             readings = {"primary": ("primary", r["runs"])}
             others = [x for x in spec.readings if x.key != "primary"]
-            for x, a in zip(others, [a for a in r["alternatives"] if a["kind"] != "stand-in"]):
+            alternatives = _reading_alternatives(spec, r, others, d)
+            for x, a in zip(others, alternatives):
                 if a.get("runs") is not None:
                     readings[x.key] = (x.kind, a["runs"])
             out[(key, spec.id)] = readings
     return out
+
+
+def _reading_alternatives(spec: C.ClaimSpec, record: dict, others: list, folder: Path) -> list:
+    """The ledger alternatives of a record's claim-file readings ``others``, in their order.
+
+    ``build_ledger`` writes one alternative per non-primary reading, in the claim file's order, and for a baseline
+    the source leaves undefined (rule R7) first the stand-in it inserts, which is no reading of the file. Any other
+    ``kind: stand-in`` alternative is a reading of the file and is paired with it (fuzz 49b C1: every stand-in was
+    dropped, so chapter 06's chf-gain-ci paired its reading baseline-determinant with frames-1-4's entry and lost
+    baseline-trace and frames-1-4). A ledger whose alternatives do not match the file's readings, in number or in
+    kind, is refused naming the file and the record: it was built from another claim file.
+    """
+    alternatives = list(record["alternatives"])
+    b = spec.baseline
+    if b is not None and not b["defined"] and alternatives and alternatives[0].get("kind") == "stand-in":
+        alternatives = alternatives[1:]  # the R7 stand-in build_ledger inserts (fusion.book.claims.build_ledger)
+    kinds = [x.kind for x in others]
+    stored = [a.get("kind") for a in alternatives]
+    if stored != kinds:
+        raise ValueError(f"ledger {folder}: record {spec.id} holds alternatives of the kinds {shown(stored, 200)}, "
+                         f"its claim file's readings are of the kinds {shown(kinds, 200)}: the ledger was built from "
+                         "another claim file (rebuild it)")
+    return alternatives
 
 
 def _ledger_dir(root: object) -> Path:
