@@ -598,7 +598,7 @@ def error_moments(gains: GainSequence, truth: ArrayLike, R: ArrayLike, mean0: Ar
     :math:`\mathbf e_k = A_k(F\mathbf e_{k-1} - \mathbf d_k) + K_k\mathbf v_k` with
     :math:`\mathbf d_k = \mathbf x_k - F\mathbf x_{k-1}` (the part of the path the model does not predict:
     zero on a straight leg). So its mean :math:`\mathbf b_k = A_k(F\mathbf b_{k-1} - \mathbf d_k)` and its
-    covariance :math:`C_k = A_kFC_{k-1}F^	op A_k^	op + K_kRK_k^	op`: the RMSE over infinitely many
+    covariance :math:`C_k = A_kFC_{k-1}F^\top A_k^\top + K_kRK_k^\top`: the RMSE over infinitely many
     runs, without Monte Carlo. The filter's own :math:`P_k` equals :math:`C_k` only for targets that
     follow its model; on a path smoother than its :math:`Q` it is larger.
 
