@@ -134,3 +134,16 @@ def test_c3_a_mappings_keys_are_checked_and_charged() -> None:
         _finite({i: 0.5 for i in range(500_001)}, "a")
     _refused_quickly([{i: 0.5 for i in range(500_000)}, {"x": 0.5}], r"^values\['a'\] ask for more work")
     assert _finite({"x": 1.0, 2: [0.5, "y"], (1, "z"): None}, "a")
+
+
+def test_c2_a_table_inside_a_container_is_charged_as_a_table() -> None:
+    """The same class (fix56a): a table inside a list was charged as one list entry (400 units) but printed as a
+    table: ``[[df] * 300] * 300`` of a 2 x 1 DataFrame, 90,000 printed tables, ran 24.6 CPU-s accepted. Each is now
+    charged ``_GLUE_TABLE`` where the walk reaches it: 2500 (7.5e8 units) accepted, 3600 refused before the work."""
+    from fusion.book import glue as G
+    df = pd.DataFrame({"a": [1.0, 2.0]})
+    assert G._GLUE_TABLE == 300_000
+    for table in (df, df.style):
+        assert G._finite([[table] * 50] * 50, "a")
+        _refused_quickly([[table] * 60] * 60, r"^values\['a'\] ask for more work")
+    G.glue_all({"a": [df, df.style], "b": df})

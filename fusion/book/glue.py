@@ -230,8 +230,9 @@ def _table_labels(labels: pd.Index) -> list[pd.Index]:
     return [lv for lv in levels if _object_dtype(lv.dtype)]
 
 
-def _table_size(table: pd.DataFrame) -> int:
+def _table_size(table: pd.DataFrame | Styler) -> int:
     """How many object cells and labels ``_table_cells`` gives for ``table``, known without visiting them."""
+    table = table.data if isinstance(table, Styler) else table
     rows = table.shape[0]
     labels = _table_labels(table.index) + _table_labels(table.columns)
     return rows * sum(1 for d in table.dtypes if _object_dtype(d)) + sum(len(lv) for lv in labels)
@@ -249,11 +250,13 @@ def _is_missing_cell(cell: object) -> bool:
     return isinstance(cell, (np.datetime64, np.timedelta64)) and bool(np.isnat(cell))
 
 
-def _table_cells(table: pd.DataFrame) -> list[object]:
-    """The entries :func:`_finite` walks in ``table`` (fuzz 49a C2: pandas formats each visible object cell in full,
-    a cell holding a list of 1e8 printed floats ran 29.5 CPU-s charged as one table): the cells of its object columns
-    and its object labels (row and column labels, MultiIndex levels), missing cells and non-finite numbers left out
-    (a table prints them as words, as in a numeric column); a numeric column is not looked into."""
+def _table_cells(table: pd.DataFrame | Styler) -> list[object]:
+    """The entries :func:`_finite` walks in ``table`` (a Styler: its table; fuzz 49a C2: pandas formats each visible
+    object cell in full, a cell holding a list of 1e8 printed floats ran 29.5 CPU-s charged as one table): the cells
+    of its object columns and its object labels (row and column labels, MultiIndex levels), missing cells and
+    non-finite numbers left out (a table prints them as words, as in a numeric column); a numeric column is not
+    looked into."""
+    table = table.data if isinstance(table, Styler) else table
     cols = [j for j, d in enumerate(table.dtypes) if _object_dtype(d)]
     cells = list(table.iloc[:, cols].to_numpy(dtype=object).ravel(order="F")) if cols else []
     for lv in _table_labels(table.index) + _table_labels(table.columns):
@@ -355,13 +358,15 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
             if depth >= MAX_NESTING:  # its text would recurse (fuzz 30a D4: a RecursionError in the kernel)
                 raise nesting_error(f"values[{shown(key)}]", itself=False)
             n, weight = (0, 0) if done else _container_work(v)  # done: its container counted it (a Series' array)
-            meter.charge(n, weight, key)  # charged before its entries are visited (fuzz 46a C2, C3)
+            # a table inside a container is printed as a table (the value itself is counted by ``_glue_work``)
+            units = n * weight + (_GLUE_TABLE if depth and isinstance(v, (pd.DataFrame, Styler)) else 0)
+            meter.take(n, units, key)  # charged before its entries are visited (fuzz 46a C2, C3)
             pinned.append(v)
             kind = 0 if isinstance(v, _GLUE_PANDAS) else 2 if type(v).__repr__ in _GUARDED_REPRS else 1
             open_ids[id(v)] = kind
             open_pandas += kind == 0
             open_stack.append(id(v))
-            here = printed[id(v)] = [n, n * weight, 1]
+            here = printed[id(v)] = [n, units, 1]
             todo.append((_EXIT, id(v), True, outer))
         inner = depth + 1
         if isinstance(v, Decimal):
@@ -372,10 +377,8 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
                 return False
         elif isinstance(v, (pd.Series, pd.Index)):
             todo.append((v.to_numpy(), inner, True, here))
-        elif isinstance(v, pd.DataFrame):   # its object cells and labels, counted by ``_container_work`` (fuzz 49a C2)
-            todo += [(e, inner, False, here) for e in _table_cells(v)]
-        elif isinstance(v, Styler):         # the table it shows
-            todo.append((v.data, inner, False, here))
+        elif isinstance(v, (pd.DataFrame, Styler)):   # its (a Styler's table's) object cells and labels, counted
+            todo += [(e, inner, False, here) for e in _table_cells(v)]   # by ``_container_work`` (fuzz 49a C2)
         elif isinstance(v, ExtensionArray):   # its entries as objects: pd.NA, NaN, NaT, as the Series shows them
             todo.append((np.asarray(v, dtype=object), inner, True, here))
         elif isinstance(v, np.ndarray):
@@ -407,7 +410,10 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
 #: display message. An entry of a list, tuple, set or dict value: 2.1 us (one list of 10**6 floats, 2.12 CPU-s; a
 #: numeric array is vectorised: 10**7 entries in 0.01 s). A DataFrame: 1.0-2.7 ms (10 x 2 to 10**6 cells, its text
 #: truncated). A Styler: 0.9 ms at 10 x 2, then 5.6-12.6 us a cell (10**4 cells 126 ms, 10**6 cells 5.6 s). A figure:
-#: 31-34 ms (one axes, audited and saved as PNG). The book's largest call glues 118 values (1.2e6 units).
+#: 31-34 ms (one axes, audited and saved as PNG). The book's largest call glues 118 values (1.2e6 units). A table
+#: inside a container is printed as a table too, and charged ``_GLUE_TABLE`` where :func:`_finite` reaches it (fuzz
+#: 49a, fix56a: ``[[df] * 300] * 300`` of a 2 x 1 DataFrame, 90,000 printed tables at 0.27 ms, was charged as list
+#: entries and ran 24.6 CPU-s; now refused before the work).
 _GLUE_VALUE, _GLUE_ENTRY, _GLUE_TABLE, _GLUE_CELL, _GLUE_FIGURE = 10_000, 300, 300_000, 1_000, 5_000_000
 #: Fuzz 46a C2, C3 (measured as above, 10**6 entries, minimum of 3, shared machine under load ~11): an entry of an
 #: object array, object Series or Index, or pandas extension array (``pd.array``, Categorical; visited as objects,
@@ -434,15 +440,14 @@ _GLUE_COUNTED = (list, tuple, set, frozenset, dict, pd.Series, pd.Index, Extensi
 def _container_work(v: object) -> tuple[int, int]:
     """The entries of the container ``v`` that :func:`_finite` visits one by one and the units of each (``_GLUE_*``):
     a list, tuple or set its length, a mapping its keys and values, at ``_GLUE_NESTED``; an object array, an object
-    (or non-NumPy dtype) Series or Index, an extension array its size, a DataFrame its object cells and labels
-    (``_table_size``), at ``_GLUE_OBJECT``, known without visiting; a structured array holding objects at most one
-    object per 8 bytes of an element; a numeric array 0 (vectorised); a Styler 0 (its table is its entry)."""
+    (or non-NumPy dtype) Series or Index, an extension array its size, a DataFrame or Styler its (table's) object
+    cells and labels (``_table_size``), at ``_GLUE_OBJECT``, known without visiting; a structured array holding
+    objects at most one object per 8 bytes of an element; a numeric array 0 (vectorised). A table inside a
+    container is charged ``_GLUE_TABLE`` more by :func:`_finite`, where it reaches it."""
     if isinstance(v, (pd.Series, pd.Index)):
         return (len(v) if _object_dtype(v.dtype) else 0), _GLUE_OBJECT
-    if isinstance(v, pd.DataFrame):
+    if isinstance(v, (pd.DataFrame, Styler)):
         return _table_size(v), _GLUE_OBJECT
-    if isinstance(v, Styler):
-        return 0, _GLUE_OBJECT   # its table is its one entry, counted when reached
     if isinstance(v, Mapping):
         return 2 * len(v), _GLUE_NESTED   # its keys and its values
     if isinstance(v, ExtensionArray):
@@ -466,7 +471,7 @@ class _Meter:
     def take(self, n: int, units: int, key: str) -> None:
         """Take ``n`` entries of ``units`` units in all (a container reached again: its printed entries, fuzz 47
         C3); ValueError naming ``values[key]`` beyond either allowance."""
-        if n == 0:
+        if n == 0 and units == 0:
             return
         self.units -= units
         self.entries -= n
@@ -536,9 +541,9 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         ``values[key]``. More values (weighed by kind: tables by their cells, lists by their entries, a dict by its
         keys and values, object and extension arrays, object Series and Index by their size, figures) than the work
         budget glues, naming ``values``, before any is read; entries of containers inside a value (a list of lists,
-        a table's object cells and labels) beyond the rest of the budget or beyond 10**6 in one call, counted as
-        they are reached and as they are printed (a container reached by two paths twice), naming
-        ``values[key]``.
+        a table's object cells and labels, a table inside a list) beyond the rest of the budget or beyond 10**6 in
+        one call, counted as they are reached and as they are printed (a container reached by two paths twice),
+        naming ``values[key]``.
     """
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")
