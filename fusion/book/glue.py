@@ -9,6 +9,7 @@ import datetime
 import math
 import numbers
 import re
+from collections import OrderedDict, defaultdict
 from collections.abc import Mapping
 from typing import Any, TypeAlias, Union
 
@@ -195,13 +196,72 @@ def _glued_cell(table: object, row: object, column: object, name: str, lo: float
 
 
 #: The values glue_all and ``keep`` take as they are (checked when a number: finite, not a missing-value marker):
-#: numbers (Python, NumPy, Decimal, Fraction), text, None, dates and times, and a figure or a table (a DataFrame
-#: or Styler prints a missing cell as a word). Containers are the ones :func:`_finite` looks into; anything else
-#: is refused by type (fuzz 26a G/D3: a deque, array.array, dict view or generator printed ``nan`` unchecked).
+#: numbers (Python, NumPy, Decimal, Fraction), text, None, dates and times, and a figure. Containers are the ones
+#: :func:`_finite` looks into; anything else is refused by type (fuzz 26a G/D3: a deque, array.array, dict view or
+#: generator printed ``nan`` unchecked).
 _GLUE_LEAVES = (type(None), str, bytes, numbers.Number, np.generic, datetime.date, datetime.time, datetime.timedelta,
-                Figure, pd.DataFrame, Styler)
-#: The containers whose entries are checked: their text prints their entries.
-_GLUE_CONTAINERS = (list, tuple, set, frozenset, Mapping, pd.Series, pd.Index, np.ndarray, ExtensionArray)
+                Figure)
+#: The containers whose entries are checked: their text prints their entries (a table: its object cells and labels,
+#: ``_table_cells``; a mapping: its keys and its values, fuzz 49a C2, C3).
+_GLUE_CONTAINERS = (list, tuple, set, frozenset, Mapping, pd.Series, pd.Index, np.ndarray, ExtensionArray,
+                    pd.DataFrame, Styler)
+#: Containers whose text restarts at each turn of a cycle (fuzz 49a C1): pandas prints its cells' containers three
+#: levels deep itself (``pprint_thing``, no recursion guard), and a Series, Index or table met again is printed again
+#: in full. A cycle reached while one of them is open is refused: its text would recurse (a RecursionError in the
+#: kernel, 0.8 MB of traceback, nothing glued).
+_GLUE_PANDAS = (pd.Series, pd.Index, ExtensionArray, pd.DataFrame, Styler)
+#: The texts that print a container met again inside itself as ``[...]`` (``{...}``, ``...``): Python's list, tuple,
+#: set, dict (OrderedDict, defaultdict) and NumPy's array texts. A cycle none of whose containers has one (a Counter
+#: or another mapping holding itself) is refused: its text recurses.
+_GUARDED_REPRS = frozenset({list.__repr__, tuple.__repr__, set.__repr__, frozenset.__repr__, dict.__repr__,
+                            OrderedDict.__repr__, defaultdict.__repr__, np.ndarray.__repr__})
+
+
+def _object_dtype(dtype: object) -> bool:
+    """Whether a Series, Index or table column of ``dtype`` holds objects that :func:`_finite` visits one by one (an
+    object or non-NumPy dtype: its cells print as their own text), not numbers checked at once."""
+    return not (isinstance(dtype, np.dtype) and dtype.kind != "O")
+
+
+def _table_labels(labels: pd.Index) -> list[pd.Index]:
+    """The indexes of labels a table prints for ``labels`` (its rows or columns): its levels for a MultiIndex (each
+    value once), else itself; only those holding objects (:func:`_object_dtype`)."""
+    levels = list(labels.levels) if isinstance(labels, pd.MultiIndex) else [labels]
+    return [lv for lv in levels if _object_dtype(lv.dtype)]
+
+
+def _table_size(table: pd.DataFrame | Styler) -> int:
+    """How many object cells and labels ``_table_cells`` gives for ``table``, known without visiting them."""
+    table = table.data if isinstance(table, Styler) else table
+    rows = table.shape[0]
+    labels = _table_labels(table.index) + _table_labels(table.columns)
+    return rows * sum(1 for d in table.dtypes if _object_dtype(d)) + sum(len(lv) for lv in labels)
+
+
+def _is_missing_cell(cell: object) -> bool:
+    """Whether a table cell is missing or a number that is not finite: a table prints it as a word (NaN, inf,
+    <NA>, NaT, None), in an object column as in a numeric one (not looked into)."""
+    if cell is None or cell is pd.NA or cell is pd.NaT:
+        return True
+    if isinstance(cell, (float, complex, np.floating, np.complexfloating)):
+        return not cmath.isfinite(cell)
+    if isinstance(cell, Decimal):
+        return not cell.is_finite()
+    return isinstance(cell, (np.datetime64, np.timedelta64)) and bool(np.isnat(cell))
+
+
+def _table_cells(table: pd.DataFrame | Styler) -> list[object]:
+    """The entries :func:`_finite` walks in ``table`` (a Styler: its table; fuzz 49a C2: pandas formats each visible
+    object cell in full, a cell holding a list of 1e8 printed floats ran 29.5 CPU-s charged as one table): the cells
+    of its object columns and its object labels (row and column labels, MultiIndex levels), missing cells and
+    non-finite numbers left out (a table prints them as words, as in a numeric column); a numeric column is not
+    looked into."""
+    table = table.data if isinstance(table, Styler) else table
+    cols = [j for j, d in enumerate(table.dtypes) if _object_dtype(d)]
+    cells = list(table.iloc[:, cols].to_numpy(dtype=object).ravel(order="F")) if cols else []
+    for lv in _table_labels(table.index) + _table_labels(table.columns):
+        cells += list(lv.to_numpy(dtype=object))
+    return [c for c in cells if not _is_missing_cell(c)]
 
 
 #: The marker of :func:`_finite`'s walk after a container's entries: its printed size is then complete.
@@ -222,9 +282,11 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
 
     Numbers are floats, complex numbers, NumPy scalars, Decimals (a signalling NaN included) and numeric arrays
     (every entry; a 0-d array is its number). Containers are looked into, as their text prints their entries:
-    lists, tuples, sets, a mapping's values, a Series or Index, a pandas extension array (``pd.array``,
-    Categorical, SparseArray: the arrays a Series holds), an object or structured array (fuzz 22a D1). A
-    DataFrame or Styler is not: the book's tables print a missing cell as a word.
+    lists, tuples, sets, a mapping's keys and values (fuzz 49a C3), a Series or Index, a pandas extension array
+    (``pd.array``, Categorical, SparseArray: the arrays a Series holds), an object or structured array (fuzz 22a
+    D1), a DataFrame's object cells and labels and a Styler's table (fuzz 49a C2: ``_table_cells``). A table's
+    missing cell or non-finite number is not refused: a table prints it as a word; what a cell holds is checked by
+    the rule of every container.
 
     Raises
     ------
@@ -235,7 +297,9 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
     ValueError
         Containers nested more than ``fusion._nesting.MAX_NESTING`` (64) deep, naming ``values[key]``; entries
         beyond ``meter``'s allowance (fuzz 46a C2, C3), naming ``values[key]``, when a container is reached, before
-        its entries are visited.
+        its entries are visited; a container that holds itself where its text would recurse (fuzz 49a C1): inside
+        a Series, Index, table or pandas array (``_GLUE_PANDAS``), or on a cycle none of whose containers has a
+        text that prints ``[...]`` (``_GUARDED_REPRS``: a Counter holding itself), naming ``values[key]``.
 
     ``meter`` (a fresh one when None) is charged for the entries of every container reached (``_container_work``)
     but ``value`` itself when ``counted`` (its caller counted it: ``_glue_work``), as its text prints them: a
@@ -250,14 +314,15 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
     # id: a container reached again by another path is charged it (fuzz 47 C3: its text is printed at each path)
     todo: list[tuple[Any, int, bool, list[int] | None]] = [(value, 0, counted, None)]
     printed: dict[int, list[int]] = {}   # by id, the containers reached: complete, or open (their entries visited)
-    open_ids: set[int] = set()
+    open_ids: dict[int, int] = {}        # the open containers: 0 pandas, 1 text unguarded, 2 guarded ([...])
     open_stack: list[int] = []           # the open containers, outermost first (the walk is depth first)
+    open_pandas = 0                      # how many of them are pandas objects (``_GLUE_PANDAS``)
     tainted: set[int] = set()            # containers whose memo counted an outer open container as [...] (fuzz 48)
     pinned: list[object] = []            # the containers reached, kept alive: no id is reused during the call
     while todo:
         v, depth, done, outer = todo.pop()
         if v is _EXIT:                   # every entry of the container ``depth`` (its id) visited
-            open_ids.discard(depth)
+            open_pandas -= open_ids.pop(depth) == 0
             open_stack.pop()
             _add_printed(outer, printed[depth])
             continue
@@ -270,9 +335,14 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
         here = None
         if isinstance(v, _GLUE_CONTAINERS):
             if id(v) in open_ids:  # a container that holds itself: its text prints [...] there
+                cycle = open_stack[open_stack.index(id(v)):]
+                if open_pandas or not any(open_ids[i] == 2 for i in cycle):   # fuzz 49a C1
+                    raise ValueError(f"values[{shown(key)}] must not hold a container that holds itself inside a "
+                                     f"Series, Index, table or pandas array, nor a cycle of containers none of whose "
+                                     f"texts prints [...] (a {type(v).__name__} here): its text would recurse")
                 # the containers opened inside it print it as [...] here but in full from outside the cycle: their
                 # memoised sizes hold for this path only (fuzz 48 C1, C2)
-                tainted.update(open_stack[open_stack.index(id(v)) + 1:])
+                tainted.update(cycle[1:])
                 continue
             if id(v) in tainted:   # such a container reached again: its printed size depends on the path
                 raise ValueError(f"values[{shown(key)}] must not reach a container of a cycle of containers by more "
@@ -288,11 +358,15 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
             if depth >= MAX_NESTING:  # its text would recurse (fuzz 30a D4: a RecursionError in the kernel)
                 raise nesting_error(f"values[{shown(key)}]", itself=False)
             n, weight = (0, 0) if done else _container_work(v)  # done: its container counted it (a Series' array)
-            meter.charge(n, weight, key)  # charged before its entries are visited (fuzz 46a C2, C3)
+            # a table inside a container is printed as a table (the value itself is counted by ``_glue_work``)
+            units = n * weight + (_GLUE_TABLE if depth and isinstance(v, (pd.DataFrame, Styler)) else 0)
+            meter.take(n, units, key)  # charged before its entries are visited (fuzz 46a C2, C3)
             pinned.append(v)
-            open_ids.add(id(v))
+            kind = 0 if isinstance(v, _GLUE_PANDAS) else 2 if type(v).__repr__ in _GUARDED_REPRS else 1
+            open_ids[id(v)] = kind
+            open_pandas += kind == 0
             open_stack.append(id(v))
-            here = printed[id(v)] = [n, n * weight, 1]
+            here = printed[id(v)] = [n, units, 1]
             todo.append((_EXIT, id(v), True, outer))
         inner = depth + 1
         if isinstance(v, Decimal):
@@ -303,6 +377,8 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
                 return False
         elif isinstance(v, (pd.Series, pd.Index)):
             todo.append((v.to_numpy(), inner, True, here))
+        elif isinstance(v, (pd.DataFrame, Styler)):   # its (a Styler's table's) object cells and labels, counted
+            todo += [(e, inner, False, here) for e in _table_cells(v)]   # by ``_container_work`` (fuzz 49a C2)
         elif isinstance(v, ExtensionArray):   # its entries as objects: pd.NA, NaN, NaT, as the Series shows them
             todo.append((np.asarray(v, dtype=object), inner, True, here))
         elif isinstance(v, np.ndarray):
@@ -319,7 +395,8 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
             if not cmath.isfinite(v):
                 return False
         elif isinstance(v, (Mapping, list, tuple, set, frozenset)):
-            entries = list(v.values()) if isinstance(v, Mapping) else v   # a mapping's values read once
+            # a mapping's keys and values read once: its text prints both (fuzz 49a C3: a NaN key was glued)
+            entries = [e for kv in v.items() for e in kv] if isinstance(v, Mapping) else v
             # its plain floats checked here, not walked one by one (~0.1 us an entry instead of ~1.5 us)
             if not all(math.isfinite(e) for e in entries if type(e) is float):
                 return False
@@ -333,13 +410,19 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
 #: display message. An entry of a list, tuple, set or dict value: 2.1 us (one list of 10**6 floats, 2.12 CPU-s; a
 #: numeric array is vectorised: 10**7 entries in 0.01 s). A DataFrame: 1.0-2.7 ms (10 x 2 to 10**6 cells, its text
 #: truncated). A Styler: 0.9 ms at 10 x 2, then 5.6-12.6 us a cell (10**4 cells 126 ms, 10**6 cells 5.6 s). A figure:
-#: 31-34 ms (one axes, audited and saved as PNG). The book's largest call glues 118 values (1.2e6 units).
+#: 31-34 ms (one axes, audited and saved as PNG). The book's largest call glues 118 values (1.2e6 units). A table
+#: inside a container is printed as a table too, and charged ``_GLUE_TABLE`` where :func:`_finite` reaches it (fuzz
+#: 49a, fix56a: ``[[df] * 300] * 300`` of a 2 x 1 DataFrame, 90,000 printed tables at 0.27 ms, was charged as list
+#: entries and ran 24.6 CPU-s; now refused before the work).
 _GLUE_VALUE, _GLUE_ENTRY, _GLUE_TABLE, _GLUE_CELL, _GLUE_FIGURE = 10_000, 300, 300_000, 1_000, 5_000_000
 #: Fuzz 46a C2, C3 (measured as above, 10**6 entries, minimum of 3, shared machine under load ~11): an entry of an
 #: object array, object Series or Index, or pandas extension array (``pd.array``, Categorical; visited as objects,
 #: one by one): 1.0-1.3 us visited by :func:`_finite`, 1.1-1.3 us glued (its text is truncated): 200 units. An
 #: entry of a container inside a value (a list of lists): 1.7 us visited, 3.5 us glued (1000 lists of 1000 floats,
 #: 3.46 CPU-s: the text prints every inner list): 400 units. A numeric array: 0 (vectorised, ~1 ns an entry).
+#: Fuzz 49a C2: a table's object cell (and label) is such an entry, and what it holds is printed as a Series cell's:
+#: one cell holding ``[[[0.5] * 99] * 99] * 99`` (980,299 printed entries, 3.9e8 units) is glued in 4.2 CPU-s as a
+#: DataFrame (its text and its HTML), 2.1 CPU-s as an object Series (machine shared, load ~8).
 _GLUE_OBJECT, _GLUE_NESTED = 200, 400
 #: The entries :func:`_finite` may reach inside containers the caller did not count (a list of lists) in one call:
 #: they are counted as they are reached, so the ones visited before a refusal cost at most 10**6 x 1.7 us, ~1.7
@@ -356,12 +439,17 @@ _GLUE_COUNTED = (list, tuple, set, frozenset, dict, pd.Series, pd.Index, Extensi
 
 def _container_work(v: object) -> tuple[int, int]:
     """The entries of the container ``v`` that :func:`_finite` visits one by one and the units of each (``_GLUE_*``):
-    a list, tuple, set or mapping its length at ``_GLUE_NESTED``; an object array, an object (or non-NumPy dtype)
-    Series or Index, an extension array its size at ``_GLUE_OBJECT``, known without visiting; a structured array
-    holding objects at most one object per 8 bytes of an element; a numeric array 0 (vectorised)."""
+    a list, tuple or set its length, a mapping its keys and values, at ``_GLUE_NESTED``; an object array, an object
+    (or non-NumPy dtype) Series or Index, an extension array its size, a DataFrame or Styler its (table's) object
+    cells and labels (``_table_size``), at ``_GLUE_OBJECT``, known without visiting; a structured array holding
+    objects at most one object per 8 bytes of an element; a numeric array 0 (vectorised). A table inside a
+    container is charged ``_GLUE_TABLE`` more by :func:`_finite`, where it reaches it."""
     if isinstance(v, (pd.Series, pd.Index)):
-        numeric = isinstance(v.dtype, np.dtype) and v.dtype.kind != "O"
-        return (0 if numeric else len(v)), _GLUE_OBJECT
+        return (len(v) if _object_dtype(v.dtype) else 0), _GLUE_OBJECT
+    if isinstance(v, (pd.DataFrame, Styler)):
+        return _table_size(v), _GLUE_OBJECT
+    if isinstance(v, Mapping):
+        return 2 * len(v), _GLUE_NESTED   # its keys and its values
     if isinstance(v, ExtensionArray):
         return len(v), _GLUE_OBJECT
     if isinstance(v, np.ndarray):
@@ -383,7 +471,7 @@ class _Meter:
     def take(self, n: int, units: int, key: str) -> None:
         """Take ``n`` entries of ``units`` units in all (a container reached again: its printed entries, fuzz 47
         C3); ValueError naming ``values[key]`` beyond either allowance."""
-        if n == 0:
+        if n == 0 and units == 0:
             return
         self.units -= units
         self.entries -= n
@@ -404,8 +492,10 @@ def _glue_work(value: object) -> int:
         return _GLUE_TABLE + _GLUE_CELL * int(value.data.size)
     if isinstance(value, pd.DataFrame):
         return _GLUE_TABLE
-    if isinstance(value, (list, tuple, set, frozenset, dict)):
+    if isinstance(value, (list, tuple, set, frozenset)):
         return _GLUE_ENTRY * len(value)
+    if isinstance(value, dict):
+        return _GLUE_ENTRY * 2 * len(value)   # its keys and its values (fuzz 49a C3)
     if isinstance(value, _GLUE_COUNTED):
         n, weight = _container_work(value)
         return n * weight
@@ -439,17 +529,21 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         ``é`` composed or decomposed, would be two keys: ``_glue_prefix``'s rule for the whole key, fuzz 36a D1).
         A number (a float, a complex number, a NumPy scalar, a Decimal, any entry of a numeric array) NaN or
         infinite, or a missing value (``pd.NA``, ``pd.NaT``, a NumPy ``NaT``), also inside a list, tuple, set,
-        mapping, Series, Index, pandas extension array (``pd.array``, Categorical, SparseArray), object or
-        structured array (not a DataFrame or Styler, whose tables print a missing cell as a word), naming
-        ``values[key]``; checked for every value before any is glued, whatever ``decimals``. Containers nested
-        more than 64 deep (``fusion._nesting.MAX_NESTING``; their text recurses), naming ``values[key]``; a
-        container that holds itself is accepted (its text prints ``[...]`` there), but a container of such a cycle
-        reached again by another path is refused (its text's size depends on the path). A NumPy longdouble beyond
-        float's range (it would be glued as inf or 0), naming ``values[key]``. More values (weighed by kind: tables by their
-        cells, lists by their entries, object and extension arrays, object Series and Index by their size, figures)
-        than the work budget glues, naming ``values``, before any is read; entries of containers inside a value (a
-        list of lists) beyond the rest of the budget or beyond 10**6 in one call, counted as they are reached and
-        as they are printed (a container reached by two paths twice), naming ``values[key]``.
+        a mapping's keys or values, Series, Index, pandas extension array (``pd.array``, Categorical,
+        SparseArray), object or structured array, or a container in a cell or label of a DataFrame or Styler (a
+        table's own missing cell is not refused: a table prints it as a word), naming ``values[key]``; checked for
+        every value before any is glued, whatever ``decimals``. Containers nested more than 64 deep
+        (``fusion._nesting.MAX_NESTING``; their text recurses), naming ``values[key]``; a container that holds
+        itself is accepted (its text prints ``[...]`` there), but a container of such a cycle reached again by
+        another path is refused (its text's size depends on the path), and so is a cycle inside a Series, Index,
+        table or pandas array, or one of containers none of which prints ``[...]`` (a Counter holding itself):
+        their text recurses. A NumPy longdouble beyond float's range (it would be glued as inf or 0), naming
+        ``values[key]``. More values (weighed by kind: tables by their cells, lists by their entries, a dict by its
+        keys and values, object and extension arrays, object Series and Index by their size, figures) than the work
+        budget glues, naming ``values``, before any is read; entries of containers inside a value (a list of lists,
+        a table's object cells and labels, a table inside a list) beyond the rest of the budget or beyond 10**6 in
+        one call, counted as they are reached and as they are printed (a container reached by two paths twice),
+        naming ``values[key]``.
     """
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")
