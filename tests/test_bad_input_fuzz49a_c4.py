@@ -43,3 +43,14 @@ def test_an_inaccurate_call_is_refused_quickly_naming_sc():
     with pytest.raises(ValueError, match=r"^sc \(its noise levels .* lose their accuracy to round-off: at frame"):
         linearised_errors(sc)
     assert time.process_time() - t < 1.0
+
+
+def test_an_inaccurate_naive_combination_is_refused_naming_sc():
+    # the nodes' covariances accurate (their two forms within 9.8e-8) but nearly singular at T = 1e3 s: the naive
+    # product's rmse_uniform and nees_naive were 2e-4 and 4e-5 off the reference; the whitened combination differs
+    # by 3.4e-4
+    sc = RangeBearingScenario(p0_std=(1e4,) * 4, sigma_r=0.1, sigma_theta=0.0349, T=1e3, frames=8)
+    t = time.process_time()
+    with pytest.raises(ValueError, match=r"^sc \(its noise levels .* lose their accuracy to round-off: at frame"):
+        linearised_errors(sc)
+    assert time.process_time() - t < 1.0
