@@ -180,7 +180,8 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
     since the nodes share the prior error and the target's process noise and have independent measurement
     noise. The centralised filter's covariance is computed in information form,
     :math:`P_c \leftarrow \bigl((FP_cF^\top + Q)^{-1} + \sum_iH_i^\top R^{-1}H_i\bigr)^{-1}` (its simple form
-    :math:`(I - K_cH_c)P_c` lost its accuracy to round-off at wide priors, fuzz 49a C4). The naive product has mean :math:`J^{-1}\sum_iP_{ii}^{-1}\hat x_i`, :math:`J = \sum_iP_{ii}^{-1}`,
+    :math:`(I - K_cH_c)P_c` lost its accuracy to round-off at wide priors, fuzz 49a C4). The naive product has mean
+    :math:`J^{-1}\sum_iP_{ii}^{-1}\hat x_i`, :math:`J = \sum_iP_{ii}^{-1}`,
     and true error covariance :math:`C = J^{-1}\bigl(\sum_{ij}P_{ii}^{-1}P_{ij}P_{jj}^{-1}\bigr)J^{-1}`; its
     expected NEES is :math:`\operatorname{tr}(JC)`, 4 when the errors are independent. The counterfactual
     switches drop one shared source from the cross terms (``common_prior=False``: :math:`P_{ij}(0) = 0`;
