@@ -112,7 +112,9 @@ def test_c5_a_cloud_collapsed_near_a_sensor_is_refused_naming_sc():
 def test_c6_a_refused_record_names_the_callers_argument():
     from fusion.scenarios.range_bearing import LinearisedErrors, linearised_errors
     with pytest.raises(ValueError, match=r"^sc gives a result that is refused: LinearisedErrors\."):
-        linearised_errors(_sc(sigma_r=1e-3), True, False)
+        # (sigma_r = 1e-3 m, refused here before fix 56b, was the centralised simple form's round-off; its
+        # information form is within 8e-9 of a 100-digit reference there)
+        linearised_errors(_sc(p0_std=(100.0,) * 4, sigma_r=1000.0, sigma_theta=1e-9, T=1000.0), True, False)
     with pytest.raises(ValueError, match=r"^LinearisedErrors\.nees_naive"):   # built by the caller: its field
         LinearisedErrors(*[np.array([np.nan])] * 6)
 

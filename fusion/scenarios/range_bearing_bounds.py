@@ -143,6 +143,29 @@ def _linearised_frame_units(n: int) -> int:
     return 30_000 + 4_000 * n + 450 * n * n + (n * n * n + 1) // 2
 
 
+#: Largest accepted round-off estimate of :func:`linearised_errors`, at any frame: the discrepancy of each node's
+#: covariance (the Joseph form's diagonal block) from the same filter's information-form recursion run beside it,
+#: entry ``(a, b)`` relative to ``sqrt(P_aa P_bb)`` (``_discrepancy``), and the relative discrepancy of the naive
+#: product's NEES and position variance from the same combination computed in coordinates whitened by the nodes' mean
+#: covariance. Calibrated (fix 56b) against a 100-digit reference of the record on a grid of 384 scenarios (p0_std
+#: 1e2-1e7 m, sigma_r 1e-3-1e3 m, sigma_theta 1e-9-1 rad, T 1e-3-1e9 s, 8 frames; 322 not singular): at or below
+#: 1e-7, 125 calls pass the record, their outputs within 1.3e-5 of the reference (relative; correlations absolute);
+#: above, 186 refused, none accurate to 1e-8, 28 accurate to 1e-6 (at 1e-6, accepted outputs reached 1.5e-3). Not
+#: seen by it: an error the Joseph and information forms make alike (p0_std 1e7 m, sigma_r 0.1 m, sigma_theta 1e-9
+#: rad, T 1e3 s: rmse_uniform 2e-3 off at an estimate of 9.8e-8, refused there by the record's correlation bound).
+_LINEARISED_RTOL = 1e-7
+
+
+def _discrepancy(P: FloatArray, P2: FloatArray) -> float:
+    """The largest ``|P - P2|_ab / sqrt(P2_aa P2_bb)`` over a stack of covariances (inf where not finite): invariant
+    to each state component's units, as ``fusion.filtering.tracks``' split discrepancy."""
+    d = np.sqrt(np.abs(np.diagonal(P2, axis1=-2, axis2=-1)))
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+        r = np.abs(P - P2) / (d[..., :, None] * d[..., None, :])
+        r = np.where(P == P2, 0.0, r)
+    return float(np.where(np.isnan(r), np.inf, r).max())
+
+
 def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
                       common_process: bool = True) -> LinearisedErrors:
     r"""Cross-covariances of the nodes' errors for Kalman filters linearised at the nominal trajectory.
@@ -155,7 +178,10 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
               \qquad P_{ij}(0) = P_0 ,
 
     since the nodes share the prior error and the target's process noise and have independent measurement
-    noise. The naive product has mean :math:`J^{-1}\sum_iP_{ii}^{-1}\hat x_i`, :math:`J = \sum_iP_{ii}^{-1}`,
+    noise. The centralised filter's covariance is computed in information form,
+    :math:`P_c \leftarrow \bigl((FP_cF^\top + Q)^{-1} + \sum_iH_i^\top R^{-1}H_i\bigr)^{-1}` (its simple form
+    :math:`(I - K_cH_c)P_c` lost its accuracy to round-off at wide priors, fuzz 49a C4). The naive product has mean
+    :math:`J^{-1}\sum_iP_{ii}^{-1}\hat x_i`, :math:`J = \sum_iP_{ii}^{-1}`,
     and true error covariance :math:`C = J^{-1}\bigl(\sum_{ij}P_{ii}^{-1}P_{ij}P_{jj}^{-1}\bigr)J^{-1}`; its
     expected NEES is :math:`\operatorname{tr}(JC)`, 4 when the errors are independent. The counterfactual
     switches drop one shared source from the cross terms (``common_prior=False``: :math:`P_{ij}(0) = 0`;
@@ -182,8 +208,11 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
         ``sc``: its frames times its sensors' cost per frame (``30,000 + 4,000 n + 450 n**2 + n**3 / 2`` units for
         ``n`` sensors, measured) beyond the work budget (fuzz 40a C2: 100,000 frames ran 31 CPU-s), refused before any
         work; its nominal trajectory reaches a sensor (range 0: no bearing, no linearisation; fuzz 28a C5), or the
-        filters' covariances at its noise levels are not representable (a non-finite record, refused naming ``sc``,
-        fuzz 28a C6: ``sigma_r = 1e-3`` m loses the centralised covariance's positivity to round-off).
+        filters' covariances at its noise levels, prior and period are not representable: singular, a non-finite
+        record (fuzz 28a C6), or a round-off estimate above 1e-7: a node's covariance whose Joseph form differs from
+        its information form, or the naive product's NEES or position variance from the same combination in whitened
+        coordinates, by more than that (relative; fix 56b: ``p0_std = 1e4`` m, ``sigma_r = 1e-3`` m, ``T = 1e-3`` s
+        gave the record's RMSEs 3 % off, ``sigma_r = 0.1`` m, ``T = 1e3`` s its ``rmse_uniform`` 2e-4 off).
 
     References
     ----------
@@ -194,17 +223,39 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
     flag(common_prior, "common_prior")
     flag(common_process, "common_process")
     work((sc.frames,), "sc (its frames and sensors)", weight=_linearised_frame_units(len(sc.sensor_array)))
+    out, off = _linearised(sc, common_prior, common_process)
+    record = LinearisedErrors(out["nees"], out["cp"], out["cv"], out["ru"], out["rb"], out["rc"])  # finite, bounded
+    if (off > _LINEARISED_RTOL).any():
+        k = int(np.argmax(off > _LINEARISED_RTOL))
+        raise ValueError(f"sc (its noise levels sigma_r = {shown(sc.sigma_r)} m, sigma_theta = "
+                         f"{shown(sc.sigma_theta)} rad, its prior P0 and its period T = {shown(sc.T)} s) gives filters "
+                         f"whose covariances lose their accuracy to round-off: at frame {k} two forms of a node's "
+                         f"covariance or of the naive product's combination differ by {off[k]:.2g} (relative), above "
+                         f"{_LINEARISED_RTOL:g}; not representable")
+    return record
+
+
+def _linearised(sc: RangeBearingScenario, common_prior: bool, common_process: bool) -> tuple[dict, FloatArray]:
+    """The record of :func:`linearised_errors` (its fields by short name) and, per frame, its round-off estimate
+    (``_LINEARISED_RTOL``)."""
     model = ncv_model(sc.T, sc.q)
     F, Q = model.F, model.Q
     S = sc.sensor_array
     n = len(S)
     R = np.diag([sc.sigma_r**2, sc.sigma_theta**2])
+    Rinv = np.diag([sc.sigma_r**-2, sc.sigma_theta**-2])
     eye = np.eye(4)
     P = np.array([[sc.P0 if (i == j or common_prior) else np.zeros((4, 4)) for j in range(n)] for i in range(n)])
     Qx = np.array([[Q if (i == j or common_process) else np.zeros((4, 4)) for j in range(n)] for i in range(n)])
-    Pc = sc.P0.copy()
+    # the nodes' covariances in information form, a recursion of their own beside the Joseph form's diagonal blocks:
+    # their discrepancy measures the round-off of both; and the centralised filter's covariance, in information form
+    # only (fix 56b: its simple form (I - K H) P returned rmse_central 21.74 m for 11.3177 m at p0_std = 1e5 m; its
+    # Joseph form was off by more than 1e-6 at 118 of 177 points of a grid where the information form was within
+    # 3.6e-6 at all, against a 100-digit reference)
+    Pinf = np.array([sc.P0] * (n + 1))
     x = np.asarray(sc.x0, dtype=float)
     out = {k: np.empty(sc.frames) for k in ("nees", "cp", "cv", "ru", "rb", "rc")}
+    off = np.zeros(sc.frames)
     iu = np.triu_indices(n, 1)
     stack = np.vstack([eye] * n)
     rhs = np.vstack([np.zeros((4 * n, 4)), eye])
@@ -225,23 +276,41 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
             P = np.einsum("iab,ijbc,jdc->ijad", A, Pp, A)
             for i in range(n):
                 P[i, i] += Kg[i] @ R @ Kg[i].T
-            Hc = H.reshape(2 * n, 4)
-            Pc = F @ Pc @ F.T + Q
-            Kc = Pc @ Hc.T @ np.linalg.inv(Hc @ Pc @ Hc.T + np.kron(np.eye(n), R))
-            Pc = (eye - Kc @ Hc) @ Pc
+            info = np.einsum("iab,bc,icd->iad", H.transpose(0, 2, 1), Rinv, H)   # each node's H_i^T R^-1 H_i
+            # the nodes' own covariances and the centralised one (its information: the sum) in information form
+            Pinf = np.linalg.inv(np.linalg.inv(np.einsum("ab,ibc,dc->iad", F, Pinf, F) + Q)
+                                 + np.concatenate([info, info.sum(axis=0, keepdims=True)]))
+            Pinf = 0.5 * (Pinf + Pinf.transpose(0, 2, 1))
+            Pc = Pinf[n]
+            off[k] = _discrepancy(P[np.arange(n), np.arange(n)], Pinf[:n])
             Ji = np.linalg.inv(P[np.arange(n), np.arange(n)])
             Jinv = np.linalg.inv(Ji.sum(axis=0))
             C = Jinv @ np.einsum("iab,ijbc,jcd->ad", Ji, P, Ji) @ Jinv
             out["nees"][k] = np.trace(np.linalg.solve(Jinv, C))
+            # the same combination in coordinates whitened by the nodes' mean covariance (its outputs are invariant),
+            # rounding differently: the discrepancy measures the round-off of the inversions of the nodes'
+            # covariances, nearly singular at a long period (fix 56b: T = 1e3 s, rmse_uniform 2e-4 off)
+            L = np.linalg.cholesky(P[np.arange(n), np.arange(n)].mean(axis=0))
+            Li = np.linalg.inv(L)
+            big = P.transpose(0, 2, 1, 3).reshape(4 * n, 4 * n)
+            bw = np.tensordot(Li, np.tensordot(big.reshape(n, 4, n, 4), Li, axes=([3], [1])), axes=([1], [1]))
+            bw = bw.transpose(1, 0, 2, 3).reshape(4 * n, 4 * n)        # L^-1 P_ij L^-T in block (i, j)
+            Jw = np.linalg.inv(bw.reshape(n, 4, n, 4)[np.arange(n), :, np.arange(n), :])
+            Jwinv = np.linalg.inv(Jw.sum(axis=0))
+            Jrow = Jw.transpose(1, 0, 2).reshape(4, 4 * n)
+            Cw = Jwinv @ (Jrow @ bw @ Jrow.T) @ Jwinv
+            nw, Cw = np.trace(np.linalg.solve(Jwinv, Cw)), L @ Cw @ L.T
+            with np.errstate(divide="ignore", invalid="ignore"):
+                off[k] = max(off[k], abs(nw / out["nees"][k] - 1), abs((Cw[0, 0] + Cw[2, 2]) / (C[0, 0] + C[2, 2]) - 1))
             d = np.array([[np.diag(P[i, j]) for j in range(n)] for i in range(n)])  # (n, n, 4) variances/covariances
-            corr = d[iu] / np.sqrt(d[iu[0], iu[0]] * d[iu[1], iu[1]])
+            with np.errstate(invalid="ignore"):  # a negative variance (round-off): refused by the record
+                corr = d[iu] / np.sqrt(d[iu[0], iu[0]] * d[iu[1], iu[1]])
             out["cp"][k] = corr[:, [0, 2]].mean()
             out["cv"][k] = corr[:, [1, 3]].mean()
             # the best linear unbiased combination: min W big W^T subject to W stack = I, by its KKT system, which stays
             # regular where the joint covariance big is singular (at the first frame, when the nodes share the prior:
             # rank 4 + 2n < 4n); (stack^T big^-1 stack)^-1 solved a singular system there, and whether LAPACK noticed
             # depended on the BLAS kernel (OpenBLAS's Haswell kernel raised, SkylakeX's returned a number)
-            big = P.transpose(0, 2, 1, 3).reshape(4 * n, 4 * n)
             kkt = np.block([[big, stack], [stack.T, np.zeros((4, 4))]])
             Cb = -np.linalg.solve(kkt, rhs)[4 * n:]
             with np.errstate(invalid="ignore"):  # a negative variance (round-off at tiny noise): refused by the record
@@ -253,7 +322,7 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
         raise ValueError(f"sc (its noise levels sigma_r = {shown(sc.sigma_r)} m, sigma_theta = "
                          f"{shown(sc.sigma_theta)} rad and its prior P0) gives filters whose covariances are singular "
                          f"to working precision at frame {k}: not representable") from None
-    return LinearisedErrors(out["nees"], out["cp"], out["cv"], out["ru"], out["rb"], out["rc"])
+    return out, off
 
 
 # the public home of these names is fusion.scenarios.range_bearing (documentation, pickles, the input registry)
