@@ -109,3 +109,14 @@ def test_fuzz49a_d1_a_signalling_nan_decimal_is_a_nan() -> None:
         with pytest.raises(ValueError, match=f"^{name} "):
             call()
     assert sci(s) == sci(Decimal("NaN")) and fmt(s) == fmt(Decimal("NaN"))
+
+
+
+def test_no_source_file_of_the_package_holds_a_tab() -> None:
+    r"""A literal tab in a raw docstring is what ``"\top"`` became when a script wrote it through a non-raw string:
+    the API page printed ``F^	op`` (found by fix56b in ``linearised_errors`` and ``filter_moments``)."""
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[1] / "fusion"
+    tabs = [f"{p.relative_to(root)}:{i}" for p in sorted(root.rglob("*.py"))
+            for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1) if "\t" in line]
+    assert not tabs, tabs

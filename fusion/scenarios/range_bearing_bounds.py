@@ -174,7 +174,7 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
     (gain :math:`K_i`, :math:`A_i = I - K_iH_i`). The errors of nodes :math:`i` and :math:`j` have the exact
     cross-covariance (Bar-Shalom & Campo 1986)
 
-    .. math:: P_{ij} \leftarrow A_i(FP_{ij}F^	op + Q)A_j^	op + \delta_{ij}K_iRK_i^	op ,
+    .. math:: P_{ij} \leftarrow A_i(FP_{ij}F^\top + Q)A_j^\top + \delta_{ij}K_iRK_i^\top ,
               \qquad P_{ij}(0) = P_0 ,
 
     since the nodes share the prior error and the target's process noise and have independent measurement
