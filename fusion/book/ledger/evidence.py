@@ -89,7 +89,8 @@ def _decimal_fault(p: float, d: int, dtype: np.dtype) -> str | None:
 #: Measured (CPU time, minimum of 3, 200,000 values, shared machine with other jobs): constructor 2.2 us a value of a
 #: float64 array, 3.4 us of a list of floats; ``matches`` 0.7 us a value that matches, 3.5 us one that does not
 #: (``_roundings``); ``to_dict`` 0.05 us more. So 700 units (7 us): the budget's edge, 1.4e6 values, runs about
-#: 5-10 CPU-s (fuzz 49b C2: 2**25 values, the input ceiling, ran 82 CPU-s and 26 more for each ``status()``); a
+#: 4-11 CPU-s (300,000 values that do not match, from a list, with two ``status()``, a ``summary()`` and a
+#: ``to_dict()``: 2.2 CPU-s; fuzz 49b C2: 2**25 values, the input ceiling, ran 82 CPU-s and 26 more for each ``status()``); a
 #: published table of the book has a few dozen.
 _PUBLISHED_VALUE = 700
 
