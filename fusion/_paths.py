@@ -8,6 +8,7 @@ naming the argument and showing at most 60 characters of the value (a 5000-chara
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
@@ -135,6 +136,64 @@ def file_text(path: Path, label: str, limit: int = MAX_FILE_BYTES) -> str:
     except UnicodeDecodeError as exc:
         raise ValueError(f"{label}: not UTF-8 text ({exc.reason} at byte {exc.start})") from None
     return text.replace("\r\n", "\n").replace("\r", "\n")
+
+
+def write_file_text(path: Path, text: str, label: str) -> bytes:
+    """Write ``text`` as UTF-8 to the file ``path``, whole or not at all: the one writer of the book's files (the
+    ledger, ``fusion.book.ledger.Ledger.write``; the reseeding sweep's ``stability.json``).
+
+    The text is encoded before any file is touched, then written to a temporary file in the target's folder and
+    renamed over the target (:func:`os.replace`, atomic on one file system), so that a failure (a text that is not
+    UTF-8, a full disk, no permission) leaves the old file as it was (fuzz 49b C5: ``Path.write_text`` truncated a
+    ledger file to 0 bytes and then failed to encode a lone surrogate). A symlink to a file is followed (the file it
+    names is replaced, the link kept); an existing file keeps its permission bits, a new one gets the default ones
+    (``0o666`` less the umask, as ``open`` gives).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file (checked by the caller: :func:`file_in`).
+    text : str
+        The text to write.
+    label : str
+        What the caller calls the file or its argument, named in the message.
+
+    Returns
+    -------
+    bytes
+        The bytes written (the UTF-8 text).
+
+    Raises
+    ------
+    ValueError
+        ``text`` cannot be written as UTF-8 (a lone surrogate), before any file is touched; or the file cannot be
+        written (an OS error: no permission, a full disk), the old file left as it was; naming ``label``.
+    """
+    try:
+        data = text.encode("utf-8")
+    except UnicodeEncodeError as exc:
+        raise ValueError(f"{label}: cannot write {path.name}: its text holds U+{ord(exc.object[exc.start]):04X} at "
+                         f"character {exc.start}, which UTF-8 cannot encode (a lone surrogate); the file is "
+                         "unchanged") from None
+    target = Path(os.path.realpath(path))   # a symlink's file, replaced in its own folder
+    tmp = target.with_name(f".{target.name}.{os.getpid()}.{os.urandom(4).hex()}.tmp")
+    try:
+        mode = stat.S_IMODE(os.stat(target).st_mode) if target.exists() else None
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)   # the umask applies
+        try:
+            with os.fdopen(fd, "wb") as fh:
+                fh.write(data)
+            if mode is not None:
+                os.chmod(tmp, mode)
+            os.replace(tmp, target)
+        except BaseException:
+            with contextlib.suppress(OSError):
+                os.remove(tmp)
+            raise
+    except OSError as exc:   # no permission, a full disk: the old file is unchanged
+        raise ValueError(f"{label}: cannot write {path.name} ({exc.strerror or type(exc).__name__}); the file is "
+                         "unchanged") from None
+    return data
 
 
 def _no_constant(name: str) -> None:

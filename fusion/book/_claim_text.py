@@ -18,6 +18,8 @@ from __future__ import annotations
 
 import unicodedata
 
+from fusion._validation import text
+
 __all__: list[str] = []  # private module
 
 #: Unicode categories of characters that show nothing by themselves: controls, format characters (zero-width
@@ -42,3 +44,25 @@ def text_problem(value: str, required: bool = True) -> str | None:
     if required and all(c in _BLANK or unicodedata.category(c) in _INVISIBLE for c in value):
         return "must not be empty (it holds no visible character)"
     return None
+
+
+def record_text(value: object, name: str) -> str:
+    """A text of a ledger record (:class:`fusion.book.ledger.Claim`, its evidence and readings;
+    ``fusion.book.exact.ExactComparison``): the plain ``str`` (rule 19, ``fusion._validation.text``) that
+    :func:`text_problem` accepts, the claim files' rule (fuzz 49b C5: a lone surrogate in a record's text was accepted,
+    and writing the ledger then failed with an unnamed UnicodeEncodeError). Emptiness is the caller's rule (a ``bound``
+    or a ``reason`` may be empty).
+
+    Raises
+    ------
+    TypeError
+        ``value`` is not a string (rule 19), naming ``name``.
+    ValueError
+        ``value`` holds a control or format character (tab and line break allowed) or a lone surrogate, naming
+        ``name``.
+    """
+    plain = text(value, name)
+    problem = text_problem(plain, required=False)
+    if problem is not None:
+        raise ValueError(f"{name} {problem}")
+    return plain

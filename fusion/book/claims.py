@@ -916,7 +916,12 @@ def build_ledger(source: str, chapter: str | None, evidence: Mapping[str, Mappin
                                       f"{type(ev).__name__} evidence")
             if spec.direction:
                 _check_direction(ev, spec, f"{where}: reading {k}")
-            by_key[k] = _with_margin(ev, margin)
+            try:
+                by_key[k] = _with_margin(ev, margin)
+            except ValueError as exc:   # a margin the file allows that this evidence cannot take (fuzz 49b C3)
+                field = (f"{where}, field margin" if spec.margin else f"{cf.path.name}: quantity {spec.quantity}, "
+                         "field margin")
+                raise ClaimsFileError(f"{field} (reading {k}): {exc}") from None
         primary = by_key["primary"]
         alts = []
         for r in spec.readings:

@@ -26,6 +26,7 @@ from fusion._validation import _real_number, check_magnitude, one_of, scalar
 from fusion._validation import shown
 from fusion._validation import text
 from fusion.book import rulebook as R
+from fusion.book._claim_text import record_text
 from fusion.book._json import JSONObject
 from fusion.book.tables import roundoff
 
@@ -44,7 +45,7 @@ def _value(v: object, name: str) -> float:
 def _text(v: object, name: str) -> str:
     if not isinstance(v, str) or not v.strip():
         raise ValueError(f"{name} must be a non-empty string, got {shown(v)}")
-    return text(v, name)  # the plain str (rule 19): stored, compared and printed as its text
+    return record_text(v, name)  # the plain str (rule 19) by the records' text rule (fuzz 49b C5)
 
 
 def _percent(share: float) -> str:

@@ -636,7 +636,8 @@ def _margin_type(value: object, name: str) -> None:
 def _margins(margin: object, relative_margin: object) -> None:
     """One check of a comparison's ``margin`` and ``relative_margin`` (:class:`Comparison`, its ``with_margin``, and
     ``Conjunction.with_margin`` whatever its members; fuzz 34a D3): ``_margin_type``, then a finite number >= 0 (an
-    int beyond the float range is not finite), else ValueError naming it."""
+    int beyond the float range is not finite) within rule 2's range (at most 1e150, not subnormal: the judgement's
+    check of the margin, fuzz 49b C3), else ValueError naming it."""
     for name, v in (("margin", margin), ("relative_margin", relative_margin)):
         _margin_type(v, name)  # a type (rule 6), one rule with ExactComparison's
         if v is None:
@@ -647,6 +648,7 @@ def _margins(margin: object, relative_margin: object) -> None:
             f = math.inf
         if not math.isfinite(f) or f < 0:
             raise ValueError(f"{name} must be a finite number >= 0, got {shown(v, 60)}")
+        scalar(f, name, 0.0)  # rule 2: at most 1e150, not subnormal (the judgement's own check of a margin)
 
 
 def _two_methods(a_name: str, b_name: str) -> None:
@@ -663,12 +665,20 @@ def _practical_margin(margin: float | None, relative_margin: float | None, ref: 
     ``ExactComparison`` (their constructors, ``with_margin`` and :func:`dataclasses.replace`).
 
     ``margin`` None: ``relative_margin`` (default :data:`DEFAULT_RELATIVE_MARGIN`) times ``ref`` (0 when ``ref`` is
-    not finite), ``relative_margin`` kept. Both given: they must agree (a copy passes both), else ValueError naming
-    both; ``margin`` stored, ``relative_margin`` dropped. The caller has checked each is a finite number >= 0 (or None).
+    not finite), ``relative_margin`` kept; a derived margin beyond 1e150 or subnormal (the range the judgement
+    checks) is a ValueError naming ``relative_margin``. Both given: they must agree (a copy passes both), else
+    ValueError naming both; ``margin`` stored, ``relative_margin`` dropped. The caller has checked each is a finite
+    number >= 0 (or None).
     """
     rel = DEFAULT_RELATIVE_MARGIN if relative_margin is None else float(relative_margin)
     derived = rel * ref if math.isfinite(ref) else 0.0
     if margin is None:
+        try:   # the judgement's check of the margin (rule 2), here naming the argument that gives it (fuzz 49b C3:
+            scalar(derived, "margin", 0.0)   # 1e145 of a mean of 1e10 was stored, then every status() refused
+        except ValueError:                   # naming margin, which the caller never gave)
+            raise ValueError(f"relative_margin = {shown(rel, 60)} gives the margin {derived:.3g} on {on} (whose "
+                             f"magnitude is {ref:.3g}), outside the representable range (at most 1e150, not "
+                             "subnormal): give a smaller relative_margin or an absolute margin") from None
         return derived, relative_margin
     if relative_margin is not None and not math.isclose(float(margin), derived, rel_tol=1e-12):
         raise ValueError(f"margin = {shown(margin, 60)} and relative_margin = {shown(relative_margin, 60)} "

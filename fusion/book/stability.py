@@ -52,7 +52,7 @@ from fusion.book.exact import ExactComparison
 from fusion.book.study_cache import process_cache
 from fusion.book.ledger import Comparison, Conjunction, Evidence, ledger_dir
 from fusion._shown import shown
-from fusion._paths import file_json, folder
+from fusion._paths import file_json, folder, write_file_text
 
 #: The command line's description (the docstring's first line; kept here, as ``python -OO`` strips docstrings).
 _DESCRIPTION = "Verdicts that survive reseeding: every stochastic record re-derived under fresh seeds, on Dask."
@@ -779,7 +779,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         records[rid].setdefault("commit", doc["commit"])
         records[rid].setdefault("runs_factor", old["runs_factor"] if args.merge and out.is_file()
                                 and rid not in fresh else args.runs_factor)
-    out.write_text(json.dumps(doc, ensure_ascii=False, indent=1) + "\n", encoding="utf-8")
+    try:   # whole or not at all: a failed write keeps the committed file (fuzz 49b C5, the ledger's writer)
+        write_file_text(Path(out), json.dumps(doc, ensure_ascii=False, indent=1) + "\n", "--out")
+    except ValueError as exc:
+        raise SystemExit(str(exc)) from None
     for r in failed:
         print(f"FAILED: {r.task.record} reading {r.task.reading} seed {r.task.seed} runs {r.task.runs}: {r.error}",
               file=sys.stderr)

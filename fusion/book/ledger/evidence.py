@@ -11,12 +11,13 @@ import math
 from collections import UserList
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._limits import entry_dtypes, inexact_integer, integer_entries, written_as
+from fusion._limits import entry_dtypes, inexact_integer, integer_entries, work, written_as
 from fusion._nesting import ndim_of
 from fusion._validation import integer
 from fusion._validation import _numeric, _real_number, count, counts, seed as check_seed
@@ -81,6 +82,26 @@ def _decimal_fault(p: float, d: int, dtype: np.dtype) -> str | None:
     if float(np.float32(p)) == p and _decimal_fault(p, d, np.dtype(np.float32)) is None:
         return None
     return "extra"
+
+
+#: Work units of one value of :class:`PublishedValues`: its constructor's Python-level checks (``_decimal_fault``,
+#: ``integer_entries``, ``entry_dtypes``) and one ``matches`` (``_rounds_to``, computed once), at their costliest.
+#: Measured (CPU time, minimum of 3, 200,000 values, shared machine with other jobs): constructor 2.2 us a value of a
+#: float64 array, 3.4 us of a list of floats; ``matches`` 0.7 us a value that matches, 3.5 us one that does not
+#: (``_roundings``); ``to_dict`` 0.05 us more. So 700 units (7 us): the budget's edge, 1.4e6 values, runs about
+#: 4-11 CPU-s (300,000 values that do not match, from a list, with two ``status()``, a ``summary()`` and a
+#: ``to_dict()``: 2.2 CPU-s; fuzz 49b C2: 2**25 values, the input ceiling, ran 82 CPU-s and 26 more for each ``status()``); a
+#: published table of the book has a few dozen.
+_PUBLISHED_VALUE = 700
+
+
+def _length(values: Any) -> int:
+    """The number of entries of a 1-D ``values`` as the budget counts them before converting it (``len``; 1 for a
+    scalar): a value of another shape is refused afterwards by its own check."""
+    try:
+        return len(values)
+    except TypeError:   # a scalar, a 0-d array
+        return 1
 
 
 def _run_count(runs: Any) -> int | None:
@@ -154,7 +175,8 @@ class PublishedValues:
     Raises
     ------
     ValueError
-        ``published`` empty, not 1-D or not finite; ``ours`` of another shape or infinite; ``decimals`` neither
+        More values than the work budget (``fusion._limits.work``, 700 units a value: about 1.4e6 values), before any
+        is read; ``published`` empty, not 1-D or not finite; ``ours`` of another shape or infinite; ``decimals`` neither
         one count nor one per value, or fewer than a published value's decimals, or more than its float32/float16
         dtype holds; an integer in ``published`` or ``ours`` that float64 cannot hold exactly; ``runs`` below 1.
     TypeError
@@ -172,6 +194,8 @@ class PublishedValues:
     def __init__(self, published: ArrayLike, ours: ArrayLike, decimals: int | Sequence[int], unit: str = "", *,
                  runs: int | None = None) -> None:
         published, ours = read_once(published, "published"), read_once(ours, "ours")  # converted once (fuzz 29a C5)
+        # each value runs Python-level checks here and in ``matches`` (fuzz 49b C2: 2**25 values ran 82 + 26 CPU-s)
+        work((_length(published),), "published and ours", weight=_PUBLISHED_VALUE)   # before any value is read
         pub = np.atleast_1d(_numeric(published, "published"))
         our = np.atleast_1d(_numeric(ours, "ours"))
         if pub.ndim != 1 or pub.size == 0 or not np.all(np.isfinite(pub)):
@@ -220,8 +244,13 @@ class PublishedValues:
 
         At an exact tie (ours lies exactly halfway between two printed values) either neighbour is accepted:
         rounding half to even and half away from zero are both readings of "rounded to the printed decimals".
+        Computed once (fuzz 49b C2: every ``status()``, ``summary()`` and ``to_dict()`` computed it again).
         """
-        return tuple(_rounds_to(o, p, d) for p, o, d in zip(self.published, self.ours, self.decimals))
+        cached = self.__dict__.get("_matches")
+        if cached is None:
+            cached = tuple(_rounds_to(o, p, d) for p, o, d in zip(self.published, self.ours, self.decimals))
+            object.__setattr__(self, "_matches", cached)
+        return cached
 
     def status(self) -> str:
         return "reproduced" if all(self.matches) else "not reproduced"
@@ -595,6 +624,18 @@ class Proposition:
         return out if self.runs is None else out | {"runs": self.runs}
 
 
+#: Work units of one member of a :class:`Conjunction` (``_MEMBER``) and of each run of a member comparison
+#: (``_MEMBER_RUN``): the life of a group in the book, ``with_margin`` (each member comparison rebuilt), then its
+#: ``status()``, ``summary()`` and ``to_dict()`` (each member judged: t interval, Hill index, median interval).
+#: Measured (CPU time of a group of shared members, per member, minimum of 2, shared machine at load ~17), that chain
+#: for a member comparison of R runs: 0.92 ms at R = 100 (1.26 ms with a Cauchy tail), 26 ms at 10,000 and 0.31 s at
+#: 100,000 (heavy): about 1 ms a member and 3 us a run. So 100,000 and 300 units: the budget's edge, some 7,700
+#: members of 100 runs or 33 of 100,000, runs about 7-10 CPU-s (fuzz 49b C4: 300,000 members, with_margin alone
+#: 35 CPU-s); a group of the book has a handful of members.
+_MEMBER = 100_000
+_MEMBER_RUN = 300
+
+
 @dataclass(frozen=True)
 class Conjunction:
     """A claim about every member of a group ("every sensor"), one piece of evidence per member.
@@ -617,7 +658,9 @@ class Conjunction:
         ``parts`` not a sequence of (label, evidence) pairs, a label not a string or an evidence of another
         type; the message names the entry (``parts[1] label``).
     ValueError
-        Fewer than two members, or a repeated label.
+        Fewer than two members, or a repeated label; more members than the work budget (``fusion._limits.work``:
+        100,000 units a member and 300 a run of a member comparison, the work of ``with_margin`` and a status,
+        summary and record of each member; about 7,700 members of 100 runs), counted before any member is read.
 
     Attributes
     ----------
@@ -632,6 +675,9 @@ class Conjunction:
     def __init__(self, parts: Sequence[tuple[str, Comparison | Proposition]]) -> None:
         if isinstance(parts, (str, bytes)) or not hasattr(parts, "__len__"):
             raise TypeError(f"parts must be a sequence of (label, evidence) pairs, got {type(parts).__name__}")
+        # members may share one Comparison, so the caller pays nothing for many (fuzz 49b C4: 300,000 members made
+        # with_margin run 35 CPU-s): counted before any is read, then with each comparison's runs
+        work((len(parts),), "parts", weight=_MEMBER)
         out = []
         for i, p in enumerate(parts):
             if isinstance(p, list):  # a list pair is a pair (as the chapter results store lists as tuples)
@@ -646,6 +692,8 @@ class Conjunction:
             out.append((label, ev))
         if len(out) < 2:
             raise ValueError(f"parts must hold at least two members, got {len(out)}")
+        units = sum(_MEMBER + _MEMBER_RUN * (len(ev.a) if isinstance(ev, Comparison) else 0) for _, ev in out)
+        work((len(out),), "parts", weight=Fraction(units, len(out)))   # each member at its runs
         if len({lab for lab, _ in out}) != len(out):
             raise ValueError("parts must have distinct labels")
         object.__setattr__(self, "parts", tuple(out))

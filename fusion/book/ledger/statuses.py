@@ -10,9 +10,8 @@ from typing import Any
 
 from fusion._frozen import constant
 from fusion._validation import sequence, shown
-from fusion._validation import text as _text   # the shared rule (claim.py imports it from here)
-from fusion._validation import text_fields, texts as _shared_texts  # noqa: F401 (text_fields: for claim.py)
 from fusion.book import rulebook as R
+from fusion.book._claim_text import record_text as _text   # the claim files' text rule (fuzz 49b C5)
 from fusion.book.tables import _significant
 
 __all__ = [
@@ -27,10 +26,18 @@ __all__ = [
 
 def _texts(value: Any, name: str) -> tuple[str, ...]:
     """A tuple of strings as a tuple of plain ``str`` (a bare string is refused: it would be split into characters;
-    each entry read by the shared rule 19 under ``name[i]``)."""
+    each entry read by the record's text rule, ``_text``, under ``name[i]``)."""
     if isinstance(value, str) or not all(isinstance(v, str) for v in sequence(value, name)):
         raise TypeError(f"{name} must be a tuple of str, got {shown(value)}")
-    return _shared_texts(tuple(value), name)
+    return tuple(_text(v, f"{name}[{i}]") for i, v in enumerate(tuple(value)))
+
+
+def text_fields(obj: object, *names: str) -> None:
+    """Store in each field ``names`` of the frozen dataclass ``obj`` its plain ``str`` read by the record's text rule
+    (``_text``: rule 19 and the claim files' rule, no control or format character, no lone surrogate; fuzz 49b C5: a
+    record's lone surrogate made ``Ledger.write`` fail after truncating the ledger file)."""
+    for n in names:
+        object.__setattr__(obj, n, _text(getattr(obj, n), n))
 
 #: The closed status vocabulary, in display order (:data:`fusion.book.rulebook.STATUSES`).
 STATUSES: tuple[str, ...] = R.STATUSES

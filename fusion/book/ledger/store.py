@@ -13,7 +13,7 @@ import pandas as pd
 
 from fusion.book._json import JSONObject
 from fusion.book.ledger.claim import Claim
-from fusion._paths import file_in, folder
+from fusion._paths import file_in, folder, write_file_text
 from fusion._validation import instance_of, shown, text
 from fusion.book.ledger.sources import SOURCES
 
@@ -204,7 +204,8 @@ class Ledger:
         ValueError
             The ledger is empty or its headline claims break the rule above; ``directory`` is not a folder
             (a file, a name the system cannot use) or cannot be made, or it holds something other than a file
-            under the ledger file's name (a folder, a dangling symlink), or the file cannot be written.
+            under the ledger file's name (a folder, a dangling symlink), or the file cannot be written (its old
+            text is then left as it was: the file is written whole or not at all).
         """
         if not self.claims:
             raise ValueError("the ledger is empty")
@@ -217,8 +218,6 @@ class Ledger:
             head["chapter"] = self.chapter
         text = json.dumps({**head, "claims": self.records()}, ensure_ascii=False, indent=1) + "\n"
         path = file_in(d, self.filename, "directory")   # a folder or a dangling link of the file's name: refused
-        try:
-            path.write_text(text, encoding="utf-8")
-        except OSError as exc:   # no permission, a full disk
-            raise ValueError(f"directory: cannot write {self.filename} ({exc.strerror or type(exc).__name__})") from None
-        return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
+        # whole or not at all (fuzz 49b C5: write_text truncated the old file, then failed to encode the text)
+        data = write_file_text(path, text, "directory")   # no permission, a full disk: ValueError, old file kept
+        return hashlib.sha256(data).hexdigest()[:16]
