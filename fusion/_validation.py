@@ -163,6 +163,7 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
         raise TypeError(f"{name} must be numeric (array_like of numbers), got {type(x).__name__}")
     elif isinstance(x, (complex, np.complexfloating)):
         raise _complex_error(name)
+    a = None  # read by the handler below (a signalling NaN entry)
     try:
         a = x if isinstance(x, np.ndarray) else np.asarray(x)
         if a.dtype.kind in "US" or (a.dtype.kind == "O" and _holds_text(a)):
@@ -201,13 +202,20 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
             raise _complex_error(name) from None
         if is_ragged(exc):  # numpy's message names nothing: the one rule of a ragged or self-containing list
             raise ragged_error(name) from None
-        if "signaling NaN" in str(exc):  # a Decimal('sNaN') entry is a NaN, a bad value (fuzz 49a D1)
+        if _holds_snan(a):  # a Decimal('sNaN') entry is a NaN, a bad value (fuzz 49a D1), told by
+            # the entry, not by the message (fuzz 50a D6: an object whose __float__ raised ValueError('signaling NaN'))
             raise ValueError(f"{name} contains NaN or infinite values (a signalling NaN)") from None
         raise TypeError(f"{name} must be numeric (array_like of numbers): {exc}") from None
     except MemoryError:
         raise
     except Exception as exc:  # rule 15: the argument's own exception (its __array__ or __float__ raised)
         raise _conversion_error(name, exc) from exc
+
+
+def _holds_snan(a: object) -> bool:
+    """Whether ``a`` is an object array holding a ``Decimal`` signalling NaN (which ``float()`` refuses)."""
+    return (isinstance(a, np.ndarray) and a.dtype.kind == "O"
+            and any(isinstance(e, _decimal.Decimal) and e.is_snan() for e in a.flat))
 
 
 def _beyond_float_range(a: np.ndarray, out: FloatArray) -> bool:

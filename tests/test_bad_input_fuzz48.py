@@ -120,3 +120,20 @@ def test_no_source_file_of_the_package_holds_a_tab() -> None:
     tabs = [f"{p.relative_to(root)}:{i}" for p in sorted(root.rglob("*.py"))
             for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1) if "\t" in line]
     assert not tabs, tabs
+
+
+def test_fuzz50a_d6_a_signalling_nan_is_told_by_the_entry_not_by_a_message() -> None:
+    """An entry whose __float__ raises ValueError('signaling NaN') is not a number (TypeError); a Decimal sNaN is a
+    NaN (ValueError)."""
+    from decimal import Decimal
+    import pytest
+    from fusion._validation import as_array
+
+    class Odd:
+        def __float__(self) -> float:
+            raise ValueError("signaling NaN")
+
+    with pytest.raises(TypeError, match="^x "):
+        as_array([1.0, Odd()], "x")
+    with pytest.raises(ValueError, match="^x contains NaN"):
+        as_array([1.0, Decimal("-sNaN")], "x")
