@@ -5,19 +5,41 @@
   study-cache entry (the chapters' tests).
 - :func:`cached_study`, :data:`CACHE_CALLS`, :func:`study_entry`: a tiny study behind the study cache and its entry
   on disk (the cache's damaged-entry tests).
+- :func:`parsed`: a source file's syntax tree, parsed once per process (the source-scanning tests).
 """
 
 from __future__ import annotations
 
+import ast
 import dataclasses
 import signal
 from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
 
 from fusion.book.study_cache import study_cache
+
+
+#: Syntax trees by source text (:func:`parsed`).
+_PARSED: dict[str, ast.Module] = {}
+
+
+def parsed(path: Path | str) -> ast.Module:
+    """``ast.parse`` of the UTF-8 text of the file at ``path``, read at every call and parsed once per process per text.
+
+    Nine source-scanning tests (error messages, seed checks, headers, labels, caches, dataclasses, glue, specs) walk
+    the modules of ``fusion/``; each parsed all of them again (about 1.7 CPU-s for the package). The tree depends on
+    the text only, so a file whose text is unchanged gives the tree parsed before: the same tree ``ast.parse`` gives.
+    The trees are shared: a caller reads them and must not change them (none does: they walk and compare).
+    """
+    text = Path(path).read_text(encoding="utf-8")
+    tree = _PARSED.get(text)
+    if tree is None:
+        tree = _PARSED[text] = ast.parse(text)
+    return tree
 
 
 class _Timeout(Exception):

@@ -31,7 +31,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import fusion._validation as V
-from _helpers import bounded
+from _helpers import bounded, parsed
 from test_bad_input import CALLABLES, REG, _excluded, _finite
 
 # --------------------------------------------------------------------------------------------
@@ -896,7 +896,7 @@ def test_chapter_functions_check_the_seed_they_draw_from() -> None:
     missing, public = [], 0
     for path in sorted((Path(__file__).resolve().parents[1] / "fusion" / "book" / "chapters").rglob("*.py")):
         src = path.read_text(encoding="utf-8")
-        tree = ast.parse(src)
+        tree = parsed(path)   # the tree of src (read once per process: tests/_helpers.parsed)
         top = {id(n) for n in tree.body}
         lines = src.splitlines(keepends=True)
         for node in ast.walk(tree):
@@ -959,7 +959,7 @@ def test_no_error_message_formats_a_value_with_its_own_repr() -> None:
     root = Path(V.__file__).resolve().parent
     found = []
     for path in sorted(root.rglob("*.py")):
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in ast.walk(parsed(path)):
             if isinstance(node, ast.Raise) and node.exc is not None:
                 found += [f"{path.relative_to(root)}:{node.lineno}" for v in ast.walk(node.exc)
                           if isinstance(v, ast.FormattedValue) and v.conversion == ord("r")]

@@ -17,6 +17,7 @@ import pytest
 from test_bad_input import REG, _excluded
 from test_bad_input_classes import SLOW, _is_number, _names
 from test_bad_input_classes import call as classes_call
+from _helpers import parsed
 
 # --------------------------------------------------------------------------------------------
 # comparing two results
@@ -241,7 +242,7 @@ def test_every_seed_check_hands_on_the_int_it_read() -> None:
         rel = str(path.relative_to(root))
         if rel in SEED_CHECKS_WITHOUT_USE or rel.endswith("_lecture_checks.py"):
             continue
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in ast.walk(parsed(path)):
             if isinstance(node, ast.Expr):
                 calls = node.value.elts if isinstance(node.value, ast.Tuple) else [node.value]
                 found += [f"{rel}:{node.lineno}" for c in calls if isinstance(c, ast.Call)
@@ -264,7 +265,7 @@ def _evidence_functions_that_ignore_runs() -> list[tuple[str, str]]:
     out = []
     for path in sorted((root / "book" / "chapters").rglob("*.py")):
         module = ".".join(path.relative_to(root.parent).with_suffix("").parts)
-        for fn in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for fn in ast.walk(parsed(path)):
             if isinstance(fn, ast.FunctionDef) and fn.name.startswith("ev_") \
                     and "runs" in [a.arg for a in fn.args.args + fn.args.kwonlyargs]:
                 body = [n for stmt in fn.body for n in ast.walk(stmt)]
@@ -464,7 +465,7 @@ def test_the_formatters_are_every_number_formatter_of_the_book() -> None:
     root = Path(fusion.__file__).resolve().parent / "book"
     found = set()
     for path in sorted(root.rglob("*.py")):
-        for fn in ast.parse(path.read_text(encoding="utf-8")).body:
+        for fn in parsed(path).body:
             if isinstance(fn, ast.FunctionDef) and not fn.name.startswith("_") and fn.returns is not None \
                     and ast.unparse(fn.returns) == "str" and fn.args.args and fn.args.args[0].annotation is not None \
                     and ast.unparse(fn.args.args[0].annotation) == "float" and fn.name not in keys:

@@ -31,6 +31,7 @@ from hypothesis import strategies as st
 import fusion
 from fusion import _results as R
 from test_bad_input_results_chapters import _mutations, _shared_dims
+from _helpers import parsed
 
 SCENARIOS = Path(fusion.__file__).resolve().parent / "scenarios"
 
@@ -50,7 +51,7 @@ def _frozen_classes() -> dict[str, tuple[str, str]]:
     for path in sorted(SCENARIOS.rglob("*.py")):
         rel = path.relative_to(SCENARIOS).with_suffix("")
         parts = [p for p in rel.parts if p != "__init__"]
-        for node in ast.parse(path.read_text("utf-8")).body:
+        for node in parsed(path).body:
             if (isinstance(node, ast.ClassDef) and not node.name.startswith("_")
                     and any("dataclass" in ast.unparse(d) and "frozen=True" in ast.unparse(d)
                             for d in node.decorator_list)):

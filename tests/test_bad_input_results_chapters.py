@@ -25,6 +25,7 @@ import pytest
 
 import fusion
 from fusion import _results as R
+from _helpers import parsed
 
 CHAPTERS = Path(fusion.__file__).resolve().parent / "book" / "chapters"
 
@@ -41,7 +42,7 @@ def _dataclasses() -> dict[str, tuple[str, ast.ClassDef]]:
     """Every dataclass of the chapter layer: name -> (module, class node)."""
     out: dict[str, tuple[str, ast.ClassDef]] = {}
     for path in sorted(CHAPTERS.rglob("*.py")):
-        for node in ast.parse(path.read_text("utf-8")).body:
+        for node in parsed(path).body:
             if isinstance(node, ast.ClassDef) and any("dataclass" in ast.unparse(d) for d in node.decorator_list):
                 out[node.name] = (_module(path), node)
     return out
@@ -60,7 +61,7 @@ def _consumers() -> dict[str, list[str]]:
     found: dict[str, list[str]] = {}
     root = CHAPTERS.parent.parent
     for path in sorted(root.rglob("*.py")):
-        for node in ast.walk(ast.parse(path.read_text("utf-8"))):
+        for node in ast.walk(parsed(path)):
             if not isinstance(node, ast.FunctionDef) or node.name.startswith("_"):
                 continue
             args = {a.arg: a for a in node.args.args + node.args.kwonlyargs}

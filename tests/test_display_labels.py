@@ -12,6 +12,7 @@ import ast
 from pathlib import Path
 
 from fusion.book import style
+from _helpers import parsed
 
 ROOT = Path(__file__).resolve().parents[1] / "fusion"
 _TABLES = (style.METHOD_LABELS, style.METHOD_SHORT_LABELS)
@@ -42,7 +43,7 @@ def _label_uses(tree: ast.AST, labels: frozenset[str] = LABELS) -> list[tuple[in
 
 def _found(labels: frozenset[str] = LABELS) -> set[str]:
     return {f"{p.relative_to(ROOT)}:{line}: {lab!r}" for p in ROOT.rglob("*.py") if p.name != "style.py"
-            for line, lab in _label_uses(ast.parse(p.read_text(encoding="utf-8")), labels)}
+            for line, lab in _label_uses(parsed(p), labels)}
 
 
 def test_the_scan_finds_a_label_used_as_a_key() -> None:

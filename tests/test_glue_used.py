@@ -15,6 +15,8 @@ from pathlib import Path
 
 import pytest
 
+from _helpers import parsed
+
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 ROLE = re.compile(r"\{glue(?::\w+)?\}`(?:[^`]*::)?([\w.-]+?)(?::[^`]*)?`")
@@ -60,7 +62,7 @@ def test_the_reference_patterns_find_roles_directives_and_fields() -> None:
 def test_no_function_in_the_chapter_modules_is_over_the_limit() -> None:
     long = []
     for path in sorted((ROOT / "fusion" / "book" / "chapters").rglob("*.py")):
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in ast.walk(parsed(path)):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 start = min([node.lineno, *(d.lineno for d in node.decorator_list)])
                 n = node.end_lineno - start + 1

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from fusion.book import study_cache as sc
+from _helpers import parsed
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -428,7 +429,7 @@ def _bare_caches() -> list[tuple[str, str]]:
 
     found = []
     for path in sorted((ROOT / "fusion").rglob("*.py")):
-        tree = ast.parse(path.read_text(encoding="utf-8"))
+        tree = parsed(path)
         for node in ast.walk(tree):
             if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 continue

@@ -19,6 +19,7 @@ from pathlib import Path
 
 from fusion.book import style
 from fusion.book.ledger.statuses import STATUSES
+from _helpers import parsed
 
 ROOT = Path(__file__).resolve().parents[1] / "fusion"
 _KEYS = frozenset(style.METHOD_COLORS) | {k for t in (style.METHOD_LABELS, style.METHOD_SHORT_LABELS) for k in t}
@@ -61,7 +62,7 @@ def repeated_headers() -> dict[str, set[str]]:
     for p in sorted(ROOT.rglob("*.py")):
         if p.name == "style.py" and p.parent.name == "book":
             continue
-        for s, fns in header_uses(ast.parse(p.read_text(encoding="utf-8")), str(p.relative_to(ROOT))).items():
+        for s, fns in header_uses(parsed(p), str(p.relative_to(ROOT))).items():
             uses[s] |= fns
     return {s: fns for s, fns in uses.items() if len(fns) > 1}
 
