@@ -1,0 +1,113 @@
+"""Fuzz 49b C6, C7, D1 (fix56d): ``stability.summarise`` grouped its results by a scan per seed (quadratic, no budget,
+C6); the Gaussian-mixture kernel of ``fusion.estimates.mixtures`` stacked components x points unchecked (C7);
+``time_registration.expected`` refused a zero-process-noise smoother by internal names (D1)."""
+
+from __future__ import annotations
+
+import random
+import time
+from dataclasses import asdict
+
+import pytest
+
+from fusion._limits import MAX_WORK
+
+
+def _refused_fast(f, match, limit=1.0):
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match=match):
+        f()
+    assert time.process_time() - t0 < limit
+
+
+# --- C6 -------------------------------------------------------------------------------------------------------------
+
+def _summarise_reference(results, seed_list, committed):
+    """The grouping of ``summarise`` before fuzz 49b C6 (a scan of the record's results per seed), for comparison."""
+    from fusion.book import rulebook as R
+    from fusion.book.stability import _same
+    by = {}
+    for r in results:
+        by.setdefault(r.task.record, []).append(r)
+    out = {}
+    for rid, rs in sorted(by.items()):
+        failed = [asdict(r.task) | {"error": r.error} for r in rs if r.status is None]
+        statuses = []
+        for s in seed_list:
+            mine = [r for r in rs if r.task.seed == s and not r.task.scaled]
+            prim = next((r for r in mine if r.task.reading == "primary"), None)
+            if prim is None or prim.status is None or any(r.status is None for r in mine):
+                statuses.append(None)
+                continue
+            readings = [(r.task.kind, r.status, r.task.runs) for r in mine if r.task.reading != "primary"]
+            statuses.append(R.record_status(prim.status, readings, prim.task.runs, False)[0])
+        scaled = next((r.status for r in rs if r.task.scaled), None)
+        want = committed.get(rid)
+        k = sum(s is not None and _same(s, want) for s in statuses)
+        out[rid] = {"committed": want, "reseeds": statuses, "scaled": scaled, "k": k, "K": len(seed_list),
+                    "flag": k < len(seed_list) or (scaled is not None and not _same(scaled, want)),
+                    "failed": failed}
+    return out
+
+
+def test_c6_summarise_linear_grouping_is_the_old_one_on_random_sweeps():
+    from fusion.book import rulebook as R
+    from fusion.book.stability import Task, TaskResult, summarise
+    rng = random.Random(4956)
+    kinds = [k for k in R.READING_KINDS if k != "primary"]
+    for trial in range(60):
+        seed_list = rng.sample(range(1, 10**6), rng.randint(1, 7))
+        results, committed = [], {}
+        for rec in range(rng.randint(1, 6)):
+            rid = f"r{rec}"
+            committed[rid] = rng.choice([None, *R.STATUSES])
+            names = ["primary"] + [f"x{j}" for j in range(rng.randint(0, 4))]
+            kind = {n: "primary" if n == "primary" else rng.choice(kinds) for n in names}
+            for s in seed_list:
+                for n in names:
+                    if rng.random() < 0.85:
+                        st = rng.choice([None, *R.STATUSES[:4]]) if rng.random() < 0.9 else None
+                        results.append(TaskResult(Task("src", rid, n, kind[n], s, rng.choice([10, 100]), False), st,
+                                                  0.1, "" if st else "boom"))
+            if rng.random() < 0.7:
+                s = rng.choice(seed_list)
+                st = rng.choice([None, *R.STATUSES[:4]])
+                results.append(TaskResult(Task("src", rid, "primary", "primary", s, 1000, True), st, 0.1,
+                                          "" if st else "boom"))
+        rng.shuffle(results)
+        assert summarise(results, seed_list, committed) == _summarise_reference(results, seed_list, committed)
+
+
+def test_c6_summarise_is_linear_in_seeds():
+    # 20,000 seeds of one result each ran 6.0 CPU-s before (quadratic; 60,000: 99 CPU-s); now about 0.15 s
+    from fusion.book.stability import Task, TaskResult, summarise
+    seed_list = list(range(1, 20_001))
+    res = [TaskResult(Task("s", "r", "primary", "primary", s, 100, False), "reproduced", 0.1) for s in seed_list]
+    t0 = time.process_time()
+    out = summarise(res, seed_list, {"r": "reproduced"})
+    assert time.process_time() - t0 < 2.0
+    assert out["r"]["k"] == 20_000
+
+
+def test_c6_summarise_budget_edges():
+    from fusion.book import stability as S
+    # just inside: 10**6 results; 5e7 record x seed cells (with their 10**4 results), accepted by the budget alone
+    assert S._summary_work(10**6 - 10**4, 1, 10**4) <= MAX_WORK
+    assert S._summary_work(10**4, 10**4, 4_900) <= MAX_WORK
+    with pytest.raises(ValueError, match="results and seed_list"):
+        S._summary_work(10**6 + 1, 1, 1)
+    with pytest.raises(ValueError, match="results and seed_list"):
+        S._summary_work(10**4, 10**4, 5_000)
+
+
+def test_c6_summarise_refuses_beyond_the_budget_before_the_work():
+    from fusion.book.stability import Task, TaskResult, summarise
+    # more results than the budget: refused before any is grouped (the repeated task is never reached)
+    r = TaskResult(Task("s", "r", "primary", "primary", 1, 100, False), "reproduced", 0.1)
+    _refused_fast(lambda: summarise([r] * (10**6 + 1), [1], {}), "results and seed_list .*work budget")
+    # 10,000 records x 5,000 seeds: refused once grouped, before any status is judged
+    seed_list = list(range(1, 5_001))
+    res = [TaskResult(Task("s", f"r{i}", "primary", "primary", 1, 100, False), "reproduced", 0.1)
+           for i in range(10_000)]
+    _refused_fast(lambda: summarise(res, seed_list, {}), "results and seed_list .*10,000 records x 5,000 seeds")
+
