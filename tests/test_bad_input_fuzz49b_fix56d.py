@@ -111,3 +111,64 @@ def test_c6_summarise_refuses_beyond_the_budget_before_the_work():
            for i in range(10_000)]
     _refused_fast(lambda: summarise(res, seed_list, {}), "results and seed_list .*10,000 records x 5,000 seeds")
 
+
+# --- C7 -------------------------------------------------------------------------------------------------------------
+
+def _unit_mixture(S, d, seed=0):
+    import numpy as np
+    from fusion.estimates.mixtures import GaussianMixture
+    rng = np.random.default_rng(seed)
+    return GaussianMixture(np.full(S, 1.0 / S), rng.normal(size=(S, d)), np.broadcast_to(np.eye(d), (S, d, d)).copy())
+
+
+def test_c7_gm_logpdf_refuses_components_times_points_before_the_work():
+    # 2,500 components at 200,000 points: a raw MemoryError (3.73 GiB) after 22 CPU-s before
+    import numpy as np
+    from fusion.estimates.mixtures import gm_logpdf
+    gm, x = _unit_mixture(2_500, 2), np.zeros((200_000, 2))
+    _refused_fast(lambda: gm_logpdf(gm, x), "gm and x ask for an array .* beyond the memory budget")
+    # the work alone (d = 10, 9.3 units an entry): 1,100 components at 100,000 points, two 0.9 GB stacks inside the
+    # memory budget
+    gm, x = _unit_mixture(1_100, 10), np.zeros((100_000, 10))
+    _refused_fast(lambda: gm_logpdf(gm, x), r"gm and x ask for .* units of work")
+
+
+def test_c7_density_budget_edges():
+    import numpy as np
+    from fusion._limits import MAX_WORK
+    from fusion.estimates.mixtures import GaussianMixture, _density_work
+    # d = 10: 9.3 units an entry and 2,000 a component, at 100,000 points: 1,072 components at the edge
+    assert _density_work([_unit_mixture(1_050, 10)], 100_000, "gm and x") <= MAX_WORK
+    with pytest.raises(ValueError, match="gm and x ask for .* units of work"):
+        _density_work([_unit_mixture(1_100, 10)], 100_000, "gm and x")
+    # a mixture's dead components are not evaluated, and log_densities sums its mixtures
+    g = _unit_mixture(2_100, 10)
+    half = GaussianMixture(np.r_[np.full(1_050, 1 / 1_050), np.zeros(1_050)], g.means, g.covs)
+    assert _density_work([half], 100_000, "gm and x") <= MAX_WORK
+    with pytest.raises(ValueError, match="gms and x ask for .* units of work"):
+        _density_work([half, half], 100_000, "gms and x")
+    # memory: two (components, points) stacks
+    with pytest.raises(ValueError, match="gm and x ask for an array .* 2 arrays of 1400 x 100000"):
+        _density_work([_unit_mixture(1_400, 1)], 100_000, "gm and x")
+
+
+def test_c7_log_densities_and_grid_refuse_by_their_arguments():
+    import numpy as np
+    from fusion.estimates.chernoff import log_densities
+    from fusion.scenarios.two_mixtures import grid_log_normaliser
+    gms = [_unit_mixture(550, 10, 1), _unit_mixture(550, 10, 2)]
+    _refused_fast(lambda: log_densities(gms, np.zeros((100_000, 10))), r"gms and x ask for .* units of work")
+    # the default 601 x 601 grid: 374 components in all at the edge
+    gms = [_unit_mixture(200, 2, 1), _unit_mixture(200, 2, 2)]
+    _refused_fast(lambda: grid_log_normaliser(gms, [0.5, 0.5]), r"gms and n ask for .* units of work")
+
+
+def test_c7_gm_logpdf_values_unchanged_inside():
+    import numpy as np
+    from fusion.estimates.chernoff import log_densities
+    from fusion.estimates.mixtures import _gm_logpdf, gm_logpdf
+    gm = _unit_mixture(30, 3)
+    x = np.random.default_rng(1).normal(size=(500, 3))
+    assert np.array_equal(gm_logpdf(gm, x), _gm_logpdf(gm, x))
+    assert np.array_equal(log_densities([gm, gm], x), np.column_stack([_gm_logpdf(gm, x)] * 2))
+
