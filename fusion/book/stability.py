@@ -86,6 +86,17 @@ READING_WORK = 1000
 #: this shared machine (CPU time, minimum of 3, 10**6 records without readings at one seed), so 100 units.
 RECORD_WORK = 100
 
+#: Units of work of one result that :func:`summarise` checks, groups and judges (rule R5 over its record's readings at
+#: its seed, or its failure's record): 6.4-7.1 us measured on this shared machine (CPU time, minimum of 3: 100,000
+#: seeds of one primary result each 0.71 s, one record of 200,000 readings 1.34 s, 200,000 failed results 1.27 s), so
+#: 1,000 units; the budget's edge, 10**6 results, about 7 CPU-s. Fuzz 49b C6: the results were grouped by a scan of the
+#: record's results per seed, quadratic (60,000 seeds of one result each ran 99 CPU-s); they are now grouped once.
+SUMMARY_RESULT_WORK = 1000
+#: Units of work of one record at one seed of ``seed_list`` in :func:`summarise` (a seed without a result of the record
+#: is a None status): 0.18 us measured on this shared machine (CPU time, minimum of 3: 1,000 records x 5,000 seeds with
+#: one result each, 0.89 s), so 20 units; the budget's edge, 5e7 cells, about 9 CPU-s.
+SUMMARY_CELL_WORK = 20
+
 #: Retries of a failed task before it is reported as failed.
 RETRIES = 2
 
@@ -450,7 +461,8 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
         ``results`` not of :class:`TaskResult`, ``committed`` not a mapping, a committed status not text.
     ValueError
         Two results of one task, a result of a seed not in ``seed_list``, a repeated seed, a committed status not
-        one of the rulebook's.
+        one of the rulebook's; ``results`` and ``seed_list`` beyond the work budget (rule 17: their results, then
+        their records x seeds, counted before any is judged).
 
     Notes
     -----
@@ -469,7 +481,12 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
             raise ValueError(f"committed[{shown(rid)}] must be one of {R.STATUSES} or None, got {shown(status)}")
     seen: dict[tuple[str, str, int, bool], int] = {}
     known = set(seed_list)
-    for i, r in enumerate(_tasks(results, "results", TaskResult)):
+    results = _tasks(results, "results", TaskResult)
+    # rule 17 (fuzz 49b C6): the results first (at least one record if any), then, once grouped (which their units pay
+    # for), every record x seed cell
+    _summary_work(len(results), min(1, len(results)), len(seed_list))
+    cells: dict[str, dict[int, list[TaskResult]]] = {}  # record -> seed -> its unscaled results, in results' order
+    for i, r in enumerate(results):
         t = r.task
         if t.seed not in known:  # a result of another sweep would be dropped without a word
             raise ValueError(f"results[{i}] is of seed {t.seed}, which is not in seed_list")
@@ -480,12 +497,16 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
                              f"{', scaled' if t.scaled else ''})")
         seen[key] = i
         by.setdefault(t.record, []).append(r)
+        if not t.scaled:
+            cells.setdefault(t.record, {}).setdefault(t.seed, []).append(r)
+    _summary_work(len(results), len(by), len(seed_list))
     out: dict[str, dict[str, Any]] = {}
     for rid, rs in sorted(by.items()):
         failed = [asdict(r.task) | {"error": r.error} for r in rs if r.status is None]
         statuses = []
+        mine_by_seed = cells.get(rid, {})
         for s in seed_list:
-            mine = [r for r in rs if r.task.seed == s and not r.task.scaled]
+            mine = mine_by_seed.get(s, [])
             prim = next((r for r in mine if r.task.reading == "primary"), None)
             if prim is None or prim.status is None or any(r.status is None for r in mine):
                 statuses.append(None)
@@ -499,6 +520,15 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
                     "flag": k < len(seed_list) or (scaled is not None and not _same(scaled, want)),
                     "failed": failed}
     return out
+
+
+def _summary_work(results: int, records: int, seeds: int) -> int:
+    """The units of :func:`summarise`: ``results`` checked, grouped and judged, ``SUMMARY_RESULT_WORK`` units each,
+    and ``records x seeds`` statuses, ``SUMMARY_CELL_WORK`` units each; refused beyond the work budget (rule 17)
+    naming ``results`` and ``seed_list``."""
+    return work((results * SUMMARY_RESULT_WORK + records * seeds * SUMMARY_CELL_WORK,),
+                f"results and seed_list ({results:,} results, {SUMMARY_RESULT_WORK:,} units each, and {records:,} "
+                f"records x {seeds:,} seeds, {SUMMARY_CELL_WORK:,} units a record's seed)")
 
 
 def _same(status: str | None, committed: str | None) -> bool:

@@ -24,7 +24,7 @@ from fusion._counts import input_allocation
 from fusion._validation import FloatArray, allocation, as_array, count, loop_work, positive_scalar
 from fusion.estimates.chernoff.mixture import _check_mixtures, log_densities
 from fusion.optimise.simplex import simplex_row
-from fusion.estimates.mixtures import GaussianMixture, logsumexp
+from fusion.estimates.mixtures import GaussianMixture, _density_work, logsumexp
 
 __all__ = ["GridLogNormaliser", "ToyMixtures", "toy_mixtures", "grid_log_normaliser"]
 
@@ -131,7 +131,8 @@ def grid_log_normaliser(
     ------
     ValueError
         A mixture not of dimension 2; the rows of ``eps`` times the ``n x n`` grid beyond the work budget, or (with
-        ``return_density``) their densities beyond the input budget, named ``eps and n``.
+        ``return_density``) their densities beyond the input budget, named ``eps and n``; the components of ``gms``
+        at the ``n x n`` nodes beyond the memory or work budget, named ``gms and n``.
     """
     flag(return_density, "return_density")
     _check_mixtures(gms)
@@ -145,6 +146,8 @@ def grid_log_normaliser(
     # (fix43r: 1.6-3.3 ns an entry measured at n = 201-1001, 2-4 mixtures, 1.3-1.6 ms a row at n = 601: the edge
     # ~5-11 CPU-s); the densities' stack, as its result's check would refuse it, before any is built
     loop_work((E.shape[0],), math.ceil(0.3 * n * n * len(gms)), "eps and n")
+    # rules 9, 17 (fuzz 49b C7): the grid's log densities, every component of every mixture at the n x n nodes
+    _density_work(list(gms), n * n, "gms and n")
     if return_density:
         input_allocation((E.shape[0], n, n), "eps and n")
     # float32 eps: on the simplex in its own precision, and used as check_simplex returns it (renormalised)

@@ -37,7 +37,7 @@ from fusion._validation import (MAX_MAGNITUDE, FloatArray, _covariance_magnitude
                                 as_rngs, asymmetric, count, derived_inputs, flag, instance_of, one_of, read_once, refuse_singular,
                                 renormalised, sums_to_one, work)
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
-                                       _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
+                                       _check_mixtures, _density_points, _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options, particle_swarm_batch, _swarm_work
 from fusion.estimates.chernoff.gaussian import _chernoff_derivatives_prepare, _chernoff_derivatives_prepared, _product_combine, _product_prepare, _product_terms
@@ -267,18 +267,6 @@ def _first_order_weights(logpi_t: FloatArray, dead_t: np.ndarray, log_zm: FloatA
     return w / w.sum(axis=1, keepdims=True), log_z
 
 
-def _check_mixtures(gms: Sequence[GaussianMixture]) -> None:
-    """A non-empty sequence of mixtures of one dimension (TypeError for anything else)."""
-    if isinstance(gms, (str, bytes, GaussianMixture)) or not hasattr(gms, "__len__"):
-        raise TypeError(f"gms must be a sequence of GaussianMixture, got {type(gms).__name__}")
-    if len(gms) < 1:
-        raise ValueError("gms is empty: need at least one mixture")
-    for i, g in enumerate(gms):
-        instance_of(g, GaussianMixture, f"gms[{i}]")
-    if any(g.dim != gms[0].dim for g in gms):
-        raise ValueError("gms: all mixtures must have the same dimension")
-
-
 def log_densities(gms: Sequence[GaussianMixture], x: ArrayLike) -> FloatArray:
     """Matrix :math:`L_{ri} = \\log \\hat p_i(x^{(r)})`, shape (R, N).
 
@@ -293,10 +281,17 @@ def log_densities(gms: Sequence[GaussianMixture], x: ArrayLike) -> FloatArray:
     -------
     ndarray, shape (R, N)
         Log densities in nats (per unit volume of the state).
+
+    Raises
+    ------
+    ValueError
+        ``x`` not (R, d) with the mixtures' dimension d; every mixture's components x the points beyond the memory or
+        work budget (rules 9, 17), named ``gms and x``, before any density is computed.
     """
     x = read_once(x, "x")  # converted once, then checked and used (fuzz 29a C5)
     _check_mixtures(gms)
-    return np.column_stack([gm_logpdf(g, x) for g in gms])
+    xx = _density_points(gms, x, "gms and x")  # rules 9, 17 (fuzz 49b C7): counted before any density
+    return np.column_stack([gm_logpdf(g, xx) for g in gms])
 
 
 def is_objective(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
