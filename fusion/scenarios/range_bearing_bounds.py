@@ -240,6 +240,9 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
     instance_of(sc, RangeBearingScenario, "sc")
     flag(common_prior, "common_prior")
     flag(common_process, "common_process")
+    if len(sc.sensor_array) < 2:  # fuzz 50a D5: was refused after the work, as a record with NaN correlations
+        raise ValueError(f"sc has {len(sc.sensor_array)} sensor; linearised_errors needs at least two: its record "
+                         f"holds the correlation of two nodes' errors and compares their combinations")
     work((sc.frames,), "sc (its frames and sensors)", weight=_linearised_frame_units(len(sc.sensor_array)))
     out, off = _linearised(sc, common_prior, common_process)
     record = LinearisedErrors(out["nees"], out["cp"], out["cv"], out["ru"], out["rb"], out["rc"])  # finite, bounded
