@@ -59,6 +59,47 @@ def few_runs(name: str, runs: int, minimum: int, how: str) -> FewRunsError:
                         runs, minimum)
 
 
+def runs_first(runs: object, name: str = "runs", how: str = "the argument runs") -> int:
+    """Rule R4 before the work: ``runs`` of a reader whose evidence certainly holds a paired comparison of exactly
+    ``runs`` runs without a reason, refused below the rulebook's ``MIN_RUNS`` before any study is computed.
+
+    A chapter's reader that builds its record's readings from studies of ``runs`` runs refused too few runs only
+    when the comparison was made, after the studies (fuzz 57c: ``ev_fig7_improved_vs_ci({}, seed=2024, runs=3)``
+    computed chapter 05's studies, ~9 CPU-s, then refused). The caller calls this where the refusal is certain
+    (the record's readings are built together and one compares ``runs`` runs without a reason; its settings
+    already read), before the studies; the refusal is :func:`few_runs`'s, so a surrounding :func:`runs_named`
+    re-raises it as before.
+
+    Parameters
+    ----------
+    runs : int
+        The caller's run count (a count of at least 1, checked here by name).
+    name : str
+        The caller's argument.
+    how : str
+        How the caller gives more runs, ended into the message.
+
+    Returns
+    -------
+    int
+        ``runs``, checked (a plain int).
+
+    Raises
+    ------
+    TypeError
+        ``runs`` not an integer.
+    ValueError
+        ``runs`` below 1; :class:`FewRunsError` (a ValueError) when below ``MIN_RUNS``.
+    """
+    from fusion._counts import count
+    from fusion.book.rulebook import MIN_RUNS
+
+    n = count(runs, name)
+    if n < MIN_RUNS:
+        raise few_runs(name, n, MIN_RUNS, how)
+    return n
+
+
 @contextlib.contextmanager
 def runs_named(name: str, how: str) -> Iterator[None]:
     """Re-raise rule R4's refusal inside the block as a ValueError naming ``name`` and the minimum.

@@ -13,7 +13,7 @@ from fusion.book.study_cache import study_cache
 from fusion._validation import count, instance_of, mapping_of, one_of, read_mapping
 from fusion.book import rulebook as R
 from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
-from fusion.book._few_runs import runs_named
+from fusion.book._few_runs import runs_first, runs_named
 from fusion.book.ledger import Comparison, Conjunction, Evidence
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q
 from fusion.book.chapters.lecture_wavelets.variance import _vconj, _weighting
@@ -245,7 +245,10 @@ def _keys(rid: str) -> tuple[str, ...]:
 
 def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Comparison | Conjunction:
     """Reading ``settings["reading"]`` of ``rid`` on the studies at ``seed`` and ``runs`` (:func:`study`)."""
-    return _reading(rid, reading_key(settings), lambda k: study(k, seed, runs))
+    key = reading_key(settings)
+    if key in _keys(rid):  # every reading compares ``runs`` paired runs without a reason: rule R4's refusal before the
+        runs = runs_first(runs)  # studies, after the reading is named (fuzz 57c; reading_function's runs_named names it)
+    return _reading(rid, key, lambda k: study(k, seed, runs))
 
 
 def _reader(rid: str, summary: str, seed_runs: str = "The studies' seed and run count (:func:`study`).",

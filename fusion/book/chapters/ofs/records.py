@@ -29,7 +29,7 @@ from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, Fai
 from fusion.book.chapters.ofs.studies import (alpha_study, fair_weights, faulty_member_share, membership_study,
                                              not_neighbourhood_share, study, weight_study)
 from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint, table1_totals, tables
-from fusion.book._few_runs import paired_runs, reader_runs_named
+from fusion.book._few_runs import paired_runs, reader_runs_named, runs_first
 from fusion.book.glue import GlueValues
 from fusion._counts import count
 from fusion._validation import instance_of
@@ -59,10 +59,12 @@ def _pair(base: str, case: str, metric: str, settings: Mapping[str, object], see
     if "alpha" in settings:
         if base != "support_degree":
             raise ValueError("settings['alpha'] applies to the support degree only")
-        st, b = alpha_study(seed, runs), alpha_key(float(settings["alpha"]))  # type: ignore[arg-type]
+        b = alpha_key(float(settings["alpha"]))  # type: ignore[arg-type]
         name = _support_label(float(settings["alpha"]))  # type: ignore[arg-type]
+        st = alpha_study(seed, runs_first(runs))  # R4's certain refusal before the study (fuzz 57c)
     else:
-        st, b = study(seed, runs, _noise(settings), mode, bool(settings.get("include_self", True))), base
+        noise, include_self = _noise(settings), bool(settings.get("include_self", True))
+        st, b = study(seed, runs_first(runs), noise, mode, include_self), base  # R4 before the study (fuzz 57c)
         name = _support_label(_ALPHA) if base == "support_degree" else METHOD_LABELS[base]
     fn = st.mae if metric == "mae" else st.fluctuation
     what = _METRIC_TEXT[metric]
@@ -104,7 +106,8 @@ ev_fig4_fluctuation_support = _pair_record("ev_fig4_fluctuation_support", "suppo
 def ev_fig4_unaffected(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: the optimal set's per-run MAE on samples 50-80 with the failure against without it ("equal")."""
     seed = check_seed(seed)
-    st = study(seed, runs, _noise(settings), _failure(settings))
+    noise, mode = _noise(settings), _failure(settings)
+    st = study(seed, runs_first(runs), noise, mode)  # R4's certain refusal before the study (fuzz 57c)
     return Comparison(st.mae("optimal_fusion_set", True), st.mae("optimal_fusion_set", False, window=True),
                       "with failure", "without failure", "equal",
                       "optimal set's per-run mean absolute error on samples 50-80 (°C)", seed=seed)
@@ -114,7 +117,8 @@ def ev_fig4_unaffected(settings: Mapping[str, object], *, seed: int = SEED, runs
 def ev_fig4_robust(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: the rise of the per-run MAE on samples 50-80 due to the failure, optimal set against the mean."""
     seed = check_seed(seed)
-    st = study(seed, runs, _noise(settings), _failure(settings))
+    noise, mode = _noise(settings), _failure(settings)
+    st = study(seed, runs_first(runs), noise, mode)  # R4's certain refusal before the study (fuzz 57c)
     rise = {m: st.mae(m, True) - st.mae(m, False, window=True) for m in ("optimal_fusion_set", "mean")}
     return Comparison(rise["optimal_fusion_set"], rise["mean"], METHOD_LABELS["optimal_fusion_set"],
                       METHOD_LABELS["mean"], "less",
@@ -127,11 +131,12 @@ def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, r
     seed = check_seed(seed)
     if "sweep" in settings:
         sweep = text(settings["sweep"], "settings['sweep']")  # its plain text (rule 19), never str() of it
-        e = fair_weights(seed, runs).mae[(sweep, float(settings["value"]))]  # type: ignore[arg-type]
+        value = float(settings["value"])  # type: ignore[arg-type]
+        e = fair_weights(seed, runs_first(runs)).mae[(sweep, value)]  # R4 before the study (fuzz 57c)
         what = f"{sweep} = {float(settings['value']):g}"  # type: ignore[arg-type]
     else:
         case = _case(settings)
-        e = membership_study(seed, runs).ablation[case]
+        e = membership_study(seed, runs_first(runs)).ablation[case]  # R4 before the study (fuzz 57c)
         what = "primary noise, " + ("samples 1-100, no failure" if case is FailureCase.NONE else
                                     "samples 50-80 under failure")
     return Comparison(e["optimal_fusion_set"], e["uniform_set"], "weights of eqs. 6-11", METHOD_LABELS["uniform_set"],
@@ -151,7 +156,7 @@ def ev_membership_free(settings: Mapping[str, object], *, seed: int = SEED, runs
             parts_t1.append((f"Table 1, {fam} vs eq. 6", Proposition(
                 diff == 0.0, f"largest difference from eq. 6 over the six observations: {diff:.1g} °C")))
         return Conjunction(parts_t1)
-    ms = membership_study(seed, runs)
+    ms = membership_study(seed, runs_first(runs))  # its comparisons: R4's certain refusal before the study (fuzz 57c)
     parts = []
     for case in FailureCase:
         if vary == "family":
@@ -175,14 +180,16 @@ def ev_weights_stability(settings: Mapping[str, object], *, seed: int = SEED, ru
     that of sensors 6-10, σ 1.33-2 °C, per run) or a pair (1-based) of sensors.
     """
     seed = check_seed(seed)
-    ws = weight_study(seed, runs, bool(settings.get("include_self", True)))
-    if settings.get("sensors", "halves") == "halves":
+    halves = settings.get("sensors", "halves") == "halves"
+    pair = None if halves else tuple(int(k) for k in settings["sensors"])  # type: ignore[union-attr]
+    ws = weight_study(seed, runs_first(runs), bool(settings.get("include_self", True)))  # R4 first (fuzz 57c)
+    if halves:
         k = ws.relative.shape[1] // 2
         return Comparison(ws.relative[:, :k].mean(axis=1), ws.relative[:, k:].mean(axis=1), f"sensors 1-{k}",
                           f"sensors {k + 1}-{ws.relative.shape[1]}", "greater", "per-run weight relative to an equal "
                           "share of the set, averaged over the sensors of each half (epochs at which each is a member)",
                           seed=seed)
-    a, b = (int(k) for k in settings["sensors"])  # type: ignore[union-attr]
+    a, b = pair  # type: ignore[misc]
     if not (1 <= a <= ws.relative.shape[1] and 1 <= b <= ws.relative.shape[1]):
         raise ValueError(f"settings['sensors'] must name two sensors in 1..{ws.relative.shape[1]}, got {(a, b)}")
     return Comparison(ws.relative[:, a - 1], ws.relative[:, b - 1], f"sensor {a}", f"sensor {b}", "greater",
