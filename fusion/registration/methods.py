@@ -485,8 +485,8 @@ MAX_STEP = MAX_MAGNITUDE ** 0.2
 #: 1 and 100; sigma 3e-7 to 1 m; p0 1 to 1e6; q_v, q_a 0, 1e-8 and 1e-2; init 'source' and 'once'): at or below
 #: 1e-6 the filtered covariances of 315 accepted calls are within 2.7e-6 of the exact ones (same measure), 189
 #: refused, none accurate to 1e-8 and 5 to 1e-6; smoothed, 238 accepted within 1.3e-6, 255 refused (11 more by the
-#: smoother's singular gain), none accurate to 1e-8, one to 1e-6; lag-one (67 calls so far), accepted within 4.8e-7,
-#: none refused accurate to 1e-6. A first-order bound (eps times the largest variance ratio) refused accurate calls and
+#: smoother's singular gain), none accurate to 1e-8, one to 1e-6; lag-one, 308 accepted within 9.1e-6, 185 refused,
+#: none accurate to 1e-8, two to 1e-6. A first-order bound (eps times the largest variance ratio) refused accurate calls and
 #: is not used. Chapter 07's calls (its notebook) have estimates below 2e-11.
 _KALMAN_RTOL = 1e-6
 
