@@ -2,9 +2,10 @@ r"""Round-off estimate of the covariance recursion of ``fusion.registration.meth
 
 The filter's covariance (Joseph form, as filterpy) loses its digits when the prior is far above the posterior and no
 process noise refills it (a diffuse prior against a tiny measurement noise): it then returns a plausible wrong gain.
-The same covariances are recomputed here in information form (each update :math:`P = (P^{-1} + H^\top H/\sigma^2)^{-1}`),
-which rounds differently; their per-entry discrepancy, relative to :math:`\sqrt{P_{aa}P_{bb}}`, estimates the
-round-off of both (the model of ``fusion.scenarios.range_bearing_bounds``' linearised errors, fix 56b).
+The same covariances are recomputed here in information form (each update
+:math:`P = (P^{-1} + H^\top H/\sigma^2)^{-1}`), which rounds differently; their per-entry discrepancy, relative
+to :math:`\sqrt{P_{aa}P_{bb}}`, estimates the round-off of both (the model of
+``fusion.scenarios.range_bearing_bounds``' linearised errors, fix 56b).
 """
 
 from __future__ import annotations
@@ -87,8 +88,8 @@ def refuse(off: FloatArray, g: FloatArray, threshold: float, what: str, sigma: f
             f"sigma = {shown(sigma)} m, q_v = {shown(q_v)}, q_a = {shown(q_a)} and p0 = {shown(p0)} leave the filter's "
             f"covariance recursion inaccurate (round-off: the prior far above the posterior, a measurement variance "
             f"{max(p0) / sigma**2:.1e} times below p0, and too little process noise to refill it): at t = {g[m]:g} s "
-            f"{what} differ by {off[m]:.2g} of their scale sqrt(P_aa P_bb), above {threshold:g}; give q_v or q_a > 0 or a "
-            "larger sigma, or a smaller p0")
+            f"{what} differ by {off[m]:.2g} of their scale sqrt(P_aa P_bb), above {threshold:g}; give q_v or q_a > 0 "
+            "or a larger sigma, or a smaller p0")
 
 
 #: Round-off estimates already computed, by the filter's options (its grid, noise and prior: the covariances do not

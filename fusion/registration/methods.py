@@ -486,8 +486,8 @@ MAX_STEP = MAX_MAGNITUDE ** 0.2
 #: 1e-6 the filtered covariances of 315 accepted calls are within 2.7e-6 of the exact ones (same measure), 189
 #: refused, none accurate to 1e-8 and 5 to 1e-6; smoothed, 238 accepted within 1.3e-6, 255 refused (11 more by the
 #: smoother's singular gain), none accurate to 1e-8, one to 1e-6; lag-one, 308 accepted within 9.1e-6, 185 refused,
-#: none accurate to 1e-8, two to 1e-6. A first-order bound (eps times the largest variance ratio) refused accurate calls and
-#: is not used. Chapter 07's calls (its notebook) have estimates below 2e-11.
+#: none accurate to 1e-8, two to 1e-6. A first-order bound (eps times the largest variance ratio) refused accurate
+#: calls and is not used. Chapter 07's calls (its notebook) have estimates below 2e-11.
 _KALMAN_RTOL = 1e-6
 
 
