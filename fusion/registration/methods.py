@@ -753,7 +753,7 @@ def kalman_runs(
 def _smoother_gain(Pp: FloatArray, PF: FloatArray, t: float, sigma: float, q_v: float, q_a: float,
                    p0: tuple[float, float]) -> FloatArray:
     """The smoother's gain :math:`C = P\Phi^\top (P^-)^{-1}` (``PF`` is :math:`P\Phi^\top`, ``Pp`` the predicted
-    covariance at ``t``), refused naming ``sigma``, ``q_v`` and ``q_a`` where ``Pp`` is singular to working precision
+    covariance at ``t``), refused naming ``sigma``, ``q_v``, ``q_a`` and ``p0`` where ``Pp`` is singular to working precision
     (fuzz 49b D1: sigma = 1e-8 m with q_v = q_a = 0 raised LinAlgError, reported under the internal names of
     ``fusion.registration.analysis.expected_mse``)."""
     try:
@@ -762,11 +762,11 @@ def _smoother_gain(Pp: FloatArray, PF: FloatArray, t: float, sigma: float, q_v: 
         C = None
     if C is None or not np.isfinite(C).all():
         raise ValueError(
-            f"sigma = {shown(sigma)} m with q_v = {shown(q_v)} and q_a = {shown(q_a)} leave the smoother's predicted "
-            f"covariance singular to working precision at t = {t:g} s: with no process noise (or this little) the "
-            f"covariance collapses to the scale of the measurement variance sigma**2, {max(p0) / sigma**2:.1e} times "
-            "below the prior p0, beyond the precision of the covariance recursion (see Notes); give q_v or q_a > 0 "
-            "or a larger sigma")
+            f"sigma = {shown(sigma)} m with q_v = {shown(q_v)}, q_a = {shown(q_a)} and p0 = {shown(p0)} leave the "
+            f"smoother's predicted covariance singular to working precision at t = {t:g} s: with no process noise (or "
+            f"this little) the covariance collapses to the scale of the measurement variance sigma**2, "
+            f"{max(p0) / sigma**2:.1e} times below the prior p0, beyond the precision of the covariance recursion (see "
+            "Notes); give q_v or q_a > 0, a larger sigma or a smaller p0")
     return C
 
 
