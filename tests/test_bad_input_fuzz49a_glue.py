@@ -143,7 +143,6 @@ def test_c2_a_table_inside_a_container_is_charged_as_a_table() -> None:
     from fusion.book import glue as G
     df = pd.DataFrame({"a": [1.0, 2.0]})
     assert G._GLUE_TABLE == 300_000
-    for table in (df, df.style):
-        assert G._finite([[table] * 50] * 50, "a")
-        _refused_quickly([[table] * 60] * 60, r"^values\['a'\] ask for more work")
-    G.glue_all({"a": [df, df.style], "b": df})
+    assert G._finite([[df] * 50] * 50, "a")   # (a Styler inside a container is refused since fix57b: its text is
+    _refused_quickly([[df] * 60] * 60, r"^values\['a'\] ask for more work")   # its address)
+    G.glue_all({"a": [df, df], "b": df})

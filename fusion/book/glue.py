@@ -6,9 +6,12 @@ from decimal import Decimal
 
 import cmath
 import datetime
+import enum
 import math
 import numbers
+import pathlib
 import re
+import sys
 from collections import OrderedDict, defaultdict
 from collections.abc import Mapping
 from typing import Any, TypeAlias, Union
@@ -195,12 +198,17 @@ def _glued_cell(table: object, row: object, column: object, name: str, lo: float
     return scalar(cell, f"{name}.loc[{shown(row)}, {shown(column)}]", lo, hi, tiny=True)
 
 
-#: The values glue_all and ``keep`` take as they are (checked when a number: finite, not a missing-value marker):
-#: numbers (Python, NumPy, Decimal, Fraction), text, None, dates and times, and a figure. Containers are the ones
-#: :func:`_finite` looks into; anything else is refused by type (fuzz 26a G/D3: a deque, array.array, dict view or
-#: generator printed ``nan`` unchecked).
+#: The atoms: what glue_all and ``keep`` take as they are, as a value, a container's entry, a mapping's key or a
+#: table's cell or label alike (fix57b, fuzz 50a D1, D2), because their text is bounded and deterministic: numbers
+#: (Python, NumPy, Decimal, Fraction; finite, an int of at most ``_int_digits()`` decimal digits), text, bytes,
+#: None, dates, times and durations (``pd.Timestamp``, ``pd.Timedelta``), a ``pd.Period``, a ``pd.Interval`` (its
+#: two endpoints are checked as numbers), an Enum member (its value is checked as an entry), a ``pathlib`` path, a
+#: ``range`` (its start, stop and step checked as ints, charged by its length: pandas prints its entries), and a
+#: figure. Containers are the ones :func:`_finite` looks into; anything else is refused by type (fuzz 26a G/D3: a
+#: deque, array.array, dict view or generator printed ``nan`` unchecked), and so is an object whose text is
+#: ``object``'s default (its address: not the same text twice).
 _GLUE_LEAVES = (type(None), str, bytes, numbers.Number, np.generic, datetime.date, datetime.time, datetime.timedelta,
-                Figure)
+                pd.Period, pd.Interval, enum.Enum, pathlib.PurePath, range, Figure)
 #: The containers whose entries are checked: their text prints their entries (a table: its object cells and labels,
 #: ``_table_cells``; a mapping: its keys and its values, fuzz 49a C2, C3).
 _GLUE_CONTAINERS = (list, tuple, set, frozenset, Mapping, pd.Series, pd.Index, np.ndarray, ExtensionArray,
@@ -239,12 +247,14 @@ def _table_size(table: pd.DataFrame | Styler) -> int:
 
 
 def _is_missing_cell(cell: object) -> bool:
-    """Whether a table cell is missing or a number that is not finite: a table prints it as a word (NaN, inf,
-    <NA>, NaT, None), in an object column as in a numeric one (not looked into)."""
+    """Whether a table cell is missing or a real number that is not finite: a table prints it as a word (NaN, inf,
+    <NA>, NaT, None), in an object column as in a numeric one (not looked into). Not a complex number (fuzz 50a D3:
+    ``complex(1, nan)`` prints ``1.000000+nanj`` in a Styler, ``1.0+NaNj`` in a complex column: a number with nan,
+    refused as a value is)."""
     if cell is None or cell is pd.NA or cell is pd.NaT:
         return True
-    if isinstance(cell, (float, complex, np.floating, np.complexfloating)):
-        return not cmath.isfinite(cell)
+    if isinstance(cell, (float, np.floating)):
+        return not math.isfinite(cell)
     if isinstance(cell, Decimal):
         return not cell.is_finite()
     return isinstance(cell, (np.datetime64, np.timedelta64)) and bool(np.isnat(cell))
@@ -261,7 +271,44 @@ def _table_cells(table: pd.DataFrame | Styler) -> list[object]:
     cells = list(table.iloc[:, cols].to_numpy(dtype=object).ravel(order="F")) if cols else []
     for lv in _table_labels(table.index) + _table_labels(table.columns):
         cells += list(lv.to_numpy(dtype=object))
-    return [c for c in cells if not _is_missing_cell(c)]
+    # an Interval cell or label (``pd.cut``'s bins) is its endpoints, an infinite one printed as a word (``(2.0, inf]``)
+    # as the table's own non-finite number (fix57b, fuzz 50a D1); a float (finite: a float64 too) has nothing more to
+    # check, not walked (pd.cut's 10**6 bins: 1.4 CPU-s, 7.3 walking their endpoints)
+    cells = [e for c in cells for e in ((c.left, c.right) if isinstance(c, pd.Interval) else (c,))]
+    return [c for c in cells if not (_is_missing_cell(c) or isinstance(c, float))]
+
+
+def _complex_table_finite(table: pd.DataFrame | Styler) -> bool:
+    """Whether every entry of ``table``'s complex columns and complex labels is finite (a complex with nan prints as
+    a number with nan, ``1.0+NaNj``: fuzz 50a D3), checked at once (vectorised)."""
+    table = table.data if isinstance(table, Styler) else table
+    arrays = [table.iloc[:, j].to_numpy() for j, d in enumerate(table.dtypes)
+              if isinstance(d, np.dtype) and d.kind == "c"]
+    for labels in (table.index, table.columns):
+        levels = list(labels.levels) if isinstance(labels, pd.MultiIndex) else [labels]
+        arrays += [lv.to_numpy() for lv in levels if isinstance(lv.dtype, np.dtype) and lv.dtype.kind == "c"]
+    return all(bool(np.isfinite(a).all()) for a in arrays)
+
+
+def _int_digits() -> int:
+    """The most decimal digits an int glued may have: 4,300, Python's default limit of int-to-str conversion, or the
+    interpreter's current limit (``sys.get_int_max_str_digits()``, 0 for none) when it is smaller. Fuzz 50a D4: an
+    int of 5,000 digits glued an empty output (IPython's formatter hit the limit and swallowed the error); with the
+    limit lifted, an int of 10**6 digits took 11 CPU-s to print, uncounted (the conversion is quadratic)."""
+    limit = sys.get_int_max_str_digits()
+    return 4300 if limit == 0 else min(4300, limit)
+
+
+def _check_int(v: int, key: str) -> None:
+    """ValueError naming ``values[key]`` when the int ``v`` has more decimal digits than ``_int_digits()``, told by
+    its bit length (no conversion; an exact comparison only within a bit of the limit)."""
+    limit, bits = _int_digits(), v.bit_length()
+    if bits <= 3 * limit:   # |v| < 2**bits <= 8**limit: at most limit digits
+        return
+    if bits > 4 * limit + 1 or abs(v) >= 10**limit:   # |v| >= 2**(bits - 1) > 16**limit: more digits
+        raise ValueError(f"values[{shown(key)}] must hold ints of at most {limit:,} decimal digits (Python's limit of "
+                         f"int-to-str conversion; its text would not be printed), got an int of about "
+                         f"{int(bits * math.log10(2)) + 1:,} digits")
 
 
 #: The marker of :func:`_finite`'s walk after a container's entries: its printed size is then complete.
@@ -285,17 +332,19 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
     lists, tuples, sets, a mapping's keys and values (fuzz 49a C3), a Series or Index, a pandas extension array
     (``pd.array``, Categorical, SparseArray: the arrays a Series holds), an object or structured array (fuzz 22a
     D1), a DataFrame's object cells and labels and a Styler's table (fuzz 49a C2: ``_table_cells``). A table's
-    missing cell or non-finite number is not refused: a table prints it as a word; what a cell holds is checked by
-    the rule of every container.
+    missing cell or non-finite real number is not refused: a table prints it as a word; what a cell holds is checked
+    by the rule of every container. Atoms (``_GLUE_LEAVES``, :func:`glue_all`'s Notes) are checked alike wherever
+    they are: an int's digits, an Interval's endpoints, an Enum member's value, a range's ints (fix57b).
 
     Raises
     ------
     TypeError
         A value, or an entry of a container, of another type (:data:`_GLUE_LEAVES`, :data:`_GLUE_CONTAINERS`):
-        a deque, ``array.array``, dict view, generator, masked array (whose text prints ``--``), ...,
-        naming ``values[key]``.
+        a deque, ``array.array``, dict view, generator, masked array (whose text prints ``--``), an object whose
+        text is its address (a Styler inside a container), ..., naming ``values[key]``.
     ValueError
-        Containers nested more than ``fusion._nesting.MAX_NESTING`` (64) deep, naming ``values[key]``; entries
+        An int of more decimal digits than ``_int_digits()``, naming ``values[key]``. Containers nested more than
+        ``fusion._nesting.MAX_NESTING`` (64) deep, naming ``values[key]``; entries
         beyond ``meter``'s allowance (fuzz 46a C2, C3), naming ``values[key]``, when a container is reached, before
         its entries are visited; a container that holds itself where its text would recurse (fuzz 49a C1): inside
         a Series, Index, table or pandas array (``_GLUE_PANDAS``), or on a cycle none of whose containers has a
@@ -328,10 +377,15 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
             continue
         if v is pd.NA or v is pd.NaT:
             return False
-        if isinstance(v, np.ma.MaskedArray) or not isinstance(v, _GLUE_LEAVES + _GLUE_CONTAINERS):
-            raise TypeError(f"values[{shown(key)}] must be a number, text, a figure, a table or a list, tuple, set, "
-                            f"mapping, Series, Index, pandas or NumPy array of them, got {type(v).__name__} "
-                            f"{shown(v, 60)}" + (f" inside {type(value).__name__}" if v is not value else ""))
+        if (isinstance(v, np.ma.MaskedArray) or not isinstance(v, _GLUE_LEAVES + _GLUE_CONTAINERS)
+                or (type(v).__repr__ is object.__repr__ and not (v is value and isinstance(v, Styler)))):
+            # an object whose text is its address (fix57b), a Styler inside a container too: only the value itself
+            # is glued as its HTML
+            why = " (its text is its address)" if type(v).__repr__ is object.__repr__ else ""
+            raise TypeError(f"values[{shown(key)}] must be a number, text, a date or time, a Period, Interval, Enum "
+                            f"member, path or range, a figure, a table or a list, tuple, set, mapping, Series, Index, "
+                            f"pandas or NumPy array of them, got {type(v).__name__} {shown(v, 60)}{why}"
+                            + (f" inside {type(value).__name__}" if v is not value else ""))
         here = None
         if isinstance(v, _GLUE_CONTAINERS):
             if id(v) in open_ids:  # a container that holds itself: its text prints [...] there
@@ -369,16 +423,33 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
             here = printed[id(v)] = [n, units, 1]
             todo.append((_EXIT, id(v), True, outer))
         inner = depth + 1
-        if isinstance(v, Decimal):
+        if isinstance(v, int):   # (a bool, an IntEnum) its decimal text within Python's limit (fuzz 50a D4)
+            _check_int(v, key)
+        elif isinstance(v, numbers.Rational) and not isinstance(v, np.generic):   # a Fraction: its two ints
+            _check_int(v.numerator, key), _check_int(v.denominator, key)
+        elif isinstance(v, Decimal):
             if not v.is_finite():
                 return False
+        elif isinstance(v, pd.Interval):   # its endpoints, as numbers (fuzz 50a D1)
+            if not all(math.isfinite(e) for e in (v.left, v.right) if isinstance(e, float)):
+                return False
+            todo += [(e, inner, False, outer) for e in (v.left, v.right) if not isinstance(e, float)]
+        elif isinstance(v, enum.Enum):     # its value, printed in its text (fuzz 50a D2)
+            todo.append((v.value, inner, False, outer))
+        elif isinstance(v, range):         # its ints, then its entries as pandas prints them
+            for e in (v.start, v.stop, v.step):
+                _check_int(e, key)
+            n = max(0, (v.stop - v.start + v.step - (1 if v.step > 0 else -1)) // v.step)
+            meter.take(n, n * _GLUE_NESTED, key)
         elif isinstance(v, (np.datetime64, np.timedelta64)):
             if np.isnat(v):
                 return False
         elif isinstance(v, (pd.Series, pd.Index)):
             todo.append((v.to_numpy(), inner, True, here))
         elif isinstance(v, (pd.DataFrame, Styler)):   # its (a Styler's table's) object cells and labels, counted
-            todo += [(e, inner, False, here) for e in _table_cells(v)]   # by ``_container_work`` (fuzz 49a C2)
+            if not _complex_table_finite(v):          # by ``_container_work`` (fuzz 49a C2)
+                return False
+            todo += [(e, inner, False, here) for e in _table_cells(v)]
         elif isinstance(v, ExtensionArray):   # its entries as objects: pd.NA, NaN, NaT, as the Series shows them
             todo.append((np.asarray(v, dtype=object), inner, True, here))
         elif isinstance(v, np.ndarray):
@@ -517,13 +588,24 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     decimals : int, optional
         Decimals of floats (see :func:`fusion.book.tables.rounded`); unrounded if ``None``.
 
+    Notes
+    -----
+    One rule for what a value, an entry of a container, a key of a mapping and a cell or label of a table may be
+    besides a container (an atom): an object whose text is bounded and deterministic. These are numbers (Python,
+    NumPy, Decimal, Fraction; an int of at most 4,300 decimal digits, Python's limit of int-to-str conversion, or
+    the interpreter's current limit when it is smaller), text and bytes, None, dates, times and durations (also
+    ``pd.Timestamp``, ``pd.Timedelta``), a ``pd.Period``, a ``pd.Interval`` (its endpoints are numbers: ``pd.cut``'s
+    bins), an Enum member (its value is checked as an entry: its text prints it), a ``pathlib`` path, a ``range``
+    (its start, stop and step are ints; charged by its length, as pandas prints its entries), and a figure. An
+    object whose text is Python's default (its address, not the same twice; a Styler inside a container) is refused.
+
     Raises
     ------
     TypeError
         ``values`` not a mapping, a key not a string, ``decimals`` not an integer; a value (or an entry of a
-        container) that is not a number, text, None, a date or time, a figure, a DataFrame or Styler, nor one of
-        the containers below (a deque, ``array.array``, dict view, generator or masked array: what it prints is
-        not checked), naming ``values[key]``.
+        container, a key of a mapping, a cell or label of a table) that is neither an atom (Notes), a DataFrame or
+        Styler given as the value, nor one of the containers below (a deque, ``array.array``, dict view, generator or
+        masked array: what it prints is not checked; an object whose text is its address), naming ``values[key]``.
     ValueError
         A key that is not ASCII letters, digits, underscores and hyphens (``fig-chf-pso``; text that prints alike,
         ``é`` composed or decomposed, would be two keys: ``_glue_prefix``'s rule for the whole key, fuzz 36a D1).
@@ -531,13 +613,16 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         infinite, or a missing value (``pd.NA``, ``pd.NaT``, a NumPy ``NaT``), also inside a list, tuple, set,
         a mapping's keys or values, Series, Index, pandas extension array (``pd.array``, Categorical,
         SparseArray), object or structured array, or a container in a cell or label of a DataFrame or Styler (a
-        table's own missing cell is not refused: a table prints it as a word), naming ``values[key]``; checked for
+        table's own missing cell or non-finite real number, also an Interval's endpoint, is not refused: a table
+        prints it as a word; a complex one is, ``1.0+NaNj``), naming ``values[key]``; checked for
         every value before any is glued, whatever ``decimals``. Containers nested more than 64 deep
         (``fusion._nesting.MAX_NESTING``; their text recurses), naming ``values[key]``; a container that holds
         itself is accepted (its text prints ``[...]`` there), but a container of such a cycle reached again by
         another path is refused (its text's size depends on the path), and so is a cycle inside a Series, Index,
         table or pandas array, or one of containers none of which prints ``[...]`` (a Counter holding itself):
-        their text recurses. A NumPy longdouble beyond float's range (it would be glued as inf or 0), naming
+        their text recurses. A NumPy longdouble beyond float's range (it would be glued as inf or 0), an int of more
+        decimal digits than the limit in Notes (IPython would glue nothing; told by its bit length, before any
+        conversion: with the limit lifted, 10**6 digits took 11 CPU-s to print), wherever an int is, naming
         ``values[key]``. More values (weighed by kind: tables by their cells, lists by their entries, a dict by its
         keys and values, object and extension arrays, object Series and Index by their size, figures) than the work
         budget glues, naming ``values``, before any is read; entries of containers inside a value (a list of lists,
