@@ -48,7 +48,6 @@ from fusion._validation import (as_times, _numeric, FloatArray, as_array, check_
                                 one_of, positive_scalar, scalar, std_scalar, step_scalar)
 from fusion._validation import MAX_MAGNITUDE, MIN_VARIANCE, finite_result, grid_points
 from fusion._shown import shown
-from fusion.registration import _kf_roundoff as _roundoff
 
 __all__ = [
     "FilteredStates",
@@ -477,20 +476,6 @@ def _kf_options(sigma: float, q_v: float, q_a: float, q_model: str, init: str, p
 MAX_STEP = MAX_MAGNITUDE ** 0.2
 
 
-#: Largest accepted round-off estimate of :func:`kalman_filter` and :func:`kalman_runs` (fix 57d): at any node, the
-#: discrepancy of the filter's covariance (Joseph form) from the same recursion with its updates in information
-#: form, entry ``(a, b)`` relative to ``sqrt(P_aa P_bb)``, and with ``smooth`` or ``lag_one`` that of the smoothed
-#: covariance from the smoother's form without cancellation run on the information form's covariances. Calibrated
-#: against exact rational recursions on a grid of 504 calls (chapter 07's 20 samples with their times scaled by 0.01,
-#: 1 and 100; sigma 3e-7 to 1 m; p0 1 to 1e6; q_v, q_a 0, 1e-8 and 1e-2; init 'source' and 'once'): at or below
-#: 1e-6 the filtered covariances of 315 accepted calls are within 2.7e-6 of the exact ones (same measure), 189
-#: refused, none accurate to 1e-8 and 5 to 1e-6; smoothed, 238 accepted within 1.3e-6, 255 refused (11 more by the
-#: smoother's singular gain), none accurate to 1e-8, one to 1e-6; lag-one, 308 accepted within 9.1e-6, 185 refused,
-#: none accurate to 1e-8, two to 1e-6. A first-order bound (eps times the largest variance ratio) refused accurate
-#: calls and is not used. Chapter 07's calls (its notebook) have estimates below 2e-11.
-_KALMAN_RTOL = 1e-6
-
-
 def _grid(tt: FloatArray, t_extra: ArrayLike | None) -> tuple[FloatArray, np.ndarray]:
     """Union of the sample times and extra prediction instants; mask of the sample nodes."""
     if t_extra is None:
@@ -557,18 +542,14 @@ def kalman_filter(
     ------
     ValueError
         Times not finite or not strictly increasing, ``sigma`` not positive, ``q_v`` or ``q_a``
-        negative or not finite, unknown ``q_model`` or ``init``, bad ``p0``; ``sigma``, ``q_v``, ``q_a`` and ``p0``
-        whose covariance recursion is inaccurate to working precision (see Notes).
+        negative or not finite, unknown ``q_model`` or ``init``, bad ``p0``.
 
     Notes
     -----
     Accuracy: as :func:`fusion.filtering.kalman.gain_sequence`'s, the covariance recursion loses precision when
-    ``p0`` is far above the posterior and too little process noise refills it (fuzz 46b D1: p0 = 1e12 against 1e13
-    moved the acceleration estimate by 3e-4 relative). The same covariances are computed beside it with their updates
-    in information form, which round differently; where the two differ by more than 1e-6 of ``sqrt(P_aa P_bb)`` at
-    any sample the call is refused (fix 57d; calibrated against exact rational recursions: accepted covariances are
-    within 2.7e-6 of the exact ones, and no call accurate to 1e-8 was refused on the grid; sigma = 1e-4 m with
-    ``q_v = q_a = 0`` and p0 = 100 is refused, its covariance 9e-6 off).
+    ``p0`` is far above the posterior (fuzz 46b D1: p0 = 1e12 against 1e13 moves the acceleration estimate by 3e-4
+    relative, 1e16 against 1e17 by 0.5 %); p0 up to about 1e10 times ``sigma**2`` is accurate to ~1e-6 (measured
+    against an exact rational recursion: 5e-6 at p0 = 1e10, sigma = 1).
 
     References
     ----------
@@ -591,21 +572,13 @@ def kalman_filter(
         kf.update(zz[0])
     xs[0], Ps[0] = kf.x, kf.P
     i = 1
-    F, Q = np.zeros((g.size, 3, 3)), np.zeros((g.size, 3, 3))
     for m in range(1, g.size):
         dt = g[m] - g[m - 1]
-        F[m], Q[m] = ca_transition(dt), process_noise(dt, q_v, q_a, q_model, period)
-        kf.predict(F=F[m], Q=Q[m])
+        kf.predict(F=ca_transition(dt), Q=process_noise(dt, q_v, q_a, q_model, period))
         if is_sample[m]:
             kf.update(zz[i])
             xs[i], Ps[i] = kf.x, kf.P
             i += 1
-    # the round-off estimate (fix 57d, as kalman_runs'): the same covariances in information form
-    r2 = sigma**2
-    off = _roundoff.estimate(("filter", g.tobytes(), is_sample.tobytes(), sigma, q_v, q_a, q_model, init, p0, period),
-                             lambda: _roundoff.discrepancy(Ps, _roundoff.information_form(
-                                 F, Q, is_sample, r2, np.diag([r2, p0[0], p0[1]]), init == "source")[0][is_sample]))
-    _roundoff.refuse(off, tt, _KALMAN_RTOL, "its Joseph and information forms", sigma, q_v, q_a, p0)
     return FilteredStates(x=xs, P=Ps)
 
 
@@ -646,23 +619,17 @@ def kalman_runs(
     Raises
     ------
     ValueError
-        As :func:`kalman_filter` (an inaccurate covariance recursion included); ``Z`` whose last axis does not match
-        ``t``; with ``smooth`` or ``lag_one``, a predicted covariance singular to working precision (``sigma``,
-        ``q_v`` and ``q_a`` named: no process noise and a measurement variance far below ``p0``, fuzz 49b D1), or a
-        smoothed covariance inaccurate to working precision (see Notes).
+        As :func:`kalman_filter`; ``Z`` whose last axis does not match ``t``; with ``smooth`` or ``lag_one``, a
+        predicted covariance singular to working precision (``sigma``, ``q_v`` and ``q_a`` named: no process noise
+        and a measurement variance far below ``p0``, fuzz 49b D1).
 
     Notes
     -----
-    Accuracy: as :func:`kalman_filter`'s, and refused as there; without process noise (``q_v = q_a = 0``) the
-    posterior is the measurement variance's scale and the error grows with ``p0 / sigma**2`` (fuzz 49b D1, against
-    an exact rational batch solution of the smoother of chapter 07's default flight, ``p0`` = 100: relative error of
-    the expected MSE 2e-9 at sigma = 0.01 m, 1e-6 at 1e-4 m, 31 % at 1e-6 m, now refused). The smoothed covariance
-    :math:`P_m + C_m(P^s_{m+1} - P^-_{m+1})C_m^\top` cancels on its own: it is also computed in the form
-    :math:`(I - C_m\Phi)P_m(I - C_m\Phi)^\top + C_m(Q + P^s_{m+1})C_m^\top` (equal in exact arithmetic) from the
-    information form's covariances, and the call refused where the two differ by more than 1e-6 (fix 57d: accepted
-    smoothed covariances within 1.3e-6 of the exact ones, none accurate to 1e-8 refused; sigma = 0.01 m with no
-    process noise is refused smoothing, its smoothed covariance 4.9e-6 off, though its states' gains are accurate).
-    The estimate is computed once per set of options (the covariances do not depend on ``Z``).
+    Accuracy: as :func:`kalman_filter`'s; without process noise (``q_v = q_a = 0``) the posterior is the measurement
+    variance's scale and the error grows with ``p0 / sigma**2`` (fuzz 49b D1, against an exact rational batch
+    solution of the smoother of chapter 07's default flight, ``p0`` = 100: relative error of the expected MSE 2e-9 at
+    sigma = 0.01 m, 1e-6 at 1e-4 m, 31 % at 1e-6 m; from about 3e-7 m the predicted covariance is singular and the
+    smoothers refuse).
 
     References
     ----------
@@ -689,7 +656,6 @@ def kalman_runs(
     P = np.empty((M, 3, 3))
     Pp = np.empty((M, 3, 3))
     F = np.empty((M, 3, 3))
-    Qs = np.zeros((M, 3, 3))
     x = np.zeros((R, 3))
     x[:, 0] = zz2[:, 0]
     Pm = np.diag([r2, p0[0], p0[1]])
@@ -709,8 +675,7 @@ def kalman_runs(
         dt = g[m] - g[m - 1]
         F[m] = ca_transition(dt)
         x = x @ F[m].T
-        Qs[m] = process_noise(dt, q_v, q_a, q_model, period)
-        Pm = F[m] @ Pm @ F[m].T + Qs[m]
+        Pm = F[m] @ Pm @ F[m].T + process_noise(dt, q_v, q_a, q_model, period)
         Pp[m] = Pm
         if is_sample[m]:
             x, Pm = update(x, Pm, zz2[:, i])
@@ -718,18 +683,6 @@ def kalman_runs(
         X[:, m], P[m] = x, Pm
     if smooth and lag_one:
         raise ValueError("smooth and lag_one cannot both be set")
-    # the round-off estimate (fix 57d): the filtered covariances in information form, refused above _KALMAN_RTOL after
-    # the smoothers (a singular predicted covariance is refused by their own message); computed once per set of
-    # options (the covariances do not depend on the data)
-    key = ("runs", g.tobytes(), is_sample.tobytes(), sigma, q_v, q_a, q_model, init, p0, period)
-    inf: list[tuple[FloatArray, FloatArray]] = []
-
-    def info() -> tuple[FloatArray, FloatArray]:
-        if not inf:
-            inf.append(_roundoff.information_form(F, Qs, is_sample, r2, np.diag([r2, p0[0], p0[1]]), init == "source"))
-        return inf[0]
-
-    off_f = _roundoff.estimate(key, lambda: _roundoff.discrepancy(P, info()[0]))
     if lag_one:
         Xf, Pf = X.copy(), P.copy()
         for m in range(M - 1):
@@ -741,11 +694,6 @@ def kalman_runs(
             C = _smoother_gain(Pp[m + 1], P[m] @ F[m + 1].T, g[m + 1], sigma, q_v, q_a, p0)
             X[:, m] = X[:, m] + (X[:, m + 1] - X[:, m] @ F[m + 1].T) @ C.T
             P[m] = P[m] + C @ (P[m + 1] - Pp[m + 1]) @ C.T
-    _roundoff.refuse(off_f, g, _KALMAN_RTOL, "its Joseph and information forms", sigma, q_v, q_a, p0)
-    if smooth or lag_one:  # the smoother's own cancellation, against its form without it (fix 57d)
-        off = _roundoff.estimate(key + (lag_one,), lambda: _roundoff.discrepancy(P, _roundoff.smoothed(*info(), F, Qs,
-                                                                                                      lag_one)))
-        _roundoff.refuse(off, g, _KALMAN_RTOL, "the smoothed covariances in two forms", sigma, q_v, q_a, p0)
     xs, Ps = X[:, is_sample], P[is_sample]
     return FilteredStates(x=xs[0] if one else xs, P=Ps)
 
