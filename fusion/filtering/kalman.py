@@ -354,8 +354,9 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     7e-4 at 1e14, 21 % at 1e16; fuzz 46b D1). No refusal: the cheap first-order bound (machine epsilon times the
     largest ratio of a predicted variance to its update) over-refuses accurate calls by up to 1e4 (a precise
     measurement of a directly observed state is accurate in Joseph's form); :func:`fusion.filtering.tracks.local_track`
-    checks its own split instead. Nor does a second recursion in information form (the estimate that
-    :func:`fusion.registration.methods.kalman_runs` refuses on, fix 57d) separate accurate from inaccurate calls here:
+    checks its own split instead. Nor does a second recursion in information form (fix 57d; tried for
+    :func:`fusion.registration.methods.kalman_runs` too and not kept: fuzz 51 C2, C3) separate accurate from
+    inaccurate calls here:
     on a grid of 108 calls (constant-velocity model, T 0.1-10 s, P0 1e2-1e14 I, R I and 1e-4 I, q 0-1, 25 steps,
     against exact rational recursions) 12 of the 80 calls whose two forms agree within 1e-6 are off by more than
     1e-6 (up to 60 times the scale at P0/R = 1e18: both forms make the same error). Give a prior within about 1e10
