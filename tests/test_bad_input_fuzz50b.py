@@ -30,3 +30,35 @@ def test_the_character_classes_are_the_categories() -> None:
     assert {m.start() for m in _refused().finditer(every)} == want
     assert {m.start() for m in _ASCII_REFUSED.finditer(every[:128])} == {i for i in want if i < 128}
     assert text_problem("tab\tand line\nbreak, é, 中文", required=False) is None
+
+
+def test_fuzz51_c2_a_negative_variance_of_the_registration_filters_is_refused() -> None:
+    """kalman_filter returned a variance of -9.6e-11 (exact +6.2e-11) at sigma = 3e-6 m against p0 = (2.8e7, 0.02):
+    a variance that is not positive is the recursion's round-off, refused naming the arguments that cause it."""
+    import numpy as np
+    from fusion.registration.methods import kalman_filter, kalman_runs
+
+    t = np.arange(1.0, 12.0, 2.0)
+    z = 0.5 * t
+    kw = dict(sigma=3e-6, q_v=2e-10, q_a=7.5e-12, p0=(2.8e7, 0.02))
+    for f in (kalman_filter, kalman_runs):
+        with pytest.raises(ValueError, match=r"^sigma = .*, q_v = .*, q_a = .* and p0 = .* leave the filter's "
+                                             "covariance recursion with a variance that is not positive"):
+            f(t, z, **kw)
+    out = kalman_filter(t, z, sigma=0.5)       # a valid call: positive variances, served
+    assert (np.diagonal(out.P, axis1=1, axis2=2) > 0).all()
+
+
+def test_fuzz51_c1_leading_blanks_are_checked_at_c_speed() -> None:
+    """The emptiness rule looped to the first visible character: 1e8 spaces then a letter took 12 CPU-s. Now a
+    regular expression of the visible characters, the same rule on every code point."""
+    from fusion.book._claim_text import _BLANK, _INVISIBLE, _visible_class
+    import re
+
+    t = time.process_time()
+    assert text_problem(" " * 20_000_000 + "a") is None
+    assert text_problem("\u3000" * 20_000_000) is not None
+    assert time.process_time() - t < 1.0   # the loop: 2.4 CPU-s
+    every = "".join(map(chr, range(sys.maxunicode + 1)))
+    want = {i for i, c in enumerate(every) if not (c in _BLANK or unicodedata.category(c) in _INVISIBLE)}
+    assert {m.start() for m in re.finditer(_visible_class(), every)} == want

@@ -421,6 +421,8 @@ BARE_CACHE_ALLOWED = {
     ("fusion/book/rulebook.py", "_clopper_pearson"): (3, 10, 0.95),
     ("fusion/book/style.py", "_figure_keywords"): (),
     ("fusion/book/chapters/lecture_weighting/records.py", "_claim_readings"): ("lec-awf-estimated",),
+    ("fusion/book/_claim_text.py", "_refused_class"): (),
+    ("fusion/book/_claim_text.py", "_visible_class"): (),
 }
 
 

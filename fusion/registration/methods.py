@@ -579,6 +579,7 @@ def kalman_filter(
             kf.update(zz[i])
             xs[i], Ps[i] = kf.x, kf.P
             i += 1
+    _positive_variances(Ps, sigma, q_v, q_a, p0)
     return FilteredStates(x=xs, P=Ps)
 
 
@@ -695,7 +696,20 @@ def kalman_runs(
             X[:, m] = X[:, m] + (X[:, m + 1] - X[:, m] @ F[m + 1].T) @ C.T
             P[m] = P[m] + C @ (P[m + 1] - Pp[m + 1]) @ C.T
     xs, Ps = X[:, is_sample], P[is_sample]
+    _positive_variances(Ps, sigma, q_v, q_a, p0)
     return FilteredStates(x=xs[0] if one else xs, P=Ps)
+
+
+def _positive_variances(Ps: FloatArray, sigma: float, q_v: float, q_a: float, p0: tuple[float, float]) -> None:
+    """Refuse, naming ``sigma``, ``q_v``, ``q_a`` and ``p0``, covariances with a variance that is not positive (or
+    not finite): every variance of the exact recursion is positive (``p0`` and ``sigma`` are), so such a one is the
+    recursion's round-off, and certainly wrong (fuzz 51 C2: sigma = 3e-6 m, p0 = (2.8e7, 0.02) returned a variance of
+    -9.6e-11 for the exact 6.2e-11). A covariance with positive variances may still be inaccurate (see Notes)."""
+    d = np.diagonal(Ps, axis1=-2, axis2=-1)
+    if not (d > 0).all():
+        raise ValueError(f"sigma = {shown(sigma)} m, q_v = {shown(q_v)}, q_a = {shown(q_a)} and p0 = {shown(p0)} "
+                         "leave the filter's covariance recursion with a variance that is not positive (round-off: "
+                         "the prior far above the posterior; see Notes): its results would be wrong")
 
 
 def _smoother_gain(Pp: FloatArray, PF: FloatArray, t: float, sigma: float, q_v: float, q_a: float,
