@@ -62,3 +62,13 @@ def test_fuzz51_c1_leading_blanks_are_checked_at_c_speed() -> None:
     every = "".join(map(chr, range(sys.maxunicode + 1)))
     want = {i for i, c in enumerate(every) if not (c in _BLANK or unicodedata.category(c) in _INVISIBLE)}
     assert {m.start() for m in re.finditer(_visible_class(), every)} == want
+
+
+def test_fuzz51_c6_an_unknown_reading_of_chapter_05_is_refused_before_its_studies() -> None:
+    """ci.ev_fig7_improved_vs_ci({'reading': 'nope'}, runs=100) computed the chapter's studies (9 CPU-s) first."""
+    from fusion.book.chapters import ci
+
+    t = time.process_time()
+    with pytest.raises(ValueError, match="^settings: record ci-fig7-improved-vs-ci has no reading 'nope'"):
+        ci.ev_fig7_improved_vs_ci({"reading": "nope"}, runs=100)
+    assert time.process_time() - t < 1.0

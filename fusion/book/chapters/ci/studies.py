@@ -31,7 +31,7 @@ from fusion.book.chapters.ci.architecture import architecture_studies
 from fusion.book.chapters.ci.claim_inputs import ArchInputs, IrInputs, LedgerStudies, PairedInputs, PeriodRuns
 from fusion.book.chapters.ci.claim_evidence import (_vs_ci, _x_below_y,
                                                     ev_fig6, ev_ir_baselines)
-from fusion.book.chapters.ci.constants import (FIG6_PERIODS, IR_DURATION, IR_T, LEDGER_RUNS, SEARCH_STEP, SEED,
+from fusion.book.chapters.ci.constants import (claim_file, FIG6_PERIODS, IR_DURATION, IR_T, LEDGER_RUNS, SEARCH_STEP, SEED,
                                                SOURCE_RUNS, SOURCE_T, W_GRID, W_PUB, study_seed)
 from fusion.book.chapters.ci.infrared_readings import IrReadings, ir_paired, ir_readings
 from fusion.book.chapters.ci.paired import PairedStudies, paired_studies
@@ -360,6 +360,7 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     rid = text(rid, "rid")   # a record id is a string (fuzz 26c A6: a list gave "unhashable type")
     if rid not in _STOCHASTIC:
         raise ValueError(f"rid: {shown(rid)} is not a stochastic record of the chapter; they are {sorted(_STOCHASTIC)}")
+    _check_reading(settings, rid)
     with runs_named("runs", "the argument runs"):  # rule R4 named by the argument (fuzz 26c A5)
         # every record here is built with paired comparisons of ``runs`` runs without a reason (the IR records'
         # exact readings too: ev_ir_baselines builds them with ci-fig10-x-below-y's), so rule R4's refusal comes
@@ -369,6 +370,15 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")
     return ev[key]
+
+
+def _check_reading(settings: Mapping[str, Any] | None, rid: str) -> None:
+    """An unknown reading of ``rid`` refused before any study, by its claim file's readings (fuzz 51 C6: 9 CPU-s of
+    the chapter's studies, then the refusal): the reading keys the record's evidence holds."""
+    key = text(dict(settings or {}).get("reading", "primary"), "settings['reading']")
+    known = {"primary"} | {r.key for r in claim_file().record(rid).readings}
+    if key not in known:
+        raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(known)}")
 
 
 _READER_DOC = """``{rid}``: a reading's evidence (settings ``{{"reading": key}}``){extra}.
