@@ -72,3 +72,21 @@ def test_fuzz51_c6_an_unknown_reading_of_chapter_05_is_refused_before_its_studie
     with pytest.raises(ValueError, match="^settings: record ci-fig7-improved-vs-ci has no reading 'nope'"):
         ci.ev_fig7_improved_vs_ci({"reading": "nope"}, runs=100)
     assert time.process_time() - t < 1.0
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda ofs: ofs.ev_weights_reasonable({"sweep": "noise", "value": 7.5}), r"^settings: sweep 'noise' at value 7.5"),
+    (lambda ofs: ofs.ev_weights_reasonable({"sweep": "nope", "value": 1.0}), r"^settings: sweep 'nope'"),
+    (lambda ofs: ofs.ev_fig2_vs_support({"alpha": 0.3333}), r"^settings\['alpha'\] must be one of"),
+    (lambda ofs: ofs.ev_weights_stability({"sensors": (1, 2, 3)}), r"^settings\['sensors'\] must be 'halves' or a pair"),
+    (lambda ofs: ofs.ev_weights_stability({"sensors": "ab"}), r"^settings\['sensors'\] must be 'halves' or a pair"),
+    (lambda ofs: ofs.ev_weights_stability({"sensors": 5}), r"^settings\['sensors'\] must be a sequence"),
+])
+def test_fuzz51_c4_c5_chapter_01_settings_are_named_before_the_study(call, name) -> None:
+    """A KeyError after the study (C4) and unpacking or conversion errors naming nothing (C5)."""
+    from fusion.book.chapters import ofs
+
+    t = time.process_time()
+    with pytest.raises((ValueError, TypeError), match=name):
+        call(ofs)
+    assert time.process_time() - t < 1.0

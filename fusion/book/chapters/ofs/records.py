@@ -8,6 +8,7 @@ by name (a seed, a count >= 1) even where its reading is exact and neither chang
 from __future__ import annotations
 
 import importlib
+import inspect
 from collections.abc import Callable, Mapping
 
 import numpy as np
@@ -32,7 +33,8 @@ from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint,
 from fusion.book._few_runs import paired_runs, reader_runs_named, runs_first
 from fusion.book.glue import GlueValues
 from fusion._counts import count
-from fusion._validation import instance_of
+from fusion._validation import given_number, instance_of, integer, sequence
+from fusion.book.chapters import ofs_fair
 from fusion._options import text
 from fusion._shown import shown
 
@@ -59,8 +61,10 @@ def _pair(base: str, case: str, metric: str, settings: Mapping[str, object], see
     if "alpha" in settings:
         if base != "support_degree":
             raise ValueError("settings['alpha'] applies to the support degree only")
-        b = alpha_key(float(settings["alpha"]))  # type: ignore[arg-type]
-        name = _support_label(float(settings["alpha"]))  # type: ignore[arg-type]
+        alpha = float(given_number(settings["alpha"], "settings['alpha']"))
+        if alpha not in ALPHAS:  # named before the study (fuzz 51 C4: a KeyError after it)
+            raise ValueError(f"settings['alpha'] must be one of the study's sharpnesses {ALPHAS}, got {alpha:g}")
+        b, name = alpha_key(alpha), _support_label(alpha)
         st = alpha_study(seed, runs_first(runs))  # R4's certain refusal before the study (fuzz 57c)
     else:
         noise, include_self = _noise(settings), bool(settings.get("include_self", True))
@@ -70,6 +74,35 @@ def _pair(base: str, case: str, metric: str, settings: Mapping[str, object], see
     what = _METRIC_TEXT[metric]
     return Comparison(fn("optimal_fusion_set", failure, window), fn(b, failure, window),
                       METHOD_LABELS["optimal_fusion_set"], name, "less", f"per-run {what}, {where} (°C)", seed=seed)
+
+
+def _fair_point(settings: Mapping[str, object]) -> tuple[str, float]:
+    """``settings['sweep']`` and ``settings['value']`` as a point of the fair study (its sweeps: fault size, fault
+    count, spread, at :func:`fusion.book.chapters.ofs_fair.fair_study`'s default points), named when they are not one
+    (fuzz 51 C4: ``{"sweep": "noise", "value": 7.5}`` gave a KeyError after the study)."""
+    sweep = text(settings["sweep"], "settings['sweep']")  # its plain text (rule 19), never str() of it
+    if "value" not in settings:
+        raise ValueError("settings: a 'sweep' needs its 'value' (a point of the sweep)")
+    value = float(given_number(settings["value"], "settings['value']"))
+    params = inspect.signature(ofs_fair.fair_study).parameters
+    points = {(ofs_fair.SIZE, float(v)) for v in params["sizes"].default}
+    points |= {(ofs_fair.COUNT, float(v)) for v in params["counts"].default}
+    points |= {(ofs_fair.SPREAD, float(v)) for v in params["spreads"].default}
+    if (sweep, value) not in points:
+        raise ValueError(f"settings: sweep {shown(sweep)} at value {value:g} is not a point of the fair study; its "
+                         f"points are {shown(sorted(points), 400)}")
+    return sweep, value
+
+
+def _sensor_pair(given: object) -> tuple[int, int]:
+    """``settings['sensors']`` as a pair of integers (1-based sensors), named otherwise (fuzz 51 C5: ``(1, 2, 3)``,
+    ``"ab"`` or ``5`` gave unpacking and conversion errors naming nothing)."""
+    if isinstance(given, (str, bytes)):
+        raise ValueError(f"settings['sensors'] must be 'halves' or a pair of sensors (1-based), got {shown(given)}")
+    pair = sequence(given, "settings['sensors']")
+    if len(pair) != 2:
+        raise ValueError(f"settings['sensors'] must be 'halves' or a pair of sensors (1-based), got {shown(given)}")
+    return integer(pair[0], "settings['sensors'][0]"), integer(pair[1], "settings['sensors'][1]")
 
 
 def _support_label(alpha: float) -> str:
@@ -130,10 +163,9 @@ def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, r
     """Weights of eqs. 6-11 against equal weights on the same set (settings: ``case``, or ``sweep`` and ``value``)."""
     seed = check_seed(seed)
     if "sweep" in settings:
-        sweep = text(settings["sweep"], "settings['sweep']")  # its plain text (rule 19), never str() of it
-        value = float(settings["value"])  # type: ignore[arg-type]
+        sweep, value = _fair_point(settings)  # named before the study (fuzz 51 C4: a KeyError after it)
         e = fair_weights(seed, runs_first(runs)).mae[(sweep, value)]  # R4 before the study (fuzz 57c)
-        what = f"{sweep} = {float(settings['value']):g}"  # type: ignore[arg-type]
+        what = f"{sweep} = {value:g}"
     else:
         case = _case(settings)
         e = membership_study(seed, runs_first(runs)).ablation[case]  # R4 before the study (fuzz 57c)
@@ -180,8 +212,8 @@ def ev_weights_stability(settings: Mapping[str, object], *, seed: int = SEED, ru
     that of sensors 6-10, σ 1.33-2 °C, per run) or a pair (1-based) of sensors.
     """
     seed = check_seed(seed)
-    halves = settings.get("sensors", "halves") == "halves"
-    pair = None if halves else tuple(int(k) for k in settings["sensors"])  # type: ignore[union-attr]
+    halves = isinstance(settings.get("sensors", "halves"), str) and settings.get("sensors", "halves") == "halves"
+    pair = None if halves else _sensor_pair(settings["sensors"])
     ws = weight_study(seed, runs_first(runs), bool(settings.get("include_self", True)))  # R4 first (fuzz 57c)
     if halves:
         k = ws.relative.shape[1] // 2
