@@ -61,8 +61,10 @@ def _chernoff_settings(mp):
 
 def _ci_reading(mp):
     from fusion.book.chapters.ci import studies as m
-    mp.setattr(m, "_record", lambda rid, seed, runs: {"primary": "P", "alt": "alt"})
-    return m.record_evidence(next(iter(m._STOCHASTIC)), {"reading": K("alt")}, seed=1, runs=100), "alt"
+    rid = next(iter(m._STOCHASTIC))
+    alt = next(r.key for r in m.claim_file().record(rid).readings if r.key != "primary")  # a reading of the record's
+    mp.setattr(m, "_record", lambda rid, seed, runs: {"primary": "P", alt: alt})  # claim file (checked before the study)
+    return m.record_evidence(rid, {"reading": K(alt)}, seed=1, runs=100), alt
 
 
 def _wavelet_label(mp):

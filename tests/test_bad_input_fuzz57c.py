@@ -33,9 +33,9 @@ READERS = [
     ("lecture_weighting", "ev_awf_fault_tolerance", {}), ("lecture_weighting", "ev_awf_estimated", {}),
     ("lecture_weighting", "ev_belief_accuracy", {}), ("lecture_weighting", "ev_awf_adapts", {"reading": "primary"}),
     ("lecture_wavelets", "ev_wavelet_better", {}), ("lecture_wavelets", "ev_wavelet_weighting", {}),
-    ("ofs", "ev_fig2_vs_mean", {}), ("ofs", "ev_fig2_vs_support", {"alpha": 0.25}), ("ofs", "ev_fig4_unaffected", {}),
+    ("ofs", "ev_fig2_vs_mean", {}), ("ofs", "ev_fig2_vs_support", {"alpha": 0.5}), ("ofs", "ev_fig4_unaffected", {}),
     ("ofs", "ev_fig4_robust", {}), ("ofs", "ev_membership_free", {}), ("ofs", "ev_weights_reasonable", {}),
-    ("ofs", "ev_weights_reasonable", {"sweep": "noise", "value": 1.0}), ("ofs", "ev_weights_stability", {}),
+    ("ofs", "ev_weights_reasonable", {"sweep": "fault size (σ), 2 faulty sensors", "value": 2.0}), ("ofs", "ev_weights_stability", {}),
 ]
 
 #: Python function calls a refusal before the work may make (the checks and the message: ~100 measured).

@@ -375,6 +375,9 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
 def _check_reading(settings: Mapping[str, Any] | None, rid: str) -> None:
     """An unknown reading of ``rid`` refused before any study, by its claim file's readings (fuzz 51 C6: 9 CPU-s of
     the chapter's studies, then the refusal): the reading keys the record's evidence holds."""
+    unknown = [k for k in (settings or {}) if k != "reading"]
+    if unknown:  # a misspelt setting must not be silently ignored (fuzz 52 C7: {'readin': 'aniso'} gave the primary)
+        raise ValueError(f"settings: unknown {shown(unknown, 120)} (the chapter's records take only 'reading')")
     key = text(dict(settings or {}).get("reading", "primary"), "settings['reading']")
     known = {"primary"} | {r.key for r in claim_file().record(rid).readings}
     if key not in known:

@@ -102,7 +102,10 @@ def _sensor_pair(given: object) -> tuple[int, int]:
     pair = sequence(given, "settings['sensors']")
     if len(pair) != 2:
         raise ValueError(f"settings['sensors'] must be 'halves' or a pair of sensors (1-based), got {shown(given)}")
-    return integer(pair[0], "settings['sensors'][0]"), integer(pair[1], "settings['sensors'][1]")
+    a, b = integer(pair[0], "settings['sensors'][0]"), integer(pair[1], "settings['sensors'][1]")
+    if a == b:  # fuzz 52 C6: (2, 2) was refused by Comparison naming its own a_name and b_name
+        raise ValueError(f"settings['sensors'] must name two different sensors, got {shown(given)}")
+    return a, b
 
 
 def _support_label(alpha: float) -> str:
