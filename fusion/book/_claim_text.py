@@ -38,9 +38,9 @@ _BLANK = frozenset("\u115f\u1160\u3164\uffa0\u2800")
 
 
 def text_problem(value: str, required: bool = True) -> str | None:
-    """What makes ``value`` not a text of a claim file, or None: a control or format character (Cc, Cf; tab and
-    line break allowed) or a lone surrogate (Cs) anywhere, or, when ``required``, no visible character (only
-    spaces, invisible characters, combining marks, Hangul fillers or the braille blank)."""
+    """What makes ``value`` not a text of a claim file, or None: more than ``MAX_TEXT`` characters, a control or
+    format character (Cc, Cf; tab and line break allowed) or a lone surrogate (Cs) anywhere, or, when ``required``,
+    no visible character (only spaces, invisible characters, combining marks, Hangul fillers or the braille blank)."""
     if len(value) > MAX_TEXT:  # fuzz 52 C1: 1e8 invisible astral characters took 50 CPU-s in the regular expression
         return f"holds {len(value):,} characters, more than {MAX_TEXT:,} (a text of a claim is a sentence or a paragraph)"
     # one regular-expression scan, not a Python loop (fuzz 50b C1: 65 ns a character, a text of 200 million took 58
@@ -107,8 +107,8 @@ def record_text(value: object, name: str) -> str:
     TypeError
         ``value`` is not a string (rule 19), naming ``name``.
     ValueError
-        ``value`` holds a control or format character (tab and line break allowed) or a lone surrogate, naming
-        ``name``.
+        ``value`` holds more than ``MAX_TEXT`` characters, a control or format character (tab and line break
+        allowed) or a lone surrogate, naming ``name``.
     """
     plain = text(value, name)
     problem = text_problem(plain, required=False)
