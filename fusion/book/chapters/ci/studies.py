@@ -352,7 +352,8 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     TypeError
         ``settings`` neither a mapping nor None, ``rid`` or ``settings['reading']`` not a string.
     ValueError
-        If the record or the reading is unknown, or ``runs`` below the 100 runs rule R4 asks of a paired comparison.
+        If the record or the reading is unknown (before any study), ``settings`` holds a key other than ``reading``, or
+        ``runs`` below the 100 runs rule R4 asks of a paired comparison.
     """
     seed = check_seed(seed)
     if settings is not None and not isinstance(settings, Mapping):
