@@ -60,7 +60,7 @@ def test_fuzz51_c1_leading_blanks_are_checked_at_c_speed() -> None:
     t = time.process_time()
     assert text_problem(" " * 9_999_999 + "a") is None
     assert text_problem("\u3000" * 10_000_000) == "must not be empty (it holds no visible character)"
-    assert time.process_time() - t < 0.5   # the loop: 1.05 CPU-s a text
+    assert time.process_time() - t < 1.0   # 0.35 CPU-s measured; the loop: 1.05 CPU-s a text, 2.1 both
     every = "".join(map(chr, range(sys.maxunicode + 1)))
     want = {i for i, c in enumerate(every) if not (c in _BLANK or unicodedata.category(c) in _INVISIBLE)}
     assert {m.start() for m in re.finditer(_visible_class(), every)} == want
