@@ -166,8 +166,9 @@ def write_file_text(path: Path, text: str, label: str) -> bytes:
     Raises
     ------
     ValueError
-        ``text`` cannot be written as UTF-8 (a lone surrogate), before any file is touched; or the file cannot be
-        written (an OS error: no permission, a full disk), the old file left as it was; naming ``label``.
+        ``text`` cannot be written as UTF-8 (a lone surrogate), before any file is touched; ``path`` exists and is
+        not a regular file (a FIFO, a device, a folder), nothing written; or the file cannot be written (an OS error:
+        no permission, a full disk), the old file left as it was; naming ``label``.
     """
     try:
         data = text.encode("utf-8")
@@ -176,7 +177,11 @@ def write_file_text(path: Path, text: str, label: str) -> bytes:
                          f"character {exc.start}, which UTF-8 cannot encode (a lone surrogate); the file is "
                          "unchanged") from None
     target = Path(os.path.realpath(path))   # a symlink's file, replaced in its own folder
-    tmp = target.with_name(f".{target.name}.{os.getpid()}.{os.urandom(4).hex()}.tmp")
+    # The temporary name does not grow with the target's (fuzz 50b D1: ".<name>.<pid>.<hex>.tmp" made a target name
+    # of 236-255 bytes, which open() writes, "too long"): 28 characters at most whatever the target.
+    tmp = target.with_name(f".fusion-{os.getpid()}-{os.urandom(4).hex()}.tmp")
+    if target.exists() and not target.is_file():   # a FIFO, a device, a folder: never replaced by a file (50b D2)
+        raise ValueError(f"{label}: {path.name} is not a regular file; the book writes only files (nothing written)")
     try:
         mode = stat.S_IMODE(os.stat(target).st_mode) if target.exists() else None
         fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)   # the umask applies

@@ -209,3 +209,23 @@ def test_c5_write_through_a_symlink_replaces_its_file_and_keeps_the_link(tmp_pat
     link.symlink_to(target)
     assert write_file_text(link, "new\n", "out") == b"new\n"
     assert link.is_symlink() and target.read_text(encoding="utf-8") == "new\n"
+
+
+def test_fuzz50b_d1_a_long_target_name_is_written(tmp_path):
+    """Fuzz 50b D1: the temporary name was the target's plus ~20 characters, so a 236-255-byte name was refused."""
+    target = tmp_path / ("x" * 250 + ".json")
+    assert write_file_text(target, "new\\n", "out") == b"new\\n"
+    assert target.read_text(encoding="utf-8") == "new\\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == [target.name]
+
+
+def test_fuzz50b_d2_a_fifo_or_folder_is_not_replaced(tmp_path):
+    """Fuzz 50b D2: a FIFO given as the target (the sweep's ``--out``) was replaced by a regular file."""
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    with pytest.raises(ValueError, match="out: pipe is not a regular file"):
+        write_file_text(fifo, "new\\n", "out")
+    assert fifo.is_fifo()
+    with pytest.raises(ValueError, match="out: .* is not a regular file"):
+        write_file_text(tmp_path, "new\\n", "out")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["pipe"]
