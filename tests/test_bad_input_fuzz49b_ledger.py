@@ -78,7 +78,7 @@ def test_c2_matches_are_computed_once(monkeypatch):
 ], ids=["constructor", "with_margin", "conjunction", "exact"])
 def test_c3_a_relative_margin_giving_a_margin_beyond_1e150_is_refused_naming_it(make):
     c = _comparison(mean_b=1e10)
-    with pytest.raises(ValueError, match="^relative_margin = 1e\\+145 gives the margin"):
+    with pytest.raises(ValueError, match=r"^(parts\[0\] \('x'\): )?relative_margin = 1e\+145 gives the margin"):
         make(c)
 
 
@@ -229,3 +229,22 @@ def test_fuzz50b_d2_a_fifo_or_folder_is_not_replaced(tmp_path):
     with pytest.raises(ValueError, match="out: .* is not a regular file"):
         write_file_text(tmp_path, "new\\n", "out")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["pipe"]
+
+
+def test_fuzz50b_d3_a_conjunction_names_the_member_whose_margin_is_impossible():
+    """Fuzz 50b D3: ``with_margin(relative_margin=1e145)`` was refused naming relative_margin, not the member
+    (of magnitude 1e10) that made the derived margin too large."""
+    conj = Conjunction([("small", _comparison(10.0)), ("large", _comparison(1e10))])
+    assert conj.with_margin(relative_margin=1e-3).parts[0][1].margin == pytest.approx(1e-2, rel=1e-2)
+    with pytest.raises(ValueError, match=r"^parts\[1\] \('large'\): relative_margin = 1e\+145"):
+        conj.with_margin(relative_margin=1e145)
+
+
+@pytest.mark.parametrize("make", [
+    lambda: Comparison(np.full(100, 0.5e-140), np.full(100, 1e-140), "A", "B", "less", "m", relative_margin=1e-200),
+    lambda: ExactComparison(0.5e-140, 1e-140, "A", "B", "less", "m", relative_margin=1e-200),
+])
+def test_fuzz50b_d4_a_derived_margin_that_underflows_to_zero_is_refused(make):
+    """Fuzz 50b D4: 1e-200 of a mean of 1e-140 underflowed to a margin of 0.0, stored as if 0 had been asked for."""
+    with pytest.raises(ValueError, match="^relative_margin = 1e-200 gives the margin 0 "):
+        make()

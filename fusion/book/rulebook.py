@@ -665,8 +665,9 @@ def _practical_margin(margin: float | None, relative_margin: float | None, ref: 
     ``ExactComparison`` (their constructors, ``with_margin`` and :func:`dataclasses.replace`).
 
     ``margin`` None: ``relative_margin`` (default :data:`DEFAULT_RELATIVE_MARGIN`) times ``ref`` (0 when ``ref`` is
-    not finite), ``relative_margin`` kept; a derived margin beyond 1e150 or subnormal (the range the judgement
-    checks) is a ValueError naming ``relative_margin``. Both given: they must agree (a copy passes both), else
+    not finite), ``relative_margin`` kept; a derived margin beyond 1e150, subnormal (the range the judgement
+    checks) or 0 by underflow (a positive ``relative_margin`` of a finite non-zero ``ref``) is a ValueError naming
+    ``relative_margin``. Both given: they must agree (a copy passes both), else
     ValueError naming both; ``margin`` stored, ``relative_margin`` dropped. The caller has checked each is a finite
     number >= 0 (or None).
     """
@@ -675,6 +676,8 @@ def _practical_margin(margin: float | None, relative_margin: float | None, ref: 
     if margin is None:
         try:   # the judgement's check of the margin (rule 2), here naming the argument that gives it (fuzz 49b C3:
             scalar(derived, "margin", 0.0)   # 1e145 of a mean of 1e10 was stored, then every status() refused
+            if derived == 0.0 and rel > 0.0 and ref != 0.0 and math.isfinite(ref):   # a product that underflowed to
+                raise ValueError("underflow")                                         # 0 (fuzz 50b D4): not asked for
         except ValueError:                   # naming margin, which the caller never gave)
             raise ValueError(f"relative_margin = {shown(rel, 60)} gives the margin {derived:.3g} on {on} (whose "
                              f"magnitude is {ref:.3g}), outside the representable range (at most 1e150, not "

@@ -763,12 +763,21 @@ class Conjunction:
             ``margin`` or ``relative_margin`` is not a number or None.
         ValueError
             ``margin`` or ``relative_margin`` is not a finite number >= 0, whatever the members (fuzz 34a D3: a
-            conjunction of propositions took NaN silently); or a member comparison refuses them.
+            conjunction of propositions took NaN silently); or a member comparison refuses them (the message
+            names the member, ``parts[i]`` and its label).
         """
         R._margins(margin, relative_margin)
-        return Conjunction([(lab, ev.with_margin(margin, relative_margin)
-                             if isinstance(ev, (Comparison, ExactComparison)) else ev)
-                            for lab, ev in self.parts])
+        parts = []
+        for i, (lab, ev) in enumerate(self.parts):
+            if isinstance(ev, (Comparison, ExactComparison)):
+                try:   # the member whose magnitude makes the margin impossible is named (fuzz 50b D3)
+                    ev = ev.with_margin(margin, relative_margin)
+                except ValueError as exc:
+                    if type(exc) is not ValueError:   # a rule's own error (R4) keeps its type and text
+                        raise
+                    raise ValueError(f"parts[{i}] ({shown(lab, 60)}): {exc}") from None
+            parts.append((lab, ev))
+        return Conjunction(parts)
 
     def to_dict(self) -> JSONObject:
         return {"kind": self.kind, "parts": [{"label": lab, "status": ev.status(), "evidence": ev.to_dict()}
