@@ -175,3 +175,27 @@ def test_the_books_enums_are_atoms() -> None:
     from fusion.scenarios.wavelet_sensors import Signal
     for kind in (BenchStage, FailureCase, BenchClass, Network, Information, RegMethod, Signal):
         assert all(_own_text(m) is None for m in kind)
+
+
+def test_c5_a_date_time_in_a_time_zone_of_its_own_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A date-time's text prints its zone's offset and name: a tzinfo of another class than Python's, zoneinfo's,
+    pytz's or dateutil's (here a random offset: a different text each run) was glued; the known zones are glued."""
+    import random
+
+    class Random(datetime.tzinfo):
+        def utcoffset(self, dt):
+            return datetime.timedelta(minutes=random.randint(0, 600))
+
+        def tzname(self, dt):
+            return "R"
+
+        def dst(self, dt):
+            return datetime.timedelta(0)
+
+    for v in (datetime.datetime(2020, 1, 2, tzinfo=Random()), datetime.time(1, tzinfo=Random()),
+              pd.Timestamp(datetime.datetime(2020, 1, 2, tzinfo=Random()))):
+        _refused({"k": v}, TypeError, r"values\['k'\] .*time zone")
+        _refused({"k": [v]}, TypeError, r"values\['k'\] .*time zone")
+    known = [pd.Timestamp("2020", tz="Europe/Paris"), pd.Timestamp("2020", tz="UTC"),
+             datetime.datetime(2020, 1, 2, tzinfo=datetime.timezone.utc), datetime.datetime(2020, 1, 2)]
+    assert len(_glued(monkeypatch, {f"k{i}": v for i, v in enumerate(known)})) == 4

@@ -262,6 +262,14 @@ _CLASS_NAMES = frozenset({"__module__", "__qualname__", "__doc__", "__dict__", "
                           "__init_subclass__"})
 
 
+def _known_zone(tz: object) -> bool:
+    """Whether a date-time's ``tz`` (its ``tzinfo``) is None or a time zone of Python (``datetime.timezone``),
+    ``zoneinfo``, pytz or dateutil: a date-time's text prints its zone's offset and name, which a ``tzinfo`` of
+    another class computes as it likes (fuzz 52 C5's rule for the part of an atom's text: a random offset)."""
+    t = type(tz)
+    return tz is None or t is datetime.timezone or t.__module__.split(".")[0] in ("zoneinfo", "pytz", "dateutil")
+
+
 def _own_text(v: object, plain: set[type] | None = None) -> str | None:
     """The attribute by which ``v``, an atom whose type is not one of ``_ATOM_TYPES``, would print a text of its own
     (fuzz 52 C5: a float subclass whose ``__repr__`` is ``'nan'`` glued ``nan``), or None.
@@ -548,6 +556,10 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
                 _check_int(e, key)
             n = max(0, (v.stop - v.start + v.step - (1 if v.step > 0 else -1)) // v.step)
             meter.take(n, n * _GLUE_NESTED, key)
+        elif isinstance(v, (datetime.datetime, datetime.time)) and not _known_zone(v.tzinfo):
+            raise TypeError(f"values[{shown(key)}] must hold dates and times whose time zone is Python's, zoneinfo's, "
+                            f"pytz's or dateutil's (its offset and name are printed), got one in a "
+                            f"{type(v.tzinfo).__name__}")
         elif isinstance(v, (np.datetime64, np.timedelta64)):
             if np.isnat(v):
                 return False
@@ -716,7 +728,8 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     A subclass of one of these types is an atom only when its text is its type's: it defines no text method
     (``__repr__``, ``__str__``, ``__format__``, ``_repr_html_`` and IPython's other ``_repr_*`` methods,
     ``__getattr__``; also as an instance attribute) and, but for an Enum member, overrides no attribute of its type
-    (a ``datetime``'s ``isoformat`` makes its text); an Enum member's class may add methods, and keeps the
+    (a ``datetime``'s ``isoformat`` makes its text), and a date-time's time zone is Python's, ``zoneinfo``'s,
+    pytz's or dateutil's (its offset and name are printed); an Enum member's class may add methods, and keeps the
     ``__repr__``, ``__str__`` and ``__format__`` that ``enum.Enum``, ``StrEnum``, ``IntEnum`` or its mixed-in type
     define (the package's option types are ``StrEnum`` classes, glued as their text). A Series' and an Index's labels
     and names, a MultiIndex's levels and names, a table's (a Styler's table's) labels and the names of its rows and
