@@ -199,3 +199,19 @@ def test_c5_a_date_time_in_a_time_zone_of_its_own_is_refused(monkeypatch: pytest
     known = [pd.Timestamp("2020", tz="Europe/Paris"), pd.Timestamp("2020", tz="UTC"),
              datetime.datetime(2020, 1, 2, tzinfo=datetime.timezone.utc), datetime.datetime(2020, 1, 2)]
     assert len(_glued(monkeypatch, {f"k{i}": v for i, v in enumerate(known)})) == 4
+
+
+def test_c2_a_series_labels_are_counted_with_its_values() -> None:
+    """An object Series' object labels are walked as its values are, and counted at ``_GLUE_OBJECT`` each with them:
+    the edge of an object Series with an object index is half that of one with a RangeIndex."""
+    from fusion._limits import MAX_WORK, work
+    from fusion.book import glue as G
+    assert (G._GLUE_VALUE, G._GLUE_OBJECT) == (10_000, 200)
+    edge = (MAX_WORK - 10_000) // 400
+
+    def make(n: int) -> pd.Series:
+        return pd.Series(np.full(n, "a", dtype=object), index=pd.Index(np.full(n, "b", dtype=object)), name="s")
+
+    assert G._glue_work(make(10)) == 200 * (10 + 10 + 1)   # its values, labels and name
+    assert work((G._GLUE_VALUE + G._glue_work(make(edge - 1)),), "values") <= MAX_WORK  # just inside (not run)
+    _refused({"k": make(edge + 1)}, ValueError, "^values .*work budget")
