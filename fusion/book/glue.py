@@ -14,6 +14,7 @@ import re
 import sys
 from collections import OrderedDict, defaultdict
 from collections.abc import Mapping
+from fractions import Fraction
 from typing import Any, TypeAlias, Union
 
 import numpy as np
@@ -206,7 +207,8 @@ def _glued_cell(table: object, row: object, column: object, name: str, lo: float
 #: ``range`` (its start, stop and step checked as ints, charged by its length: pandas prints its entries), and a
 #: figure. Containers are the ones :func:`_finite` looks into; anything else is refused by type (fuzz 26a G/D3: a
 #: deque, array.array, dict view or generator printed ``nan`` unchecked), and so is an object whose text is
-#: ``object``'s default (its address: not the same text twice).
+#: ``object``'s default (its address: not the same text twice), and a subclass of an atom type printing a text of
+#: its own (``_own_text``, fuzz 52 C5; a table's, Series' or Index's labels and names are atoms too, fuzz 52 C2).
 _GLUE_LEAVES = (type(None), str, bytes, numbers.Number, np.generic, datetime.date, datetime.time, datetime.timedelta,
                 pd.Period, pd.Interval, enum.Enum, pathlib.PurePath, range, Figure)
 #: The containers whose entries are checked: their text prints their entries (a table: its object cells and labels,
@@ -225,6 +227,83 @@ _GUARDED_REPRS = frozenset({list.__repr__, tuple.__repr__, set.__repr__, frozens
                             OrderedDict.__repr__, defaultdict.__repr__, np.ndarray.__repr__})
 
 
+
+def _numpy_scalar_types() -> set[type]:
+    """NumPy's own scalar types (``np.float64``, ``np.str_``, ``np.void``, ...): the subclasses of ``np.generic``
+    that NumPy defines."""
+    found, todo = set(), [np.generic]
+    while todo:
+        t = todo.pop()
+        if t.__module__ == "numpy":
+            found.add(t)
+        todo += t.__subclasses__()
+    return found
+
+
+#: The atom types themselves (fuzz 52 C5): an atom of one of them has its own, bounded and deterministic text. A
+#: subclass of one (of any class in their MROs, ``_ATOM_BASES``) is an atom when it changes none of it (``_own_text``).
+_ATOM_TYPES = frozenset({type(None), bool, int, float, complex, str, bytes, Decimal, Fraction, datetime.date,
+                         datetime.datetime, datetime.time, datetime.timedelta, pd.Timestamp, pd.Timedelta, pd.Period,
+                         pd.Interval, range, pathlib.PurePath, pathlib.PurePosixPath, pathlib.PureWindowsPath,
+                         pathlib.Path, pathlib.PosixPath, pathlib.WindowsPath, enum.Enum, enum.IntEnum, enum.StrEnum,
+                         enum.Flag, enum.IntFlag, enum.ReprEnum, Figure} | _numpy_scalar_types())
+_ATOM_BASES = frozenset(b for t in _ATOM_TYPES for b in t.__mro__)
+#: The attributes that make an object's text (fuzz 52 C5): Python's text methods, attribute hooks (IPython looks
+#: ``_repr_html_`` and the like up by ``getattr``), and an Enum member's parts of its text. Any name beginning with
+#: ``_repr_`` or ``_ipython_`` too (IPython's display methods).
+_TEXT_NAMES = frozenset({"__repr__", "__str__", "__format__", "__html__", "__getattr__", "__getattribute__",
+                         "__class__", "_value_repr_", "_name_", "_value_"})
+#: The instance attributes of an Enum member (its name, value, class and order).
+_MEMBER_NAMES = frozenset({"_value_", "_name_", "__objclass__", "_sort_order_"})
+#: A class's own bookkeeping, never an override of its base.
+_CLASS_NAMES = frozenset({"__module__", "__qualname__", "__doc__", "__dict__", "__weakref__", "__slots__",
+                          "__annotations__", "__orig_bases__", "__parameters__", "__firstlineno__",
+                          "__static_attributes__", "__abstractmethods__", "_abc_impl", "__new__", "__init__",
+                          "__init_subclass__"})
+
+
+def _known_zone(tz: object) -> bool:
+    """Whether a date-time's ``tz`` (its ``tzinfo``) is None or a time zone of Python (``datetime.timezone``),
+    ``zoneinfo``, pytz or dateutil: a date-time's text prints its zone's offset and name, which a ``tzinfo`` of
+    another class computes as it likes (fuzz 52 C5's rule for the part of an atom's text: a random offset)."""
+    t = type(tz)
+    return tz is None or t is datetime.timezone or t.__module__.split(".")[0] in ("zoneinfo", "pytz", "dateutil")
+
+
+def _own_text(v: object, plain: set[type] | None = None) -> str | None:
+    """The attribute by which ``v``, an atom whose type is not one of ``_ATOM_TYPES``, would print a text of its own
+    (fuzz 52 C5: a float subclass whose ``__repr__`` is ``'nan'`` glued ``nan``), or None.
+
+    Every class of its type's MRO that is no atom type's (``_ATOM_BASES``) may add attributes but not define a text
+    method (``_TEXT_NAMES``) nor, but for an Enum member, override an attribute of the atom types in the MRO (a
+    ``datetime`` subclass's ``isoformat`` is its ``str``); an attribute that is the atom type's own (the one Enum's
+    metaclass copies into a ``(str, Enum)`` class: ``Enum.__repr__``, ``str.__format__``; an Enum's ``_value_repr_``
+    None or its mixed-in type's ``__repr__``) is no override. Its instance attributes likewise (IPython finds a
+    ``_repr_html_`` there). ``plain``: the types already found to pass (a cache for one walk), updated."""
+    t, inst = type(v), getattr(v, "__dict__", None)
+    if plain is not None and t in plain and (not inst or inst.keys() <= _MEMBER_NAMES):
+        return None
+    mro = t.__mro__
+    bases = [b for b in mro if b in _ATOM_BASES]
+    member = isinstance(v, enum.Enum)
+    own = [] if plain is not None and t in plain else [(c.__dict__, False) for c in mro if c not in _ATOM_BASES]
+    own += [(inst, True)] * isinstance(inst, dict)
+    for attrs, instance in own:
+        for name, attr in list(attrs.items()):
+            text_name = (name.startswith(("_repr_", "_ipython_")) or name == "__html__" if instance   # an Enum
+                         else name in _TEXT_NAMES or name.startswith(("_repr_", "_ipython_")))         # member's _name_
+            if name in _CLASS_NAMES or not (text_name or (not member and any(name in b.__dict__ for b in bases))):
+                continue
+            if not instance and any(b.__dict__.get(name, _CLASS_NAMES) is attr for b in bases):   # the atom type's
+                continue
+            if name == "_value_repr_" and (attr is None or any(b.__dict__.get("__repr__") is attr for b in bases)):
+                continue
+            return name
+    if plain is not None:
+        plain.add(t)
+    return None
+
+
 def _object_dtype(dtype: object) -> bool:
     """Whether a Series, Index or table column of ``dtype`` holds objects that :func:`_finite` visits one by one (an
     object or non-NumPy dtype: its cells print as their own text), not numbers checked at once."""
@@ -238,12 +317,30 @@ def _table_labels(labels: pd.Index) -> list[pd.Index]:
     return [lv for lv in levels if _object_dtype(lv.dtype)]
 
 
-def _table_size(table: pd.DataFrame | Styler) -> int:
-    """How many object cells and labels ``_table_cells`` gives for ``table``, known without visiting them."""
+def _axes(v: pd.Series | pd.Index | pd.DataFrame | Styler) -> tuple[list[pd.Index], list[object]]:
+    """The label indexes and the names that ``v`` prints besides its values (fuzz 52 C2: a Series' index and name
+    and an Index's name were not walked): a table's (a Styler's table's) row and column labels and their names; a
+    Series' index labels, the index's names and its own name; an Index's names (its values are its entries). Names
+    that are None (none given: not printed) are left out."""
+    v = v.data if isinstance(v, Styler) else v
+    if isinstance(v, pd.DataFrame):
+        axes, names = [v.index, v.columns], list(v.index.names) + list(v.columns.names)
+    elif isinstance(v, pd.Series):
+        axes, names = [v.index], list(v.index.names) + [v.name]
+    else:
+        axes, names = [], list(v.names)
+    return axes, [n for n in names if n is not None]
+
+
+def _table_size(table: pd.DataFrame | Styler | pd.Series | pd.Index) -> int:
+    """How many object cells, labels and names ``_table_cells`` gives for ``table`` (a table, a Series or an
+    Index), known without visiting them."""
     table = table.data if isinstance(table, Styler) else table
-    rows = table.shape[0]
-    labels = _table_labels(table.index) + _table_labels(table.columns)
-    return rows * sum(1 for d in table.dtypes if _object_dtype(d)) + sum(len(lv) for lv in labels)
+    axes, names = _axes(table)
+    labels = sum(len(lv) for ax in axes for lv in _table_labels(ax)) + len(names)
+    if not isinstance(table, pd.DataFrame):
+        return labels
+    return table.shape[0] * sum(1 for d in table.dtypes if _object_dtype(d)) + labels
 
 
 def _is_missing_cell(cell: object) -> bool:
@@ -260,31 +357,39 @@ def _is_missing_cell(cell: object) -> bool:
     return isinstance(cell, (np.datetime64, np.timedelta64)) and bool(np.isnat(cell))
 
 
-def _table_cells(table: pd.DataFrame | Styler) -> list[object]:
-    """The entries :func:`_finite` walks in ``table`` (a Styler: its table; fuzz 49a C2: pandas formats each visible
-    object cell in full, a cell holding a list of 1e8 printed floats ran 29.5 CPU-s charged as one table): the cells
-    of its object columns and its object labels (row and column labels, MultiIndex levels), missing cells and
-    non-finite numbers left out (a table prints them as words, as in a numeric column); a numeric column is not
-    looked into."""
+def _table_cells(table: pd.DataFrame | Styler | pd.Series | pd.Index) -> list[object]:
+    """The entries :func:`_finite` walks in ``table`` besides its values (a Styler: its table; fuzz 49a C2: pandas
+    formats each visible object cell in full, a cell holding a list of 1e8 printed floats ran 29.5 CPU-s charged as
+    one table): the cells of a table's object columns, and the object labels (row and column labels, MultiIndex
+    levels) and the names (of the rows, the columns, a Series, an Index: ``_axes``, fuzz 52 C2) of a table, Series
+    or Index, missing ones and non-finite real numbers of the atom types themselves left out (a table prints them as
+    words, as in a numeric column; fuzz 52 D3: a Series' labels as a table's); a numeric column is not looked into."""
     table = table.data if isinstance(table, Styler) else table
-    cols = [j for j, d in enumerate(table.dtypes) if _object_dtype(d)]
-    cells = list(table.iloc[:, cols].to_numpy(dtype=object).ravel(order="F")) if cols else []
-    for lv in _table_labels(table.index) + _table_labels(table.columns):
-        cells += list(lv.to_numpy(dtype=object))
+    cells: list[object] = []
+    if isinstance(table, pd.DataFrame):
+        cols = [j for j, d in enumerate(table.dtypes) if _object_dtype(d)]
+        cells = list(table.iloc[:, cols].to_numpy(dtype=object).ravel(order="F")) if cols else []
+    axes, names = _axes(table)
+    for ax in axes:
+        for lv in _table_labels(ax):
+            cells += list(lv.to_numpy(dtype=object))
+    cells += names
     # an Interval cell or label (``pd.cut``'s bins) is its endpoints, an infinite one printed as a word (``(2.0, inf]``)
     # as the table's own non-finite number (fix57b, fuzz 50a D1); a float (finite: a float64 too) has nothing more to
-    # check, not walked (pd.cut's 10**6 bins: 1.4 CPU-s, 7.3 walking their endpoints)
-    cells = [e for c in cells for e in ((c.left, c.right) if isinstance(c, pd.Interval) else (c,))]
-    return [c for c in cells if not (_is_missing_cell(c) or isinstance(c, float))]
+    # check, not walked (pd.cut's 10**6 bins: 1.4 CPU-s, 7.3 walking their endpoints); a subclass of an atom type is
+    # walked (fuzz 52 C5: its text may be its own)
+    cells = [e for c in cells for e in ((c.left, c.right) if type(c) is pd.Interval else (c,))]
+    return [c for c in cells if not (c is None or c is pd.NA or c is pd.NaT
+                                     or (type(c) in _ATOM_TYPES and (_is_missing_cell(c) or isinstance(c, float))))]
 
 
-def _complex_table_finite(table: pd.DataFrame | Styler) -> bool:
-    """Whether every entry of ``table``'s complex columns and complex labels is finite (a complex with nan prints as
-    a number with nan, ``1.0+NaNj``: fuzz 50a D3), checked at once (vectorised)."""
+def _complex_table_finite(table: pd.DataFrame | Styler | pd.Series) -> bool:
+    """Whether every entry of ``table``'s complex columns and complex labels (a table's or a Series') is finite (a
+    complex with nan prints as a number with nan, ``1.0+NaNj``: fuzz 50a D3), checked at once (vectorised)."""
     table = table.data if isinstance(table, Styler) else table
-    arrays = [table.iloc[:, j].to_numpy() for j, d in enumerate(table.dtypes)
-              if isinstance(d, np.dtype) and d.kind == "c"]
-    for labels in (table.index, table.columns):
+    arrays = ([table.iloc[:, j].to_numpy() for j, d in enumerate(table.dtypes)
+               if isinstance(d, np.dtype) and d.kind == "c"] if isinstance(table, pd.DataFrame) else [])
+    for labels in _axes(table)[0]:
         levels = list(labels.levels) if isinstance(labels, pd.MultiIndex) else [labels]
         arrays += [lv.to_numpy() for lv in levels if isinstance(lv.dtype, np.dtype) and lv.dtype.kind == "c"]
     return all(bool(np.isfinite(a).all()) for a in arrays)
@@ -331,17 +436,20 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
     (every entry; a 0-d array is its number). Containers are looked into, as their text prints their entries:
     lists, tuples, sets, a mapping's keys and values (fuzz 49a C3), a Series or Index, a pandas extension array
     (``pd.array``, Categorical, SparseArray: the arrays a Series holds), an object or structured array (fuzz 22a
-    D1), a DataFrame's object cells and labels and a Styler's table (fuzz 49a C2: ``_table_cells``). A table's
+    D1), a DataFrame's object cells and labels and a Styler's table (fuzz 49a C2: ``_table_cells``), the labels and
+    names of a Series or Index too (fuzz 52 C2) and a categorical's categories. A table's
     missing cell or non-finite real number is not refused: a table prints it as a word; what a cell holds is checked
     by the rule of every container. Atoms (``_GLUE_LEAVES``, :func:`glue_all`'s Notes) are checked alike wherever
-    they are: an int's digits, an Interval's endpoints, an Enum member's value, a range's ints (fix57b).
+    they are: an int's digits, an Interval's endpoints, an Enum member's value, a range's ints (fix57b); a subclass
+    of an atom type printing a text of its own is refused (``_own_text``, fuzz 52 C5).
 
     Raises
     ------
     TypeError
         A value, or an entry of a container, of another type (:data:`_GLUE_LEAVES`, :data:`_GLUE_CONTAINERS`):
         a deque, ``array.array``, dict view, generator, masked array (whose text prints ``--``), an object whose
-        text is its address (a Styler inside a container), ..., naming ``values[key]``.
+        text is its address (a Styler inside a container), a subclass of an atom type printing a text of its own,
+        ..., naming ``values[key]``.
     ValueError
         An int of more decimal digits than ``_int_digits()``, naming ``values[key]``. Containers nested more than
         ``fusion._nesting.MAX_NESTING`` (64) deep, naming ``values[key]``; entries
@@ -368,6 +476,7 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
     open_pandas = 0                      # how many of them are pandas objects (``_GLUE_PANDAS``)
     tainted: set[int] = set()            # containers whose memo counted an outer open container as [...] (fuzz 48)
     pinned: list[object] = []            # the containers reached, kept alive: no id is reused during the call
+    plain: set[type] = set()             # the types of atoms found to print their atom type's text (fuzz 52 C5)
     while todo:
         v, depth, done, outer = todo.pop()
         if v is _EXIT:                   # every entry of the container ``depth`` (its id) visited
@@ -386,6 +495,12 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
                             f"member, path or range, a figure, a table or a list, tuple, set, mapping, Series, Index, "
                             f"pandas or NumPy array of them, got {type(v).__name__} {shown(v, 60)}{why}"
                             + (f" inside {type(value).__name__}" if v is not value else ""))
+        if type(v) not in _ATOM_TYPES and not isinstance(v, _GLUE_CONTAINERS):
+            own = _own_text(v, plain)   # an atom type's subclass printing its own text (fuzz 52 C5)
+            if own is not None:
+                raise TypeError(f"values[{shown(key)}] must hold atoms whose text is their type's (a subclass of an "
+                                f"atom type must not define {own}), got {type(v).__name__} {shown(v, 60)}"
+                                + (f" inside {type(value).__name__}" if v is not value else ""))
         here = None
         if isinstance(v, _GLUE_CONTAINERS):
             if id(v) in open_ids:  # a container that holds itself: its text prints [...] there
@@ -435,23 +550,33 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
                 return False
             todo += [(e, inner, False, outer) for e in (v.left, v.right) if not isinstance(e, float)]
         elif isinstance(v, enum.Enum):     # its value, printed in its text (fuzz 50a D2)
-            todo.append((v.value, inner, False, outer))
+            todo.append((v._value_, inner, False, outer))   # the value its text prints, not a ``value`` property
         elif isinstance(v, range):         # its ints, then its entries as pandas prints them
             for e in (v.start, v.stop, v.step):
                 _check_int(e, key)
             n = max(0, (v.stop - v.start + v.step - (1 if v.step > 0 else -1)) // v.step)
             meter.take(n, n * _GLUE_NESTED, key)
+        elif isinstance(v, (datetime.datetime, datetime.time)) and not _known_zone(v.tzinfo):
+            raise TypeError(f"values[{shown(key)}] must hold dates and times whose time zone is Python's, zoneinfo's, "
+                            f"pytz's or dateutil's (its offset and name are printed), got one in a "
+                            f"{type(v.tzinfo).__name__}")
         elif isinstance(v, (np.datetime64, np.timedelta64)):
             if np.isnat(v):
                 return False
-        elif isinstance(v, (pd.Series, pd.Index)):
-            todo.append((v.to_numpy(), inner, True, here))
-        elif isinstance(v, (pd.DataFrame, Styler)):   # its (a Styler's table's) object cells and labels, counted
-            if not _complex_table_finite(v):          # by ``_container_work`` (fuzz 49a C2)
+        elif isinstance(v, (pd.Series, pd.Index, pd.DataFrame, Styler)):
+            # its values (a table's object cells), its labels and names, counted by ``_container_work`` (fuzz 49a
+            # C2, fuzz 52 C2: a Series' index and name, an Index's name, by a table's rule)
+            if not isinstance(v, pd.Index) and not _complex_table_finite(v):
                 return False
+            if isinstance(v, (pd.Series, pd.Index)):
+                todo.append((v.to_numpy(), inner, True, here))
             todo += [(e, inner, False, here) for e in _table_cells(v)]
+            if isinstance(v.dtype if not isinstance(v, (pd.DataFrame, Styler)) else None, pd.CategoricalDtype):
+                todo.append((v.dtype.categories, inner, False, here))   # printed: "Categories (n, object): [...]"
         elif isinstance(v, ExtensionArray):   # its entries as objects: pd.NA, NaN, NaT, as the Series shows them
             todo.append((np.asarray(v, dtype=object), inner, True, here))
+            if isinstance(v.dtype, pd.CategoricalDtype):
+                todo.append((v.dtype.categories, inner, False, here))
         elif isinstance(v, np.ndarray):
             if v.dtype.names:
                 todo += [(v[n], inner, True, here) for n in v.dtype.names]
@@ -517,8 +642,8 @@ def _container_work(v: object) -> tuple[int, int]:
     cells and labels (``_table_size``), at ``_GLUE_OBJECT``, known without visiting; a structured array holding
     objects at most one object per 8 bytes of an element; a numeric array 0 (vectorised). A table inside a
     container is charged ``_GLUE_TABLE`` more by :func:`_finite`, where it reaches it."""
-    if isinstance(v, (pd.Series, pd.Index)):
-        return (len(v) if _object_dtype(v.dtype) else 0), _GLUE_OBJECT
+    if isinstance(v, (pd.Series, pd.Index)):   # its values, labels and names (fuzz 52 C2)
+        return (len(v) if _object_dtype(v.dtype) else 0) + _table_size(v), _GLUE_OBJECT
     if isinstance(v, (pd.DataFrame, Styler)):
         return _table_size(v), _GLUE_OBJECT
     if isinstance(v, Mapping):
@@ -600,23 +725,36 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     bins), an Enum member (its value is checked as an entry: its text prints it), a ``pathlib`` path, a ``range``
     (its start, stop and step are ints; charged by its length, as pandas prints its entries), and a figure. An
     object whose text is Python's default (its address, not the same twice; a Styler inside a container) is refused.
+    A subclass of one of these types is an atom only when its text is its type's: it defines no text method
+    (``__repr__``, ``__str__``, ``__format__``, ``_repr_html_`` and IPython's other ``_repr_*`` methods,
+    ``__getattr__``; also as an instance attribute) and, but for an Enum member, overrides no attribute of its type
+    (a ``datetime``'s ``isoformat`` makes its text), and a date-time's time zone is Python's, ``zoneinfo``'s,
+    pytz's or dateutil's (its offset and name are printed); an Enum member's class may add methods, and keeps the
+    ``__repr__``, ``__str__`` and ``__format__`` that ``enum.Enum``, ``StrEnum``, ``IntEnum`` or its mixed-in type
+    define (the package's option types are ``StrEnum`` classes, glued as their text). A Series' and an Index's labels
+    and names, a MultiIndex's levels and names, a table's (a Styler's table's) labels and the names of its rows and
+    columns, and a categorical's categories are printed, and are atoms or containers by the same rule as a table's
+    cells; a missing label or name (NaN, ``pd.NA``, ``NaT``, None) is printed as a word and accepted, a Series' as a
+    table's.
 
     Raises
     ------
     TypeError
         ``values`` not a mapping, a key not a string, ``decimals`` not an integer; a value (or an entry of a
-        container, a key of a mapping, a cell or label of a table) that is neither an atom (Notes), a DataFrame or
-        Styler given as the value, nor one of the containers below (a deque, ``array.array``, dict view, generator or
-        masked array: what it prints is not checked; an object whose text is its address), naming ``values[key]``.
+        container, a key of a mapping, a cell, label or name of a table, Series or Index) that is neither an atom
+        (Notes), a DataFrame or Styler given as the value, nor one of the containers below (a deque,
+        ``array.array``, dict view, generator or masked array: what it prints is not checked; an object whose text
+        is its address; a subclass of an atom type printing a text of its own, fuzz 52 C5), naming ``values[key]``.
     ValueError
         A key that is not ASCII letters, digits, underscores and hyphens (``fig-chf-pso``; text that prints alike,
         ``é`` composed or decomposed, would be two keys: ``_glue_prefix``'s rule for the whole key, fuzz 36a D1).
         A number (a float, a complex number, a NumPy scalar, a Decimal, any entry of a numeric array) NaN or
         infinite, or a missing value (``pd.NA``, ``pd.NaT``, a NumPy ``NaT``), also inside a list, tuple, set,
         a mapping's keys or values, Series, Index, pandas extension array (``pd.array``, Categorical,
-        SparseArray), object or structured array, or a container in a cell or label of a DataFrame or Styler (a
-        table's own missing cell or non-finite real number, also an Interval's endpoint, is not refused: a table
-        prints it as a word; a complex one is, ``1.0+NaNj``), naming ``values[key]``; checked for
+        SparseArray), object or structured array, or a container in a cell, label or name of a DataFrame, Styler,
+        Series or Index (a table's or Series' own missing cell, label or name, or non-finite real number, also an
+        Interval's endpoint, is not refused: pandas prints it as a word; a complex one is, ``1.0+NaNj``), naming
+        ``values[key]``; checked for
         every value before any is glued, whatever ``decimals``. Containers nested more than 64 deep
         (``fusion._nesting.MAX_NESTING``; their text recurses), naming ``values[key]``; a container that holds
         itself is accepted (its text prints ``[...]`` there), but a container of such a cycle reached again by
@@ -659,7 +797,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
             glue_figure(key, value)
             continue
         value = _printed_float(value)   # a float32, float16: the decimal it prints (fuzz 40b D2)
-        if hasattr(value, "item") and getattr(value, "ndim", 1) == 0:
+        if isinstance(value, (np.generic, np.ndarray)) and value.ndim == 0:   # not any object's item (fuzz 52 C5)
             value = value.item()
         if decimals is not None and isinstance(value, float):
             value = rounded(value, decimals)
