@@ -80,7 +80,7 @@ def reads(*keys: str) -> Callable[[_F], _F]:
     """
     def decorate(fn: _F) -> _F:
         @functools.wraps(fn)
-        def checked(settings: object = None, *args: Any, **kwargs: Any) -> Any:
+        def checked(settings: object, *args: Any, **kwargs: Any) -> Any:
             return fn(settings_first(settings, keys), *args, **kwargs)
 
         checked.settings_keys = frozenset(keys)  # type: ignore[attr-defined]
