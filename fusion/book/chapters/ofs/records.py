@@ -69,8 +69,8 @@ def _pair(base: str, case: str, metric: str, settings: Mapping[str, object], see
     alpha = float(given_number(settings["alpha"], "settings['alpha']")) if "alpha" in settings else _ALPHA
     if alpha != _ALPHA:
         if alpha not in ALPHAS:  # named before the study (fuzz 51 C4: a KeyError after it)
-            raise ValueError(f"settings['alpha'] must be the records' {_ALPHA:g} or one of the α study's sharpnesses "
-                             f"{ALPHAS}, got {alpha:g}")
+            raise ValueError(f"settings['alpha'] must be one of the α study's sharpnesses {ALPHAS} or the records' "
+                             f"{_ALPHA:g}, got {alpha:g}")
         if (noise, mode, include_self) != ("unequal", "fixed", True):
             raise ValueError(f"settings: 'alpha' {alpha:g} reads the α study, of the primary draws (noise 'unequal', "
                              f"failure 'fixed', include_self true); it takes no other noise, failure or include_self")
