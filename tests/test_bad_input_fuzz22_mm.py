@@ -144,11 +144,12 @@ def test_q2_a_methods_subset_is_for_reading_mae_and_its_consumers_refuse_it_by_n
 
 
 @pytest.mark.parametrize("settings", ["x", 5, {"reading": 5}, {"reading": None}])
-def test_q3_claim_file_settings_of_the_wrong_type_are_value_errors(settings) -> None:
-    """Decided: kept and documented (reading_key): the settings are a claim file's content, not a Python
-    argument, so every refusal of them is a ValueError naming settings."""
+def test_q3_claim_file_settings_of_the_wrong_type_are_type_errors(settings) -> None:
+    """Decided again by fuzz 52 C7 (one rule for every chapter's readers, ``fusion.book._reader_settings``): a
+    reader is called with Python objects (the claim file's own content is checked when it is loaded), so settings
+    or a reading key of the wrong type are a TypeError naming settings, as chapter 05's were."""
     from fusion.book.chapters import lecture_weighting as lwt
-    with pytest.raises(ValueError, match="settings"):
+    with pytest.raises(TypeError, match="settings"):
         lwt.ev_cc_accuracy(settings)
 
 

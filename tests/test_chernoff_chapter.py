@@ -197,7 +197,7 @@ def test_evidence_functions_refuse_bad_settings() -> None:
         chc.ev_pso({"check": "vibes"}, seed=1, runs=3, sc=TINY)
     with pytest.raises(ValueError, match="settings"):
         chc.ev_premise({"network": "moon", "a": "chernoff_pso", "b": "ci_gaussian"}, seed=1, runs=3)
-    with pytest.raises(ValueError, match="settings"):
+    with pytest.raises(TypeError, match="settings"):  # fuzz 52 C7: one rule, a non-mapping is a TypeError
         chc.ev_gaussian_ci([], seed=1, runs=3)
     with pytest.raises(ValueError, match="statement"):
         chc.ev_gaussian_ci({"statement": "all three"}, seed=1, runs=3)

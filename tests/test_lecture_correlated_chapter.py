@@ -164,9 +164,11 @@ def test_reading_of_picks_the_asked_reading() -> None:
     assert reading_of("r", one, None) is one and reading_of("r", one, {"reading": "primary"}) is one
     both = {"primary": one, "alt": other}
     assert reading_of("r", both, {}) is one and reading_of("r", both, {"reading": "alt"}) is other
-    for ev, settings in ((one, {"reading": "alt"}), (both, {"reading": "none"}), (both, ["reading"])):
+    for ev, settings in ((one, {"reading": "alt"}), (both, {"reading": "none"})):
         with pytest.raises(ValueError, match="settings"):
-            reading_of("r", ev, settings)  # type: ignore[arg-type]
+            reading_of("r", ev, settings)
+    with pytest.raises(TypeError, match="settings"):  # fuzz 52 C7: one rule, a non-mapping is a TypeError
+        reading_of("r", both, ["reading"])  # type: ignore[arg-type]
 
 
 def test_sequential_pseudo_measurements_are_the_prefix_gls() -> None:

@@ -21,6 +21,7 @@ from matplotlib.figure import Figure, SubFigure
 
 from fusion._docstrings import with_sections
 from fusion.book._few_runs import paired_runs, runs_named
+from fusion.book._reader_settings import reads, settings_first
 from fusion.book.glue import GlueValues
 from fusion.book.study_cache import process_cache
 from fusion.book.ledger import (EVIDENCE_TYPES, Comparison, Conjunction, Evidence,  # noqa: F401 (readings' return hints)
@@ -279,21 +280,14 @@ def reading_key(settings: Mapping[str, Any] | None) -> str:
 
     Raises
     ------
+    TypeError
+        ``settings`` neither a mapping nor None, or its ``"reading"`` not a string (a key is never converted: ``5``
+        is not the reading ``"5"``): the one rule of every chapter's readers (``fusion.book._reader_settings``).
     ValueError
-        ``settings`` not a mapping, a key other than ``"reading"``, or its ``"reading"`` not a string (a key is
-        never converted: ``5`` is not the reading ``"5"``). A ValueError, as every refusal of a claim file's settings in the chapter layer: the
-        settings are the file's content, not a Python argument.
+        A key other than ``"reading"`` (a misspelt setting is never silently ignored).
     """
-    if settings is not None and not isinstance(settings, Mapping):
-        raise ValueError(f"settings must be a mapping, got {type(settings).__name__}")
-    unknown = [k for k in (settings or {}) if k != "reading"]
-    if unknown:  # a misspelt setting must not be silently ignored (fuzz 19; chapter 04's _settings likewise)
-        raise ValueError(f"settings: unknown {shown(unknown, 120)} (the readings of chapters 01-03 take only 'reading')")
-    key = dict(settings or {}).get("reading", "primary")
-    if not isinstance(key, str):  # fuzz 18, E10
-        raise ValueError(f"settings['reading'] must be a string (a reading key), got {type(key).__name__} "
-                         f"{shown(key, 60)}")
-    return key
+    settings = settings_first(settings, ("reading",))  # fuzz 19, fuzz 52 C7: one rule for every chapter's readers
+    return text(settings.get("reading", "primary"), "settings['reading']")  # fuzz 18, E10
 
 
 def reading_of(rid: str, ev: Evidence | Mapping[str, Evidence], settings: Mapping[str, Any] | None) -> Evidence:
@@ -316,11 +310,13 @@ def reading_of(rid: str, ev: Evidence | Mapping[str, Evidence], settings: Mappin
     Raises
     ------
     TypeError
-        ``ev`` neither an Evidence (one of the ledger's evidence classes) nor a mapping, a key of the mapping
+        ``settings`` not a mapping or its ``"reading"`` not a string (:func:`reading_key`); ``ev`` neither an
+        Evidence (one of the ledger's evidence classes) nor a mapping, a key of the mapping
         not a str, or a value of it not an Evidence (naming ``ev`` and the key): a record's evidence function that
         returns anything else is refused here, not where the ledger reads it.
     ValueError
-        If the record has no such reading (naming ``settings``).
+        If the record has no such reading, or ``settings`` holds a key other than ``"reading"`` (naming
+        ``settings``).
     """
     rid = text(rid, "rid")
     key = reading_key(settings)
@@ -397,6 +393,7 @@ def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any]
     as_callable(at, "at")
     seed, runs = check_seed(seed), paired_runs(runs)
 
+    @reads("reading")  # settings checked first, its keys declared (fuzz 52 C7)
     def fn(settings: Mapping[str, Any], *, seed: int = seed, runs: int = runs) -> Evidence:
         seed, n = check_seed(seed), paired_runs(runs)  # the record's entry: 1.5 is not seed 1; 1 run pairs nothing
         with runs_named("runs", f"runs={n}; the record's own run count is {runs}"):  # rule R4 named (fuzz 22b A2)

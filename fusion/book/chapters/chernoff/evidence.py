@@ -5,13 +5,14 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 import inspect
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from typing import Any, TypeVar
 
 import numpy as np
 
 from fusion._docstrings import with_sections
 from fusion.book._few_runs import few_runs
+from fusion.book._reader_settings import settings_first
 from fusion.book.ledger import MIN_RUNS, Comparison, Conjunction, Proposition, Unverifiable, fmt
 from fusion.book.tables import roundoff
 from fusion.optimise.swarm import particle_swarm
@@ -45,13 +46,9 @@ __all__ = ["ev_tracking", "ev_pso", "ev_formulas", "ev_common_once", "ev_gaussia
 def _settings(settings: Any, allowed: dict[str, tuple[Any, ...]], defaults: dict[str, Any]) -> dict[str, Any]:
     """Settings of a reading, checked against the allowed values (ValueError naming the setting); a text option is
     returned as the plain ``str`` its check gives (rule 19 of ``fusion._validation``, fuzz 32b C1: a ``(str, Enum)``
-    member would print as ``K.M`` in a glue key)."""
-    if not isinstance(settings, Mapping):
-        raise ValueError(f"settings must be a dict, got {type(settings).__name__}")
-    extra = set(settings) - set(allowed)
-    if extra:
-        raise ValueError(f"settings: unknown {sorted(extra)} (allowed {sorted(allowed)})")
-    out = {**defaults, **settings}
+    member would print as ``K.M`` in a glue key). The mapping and its keys by the one rule of every chapter's
+    readers (``fusion.book._reader_settings``; fuzz 52 C7): a TypeError for a non-mapping, None no settings."""
+    out = {**defaults, **settings_first(settings, allowed)}
     for k, ok in allowed.items():
         if k not in out:
             raise ValueError(f"settings: {shown(k)} is required")

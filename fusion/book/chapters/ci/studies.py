@@ -21,6 +21,7 @@ from fusion.book.study_cache import process_cache, study_cache
 from fusion._options import text
 from fusion._validation import count
 from fusion.book._few_runs import runs_first, runs_named
+from fusion.book._reader_settings import reads, settings_first
 from fusion.book.ledger import Evidence
 from fusion.estimates.ci import ci_objective
 from fusion.filtering.tracks import fuse_tracks
@@ -356,8 +357,7 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
         ``runs`` below the 100 runs rule R4 asks of a paired comparison.
     """
     seed = check_seed(seed)
-    if settings is not None and not isinstance(settings, Mapping):
-        raise TypeError(f"settings must be a mapping ({{'reading': key}}) or None, got {type(settings).__name__}")
+    settings = settings_first(settings, ("reading",))  # the one rule of the chapters' readers (fuzz 52 C7)
     rid = text(rid, "rid")   # a record id is a string (fuzz 26c A6: a list gave "unhashable type")
     if rid not in _STOCHASTIC:
         raise ValueError(f"rid: {shown(rid)} is not a stochastic record of the chapter; they are {sorted(_STOCHASTIC)}")
@@ -367,19 +367,18 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
         # exact readings too: ev_ir_baselines builds them with ci-fig10-x-below-y's), so rule R4's refusal comes
         # before the studies (fuzz 57c: 9-11 CPU-s of studies at 3 runs, then the same refusal)
         ev = _record(rid, seed, runs_first(runs))
-    key = text(dict(settings or {}).get("reading", "primary"), "settings['reading']")
+    key = text(settings.get("reading", "primary"), "settings['reading']")
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")
     return ev[key]
 
 
-def _check_reading(settings: Mapping[str, Any] | None, rid: str) -> None:
+def _check_reading(settings: Mapping[str, Any], rid: str) -> None:
     """An unknown reading of ``rid`` refused before any study, by its claim file's readings (fuzz 51 C6: 9 CPU-s of
-    the chapter's studies, then the refusal): the reading keys the record's evidence holds."""
-    unknown = [k for k in (settings or {}) if k != "reading"]
-    if unknown:  # a misspelt setting must not be silently ignored (fuzz 52 C7: {'readin': 'aniso'} gave the primary)
-        raise ValueError(f"settings: unknown {shown(unknown, 120)} (the chapter's records take only 'reading')")
-    key = text(dict(settings or {}).get("reading", "primary"), "settings['reading']")
+    the chapter's studies, then the refusal): the reading keys the record's evidence holds. ``settings`` already
+    passed ``settings_first`` (a mapping of the key ``reading`` only: fuzz 52 C7's {'readin': 'aniso'} gave the
+    primary)."""
+    key = text(settings.get("reading", "primary"), "settings['reading']")
     known = {"primary"} | {r.key for r in claim_file().record(rid).readings}
     if key not in known:
         raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(known)}")
@@ -401,15 +400,16 @@ Evidence
 Raises
 ------
 TypeError
-    ``settings`` neither a mapping nor None.
+    ``settings`` neither a mapping nor None, ``settings['reading']`` not a string.
 ValueError
-    An unknown reading.
+    An unknown reading, or a key of ``settings`` other than ``reading``.
 """
 
 
 def _reader(rid: str, extra: str = "") -> Callable[..., Evidence]:
     """The evidence function of the stochastic record ``rid``: :func:`record_evidence` of ``rid``, named
     ``ev_<id without "ci-", dashes as underscores>`` (the name the record's ``evidence`` field gives)."""
+    @reads("reading")  # settings checked first, its keys declared (fuzz 52 C7)
     def fn(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
         with runs_named("runs", "the argument runs"):  # rule R4 named by the argument (fuzz 22b A2)
             return record_evidence(rid, settings, seed=seed, runs=runs)

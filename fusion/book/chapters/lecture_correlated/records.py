@@ -13,6 +13,7 @@ import numpy as np
 from fusion._frozen import constant
 from fusion._results import ResultSpec, instance, validated_post_init
 from fusion.book._few_runs import runs_first, runs_named
+from fusion.book._reader_settings import reads
 from fusion.book.study_cache import study_cache
 from fusion.book.chapters.lecture import SOURCE, _holds, _members, sci
 from fusion.book.tables import roundoff
@@ -37,7 +38,7 @@ from fusion.book.chapters.lecture_correlated.propositions import (
     plugin_conjunction,
 )
 from fusion.book.chapters.lecture_correlated.correlated import _lagrange_numbers
-from fusion.book.chapters.lecture import reading_of
+from fusion.book.chapters.lecture import reading_key, reading_of
 from fusion._counts import seed as check_seed
 from fusion._counts import count
 from fusion._shown import shown
@@ -457,7 +458,8 @@ _PAIRED = frozenset({"lec-correlation-matters", "lec-ridge-fusion-plugin"})
 
 def _reading(rid: str, settings: dict[str, Any] | None, seed: int, runs: int | None) -> Evidence:
     """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``; rule R4's refusal
-    names the caller's ``runs`` (fuzz 22b A2)."""
+    names the caller's ``runs`` (fuzz 22b A2); the settings are checked before the studies (fuzz 52 C7)."""
+    reading_key(settings)
     with runs_named("runs", "the argument runs"):
         if rid in _PAIRED and runs is not None:  # R4's certain refusal before the studies (None: the chapter's own)
             runs = runs_first(runs)
@@ -565,120 +567,140 @@ def keep(store: GlueValues, values: Mapping[str, GlueValue]) -> GlueValues:
     return out
 
 
+@reads("reading")
 def ev_ridge_reliable(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-reliable``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ridge-reliable", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ridge_plugin(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-plugin``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ridge-plugin", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ridge_variance(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-variance``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ridge-variance", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ridge_bias_known(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-bias-known``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ridge-bias-known", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ls_special_cases(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ls-special-cases``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ls-special-cases", settings, seed, runs)
 
 
+@reads("reading")
 def ev_gauss_markov(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-gauss-markov``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-gauss-markov", settings, seed, runs)
 
 
+@reads("reading")
 def ev_james_stein(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-james-stein-linear``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-james-stein-linear", settings, seed, runs)
 
 
+@reads("reading")
 def ev_reliability_measure(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-reliability-measure``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-reliability-measure", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ridge_equivalence(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-equivalence``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ridge-equivalence", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ridge_converges(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-converges``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ridge-converges", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ridge_fusion_better(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-fusion-better``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ridge-fusion-better", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ridge_fusion_plugin(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-fusion-plugin``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ridge-fusion-plugin", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ldl_unique(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-unique``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ldl-unique", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ldl_equals_gls(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-equals-gls``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ldl-equals-gls", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ldl_cheaper(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-cheaper``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-ldl-cheaper", settings, seed, runs)
 
 
+@reads("reading")
 def ev_lagrange(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-lagrange-scalar-only``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-lagrange-scalar-only", settings, seed, runs)
 
 
+@reads("reading")
 def ev_correlation_matters(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-correlation-matters``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-correlation-matters", settings, seed, runs)
 
 
+@reads("reading")
 def ev_eigen_finite(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-eigen-finite``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-eigen-finite", settings, seed, runs)
 
 
+@reads("reading")
 def ev_eigen_impractical(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-eigen-impractical``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("lec-eigen-impractical", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ldl_validated(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-validated``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)

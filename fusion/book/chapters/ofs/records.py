@@ -26,11 +26,13 @@ from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
 from fusion.book.chapters.ofs.readings import ALPHAS, alpha_key, family_values
-from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, FailureCase, _case, _failure, _noise, _setting
+from fusion.book.chapters.ofs.settings import (CHAPTER, N_RUNS, SEED, SOURCE, FailureCase, _case, _failure, _flag, _noise,
+                                              _setting)
 from fusion.book.chapters.ofs.studies import (alpha_study, fair_weights, faulty_member_share, membership_study,
                                              not_neighbourhood_share, study, weight_study)
 from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint, table1_totals, tables
 from fusion.book._few_runs import paired_runs, reader_runs_named, runs_first
+from fusion.book._reader_settings import reads
 from fusion.book.glue import GlueValues
 from fusion._counts import count
 from fusion._validation import given_number, instance_of, integer, sequence
@@ -55,19 +57,26 @@ _BASE_TEXT = {"mean": "the mean", "support_degree": "the rebuilt support degree"
 
 
 def _pair(base: str, case: str, metric: str, settings: Mapping[str, object], seed: int, runs: int) -> Comparison:
-    """The optimal set against ``base`` on the study the settings name (noise, failure reading, α)."""
+    """The optimal set against ``base`` on the study the settings name (noise, failure reading, α).
+
+    ``settings['alpha']`` (read by the readers against the support degree only: ``_pair_record``) equal to the
+    records' ``_ALPHA`` is the default's reading itself (fuzz 52 D2: 0.25, not in the α study's ``ALPHAS``, was
+    refused); another α reads the α study, of the primary draws only, so a noise, failure or ``include_self`` other
+    than the primary's with it is refused, never ignored (fuzz 52 C7's class).
+    """
     failure, window, where = _CASES[case]
-    mode = _failure(settings)
-    if "alpha" in settings:
-        if base != "support_degree":
-            raise ValueError("settings['alpha'] applies to the support degree only")
-        alpha = float(given_number(settings["alpha"], "settings['alpha']"))
+    noise, mode, include_self = _noise(settings), _failure(settings), _flag(settings, "include_self", True)
+    alpha = float(given_number(settings["alpha"], "settings['alpha']")) if "alpha" in settings else _ALPHA
+    if alpha != _ALPHA:
         if alpha not in ALPHAS:  # named before the study (fuzz 51 C4: a KeyError after it)
-            raise ValueError(f"settings['alpha'] must be one of the study's sharpnesses {ALPHAS}, got {alpha:g}")
+            raise ValueError(f"settings['alpha'] must be one of the α study's sharpnesses {ALPHAS} or the records' "
+                             f"{_ALPHA:g}, got {alpha:g}")
+        if (noise, mode, include_self) != ("unequal", "fixed", True):
+            raise ValueError(f"settings: 'alpha' {alpha:g} reads the α study, of the primary draws (noise 'unequal', "
+                             f"failure 'fixed', include_self true); it takes no other noise, failure or include_self")
         b, name = alpha_key(alpha), _support_label(alpha)
         st = alpha_study(seed, runs_first(runs))  # R4's certain refusal before the study (fuzz 57c)
     else:
-        noise, include_self = _noise(settings), bool(settings.get("include_self", True))
         st, b = study(seed, runs_first(runs), noise, mode, include_self), base  # R4 before the study (fuzz 57c)
         name = _support_label(_ALPHA) if base == "support_degree" else METHOD_LABELS[base]
     fn = st.mae if metric == "mae" else st.fluctuation
@@ -120,6 +129,7 @@ def _pair_record(name: str, base: str, case: str, metric: str) -> Callable[..., 
         return _pair(base, case, metric, settings, check_seed(seed), runs)
 
     keys = "``noise``, ``failure`` and ``include_self``" + (", or ``alpha`` alone" if base == "support_degree" else "")
+    fn = reads("noise", "failure", "include_self", *(("alpha",) if base == "support_degree" else ()))(fn)
     fn.__name__ = fn.__qualname__ = name
     fn.__doc__ = (f"Fig. {2 if case == 'clean' else 4}: the optimal set's per-run {_METRIC_TEXT[metric]}, "
                   f"{_CASES[case][2]}, against {_BASE_TEXT[base]} (settings: {keys}).")
@@ -139,6 +149,7 @@ ev_fig4_fluctuation_support = _pair_record("ev_fig4_fluctuation_support", "suppo
 
 
 @reader_runs_named
+@reads("noise", "failure")
 def ev_fig4_unaffected(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: the optimal set's per-run MAE on samples 50-80 with the failure against without it ("equal")."""
     seed = check_seed(seed)
@@ -150,6 +161,7 @@ def ev_fig4_unaffected(settings: Mapping[str, object], *, seed: int = SEED, runs
 
 
 @reader_runs_named
+@reads("noise", "failure")
 def ev_fig4_robust(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: the rise of the per-run MAE on samples 50-80 due to the failure, optimal set against the mean."""
     seed = check_seed(seed)
@@ -162,14 +174,20 @@ def ev_fig4_robust(settings: Mapping[str, object], *, seed: int = SEED, runs: in
 
 
 @reader_runs_named
+@reads("case", "sweep", "value")
 def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Weights of eqs. 6-11 against equal weights on the same set (settings: ``case``, or ``sweep`` and ``value``)."""
     seed = check_seed(seed)
     if "sweep" in settings:
+        if "case" in settings:  # two readings at once: neither is silently dropped (fuzz 52 C7's class)
+            raise ValueError("settings: 'case' (the membership study's) and 'sweep' (a fair-study point) name two "
+                             "readings; give one")
         sweep, value = _fair_point(settings)  # named before the study (fuzz 51 C4: a KeyError after it)
         e = fair_weights(seed, runs_first(runs)).mae[(sweep, value)]  # R4 before the study (fuzz 57c)
         what = f"{sweep} = {value:g}"
     else:
+        if "value" in settings:
+            raise ValueError("settings: a 'value' needs its 'sweep' (a point of the fair study)")
         case = _case(settings)
         e = membership_study(seed, runs_first(runs)).ablation[case]  # R4 before the study (fuzz 57c)
         what = "primary noise, " + ("samples 1-100, no failure" if case is FailureCase.NONE else
@@ -179,6 +197,7 @@ def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, r
 
 
 @reader_runs_named
+@reads("vary")
 def ev_membership_free(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
     """Each other membership function against eq. 6, "equal" (settings ``vary``: family, scale or table1)."""
     seed = check_seed(seed)
@@ -208,6 +227,7 @@ def ev_membership_free(settings: Mapping[str, object], *, seed: int = SEED, runs
 
 
 @reader_runs_named
+@reads("sensors", "include_self")
 def ev_weights_stability(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Section 1.3: the weights of the more stable sensors against the less stable ones.
 
@@ -217,7 +237,8 @@ def ev_weights_stability(settings: Mapping[str, object], *, seed: int = SEED, ru
     seed = check_seed(seed)
     halves = isinstance(settings.get("sensors", "halves"), str) and settings.get("sensors", "halves") == "halves"
     pair = None if halves else _sensor_pair(settings["sensors"])
-    ws = weight_study(seed, runs_first(runs), bool(settings.get("include_self", True)))  # R4 first (fuzz 57c)
+    include_self = _flag(settings, "include_self", True)  # bool("no") was true
+    ws = weight_study(seed, runs_first(runs), include_self)  # R4 first (fuzz 57c)
     if halves:
         k = ws.relative.shape[1] // 2
         return Comparison(ws.relative[:, :k].mean(axis=1), ws.relative[:, k:].mean(axis=1), f"sensors 1-{k}",
@@ -233,6 +254,7 @@ def ev_weights_stability(settings: Mapping[str, object], *, seed: int = SEED, ru
 
 
 @reader_runs_named
+@reads("noise")
 def ev_def3_keeps_valid(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Definition 3: without faults (every reading valid) the set keeps all ten readings."""
     seed = check_seed(seed)
@@ -246,6 +268,7 @@ def ev_def3_keeps_valid(settings: Mapping[str, object], *, seed: int = SEED, run
 
 
 @reader_runs_named
+@reads("noise", "failure")
 def ev_set_rejects_faulty(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Section 2: under the failure, sensors 4 and 10 are never members of the set at their faulty epochs 50-80.
 
@@ -273,20 +296,22 @@ def _explained() -> pd.DataFrame:
 
 
 @reader_runs_named
+@reads("explanation")
 def ev_table2_ofs(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """Table 2's optimal-set column against Table 1 fused (settings ``explanation``: the joint audit's)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     pub = data.YANG2012_TABLE2.columns["optimal_set"]
-    if settings.get("explanation"):
+    if _flag(settings, "explanation", False):
         return PublishedValues(pub, _explained()[(ofs_audit.OPTIMAL_SET, "reconstructed")].to_numpy()[:6], 4, "°C")
     return PublishedValues(pub, tables().ofs, 4, "°C")
 
 
 @reader_runs_named
+@reads("data")
 def ev_table2_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """Table 2's mean column against the means of Table 1 (settings ``data``: ``"corrected"``)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
-    t1 = corrected_table1() if settings.get("data") == "corrected" else data.YANG2012_TABLE1.values
+    t1 = corrected_table1() if _data(settings) == "corrected" else data.YANG2012_TABLE1.values
     return PublishedValues(data.YANG2012_TABLE2.columns["mean"], np.mean(t1, axis=0), 4, "°C")
 
 
@@ -295,6 +320,7 @@ _ALPHA_GRID = np.logspace(-6, 3, 600)
 
 
 @reader_runs_named
+@reads("kernel", "weights", "data")
 def ev_table3_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """Table 3's support-degree column against a rebuilt rule on Table 1.
 
@@ -306,8 +332,11 @@ def ev_table3_support(settings: Mapping[str, object], *, seed: int = SEED, runs:
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     pub = data.YANG2012_TABLE3.columns["reliability"]
     if "kernel" not in settings:
+        if settings:  # weights or data without a kernel chose nothing (fuzz 52 C7's class)
+            raise ValueError(f"settings: {shown(sorted(settings))} choose a variant of the rebuilt rule and need its "
+                             "'kernel'")
         return PublishedValues(pub, tables().sup, 4, "°C")
-    t1 = corrected_table1() if settings.get("data") == "corrected" else np.array(data.YANG2012_TABLE1.values, float)
+    t1 = corrected_table1() if _data(settings) == "corrected" else np.array(data.YANG2012_TABLE1.values, float)
     v = ofs_audit.support_values(t1.T, _setting(settings, "kernel", "", tuple(ofs_audit.SUPPORT_KERNELS)),
                                   _setting(settings, "weights", "", ofs_audit.SUPPORT_AGGREGATIONS), _ALPHA_GRID)
     err = np.abs(v - pub)
@@ -316,12 +345,13 @@ def ev_table3_support(settings: Mapping[str, object], *, seed: int = SEED, runs:
 
 
 @reader_runs_named
+@reads("explanation")
 def ev_totals(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """The printed totals of the mean and the optimal set (settings ``explanation``: the joint audit's)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     tot = data.YANG2012_TOTALS.columns
     pub = [tot["mean"][0], tot["optimal_set"][0]]
-    if settings.get("explanation"):
+    if _flag(settings, "explanation", False):
         ex = _explained()
         return PublishedValues(pub, [ex.loc["total", (ofs_audit.MEAN_ERROR, "reconstructed")],
                                      ex.loc["total", (ofs_audit.OPTIMAL_SET_ERROR, "reconstructed")]], 4, "°C")
@@ -329,11 +359,20 @@ def ev_totals(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N
     return PublishedValues(pub, [t["mean"], t["optimal_fusion_set"]], 4, "°C")
 
 
+def _data(settings: Mapping[str, object]) -> str:
+    """``settings['data']``: ``"printed"`` (default, Table 1 as printed) or ``"corrected"``, named otherwise (a
+    misspelt ``"corected"`` read the printed table: fuzz 52 C7's class)."""
+    return _setting(settings, "data", "printed", ("printed", "corrected"))
+
+
 def _ranking(a: str, b: str, settings: Mapping[str, object]) -> ExactComparison:
-    t1 = corrected_table1() if settings.get("data") == "corrected" else data.YANG2012_TABLE1.values
-    t = table1_totals(t1, float(settings.get("alpha", _ALPHA)), settings.get("guard") == "mean",  # type: ignore[arg-type]
+    """The totals of ``a`` and ``b`` over Table 1 (settings ``data``, ``alpha`` > 0, ``guard``: ``"none"`` or
+    ``"mean"``, ``rule``: ``"averages"`` or ``"sums"``, ``total``: ``"rebuilt"`` or ``"printed"``)."""
+    t1 = corrected_table1() if _data(settings) == "corrected" else data.YANG2012_TABLE1.values
+    alpha = float(given_number(settings.get("alpha", _ALPHA), "settings['alpha']", lo=0.0, lo_open=True))
+    t = table1_totals(t1, alpha, _setting(settings, "guard", "none", ("none", "mean")) == "mean",
                       _setting(settings, "rule", "averages", ("averages", "sums")))
-    if settings.get("total") == "printed":
+    if _setting(settings, "total", "rebuilt", ("rebuilt", "printed")) == "printed":
         t["support_degree"] = float(data.YANG2012_TOTALS.columns["reliability"][0])
     names = {"optimal_fusion_set": "optimal set", "mean": "mean", "support_degree": "support degree", "median": "median"}
     # R9: an exact comparison of totals, judged by the practical margin (5 % of the baseline's total)
@@ -341,6 +380,7 @@ def _ranking(a: str, b: str, settings: Mapping[str, object]) -> ExactComparison:
 
 
 @reader_runs_named
+@reads("data", "guard", "rule")
 def ev_totals_ranking_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total absolute error below the mean's (settings ``guard``, ``data``)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
@@ -348,6 +388,7 @@ def ev_totals_ranking_mean(settings: Mapping[str, object], *, seed: int = SEED, 
 
 
 @reader_runs_named
+@reads("alpha", "data", "guard", "rule", "total")
 def ev_totals_ranking_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total below the rebuilt support degree's (settings ``alpha``, ``data``, ``total``)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
@@ -355,6 +396,7 @@ def ev_totals_ranking_support(settings: Mapping[str, object], *, seed: int = SEE
 
 
 @reader_runs_named
+@reads("data", "guard", "rule")
 def ev_median_total(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the plain median's total absolute error below the optimal set's (settings ``data``, ``guard``)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
@@ -362,6 +404,7 @@ def ev_median_total(settings: Mapping[str, object], *, seed: int = SEED, runs: i
 
 
 @reader_runs_named
+@reads("values", "against")
 def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
     """At observations 1, 3, 4, 5, 6 the optimal set is closer to 900 °C (settings ``values``: printed or recomputed).
 
@@ -372,7 +415,7 @@ def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     obs = (1, 3, 4, 5, 6)
     t2, t3 = data.YANG2012_TABLE2.columns, data.YANG2012_TABLE3.columns
-    if settings.get("values", "printed") == "printed":
+    if _setting(settings, "values", "printed", ("printed", "recomputed")) == "printed":
         e_ofs, e_mean = np.asarray(t2["optimal_set_abs_error"], float), np.asarray(t2["mean_abs_error"], float)
         src = "printed"
     else:
@@ -381,7 +424,7 @@ def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int
         e_mean = np.abs(tb.mean - data.YANG2012_TRUE_VALUE)
         src = "recomputed"
     others = [("mean", e_mean)]  # (what the ledger calls it, its absolute errors)
-    if settings.get("against") == "both":
+    if _setting(settings, "against", "mean", ("mean", "both")) == "both":
         others.append(("support degree (printed)", np.asarray(t3["reliability_abs_error"], float)))
     parts = [(f"observation {k}, against the {name}" if len(others) > 1 else f"observation {k}",
               ExactComparison(float(e_ofs[k - 1]), float(e[k - 1]), "optimal set", name, "less",
@@ -391,6 +434,7 @@ def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int
 
 
 @reader_runs_named
+@reads("rule")
 def ev_eq3_5_rejects(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Eq. 5 drops exactly the readings farthest from the others (settings ``rule``: averages or sums)."""
     runs = count(runs, "runs")
@@ -398,7 +442,7 @@ def ev_eq3_5_rejects(settings: Mapping[str, object], *, seed: int = SEED, runs: 
     rng = np.random.default_rng(seed)
     triples = 900.0 + rng.normal(size=(runs, 3)) * rng.uniform(0.1, 10.0, size=(runs, 1))
     z = np.concatenate([data.YANG2012_TABLE1.values.T, triples])
-    if settings.get("rule", "averages") == "sums":
+    if _setting(settings, "rule", "averages", ("averages", "sums")) == "sums":
         members = rd.fuse_epochs(data.YANG2012_TABLE1.values.T, "optimal_fusion_set", threshold="sum").members
         return Proposition(bool(not members.all()), "as printed, d̄ is the sum of all d_i: on Table 1 every reading "
                            f"is kept ({int(members.sum())} of {members.size}), none is dropped")
@@ -412,6 +456,7 @@ def ev_eq3_5_rejects(settings: Mapping[str, object], *, seed: int = SEED, runs: 
 
 
 @reader_runs_named
+@reads()
 def ev_eq9_defined(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Eqs. 9-11 give weights for every set: false when a row of C is constant (one-member sets)."""
     seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here

@@ -10,7 +10,7 @@ import numpy as np
 from fusion._frozen import constant
 from fusion.book.style import METHOD_LABELS
 from fusion.scenarios import thermocouples
-from fusion._options import one_of
+from fusion._options import flag, one_of
 from fusion._shown import shown
 
 __all__ = [
@@ -80,6 +80,12 @@ def _setting(settings: Mapping[str, object], key: str, default: str, allowed: tu
     returns (rule 19 of ``fusion._validation``; never ``str()`` of the caller's object: fuzz 32b C1, a ``(str, Enum)``
     member prints as ``K.M``); TypeError/ValueError naming ``settings[key]``."""
     return one_of(settings.get(key, default), allowed, f"settings['{key}']")
+
+
+def _flag(settings: Mapping[str, object], key: str, default: bool) -> bool:
+    """The yes/no option ``settings[key]`` (``default`` when absent) as a ``bool``: a bool or ``numpy.bool_`` only,
+    TypeError naming ``settings[key]`` otherwise (fuzz 52 C7's class: ``bool("no")`` read ``"no"`` as true)."""
+    return flag(settings.get(key, default), f"settings['{key}']")
 
 
 def _failure(settings: Mapping[str, object]) -> str:

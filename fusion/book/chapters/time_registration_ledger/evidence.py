@@ -15,6 +15,7 @@ import numpy as np
 
 from fusion import data
 from fusion.book._few_runs import runs_first, runs_named
+from fusion.book._reader_settings import reads
 from fusion.book.chapters.time_registration import (CAUSAL_IMPROVED, FUSION_ALONE, FUSION_UNREGISTERED, IMPROVED, TWO,
                                                      robustness_readings)
 from fusion.registration import affine_decomposition
@@ -24,7 +25,7 @@ from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, U
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_ledger.costs import cost_count
-from fusion.book.chapters.lecture import reading_of
+from fusion.book.chapters.lecture import reading_key, reading_of
 from fusion.book.chapters.time_registration_ledger.studies import (EXTRAP, FIXED_LAG, LOCAL_QLS, MSE, QLS, S3, SIGMAS_ALT,
                                                                  UNREGISTERED, _key, cached_study, unregistered_runs)
 from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
@@ -451,101 +452,118 @@ def ledger_evidence(seed: int, runs: int) -> dict[str, Evidence | dict[str, Evid
 
 def _reading(rid: str, settings: Mapping[str, object] | None, seed: int, runs: int) -> Evidence:
     """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``; rule R4's refusal
-    names the caller's ``runs`` (fuzz 22b A2)."""
+    names the caller's ``runs`` (fuzz 22b A2); the settings are checked before the study (fuzz 52 C7)."""
+    reading_key(settings)
     with runs_named("runs", "the argument runs"):   # a paired record: R4's refusal before the study (fuzz 57c)
         return reading_of(rid, _RECORDS[rid](cached_study(seed, runs_first(runs) if rid in _PAIRED else runs)), settings)
 
 
+@reads("reading")
 def ev_samples(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-samples``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     seed = check_seed(seed)
     return _reading("shi-samples", settings, seed, runs)
 
 
+@reads("reading")
 def ev_figs23(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-figs23``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-figs23", settings, seed, runs)
 
 
+@reads("reading")
 def ev_eqs(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-eqs``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-eqs", settings, seed, runs)
 
 
+@reads("reading")
 def ev_metric(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-metric``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-metric", settings, seed, runs)
 
 
+@reads("reading")
 def ev_interp_vs_ls(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-interp-vs-ls``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-interp-vs-ls", settings, seed, runs)
 
 
+@reads("reading")
 def ev_curve_fitting(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-curve-fitting``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-curve-fitting", settings, seed, runs)
 
 
+@reads("reading")
 def ev_kalman_s3(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-kalman-s3``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-kalman-s3", settings, seed, runs)
 
 
+@reads("reading")
 def ev_three_noise(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-three-noise``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-three-noise", settings, seed, runs)
 
 
+@reads("reading")
 def ev_improved(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-improved``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-improved", settings, seed, runs)
 
 
+@reads("reading")
 def ev_improved_fair(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-improved-fair``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-improved-fair", settings, seed, runs)
 
 
+@reads("reading")
 def ev_simplifies(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-simplifies``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-simplifies", settings, seed, runs)
 
 
+@reads("reading")
 def ev_ls_info(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-ls-info``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-ls-info", settings, seed, runs)
 
 
+@reads("reading")
 def ev_validated(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-validated``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-validated", settings, seed, runs)
 
 
+@reads("reading")
 def ev_fig4_axis(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-fig4-axis``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-fig4-axis", settings, seed, runs)
 
 
+@reads("reading")
 def ev_few_restrictions(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-few-restrictions``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
     return _reading("shi-few-restrictions", settings, seed, runs)
 
 
+@reads("reading")
 def ev_fusion(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-fusion``: a reading's evidence (settings ``{"reading": key}``)."""
     seed = check_seed(seed)
