@@ -122,6 +122,34 @@ def test_no_source_file_of_the_package_holds_a_tab() -> None:
     assert not tabs, tabs
 
 
+def test_no_docstring_of_the_package_holds_a_control_character_nor_an_invalid_escape() -> None:
+    r"""A non-raw docstring turns ``\top`` into a tab and ``\Phi`` into a DeprecationWarning (an error in 3.12+):
+    ``_smoother_gain``'s ``P\Phi^\top`` and ``_random_sensors``' ``AA^\top`` did, which the source-tab test above
+    cannot see (found by fix59a). Every module compiles with warnings as errors and no docstring's value holds a
+    control character other than the line break."""
+    import ast
+    import re
+    import warnings
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[1] / "fusion"
+    bad = []
+    for p in sorted(root.rglob("*.py")):
+        text = p.read_text(encoding="utf-8")
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            try:
+                tree = compile(text, str(p), "exec", flags=ast.PyCF_ONLY_AST)
+            except SyntaxError as exc:   # a warning turned error is raised as a SyntaxError
+                bad.append(f"{p.relative_to(root)}:{exc.lineno}: {exc.msg}")
+                continue
+        for node in ast.walk(tree):
+            if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
+                doc = ast.get_docstring(node, clean=False)
+                if doc and re.search(r"[\x00-\x09\x0b-\x1f\x7f]", doc):
+                    bad.append(f"{p.relative_to(root)}: {getattr(node, 'name', '<module>')}")
+    assert not bad, bad
+
+
 def test_fuzz50a_d6_a_signalling_nan_is_told_by_the_entry_not_by_a_message() -> None:
     """An entry whose __float__ raises ValueError('signaling NaN') is not a number (TypeError); a Decimal sNaN is a
     NaN (ValueError)."""

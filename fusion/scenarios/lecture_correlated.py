@@ -165,7 +165,7 @@ class CorrelatedStudy:
 
 # --------------------------------------------------------------------------- E2.5
 def _random_sensors(rng: np.random.Generator) -> tuple[list[FloatArray], list[FloatArray], list[FloatArray]]:
-    """Three random sensors of a 2-vector, four readings each: their matrices H (4, 2), covariances
+    r"""Three random sensors of a 2-vector, four readings each: their matrices H (4, 2), covariances
     :math:`AA^\top + 4I` (4, 4) and readings y (4,), all standard normal draws from ``rng`` (in that order)."""
     Hs = [rng.normal(size=(4, 2)) for _ in range(3)]
     Rs = []
