@@ -399,11 +399,11 @@ def fuse_tracks(
     runs, K, n = a.est.shape
     _fuse_tracks_work(K, runs, n, rule, "a and b (their steps K, runs and state size)")
     if rule in _UNWEIGHTED and omega is not None:  # after the budget, as omega's other checks (test_budget43)
-        raise ValueError(f"omega is a weight of the rules 'ci', 'split' and 'printed' only: rule {shown(rule)} has none, "
-                         "leave omega at None")
+        raise ValueError(f"omega is a weight of the rules 'ci', 'split' and 'printed' only: rule {shown(rule)} "
+                         "has none, leave omega at None")
     if rule in _UNWEIGHTED and criterion != "trace":
-        raise ValueError(f"criterion chooses the weight of the rules 'ci', 'split' and 'printed' only: rule {shown(rule)} "
-                         f"has none, got criterion {shown(criterion)} (leave it at its default)")
+        raise ValueError(f"criterion chooses the weight of the rules 'ci', 'split' and 'printed' only: rule "
+                         f"{shown(rule)} has none, got criterion {shown(criterion)} (leave it at its default)")
     if omega is None:
         ws = [None] * K
     else:

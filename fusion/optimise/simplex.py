@@ -175,7 +175,8 @@ def minimise_on_simplex(
     def gradient(e: FloatArray) -> FloatArray:  # fuzz 53b C5: checked as f's values are, naming jac
         return gradient_values(jac(argument_copy(e)), n, "jac")  # type: ignore[misc]
 
-    res = minimize(lambda e: value(on_simplex(e)), start, jac=None if jac is None else gradient, method="SLSQP", bounds=[(0.0, 1.0)] * n,
+    checked_jac = None if jac is None else gradient
+    res = minimize(lambda e: value(on_simplex(e)), start, jac=checked_jac, method="SLSQP", bounds=[(0.0, 1.0)] * n,
                    constraints=[{"type": "eq", "fun": lambda e: e.sum() - 1.0, "jac": lambda e: np.ones_like(e)}],
                    options={"ftol": ftol, "maxiter": _SLSQP_ITERATIONS})
     e = np.clip(res.x, 0.0, None)
