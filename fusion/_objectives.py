@@ -54,6 +54,42 @@ def objective_values(values: object, shape: tuple[int, ...], name: str, infeasib
     return v
 
 
+def gradient_values(values: object, n: int, name: str) -> FloatArray:
+    """The gradient an optimiser's derivative callable ``name`` returned at a point of ``n`` coordinates, checked.
+
+    A gradient must be ``n`` finite real numbers: SLSQP given NaN, an infinity, a scalar or a vector of another
+    length stopped at once and its start was returned as the minimiser, and a string, ``None`` or a complex number
+    raised scipy's own error (fuzz 53b C5).
+
+    Parameters
+    ----------
+    values : object
+        What the callable returned.
+    n : int
+        The number of coordinates.
+    name : str
+        The callable's argument name (``"jac"``), named in the messages.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        The gradient as floats.
+
+    Raises
+    ------
+    TypeError
+        Values that are not real numbers (strings, complex, ``None``, ...).
+    ValueError
+        Not of shape (n,), or not finite.
+    """
+    g = _numeric(values, f"the values returned by {name}")
+    if g.shape != (n,):
+        raise ValueError(f"{name} returned a gradient of shape {g.shape} for a point of shape ({n},)")
+    if not np.isfinite(g).all():
+        raise ValueError(f"{name} returned a gradient that is not finite (NaN or infinite)")
+    return g
+
+
 def finite_optimum(value: float, name: str) -> float:
     """Refuse an optimum whose objective value is not finite (rule 3): ``name`` took no finite value.
 

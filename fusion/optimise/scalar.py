@@ -349,9 +349,9 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     Raises
     ------
     ValueError
-        Bounds not finite or ``hi <= lo``; an interval so wide against ``xatol`` that scipy's 500 iterations
-        end before the tolerance (about ``(hi - lo) / xatol > 1e100``); an objective returning NaN, more than one
-        number, or infinite at every point tried.
+        Bounds not finite or ``hi <= lo``; ``xatol`` not smaller than ``hi - lo``; an interval so wide against
+        ``xatol`` that scipy's 500 iterations end before the tolerance (about ``(hi - lo) / xatol > 1e100``); an
+        objective returning NaN, more than one number, or infinite at every point tried.
     TypeError
         An objective returning something other than a real number.
 
@@ -361,6 +361,9 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     """
     lo, hi = _check(lo, hi, f)
     xatol = tolerance(xatol, "xatol")
+    if not xatol < hi - lo:  # fuzz 53b D5: xatol = 1 on [0, 1] stopped at the first golden-section point, 0.382 for 0.3
+        raise ValueError(f"xatol must be smaller than the interval's width hi - lo = {shown(hi - lo)}, got "
+                         f"{shown(xatol)}: a tolerance as wide as the interval stops the search at its first point")
     shift = min(max(0.0, lo), hi)  # the point of [lo, hi] nearest 0: |x - shift| <= |x| on the interval
 
     def point(u: float) -> float:

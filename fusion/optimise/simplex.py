@@ -23,7 +23,7 @@ from scipy.optimize import minimize
 
 from fusion._validation import argument_copy, read_once, renormalised, sums_to_one, text, tolerance
 from fusion._validation import _numeric, FloatArray, LOOP_STEP, as_callable, count, work
-from fusion._objectives import finite_optimum, objective_values
+from fusion._objectives import finite_optimum, gradient_values, objective_values
 from fusion.optimise.result import OptimumResult
 
 __all__ = [
@@ -143,8 +143,11 @@ def minimise_on_simplex(
     Raises
     ------
     ValueError
-        ``n < 1``, ``x0`` off the simplex, or ``ftol`` not positive and finite; ``n`` beyond the work budget
+        ``n < 1``, ``x0`` off the simplex, or ``ftol`` not positive and finite; ``f`` returning NaN or not one
+        number, ``jac`` returning a gradient not of shape (n,) or not finite; ``n`` beyond the work budget
         (``fusion._limits.MAX_WORK``, counting SLSQP's 300 iterations: about 350 weights without ``jac``, 390 with it).
+    TypeError
+        ``f`` or ``jac`` not callable, or returning something other than real numbers.
     """
     as_callable(f, "f")
     n = count(n, "n")
@@ -169,7 +172,11 @@ def minimise_on_simplex(
         c = np.clip(e, 0.0, None)
         return c / c.sum() if c.sum() > 0 else np.full(n, 1.0 / n)
 
-    res = minimize(lambda e: value(on_simplex(e)), start, jac=jac, method="SLSQP", bounds=[(0.0, 1.0)] * n,
+    def gradient(e: FloatArray) -> FloatArray:  # fuzz 53b C5: checked as f's values are, naming jac
+        return gradient_values(jac(argument_copy(e)), n, "jac")  # type: ignore[misc]
+
+    checked_jac = None if jac is None else gradient
+    res = minimize(lambda e: value(on_simplex(e)), start, jac=checked_jac, method="SLSQP", bounds=[(0.0, 1.0)] * n,
                    constraints=[{"type": "eq", "fun": lambda e: e.sum() - 1.0, "jac": lambda e: np.ones_like(e)}],
                    options={"ftol": ftol, "maxiter": _SLSQP_ITERATIONS})
     e = np.clip(res.x, 0.0, None)

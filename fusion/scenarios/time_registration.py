@@ -629,10 +629,17 @@ def noise_gain(name: str) -> float:
     ValueError
         A Kalman method (its gains depend on the noise level).
     """
-    name = _check_name(name)
-    if name in _KALMAN:
-        raise ValueError(f"name must be a fixed-weight method, got the Kalman method {shown(name)}")
+    name = _fixed_weight_name(name, "name")
     return expected(name, 1.0) - noise_free_mse(name)
+
+
+def _fixed_weight_name(name: str, arg: str) -> str:
+    """A key of :data:`METHODS` that is not a Kalman method, refused under ``arg``, the caller's argument (fuzz 53b C3:
+    ``crossing_sigma`` refused a Kalman ``b`` through ``noise_gain``, naming its ``name``)."""
+    name = _check_name(name, arg)
+    if name in _KALMAN:
+        raise ValueError(f"{arg} must be a fixed-weight method, got the Kalman method {shown(name)}")
+    return name
 
 
 def crossing_sigma(a: str, b: str) -> float:
@@ -650,8 +657,13 @@ def crossing_sigma(a: str, b: str) -> float:
     -------
     float
         The crossing :math:`\sigma` (m); ``nan`` when the curves never cross at a positive level.
+
+    Raises
+    ------
+    ValueError
+        ``a`` or ``b`` not a key of :data:`METHODS`, or a Kalman method (named by its argument).
     """
-    a, b = _check_name(a, "a"), _check_name(b, "b")
+    a, b = _fixed_weight_name(a, "a"), _fixed_weight_name(b, "b")
     db = noise_free_mse(b) - noise_free_mse(a)
     dg = noise_gain(a) - noise_gain(b)
     if dg == 0 or db / dg <= 0:

@@ -588,5 +588,7 @@ def _ci_criterion_derivatives(infos: FloatArray, eps: FloatArray, criterion: str
 
 def _ci_criterion_batch(infos: FloatArray, criterion: str) -> FloatArray:
     """Covariance-intersection weights minimising ``criterion`` ("det" or "trace") for B problems, infos (B, N, d, d)."""
+    # the derivatives read "det, otherwise trace": checked here too (fuzz 53b C1)
+    criterion = one_of(criterion, ("det", "trace"), "criterion")
     return _simplex_newton(lambda idx, e: _ci_criterion_derivatives(infos[idx], e, criterion), infos.shape[0],
                            infos.shape[1])
