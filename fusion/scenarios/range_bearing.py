@@ -151,14 +151,8 @@ def run_tracking_batch(
     workers = check_workers(workers, "workers")  # at most the machine's CPUs (rule 9)
     if not seeds:
         raise ValueError("seeds is empty: at least one SeedSequence is needed")
-    seen: dict[int, int] = {}
     for i, s in enumerate(seeds):
         instance_of(s, np.random.SeedSequence, f"seeds[{i}]")
-        j = seen.setdefault(id(s), i)
-        if j != i:  # fuzz 53b D3: run i's streams would depend on run j's spawn (and, before, on workers)
-            raise ValueError(f"seeds[{i}] is the same SeedSequence object as seeds[{j}]: each run needs its own seed "
-                             "(its run is then what run_tracking gives with it), e.g. "
-                             "np.random.SeedSequence(seed).spawn(n)")
     flags = [False] * len(seeds) if all_nodes is None else [flag(f, f"all_nodes[{i}]")
                                                                 for i, f in enumerate(sequence(all_nodes, "all_nodes"))]
     if len(flags) != len(seeds):
@@ -167,6 +161,13 @@ def run_tracking_batch(
     _block_allocation(sc, len(seeds), "seeds, sc.sensors and sc.n_particles")
     _tracking_work(sc, len(seeds), "seeds, sc.frames, sc.sensors, sc.n_initial, sc.n_components and sc's particle and "
                    "sample counts", swarm_options)
+    seen: dict[int, int] = {}
+    for i, s in enumerate(seeds):
+        j = seen.setdefault(id(s), i)
+        if j != i:  # fuzz 53b D3: run i's streams would depend on run j's spawn (and, before, on workers)
+            raise ValueError(f"seeds[{i}] is the same SeedSequence object as seeds[{j}]: each run needs its own seed "
+                             "(its run is then what run_tracking gives with it), e.g. "
+                             "np.random.SeedSequence(seed).spawn(n)")
     if os.environ.get("PYTEST_XDIST_WORKER"):
         workers = 1  # the test runner's worker processes already share the cores
     # blocks of at most RUN_BLOCK runs, as many as a multiple of the workers and of equal sizes (within one),
