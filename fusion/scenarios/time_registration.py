@@ -447,6 +447,12 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
     -------
     ndarray, shape (K,)
         Registered positions (m).
+
+    Raises
+    ------
+    ValueError
+        Among others, a Kalman method's filter beyond the work budget (its steps: the samples, and with
+        ``period_change`` every instant), naming ``t_src``, ``z`` (and ``t_dst``) before the filter (fuzz 53b C4).
     """
     t_src, z, t_dst = (read_once(t_src, "t_src"), read_once(z, "z"), read_once(t_dst, "t_dst"))
     name = _check_name(name)
