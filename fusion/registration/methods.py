@@ -748,7 +748,7 @@ def _positive_variances(Ps: FloatArray, sigma: float, q_v: float, q_a: float, p0
 
 def _smoother_gain(Pp: FloatArray, PF: FloatArray, t: float, sigma: float, q_v: float, q_a: float,
                    p0: tuple[float, float]) -> FloatArray:
-    """The smoother's gain :math:`C = P\Phi^\top (P^-)^{-1}` (``PF`` is :math:`P\Phi^\top`, ``Pp`` the predicted
+    r"""The smoother's gain :math:`C = P\Phi^\top (P^-)^{-1}` (``PF`` is :math:`P\Phi^\top`, ``Pp`` the predicted
     covariance at ``t``), refused naming ``sigma``, ``q_v``, ``q_a`` and ``p0`` where ``Pp`` is singular to working precision
     (fuzz 49b D1: sigma = 1e-8 m with q_v = q_a = 0 raised LinAlgError, reported under the internal names of
     ``fusion.registration.analysis.expected_mse``)."""
