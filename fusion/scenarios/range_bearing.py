@@ -35,7 +35,7 @@ from fusion._validation import (FloatArray, LOOP_STEP, allocation, as_array, cou
 from fusion.filtering.kalman import nees
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options
 # the module is split by concept; its names (and the batch engine's private kernels) are re-exported here
-from fusion.scenarios.range_bearing_batch import _Batch, _moments, _normals, _regularise_batch, _run_block  # noqa: F401
+from fusion.scenarios.range_bearing_batch import _Batch, _moments, _normals, _regularise_batch, _run_block, _run_streams  # noqa: F401
 from fusion.scenarios.range_bearing_batch import _equal_kl_on_mixture, _sigma_point_log_expectations  # noqa: F401
 from fusion.scenarios.range_bearing_bounds import LinearisedErrors, linearised_errors, posterior_crb
 from fusion.scenarios import range_bearing_scenario as _scenario
@@ -128,8 +128,8 @@ def run_tracking_batch(
     ----------
     sc : RangeBearingScenario
     seeds : list of numpy.random.SeedSequence
-        One per run (non-empty); each is spawned from, as ``seed`` of :func:`run_tracking` (a used one
-        gives other streams).
+        One per run (non-empty), no object twice; each is spawned from, as ``seed`` of :func:`run_tracking` (a used
+        one gives other streams), in this process before any run, so that it advances the same whatever ``workers``.
     all_nodes : list of bool, optional
         Per run, as ``all_nodes`` of :func:`run_tracking` (default: False for every run).
     swarm_options : SwarmOptions, optional
@@ -161,6 +161,13 @@ def run_tracking_batch(
     _block_allocation(sc, len(seeds), "seeds, sc.sensors and sc.n_particles")
     _tracking_work(sc, len(seeds), "seeds, sc.frames, sc.sensors, sc.n_initial, sc.n_components and sc's particle and "
                    "sample counts", swarm_options)
+    seen: dict[int, int] = {}
+    for i, s in enumerate(seeds):
+        j = seen.setdefault(id(s), i)
+        if j != i:  # fuzz 53b D3: run i's streams would depend on run j's spawn (and, before, on workers)
+            raise ValueError(f"seeds[{i}] is the same SeedSequence object as seeds[{j}]: each run needs its own seed "
+                             "(its run is then what run_tracking gives with it), e.g. "
+                             "np.random.SeedSequence(seed).spawn(n)")
     if os.environ.get("PYTEST_XDIST_WORKER"):
         workers = 1  # the test runner's worker processes already share the cores
     # blocks of at most RUN_BLOCK runs, as many as a multiple of the workers and of equal sizes (within one),
@@ -169,7 +176,10 @@ def run_tracking_batch(
     if workers > 1:
         n_blocks = -(-n_blocks // workers) * workers
     size = -(-len(seeds) // n_blocks)
-    blocks = [(sc, list(seeds[j:j + size]), flags[j:j + size], swarm_options) for j in range(0, len(seeds), size)]
+    # every run's streams are spawned here, in the caller's process, before any block is dispatched: the caller's
+    # SeedSequences advance as with workers=1 (fuzz 53b C2: spawned in the workers, only pickled copies advanced)
+    streams = [_run_streams(s) for s in seeds]
+    blocks = [(sc, streams[j:j + size], flags[j:j + size], swarm_options) for j in range(0, len(seeds), size)]
     if workers > 1 and len(blocks) > 1:
         methods = multiprocessing.get_all_start_methods()
         ctx = multiprocessing.get_context("fork" if "fork" in methods else methods[0])

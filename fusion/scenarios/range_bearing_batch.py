@@ -227,9 +227,24 @@ def _equal_kl_newton(resid: Residuals, B: int, N: int, tol: float, max_iter: int
     return np.where(ok[:, None], e, np.nan)
 
 
-def _run_block(args: tuple[RangeBearingScenario, list[np.random.SeedSequence], list[bool], dict[str, float] | None]
+#: The streams of one run, spawned from its seed in this order: the target, the nodes, the fusion, the centralised
+#: filter, the extra node fusions and the readings.
+_RUN_STREAMS = 6
+
+
+def _run_streams(seed: np.random.SeedSequence) -> list[np.random.SeedSequence]:
+    """A run's :data:`_RUN_STREAMS` streams, spawned from its seed (which advances the seed's spawn counter).
+
+    :func:`run_tracking_batch` spawns them in the caller's process before any block is dispatched, so the caller's
+    ``SeedSequence`` advances the same whatever ``workers`` (fuzz 53b C2: spawned in a worker process, the spawn
+    advanced a pickled copy and a second call repeated the first)."""
+    return seed.spawn(_RUN_STREAMS)
+
+
+def _run_block(args: tuple[RangeBearingScenario, list[list[np.random.SeedSequence]], list[bool], SwarmOptions]
                ) -> list[TrackingRun]:
-    """One block of runs (a process-pool task of :func:`run_tracking_batch`)."""
+    """One block of runs (a process-pool task of :func:`run_tracking_batch`): each run's streams
+    (:func:`_run_streams`), its flag and the swarm options."""
     return _Batch(*args).run()
 
 
@@ -267,11 +282,11 @@ def _moments(x: FloatArray, w: FloatArray) -> tuple[FloatArray, FloatArray]:
 class _Batch:
     """A block of runs of :func:`run_tracking_batch`: their streams, particles and records, as arrays over runs."""
 
-    def __init__(self, sc: RangeBearingScenario, seeds: list[np.random.SeedSequence], flags: list[bool],
+    def __init__(self, sc: RangeBearingScenario, streams: list[list[np.random.SeedSequence]], flags: list[bool],
                  swarm_options: SwarmOptions) -> None:
         self.timings: dict[str, float] = {}
         clock = LapTimer(self.timings)
-        N, B, K = len(sc.sensors), len(seeds), sc.frames
+        N, B, K = len(sc.sensors), len(streams), sc.frames
         self.sc, self.so, self.N, self.B = sc, swarm_options, N, B
         model = ncv_model(sc.T, sc.q)
         self.F, self.Q = model.F, model.Q
@@ -284,8 +299,8 @@ class _Batch:
         self.rng_x: list[list[np.random.Generator]] = []
         self.rng_r: list[np.random.Generator] = []
         truth, z, m0 = [], [], []
-        for seed in seeds:
-            s_target, s_nodes, s_fusion, s_central, s_extra, s_read = seed.spawn(6)  # the 6th: the readings
+        for run in streams:  # each run's streams, spawned from its seed by _run_streams
+            s_target, s_nodes, s_fusion, s_central, s_extra, s_read = run  # the 6th: the readings
             target = simulate_target(sc, np.random.default_rng(s_target))
             truth.append(target.truth), z.append(target.z), m0.append(target.m0)
             self.rng_nodes.append([np.random.default_rng(s) for s in s_nodes.spawn(N)])

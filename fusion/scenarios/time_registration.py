@@ -447,6 +447,12 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
     -------
     ndarray, shape (K,)
         Registered positions (m).
+
+    Raises
+    ------
+    ValueError
+        Among others, a Kalman method's filter beyond the work budget (its steps: the samples, and with
+        ``period_change`` every instant), naming ``t_src``, ``z`` (and ``t_dst``) before the filter (fuzz 53b C4).
     """
     t_src, z, t_dst = (read_once(t_src, "t_src"), read_once(z, "z"), read_once(t_dst, "t_dst"))
     name = _check_name(name)
@@ -456,6 +462,11 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
     if name in _DIRECT:
         return _direct(name, t_src, z, t_dst, window)
     ts, td = np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float)
+    # rule 17, named here (fuzz 53b C4): the filter's grid is the samples and, with period_change, at most the instants
+    extra = bool(kf and kf.get("period_change", False))
+    smoothed = name in (_SMOOTHED, _LAGGED) or bool(kf and kf.get("smooth", False))
+    _methods._kalman_work(ts.size + (td.size if extra else 0), 1, smoothed,
+                          "t_src, z and t_dst" if extra else "t_src and z")
     states = _filtered([name], ts, np.asarray(z, dtype=float), td, sigma, q_v, q_a, kf)
     return _from_filtered(name, ts, states[_STATES.get(name, "filtered")], td)
 

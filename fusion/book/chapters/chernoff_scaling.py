@@ -720,7 +720,7 @@ def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, f
     run = count(run, "run", minimum=0, maximum=runs - 1)
     frame = count(frame, "frame", minimum=0, maximum=sc.frames - 1)
     seeds = np.random.SeedSequence(seed).spawn(runs)
-    batch = rb._Batch(sc, [seeds[run]], [False], None)  # the runner of run_tracking_batch, one run
+    batch = rb._Batch(sc, [rb._run_streams(seeds[run])], [False], None)  # the runner of run_tracking_batch, one run
     for k in range(frame + 1):
         batch.frame(k)
     return FrameClouds(sensors=sc.sensor_array.copy(), truth=batch.truth[0, :frame + 1].copy(),
