@@ -42,7 +42,7 @@ import numpy as np
 
 from fusion.book._json import JSONObject, read_object
 from fusion._results import ResultSpec, flag, instance, integer, number, text, validated_post_init
-from fusion._counts import COUNT_CEILINGS
+from fusion._counts import COUNT_CEILINGS, MAX_COUNT
 from fusion._limits import MAX_WORK, work
 from fusion._validation import is_integer
 from fusion._validation import count, distinct, instance_of, iterable, seed as check_seed, seeds as check_seeds, sequence
@@ -67,6 +67,9 @@ ROOT_SEED = 20261205
 RESEEDS = 5
 #: Largest number of reseeds ``seeds`` derives (each is a full run of the stochastic records).
 MAX_SEEDS = 10**4
+
+#: The derived seeds are below this (31 bits: a ``uint32`` state shifted right by one, :func:`seeds`).
+_SEED_END = 2**31
 
 #: The primary reading is also run at this many times the chapter's runs.
 RUNS_FACTOR = 10
@@ -96,6 +99,11 @@ SUMMARY_RESULT_WORK = 1000
 #: is a None status): 0.18 us measured on this shared machine (CPU time, minimum of 3: 1,000 records x 5,000 seeds with
 #: one result each, 0.89 s), so 20 units; the budget's edge, 5e7 cells, about 9 CPU-s.
 SUMMARY_CELL_WORK = 20
+#: Units of work of one entry of :func:`summarise`'s ``committed`` (its status checked): 12-51 ns measured on this
+#: shared machine (CPU time, minimum of 3, a dict of 10**6 ids, None or a status each), so 5 units. ``committed`` is
+#: counted by iterating its keys (not by its ``len()``), at most ``MAX_COUNT`` (10**7, rule 9) of them, before any
+#: entry is read (fuzz 53a C2: a lazy mapping of 6e7 ids was walked for 33 CPU-s and entered no budget).
+SUMMARY_COMMITTED_WORK = 5
 
 #: Retries of a failed task before it is reported as failed.
 RETRIES = 2
@@ -315,12 +323,22 @@ def seeds(k: int = RESEEDS, root_seed: int = ROOT_SEED, avoid: Iterable[int] = (
         How many.
     root_seed : int
     avoid : iterable of int
-        Any iterable of integers (a list, a set, dict keys, a generator, ...); its order does not matter.
+        Any iterable of integers (a list, a set, dict keys, a generator, ...); its order does not matter. An integer
+        outside ``[0, 2**31)`` (a negative one: :func:`main` enters -1 for a chapter without a seed; or one of 32 bits
+        or more, a chapter may use any seed) can never be a derived seed: it is skipped, never hashed (fuzz 53a C3:
+        ``[1 << 10**7] * 60_000`` was hashed item by item for 34 CPU-s).
 
     Returns
     -------
     list of int
-        Distinct 31-bit seeds.
+        Distinct 31-bit seeds (in ``[0, 2**31)``).
+
+    Raises
+    ------
+    TypeError
+        ``k`` or ``root_seed`` not an integer, ``avoid`` not an iterable or holding a non-integer.
+    ValueError
+        ``k`` below 1 or above ``MAX_SEEDS``, ``root_seed`` negative, ``avoid`` of more than 10**7 items.
     """
     k = count(k, "k", maximum=MAX_SEEDS)
     root_seed = check_seed(root_seed, "root_seed")
@@ -328,7 +346,7 @@ def seeds(k: int = RESEEDS, root_seed: int = ROOT_SEED, avoid: Iterable[int] = (
     for v in items:  # integers (a chapter without a seed is entered as -1): a float 3.0 would silently miss 3
         if not is_integer(v):
             raise TypeError(f"avoid must hold integer seeds, got {shown(v)}")
-    avoid = set(items)
+    avoid = {int(v) for v in items if 0 <= v < _SEED_END}  # a comparison reads an int's size, not its digits
     out: list[int] = []
     ss = np.random.SeedSequence(root_seed)
     while len(out) < k:
@@ -461,8 +479,10 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
         ``results`` not of :class:`TaskResult`, ``committed`` not a mapping, a committed status not text.
     ValueError
         Two results of one task, a result of a seed not in ``seed_list``, a repeated seed, a committed status not
-        one of the rulebook's; ``results`` and ``seed_list`` beyond the work budget (rule 17: their results, then
-        their records x seeds, counted before any is judged).
+        one of the rulebook's; ``committed`` of more than 10**7 entries (counted by iterating its keys before any
+        entry is read), or yielding more entries when read than when counted; ``results``, ``seed_list`` and
+        ``committed`` beyond the work budget (rule 17: their results and committed entries, then their records x
+        seeds, counted before any is read or judged).
 
     Notes
     -----
@@ -474,7 +494,18 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     by: dict[str, list[TaskResult]] = {}
     seed_list = distinct(check_seeds(seed_list, "seed_list"), "seed_list")
     instance_of(committed, Mapping, "committed")
-    for rid, status in committed.items():
+    n_committed = sum(1 for _ in itertools.islice(iter(committed), MAX_COUNT + 1))  # keys only, none read (53a C2)
+    if n_committed > MAX_COUNT:
+        raise ValueError(f"committed has more than {MAX_COUNT:,} entries (rule 9: the entries of a mapping argument "
+                         "are a size; the ledger holds a few hundred records)")
+    results = sequence(results, "results")  # its length, before any result is read (fuzz 53a: walked before budget)
+    # rule 17 (fuzz 49b C6): the results and committed first (at least one record if any), then, once grouped (which
+    # their units pay for), every record x seed cell
+    _summary_work(len(results), min(1, len(results)), len(seed_list), n_committed)
+    for j, (rid, status) in enumerate(committed.items()):
+        if j >= n_committed:
+            raise ValueError(f"committed yielded more than the {n_committed:,} entries counted before they were read "
+                             "(a mapping whose items change while it is read)")
         if status is not None and not isinstance(status, str):
             raise TypeError(f"committed[{shown(rid)}] must be a status (str), got {shown(status)}")
         if status is not None and status not in R.STATUSES:
@@ -482,9 +513,6 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     seen: dict[tuple[str, str, int, bool], int] = {}
     known = set(seed_list)
     results = _tasks(results, "results", TaskResult)
-    # rule 17 (fuzz 49b C6): the results first (at least one record if any), then, once grouped (which their units pay
-    # for), every record x seed cell
-    _summary_work(len(results), min(1, len(results)), len(seed_list))
     cells: dict[str, dict[int, list[TaskResult]]] = {}  # record -> seed -> its unscaled results, in results' order
     for i, r in enumerate(results):
         t = r.task
@@ -499,7 +527,7 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
         by.setdefault(t.record, []).append(r)
         if not t.scaled:
             cells.setdefault(t.record, {}).setdefault(t.seed, []).append(r)
-    _summary_work(len(results), len(by), len(seed_list))
+    _summary_work(len(results), len(by), len(seed_list), n_committed)
     out: dict[str, dict[str, Any]] = {}
     for rid, rs in sorted(by.items()):
         failed = [asdict(r.task) | {"error": r.error} for r in rs if r.status is None]
@@ -522,13 +550,16 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     return out
 
 
-def _summary_work(results: int, records: int, seeds: int) -> int:
+def _summary_work(results: int, records: int, seeds: int, committed: int = 0) -> int:
     """The units of :func:`summarise`: ``results`` checked, grouped and judged, ``SUMMARY_RESULT_WORK`` units each,
-    and ``records x seeds`` statuses, ``SUMMARY_CELL_WORK`` units each; refused beyond the work budget (rule 17)
-    naming ``results`` and ``seed_list``."""
-    return work((results * SUMMARY_RESULT_WORK + records * seeds * SUMMARY_CELL_WORK,),
-                f"results and seed_list ({results:,} results, {SUMMARY_RESULT_WORK:,} units each, and {records:,} "
-                f"records x {seeds:,} seeds, {SUMMARY_CELL_WORK:,} units a record's seed)")
+    ``records x seeds`` statuses, ``SUMMARY_CELL_WORK`` units each, and ``committed`` entries checked,
+    ``SUMMARY_COMMITTED_WORK`` units each; refused beyond the work budget (rule 17) naming ``results``, ``seed_list``
+    and ``committed``."""
+    return work((results * SUMMARY_RESULT_WORK + records * seeds * SUMMARY_CELL_WORK
+                 + committed * SUMMARY_COMMITTED_WORK,),
+                f"results and seed_list, with committed ({results:,} results, {SUMMARY_RESULT_WORK:,} units each, "
+                f"{records:,} records x {seeds:,} seeds, {SUMMARY_CELL_WORK:,} units a record's seed, and "
+                f"{committed:,} committed entries, {SUMMARY_COMMITTED_WORK:,} units each)")
 
 
 def _same(status: str | None, committed: str | None) -> bool:
