@@ -156,3 +156,18 @@ def test_c3_seeds_skips_avoid_integers_outside_the_seed_range_unhashed():
     # an integer outside [0, 2**31) can never be a seed: -1 (a chapter without a seed), or a seed plus 2**31
     assert S.seeds(5, avoid=[-1, want[0] + 2**31, -want[0]]) == want
     assert want[0] not in S.seeds(5, avoid=[want[0]])
+
+
+def test_c3_tasks_and_summarise_refuse_a_seed_beyond_31_bits_before_hashing():
+    big = 1 << 10**7
+    _refused_fast(lambda: S.tasks({}, [big] * 2000), r"seed_list\[0\] must be a seed of the sweep, below 2\*\*31",
+                  limit=0.1)
+    _refused_fast(lambda: S.summarise([], [5, big] * 1000, {}), r"seed_list\[1\] must be a seed of the sweep",
+                  limit=0.1)
+    # just inside: the largest 31-bit seed
+    assert S.tasks({}, [2**31 - 1]) == [] and S.summarise([], [2**31 - 1], {}) == {}
+
+    # a Task's seed too (batches and summarise hash it): refused when built
+    with pytest.raises(ValueError, match="Task.seed must be a seed of the sweep, below 2"):
+        S.Task("s", "r", "primary", "primary", big, 10)
+    assert S.Task("s", "r", "primary", "primary", 2**31 - 1, 10).seed == 2**31 - 1

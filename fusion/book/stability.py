@@ -112,6 +112,14 @@ RETRIES = 2
 STABILITY_FILE = "stability.json"
 
 
+def _sweep_seed(v: Mapping[str, Any], label: str) -> None:
+    """A :class:`Task`'s seed is one :func:`seeds` derives, below 2**31 (fuzz 53a C3's class: :func:`batches` and
+    :func:`summarise` hash each task's seed, 0.5 ms for one of 10**7 bits)."""
+    if v["seed"] >= _SEED_END:
+        raise ValueError(f"{label}.seed must be a seed of the sweep, below 2**31 (seeds() derives 31-bit seeds), got an "
+                         f"integer of {int(v['seed']).bit_length():,} bits")
+
+
 @dataclass(frozen=True)
 class Task:
     """One unit of the sweep: a reading of a record under one seed and run count.
@@ -123,7 +131,7 @@ class Task:
     kind : str
         The reading's kind (:data:`fusion.book.rulebook.READING_KINDS`).
     seed, runs : int
-        A seed (>= 0) and a run count (>= 1).
+        A seed of the sweep (in ``[0, 2**31)``, as :func:`seeds` derives) and a run count (>= 1).
     scaled : bool
         Whether this is the primary reading at :data:`RUNS_FACTOR` times the runs.
 
@@ -143,7 +151,8 @@ class Task:
     scaled: bool = False
 
     __result_spec__ = ResultSpec({"source": text(), "record": text(), "reading": text(), "kind": text(*R.READING_KINDS),
-                                  "seed": integer(0), "runs": integer(1), "scaled": flag()})
+                                  "seed": integer(0), "runs": integer(1), "scaled": flag()},
+                                 relations=(_sweep_seed,))
     __post_init__ = validated_post_init
 
 
@@ -368,7 +377,8 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
     readings : mapping
         From :func:`stochastic_readings`.
     seed_list : sequence of int
-        From :func:`seeds`: distinct seeds (a repeated seed would run the same tasks twice and count as two reseeds).
+        From :func:`seeds`: distinct seeds below 2**31 (a repeated seed would run the same tasks twice and count as two
+        reseeds; a larger one is refused before any is hashed).
     runs_factor : int
         >= 1; 1 runs no scaled task.
 
@@ -387,10 +397,11 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
         checks and builds in about 10 CPU-s (``READING_WORK`` units a reading and ``RECORD_WORK`` a record, counted by
         iterating them before any is checked, whatever their ``len()`` says, and ``TASK_WORK`` units a task: about
         330,000 readings at one seed, 500,000 tasks of the book's 512 readings), naming ``readings`` and ``seed_list``;
-        a ``readings`` that yields more records or readings when read than when counted.
+        a ``readings`` that yields more records or readings when read than when counted; a ``seed_list`` entry of
+        2**31 or more (checked before any seed is hashed), naming ``seed_list[i]``.
     """
     runs_factor = count(runs_factor, "runs_factor")
-    seed_list = distinct(check_seeds(seed_list, "seed_list"), "seed_list")
+    seed_list = _seed_list(seed_list)
     instance_of(readings, Mapping, "readings")
     # counted before any reading is checked (fuzz 41b C1), from what iterating them yields (fuzz 42b C3: a Mapping whose
     # __len__ lies), every record too (D3); _readings then reads no more than was counted
@@ -409,6 +420,19 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
             kind, runs = rs["primary"]
             out.append(Task(src, rid, "primary", kind, seed_list[0], runs * runs_factor, scaled=True))
     return out
+
+
+def _seed_list(seed_list: object) -> list[int]:
+    """The sweep's seeds (rule 12): distinct seeds each below ``_SEED_END`` (2**31, the seeds :func:`seeds` derives), a
+    larger one refused naming ``seed_list[i]`` by a comparison (which reads an int's size, not its digits) before any is
+    hashed or compared with another (fuzz 53a C3's class: 2,000 copies of ``1 << 10**7`` were compared and hashed for
+    1.1 CPU-s before the repeat was refused; 60,000, about 33 CPU-s)."""
+    items = sequence(seed_list, "seed_list")
+    for i, v in enumerate(items):
+        if is_integer(v) and v >= _SEED_END:
+            raise ValueError(f"seed_list[{i}] must be a seed of the sweep, below 2**31 (seeds() derives 31-bit seeds), "
+                             f"got an integer of {int(v).bit_length():,} bits")
+    return distinct(check_seeds(items, "seed_list"), "seed_list")
 
 
 def _judged(ev: Evidence, margin: Mapping[str, float]) -> Evidence:
@@ -464,7 +488,7 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     results : sequence of TaskResult
         At most one result per task (record, reading, seed and whether scaled), each of a seed of ``seed_list``.
     seed_list : sequence of int
-        Distinct seeds, as given to :func:`tasks`.
+        Distinct seeds below 2**31, as given to :func:`tasks`.
     committed : mapping
         Record id → the status committed in the ledger: one of :data:`fusion.book.rulebook.STATUSES`, or None.
 
@@ -478,7 +502,8 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     TypeError
         ``results`` not of :class:`TaskResult`, ``committed`` not a mapping, a committed status not text.
     ValueError
-        Two results of one task, a result of a seed not in ``seed_list``, a repeated seed, a committed status not
+        Two results of one task, a result of a seed not in ``seed_list``, a repeated seed or one of 2**31 or more
+        (``seed_list[i]``, checked before any is hashed), a committed status not
         one of the rulebook's; ``committed`` of more than 10**7 entries (counted by iterating its keys before any
         entry is read), or yielding more entries when read than when counted; ``results``, ``seed_list`` and
         ``committed`` beyond the work budget (rule 17: their results and committed entries, then their records x
@@ -492,7 +517,7 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     primary reading's own status at the scaled run count (no other reading is rerun there).
     """
     by: dict[str, list[TaskResult]] = {}
-    seed_list = distinct(check_seeds(seed_list, "seed_list"), "seed_list")
+    seed_list = _seed_list(seed_list)
     instance_of(committed, Mapping, "committed")
     n_committed = sum(1 for _ in itertools.islice(iter(committed), MAX_COUNT + 1))  # keys only, none read (53a C2)
     if n_committed > MAX_COUNT:
