@@ -142,7 +142,7 @@ def test_c2_summarise_refuses_a_committed_that_grows_while_read():
 
 def test_c2_summarise_results_budget_before_they_are_walked():
     r = S.TaskResult(S.Task("s", "r", "primary", "primary", 1, 100, False), "reproduced", 0.1)
-    _refused_fast(lambda: S.summarise([r] * (5 * 10**6), [1], {}), "results and seed_list, with committed .*work budget",
+    _refused_fast(lambda: S.summarise([r] * (5 * 10**6), [1], {}), "results and seed_list and committed .*work budget",
                   limit=0.5)
 
 

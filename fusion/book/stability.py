@@ -582,7 +582,7 @@ def _summary_work(results: int, records: int, seeds: int, committed: int = 0) ->
     and ``committed``."""
     return work((results * SUMMARY_RESULT_WORK + records * seeds * SUMMARY_CELL_WORK
                  + committed * SUMMARY_COMMITTED_WORK,),
-                f"results and seed_list, with committed ({results:,} results, {SUMMARY_RESULT_WORK:,} units each, "
+                f"results and seed_list and committed ({results:,} results, {SUMMARY_RESULT_WORK:,} units each, "
                 f"{records:,} records x {seeds:,} seeds, {SUMMARY_CELL_WORK:,} units a record's seed, and "
                 f"{committed:,} committed entries, {SUMMARY_COMMITTED_WORK:,} units each)")
 
