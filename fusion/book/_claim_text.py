@@ -18,9 +18,12 @@ from __future__ import annotations
 
 import functools
 import re
+import string
 import sys
 import unicodedata
 
+from fusion._limits import work
+from fusion._shown import shown
 from fusion._validation import text
 
 __all__: list[str] = []  # private module
@@ -28,6 +31,14 @@ __all__: list[str] = []  # private module
 #: The longest text of a claim file or a ledger record, in characters: the scans of :func:`text_problem` take at
 #: most ~330 ns a character (an invisible character beyond the Basic Multilingual Plane; 3-15 ns others), so ~3 CPU-s.
 MAX_TEXT = 10_000_000
+#: Units of work (``fusion._limits.work``, about 10 ns each) of one character of the texts a claim file or a record
+#: holds, its scans by :func:`text_problem` and :func:`format_problem`: measured on this shared machine (CPU time,
+#: minimum of 3, texts of 2e6 characters) 2.4 + 1.2 ns a character of ASCII, 12.7 + 1.1 of ``é``, 367 + 0.8 of an
+#: invisible character beyond the Basic Multilingual Plane (U+F0000, the worst), so 37 units: the budget's edge,
+#: 27 million characters, about 10 CPU-s at the worst, 0.4 CPU-s of ``é``. Fuzz 53a C1: one text of 7e6 characters,
+#: anchored once and aliased in 300 records, was scanned 300 times (34 CPU-s) before any budget counted it. A file
+#: without aliases stays inside (at most 16 MB, so at most 16 million characters).
+TEXT_CHAR_WORK = 37
 
 #: Unicode categories of characters that show nothing by themselves: controls, format characters (zero-width
 #: space and joiner, direction marks and overrides, the BOM), surrogates, private-use and unassigned code points,
@@ -115,3 +126,35 @@ def record_text(value: object, name: str) -> str:
     if problem is not None:
         raise ValueError(f"{name} {problem}")
     return plain
+
+
+#: A short format spec of a text's ``{name:spec}`` field: align, sign, ``#``, ``0``, a width and a precision of at
+#: most two digits each, a grouping option and a type (``{x:.2f}``, ``{n:d}``, ``{p:.1%}``, ``{x:>8.3g}``).
+SHORT_SPEC = r"[<>=^]?[-+ ]?#?0?\d{0,2}[,_]?(?:\.\d{1,2})?[bcdeEfFgGnosxX%]?"
+#: A field name of a text: a glue value's name (no attribute, index or position).
+FIELD = r"[A-Za-z_][\w-]*"
+
+
+def format_problem(value: str) -> str | None:
+    """What makes ``value`` a text ``fusion.book.claims.build_ledger`` cannot fill safely, or None: ``value.format_map(values)`` of a
+    text with an unterminated ``{`` raises, and a spec such as ``{x:>3000000000}`` builds a text of gigabytes."""
+    try:
+        fields = [(f, spec, conv) for _, f, spec, conv in string.Formatter().parse(value) if f is not None]
+    except ValueError as e:
+        return f"not a text with {{name}} fields ({e}; a literal brace is written {{{{ or }}}})"
+    for f, spec, conv in fields:
+        if not re.fullmatch(FIELD, f):
+            return f"field {{{f}}} must name a value (a name, no attribute, index or position)"
+        if conv is not None:
+            return f"field {{{f}!{conv}...}}: no conversion (write {{{f}}} or {{{f}:spec}})"
+        if not re.fullmatch(SHORT_SPEC, spec):
+            return (f"field {{{f}:{shown(spec, 40)}}}: the format spec must be a short one (as .2f, d, .1%, >8.3g: a "
+                    "width and a precision of at most two digits, no nested field)")
+    return None
+
+
+def texts_work(chars: int, names: str) -> int:
+    """The units of work of scanning texts of ``chars`` characters in all (``TEXT_CHAR_WORK`` units a character:
+    :func:`text_problem` and :func:`format_problem`), refused beyond the work budget (rule 17) by a ValueError naming
+    ``names``, before any text is scanned."""
+    return work((chars,), f"{names} ({chars:,} characters to scan)", weight=TEXT_CHAR_WORK)

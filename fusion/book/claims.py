@@ -47,6 +47,7 @@ from __future__ import annotations
 
 import importlib
 import inspect
+import itertools
 import os
 import re
 import string
@@ -59,6 +60,8 @@ import numpy as np
 import yaml
 
 from fusion.book._claim_text import text_problem as _text_problem  # the text rule (fuzz 29a D1, 30a C4/D3)
+from fusion.book._claim_text import format_problem as _format_problem, texts_work  # fuzz 53a C1: texts' budget
+from fusion.book._claim_yaml import _UniqueKeyLoader  # PyYAML's safe loader, refusing repeated keys
 from fusion._frozen import constant, freeze_arrays, frozen_value, restore_frozen
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
@@ -66,7 +69,7 @@ from fusion.book.ledger.claim import _ID  # a record's id: the schema's pattern,
 from fusion.book.ledger.evidence import _KIND_OF_TEST
 from fusion.book.ledger import (SOURCES, Alternative, Claim, Comparison, Conjunction, Evidence, Ledger, Unverifiable,
                                 ledger_dir)
-from fusion._counts import COUNT_CEILINGS
+from fusion._counts import COUNT_CEILINGS, MAX_COUNT
 from fusion._paths import file_bytes, folder
 from fusion._shown import shown
 from fusion._validation import MAX_MAGNITUDE, count, flag, instance_of, one_of, text, text_fields
@@ -258,7 +261,8 @@ class ClaimSpec:
         lone surrogate (Cs, which cannot be written as UTF-8; ``fusion.book._claim_text``); ``claimant``, ``test``
         or ``direction`` outside its vocabulary; a margin not ``{"relative": r}`` or ``{"absolute": x}`` with
         a finite value in [0, 1e150]; a ``baseline`` without ``name`` and ``defined`` or with another key; a
-        repeated critique label; ``evidence`` not ``module:function`` (the file's pattern); and
+        repeated critique label or assumption (checked before the texts are scanned); texts of more characters in all
+        than the work budget scans (``fusion.book._claim_text.texts_work``: about 27 million, checked first); ``evidence`` not ``module:function`` (the file's pattern); and
         (:class:`ClaimsFileError`, naming the record and the field) every other rule :func:`load` applies to
         one record, so a record rebuilt with ``dataclasses.replace`` is held to them too: ``id`` not
         lower-case words joined by ``-``; a ``claim`` over 200 characters; a paired or equivalence test without
@@ -294,6 +298,9 @@ class ClaimSpec:
     readings: tuple[ReadingSpec, ...] = ()
 
     def __post_init__(self) -> None:
+        lists = [v for v in (self.critiques, self.assumptions) if isinstance(v, tuple)]  # before any scan (fuzz 53a C1)
+        texts_work(sum(str.__len__(x) for x in (*vars(self).values(), *(x for v in lists for x in v))
+                       if isinstance(x, str)), "the record's texts (critiques and assumptions included)")
         for name in ("id", "chapter", "where", "claim", "published", "link"):
             object.__setattr__(self, name, _nonempty(getattr(self, name), name))  # plain texts (rule 19)
         text_fields(self, "claimant", among=R.CLAIMANTS), text_fields(self, "test", among=R.TESTS)
@@ -320,11 +327,13 @@ class ClaimSpec:
             v = getattr(self, name)
             if not (isinstance(v, tuple) and all(isinstance(x, str) for x in v)):
                 raise TypeError(f"{name} must be a tuple of str, got {shown(v)}")
-            for i, x in enumerate(v):
-                _nonempty(x, f"{name}[{i}]")
-        for name, what in (("critiques", "a label"), ("assumptions", "an assumption")):  # as Claim's own check
-            if len(set(getattr(self, name))) != len(getattr(self, name)):
+            for i, x in enumerate(v):  # rule 19 before the repeats are hashed: a str whose hash disagrees is refused
+                text(x, f"{name}[{i}]")
+        for name, what in (("critiques", "a label"), ("assumptions", "an assumption")):  # as Claim's own check, before
+            if len(set(getattr(self, name))) != len(getattr(self, name)):          # the scans (fuzz 53a C1)
                 raise ValueError(f"{name} must not repeat {what}, got {shown(getattr(self, name))}")
+            for i, x in enumerate(getattr(self, name)):
+                _nonempty(x, f"{name}[{i}]")
         if not (isinstance(self.readings, tuple) and all(isinstance(r, ReadingSpec) for r in self.readings)):
             raise TypeError(f"readings must be a tuple of ReadingSpec, got {shown(self.readings)}")
         if self.evidence and not re.fullmatch(_EVIDENCE, self.evidence):
@@ -450,37 +459,6 @@ def _where(err: Any, doc: Mapping[str, Any]) -> str:
     return f"{rec}field {field}"
 
 
-class _UniqueKeyLoader(yaml.SafeLoader):
-    """PyYAML's safe loader, refusing a key repeated in one mapping (the safe loader keeps the last silently)."""
-
-
-def _unique_mapping(loader: _UniqueKeyLoader, node: yaml.MappingNode, deep: bool = False) -> dict[Any, Any]:
-    seen: set[Any] = set()
-    for key_node, _ in node.value:
-        key = loader.construct_object(key_node, deep=deep)
-        if not isinstance(key, str):  # a sequence, a number, null, a bool: every key of a claim file is a text
-            raise yaml.constructor.ConstructorError(None, None, f"a key must be a text, got {shown(key)}",
-                                                    key_node.start_mark)
-        if key in seen:
-            raise yaml.constructor.ConstructorError(None, None, f"repeated key {shown(key)}", key_node.start_mark)
-        seen.add(key)
-    return loader.construct_mapping(node, deep=deep)
-
-
-_UniqueKeyLoader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _unique_mapping)
-
-
-def _bounded_int(loader: _UniqueKeyLoader, node: yaml.ScalarNode) -> int:
-    """PyYAML's integer, refused (with its place in the file) beyond Python's digit limit for str -> int."""
-    try:
-        return loader.construct_yaml_int(node)
-    except ValueError as e:
-        raise yaml.constructor.ConstructorError(None, None, f"an integer too long to read ({e})",
-                                                node.start_mark) from None
-
-
-_UniqueKeyLoader.add_constructor("tag:yaml.org,2002:int", _bounded_int)
-
 #: Deepest nesting of mappings and lists a claim file may have (its records are 5 deep; PyYAML and jsonschema
 #: recurse, so a file nested thousands deep would end in a RecursionError).
 _MAX_DEPTH = 32
@@ -493,7 +471,9 @@ _MAX_VALUES = 1_000_000
 
 def _check_depth(doc: Any, name: str) -> None:
     """ClaimsFileError naming the file and the field where ``doc`` nests deeper than ``_MAX_DEPTH``, or expands (its
-    YAML aliases written out) to more than ``_MAX_VALUES`` values.
+    YAML aliases written out) to more than ``_MAX_VALUES`` values, or to texts (keys and values) whose scans are beyond
+    the work budget (``fusion.book._claim_text.texts_work``; fuzz 53a C1: an alias of a long text was scanned again
+    for every use), before any text is scanned.
 
     Each mapping or list is walked once (by identity): a YAML alias is the same object as its anchor, so a file of
     aliases of aliases costs its own size here, not the size it expands to. A mapping or list that contains itself
@@ -501,6 +481,7 @@ def _check_depth(doc: Any, name: str) -> None:
     """
     depth: dict[int, int] = {}  # id(container) -> how many levels below it its deepest value lies
     size: dict[int, int] = {}   # id(container) -> values it expands to, itself included
+    chars: dict[int, int] = {}  # id(container) -> characters of the texts (keys and values) it expands to
     on_path: set[int] = set()
     stack: list[tuple[Any, tuple[Any, ...], bool]] = [(doc, (), False)]
 
@@ -520,11 +501,17 @@ def _check_depth(doc: Any, name: str) -> None:
             kids = [v for _, v in children(node) if isinstance(v, (dict, list))]
             depth[key] = max((1 + depth[id(v)] for v in kids), default=1 if len(node) else 0)
             size[key] = 1 + len(node) + sum(size[id(v)] - 1 for v in kids)
+            chars[key] = sum((len(k) if isinstance(k, str) else 0) + (chars[id(v)] if isinstance(v, (dict, list))
+                                 else len(v) if isinstance(v, str) else 0) for k, v in children(node))
             on_path.discard(key)
             if len(where) + depth[key] > _MAX_DEPTH:
                 raise too(where, f"nested more than {_MAX_DEPTH} deep")
             if size[key] > _MAX_VALUES:
                 raise too(where, f"expands (its aliases written out) to more than {_MAX_VALUES:,} values")
+            try:
+                texts_work(chars[key], "its texts with the YAML aliases written out")
+            except ValueError as exc:
+                raise too(where, str(exc)) from None
             continue
         if key in on_path:
             raise too(where, f"contains itself (nested infinitely deep, more than {_MAX_DEPTH})")
@@ -568,33 +555,8 @@ def _check_baseline(baseline: Mapping[str, Any]) -> dict[str, Any]:
     return {**baseline, "defined": flag(baseline["defined"], "baseline.defined")}
 
 
-#: A short format spec of a text's ``{name:spec}`` field: align, sign, ``#``, ``0``, a width and a precision of at
-#: most two digits each, a grouping option and a type (``{x:.2f}``, ``{n:d}``, ``{p:.1%}``, ``{x:>8.3g}``).
-_SHORT_SPEC = r"[<>=^]?[-+ ]?#?0?\d{0,2}[,_]?(?:\.\d{1,2})?[bcdeEfFgGnosxX%]?"
-#: A field name of a text: a glue value's name (no attribute, index or position).
-_FIELD = r"[A-Za-z_][\w-]*"
-
-
-def _format_problem(value: str) -> str | None:
-    """What makes ``value`` a text :func:`build_ledger` cannot fill safely, or None: ``value.format_map(values)`` of a
-    text with an unterminated ``{`` raises, and a spec such as ``{x:>3000000000}`` builds a text of gigabytes."""
-    try:
-        fields = [(f, spec, conv) for _, f, spec, conv in string.Formatter().parse(value) if f is not None]
-    except ValueError as e:
-        return f"not a text with {{name}} fields ({e}; a literal brace is written {{{{ or }}}})"
-    for f, spec, conv in fields:
-        if not re.fullmatch(_FIELD, f):
-            return f"field {{{f}}} must name a value (a name, no attribute, index or position)"
-        if conv is not None:
-            return f"field {{{f}!{conv}...}}: no conversion (write {{{f}}} or {{{f}:spec}})"
-        if not re.fullmatch(_SHORT_SPEC, spec):
-            return (f"field {{{f}:{shown(spec, 40)}}}: the format spec must be a short one (as .2f, d, .1%, >8.3g: a "
-                    "width and a precision of at most two digits, no nested field)")
-    return None
-
-
 def _format_text(value: str, name: str) -> str:
-    """``value``, or ValueError naming ``name`` when :func:`build_ledger` could not fill it (:func:`_format_problem`)."""
+    """``value``, or ValueError naming ``name`` when :func:`build_ledger` could not fill it (``_format_problem``)."""
     problem = _format_problem(value)
     if problem is not None:
         raise ValueError(f"{name}: {problem}")
@@ -658,7 +620,17 @@ def _file_rules(cf: ClaimsFile) -> None:
     if cf.source not in SOURCES:
         raise ClaimsFileError(f"{name}: field source: {shown(cf.source)} is not one of {sorted(SOURCES)}")
     src = SOURCES[cf.source]
-    for q, entry in cf.quantities.items():
+    # counted, and their texts' characters too, before any is scanned (fuzz 53a C1's class: one long label aliased)
+    n_q = sum(1 for _ in itertools.islice(iter(cf.quantities), MAX_COUNT + 1))
+    if n_q > MAX_COUNT:
+        raise ClaimsFileError(f"{name}: field quantities: more than {MAX_COUNT:,} (rule 9: entries are a size)")
+    try:
+        texts_work(sum(str.__len__(x) for q, e in itertools.islice(cf.quantities.items(), n_q)
+                       for x in (q, *((e.get("label"), e.get("why")) if isinstance(e, Mapping) else ()))
+                       if isinstance(x, str)), "quantities")
+    except ValueError as exc:
+        raise ClaimsFileError(f"{name}: field {exc}") from None
+    for q, entry in itertools.islice(cf.quantities.items(), n_q):
         where = f"{name}: quantity {q if isinstance(q, str) else shown(q)}"
         if not isinstance(q, str) or _text_problem(q) is not None:  # one rule for every text (fuzz 29a D1)
             raise ClaimsFileError(f"{where}: a quantity key must be a non-empty text of visible characters")
@@ -730,7 +702,9 @@ def load(path: Path | str) -> ClaimsFile:
         ``path`` is not a readable file (missing, a directory, unreadable, a FIFO or a device, larger than 16 MB)
         or is not UTF-8 text.
     ClaimsFileError
-        The file is malformed: the message names the file, the record and the field.
+        The file is malformed: the message names the file, the record and the field. Also (before any text is scanned)
+        a file whose texts, its YAML aliases written out, hold more characters than the work budget scans (about 27
+        million: an alias of a long text is scanned once for each use), naming the file and the field.
     """
     import jsonschema
 
@@ -895,16 +869,20 @@ def build_ledger(source: str, chapter: str | None, evidence: Mapping[str, Mappin
     values = dict(values or {})
     specs = [s for s in cf.records if s.chapter == led.chapter]
     ids = {s.id for s in specs}
-    extra = sorted(set(evidence) - ids)
-    missing = sorted(ids - set(evidence))
+    # at most one key past the file's records is read (fuzz 53a C2's class: a lazy mapping of 6e7 keys was walked)
+    keys = list(itertools.islice(iter(evidence), len(ids) + 1))
+    extra = sorted(set(keys) - ids)
+    missing = sorted(ids - set(keys))
     if extra or missing:
-        raise ClaimsFileError(f"{cf.path.name}: evidence for records not in the file for {led.chapter}: {extra}; "
-                              f"records without evidence: {missing}")
+        raise ClaimsFileError(f"{cf.path.name}: evidence for records not in the file for {led.chapter}: {extra}"
+                              f"{' (among others)' if len(keys) > len(ids) else ''}; records without evidence: "
+                              f"{missing}")
     for spec in specs:
         where = f"{cf.path.name}: record {spec.id}"
         given = evidence[spec.id]
-        by_key = dict(given) if isinstance(given, Mapping) else {"primary": given}
         want = {"primary"} | {r.key for r in spec.readings if r.key != "primary"}
+        by_key = ({k: given[k] for k in itertools.islice(iter(given), len(want) + 1)}  # one key past want at most
+                  if isinstance(given, Mapping) else {"primary": given})
         if set(by_key) != want:
             raise ClaimsFileError(f"{where}: field readings: evidence for {sorted(by_key)}, the file names "
                                   f"{sorted(want)}")

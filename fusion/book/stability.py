@@ -42,7 +42,7 @@ import numpy as np
 
 from fusion.book._json import JSONObject, read_object
 from fusion._results import ResultSpec, flag, instance, integer, number, text, validated_post_init
-from fusion._counts import COUNT_CEILINGS
+from fusion._counts import COUNT_CEILINGS, MAX_COUNT
 from fusion._limits import MAX_WORK, work
 from fusion._validation import is_integer
 from fusion._validation import count, distinct, instance_of, iterable, seed as check_seed, seeds as check_seeds, sequence
@@ -67,6 +67,9 @@ ROOT_SEED = 20261205
 RESEEDS = 5
 #: Largest number of reseeds ``seeds`` derives (each is a full run of the stochastic records).
 MAX_SEEDS = 10**4
+
+#: The derived seeds are below this (31 bits: a ``uint32`` state shifted right by one, :func:`seeds`).
+_SEED_END = 2**31
 
 #: The primary reading is also run at this many times the chapter's runs.
 RUNS_FACTOR = 10
@@ -96,12 +99,25 @@ SUMMARY_RESULT_WORK = 1000
 #: is a None status): 0.18 us measured on this shared machine (CPU time, minimum of 3: 1,000 records x 5,000 seeds with
 #: one result each, 0.89 s), so 20 units; the budget's edge, 5e7 cells, about 9 CPU-s.
 SUMMARY_CELL_WORK = 20
+#: Units of work of one entry of :func:`summarise`'s ``committed`` (its status checked): 12-51 ns measured on this
+#: shared machine (CPU time, minimum of 3, a dict of 10**6 ids, None or a status each), so 5 units. ``committed`` is
+#: counted by iterating its keys (not by its ``len()``), at most ``MAX_COUNT`` (10**7, rule 9) of them, before any
+#: entry is read (fuzz 53a C2: a lazy mapping of 6e7 ids was walked for 33 CPU-s and entered no budget).
+SUMMARY_COMMITTED_WORK = 5
 
 #: Retries of a failed task before it is reported as failed.
 RETRIES = 2
 
 #: Name of the results file in ``book/ledger``.
 STABILITY_FILE = "stability.json"
+
+
+def _sweep_seed(v: Mapping[str, Any], label: str) -> None:
+    """A :class:`Task`'s seed is one :func:`seeds` derives, below 2**31 (fuzz 53a C3's class: :func:`batches` and
+    :func:`summarise` hash each task's seed, 0.5 ms for one of 10**7 bits)."""
+    if v["seed"] >= _SEED_END:
+        raise ValueError(f"{label}.seed must be a seed of the sweep, below 2**31 (seeds() derives 31-bit seeds), got an "
+                         f"integer of {int(v['seed']).bit_length():,} bits")
 
 
 @dataclass(frozen=True)
@@ -115,7 +131,7 @@ class Task:
     kind : str
         The reading's kind (:data:`fusion.book.rulebook.READING_KINDS`).
     seed, runs : int
-        A seed (>= 0) and a run count (>= 1).
+        A seed of the sweep (in ``[0, 2**31)``, as :func:`seeds` derives) and a run count (>= 1).
     scaled : bool
         Whether this is the primary reading at :data:`RUNS_FACTOR` times the runs.
 
@@ -135,7 +151,8 @@ class Task:
     scaled: bool = False
 
     __result_spec__ = ResultSpec({"source": text(), "record": text(), "reading": text(), "kind": text(*R.READING_KINDS),
-                                  "seed": integer(0), "runs": integer(1), "scaled": flag()})
+                                  "seed": integer(0), "runs": integer(1), "scaled": flag()},
+                                 relations=(_sweep_seed,))
     __post_init__ = validated_post_init
 
 
@@ -315,12 +332,22 @@ def seeds(k: int = RESEEDS, root_seed: int = ROOT_SEED, avoid: Iterable[int] = (
         How many.
     root_seed : int
     avoid : iterable of int
-        Any iterable of integers (a list, a set, dict keys, a generator, ...); its order does not matter.
+        Any iterable of integers (a list, a set, dict keys, a generator, ...); its order does not matter. An integer
+        outside ``[0, 2**31)`` (a negative one: :func:`main` enters -1 for a chapter without a seed; or one of 32 bits
+        or more, a chapter may use any seed) can never be a derived seed: it is skipped, never hashed (fuzz 53a C3:
+        ``[1 << 10**7] * 60_000`` was hashed item by item for 34 CPU-s).
 
     Returns
     -------
     list of int
-        Distinct 31-bit seeds.
+        Distinct 31-bit seeds (in ``[0, 2**31)``).
+
+    Raises
+    ------
+    TypeError
+        ``k`` or ``root_seed`` not an integer, ``avoid`` not an iterable or holding a non-integer.
+    ValueError
+        ``k`` below 1 or above ``MAX_SEEDS``, ``root_seed`` negative, ``avoid`` of more than 10**7 items.
     """
     k = count(k, "k", maximum=MAX_SEEDS)
     root_seed = check_seed(root_seed, "root_seed")
@@ -328,7 +355,7 @@ def seeds(k: int = RESEEDS, root_seed: int = ROOT_SEED, avoid: Iterable[int] = (
     for v in items:  # integers (a chapter without a seed is entered as -1): a float 3.0 would silently miss 3
         if not is_integer(v):
             raise TypeError(f"avoid must hold integer seeds, got {shown(v)}")
-    avoid = set(items)
+    avoid = {int(v) for v in items if 0 <= v < _SEED_END}  # a comparison reads an int's size, not its digits
     out: list[int] = []
     ss = np.random.SeedSequence(root_seed)
     while len(out) < k:
@@ -350,7 +377,8 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
     readings : mapping
         From :func:`stochastic_readings`.
     seed_list : sequence of int
-        From :func:`seeds`: distinct seeds (a repeated seed would run the same tasks twice and count as two reseeds).
+        From :func:`seeds`: distinct seeds below 2**31 (a repeated seed would run the same tasks twice and count as two
+        reseeds; a larger one is refused before any is hashed).
     runs_factor : int
         >= 1; 1 runs no scaled task.
 
@@ -369,10 +397,11 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
         checks and builds in about 10 CPU-s (``READING_WORK`` units a reading and ``RECORD_WORK`` a record, counted by
         iterating them before any is checked, whatever their ``len()`` says, and ``TASK_WORK`` units a task: about
         330,000 readings at one seed, 500,000 tasks of the book's 512 readings), naming ``readings`` and ``seed_list``;
-        a ``readings`` that yields more records or readings when read than when counted.
+        a ``readings`` that yields more records or readings when read than when counted; a ``seed_list`` entry of
+        2**31 or more (checked before any seed is hashed), naming ``seed_list[i]``.
     """
     runs_factor = count(runs_factor, "runs_factor")
-    seed_list = distinct(check_seeds(seed_list, "seed_list"), "seed_list")
+    seed_list = _seed_list(seed_list)
     instance_of(readings, Mapping, "readings")
     # counted before any reading is checked (fuzz 41b C1), from what iterating them yields (fuzz 42b C3: a Mapping whose
     # __len__ lies), every record too (D3); _readings then reads no more than was counted
@@ -391,6 +420,19 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
             kind, runs = rs["primary"]
             out.append(Task(src, rid, "primary", kind, seed_list[0], runs * runs_factor, scaled=True))
     return out
+
+
+def _seed_list(seed_list: object) -> list[int]:
+    """The sweep's seeds (rule 12): distinct seeds each below ``_SEED_END`` (2**31, the seeds :func:`seeds` derives), a
+    larger one refused naming ``seed_list[i]`` by a comparison (which reads an int's size, not its digits) before any is
+    hashed or compared with another (fuzz 53a C3's class: 2,000 copies of ``1 << 10**7`` were compared and hashed for
+    1.1 CPU-s before the repeat was refused; 60,000, about 33 CPU-s)."""
+    items = sequence(seed_list, "seed_list")
+    for i, v in enumerate(items):
+        if is_integer(v) and v >= _SEED_END:
+            raise ValueError(f"seed_list[{i}] must be a seed of the sweep, below 2**31 (seeds() derives 31-bit seeds), "
+                             f"got an integer of {int(v).bit_length():,} bits")
+    return distinct(check_seeds(items, "seed_list"), "seed_list")
 
 
 def _judged(ev: Evidence, margin: Mapping[str, float]) -> Evidence:
@@ -446,7 +488,7 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     results : sequence of TaskResult
         At most one result per task (record, reading, seed and whether scaled), each of a seed of ``seed_list``.
     seed_list : sequence of int
-        Distinct seeds, as given to :func:`tasks`.
+        Distinct seeds below 2**31, as given to :func:`tasks`.
     committed : mapping
         Record id → the status committed in the ledger: one of :data:`fusion.book.rulebook.STATUSES`, or None.
 
@@ -460,9 +502,12 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     TypeError
         ``results`` not of :class:`TaskResult`, ``committed`` not a mapping, a committed status not text.
     ValueError
-        Two results of one task, a result of a seed not in ``seed_list``, a repeated seed, a committed status not
-        one of the rulebook's; ``results`` and ``seed_list`` beyond the work budget (rule 17: their results, then
-        their records x seeds, counted before any is judged).
+        Two results of one task, a result of a seed not in ``seed_list``, a repeated seed or one of 2**31 or more
+        (``seed_list[i]``, checked before any is hashed), a committed status not
+        one of the rulebook's; ``committed`` of more than 10**7 entries (counted by iterating its keys before any
+        entry is read), or yielding more entries when read than when counted; ``results``, ``seed_list`` and
+        ``committed`` beyond the work budget (rule 17: their results and committed entries, then their records x
+        seeds, counted before any is read or judged).
 
     Notes
     -----
@@ -472,9 +517,20 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     primary reading's own status at the scaled run count (no other reading is rerun there).
     """
     by: dict[str, list[TaskResult]] = {}
-    seed_list = distinct(check_seeds(seed_list, "seed_list"), "seed_list")
+    seed_list = _seed_list(seed_list)
     instance_of(committed, Mapping, "committed")
-    for rid, status in committed.items():
+    n_committed = sum(1 for _ in itertools.islice(iter(committed), MAX_COUNT + 1))  # keys only, none read (53a C2)
+    if n_committed > MAX_COUNT:
+        raise ValueError(f"committed has more than {MAX_COUNT:,} entries (rule 9: the entries of a mapping argument "
+                         "are a size; the ledger holds a few hundred records)")
+    results = sequence(results, "results")  # its length, before any result is read (fuzz 53a: walked before budget)
+    # rule 17 (fuzz 49b C6): the results and committed first (at least one record if any), then, once grouped (which
+    # their units pay for), every record x seed cell
+    _summary_work(len(results), min(1, len(results)), len(seed_list), n_committed)
+    for j, (rid, status) in enumerate(committed.items()):
+        if j >= n_committed:
+            raise ValueError(f"committed yielded more than the {n_committed:,} entries counted before they were read "
+                             "(a mapping whose items change while it is read)")
         if status is not None and not isinstance(status, str):
             raise TypeError(f"committed[{shown(rid)}] must be a status (str), got {shown(status)}")
         if status is not None and status not in R.STATUSES:
@@ -482,9 +538,6 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     seen: dict[tuple[str, str, int, bool], int] = {}
     known = set(seed_list)
     results = _tasks(results, "results", TaskResult)
-    # rule 17 (fuzz 49b C6): the results first (at least one record if any), then, once grouped (which their units pay
-    # for), every record x seed cell
-    _summary_work(len(results), min(1, len(results)), len(seed_list))
     cells: dict[str, dict[int, list[TaskResult]]] = {}  # record -> seed -> its unscaled results, in results' order
     for i, r in enumerate(results):
         t = r.task
@@ -499,7 +552,7 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
         by.setdefault(t.record, []).append(r)
         if not t.scaled:
             cells.setdefault(t.record, {}).setdefault(t.seed, []).append(r)
-    _summary_work(len(results), len(by), len(seed_list))
+    _summary_work(len(results), len(by), len(seed_list), n_committed)
     out: dict[str, dict[str, Any]] = {}
     for rid, rs in sorted(by.items()):
         failed = [asdict(r.task) | {"error": r.error} for r in rs if r.status is None]
@@ -522,13 +575,16 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     return out
 
 
-def _summary_work(results: int, records: int, seeds: int) -> int:
+def _summary_work(results: int, records: int, seeds: int, committed: int = 0) -> int:
     """The units of :func:`summarise`: ``results`` checked, grouped and judged, ``SUMMARY_RESULT_WORK`` units each,
-    and ``records x seeds`` statuses, ``SUMMARY_CELL_WORK`` units each; refused beyond the work budget (rule 17)
-    naming ``results`` and ``seed_list``."""
-    return work((results * SUMMARY_RESULT_WORK + records * seeds * SUMMARY_CELL_WORK,),
-                f"results and seed_list ({results:,} results, {SUMMARY_RESULT_WORK:,} units each, and {records:,} "
-                f"records x {seeds:,} seeds, {SUMMARY_CELL_WORK:,} units a record's seed)")
+    ``records x seeds`` statuses, ``SUMMARY_CELL_WORK`` units each, and ``committed`` entries checked,
+    ``SUMMARY_COMMITTED_WORK`` units each; refused beyond the work budget (rule 17) naming ``results``, ``seed_list``
+    and ``committed``."""
+    return work((results * SUMMARY_RESULT_WORK + records * seeds * SUMMARY_CELL_WORK
+                 + committed * SUMMARY_COMMITTED_WORK,),
+                f"results and seed_list and committed ({results:,} results, {SUMMARY_RESULT_WORK:,} units each, "
+                f"{records:,} records x {seeds:,} seeds, {SUMMARY_CELL_WORK:,} units a record's seed, and "
+                f"{committed:,} committed entries, {SUMMARY_COMMITTED_WORK:,} units each)")
 
 
 def _same(status: str | None, committed: str | None) -> bool:
