@@ -181,3 +181,17 @@ def test_every_claim_reading_passes_its_readers_checks(monkeypatch) -> None:
                 pass
             n += 1
     assert n >= 100
+
+
+def test_fuzz54a_d1_a_key_equal_to_everything_is_compared_by_its_text() -> None:
+    """Fuzz 54a D1: ``k in keys`` trusted a str subclass's ``__eq__``; one equal to everything passed as known."""
+
+    class Anything(str):
+        def __eq__(self, other: object) -> bool:
+            return True
+
+        __hash__ = str.__hash__
+
+    with pytest.raises(ValueError, match="settings: unknown"):
+        settings_first({Anything("nois"): 1}, ("noise",))
+    assert settings_first({Anything("noise"): 1}, ("noise",))   # its text is a key the reader reads

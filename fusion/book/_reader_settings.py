@@ -56,7 +56,8 @@ def settings_first(settings: object, allowed: Iterable[str]) -> Mapping[str, Any
     if not isinstance(settings, Mapping):
         raise TypeError(f"settings must be a mapping (a reading's settings) or None, got {type(settings).__name__}")
     keys = tuple(allowed)
-    unknown = [k for k in settings if not (isinstance(k, str) and k in keys)]
+    # a key's own text compared, not its __eq__ (fuzz 54a D1: a str subclass equal to everything passed as known)
+    unknown = [k for k in settings if not (isinstance(k, str) and str.__str__(k) in keys)]
     if unknown:
         takes = f"only {shown(sorted(keys), 200)}" if keys else "no settings"
         raise ValueError(f"settings: unknown {shown(unknown, 120)} (this record's reader takes {takes})")

@@ -681,7 +681,8 @@ def _practical_margin(margin: float | None, relative_margin: float | None, ref: 
         except ValueError:                   # naming margin, which the caller never gave)
             raise ValueError(f"relative_margin = {shown(rel, 60)} gives the margin {derived:.3g} on {on} (whose "
                              f"magnitude is {ref:.3g}), outside the representable range (at most 1e150, not "
-                             "subnormal): give a smaller relative_margin or an absolute margin") from None
+                             f"subnormal): give a {'smaller' if abs(derived) > 1.0 else 'larger'} relative_margin "
+                             "or an absolute margin") from None   # too small by underflow: larger (fuzz 54a D2)
         return derived, relative_margin
     if relative_margin is not None and not math.isclose(float(margin), derived, rel_tol=1e-12):
         raise ValueError(f"margin = {shown(margin, 60)} and relative_margin = {shown(relative_margin, 60)} "
