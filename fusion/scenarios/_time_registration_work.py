@@ -8,8 +8,9 @@ at a few sizes each (fuzz 30b D2: ``transient_table(1100, 1)`` was accepted and 
 * a registration (a call of ``register``, ~100 us): ``10 * LOOP_STEP``;
 * a Kalman method's filter, in a registration or a Monte Carlo: the filter's own rule, counted by it
   (``fusion.registration.methods._kalman_work``: per grid step ``3 * LOOP_STEP``, ``4 * LOOP_STEP`` with the
-  smoother's pass, plus 15 units a run, 25 smoothed), over every sample and instant (its largest grid) and once per
-  pass the call runs (:func:`_filter_work`), so that the filter's inner refusal, naming its ``t and Z``, never comes
+  smoother's pass, plus 15 units a run, 25 smoothed), over its grid (the samples, and every instant unless the call
+  passes no ``kf``) and once per pass the call runs (:func:`_filter_work`), plus :data:`KALMAN_INSTANT` an instant
+  of a registration, so that the filter's inner refusal, naming its ``t and Z``, never comes
   before the caller's (fix60a: the chapter's own ``2 * LOOP_STEP`` a step and 10 units a run of the smoother counted
   less than the inner rule, so a Monte Carlo of the smoother alone from about 2.0 million runs was refused inside);
 * a least-squares fit per instant: its own inner budget (``10 * LOOP_STEP + 4 * n_src``,
