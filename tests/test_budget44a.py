@@ -13,13 +13,14 @@ from fusion._limits import MAX_WORK
 
 # --- time_registration.fusion_runs: its runs x methods held to the work budget (fuzz 39a C4) --------------------
 
-@pytest.mark.parametrize(("names", "edge"), [(["reg_kalman_two_point"], 200_000), (["reg_two_point"], 100_000),
+@pytest.mark.parametrize(("names", "edge"), [(["reg_kalman_two_point"], 188_667), (["reg_two_point"], 100_000),
                                              (["reg_least_squares"], 33_333), (["reg_cubic_spline"], 33_333),
                                              (["reg_improved", "reg_two_point", "reg_kalman_predict",
-                                               "reg_least_squares"], 20_000)])
+                                               "reg_least_squares"], 19_879)])
 def test_fusion_runs_edge_accepted_one_more_refused_before_any_draw(monkeypatch, names: list[str], edge: int) -> None:
     """``edge`` runs pass the budget (stopped at the first draw: the work is not run), one more is refused by name,
-    at once. The edges are the docstring's (measured 43-317 us a run and method: 7.5-14 CPU-s at the edge)."""
+    at once. The edges are the docstring's (measured 43-317 us a run and method: 7.5-14 CPU-s at the edge; a Kalman
+    method's filter pass also counts by the filter's own rule since fix60a: 200,000 and 20,000 before)."""
     from fusion.scenarios import time_registration as sc
 
     class Drawn(Exception):

@@ -613,7 +613,7 @@ def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike |
     t2 = d2 if t_dst is None else as_times(t_dst, "t_dst")
     sigma, q_v, q_a = _check_args(t1, t2, sigma, q_v, q_a)
     _precise_times(t1, t2)
-    _registration_work([name], t1.size, t2.size, 1, "t_src and t_dst")  # rule 17, named here
+    _registration_work([name], t1.size, t2.size, 1, "t_src and t_dst", period_change=False)  # rule 17, named here
     est = register(name, t1, truth(t1), t2, sigma, q_v, q_a)
     return float(np.mean((est - truth(t2)) ** 2))
 
@@ -936,8 +936,9 @@ def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> Fus
     runs : int
         Number of runs, >= 2. ``runs`` x the methods of ``names`` (each run registered by a Python call, 30 to
         300 us measured) are held to the work budget (``fusion._limits.MAX_WORK``, about 10 CPU-s), refused by name
-        before any draw (``_fusion_runs_work``): 200,000 runs of one Kalman method, 100,000 of a fixed-weight method
-        and 33,333 of a method fitting each instant or of the cubic spline are accepted, one more refused.
+        before any draw (``_fusion_runs_work``, a Kalman method's filter pass also by the filter's own rule):
+        188,667 runs of one Kalman method, 100,000 of a fixed-weight method and 33,333 of a method fitting each
+        instant or of the cubic spline are accepted, one more refused.
     seed : int
 
     Returns
