@@ -167,7 +167,8 @@ def write_file_text(path: Path, text: str, label: str) -> bytes:
     ------
     ValueError
         ``text`` cannot be written as UTF-8 (a lone surrogate), before any file is touched; ``path`` exists and is
-        not a regular file (a FIFO, a device, a folder), nothing written; or the file cannot be written (an OS error:
+        not a regular file (a FIFO, a device, a folder), or is a symbolic link to no file or in a loop, nothing
+        written; or the file cannot be written (an OS error:
         no permission, a full disk), the old file left as it was; naming ``label``.
     """
     try:
@@ -180,10 +181,19 @@ def write_file_text(path: Path, text: str, label: str) -> bytes:
     # The temporary name does not grow with the target's (fuzz 50b D1: ".<name>.<pid>.<hex>.tmp" made a target name
     # of 236-255 bytes, which open() writes, "too long"): 28 characters at most whatever the target.
     tmp = target.with_name(f".fusion-{os.getpid()}-{os.urandom(4).hex()}.tmp")
-    if target.exists() and not target.is_file():   # a FIFO, a device, a folder: never replaced by a file (50b D2)
-        raise ValueError(f"{label}: {path.name} is not a regular file; the book writes only files (nothing written)")
-    try:
-        mode = stat.S_IMODE(os.stat(target).st_mode) if target.exists() else None
+    try:   # every check inside: an OS error of the checks (a name too long, no permission) is named too (54b C1)
+        if os.path.islink(target):   # realpath stops at a link only in a loop of links (fuzz 54b D3)
+            raise ValueError(f"{label}: {path.name} is a symbolic link in a loop; nothing written")
+        try:
+            st: os.stat_result | None = os.stat(target)
+        except FileNotFoundError:
+            st = None
+            if os.path.islink(path):   # a dangling link, refused as the ledger's file_in refuses it (54b D3)
+                raise ValueError(f"{label}: {path.name} is a symbolic link to no file; nothing written") from None
+        if st is not None and not stat.S_ISREG(st.st_mode):   # a FIFO, a device, a folder: never replaced (50b D2)
+            raise ValueError(f"{label}: {path.name} is not a regular file; the book writes only files (nothing "
+                             "written)")
+        mode = None if st is None else stat.S_IMODE(st.st_mode)
         fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)   # the umask applies
         try:
             with os.fdopen(fd, "wb") as fh:

@@ -248,3 +248,24 @@ def test_fuzz50b_d4_a_derived_margin_that_underflows_to_zero_is_refused(make):
     """Fuzz 50b D4: 1e-200 of a mean of 1e-140 underflowed to a margin of 0.0, stored as if 0 had been asked for."""
     with pytest.raises(ValueError, match="^relative_margin = 1e-200 gives the margin 0 .*: give a larger relative_margin"):
         make()
+
+
+def test_fuzz54b_c1_an_os_error_of_the_checks_is_named(tmp_path):
+    """Fuzz 54b C1: the non-regular-file check ran before the try that names OS errors: a 300-character name gave
+    a raw OSError (File name too long)."""
+    with pytest.raises(ValueError, match=r"^out: cannot write x+ \(File name too long\); the file is unchanged"):
+        write_file_text(tmp_path / ("x" * 300), "new\n", "out")
+
+
+def test_fuzz54b_d3_a_symlink_loop_or_a_dangling_symlink_is_not_replaced(tmp_path):
+    """Fuzz 54b D3: a link to itself was replaced by a file; a dangling link was written through."""
+    loop = tmp_path / "loop"
+    loop.symlink_to(loop)
+    with pytest.raises(ValueError, match="^out: loop is a symbolic link in a loop"):
+        write_file_text(loop, "new\n", "out")
+    dangling = tmp_path / "dangling"
+    dangling.symlink_to(tmp_path / "nothing")
+    with pytest.raises(ValueError, match="^out: dangling is a symbolic link to no file"):
+        write_file_text(dangling, "new\n", "out")
+    assert loop.is_symlink() and dangling.is_symlink() and not (tmp_path / "nothing").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["dangling", "loop"]
