@@ -160,18 +160,36 @@ def count(value: int, name: str, minimum: int = 1, maximum: int | None = BY_KIND
     return v
 
 
+#: The largest seed, ``2**256 - 1``: twice the 128 bits a :class:`numpy.random.SeedSequence` pools, so a larger
+#: seed adds no randomness, while its cost grows with the square of its size (measured: 3.6 CPU-s for one
+#: SeedSequence of a 10**6-bit seed, paid again by every child it spawns; 10 us a child up to 256 bits, 115 at
+#: 4,096).
+SEED_MAX = 2**256 - 1
+
+
+def _seed_size(v: int, name: str) -> int:
+    """``v`` when it is at most :data:`SEED_MAX`, a ValueError naming ``name`` otherwise (by its bit length: cheap
+    whatever its size)."""
+    if v > SEED_MAX:
+        raise ValueError(f"{name} must be a seed of at most 256 bits (a SeedSequence pools 128; a larger seed adds no "
+                         f"randomness and costs time with the square of its size), got one of {v.bit_length():,} bits")
+    return v
+
+
 def seed(value: int, name: str = "seed") -> int:
-    """Return ``value`` as a non-negative int seed (any size), TypeError/ValueError naming ``name``.
+    """Return ``value`` as a non-negative int seed of at most 256 bits, TypeError/ValueError naming ``name``.
 
     A seed is an integer (rule 11): a float, even an integral one such as ``3.0``, is refused with
     a :class:`TypeError` (``3.5`` would otherwise be truncated, and ``numpy`` refuses ``3.0``). A 0-d
     integer array is the integer it holds, as for a count (rule 13) and for :func:`numpy.random.default_rng`.
+    A seed above :data:`SEED_MAX` (``2**256 - 1``) is refused before any generator is seeded (fuzz 54: a
+    10**6-bit seed cost 3.6 CPU-s a SeedSequence, and every run's child again).
     """
     if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iu":
         value = value[()]  # a 0-d integer array: its numpy integer (a 0-d bool array is not: kind "b")
     if not isinstance(value, (int, np.integer)) or isinstance(value, (bool, np.bool_)):
         raise TypeError(f"{name} must be an integer seed, got {shown(value)}")
-    return count(value, name, minimum=0, maximum=None)
+    return _seed_size(count(value, name, minimum=0, maximum=None), name)
 
 
 #: The integer types :func:`_plain_integers` checks in one pass (bool and timedelta64 are not among them).
@@ -227,7 +245,7 @@ def seeds(values: object, name: str = "seeds") -> list[int]:
     items = values if _integer_array(values) and _length(values, name, None) else sequence(values, name)
     if not len(items):
         raise ValueError(f"{name} is empty")
-    fast = _plain_integers(items, 0, None)
+    fast = _plain_integers(items, 0, SEED_MAX)
     if fast is not None:
         return fast
     return [seed(v, f"{name}[{i}]") for i, v in enumerate(items)]

@@ -977,3 +977,27 @@ def test_no_error_message_formats_a_value_with_its_own_repr() -> None:
 def test_a_value_whose_repr_raises_is_refused_by_name(call) -> None:  # noqa: ANN001
     with pytest.raises(ValueError, match=r"(scale|threshold|omega).*a _BadRepr"):
         call()
+
+
+def test_a_seed_beyond_256_bits_is_refused_before_any_generator() -> None:
+    """A seed of 10**6 bits cost 3.6 CPU-s a SeedSequence (quadratic in its size), paid again by every child a
+    study spawns, and no budget counted it: refused by its bit length, naming the seed, whatever its size."""
+    import time
+
+    import numpy as np
+
+    from fusion._counts import SEED_MAX, seeds
+    from fusion.scenarios.range_bearing import RangeBearingScenario, monte_carlo
+
+    assert V.seed(SEED_MAX) == SEED_MAX and seeds(np.array([0, 2**63 - 1])) == [0, 2**63 - 1]
+    t = time.process_time()
+    for bad in (SEED_MAX + 1, 1 << 10**6):
+        with pytest.raises(ValueError, match="^seed must be a seed of at most 256 bits"):
+            V.seed(bad)
+        with pytest.raises(ValueError, match=r"^seeds\[1\] must be a seed of at most 256 bits"):
+            seeds([1, bad])
+    assert time.process_time() - t < 0.5
+    t = time.process_time()
+    with pytest.raises(ValueError, match="^seed must be a seed of at most 256 bits"):   # a public root seed
+        monte_carlo(RangeBearingScenario(frames=3, n_particles=50), 1 << 10**6, 100)
+    assert time.process_time() - t < 0.5
