@@ -5,6 +5,7 @@ from __future__ import annotations
 from decimal import Decimal
 
 import cmath
+import collections
 import datetime
 import enum
 import math
@@ -12,6 +13,7 @@ import numbers
 import pathlib
 import re
 import sys
+import types
 from collections import OrderedDict, defaultdict
 from collections.abc import Mapping
 from fractions import Fraction
@@ -208,7 +210,8 @@ def _glued_cell(table: object, row: object, column: object, name: str, lo: float
 #: figure. Containers are the ones :func:`_finite` looks into; anything else is refused by type (fuzz 26a G/D3: a
 #: deque, array.array, dict view or generator printed ``nan`` unchecked), and so is an object whose text is
 #: ``object``'s default (its address: not the same text twice), and a subclass of an atom type printing a text of
-#: its own (``_own_text``, fuzz 52 C5; a table's, Series' or Index's labels and names are atoms too, fuzz 52 C2).
+#: its own (``_own_text``, fuzz 52 C5; a table's, Series' or Index's labels and names are atoms too, fuzz 52 C2), or
+#: of a container type (fuzz 54a C1).
 _GLUE_LEAVES = (type(None), str, bytes, numbers.Number, np.generic, datetime.date, datetime.time, datetime.timedelta,
                 pd.Period, pd.Interval, enum.Enum, pathlib.PurePath, range, Figure)
 #: The containers whose entries are checked: their text prints their entries (a table: its object cells and labels,
@@ -261,6 +264,43 @@ _CLASS_NAMES = frozenset({"__module__", "__qualname__", "__doc__", "__dict__", "
                           "__static_attributes__", "__abstractmethods__", "_abc_impl", "__new__", "__init__",
                           "__init_subclass__"})
 
+#: The container types of Python whose text is their entries' (fuzz 54a C1), with their MROs: a subclass of one of
+#: them, or of a container of NumPy, pandas or the package (``_library_class``), is a container only when it changes
+#: none of their text (``_own_text``).
+_CONTAINER_BASES = frozenset(b for t in (list, tuple, set, frozenset, dict, types.MappingProxyType, OrderedDict,
+                                         defaultdict, collections.Counter, collections.ChainMap,
+                                         collections.UserDict) for b in t.__mro__)
+#: The types :func:`_finite` needs not look at for a text of their own: no subclass, no instance attributes.
+_PLAIN_CONTAINERS = frozenset({list, tuple, set, frozenset, dict, np.ndarray})
+#: A ``collections.namedtuple`` class, whose generated ``__repr__`` and ``__getnewargs__`` a NamedTuple's class
+#: holds (the same code): its text is its name and its fields' texts, deterministic (fuzz 54a C1).
+_NAMEDTUPLE = collections.namedtuple("_NAMEDTUPLE", "a")
+
+
+def _library_class(c: type) -> bool:
+    """Whether the class ``c`` is an atom type's (``_ATOM_BASES``), one of Python's containers
+    (``_CONTAINER_BASES``), or NumPy's, pandas' or the package's own class (fuzz 54a C1: their texts are theirs; the
+    package's containers, ``ReadOnlyMapping``, its records' mappings and NamedTuples, print deterministic text):
+    defined in a module of ``numpy``, ``pandas`` or ``fusion`` and found there by its qualified name (not a class
+    that only says so)."""
+    if c in _ATOM_BASES or c in _CONTAINER_BASES:
+        return True
+    module = getattr(c, "__module__", None)
+    if not isinstance(module, str) or module.split(".")[0] not in ("numpy", "pandas", "fusion"):
+        return False
+    found: object = sys.modules.get(module)
+    for part in str(getattr(c, "__qualname__", "<>")).split("."):
+        found = getattr(found, part, None)
+    return found is c
+
+
+def _namedtuple_part(name: str, attr: object) -> bool:
+    """Whether ``attr``, named ``name`` in a class, is what ``collections.namedtuple`` made (its ``__repr__``,
+    ``__getnewargs__``: the same code as ``_NAMEDTUPLE``'s), not a method of the class's own."""
+    made = _NAMEDTUPLE.__dict__.get(name)
+    code = getattr(getattr(attr, "__func__", attr), "__code__", None)
+    return code is not None and code is getattr(getattr(made, "__func__", made), "__code__", False)
+
 
 def _known_zone(tz: object) -> bool:
     """Whether a date-time's ``tz`` (its ``tzinfo``) is None or a time zone of Python (``datetime.timezone``),
@@ -270,9 +310,12 @@ def _known_zone(tz: object) -> bool:
     return tz is None or t is datetime.timezone or t.__module__.split(".")[0] in ("zoneinfo", "pytz", "dateutil")
 
 
-def _own_text(v: object, plain: set[type] | None = None) -> str | None:
+def _own_text(v: object, plain: set[type] | None = None, container: bool = False) -> str | None:
     """The attribute by which ``v``, an atom whose type is not one of ``_ATOM_TYPES``, would print a text of its own
-    (fuzz 52 C5: a float subclass whose ``__repr__`` is ``'nan'`` glued ``nan``), or None.
+    (fuzz 52 C5: a float subclass whose ``__repr__`` is ``'nan'`` glued ``nan``), or None. ``container``: ``v`` is
+    a container, whose base types are Python's, NumPy's, pandas' and the package's (``_library_class``; fuzz 54a C1:
+    a list, dict, ndarray, Series subclass or a NamedTuple whose ``__repr__`` or ``_repr_pretty_`` printed ``nan``
+    was glued), by the same rule; what ``collections.namedtuple`` made is a NamedTuple's base text.
 
     Every class of its type's MRO that is no atom type's (``_ATOM_BASES``) may add attributes but not define a text
     method (``_TEXT_NAMES``) nor, but for an Enum member, override an attribute of the atom types in the MRO (a
@@ -284,17 +327,22 @@ def _own_text(v: object, plain: set[type] | None = None) -> str | None:
     if plain is not None and t in plain and (not inst or inst.keys() <= _MEMBER_NAMES):
         return None
     mro = t.__mro__
-    bases = [b for b in mro if b in _ATOM_BASES]
+    base = _library_class if container else _ATOM_BASES.__contains__
+    bases = [b for b in mro if base(b)]
     member = isinstance(v, enum.Enum)
-    own = [] if plain is not None and t in plain else [(c.__dict__, False) for c in mro if c not in _ATOM_BASES]
+    own = [] if plain is not None and t in plain else [(c.__dict__, False) for c in mro if not base(c)]
     own += [(inst, True)] * isinstance(inst, dict)
     for attrs, instance in own:
         for name, attr in list(attrs.items()):
             text_name = (name.startswith(("_repr_", "_ipython_")) or name == "__html__" if instance   # an Enum
                          else name in _TEXT_NAMES or name.startswith(("_repr_", "_ipython_")))         # member's _name_
-            if name in _CLASS_NAMES or not (text_name or (not member and any(name in b.__dict__ for b in bases))):
-                continue
+            if name in _CLASS_NAMES or not (text_name or (not member and any(name in b.__dict__ for b in bases)
+                                                           and not (container and instance and name[:1] == "_"
+                                                                    and not callable(attr)))):
+                continue   # a container's private data attribute (a Series' _name) is its state, not an override
             if not instance and any(b.__dict__.get(name, _CLASS_NAMES) is attr for b in bases):   # the atom type's
+                continue
+            if not instance and container and _namedtuple_part(name, attr):   # a NamedTuple's own repr
                 continue
             if name == "_value_repr_" and (attr is None or any(b.__dict__.get("__repr__") is attr for b in bases)):
                 continue
@@ -441,15 +489,16 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
     missing cell or non-finite real number is not refused: a table prints it as a word; what a cell holds is checked
     by the rule of every container. Atoms (``_GLUE_LEAVES``, :func:`glue_all`'s Notes) are checked alike wherever
     they are: an int's digits, an Interval's endpoints, an Enum member's value, a range's ints (fix57b); a subclass
-    of an atom type printing a text of its own is refused (``_own_text``, fuzz 52 C5).
+    of an atom type or of a container type printing a text of its own is refused (``_own_text``, fuzz 52 C5, 54a
+    C1).
 
     Raises
     ------
     TypeError
         A value, or an entry of a container, of another type (:data:`_GLUE_LEAVES`, :data:`_GLUE_CONTAINERS`):
         a deque, ``array.array``, dict view, generator, masked array (whose text prints ``--``), an object whose
-        text is its address (a Styler inside a container), a subclass of an atom type printing a text of its own,
-        ..., naming ``values[key]``.
+        text is its address (a Styler inside a container), a subclass of an atom type or of a container type
+        printing a text of its own, ..., naming ``values[key]``.
     ValueError
         An int of more decimal digits than ``_int_digits()``, naming ``values[key]``. Containers nested more than
         ``fusion._nesting.MAX_NESTING`` (64) deep, naming ``values[key]``; entries
@@ -500,6 +549,13 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
             if own is not None:
                 raise TypeError(f"values[{shown(key)}] must hold atoms whose text is their type's (a subclass of an "
                                 f"atom type must not define {own}), got {type(v).__name__} {shown(v, 60)}"
+                                + (f" inside {type(value).__name__}" if v is not value else ""))
+        if isinstance(v, _GLUE_CONTAINERS) and type(v) not in _PLAIN_CONTAINERS:
+            own = _own_text(v, plain, container=True)   # a container subclass printing its own text (fuzz 54a C1)
+            if own is not None:   # its type's name only: its text is not to be trusted (nor its size)
+                raise TypeError(f"values[{shown(key)}] must hold containers whose text is their type's (a subclass of "
+                                f"a list, tuple, set, mapping, NumPy array, Series, Index, table or pandas array must "
+                                f"not define {own}), got a {type(v).__name__}"
                                 + (f" inside {type(value).__name__}" if v is not value else ""))
         here = None
         if isinstance(v, _GLUE_CONTAINERS):
@@ -731,7 +787,12 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     (a ``datetime``'s ``isoformat`` makes its text), and a date-time's time zone is Python's, ``zoneinfo``'s,
     pytz's or dateutil's (its offset and name are printed); an Enum member's class may add methods, and keeps the
     ``__repr__``, ``__str__`` and ``__format__`` that ``enum.Enum``, ``StrEnum``, ``IntEnum`` or its mixed-in type
-    define (the package's option types are ``StrEnum`` classes, glued as their text). A Series' and an Index's labels
+    define (the package's option types are ``StrEnum`` classes, glued as their text). A container by the same rule:
+    one of Python's (``list``, ``tuple``, ``set``, ``frozenset``, ``dict``, ``OrderedDict``, ``defaultdict``,
+    ``Counter``, ``ChainMap``, ``UserDict``, ``MappingProxyType``), NumPy's, pandas' or this package's containers,
+    a NamedTuple whose text is the one ``collections.namedtuple`` makes, or a subclass of one of them that defines
+    no text method and overrides none of their attributes (a dict whose ``items`` hides a NaN its text prints),
+    also as an instance's method. A Series' and an Index's labels
     and names, a MultiIndex's levels and names, a table's (a Styler's table's) labels and the names of its rows and
     columns, and a categorical's categories are printed, and are atoms or containers by the same rule as a table's
     cells; a missing label or name (NaN, ``pd.NA``, ``NaT``, None) is printed as a word and accepted, a Series' as a
@@ -744,7 +805,8 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         container, a key of a mapping, a cell, label or name of a table, Series or Index) that is neither an atom
         (Notes), a DataFrame or Styler given as the value, nor one of the containers below (a deque,
         ``array.array``, dict view, generator or masked array: what it prints is not checked; an object whose text
-        is its address; a subclass of an atom type printing a text of its own, fuzz 52 C5), naming ``values[key]``.
+        is its address; a subclass of an atom type or of a container type printing a text of its own, fuzz 52 C5,
+        54a C1), naming ``values[key]``.
     ValueError
         A key that is not ASCII letters, digits, underscores and hyphens (``fig-chf-pso``; text that prints alike,
         ``é`` composed or decomposed, would be two keys: ``_glue_prefix``'s rule for the whole key, fuzz 36a D1).
