@@ -70,9 +70,15 @@ PREMISE_STUDY = ("the reseeding sweep's primaries of chf-premise-eps and chf-pre
 #: benchmark's, so its refusal names it by ``work``'s ``served``.
 ARCHITECTURE_STUDY = ("the reseeding sweep's primary of ci-fig4-convex-part at 10x runs (architecture_study, 2,000 runs "
                       "and 2,000 NEES runs)")
+#: The key of chapter 01's membership study (``fusion.book.chapters.ofs.studies.membership_study``: two scale sweeps,
+#: three membership families and the equal-weight ablation on the same draws, counted together at its entry, fuzz 54a
+#: C2): 1.47e9 units at the sweep's 5,000 runs (ran 22.1 CPU-s, niced on the shared machine).
+MEMBERSHIP_STUDY = ("the reseeding sweep's primaries of yang-membership-free and yang-weights-reasonable at 10x runs "
+                    "(membership_study, 5,000 runs)")
 STUDY_WORK: Mapping[str, int] = constant({TRACKING_STUDY: 26 * MAX_WORK, AWF_STUDY: 7 * MAX_WORK,
                                           REGIME_STUDY: 4 * MAX_WORK, READINGS_BENCHMARK: 3 * MAX_WORK,
-                                          PREMISE_STUDY: 9 * MAX_WORK, ARCHITECTURE_STUDY: 3 * MAX_WORK})
+                                          PREMISE_STUDY: 9 * MAX_WORK, ARCHITECTURE_STUDY: 3 * MAX_WORK,
+                                          MEMBERSHIP_STUDY: 3 * MAX_WORK})
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
 #: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).

@@ -201,7 +201,8 @@ _SERVED = {"TRACKING_STUDY": ("chf-equal-kl", "fusion.scenarios.range_bearing"),
            "REGIME_STUDY": ("lec-awf-adapts", "fusion.scenarios.lecture_weighting.regime"),
            "READINGS_BENCHMARK": ("lec-belief-accuracy", "fusion.scenarios.lecture_weighting.readings_benchmark"),
            "PREMISE_STUDY": ("chf-premise-eps", "fusion.book.chapters.chernoff.premise"),
-           "ARCHITECTURE_STUDY": ("ci-fig4-convex-part", "fusion.scenarios.two_sensor.architecture")}
+           "ARCHITECTURE_STUDY": ("ci-fig4-convex-part", "fusion.scenarios.two_sensor.architecture"),
+           "MEMBERSHIP_STUDY": ("yang-membership-free", "fusion.book._study_budget")}
 
 
 @pytest.mark.parametrize("key", sorted(_SERVED))
@@ -243,9 +244,9 @@ def test_study_work_is_twice_the_book_call_it_serves(key, monkeypatch):
     assert entry == -(-2 * counted[0] // L.MAX_WORK) * L.MAX_WORK
     assert counted[0] > L.MAX_WORK  # an entry only for a call beyond MAX_WORK
     # every entry serves a book call; an entry equal to another's is named by work()'s served (the architecture study
-    # shares the readings benchmark's 3e9), the others by their value
+    # and chapter 01's membership study share the readings benchmark's 3e9), the others by their value
     assert len(L.STUDY_WORK) == len(_SERVED)
-    assert len(set(L.STUDY_WORK.values())) == len(L.STUDY_WORK) - 1
+    assert len(set(L.STUDY_WORK.values())) == len(L.STUDY_WORK) - 2
 
 
 def test_the_tracking_study_entry_refuses_beyond_it():

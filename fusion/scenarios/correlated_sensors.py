@@ -378,6 +378,15 @@ def _coupling_case_units(N: int, runs: int, grid: int) -> int:
 _ESTIMATED_CASE_STEP = 75 * LOOP_STEP
 
 
+def _coupling_case_budget(N: int, runs: int, grid: int, where: str) -> int:
+    """Rules 9 and 17 of one case of :func:`coupling_study`: its N x ``runs`` draws within the input budget (z, the
+    fusions' input) and the memory budget (``_COUPLING_ARRAYS`` of them), naming ``where``; its units of work
+    (``_coupling_case_units``; a chapter study that runs it with others sums them, fuzz 54a C3)."""
+    input_allocation((N, runs), where)
+    allocation((N, runs), where, arrays=_COUPLING_ARRAYS)
+    return _coupling_case_units(N, runs, grid)
+
+
 @derived_inputs()
 def coupling_study(
     scenarios: Mapping[str, Mapping[str, Any]] | None = None,
@@ -445,10 +454,7 @@ def coupling_study(
 
     def count_case(case: _Case) -> None:
         nonlocal units
-        where = f"runs and the sensors of case {shown(case.name)}"
-        input_allocation((case.N, runs), where)  # z, the fusions' input
-        allocation((case.N, runs), where, arrays=_COUPLING_ARRAYS)
-        units += _coupling_case_units(case.N, runs, grid.size)
+        units += _coupling_case_budget(case.N, runs, grid.size, f"runs and the sensors of case {shown(case.name)}")
         work((units,), "scenarios (their sensors), runs and env_grid")
 
     cases = _scenarios(scenarios, count_case)

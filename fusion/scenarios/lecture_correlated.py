@@ -343,6 +343,18 @@ def _stacked_shape(N: int, runs: int) -> tuple[int, int]:
     return (2 * N, runs)
 
 
+def _correlated_budget(N: int, runs: int, names: str, dense_names: str) -> int:
+    """Rules 9 and 17 of :func:`correlated_study` on N sensors and ``runs`` runs, naming ``names`` (the draws and
+    the stacked readings) and ``dense_names`` (the dense algebra of R); its units (fuzz 54a C3)."""
+    allocation((2 * N, runs), names)
+    # the stacked readings z, (2N, runs), are the input of co.gls and its siblings, which refuse more than
+    # MAX_INPUT_ELEMENTS: refused here by the same shape, naming sigma and runs (fuzz 39a C2: 480 x 70,000 was
+    # refused by gls after the draws and the LDL algebra, naming every argument)
+    input_allocation(_stacked_shape(N, runs), names)
+    # rule 17 (fuzz 38a C5): R is 2N x 2N (LDL, GLS, Cholesky, eigvalsh), 0.5-0.9 ns a (2N)**3 measured (N = 300-2,000)
+    return dense_work(1, 2 * N, dense_names, 8 * DENSE_CUBE)
+
+
 @derived_inputs()
 def correlated_study(
     sigma: Sequence[float] = (1.0, 2.0, 3.0),
@@ -386,13 +398,7 @@ def correlated_study(
     sigma_env = std_scalar(sigma_env, "sigma_env")
     runs = count(runs, "runs", minimum=2)
     N = sig.size
-    allocation((2 * N, runs), "sigma and runs")
-    # the stacked readings z, (2N, runs), are the input of co.gls and its siblings, which refuse more than
-    # MAX_INPUT_ELEMENTS: refused here by the same shape, naming sigma and runs (fuzz 39a C2: 480 x 70,000 was
-    # refused by gls after the draws and the LDL algebra, naming every argument)
-    input_allocation(_stacked_shape(N, runs), "sigma and runs")
-    # rule 17 (fuzz 38a C5): R is 2N x 2N (LDL, GLS, Cholesky, eigvalsh), 0.5-0.9 ns a (2N)**3 measured (N = 300-2,000)
-    dense_work(1, 2 * N, "sigma", 8 * DENSE_CUBE)
+    _correlated_budget(N, runs, "sigma and runs", "sigma")
     if as_array(x, "x", ndim=1).size != 2:
         raise ValueError("x must have length 2")
     seed = _seed(seed)

@@ -166,6 +166,25 @@ class VectorStudy:
 
 
 @derived_inputs()
+def _plugin_memory(m: int, runs: int, names: str) -> None:
+    """Rule 9 of :func:`plugin_study`: the noise of every run, ``m x runs``, and the readings its estimators take
+    (fuzz 39a D1, class), naming ``names``."""
+    allocation((m, runs), names)
+    input_allocation((m, runs), names)
+
+
+def _plugin_work(n_xs: int, n_deltas: int, m: int, runs: int, names: str) -> int:
+    """Rule 17 of :func:`plugin_study`: three estimates per x, a loop step each of ``m x runs`` units, naming
+    ``names``; its units (a chapter study that runs it with others sums them, fuzz 54a C3)."""
+    return loop_work((n_xs, n_deltas + 3), m * runs, names)
+
+
+def _vector_work(n_scales: int, runs: int, names: str) -> int:
+    """Rule 17 of :func:`vector_study`: three fusions per scale and direction, ``60 x runs`` units a loop step,
+    naming ``names``; its units (fuzz 54a C3)."""
+    return loop_work((n_scales, 2), 60 * runs, names)
+
+
 def plugin_study(
     xs: Sequence[float] = (0.0, 0.25, 0.5, 1.0, 2.0, 3.0, 10.0),
     m: int = 5,
@@ -219,8 +238,7 @@ def plugin_study(
     m = count(m, "m", minimum=2)
     sigma = std_scalar(sigma, "sigma")
     runs = count(runs, "runs", minimum=2)
-    allocation((m, runs), "m and runs")  # the noise of every run
-    input_allocation((m, runs), "m and runs")  # and the readings y its estimators take (fuzz 39a D1, class)
+    _plugin_memory(m, runs, "m and runs")
     seed = check_seed(seed)
     cv = as_array(curve, "curve", ndim=1)
     if cv.size == 0:
@@ -233,7 +251,7 @@ def plugin_study(
         distinct_printed(vals.tolist(), name, glue_part)  # their digits (fuzz 30b, 31b)
     _plugin_range(xv, m, sigma, "xs, m and sigma")  # what the study's reader (plugin_exact) computes
     _plugin_deltas(dv, "deltas")
-    loop_work((xv.size, dv.size + 3), m * runs, "xs, deltas, m and runs")  # rule 17: three estimates per x
+    _plugin_work(xv.size, dv.size, m, runs, "xs, deltas, m and runs")
     delta = sigma / np.sqrt(m)
     H = np.ones(m)
     e = np.random.default_rng(seed).normal(size=(m, runs)) * sigma
@@ -297,7 +315,7 @@ def vector_study(
     if sc.size == 0 or np.any(sc <= 0):
         raise ValueError(f"scales must hold positive norms, got {sc}")
     distinct_printed(sc.tolist(), "scales", glue_part)  # results keyed by (direction, scale), glue keys by glue_part
-    loop_work((sc.size, 2), 60 * runs, "scales and runs")  # rule 17: three fusions per scale and direction
+    _vector_work(sc.size, runs, "scales and runs")
     spread = positive_scalar(spread, "spread")
     sig = as_array(sigma, "sigma", ndim=1)
     if sig.size != 3 or np.any(sig <= 0):

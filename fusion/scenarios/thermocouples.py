@@ -628,6 +628,12 @@ def _window_relation(values: Mapping[str, object], cls: str) -> None:
 
 
 @derived_inputs()
+def _scale_sweep_work(n_scales: int, n_runs: int, names: str) -> int:
+    """Rule 17 of :func:`scale_sweep`: a fusion-set pass per scale, ``n_runs x 100 x 10 x 10`` units a scale (a loop
+    step each), naming ``names``; its units (a chapter study that runs sweeps sums them, fuzz 54a C2)."""
+    return loop_work((n_scales,), n_runs * 100 * 10 * 10, names)
+
+
 def scale_sweep(
     seed: int,
     n_runs: int,
@@ -669,7 +675,7 @@ def scale_sweep(
         raise ValueError("scales must be a non-empty array of positive numbers")
     check_magnitude(grid, "scales")
     n_runs_ = count(n_runs, "n_runs")
-    loop_work((grid.size,), n_runs_ * 100 * 10 * 10, "scales and n_runs")  # rule 17: a fusion-set pass per scale
+    _scale_sweep_work(grid.size, n_runs_, "scales and n_runs")
     methods = {f"s{k}": {"method": "optimal_fusion_set", "scale": float(s)} for k, s in enumerate(grid)}
     if window is None:
         e = monte_carlo(seed, n_runs, methods, sigma=sigma, failure=failure)

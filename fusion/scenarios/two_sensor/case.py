@@ -17,6 +17,7 @@ from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_sem
                                 finite_result, grid_points, positive_scalar, psd_factor, std_scalar)
 from fusion._validation import LOOP_STEP, loop_work, work
 from fusion._limits import DENSE_CUBE, dense_work
+from fusion._counts import input_allocation
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence
 from fusion.filtering.tracks import LocalTrack, _named_track
 
@@ -256,6 +257,21 @@ class Scenario:
     __post_init__ = validated_post_init
 
 
+def _scenario_budget(runs: int, n_steps: int, names: str) -> int:
+    """Rules 9 and 17 of :func:`two_sensor_scenario` on ``runs`` runs of ``n_steps`` steps, naming ``names``; its units.
+
+    The memory of the states; the input budget of the central filter's stacked measurements ``(runs, n_steps, 4)``,
+    the largest array the scenario passes on (``filter_runs`` refused it, or a local track's ``(runs, n_steps, 2)``,
+    after the first track's draws and filter: 70,000 runs of 261 steps ran 3.1 CPU-s, then were refused naming every
+    argument, fuzz 54a D4); the work of two local filters, their gains and the centralised filter, about 0.5 us a
+    run and step measured (budget35: 1.6 CPU-s for 12,600 runs of 261 steps; with a memory budget only, 250,000 runs,
+    ~33 CPU-s, ran). A chapter study that runs several scenarios sums the units (fuzz 54a D4).
+    """
+    allocation((runs, n_steps, 4), names)
+    input_allocation((runs, n_steps, 4), names)
+    return work((runs, n_steps), names, weight=50)
+
+
 @derived_inputs()
 @finite_result("R_a, R_b, Q, T and velocity_sigma")
 @_PARAMS("velocity_sigma")
@@ -300,10 +316,7 @@ def two_sensor_scenario(
     runs = count(runs, "runs")
     traj, model = trajectory(T), cv_model(T)
     t, X, F, H = traj.t, traj.states, model.F, model.H
-    allocation((runs, t.size, 4), "runs and T")
-    # rule 17: two local filters, their gains and the centralised filter, about 0.5 us a run and step measured
-    # (budget35: 1.6 CPU-s for 12,600 runs of 261 steps); with a memory budget only, 250,000 runs (~33 CPU-s) ran
-    work((runs, t.size), "runs and T", weight=50)
+    _scenario_budget(runs, t.size, "runs and T")
     s2 = std_scalar(velocity_sigma, "velocity_sigma") ** 2
     tracks = []
     for name, R in (("R_a", R_a), ("R_b", R_b)):

@@ -176,6 +176,19 @@ def arch_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Architect
     return architecture_studies(R1, R2, Q, seeds, W_PUB, runs=count(runs, "runs"), nees_runs=runs, T=SOURCE_T)
 
 
+def _paired_budget(runs: int) -> int:
+    """Rules 9 and 17 of :func:`paired_study` before any study: the three scenarios of ``runs`` runs it simulates (the
+    anisotropic pair's, :func:`aniso_pair`, and the identical and unequal pairs' of ``paired_studies``), each by
+    ``two_sensor``'s own budget (``case._scenario_budget``), summed (``fusion.book._study_budget.studies_first``),
+    refused naming ``runs`` (fuzz 54a D4: 70,000 runs passed the first check, ran the anisotropic pair for 3.2 CPU-s
+    and were refused naming seven arguments)."""
+    from fusion.book._study_budget import studies_first
+    from fusion.scenarios.two_sensor.case import _scenario_budget
+
+    steps = two_sensor.trajectory(SOURCE_T).t.size
+    return studies_first([lambda: _scenario_budget(runs, steps, "runs")] * 3, "runs")
+
+
 @_study_cache
 def paired_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> PairedStudies:
     """:func:`paired_studies` on ``runs`` fresh runs of each pair, CI also at Fig. 6's two published weights (cached).
@@ -194,6 +207,7 @@ def paired_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> PairedStudies:
         runs.
     """
     seed = check_seed(seed)
+    _paired_budget(count(runs, "runs"))
     Q, R1, R2 = printed_covariances()
     seeds = tuple(study_seed(seed, s) for s in ("paired identical", "paired unequal", "random weights"))
     return paired_studies(R1, R2, Q, step_weights(seed), unequal_pair(seed), aniso_pair(seed, runs), runs=runs,

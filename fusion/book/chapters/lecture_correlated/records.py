@@ -4,6 +4,7 @@ the glue keys its texts reference.
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, TypeAlias
@@ -441,15 +442,49 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> Studies:
     def n(default: int) -> int:
         return default if runs is None else runs
 
-    p25 = rs.plugin_study(xs=(0.0, 0.25, 0.5, 1.0, 2.0, 3.0, 10.0), m=5, sigma=1.0, runs=n(4000), seed=seed + 11)
+    plugin = dict(xs=(0.0, 0.25, 0.5, 1.0, 2.0, 3.0, 10.0), m=5, sigma=1.0, runs=n(4000))
+    vector = dict(runs=n(2000), scales=(3.0, 30.0, 100.0))
+    correlated = dict(sigma=(1.0, 2.0, 3.0), sigma_env=1.5, runs=n(20000))
+    wide = {WIDE: WIDE_CASE}
+    _studies_budget(plugin, vector, correlated, (None, wide), n(20000))  # their sum, before any (fuzz 54a C3)
+    p25 = rs.plugin_study(**plugin, seed=seed + 11)
     return Studies(s25=lsc.ridge_study(xs=(0.5, 1.0, 3.0, 10.0), ms=(1, 5, 20, 100), m0=5, seed=seed + 1),
                    p25=p25, x25=plugin_exact(p25),
-                   v25=rs.vector_study(runs=n(2000), seed=seed + 12, scales=(3.0, 30.0, 100.0)),
-                   v25_well=rs.vector_study(runs=n(2000), seed=seed + 13, scales=(3.0, 30.0, 100.0), spread=1.0),
-                   s27=lsc.correlated_study(sigma=(1.0, 2.0, 3.0), sigma_env=1.5, runs=n(20000), seed=seed + 201),
+                   v25=rs.vector_study(**vector, seed=seed + 12),
+                   v25_well=rs.vector_study(**vector, seed=seed + 13, spread=1.0),
+                   s27=lsc.correlated_study(**correlated, seed=seed + 201),
                    cpl=cs.coupling_study(runs=n(20000), seed=seed + 211),
-                   cpl_wide=cs.coupling_study({WIDE: WIDE_CASE}, runs=n(20000), seed=seed + 213),
+                   cpl_wide=cs.coupling_study(wide, runs=n(20000), seed=seed + 213),
                    est=cs.estimated_covariance_study(ns=(10, 30), reps=400, seed=seed + 212))
+
+
+def _studies_budget(plugin: Mapping[str, Any], vector: Mapping[str, Any], correlated: Mapping[str, Any],
+                    coupling: tuple[Any, ...], coupling_runs: int) -> int:
+    """Rules 9 and 17 of :func:`cached_studies` before any study: every study whose size ``runs`` sets, by its own
+    budget functions, and their sum (``fusion.book._study_budget.studies_first``), refused naming ``runs``.
+
+    Each study checked its own budget when it started, so ``runs = 1,000,000`` ran them all (16 CPU-s), 2,700,000 ran
+    27 CPU-s to a raw MemoryError and 3,000,000 ran the plug-in study (11 CPU-s) before the coupling study refused it
+    naming ``scales and runs`` (fuzz 54a C3). Counted: the plug-in study's memory and loop (``ridge_sensors``'
+    ``_plugin_memory``, ``_plugin_work``, its default ``deltas``), the two vector studies (``_vector_work``), the
+    correlated study's memory and algebra (``lecture_correlated._correlated_budget``) and each case of the two coupling
+    studies (``correlated_sensors._coupling_case_budget`` at their default ``env_grid``). The ridge study and the
+    estimated-covariance study take no ``runs``: their fixed work is their own budget's."""
+    from fusion.book._study_budget import studies_first
+    from fusion.scenarios import correlated_sensors as cs
+    from fusion.scenarios import lecture_correlated as lsc
+    from fusion.scenarios import ridge_sensors as rs
+
+    defaults = inspect.signature(rs.plugin_study).parameters
+    n_deltas = len(defaults["deltas"].default)
+    grid = len(inspect.signature(cs.coupling_study).parameters["env_grid"].default)
+    parts = [lambda: rs._plugin_memory(plugin["m"], plugin["runs"], "runs"),
+             lambda: rs._plugin_work(len(plugin["xs"]), n_deltas, plugin["m"], plugin["runs"], "runs")]
+    parts += [lambda: rs._vector_work(len(vector["scales"]), vector["runs"], "runs")] * 2
+    parts += [lambda: lsc._correlated_budget(len(correlated["sigma"]), correlated["runs"], "runs", "runs")]
+    parts += [lambda c=c: cs._coupling_case_budget(c.N, coupling_runs, grid, f"runs (case {shown(c.name)})")
+              for scenarios in coupling for c in cs._scenarios(scenarios)]
+    return studies_first(parts, "runs")
 
 #: The records whose readings (built together) hold a paired comparison of ``runs`` runs without a reason: rule R4
 #: refuses each below ``MIN_RUNS`` runs, so :func:`_reading` does before the studies (fuzz 57c).

@@ -27,12 +27,13 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
-from fusion.book.chapters.ofs.readings import alpha_methods, family_mae, weight_ablation
+from fusion.book.chapters.ofs.readings import FAMILIES, alpha_methods, family_mae, weight_ablation
 from fusion.book.chapters.ofs.settings import METHODS, NOISE, FailureCase, _noise_key
 from fusion.book.glue import GlueValues
 from fusion._docstrings import ParameterDocs
 from fusion._counts import allocation, count
-from fusion._limits import recorded_as
+from fusion._limits import MAX_WORK, MEMBERSHIP_STUDY, STUDY_WORK, recorded_as, work
+from fusion.book._study_budget import studies_first
 
 __all__ = [
     "FaultyMembership",
@@ -62,6 +63,33 @@ def _runs(runs: object) -> int:
     arguments (``n_runs, n_samples and n_sensors``), not this module's ``runs``."""
     runs = count(runs, "runs")
     allocation((runs, *_RUN_SHAPE), "runs")
+    return runs
+
+
+#: The one method these studies fuse their own draws with (``fuse_epochs``).
+_OFS = ({"method": "optimal_fusion_set"},)
+#: The samples 50-80 of the failure window, the epochs fused by the studies of the failure.
+_WINDOW_EPOCHS = 31
+
+
+def _fused_runs(runs: object, fused: tuple[tuple[int, int], ...] = ((_RUN_SHAPE[0], 1),), sweeps: int = 0,
+                limit: int = MAX_WORK, served: str | None = None) -> int:
+    """``runs`` of a study that draws ``runs`` runs and fuses them itself, refused by name before the draws when
+    what it runs together is beyond a budget (fuzz 54a C2: only the draws' memory was checked, so ``runs`` up to
+    268,435 drew and ran for 8-11 CPU-s before ``fuse_epochs``' input budget, at most 33,554 runs of 100 epochs,
+    refused naming ``x`` or ``z``).
+
+    Counted by the callees' own budget functions, summed (``fusion.book._study_budget.studies_first``): the draws at
+    ``thermocouples``' ``_PAIRED_READING`` units a reading; per ``(epochs, passes)`` of ``fused``, ``passes``
+    ``fuse_epochs`` of ``runs x epochs`` epochs of 10 readings (``thermocouples._methods_work``: its input and kernel
+    limits, ``epochs_limit``, and its measured units); ``sweeps`` ``scale_sweep`` calls of :data:`SCALES`
+    (their own ``_scale_sweep_work``); the sum within ``limit`` (``served``: its ``STUDY_WORK`` key)."""
+    runs = _runs(runs)
+    n = _RUN_SHAPE[1]
+    parts = [lambda: work((runs, *_RUN_SHAPE), "runs", weight=thermocouples._PAIRED_READING)]
+    parts += [lambda e=e, k=k: thermocouples._methods_work(runs * e, n, _OFS, "runs", fusions=k) for e, k in fused]
+    parts += [lambda: thermocouples._scale_sweep_work(len(SCALES), runs, "runs")] * sweeps
+    studies_first(parts, "runs", limit, served)
     return runs
 
 
@@ -175,7 +203,10 @@ def membership_study(seed: int, runs: int) -> MembershipStudy:
         Without and with the failure: the MAE by scale, by family and with equal weights.
     """
     seed = check_seed(seed)
-    runs = _runs(runs)
+    # the ablation's and each family's fuse_epochs (family_values fuses once a family), with and without the failure
+    fusions = 1 + len(FAMILIES)
+    runs = _fused_runs(runs, ((_RUN_SHAPE[0], fusions), (_WINDOW_EPOCHS, fusions)), sweeps=2,
+                       limit=STUDY_WORK[MEMBERSHIP_STUDY], served=MEMBERSHIP_STUDY)
     return _membership_study(seed, runs)
 
 
@@ -283,7 +314,7 @@ def weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy
         member.
     """
     seed = check_seed(seed)
-    runs = _runs(runs)
+    runs = _fused_runs(runs)
     return _weight_study(seed, runs, flag(include_self, "include_self"))
 
 
@@ -312,7 +343,7 @@ def not_neighbourhood_share(seed: int, runs: int, noise: str = "unequal") -> flo
         The fraction, in [0, 1], of all epochs at which a dropped reading lies nearer 900 °C than a kept one.
     """
     seed = check_seed(seed)
-    runs = _runs(runs)
+    runs = _fused_runs(runs)
     rng = np.random.default_rng(seed)
     z = thermocouples.simulate(rng, sigma=NOISE[_noise_key(noise)], n_runs=runs).reshape(-1, 10)
     m = rd.fuse_epochs(z, "optimal_fusion_set").members
@@ -365,7 +396,7 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
         share of the epochs 50-80 that are faulty.
     """
     seed = check_seed(seed)
-    runs = _runs(runs)
+    runs = _fused_runs(runs, ((_WINDOW_EPOCHS, 1),))
     failure = one_of(failure, thermocouples.FAILURE_MODES, "failure")
     sig = np.broadcast_to(np.asarray(NOISE[_noise_key(noise)], float), (10,))
     rng = np.random.default_rng(seed)
@@ -485,7 +516,7 @@ def healthy_dropped_share(seed: int, runs: int, noise: str = "unequal") -> dict[
         epochs 50-80; ``"epochs"``: number of epochs judged.
     """
     seed = check_seed(seed)
-    runs = _runs(runs)
+    runs = _fused_runs(runs, ((_WINDOW_EPOCHS, 2),))
     rng = np.random.default_rng(seed)
     z = thermocouples.simulate(rng, sigma=NOISE[_noise_key(noise)], n_runs=runs)
     zf = thermocouples.random_failure(z, rng, "fixed")

@@ -166,6 +166,7 @@ from fusion._counts import seed as check_seed
 from fusion._counts import count
 from fusion._validation import std_scalar
 from fusion._limits import work
+from fusion.book._study_budget import studies_first
 
 _robustness.RegistrationStudy = RegistrationStudy  # type: ignore[attr-defined]
 
@@ -227,6 +228,26 @@ _STUDY_CALLS = 19
 _STUDY_WEIGHT = 2
 
 
+#: The methods of :func:`study`'s robustness readings (Fig. 4's and least squares) and of its fair §3 readings.
+_FIG4_ROBUST = list(FIG4) + [RegMethod.LEAST_SQUARES]
+_FAIR = [S3, RegMethod.THREE_POINT_EXTRAPOLATION, RegMethod.LEAST_SQUARES]
+
+
+def _study_work(runs: int, n_dst: int, names: str, readings: str, times: str) -> int:
+    """Rule 17 of :func:`study` on ``runs`` runs and ``n_dst`` instants of ``t2``, before its first run; its units.
+
+    The whole study (fuzz 26d DB6: each Monte Carlo within the budget, the study ran minutes), measured as
+    ``_STUDY_CALLS`` Monte Carlos of every study method (10.4 CPU-s at 1e5 runs, one of them 0.56 s), refused from
+    about 8.8e4 runs (the chapter runs 1,000), naming ``names``; and the readings on ``t2``'s instants (the start-up,
+    fair and real-time ones), by ``monte_carlo``'s own rule (fuzz 28b C4: t2 was not counted, 20,000 instants ran
+    17 s at 2 runs, refused inside as ``t_dst``), naming ``readings`` (their runs) or ``times``.
+    """
+    units = work((runs, sc.instants()[0].size, len(STUDY_METHODS), _STUDY_CALLS), names, weight=_STUDY_WEIGHT)
+    sc._monte_carlo_work(_FIG4_ROBUST + 2 * _FAIR + [CAUSAL_IMPROVED, EXTRAP], runs, sc.instants()[0].size, n_dst,
+                         readings, times)
+    return units
+
+
 def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> RegistrationStudy:
     """Every Monte-Carlo study the ledger needs, each reading at the primary's ``runs`` (rule R4).
 
@@ -273,17 +294,9 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
     if sigma != _FAIR_SIGMA and general(sigma) == general(_FAIR_SIGMA):  # s3_fair's readings keyed by _key (fuzz 30b)
         raise ValueError(f"sigma must be {_FAIR_SIGMA:g} m or differ from it to 6 significant digits (the fair §3 "
                          f"reading at {_FAIR_SIGMA:g} m and at sigma are keyed by the printed level)")
-    # rule 17 for the whole study, before its first run (fuzz 26d DB6: each Monte Carlo within the budget, the study
-    # ran minutes): measured as _STUDY_CALLS Monte Carlos of every study method (10.4 CPU-s at 1e5 runs, one of them
-    # 0.56 s), refused from about 8.8e4 runs (the chapter runs 1,000)
-    work((runs, sc.instants()[0].size, len(STUDY_METHODS), _STUDY_CALLS), "runs", weight=_STUDY_WEIGHT)
+    _study_work(runs, t2.size, "runs", "runs and t2", "t2")
     names = list(STUDY_METHODS)
-    fig4 = list(FIG4) + [RegMethod.LEAST_SQUARES]
-    # and the readings on t2's instants (the start-up, fair and real-time ones), by monte_carlo's own rule, before any
-    # run (fuzz 28b C4: t2 was not counted, 20,000 instants ran 17 s at 2 runs, refused inside as t_dst)
-    fair = [S3, RegMethod.THREE_POINT_EXTRAPOLATION, RegMethod.LEAST_SQUARES]
-    sc._monte_carlo_work(fig4 + 2 * fair + [CAUSAL_IMPROVED, EXTRAP], runs, sc.instants()[0].size, t2.size,
-                         "runs and t2", "t2")
+    fig4, fair = list(_FIG4_ROBUST), list(_FAIR)
     return RegistrationStudy(
         t1=t1, t2=t2, sigma=float(sigma),
         mc=sc.monte_carlo(names, sigma, runs, seed),
@@ -334,7 +347,13 @@ def cached_study(seed: int, runs: int) -> RegistrationStudy:
     """
     seed = check_seed(seed)
     t1, t2 = sc.instants()
-    st = study(t1, t2, PRIMARY_SIGMA, runs, seed)
     fused = [IMPROVED, TWO, S3, RegMethod.LEAST_SQUARES]
+    # rule 17 on the study and the fusion runs together, before either (fuzz 54a C4: the study's own check passed up
+    # to 87,719 runs, then fusion_runs refused beyond 20,000 after the study ran, 8-10 CPU-s): each by its own budget
+    # function, summed
+    runs = count(runs, "runs")
+    studies_first([lambda: _study_work(runs, t2.size, "runs", "runs", "runs"),
+                   lambda: sc._fusion_runs_work(fused, runs, t1.size, t2.size, "runs", "runs")], "runs")
+    st = study(t1, t2, PRIMARY_SIGMA, runs, seed)
     return dataclasses.replace(st, fusion=sc.fusion_runs(fused, PRIMARY_SIGMA, runs,
                                                          seed + 49))
