@@ -6,6 +6,8 @@
 - :func:`cached_study`, :data:`CACHE_CALLS`, :func:`study_entry`: a tiny study behind the study cache and its entry
   on disk (the cache's damaged-entry tests).
 - :func:`parsed`: a source file's syntax tree, parsed once per process (the source-scanning tests).
+- :func:`glue_refused`, :func:`glued`: ``glue_all`` refusing a mapping quickly, or what it hands to ``myst_nb.glue``
+  (the glue tests).
 """
 
 from __future__ import annotations
@@ -129,3 +131,25 @@ class ShrinkingLen(Sequence):
 
     def __getitem__(self, i):
         return self.items[i]
+
+
+def glue_refused(values: dict, error: type, match: str = r"values\['k'\]") -> None:
+    """``glue_all(values)`` raises ``error`` matching ``match`` within 1 CPU-s (a refusal before any work)."""
+    import time
+
+    from fusion.book.glue import glue_all
+    t = time.process_time()
+    with pytest.raises(error, match=match):
+        glue_all(values)
+    assert time.process_time() - t < 1.0
+
+
+def glued(monkeypatch: pytest.MonkeyPatch, values: dict) -> dict:
+    """What ``glue_all(values)`` hands to ``myst_nb.glue``, by key (``myst_nb.glue`` replaced for the test)."""
+    import myst_nb
+
+    from fusion.book.glue import glue_all
+    got: dict = {}
+    monkeypatch.setattr(myst_nb, "glue", lambda k, v, display=True: got.__setitem__(k, v))
+    glue_all(values)
+    return got

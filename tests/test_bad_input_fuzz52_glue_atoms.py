@@ -14,6 +14,7 @@ import pandas as pd
 import pytest
 from pandas.io.formats.style import Styler
 
+from _helpers import glue_refused, glued
 from fusion.book.glue import glue_all
 
 
@@ -21,19 +22,8 @@ class _Opaque:
     """An object whose text is its address."""
 
 
-def _refused(values: dict, error: type, match: str = r"values\['k'\]") -> None:
-    t = time.process_time()
-    with pytest.raises(error, match=match):
-        glue_all(values)
-    assert time.process_time() - t < 1.0
-
-
-def _glued(monkeypatch: pytest.MonkeyPatch, values: dict) -> dict:
-    import myst_nb
-    got: dict = {}
-    monkeypatch.setattr(myst_nb, "glue", lambda k, v, display=True: got.__setitem__(k, v))
-    glue_all(values)
-    return got
+_refused = glue_refused
+_glued = glued
 
 
 def _columns_named(label: object) -> pd.DataFrame:

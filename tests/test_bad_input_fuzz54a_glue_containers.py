@@ -12,22 +12,15 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from _helpers import glue_refused, glued
 from fusion.book.glue import glue_all
 
 
 def _refused(values: dict, match: str = r"values\['k'\]") -> None:
-    t = time.process_time()
-    with pytest.raises(TypeError, match=match):
-        glue_all(values)
-    assert time.process_time() - t < 1.0
+    glue_refused(values, TypeError, match)
 
 
-def _glued(monkeypatch: pytest.MonkeyPatch, values: dict) -> dict:
-    import myst_nb
-    got: dict = {}
-    monkeypatch.setattr(myst_nb, "glue", lambda k, v, display=True: got.__setitem__(k, v))
-    glue_all(values)
-    return got
+_glued = glued
 
 
 def _text(self, *args):   # a text method printing nan (also as _repr_pretty_(p, cycle): it prints nothing)
