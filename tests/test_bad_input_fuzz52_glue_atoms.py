@@ -15,7 +15,6 @@ import pytest
 from pandas.io.formats.style import Styler
 
 from _helpers import glue_refused, glued
-from fusion.book.glue import glue_all
 
 
 class _Opaque:

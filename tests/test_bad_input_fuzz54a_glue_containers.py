@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import collections
 import random
-import time
 import types
 import typing
 
@@ -13,7 +12,6 @@ import pandas as pd
 import pytest
 
 from _helpers import glue_refused, glued
-from fusion.book.glue import glue_all
 
 
 def _refused(values: dict, match: str = r"values\['k'\]") -> None:
