@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import shutil
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from fusion._validation import _numeric, as_array
+from fusion.book import _parsed_claims, claims
 
 
 def _read_only(a: np.ndarray) -> np.ndarray:
@@ -32,3 +36,31 @@ def test_a_plain_float_array_is_copied_never_shared(make) -> None:  # noqa: ANN0
 def test_the_fast_path_keeps_every_refusal(bad, error) -> None:  # noqa: ANN001
     with pytest.raises(error, match=r"^x "):
         as_array(bad, "x")
+
+
+def test_a_claim_file_parsed_again_is_the_same_and_unshared(tmp_path: Path) -> None:
+    src = claims.claims_dir() / "shi2023time.yaml"
+    first = claims.load(src)
+    assert src.read_text(encoding="utf-8") in _parsed_claims._KEPT          # kept by its text
+    second = claims.load(src)
+    assert second == first and second.records == first.records and second.quantities is not first.quantities
+    # the same text under another name: the file's own name and path
+    other = tmp_path / "other.yaml"
+    shutil.copy(src, other)
+    third = claims.load(other)
+    assert third.path == other and third.records == first.records
+    # a caller's edit of its document never reaches a later load
+    kept = _parsed_claims.kept(src.read_text(encoding="utf-8"))
+    kept["records"].clear()
+    assert claims.load(src).records == first.records
+
+
+def test_a_changed_claim_file_is_parsed_again(tmp_path: Path) -> None:
+    src = claims.claims_dir() / "shi2023time.yaml"
+    path = tmp_path / "shi2023time.yaml"
+    text = src.read_text(encoding="utf-8")
+    path.write_text(text, encoding="utf-8")
+    claims.load(path)
+    path.write_text(text + "\nsource: again\n", encoding="utf-8")   # a repeated key: refused, not the kept document
+    with pytest.raises(claims.ClaimsFileError, match="repeated key"):
+        claims.load(path)
