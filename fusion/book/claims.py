@@ -63,7 +63,7 @@ from fusion.book._claim_text import text_problem as _text_problem  # the text ru
 from fusion.book._claim_text import format_problem as _format_problem, texts_work  # fuzz 53a C1: texts' budget
 from fusion.book._claim_yaml import _UniqueKeyLoader  # PyYAML's safe loader, refusing repeated keys
 from fusion._frozen import constant, freeze_arrays, frozen_value, restore_frozen
-from fusion.book import rulebook as R
+from fusion.book import _parsed_claims, rulebook as R
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger.claim import _ID  # a record's id: the schema's pattern, ClaimSpec's and Claim's check
 from fusion.book.ledger.evidence import _KIND_OF_TEST
@@ -716,13 +716,16 @@ def load(path: Path | str) -> ClaimsFile:
         raw = raw.replace("\r\n", "\n").replace("\r", "\n")   # universal newlines, as read_text
     except UnicodeDecodeError as e:
         raise ValueError(f"path {shown(str(path))} is not UTF-8 text ({e.reason} at byte {e.start})") from None
-    try:
-        doc = yaml.load(raw, Loader=_UniqueKeyLoader)  # noqa: S506 - a SafeLoader that refuses repeated keys
-    except yaml.YAMLError as e:
-        raise ClaimsFileError(f"{path.name}: not valid YAML ({e})") from None
-    except RecursionError:  # PyYAML composes and constructs recursively
-        raise ClaimsFileError(f"{path.name}: not valid YAML (nested more than {_MAX_DEPTH} deep)") from None
-    _check_depth(doc, path.name)
+    doc = _parsed_claims.kept(raw)  # a text parsed before: a copy of its document (speed58)
+    if doc is None:
+        try:
+            doc = yaml.load(raw, Loader=_UniqueKeyLoader)  # noqa: S506 - a SafeLoader that refuses repeated keys
+        except yaml.YAMLError as e:
+            raise ClaimsFileError(f"{path.name}: not valid YAML ({e})") from None
+        except RecursionError:  # PyYAML composes and constructs recursively
+            raise ClaimsFileError(f"{path.name}: not valid YAML (nested more than {_MAX_DEPTH} deep)") from None
+        _check_depth(doc, path.name)
+        _parsed_claims.keep(raw, doc)
     errors = sorted(jsonschema.Draft202012Validator(_PLAIN_SCHEMA).iter_errors(doc), key=lambda e: list(e.absolute_path))
     if errors:
         e = errors[0]

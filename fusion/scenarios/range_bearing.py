@@ -307,11 +307,20 @@ def _check_runs(runs: object, nonempty: bool, sc: object = _NO_SCENARIO, *, name
     if out:  # rule 17 (fuzz 38a C8): the readers' loops over the runs, 136-146 us a run and 2 us a frame measured
         loop_work((len(out),), 200 * np.shape(out[0].truth)[0], name, step=14 * LOOP_STEP)
     own = next((r.scenario for r in out if r.scenario is not None), None)
+    # each scenario object's unguarded copy built once, not twice a run (speed58: the runs of a study share one
+    # scenario; 71,000 copies, each validated again, were a fifth of chapter 06's notebook): the same comparisons
+    unguarded: dict[int, RangeBearingScenario] = {}
+
+    def bare(s: RangeBearingScenario) -> RangeBearingScenario:
+        if id(s) not in unguarded:
+            unguarded[id(s)] = _unguarded(s)
+        return unguarded[id(s)]
+
     for i, r in enumerate(out):
         if r.scenario is not None and not isinstance(r.scenario, RangeBearingScenario):
             raise TypeError(f"{name}[{i}].scenario must be a RangeBearingScenario or None, "
                             f"got {type(r.scenario).__name__}")
-        if r.scenario is not None and own is not None and _unguarded(r.scenario) != _unguarded(own):
+        if r.scenario is not None and own is not None and bare(r.scenario) != bare(own):
             raise ValueError(f"{name}[{i}] was computed with another scenario than the runs before it (they differ "
                              f"in {_differences(r.scenario, own)}): the runs must be of one scenario")
         shape = (np.shape(r.truth)[0], np.shape(r.gm_loglik)[-1])
