@@ -262,19 +262,21 @@ def registry() -> dict[str, dict[str, A]]:
     # ---- evidence functions
     sc = o["sc"]
     scA = A(sc, ("str",))
-    R[c + "ev_tracking"] = dict(settings=A({"a": "chernoff_pso", "b": "chernoff_uniform"}, ("str", ("None", None), ("a list", []), ("a key missing", {"a": "chernoff_pso"}), ("unknown method", {"a": "chernoff_pso", "b": "nope"}),
+    # settings None is no settings, the one rule of every chapter's readers (fusion.book._reader_settings,
+    # fix58b): not a mutation here
+    R[c + "ev_tracking"] = dict(settings=A({"a": "chernoff_pso", "b": "chernoff_uniform"}, ("str", ("a list", []), ("a key missing", {"a": "chernoff_pso"}), ("unknown method", {"a": "chernoff_pso", "b": "nope"}),
                                                                                            ("a method against itself", {"a": "chernoff_pso", "b": "chernoff_pso"}),
                                                                                            ("NEES of a method without a covariance", {"a": "mean_of_local_means", "b": "chernoff_pso", "metric": "nees"}))),
                                 seed=A(1, SEED), runs=A(3, CNT), sc=scA)
-    R[c + "ev_pso"] = dict(settings=A({"check": "within-se"}, ("str", ("None", None), ("a list", []), ("unknown check", {"check": "vibes"}))),
+    R[c + "ev_pso"] = dict(settings=A({"check": "within-se"}, ("str", ("a list", []), ("unknown check", {"check": "vibes"}))),
                            seed=A(1, SEED), runs=A(3, CNT), sc=scA)
     for fn, st in (("ev_formulas", {}), ("ev_common_once", {}), ("ev_gaussian_ci", {"statement": "ci"}), ("ev_first_order", {}),
                    ("ev_peer", {})):
-        R[c + fn] = dict(settings=A(st, ("str", ("None", None), ("a list", []), ("unknown key", {**st, "nope": 1}))), seed=A(1, SEED), runs=A(3, CNT))
-    R[c + "ev_is"] = dict(settings=A({"r": 50}, ("str", ("None", None), ("a list", []), ("r zero", {"r": 0}), ("unknown key", {"r": 50, "nope": 1}))),
+        R[c + fn] = dict(settings=A(st, ("str", ("a list", []), ("unknown key", {**st, "nope": 1}))), seed=A(1, SEED), runs=A(3, CNT))
+    R[c + "ev_is"] = dict(settings=A({"r": 50}, ("str", ("a list", []), ("r zero", {"r": 0}), ("unknown key", {"r": 50, "nope": 1}))),
                           seed=A(1, SEED), runs=A(3, CNT))
-    R[c + "ev_equal_kl"] = dict(settings=A({}, ("str", ("None", None), ("a list", []), ("unknown key", {"nope": 1}))), seed=A(1, SEED), runs=A(3, CNT), sc=scA)
-    R[c + "ev_filter_design"] = dict(settings=A({"reading": "plain"}, ("str", ("None", None), ("a list", []), ("unknown reading", {"reading": "nope"}))),
+    R[c + "ev_equal_kl"] = dict(settings=A({}, ("str", ("a list", []), ("unknown key", {"nope": 1}))), seed=A(1, SEED), runs=A(3, CNT), sc=scA)
+    R[c + "ev_filter_design"] = dict(settings=A({"reading": "plain"}, ("str", ("a list", []), ("unknown reading", {"reading": "nope"}))),
                                      seed=A(1, SEED), runs=A(2, CNT), sc=scA)
     R[c + "referenced"] = dict(values=A({"chf_runs": 3, "nope": 1}, ("str", ("None", None), ("a list", []))))
     R[c + "ledger_values"] = dict(led=A(Ledger(chc.BIBKEY), ("str", ("None", None), ("another result", o["toy"]), ("another source's ledger", Ledger("lecture003")))))
