@@ -27,7 +27,7 @@ import numpy as np
 
 from fusion._validation import seed as check_seed, workers as check_workers
 from fusion._validation import flag
-from fusion._limits import STUDY_WORK, TRACKING_STUDY
+from fusion._limits import MAX_WORK, STUDY_WORK, TRACKING_STUDY
 from fusion.estimates.chernoff._product import product_size
 from fusion._guards import own_underflow
 from fusion._validation import (FloatArray, LOOP_STEP, allocation, as_array, count, instance_of, loop_work, one_of,
@@ -196,12 +196,14 @@ def run_tracking_batch(
 _BLOCK_HELD = 8
 
 
-def _block_allocation(sc: RangeBearingScenario, runs: int, names: str) -> None:
-    """Refuse (rule 9) a tracking study whose particle clouds exceed the memory budget: one run's frames, and the
-    :data:`_BLOCK_HELD` arrays of a block of ``min(runs, RUN_BLOCK)`` runs, each of ``max(n_initial, n_particles)``
-    particles per node; ``names`` are the arguments setting the block's size."""
+def _block_allocation(sc: RangeBearingScenario, runs: int, names: str, frames: int | None = None,
+                      frames_names: str = "sc.frames, sc.sensors and sc.n_particles") -> None:
+    """Refuse (rule 9) a tracking study whose particle clouds exceed the memory budget: one run's ``frames`` frames
+    (default ``sc.frames``; ``frames_names`` the arguments setting them), and the ``_BLOCK_HELD`` arrays of a block
+    of ``min(runs, RUN_BLOCK)`` runs, each of ``max(n_initial, n_particles)`` particles per node; ``names`` are the
+    arguments setting the block's size."""
     n0, n_nodes = max(int(sc.n_initial), int(sc.n_particles)), len(sc.sensors)
-    allocation((int(sc.frames), n_nodes, n0, 4), "sc.frames, sc.sensors and sc.n_particles")
+    allocation((int(sc.frames) if frames is None else int(frames), n_nodes, n0, 4), frames_names)
     allocation((_BLOCK_HELD, min(int(runs), RUN_BLOCK), n_nodes, n0, 4), names)
 
 
@@ -234,6 +236,52 @@ TRACK_SWARM_PAIR = 1
 TRACK_WORK = STUDY_WORK[TRACKING_STUDY]
 
 
+#: Units of one frame of a run's set-up that ``_run_up_to`` does not step (its target simulated and its records
+#: allocated over all ``sc.frames`` from the start; a stepped frame's share is inside :data:`TRACK_STEP`): measured
+#: 2.9-3.6 us a frame (``_Batch`` of one run of 20,000 frames, 1 to 8 sensors; 2.6 CPU-s for ``frame_clouds`` at frame
+#: 0 of 700,000 frames; OPENBLAS_NUM_THREADS=1, shared machine, minimum of two), so 400 units (fuzz 54b C2). The
+#: records' memory (``_frame_records``) binds first: about 740,000 frames of three sensors.
+TRACK_RECORD = 400
+
+
+def _frame_records(sc: RangeBearingScenario) -> int:
+    """Float64 numbers a run's records hold per frame of ``sc.frames`` (``_Batch``: each method's estimate and
+    covariance, 20; exponents, ESS, log-likelihoods, node estimates and measurements, 16 a sensor; with ``readings``
+    the swarm's trace, twice the default swarm's iterations + 1, and 20 a sensor): measured with tracemalloc (one run
+    of 20,000 frames set up and one frame stepped) 279, 353 and 538 numbers a frame for 1, 3 and 8 sensors
+    (292, 364 and 544 counted), 521 and 820 with ``readings`` for 3 and 8 sensors (586 and 866 counted)."""
+    n = len(sc.sensors)
+    readings = 2 * (SwarmOptions().iterations + 1) + 20 * n if sc.readings else 0
+    return 20 * len(method_keys(n, bool(sc.readings))) + 16 * n + 16 + readings
+
+
+def _one_run_checks(sc: RangeBearingScenario, frame: int) -> int:
+    """The checks of :func:`run_tracking_batch` for one run stepped to ``frame`` (0-based) by ``_run_up_to``:
+    its particle clouds (``_block_allocation`` over ``frame + 1`` frames), its records over all ``sc.frames``
+    (``_frame_records``) and its work (``_tracking_work`` of ``frame + 1`` frames, held to
+    ``fusion._limits.MAX_WORK``: the book's own call, one run of ten frames of the study, counts 1.4e7 units), naming
+    ``sc``'s fields and ``frame``, before any work; returns the units."""
+    _block_allocation(sc, 1, "sc.sensors and sc.n_particles", frames=frame + 1,
+                      frames_names="frame, sc.sensors and sc.n_particles")
+    allocation((int(sc.frames), _frame_records(sc)), "sc.frames, sc.sensors and sc.readings")
+    return _tracking_work(sc, 1, "frame, sc.frames, sc.sensors, sc.n_initial, sc.n_components and sc's particle and "
+                          "sample counts", frames=frame + 1, limit=MAX_WORK)
+
+
+@own_underflow  # as run_tracking_batch: a far particle's weight underflows to zero by design
+def _run_up_to(sc: RangeBearingScenario, seed: np.random.SeedSequence, frame: int) -> _Batch:
+    """One run of :func:`run_tracking_batch`'s runner (its streams spawned from ``seed``), stepped to ``frame``
+    (0-based, below ``sc.frames``), for a caller that reads the runner's state
+    (``fusion.book.chapters.chernoff_scaling.frame_clouds``): ``_one_run_checks`` first, so that no public entry
+    to the runner skips the study's checks (fuzz 54b C2: ``frame_clouds`` built the runner directly, 20-45 CPU-s
+    before a refusal naming no argument, or none)."""
+    _one_run_checks(sc, frame)
+    batch = _Batch(sc, [_run_streams(seed)], [False], None)
+    for k in range(frame + 1):
+        batch.frame(k)
+    return batch
+
+
 def _swarm_units(sc: RangeBearingScenario, swarm_options: SwarmOptions) -> int:
     """The units of a run-frame's particle swarm under ``swarm_options`` beyond the default swarm's (which
     :data:`TRACK_STEP` holds): :data:`TRACK_SWARM_STEP` a generation plus :data:`TRACK_SWARM_PAIR` a particle and
@@ -243,14 +291,20 @@ def _swarm_units(sc: RangeBearingScenario, swarm_options: SwarmOptions) -> int:
     return max(units(swarm_options) - units(SwarmOptions()), 0)
 
 
-def _tracking_work(sc: RangeBearingScenario, runs: int, names: str, swarm_options: SwarmOptions | None = None) -> int:
+def _tracking_work(sc: RangeBearingScenario, runs: int, names: str, swarm_options: SwarmOptions | None = None,
+                   frames: int | None = None, limit: int = TRACK_WORK) -> int:
     """Refuse (rule 17) a tracking study of ``runs`` runs of ``sc`` whose work is beyond :data:`TRACK_WORK`, before
     any work: ``runs x sc.frames`` run-frames of :data:`TRACK_STEP` units plus :data:`TRACK_ELEMENT` units per
     particle-element, :data:`TRACK_FUSIONS` fusions of the nodes' product mixture, and the first frame's particles
     beyond ``n_particles`` (``n_initial``, :data:`TRACK_INITIAL` units each) spread over the frames (``names`` are the
     caller's arguments setting them; the product's memory refused naming them too), and a costlier swarm than the
-    default (``swarm_options``: :func:`_swarm_units` a run-frame, named with ``names``); returns the units."""
-    sensors, frames = len(sc.sensors), int(sc.frames)
+    default (``swarm_options``: ``_swarm_units`` a run-frame, named with ``names``); returns the units.
+    ``frames``: the frames each run steps (default ``sc.frames``; fewer for ``_run_up_to``, whose run still sets up
+    its target and records over all ``sc.frames``, :data:`TRACK_RECORD` units each frame it does not step, spread over
+    the stepped frames as the first frame's particles are); ``limit``: the budget (default :data:`TRACK_WORK`)."""
+    sensors = len(sc.sensors)
+    frames = int(sc.frames) if frames is None else int(frames)
+    unstepped = TRACK_RECORD * (int(sc.frames) - frames)
     elements = (sensors * int(sc.n_particles) * (1 + int(sc.em_iterations) * int(sc.n_components))
                 + int(sc.n_samples) + int(sc.n_central))
     tuples, per = product_size(min(int(runs), RUN_BLOCK), sensors, int(sc.n_components), 4, names)
@@ -258,9 +312,9 @@ def _tracking_work(sc: RangeBearingScenario, runs: int, names: str, swarm_option
     swarm = 0 if swarm_options is None else _swarm_units(sc, swarm_options)
     if swarm:
         names += ", swarm_options.iterations and swarm_options.n_particles"
-    return work((int(runs), frames), names, limit=TRACK_WORK,
-                weight=TRACK_STEP + TRACK_ELEMENT * elements + TRACK_FUSIONS * tuples * per + -(-initial // frames)
-                + swarm)
+    return work((int(runs), frames), names, limit=limit,
+                weight=TRACK_STEP + TRACK_ELEMENT * elements + TRACK_FUSIONS * tuples * per
+                + -(-(initial + unstepped) // frames) + swarm)
 
 
 # --------------------------------------------------------------------------- Monte-Carlo study

@@ -711,6 +711,14 @@ def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, f
     FrameClouds
         Sensor positions, the true path up to ``frame``, the nodes' particles and the fused and centralised estimates
         there.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, named; ``sc``'s counts and ``frame`` beyond the memory budget or the work budget
+        (``fusion._validation.MAX_WORK``) of one run of ``frame + 1`` frames (set up over ``sc.frames``), before any
+        work, as :func:`fusion.scenarios.range_bearing.run_tracking_batch` refuses a study. ``runs`` costs nothing:
+        only run ``run``'s seed is made.
     """
     seed = check_seed(seed)
     from fusion.scenarios import range_bearing as rb
@@ -719,10 +727,11 @@ def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, f
     runs = count(runs, "runs")
     run = count(run, "run", minimum=0, maximum=runs - 1)
     frame = count(frame, "frame", minimum=0, maximum=sc.frames - 1)
-    seeds = np.random.SeedSequence(seed).spawn(runs)
-    batch = rb._Batch(sc, [rb._run_streams(seeds[run])], [False], None)  # the runner of run_tracking_batch, one run
-    for k in range(frame + 1):
-        batch.frame(k)
+    # run ``run``'s seed, the child SeedSequence(seed).spawn(runs)[run] is, made alone (fuzz 54b C2a: spawning `runs`
+    # children to use one took 34 CPU-s at 6,000,000); the runner of run_tracking_batch with its checks for one run
+    # of frame + 1 frames, before any work (54b C2b/C2c: none were applied)
+    child = np.random.SeedSequence(seed, spawn_key=(run,))
+    batch = rb._run_up_to(sc, child, frame)
     return FrameClouds(sensors=sc.sensor_array.copy(), truth=batch.truth[0, :frame + 1].copy(),
                        particles=batch.particles[0].copy(), chernoff=batch.est["chernoff_pso"][0, frame].copy(),
                        centralised=batch.est["centralised_pf"][0, frame].copy(), frame=frame, run=run)
