@@ -161,8 +161,8 @@ def _reads_budget(reads: Iterable[tuple[str, int]]) -> int:
     ``runs, samples, sigma and changes`` (fuzz 62a). The sum's budget is the one rule of fix61a
     (``fusion.book._study_budget.studies_first``): ``MAX_WORK``, or the ``STUDY_WORK`` entry of a study it counts
     that has one (the regime study's, which the book's 10x call of that record serves). A key outside
-    ``_COUNTED`` is left to its own check, at its start (the benchmark's edge, ~11,000 runs, lies far above
-    E2.3's; the others are read alone)."""
+    ``_COUNTED`` is left to its own check, at its start (the benchmark's own pair-work check refuses above 5,555
+    runs, above E2.3's summed edge of 2,415; the others are read alone)."""
     from fusion._limits import MAX_WORK, REGIME_STUDY, STUDY_WORK
     from fusion.book._study_budget import studies_first
 
