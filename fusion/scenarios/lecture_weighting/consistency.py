@@ -246,6 +246,14 @@ class ConsistencyStudy:
 
 
 @derived_inputs()
+def _consistency_work(runs: int, samples: int, n: int, curve_draws: int, names: str) -> int:
+    """Rule 17 of :func:`consistency_study` on checked counts (its check, unchanged): the pair-checks of every pass
+    and of the detection curve at 2 units each, naming ``names``; its units (a chapter reader that runs several
+    studies sums them, fuzz 62a)."""
+    passes = 2 * (15 + sum(sorted(p) == list(range(n)) for p in INDEX_ORDERS))
+    return work((runs * samples * passes + curve_draws * _CURVE_RATIOS, n, n), names, weight=2)
+
+
 def consistency_study(
     sigma: Sequence[float] = (0.5, 1.0, 1.5, 2.0, 4.0),
     samples: int = 100,
@@ -310,10 +318,7 @@ def consistency_study(
     # through 15 estimators and diagnostics and one checked AWF per sensor order; the detection curve checks every
     # pair of each draw at each of its ratios; a pair-check weighs 2 units, measured (budget35: 103,000 runs, about
     # 23 CPU-s, were accepted at 1 unit)
-    n = sig_chk.size
-    passes = 2 * (15 + sum(sorted(p) == list(range(n)) for p in INDEX_ORDERS))
-    work((runs * samples * passes + curve_draws * _CURVE_RATIOS, n, n), "runs, samples, curve_draws and sigma",
-         weight=2)
+    _consistency_work(runs, samples, sig_chk.size, curve_draws, "runs, samples, curve_draws and sigma")
     index_guard = one_of(index_guard, CC_GUARDS, "index_guard")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()

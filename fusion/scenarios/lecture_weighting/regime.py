@@ -169,8 +169,7 @@ def _draws(sigma: Sequence[float], samples: int, runs: int, seed: int,
     sig = _sigmas(sigma, minimum=3)
     samples = count(samples, "samples", minimum=20)
     runs = count(runs, "runs")
-    allocation((runs, samples, sig.size), "runs, samples and sigma")
-    work((runs, samples, sig.size), names, weight=weight, limit=limit)
+    _draws_budget(runs, samples, sig.size, weight, names, limit)
     return sig, samples, runs, _seed(seed)
 
 
@@ -296,6 +295,21 @@ class RegimeStudy:
 
 
 @derived_inputs()
+def _draws_budget(runs: int, samples: int, n: int, weight: int, names: str, limit: int = MAX_WORK) -> int:
+    """Rules 9 and 17 of a study's (runs, samples, n) draws (``_draws``'s, unchanged): the memory budget, then
+    ``weight`` units a draw within ``limit``, naming ``names`` in the work refusal; its units (a chapter reader that
+    runs several studies sums them, fuzz 62a)."""
+    allocation((runs, samples, n), "runs, samples and sigma")
+    return work((runs, samples, n), names, weight=weight, limit=limit)
+
+
+def _change_work(runs: int, samples: int, n: int, changes: int, names: str) -> int:
+    """Rule 17 of :func:`variance_change_study` on checked counts (its second check, unchanged): every draw at
+    ``10 + 45 x changes`` units and each change's fixed step (fuzz 42a C2), naming ``names``; its units."""
+    weight = _CHANGE_DRAW + _CHANGE_DRAW_EACH * changes
+    return work((runs * samples * n * weight + changes * _CHANGE_STEP,), names)
+
+
 def regime_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     samples: int = 1000,
@@ -592,7 +606,7 @@ def variance_change_study(
     weight = _CHANGE_DRAW + _CHANGE_DRAW_EACH * len(changes)
     sig, samples, runs, seed = _draws(sigma, samples, runs, seed, weight, "runs, samples, sigma and changes")
     # and each change's fixed step, whatever its draws (fuzz 42a C2)
-    work((runs * samples * sig.size * weight + len(changes) * _CHANGE_STEP,), "runs, samples, sigma and changes")
+    _change_work(runs, samples, sig.size, len(changes), "runs, samples, sigma and changes")
     change_at = _index(change_at, samples, "change_at")
     forgetting, forgetting_alt = (_forgetting(v, name)
                                   for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))

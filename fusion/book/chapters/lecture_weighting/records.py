@@ -24,7 +24,7 @@ from fusion.book.chapters.lecture_weighting.study_evidence import (
     ev_awf_no_prior, ev_awf_optimal, ev_awf_unbiased, _ev_belief_accuracy, _ev_belief_objective, ev_belief_perron,
     _ev_cc_accuracy, _ev_cc_beats_mean, ev_ls_beats_mean, ev_ls_below_every_sensor, ev_ls_diminishing,
     ev_ls_learning, ev_ls_normal, ev_ls_tracks, ev_ls_unbiased, _need)
-from fusion.book.chapters.lecture_weighting.studies import SEED, _Studies
+from fusion.book.chapters.lecture_weighting.studies import SEED, _reads_budget, _Studies
 from fusion.book.glue import GlueValues, _glue_id_part
 from fusion.scenarios.lecture_weighting.consistency import FaultCase
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
@@ -279,6 +279,24 @@ _PARTS: dict[str, Callable[[str], str]] = {"lec-awf-adapts": lambda k: "change" 
                           "lec-awf-accuracy": lambda k: "bench" if k.startswith("bench-") else "window"}
 
 
+#: The keys of :func:`study` a reading of each stochastic record runs, by its part (``_PARTS``; ``None`` for a
+#: record read whole): E2.3's readings run the study at X = 900 and at X = 0 (``_level_x0``).
+_READS: dict[str, dict[str | None, tuple[str, ...]]] = {
+    "lec-awf-estimated": {None: ("s21",)}, "lec-awf-adapts": {"regime": ("sreg",), "change": ("schg",)},
+    "lec-awf-fault-tolerance": {None: ("s23", "s23x0")},
+    "lec-awf-accuracy": {"window": ("s23", "s23x0"), "bench": ("bench",)},
+    "lec-cc-beats-mean": {None: ("s23", "s23x0")}, "lec-cc-accuracy": {None: ("s23", "s23x0")},
+    "lec-belief-objective": {None: ("s24b",)}, "lec-belief-accuracy": {None: ("bench",)}}
+
+
+def _record_budget(rid: str, readings: Sequence[tuple[str, int]]) -> int:
+    """Rule 17 of the readings ``readings`` ((reading key, runs)) of the stochastic record ``rid`` read together
+    (:func:`fusion.book.chapters.lecture.evidence_at`): every study they run, summed, before any (fuzz 62a: the
+    regime study of ``lec-awf-adapts`` ran ~36 CPU-s at 1,800 runs before its ``change-*`` readings' study refused)."""
+    return _reads_budget((k, runs) for key, runs in readings
+                         for k in _READS[rid][_PARTS[rid](key) if rid in _PARTS else None])
+
+
 @study_cache(maxsize=32)
 def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Evidence]:
     """Every reading of ``rid`` (or of its ``part``) on the studies at ``seed`` and ``runs``, cached: a record's
@@ -303,7 +321,9 @@ def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Evidence
     # every reading of these records (of a part, built together) compares ``runs`` paired runs without a reason: rule
     # R4's refusal before the studies, after the reading is named (fuzz 57c; reading_function's runs_named names it)
     runs = runs_first(runs)
-    ev = _readings(rid, seed, runs, _PARTS[rid](key) if rid in _PARTS else None)  # checked by the entry (reading_function)
+    part = _PARTS[rid](key) if rid in _PARTS else None
+    _reads_budget((k, runs) for k in _READS[rid][part])  # the studies it runs, summed, before any (fuzz 62a)
+    ev = _readings(rid, seed, runs, part)  # checked by the entry (reading_function)
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")
     return ev[key]
@@ -325,7 +345,8 @@ def _reader(rid: str, summary: str, studies: str, returns: str = "Comparison") -
     evidence type).
     """
     return reading_function(__name__, rid, _at, SEED, STOCHASTIC[rid], summary,
-                            f"The study's base seed and run count (:func:`study`: {studies}).", returns)
+                            f"The study's base seed and run count (:func:`study`: {studies}).", returns,
+                            budget=_record_budget)
 
 
 ev_awf_estimated = _reader(
