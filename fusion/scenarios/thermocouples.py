@@ -627,13 +627,13 @@ def _window_relation(values: Mapping[str, object], cls: str) -> None:
                          f"{cls}.clean), got {shown((first, last))}")
 
 
-@derived_inputs()
 def _scale_sweep_work(n_scales: int, n_runs: int, names: str) -> int:
     """Rule 17 of :func:`scale_sweep`: a fusion-set pass per scale, ``n_runs x 100 x 10 x 10`` units a scale (a loop
     step each), naming ``names``; its units (a chapter study that runs sweeps sums them, fuzz 54a C2)."""
     return loop_work((n_scales,), n_runs * 100 * 10 * 10, names)
 
 
+@derived_inputs()
 def scale_sweep(
     seed: int,
     n_runs: int,

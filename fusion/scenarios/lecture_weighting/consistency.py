@@ -245,7 +245,6 @@ class ConsistencyStudy:
     __post_init__ = validated_post_init
 
 
-@derived_inputs()
 def _consistency_work(runs: int, samples: int, n: int, curve_draws: int, names: str) -> int:
     """Rule 17 of :func:`consistency_study` on checked counts (its check, unchanged): the pair-checks of every pass
     and of the detection curve at 2 units each, naming ``names``; its units (a chapter reader that runs several
@@ -254,6 +253,7 @@ def _consistency_work(runs: int, samples: int, n: int, curve_draws: int, names: 
     return work((runs * samples * passes + curve_draws * _CURVE_RATIOS, n, n), names, weight=2)
 
 
+@derived_inputs()
 def consistency_study(
     sigma: Sequence[float] = (0.5, 1.0, 1.5, 2.0, 4.0),
     samples: int = 100,

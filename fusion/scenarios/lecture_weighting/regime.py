@@ -294,7 +294,6 @@ class RegimeStudy:
     __post_init__ = validated_post_init
 
 
-@derived_inputs()
 def _draws_budget(runs: int, samples: int, n: int, weight: int, names: str, limit: int = MAX_WORK) -> int:
     """Rules 9 and 17 of a study's (runs, samples, n) draws (``_draws``'s, unchanged): the memory budget, then
     ``weight`` units a draw within ``limit``, naming ``names`` in the work refusal; its units (a chapter reader that
@@ -310,6 +309,7 @@ def _change_work(runs: int, samples: int, n: int, changes: int, names: str) -> i
     return work((runs * samples * n * weight + changes * _CHANGE_STEP,), names)
 
 
+@derived_inputs()
 def regime_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     samples: int = 1000,
