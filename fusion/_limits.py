@@ -75,10 +75,16 @@ ARCHITECTURE_STUDY = ("the reseeding sweep's primary of ci-fig4-convex-part at 1
 #: C2): 1.47e9 units at the sweep's 5,000 runs (ran 22.1 CPU-s, niced on the shared machine).
 MEMBERSHIP_STUDY = ("the reseeding sweep's primaries of yang-membership-free and yang-weights-reasonable at 10x runs "
                     "(membership_study, 5,000 runs)")
+#: The key of chapter 05's ledger studies (``fusion.book.chapters.ci.studies.ledger_studies``: the architecture, paired,
+#: Fig. 6 period and infrared studies at one run count, summed at its entry, fuzz 55 C4): 1.18e9 units at the
+#: notebook's 200 runs (ran 13.0 CPU-s, a fresh process, OPENBLAS_NUM_THREADS=1, niced on the shared machine); its
+#: entry, 3e9, equals the readings benchmark's, so its refusal names it by ``work``'s ``served``.
+LEDGER_STUDIES = ("chapter 05's notebook call of ledger_studies (arch, paired, Fig. 6 period and infrared studies, "
+                  "200 runs)")
 STUDY_WORK: Mapping[str, int] = constant({TRACKING_STUDY: 26 * MAX_WORK, AWF_STUDY: 7 * MAX_WORK,
                                           REGIME_STUDY: 4 * MAX_WORK, READINGS_BENCHMARK: 3 * MAX_WORK,
                                           PREMISE_STUDY: 9 * MAX_WORK, ARCHITECTURE_STUDY: 3 * MAX_WORK,
-                                          MEMBERSHIP_STUDY: 3 * MAX_WORK})
+                                          MEMBERSHIP_STUDY: 3 * MAX_WORK, LEDGER_STUDIES: 3 * MAX_WORK})
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
 #: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).

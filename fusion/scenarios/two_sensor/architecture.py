@@ -198,6 +198,20 @@ class _PairedRuns(NamedTuple):
 _ARCH_STEP, _BANK_STEP, _RUN_STEP, _NEES_RUN_STEP, _NEES_BANK = 700 * LOOP_STEP, 50 * LOOP_STEP, 350, 850, 50
 
 
+def _arch_step_units(banks: int) -> tuple[int, int, int]:
+    """The units of :func:`architecture_study` with ``banks`` fixed-weight filter banks: a step, a step of a path run,
+    a step of a model run (the weights above)."""
+    return _ARCH_STEP + banks * _BANK_STEP, _RUN_STEP, _NEES_RUN_STEP + banks * _NEES_BANK
+
+
+def _architecture_units(steps: int, runs: int, nees_runs: int, banks: int, names: str) -> int:
+    """Rule 9 of :func:`architecture_study` (``_HELD`` values a run and step) and its units of work, without the work
+    refusal: a chapter study that runs it beside others sums the units (fuzz 55 C4), refused naming ``names``."""
+    allocation((runs + nees_runs, steps, _HELD), names)
+    step, run, nees = _arch_step_units(banks)
+    return steps * (step + run * runs + nees * nees_runs)
+
+
 #: Float64 values per run and step that the run studies hold at once at their peak (the measurements, truths, both
 #: local tracks, the fused track, its errors and the NEES's stacked factors): measured with ``tracemalloc`` at 38 and
 #: 53 (:func:`q_scaling_study`, path runs and model runs), 47 and 62 (:func:`architecture_study`), so that
@@ -298,7 +312,7 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     # budget is its entry of fusion._limits.STUDY_WORK (the reseeding sweep's 10x reading of chapter 05, 1.08e9)
     banks = 2 * len(omegas) + len(placed)
     p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady,
-                     step_units=(_ARCH_STEP + banks * _BANK_STEP, _RUN_STEP, _NEES_RUN_STEP + banks * _NEES_BANK),
+                     step_units=_arch_step_units(banks),
                      names="runs, nees_runs and T" if not banks else
                      "printed_omegas, placement_omegas, runs, nees_runs and T",
                      limit=STUDY_WORK[ARCHITECTURE_STUDY], served=ARCHITECTURE_STUDY)

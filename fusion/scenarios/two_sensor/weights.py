@@ -30,6 +30,12 @@ __all__ = ["per_step_weights", "FruitFlySeeds", "fruit_fly_over_seeds", "printed
 _CANDIDATE, _GRID_POINT = 45, 35
 
 
+def _weights_step_units(n_grid: int = 1001, population: int = 30, iterations: int = 200) -> int:
+    """Units of one step of :func:`per_step_weights`: its FOA candidates and grid points at their measured cost and a
+    heavy loop step; a caller that runs it beside other studies sums ``K`` times this (fuzz 55 C3)."""
+    return _CANDIDATE * population * iterations + _GRID_POINT * n_grid + 10 * LOOP_STEP
+
+
 @_PARAMS("population, iterations")
 def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001,
                      population: int = 30, iterations: int = 200) -> tuple[FloatArray, FloatArray]:
@@ -79,7 +85,7 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     # x 4 covariances; 160,000 iterations, about 60 CPU-s, were accepted), so the edge is about 10 CPU-s
     names = "the steps of a, population, iterations and n_grid"
     batch_budget(K, population, iterations, names)
-    work((K, _CANDIDATE * population * iterations + _GRID_POINT * n_grid + 10 * LOOP_STEP), names)
+    work((K, _weights_step_units(n_grid, population, iterations)), names)
     P1s, P2s = np.asarray(a.gains.P, dtype=float), np.asarray(b.gains.P, dtype=float)
     I1s, I2s = np.linalg.inv(P1s), np.linalg.inv(P2s)
 

@@ -176,17 +176,54 @@ def arch_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Architect
     return architecture_studies(R1, R2, Q, seeds, W_PUB, runs=count(runs, "runs"), nees_runs=runs, T=SOURCE_T)
 
 
+#: Float64 arrays of shape (runs, K, 4) that :func:`paired_study` holds at its peak (the three pairs' scenarios, the
+#: fused tracks of every rule of the pair being studied, their errors): ``tracemalloc``'s peak measured at 400 and
+#: 1,200 runs, 57.5 and 57.2 arrays (183 and 547 MiB), rounded up (fuzz 55 C3: 25,542 runs ended in a raw
+#: MemoryError after 34 CPU-s).
+_PAIRED_HELD = 58
+#: Units a run and step of :func:`paired_study` beyond what its inner functions' own budgets count (their per-run
+#: RMSEs, ``fusion_study``'s per-step RMSEs and copies): its slope, 935 units a run and step (2.44 ms a run of 261
+#: steps: 2.99 and 6.33 CPU-s for ``paired_study``, 0.31 and 0.63 for ``aniso_pair``, at 500 and 2,000 runs, after the
+#: cached per-step weights; OPENBLAS_NUM_THREADS=1, the shared machine, minimum of 2), less the inner budgets' 551.
+_PAIRED_REST = 384
+#: The rules ``fusion_study`` runs on each pair (CI plain, at FOA's and at the grid's weights; split CI, the convex
+#: combination, fuzzy clustering), and the CI runs at Fig. 6's two weights and at random weights on the identical pair.
+_STUDY_RULES = ("ci", "ci", "ci", "split", "convex", "fuzzy")
+_IDENTICAL_EXTRA = ("ci", "ci", "ci")
+
+
 def _paired_budget(runs: int) -> int:
-    """Rules 9 and 17 of :func:`paired_study` before any study: the three scenarios of ``runs`` runs it simulates (the
-    anisotropic pair's, :func:`aniso_pair`, and the identical and unequal pairs' of ``paired_studies``), each by
-    ``two_sensor``'s own budget (``case._scenario_budget``), summed (``fusion.book._study_budget.studies_first``),
-    refused naming ``runs`` (fuzz 54a D4: 70,000 runs passed the first check, ran the anisotropic pair for 3.2 CPU-s
-    and were refused naming seven arguments)."""
+    """Rules 9 and 17 of :func:`paired_study` before any study, refused naming ``runs``; its units.
+
+    What it holds at its peak (``_PAIRED_HELD`` arrays of ``(runs, K, 4)``); what it runs, each by the inner
+    function's own budget, summed (``fusion.book._study_budget.studies_first``): the three scenarios of ``runs`` runs
+    (the anisotropic pair's, :func:`aniso_pair`, and the identical and unequal pairs' of ``paired_studies``:
+    ``case._scenario_budget``); every ``fuse_tracks`` of the three ``fusion_study`` runs and of the identical pair's
+    Fig. 6 and random weights (``fuse_tracks``' own weights); the per-step weights (``per_step_weights``' own units)
+    of the identical, unequal and anisotropic pairs; the rest at its measured weight (``_PAIRED_REST``). Fuzz 54a D4:
+    70,000 runs ran the anisotropic pair for 3.2 CPU-s before a refusal naming seven arguments; fuzz 55 C3: only the
+    three scenarios were counted, so 11,000 runs were accepted and ran 44 CPU-s.
+    """
     from fusion.book._study_budget import studies_first
+
+    return studies_first(_paired_parts(runs), "runs")
+
+
+def _paired_parts(runs: int) -> list[Callable[[], int | None]]:
+    """The parts of :func:`_paired_budget`, each an inner budget (``fusion.book._study_budget.studies_first``'s
+    ``parts``): a chapter study that runs :func:`paired_study` beside others sums them with its own."""
+    from fusion._counts import allocation
+    from fusion.filtering.tracks import _fuse_tracks_units
     from fusion.scenarios.two_sensor.case import _scenario_budget
+    from fusion.scenarios.two_sensor.weights import _weights_step_units
 
     steps = two_sensor.trajectory(SOURCE_T).t.size
-    return studies_first([lambda: _scenario_budget(runs, steps, "runs")] * 3, "runs")
+    fused = 3 * _STUDY_RULES + _IDENTICAL_EXTRA
+    return [lambda: allocation((runs, steps, 4), "runs", arrays=_PAIRED_HELD),
+            *[lambda: _scenario_budget(runs, steps, "runs")] * 3,
+            lambda: sum(_fuse_tracks_units(steps, runs, 4, rule) for rule in fused),
+            lambda: 3 * steps * _weights_step_units(),
+            lambda: runs * steps * _PAIRED_REST]
 
 
 @_study_cache
@@ -205,6 +242,12 @@ def paired_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> PairedStudies:
     PairedStudies
         Per rule the per-run RMSE on x after 20 s (m) of the identical, unequal and anisotropic pairs, on ``runs``
         runs.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` whose scenarios, fusions and per-run errors together hold or run beyond the memory or work budget
+        (about 2,500 runs, ~10 CPU-s), before any study.
     """
     seed = check_seed(seed)
     _paired_budget(count(runs, "runs"))
@@ -293,6 +336,45 @@ def _shallow(bundle: object) -> dict[str, Any]:
     return {f.name: getattr(bundle, f.name) for f in dataclasses.fields(bundle)}  # type: ignore[arg-type]
 
 
+#: Fixed-weight filter banks of :func:`arch_study`'s two ``architecture_study`` runs (``architecture_studies``: on
+#: the identical sensors the published weight and 0.1 and 0.5, each printed twice, and the placement at the published
+#: weight; on the anisotropic pair the published weight printed twice).
+_ARCH_BANKS = (2 * 3 + 1, 2 * 1)
+
+
+def _ledger_budget(runs: int) -> int:
+    """Rules 9 and 17 of :func:`ledger_studies` before any study: the sum of what its studies run at ``runs``, each by
+    its own budget (``fusion.book._study_budget.studies_first``), refused naming ``runs`` (fuzz 55 C4: each study
+    checked only itself, so 5,000 runs were accepted and ran 110 CPU-s): :func:`arch_study`'s two architecture studies
+    (``architecture_study``'s memory and units), :func:`paired_study` (``_paired_budget``'s parts),
+    :func:`fig6_periods` (a scenario and CI at two weights at each period: ``two_sensor_scenario``'s and
+    ``fuse_tracks``' own units) and :func:`ir_reading_study` (``ir_readings``' own checks and units). The sum's budget
+    is the entry of ``fusion._limits.STUDY_WORK`` that the notebook's call (:data:`LEDGER_RUNS`) serves."""
+    from fusion._counts import grid_points
+    from fusion._limits import LEDGER_STUDIES, STUDY_WORK
+    from fusion.book._study_budget import studies_first
+    from fusion.book.chapters.ci.infrared import _ir_budget, _ir_units
+    from fusion.book.chapters.ci.infrared_readings import _jackknife_budget
+    from fusion.filtering.tracks import _fuse_tracks_units
+    from fusion.scenarios.two_sensor.architecture import _architecture_units
+    from fusion.scenarios.two_sensor.case import _scenario_budget
+
+    steps = two_sensor.trajectory(SOURCE_T).t.size
+
+    def period(T: float) -> int:
+        k = two_sensor.trajectory(T).t.size
+        return _scenario_budget(runs, k, "runs") + 2 * _fuse_tracks_units(k, runs, 4, "ci")
+
+    def infrared() -> int:
+        _ir_budget(IR_T, IR_DURATION, runs)
+        _jackknife_budget(runs, "runs")
+        return _ir_units(grid_points(IR_DURATION, IR_T, "runs"), runs, "runs")
+
+    return studies_first([*(lambda b=b: _architecture_units(steps, runs, runs, b, "runs") for b in _ARCH_BANKS),
+                          *_paired_parts(runs), *(lambda T=T: period(T) for T in FIG6_PERIODS), infrared],
+                         "runs", STUDY_WORK[LEDGER_STUDIES], LEDGER_STUDIES)
+
+
 def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> LedgerStudies:
     """The entries of :func:`ledger_inputs` that the chapter's Monte-Carlo studies give, at a seed and run count.
 
@@ -310,9 +392,16 @@ def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> LedgerStudies:
         ``aniso_seed``, ``flat_range`` (tr P(ω) of the identical sensors at :data:`SEARCH_STEP`, 11 points) and
         ``flat_pub_grid`` (CI's tr P there at Fig. 5's two published weights, FOA's and the grid's);
         ``ir_readings``, ``ir_seed``, ``ir_paired`` (:func:`ir_reading_study`). The values are shared, not copied.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` whose studies together hold or run beyond the memory or work budget (their sum, the entry of
+        ``fusion._limits.STUDY_WORK`` the notebook's call serves: about 1,800 runs), before any study.
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
+    _ledger_budget(runs)
     return LedgerStudies(**_shallow(_arch_inputs(seed, runs)), **_shallow(_paired_inputs(seed, runs)),
                          **_shallow(_ir_inputs(seed, runs)))
 
