@@ -165,7 +165,6 @@ class VectorStudy:
     __post_init__ = validated_post_init
 
 
-@derived_inputs()
 def _plugin_memory(m: int, runs: int, names: str) -> None:
     """Rule 9 of :func:`plugin_study`: the noise of every run, ``m x runs``, and the readings its estimators take
     (fuzz 39a D1, class), naming ``names``."""
@@ -185,6 +184,7 @@ def _vector_work(n_scales: int, runs: int, names: str) -> int:
     return loop_work((n_scales, 2), 60 * runs, names)
 
 
+@derived_inputs()
 def plugin_study(
     xs: Sequence[float] = (0.0, 0.25, 0.5, 1.0, 2.0, 3.0, 10.0),
     m: int = 5,
