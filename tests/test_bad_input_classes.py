@@ -1001,3 +1001,17 @@ def test_a_seed_beyond_256_bits_is_refused_before_any_generator() -> None:
     with pytest.raises(ValueError, match="^seed must be a seed of at most 256 bits"):   # a public root seed
         monte_carlo(RangeBearingScenario(frames=3, n_particles=50), 1 << 10**6, 100)
     assert time.process_time() - t < 0.5
+
+
+def test_derived_inputs_decorates_public_entries_only() -> None:
+    """``fusion._guards.derived_inputs`` decorates a public entry (its docstring). A budget helper inserted between
+    the decorator and its study took it (fix61a, fix62a: ``consistency_study``, ``regime_study``, ``scale_sweep`` and
+    ``plugin_study`` then refused sigma = 1e150 naming an internal X); no private function carries it."""
+    import ast
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1] / "fusion"
+    private = [f"{p.relative_to(root)}:{n.name}" for p in sorted(root.rglob("*.py"))
+               for n in ast.walk(parsed(p)) if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))
+               and n.name.startswith("_") and any("derived_inputs" in ast.unparse(d) for d in n.decorator_list)]
+    assert not private, private
