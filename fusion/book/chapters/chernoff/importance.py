@@ -242,7 +242,7 @@ def is_replicates(seed: int, r: int, runs: int = STUDY_RUNS) -> FloatArray:
         ``r`` or ``runs`` not positive, or ``runs`` x ``r`` beyond the ceiling of a sample count.
     """
     runs, r = _sample_sets(runs, r)
-    seed = check_seed(seed)   # an integer seed (rule 11), named
+    seed = check_seed(seed, span=100)   # an integer seed (rule 11), named; seed + 100 a seed too (fuzz 55 C1)
     t = toy(seed)
     gms = list(t.gms)
     g05 = ch.first_order_fusion(gms, [0.5, 0.5]).mixture
