@@ -46,6 +46,7 @@ CASES = [
     ("fusion.book.chapters.ci.studies", "unequal_pair", 99, lambda s: ((s,), {})),
     ("fusion.book.chapters.ci.studies", "aniso_pair", 99, lambda s: ((s,), {})),
     ("fusion.book.chapters.ci.studies", "fig6_periods", None, lambda s: ((s,), {})),
+    ("fusion.book.chapters.ci.studies", "ledger_studies", 51, lambda s: ((s,), {})),
     ("fusion.book.chapters.ci.constants", "study_seed", 23, lambda s: ((s, "anisotropic pair"), {})),
     ("fusion.book.chapters.lecture_weighting.studies", "study", 6903, lambda s: (("bench", s), {})),
     ("fusion.book.chapters.lecture_correlated.records", "cached_studies", 213, lambda s: ((s,), {})),

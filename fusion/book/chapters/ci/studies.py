@@ -312,7 +312,8 @@ def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> LedgerStudies:
         ``flat_pub_grid`` (CI's tr P there at Fig. 5's two published weights, FOA's and the grid's);
         ``ir_readings``, ``ir_seed``, ``ir_paired`` (:func:`ir_reading_study`). The values are shared, not copied.
     """
-    seed = check_seed(seed)
+    # its studies' seeds, up to fig6_periods' seed + 51, each a seed: checked before the first study (fuzz 55 D1)
+    seed = check_seed(seed, span=max(*SEED_OFFSETS.values(), SEED_OFFSETS["fig6 periods"] + len(FIG6_PERIODS) - 1))
     runs = count(runs, "runs")
     return LedgerStudies(**_shallow(_arch_inputs(seed, runs)), **_shallow(_paired_inputs(seed, runs)),
                          **_shallow(_ir_inputs(seed, runs)))
