@@ -53,6 +53,7 @@ CASES = [
     ("fusion.book.chapters.ci.studies", "ledger_studies", 51, lambda s: ((s,), {})),
     ("fusion.book.chapters.ci.constants", "study_seed", 23, lambda s: ((s, "anisotropic pair"), {})),
     ("fusion.book.chapters.lecture_weighting.studies", "study", 6903, lambda s: (("bench", s), {})),
+    ("fusion.book.chapters.lecture_weighting.records", "evidence", 6903, lambda s: (({},), {"seed": s})),
     ("fusion.book.chapters.lecture_correlated.records", "cached_studies", 213, lambda s: ((s,), {})),
     ("fusion.book.chapters.lecture_correlated.appendix", "table_james_stein", 10, lambda s: ((), {"seed": s})),
     ("fusion.book.chapters.time_registration_ledger.studies", "cached_study", None, lambda s: ((s, 15000), {})),
