@@ -176,8 +176,13 @@ def _seed_size(v: int, name: str) -> int:
     return v
 
 
-def seed(value: int, name: str = "seed") -> int:
+def seed(value: int, name: str = "seed", span: int = 0) -> int:
     """Return ``value`` as a non-negative int seed of at most 256 bits, TypeError/ValueError naming ``name``.
+
+    ``span``: a function that derives seeds up to ``seed + span`` from its seed (network ``j`` of a study run with
+    ``seed + 10 + j``) passes the largest offset, so that a seed whose derived seeds would pass :data:`SEED_MAX` is
+    refused at entry, naming the caller's argument, not after the first derived studies ran (fuzz 55 C1: 13 CPU-s of
+    work, then a refusal of "seed ... of 257 bits"). Book seeds are small: no book call is changed.
 
     A seed is an integer (rule 11): a float, even an integral one such as ``3.0``, is refused with
     a :class:`TypeError` (``3.5`` would otherwise be truncated, and ``numpy`` refuses ``3.0``). A 0-d
@@ -189,7 +194,64 @@ def seed(value: int, name: str = "seed") -> int:
         value = value[()]  # a 0-d integer array: its numpy integer (a 0-d bool array is not: kind "b")
     if not isinstance(value, (int, np.integer)) or isinstance(value, (bool, np.bool_)):
         raise TypeError(f"{name} must be an integer seed, got {shown(value)}")
-    return _seed_size(count(value, name, minimum=0, maximum=None), name)
+    v = _seed_size(count(value, name, minimum=0, maximum=None), name)
+    if v > SEED_MAX - span:
+        raise ValueError(f"{name} must be at most 2**256 - 1 - {span:,}: this function derives seeds up to {name} + "
+                         f"{span:,}, each a seed of at most 256 bits (fusion._counts.SEED_MAX); got {name} = "
+                         f"2**256 - 1 - {SEED_MAX - v:,}")
+    return v
+
+
+#: The most 32-bit words a :class:`numpy.random.SeedSequence` argument may hold in its entropy, and again in its
+#: spawn key, and its largest pool (words): 8 words, the 256 bits of :data:`SEED_MAX`. Its cost is what it mixes
+#: again at every spawn (measured on this machine, shared with other jobs, OPENBLAS_NUM_THREADS=1, min of 5: one
+#: ``spawn(1)`` 5.5 us at a 256-bit entropy, 11 us with an 8-word spawn key too; 105 us at 4,096 bits, 3.3 ms at
+#: 1,000 entries of 256 bits, and 10**6 bits ran 49.5 CPU-s in a tiny tracking run, fuzz 55 C2).
+SEED_WORDS = 8
+
+
+def _words(items: object, name: str, what: str) -> int:
+    """The 32-bit words SeedSequence makes of ``items`` (an int, or a sequence of ints: each entry at least one word),
+    refusing an entry beyond :data:`SEED_MAX` by name (its bit length: cheap)."""
+    entries = [items] if isinstance(items, (int, np.integer)) else list(np.asarray(items, dtype=object).ravel())
+    total = 0
+    for k, e in enumerate(entries):
+        if not isinstance(e, (int, np.integer)) or isinstance(e, (bool, np.bool_)):
+            raise TypeError(f"{name} must be a SeedSequence of integer {what}, got {shown(e)} in it")
+        _seed_size(int(e), f"{name} {what}" + (f"[{k}]" if len(entries) > 1 else ""))
+        total += max(1, -(-int(e).bit_length() // 32))
+        if total > SEED_WORDS:
+            break
+    return total
+
+
+def seed_sequence(value: object, name: str = "seed") -> np.random.SeedSequence:
+    """Return ``value`` when it is a :class:`numpy.random.SeedSequence` of bounded size, TypeError/ValueError naming
+    ``name``: the rule of :func:`seed` for a seed given as a SeedSequence object (fuzz 55 C2).
+
+    Its ``entropy`` (an int, or a sequence of ints) and its ``spawn_key`` hold at most :data:`SEED_WORDS` 32-bit words
+    each (256 bits, each entry at most :data:`SEED_MAX`), and its ``pool_size`` at most :data:`SEED_WORDS`: every
+    spawn mixes them again, so a larger one costs time at every spawn (``SeedSequence(1 << 10**6)`` ran 49.5 CPU-s in
+    a tiny tracking run) and adds no randomness. Checked by bit lengths, before any spawn.
+
+    Raises
+    ------
+    TypeError
+        Not a SeedSequence, or one whose entropy or spawn key holds a non-integer.
+    ValueError
+        An entropy, spawn key or pool beyond the bound.
+    """
+    if not isinstance(value, np.random.SeedSequence):
+        raise TypeError(f"{name} must be a SeedSequence, got {type(value).__name__}")
+    for what, items in (("entropy", value.entropy), ("spawn_key", value.spawn_key)):
+        n = _words(items, name, what)
+        if n > SEED_WORDS:
+            raise ValueError(f"{name} must be a SeedSequence of at most {SEED_WORDS} 32-bit words of {what} (256 "
+                             f"bits, as a seed: every spawn mixes them again), got more than {SEED_WORDS}")
+    if int(value.pool_size) > SEED_WORDS:
+        raise ValueError(f"{name} must be a SeedSequence of a pool of at most {SEED_WORDS} words, got "
+                         f"{int(value.pool_size):,} (every spawn mixes its entropy into it again)")
+    return value
 
 
 #: The integer types :func:`_plain_integers` checks in one pass (bool and timedelta64 are not among them).

@@ -117,7 +117,7 @@ from scipy.linalg.lapack import dpotrf as _potrf
 from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, seeds and sequences)
     BY_KIND, COUNT_CEILINGS, COUNT_KINDS, MAX_COUNT, MAX_ELEMENTS, _bool_error, _complex_error, _integer, allocation,
     count, count_ceiling, count_kind, counts, distinct, distinct_printed, general, glue_part, grid_points, index,
-    iterable, machine_workers, not_masked, PAIR_WORK, pairwise, seed, seed_array, seeds, sequence, workers)
+    iterable, machine_workers, not_masked, PAIR_WORK, pairwise, seed, seed_array, seed_sequence, seeds, sequence, workers)
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, mapping_of, psd_factor, record, records_of, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)

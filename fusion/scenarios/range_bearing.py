@@ -26,7 +26,7 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 
 from fusion._validation import seed as check_seed, workers as check_workers
-from fusion._validation import flag
+from fusion._validation import flag, seed_sequence
 from fusion._limits import MAX_WORK, STUDY_WORK, TRACKING_STUDY
 from fusion.estimates.chernoff._product import product_size
 from fusion._guards import own_underflow
@@ -98,7 +98,7 @@ def run_tracking(
         with evaluations and timings.
     """
     instance_of(sc, RangeBearingScenario, "sc")
-    instance_of(seed, np.random.SeedSequence, "seed")  # a wrong type is a TypeError (fuzz 48 D2: an int seed)
+    seed_sequence(seed, "seed")  # a wrong type: TypeError (fuzz 48 D2); a huge one: ValueError (fuzz 55 C2)
     return run_tracking_batch(sc, [seed], all_nodes=[flag(all_nodes, "all_nodes")], swarm_options=swarm_options)[0]
 
 
@@ -152,7 +152,7 @@ def run_tracking_batch(
     if not seeds:
         raise ValueError("seeds is empty: at least one SeedSequence is needed")
     for i, s in enumerate(seeds):
-        instance_of(s, np.random.SeedSequence, f"seeds[{i}]")
+        seed_sequence(s, f"seeds[{i}]")  # entropy and spawn key of at most 256 bits: each spawn mixes them (fuzz 55 C2)
     flags = [False] * len(seeds) if all_nodes is None else [flag(f, f"all_nodes[{i}]")
                                                                 for i, f in enumerate(sequence(all_nodes, "all_nodes"))]
     if len(flags) != len(seeds):

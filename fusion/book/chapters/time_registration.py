@@ -764,6 +764,8 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
     """
     seed = check_seed(seed)
     sigmas = _noise_levels(sigmas, "sigmas")
+    # reading i of a level runs with seed + 120 + i: each a seed, checked at entry (fuzz 55 C1)
+    seed = check_seed(seed, span=120 + len(robustness_readings(float(sigmas[0]), sc.instants()[1])) - 1)
     runs = count(runs, "runs")  # the int read (fuzz 29a C2)
     k = len(sigmas) * len(TUNING_READINGS)  # rule 17 before any run: per level and reading a Monte Carlo, 2 exact
     sc._monte_carlo_work([IMPROVED, TWO] * k, runs, *(t.size for t in sc.instants()), "sigmas and runs", "sigmas")

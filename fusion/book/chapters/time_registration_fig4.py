@@ -43,6 +43,7 @@ def _levels(sigmas: Sequence[float], runs: int, seed: int, axis_max: float):  # 
 
     seed = check_seed(seed)   # also where it meets default_rng (the AST test of rule 11)
     sigmas = _noise_levels(sigmas, "sigmas")
+    seed = check_seed(seed, span=len(sigmas) - 1)   # level i: seed + i, a seed too (fuzz 55 C1)
     axis_max = scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     t1, t2 = sc.instants()
     # rule 17 before the first level (fuzz 28b: runs x levels had no budget): per level, runs of two methods, each

@@ -80,6 +80,7 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
         raise ValueError(f"a and b must be tracks of one simulation, of the same shape (runs, steps, state), got "
                          f"a.est {a.est.shape} and b.est {b.est.shape}")
     K = a.gains.P.shape[0]
+    seed = check_seed(seed, span=K - 1)   # step k's swarm: seed + k, a seed too (fuzz 55 C1)
     # rule 17, at entry under this function's names (fuzz 24c WN): the swarm's generations and memory, then each
     # candidate and grid point at its measured cost (budget35: 0.43-0.5 us a candidate, 0.34 us a grid point, for 4
     # x 4 covariances; 160,000 iterations, about 60 CPU-s, were accepted), so the edge is about 10 CPU-s

@@ -29,7 +29,7 @@ from fusion.book.chapters.chernoff.tracking import (_window_nees, any_collapsed,
 from fusion.book.chapters.chernoff.studies import (_premise_more, checks_study, common_study, design, isv_study,
                                                    premise_study, tracking_study)
 from fusion.book.chapters.chernoff.guard import guard_usability
-from fusion.book.chapters.chernoff.importance import is_replicates
+from fusion.book.chapters.chernoff.importance import _IS_OFFSET, is_replicates
 from fusion.book.chapters.chernoff.peers import stonesoup_check
 from fusion.book.chapters.chernoff.mixture import toy
 from fusion._counts import seed as check_seed
@@ -272,7 +272,8 @@ def ev_first_order(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
                           "less".""")
 def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
     """Record chf-is-rebuild: the IS minimiser's error against the first-order minimiser's, over independent sample sets."""
-    seed, runs = check_seed(seed), _paired_count(runs)
+    # is_replicates' seed + 100, checked before toy runs (fuzz 55 D1)
+    seed, runs = check_seed(seed, span=_IS_OFFSET), _paired_count(runs)
     s = _settings(settings, {"r": ()}, {"r": 2_000})
     r = count(s["r"], "settings['r']")  # named as the reading's setting, not as is_replicates' own r
     t = toy(seed)

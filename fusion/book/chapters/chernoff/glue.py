@@ -19,7 +19,8 @@ from fusion.book.tables import rounded
 from fusion.scenarios.fusion_networks import Network
 from fusion.scenarios.range_bearing import RangeBearingScenario
 from fusion.book.chapters.chernoff.settings import BIBKEY, STUDY_RUNS, _MSE, study_scenario
-from fusion.book.chapters.chernoff.premise import _PMSE, _check_scenarios, oracle_exponents
+from fusion.book.chapters.chernoff.importance import _IS_OFFSET
+from fusion.book.chapters.chernoff.premise import _PMSE, PREMISE_NETWORKS, _check_scenarios, oracle_exponents
 from fusion.book.chapters.chernoff.evidence import _is_region_counts
 from fusion.book.chapters.chernoff.compare import _word
 from fusion.book.chapters.chernoff.tracking import any_collapsed
@@ -87,7 +88,8 @@ def chapter_evidence(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScena
         ``scenarios`` without a network of the chapter, ``claims`` the claim file of another source (its records
         would give no evidence). All checked before any study runs.
     """
-    seed = check_seed(seed)
+    # every study's derived seed (is_replicates' seed + 100 the largest), checked before any study (fuzz 55 D1)
+    seed = check_seed(seed, span=_IS_OFFSET)
     runs, network_runs = _study_args(runs, sc, scenarios, network_runs)
     from fusion.book import claims as cl
 
@@ -138,7 +140,8 @@ def claim_values(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario 
     TypeError, ValueError
         The arguments as :func:`chapter_evidence` refuses them.
     """
-    seed = check_seed(seed)
+    # premise_study's seed + 10 + j, checked before the tracking study runs (fuzz 55 D1)
+    seed = check_seed(seed, span=10 + len(PREMISE_NETWORKS) - 1)
     runs, network_runs = _study_args(runs, sc, scenarios, network_runs)
     sc_ = study_scenario() if sc is None else sc
     plain, rs = tracking_study(seed, runs, sc)

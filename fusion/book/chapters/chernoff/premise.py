@@ -302,7 +302,7 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
         network runs, naming ``runs`` and ``scenarios`` (and ``more`` when it is given). ``scenarios`` and ``more``
         are read once, at entry: the networks counted are the networks run.
     """
-    seed = check_seed(seed)
+    seed = check_seed(seed, span=len(PREMISE_NETWORKS) - 1)   # network j: seed + j, a seed too (fuzz 55 C1)
     runs = count(runs, "runs")
     scs = _network_scenarios(scenarios)
     more = {} if more is None else _check_more(more, runs)

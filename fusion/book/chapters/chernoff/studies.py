@@ -121,7 +121,7 @@ def common_study(seed: int) -> tuple[bool, float, float]:
     tuple of (bool, float, float)
         What :func:`common_information_check` returns.
     """
-    seed = check_seed(seed)   # an integer seed (rule 11), named
+    seed = check_seed(seed, span=5)   # an integer seed (rule 11), named; seed + 5 a seed too (fuzz 55 C1)
     return common_information_check(np.random.default_rng(seed + 5))
 
 
@@ -139,7 +139,7 @@ def isv_study(seed: int) -> IsVarianceStudy:
     IsVarianceStudy
         Ĵ's bias table over ω and the finite second- and third-moment regions of the weights, from this seed.
     """
-    seed = check_seed(seed)   # an integer seed (rule 11), named
+    seed = check_seed(seed, span=3)   # an integer seed (rule 11), named; seed + 3 a seed too (fuzz 55 C1)
     return is_variance_study(np.random.default_rng(seed + 3))
 
 
@@ -179,7 +179,8 @@ def premise_study(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any] |
         runs together beyond their work budget (the entry of ``fusion._limits.STUDY_WORK`` for the reseeding sweep's
         1,000 runs a network), before the first network runs, naming ``runs`` and ``scenarios``.
     """
-    seed = check_seed(seed)
+    # network j runs with seed + 10 + j: each a seed, checked at entry (fuzz 55 C1: refused after five networks ran)
+    seed = check_seed(seed, span=10 + len(PREMISE_NETWORKS) - 1)
     runs = count(runs, "runs")
     scs = None if scenarios is None else _check_scenarios(scenarios)
     # every network counted at entry, before the cache and the first network (fuzz 42b C5)
@@ -219,7 +220,7 @@ def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) 
         ``seed`` negative, ``runs`` or ``factor`` below 1, or ``runs * factor`` below
         :data:`~fusion.book.ledger.MIN_RUNS`.
     """
-    seed = check_seed(seed)
+    seed = check_seed(seed, span=10 + PREMISE_NETWORKS.index(Network.NON_GAUSSIAN))   # its network's seed (fuzz 55 C1)
     runs = count(runs, "runs")
     factor = count(factor, "factor")
     if runs * factor < MIN_RUNS:  # fuzz 24b D7: rule R4 asked for a reason, which this comparison does not take

@@ -117,4 +117,4 @@ def study_seed(seed: int, study: str) -> int:
         raise TypeError(f"study must be a str (a key of SEED_OFFSETS), got {type(study).__name__}")
     if study not in SEED_OFFSETS:
         raise ValueError(f"study must be a key of SEED_OFFSETS ({sorted(SEED_OFFSETS)}), got {shown(study, 80)}")
-    return seed + SEED_OFFSETS[study]
+    return check_seed(seed, span=SEED_OFFSETS[study]) + SEED_OFFSETS[study]   # seed + offset a seed (fuzz 55 D1)

@@ -105,6 +105,7 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     seeds = count(seeds, "seeds")  # the int read: glued as "runs" (fuzz 29a C2)
+    seed = check_seed(seed, span=seeds - 1)   # seeds seed .. seed + seeds - 1 (fuzz 55 C1)
     from fusion.optimise.scalar import batch_budget
 
     batch_budget(seeds, 30, 200, "seeds")   # each rule's batch of the printed 30 × 200, named here (fuzz 24c WN)

@@ -237,6 +237,7 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
     # james_stein_risk's ceiling of a dimension on every entry, at entry (fuzz 41b C5: ds = (10000, 10001) was refused
     # by it inside the loop, after the first d's Monte Carlo, naming its own d)
     ds = distinct(counts(ds, "ds", minimum=2, maximum=COUNT_CEILINGS["dimension"]), "ds")
+    seed = check_seed(seed, span=max(ds))   # dimension d's draws: seed + d, a seed too (fuzz 55 C1)
     ratios = sequence(ratios, "ratios", minimum=1, what="ratio")
     # the cells, counted before any ratio is checked (fuzz 42b C2: 5e6 ratios were checked one by one for 12 CPU-s
     # before the work check refused them)

@@ -433,7 +433,7 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> Studies:
         The ridge (``s25``), plug-in (``p25``, ``x25``), vector (``v25``, ``v25_well``), correlated (``s27``), coupling
         (``cpl``, ``cpl_wide``) and estimated-covariance (``est``) studies.
     """
-    seed = check_seed(seed)
+    seed = check_seed(seed, span=213)   # its studies' seeds, seed + 1 .. seed + 213, each a seed (fuzz 55 D1)
     runs = None if runs is None else count(runs, "runs")
     from fusion.scenarios import correlated_sensors as cs
     from fusion.scenarios import lecture_correlated as lsc

@@ -96,6 +96,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> Study:
     """
     seed = check_seed(seed)
     key = one_of(key, tuple(RUNS), "key")
+    seed = check_seed(seed, span=max(SEED_OFFSETS[key]))   # its studies' seed + offset, each a seed (fuzz 55 D1)
     return _study(key, seed, int(RUNS[key] if runs is None else count(runs, "runs")))
 
 

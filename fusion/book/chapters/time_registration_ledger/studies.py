@@ -248,6 +248,12 @@ def _study_work(runs: int, n_dst: int, names: str, readings: str, times: str) ->
     return units
 
 
+def _seed_span(n_robust: int) -> int:
+    """The largest offset :func:`study` adds to its seed (its readings' ``seed + 100 + i`` .. ``seed + 180``), with
+    ``n_robust`` robustness readings."""
+    return max(100 + len(SIGMAS_ALT), 110 + len(STRESS), 120 + n_robust, 140 + len(S3_READINGS), 152, 181) - 1
+
+
 def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> RegistrationStudy:
     """Every Monte-Carlo study the ledger needs, each reading at the primary's ``runs`` (rule R4).
 
@@ -291,6 +297,7 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
     # monte_carlo's names): three instants within their record, two samples in each least-squares window
     _least_squares_windows(sc.instants()[0], _scenario_instants(t2, 3, "the start-up reading scores from the third"))
     sigma, runs = std_scalar(sigma, "sigma"), count(runs, "runs")
+    seed = check_seed(seed, span=_seed_span(len(robustness_readings(sigma, t2))))   # fuzz 55 D1
     if sigma != _FAIR_SIGMA and general(sigma) == general(_FAIR_SIGMA):  # s3_fair's readings keyed by _key (fuzz 30b)
         raise ValueError(f"sigma must be {_FAIR_SIGMA:g} m or differ from it to 6 significant digits (the fair §3 "
                          f"reading at {_FAIR_SIGMA:g} m and at sigma are keyed by the printed level)")
@@ -345,8 +352,10 @@ def cached_study(seed: int, runs: int) -> RegistrationStudy:
         :func:`study`'s result with ``fusion`` (:func:`fusion.scenarios.time_registration.fusion_runs` of the
         improved method, two-point interpolation, the §3 prediction and least squares).
     """
-    seed = check_seed(seed)
     t1, t2 = sc.instants()
+    # its study's seeds and the fusion runs' seed + 49, each a seed, checked at entry (fuzz 55 D1: refused after ~2.4
+    # CPU-s of work, naming a 257-bit seed)
+    seed = check_seed(seed, span=max(49, _seed_span(len(robustness_readings(PRIMARY_SIGMA, t2)))))
     fused = [IMPROVED, TWO, S3, RegMethod.LEAST_SQUARES]
     # rule 17 on the study and the fusion runs together, before either (fuzz 54a C4: the study's own check passed up
     # to 87,719 runs, then fusion_runs refused beyond 20,000 after the study ran, 8-10 CPU-s): each by its own budget
