@@ -762,9 +762,7 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
         ``sigmas`` is empty or holds a level that is not a valid standard deviation; ``runs`` below 1; the two
         beyond the work budget (``fusion._limits.MAX_WORK``, chapter 07's rule ``_registration_work``).
     """
-    seed = check_seed(seed)
-    sigmas = _noise_levels(sigmas, "sigmas")
-    # reading i of a level runs with seed + 120 + i: each a seed, checked at entry (fuzz 55 C1)
+    seed, sigmas = check_seed(seed), _noise_levels(sigmas, "sigmas")   # reading i of a level: seed + 120 + i (55 C1)
     seed = check_seed(seed, span=120 + len(robustness_readings(float(sigmas[0]), sc.instants()[1])) - 1)
     runs = count(runs, "runs")  # the int read (fuzz 29a C2)
     k = len(sigmas) * len(TUNING_READINGS)  # rule 17 before any run: per level and reading a Monte Carlo, 2 exact
