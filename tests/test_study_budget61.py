@@ -57,10 +57,12 @@ def _accepts(budget: Callable[[int], object]) -> Callable[[int], bool]:
     return accepts
 
 
-def _refused_first(call: Callable[[], object]) -> str:
-    """``call`` is refused with a ValueError naming runs before any draw, in under 1 CPU-s; its message."""
+def _refused_first(call: Callable[[], object], prefix: str = "") -> str:
+    """``call`` is refused with a ValueError naming runs (after ``prefix``, a regular expression) before any draw,
+    in under 1 CPU-s; its message (shared with test_study_budget62 and 63)."""
     t0 = time.process_time()
-    with pytest.raises(ValueError, match=r"^runs ask for studies beyond the budget, refused before any study") as e:
+    with pytest.raises(ValueError, match="^" + prefix + r"runs ask for studies beyond the budget, refused before any "
+                       "study") as e:
         call()
     assert time.process_time() - t0 < 1
     return str(e.value)

@@ -11,15 +11,10 @@ accepted edge runs no work: the budget alone decides.
 
 from __future__ import annotations
 
-import time
-from collections.abc import Callable
-
 import numpy as np
 import pytest
 
-
-class Ran(BaseException):
-    """Raised at the first draw: every entry check has passed."""
+from tests.test_study_budget61 import Ran, _reaches_the_draw, _refused_first
 
 
 @pytest.fixture
@@ -35,21 +30,6 @@ def no_draw(monkeypatch):
         raise Ran
 
     monkeypatch.setattr(np.random, "default_rng", ran)
-
-
-def _refused_first(call: Callable[[], object], prefix: str = "") -> str:
-    """``call`` is refused with a ValueError naming runs before any draw, in under 1 CPU-s; its message."""
-    t0 = time.process_time()
-    with pytest.raises(ValueError, match="^" + prefix + r"runs ask for studies beyond the budget, refused before any "
-                       "study") as e:
-        call()
-    assert time.process_time() - t0 < 1
-    return str(e.value)
-
-
-def _reaches_the_draw(call: Callable[[], object]) -> None:
-    with pytest.raises(Ran):
-        call()
 
 
 def _adapts_edge() -> int:
