@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tests.test_study_budget61 import Ran, _reaches_the_draw, _refused_first
+from test_study_budget61 import Ran, _reaches_the_draw, _refused_first
 
 
 @pytest.fixture

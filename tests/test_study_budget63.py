@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import pytest
 
-from tests.test_study_budget61 import _accepts, _edge, _reaches_the_draw, _refused_first, no_draw  # noqa: F401
+from test_study_budget61 import _accepts, _edge, _reaches_the_draw, _refused_first, no_draw  # noqa: F401
 
 
 def test_ci_paired_study_counts_what_it_runs(no_draw):
