@@ -225,6 +225,12 @@ def _words(items: object, name: str, what: str) -> int:
     return total
 
 
+#: The most children a SeedSequence argument may have spawned already: half of numpy's 32-bit spawn counter, whose
+#: ``spawn`` past ``2**32 - 1`` never returns (fuzz 56 C1: ``n_children_spawned = 2**32 - 6`` ran 102 CPU-s, then a
+#: MemoryError); a call spawns at most a few thousand more.
+SPAWNED_MAX = 2**31
+
+
 def seed_sequence(value: object, name: str = "seed") -> np.random.SeedSequence:
     """Return ``value`` when it is a :class:`numpy.random.SeedSequence` of bounded size, TypeError/ValueError naming
     ``name``: the rule of :func:`seed` for a seed given as a SeedSequence object (fuzz 55 C2).
@@ -237,12 +243,20 @@ def seed_sequence(value: object, name: str = "seed") -> np.random.SeedSequence:
     Raises
     ------
     TypeError
-        Not a SeedSequence, or one whose entropy or spawn key holds a non-integer.
+        Not a SeedSequence itself (a subclass may report values other than those numpy mixes), or one whose entropy or
+        spawn key holds a non-integer.
     ValueError
-        An entropy, spawn key or pool beyond the bound.
+        An entropy, spawn key or pool beyond the bound; more than :data:`SPAWNED_MAX` children spawned already.
     """
     if not isinstance(value, np.random.SeedSequence):
         raise TypeError(f"{name} must be a SeedSequence, got {type(value).__name__}")
+    if type(value) is not np.random.SeedSequence:   # fuzz 56 C2: a subclass reported entropy 1, numpy mixed 10**6 bits
+        raise TypeError(f"{name} must be a numpy.random.SeedSequence itself, not a subclass ({type(value).__name__}): "
+                        "what it reports need not be what numpy mixes")
+    if int(value.n_children_spawned) > SPAWNED_MAX:   # fuzz 56 C1: numpy's 32-bit counter; spawn never returns past it
+        raise ValueError(f"{name} must be a SeedSequence that has spawned at most {SPAWNED_MAX:,} children (numpy "
+                         f"counts them in 32 bits, and a spawn past 2**32 - 1 never returns), got "
+                         f"{int(value.n_children_spawned):,}")
     for what, items in (("entropy", value.entropy), ("spawn_key", value.spawn_key)):
         n = _words(items, name, what)
         if n > SEED_WORDS:

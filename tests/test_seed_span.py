@@ -92,10 +92,8 @@ def _tiny():
 @pytest.mark.parametrize("which", ["run_tracking", "run_tracking_batch"])
 def test_huge_seed_sequence_refused_before_spawn(monkeypatch, which):
     from fusion.scenarios import range_bearing
-    class NoSpawn(np.random.SeedSequence):
-        spawn = _no_work   # a spawn would mix the huge entropy again (49.5 CPU-s at 10**6 bits)
 
-    huge = NoSpawn(1 << 10**5)
+    huge = np.random.SeedSequence(1 << 10**5)   # 0.04 CPU-s to build; each spawn would mix it again
     t = time.process_time()
     if which == "run_tracking":
         with pytest.raises(ValueError, match=r"^seed entropy must be a seed of at most 256 bits.*100,001 bits"):
@@ -142,3 +140,25 @@ def test_per_step_weights_and_fig5_hypotheses_spans(monkeypatch):
         ci.fig5_hypotheses(P, 2 * P, ffs, SEED_MAX - 1, short_budget=3, n_open=3)
     with pytest.raises(AssertionError, match="a generator was seeded"):
         ci.fig5_hypotheses(P, 2 * P, ffs, SEED_MAX - 2, short_budget=3, n_open=3)
+
+
+def test_fuzz56_a_seed_sequence_subclass_or_a_spent_counter_is_refused_before_spawn():
+    """Fuzz 56 C2: a subclass whose ``entropy`` reported 1 passed while numpy mixed 10**6 bits (43 CPU-s); C1: a
+    spawn counter of 2**32 - 6 made ``spawn(6)`` never return (102 CPU-s, then a MemoryError)."""
+    from fusion._counts import SPAWNED_MAX
+    from fusion.scenarios import range_bearing
+
+    class Reports(np.random.SeedSequence):
+        entropy = 1
+
+    t = time.process_time()
+    with pytest.raises(TypeError, match="^seed must be a numpy.random.SeedSequence itself, not a subclass"):
+        range_bearing.run_tracking(_tiny(), Reports(1 << 10**4))
+    spent = np.random.SeedSequence(1, n_children_spawned=2**32 - 6)
+    with pytest.raises(ValueError, match=r"^seeds\[0\] must be a SeedSequence that has spawned at most"):
+        range_bearing.run_tracking_batch(_tiny(), [spent])
+    assert time.process_time() - t < 1.0
+    edge = np.random.SeedSequence(1, n_children_spawned=SPAWNED_MAX)
+    assert seed_sequence(edge) is edge
+    with pytest.raises(ValueError, match="spawned at most 2,147,483,648 children"):
+        seed_sequence(np.random.SeedSequence(1, n_children_spawned=SPAWNED_MAX + 1))
