@@ -126,7 +126,7 @@ def unequal_pair(seed: int = SEED) -> WeightPair:
         100 seeds.
     """
     # the fruit-fly seeds seed .. seed + 99 and the runs' seed + offset, each a seed, checked at entry (fuzz 55 D1)
-    seed = check_seed(seed, span=max(99, SEED_OFFSETS["unequal pair"]))
+    seed = check_seed(seed, span=max(99, study_seed(0, "unequal pair")))
     Q, R1, _ = printed_covariances()
     return weight_pair(R1, R1 / 9, Q, SEARCH_STEP, seed=study_seed(seed, "unequal pair"), search_seed=seed,
                        fruit_fly_seeds=[seed + i for i in range(100)], runs=SOURCE_RUNS, T=SOURCE_T)
@@ -150,7 +150,7 @@ def aniso_pair(seed: int = SEED, runs: int = LEDGER_RUNS) -> WeightPair:
         The anisotropic pair's scenario and covariances at :data:`SEARCH_STEP`, every method's optimum of ω and FOA's
         over 100 seeds.
     """
-    seed = check_seed(seed, span=max(99, SEED_OFFSETS["anisotropic pair"]))   # as unequal_pair's (fuzz 55 D1)
+    seed = check_seed(seed, span=max(99, study_seed(0, "anisotropic pair")))   # as unequal_pair's (fuzz 55 D1)
     Q = printed_covariances()[0]
     return weight_pair(*ANISO_R, Q, SEARCH_STEP, seed=study_seed(seed, "anisotropic pair"), search_seed=seed,
                        fruit_fly_seeds=[seed + i for i in range(100)], runs=count(runs, "runs"), T=SOURCE_T)
@@ -301,7 +301,7 @@ def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, Perio
     dict of float to PeriodRuns
         Period (s) -> the per-run RMSE (m) at the two weights and the seed of those runs.
     """
-    seed = check_seed(seed, span=SEED_OFFSETS["fig6 periods"] + len(FIG6_PERIODS) - 1)   # period i's (fuzz 55 D1)
+    seed = check_seed(seed, span=study_seed(0, "fig6 periods") + len(FIG6_PERIODS) - 1)   # period i's (fuzz 55 D1)
     Q, R1, R2 = printed_covariances()
     out: dict[float, PeriodRuns] = {}
     for i, T in enumerate(FIG6_PERIODS):
@@ -401,7 +401,7 @@ def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> LedgerStudies:
         ``fusion._limits.STUDY_WORK`` the notebook's call serves: about 1,800 runs), before any study.
     """
     # its studies' seeds, up to fig6_periods' seed + 51, each a seed: checked before the first study (fuzz 55 D1)
-    seed = check_seed(seed, span=max(*SEED_OFFSETS.values(), SEED_OFFSETS["fig6 periods"] + len(FIG6_PERIODS) - 1))
+    seed = check_seed(seed, span=max(*SEED_OFFSETS.values(), study_seed(0, "fig6 periods") + len(FIG6_PERIODS) - 1))
     runs = count(runs, "runs")
     _ledger_budget(runs)
     return LedgerStudies(**_shallow(_arch_inputs(seed, runs)), **_shallow(_paired_inputs(seed, runs)),
