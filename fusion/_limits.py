@@ -77,8 +77,11 @@ MEMBERSHIP_STUDY = ("the reseeding sweep's primaries of yang-membership-free and
                     "(membership_study, 5,000 runs)")
 #: The key of chapter 05's ledger studies (``fusion.book.chapters.ci.studies.ledger_studies``: the architecture, paired,
 #: Fig. 6 period and infrared studies at one run count, summed at its entry, fuzz 55 C4): 1.18e9 units at the
-#: notebook's 200 runs (ran 13.0 CPU-s, a fresh process, OPENBLAS_NUM_THREADS=1, niced on the shared machine); its
-#: entry, 3e9, equals the readings benchmark's, so its refusal names it by ``work``'s ``served``.
+#: notebook's 200 runs (16.6 CPU-s of studies after a 1.5-2.2 CPU-s import, a fresh process and study cache,
+#: OPENBLAS_NUM_THREADS=1, nothing else running); by budget35's rule its entry is 3e9, whose edge, 1,840 runs (3.0e9
+#: units), ran 42.8 CPU-s of studies there (fuzz 56 C3): the rule's factor of two over a book call that is itself
+#: 1.2 x MAX_WORK, kept as for every entry. The entry equals the readings benchmark's, so its refusal names it by
+#: ``work``'s ``served``.
 LEDGER_STUDIES = ("chapter 05's notebook call of ledger_studies (arch, paired, Fig. 6 period and infrared studies, "
                   "200 runs)")
 STUDY_WORK: Mapping[str, int] = constant({TRACKING_STUDY: 26 * MAX_WORK, AWF_STUDY: 7 * MAX_WORK,
