@@ -451,6 +451,48 @@ def allocation(shape: tuple[int, ...], names: str, arrays: int = 1) -> None:
                 f"{int(arrays)} arrays of {' x '.join(str(int(d)) for d in shape)} held at once)")
 
 
+def broadcast(shapes: Sequence[tuple[str, tuple[int, ...]]], arrays: int = 1, weight: float = 1) -> tuple[int, ...]:
+    """The broadcast shape of validated array arguments, refused by name before any work (rules 9 and 17).
+
+    Each argument is held to the input budget by its own shape, but arguments broadcast against each other make
+    arrays of their broadcast shape: a column of ``10**5`` and a row of ``10**5`` entries make ``10**10`` (fuzz 57b
+    C5: a raw ``MemoryError``). A function combining its arguments elementwise calls this once they are validated,
+    with the arrays of the broadcast shape its work holds at once (:func:`allocation`) and the measured units of
+    work of one broadcast element (``fusion._limits.work``), both stated at the call.
+
+    Parameters
+    ----------
+    shapes : sequence of (str, tuple of int)
+        Each argument's name and its validated array's shape.
+    arrays : int
+        The float64 arrays of the broadcast shape held at once (measured, rounded up).
+    weight : float
+        The units of work of one broadcast element (measured CPU time over 10 ns, rounded up).
+
+    Returns
+    -------
+    tuple of int
+        The broadcast shape.
+
+    Raises
+    ------
+    ValueError
+        If the shapes do not broadcast, or their broadcast is beyond the memory or the work budget, naming every
+        argument.
+    """
+    names = [str(n) for n, _ in shapes]
+    joined = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+    try:
+        shape = np.broadcast_shapes(*(tuple(s) for _, s in shapes))
+    except ValueError:
+        given = ", ".join(str(tuple(int(d) for d in s)) for _, s in shapes)
+        raise ValueError(f"{joined} must broadcast together, got shapes {given}") from None
+    what = f"{joined} (broadcast together)"
+    allocation(shape, what, arrays)
+    work(shape, what, weight=weight)
+    return shape
+
+
 def _beyond(shape: tuple[int, ...], names: str, limit: int, budget: str) -> None:
     """Refuse an array of ``shape`` of more than ``limit`` elements, naming ``names`` and the ``budget``."""
     n = 1

@@ -46,6 +46,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import LOOP_STEP, allocation, loop_work, work
 from fusion._limits import DENSE_CUBE, dense_work
+from fusion._counts import broadcast
 from fusion._validation import (FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar,
                                 scalar, solve, std_scalar)
 from fusion._shown import shown
@@ -309,10 +310,8 @@ def scalar_ridge_moments(m: int, sigma: float, x: ArrayLike, k: ArrayLike) -> Ri
     sigma = std_scalar(sigma, "sigma")
     xa = as_array(x, "x")
     ka = as_array(k, "k", nonnegative=True)
-    try:
-        np.broadcast_shapes(xa.shape, ka.shape)
-    except ValueError:
-        raise ValueError(f"x and k must broadcast together, got shapes {xa.shape} and {ka.shape}") from None
+    # rules 9 and 17 on the broadcast (fuzz 57b C5): 6.0 arrays of it at tracemalloc's peak, 6.7 ns an element
+    broadcast((("x", xa.shape), ("k", ka.shape)), arrays=6, weight=1)
     bias = -ka * xa / (m + ka)
     sd = np.sqrt(m) * sigma / (m + ka) * np.ones_like(xa)
     return RidgeMoments(bias=bias, sd=sd, mse=bias**2 + sd**2)
@@ -380,10 +379,8 @@ def reliability(bias: ArrayLike, sd: ArrayLike, delta: float) -> FloatArray:
     s = as_array(sd, "sd")
     if np.any(s <= 0):
         raise ValueError("sd must be positive")
-    try:
-        np.broadcast_shapes(b.shape, s.shape)
-    except ValueError:
-        raise ValueError(f"bias and sd must broadcast together, got shapes {b.shape} and {s.shape}") from None
+    # rules 9 and 17 on the broadcast (fuzz 57b C5): 6.25 arrays of it at tracemalloc's peak, 36 ns an element
+    broadcast((("bias", b.shape), ("sd", s.shape)), arrays=7, weight=4)
     return norm.cdf((delta - b) / s) - norm.cdf((-delta - b) / s)
 
 

@@ -57,6 +57,7 @@ from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude, count, one_of, positive_scalar, scalar,
                                 std_scalar)
 from fusion._shown import shown
+from fusion._counts import broadcast
 from fusion.readings._moments import _estimates_from, _moment_stack
 from fusion.readings._windows import window_sums
 
@@ -251,6 +252,9 @@ def lecture_variance_sd(level: float, k: ArrayLike, variances: ArrayLike) -> Flo
     X = scalar(level, "level")
     if not np.isfinite(X):
         raise ValueError("level must be finite")
+    # rules 9 and 17 on the (..., n) result of k against variances (fuzz 57b C5's class): 2.0 arrays of it at
+    # tracemalloc's peak, 2.3 ns an element
+    broadcast((("k", kk.shape + (1,)), ("variances", v.shape)), arrays=2, weight=1)
     n = v.size
     per = v + (v.sum() - v) / (n - 1) ** 2
     return abs(X) * np.sqrt(per / kk[..., None])
@@ -848,10 +852,8 @@ def fuse_current(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs") -> Fl
     """
     A = _as_sample_array(X)
     V = as_array(variances, "variances", ndim=tuple(range(1, 33)))  # at least one (sensor) axis
-    try:
-        np.broadcast_shapes(A.shape, V.shape)
-    except ValueError:
-        raise ValueError(f"variances of shape {V.shape} do not broadcast against X of shape {A.shape}") from None
+    # rules 9 and 17 on the broadcast (fuzz 57b C5): 1.5 arrays of it at tracemalloc's peak, 8.5 ns an element
+    broadcast((("X", A.shape), ("variances", V.shape)), arrays=2, weight=1)
     w = inverse_variance_weights(V, guard=guard)
     return np.sum(w * A, axis=-1)
 
@@ -974,10 +976,9 @@ def cumulative_fusion(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs",
     V = as_array(variances, "variances")
     if not np.all(np.isfinite(V)):
         raise ValueError("variances must be finite")
-    try:
-        shape = np.broadcast_shapes(A.shape, V.shape)
-    except ValueError:
-        raise ValueError(f"variances of shape {V.shape} do not broadcast against X of shape {A.shape}") from None
+    # rules 9 and 17 on the broadcast (fuzz 57b C5: the refusal named inverse_variance_weights' "estimates"):
+    # 4.6 arrays of it at tracemalloc's peak, 38 ns an element
+    shape = broadcast((("X", A.shape), ("variances", V.shape)), arrays=5, weight=4)
     V = np.broadcast_to(V, shape)
     w = inverse_variance_weights(V, guard=guard)
     inst = np.sum(w * A, axis=-1)

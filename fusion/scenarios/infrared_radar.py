@@ -39,7 +39,7 @@ from fusion._limits import MAX_INPUT_ELEMENTS
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
                                 grid_points, positive_scalar, scalar, std_scalar, step_scalar, work)
-from fusion._counts import allocation, input_allocation
+from fusion._counts import allocation, broadcast, input_allocation
 from fusion._validation import LOOP_STEP, loop_work
 from fusion._validation import flag, text
 from fusion._options import text_key
@@ -112,10 +112,8 @@ def spherical_to_cartesian(r: ArrayLike, az: ArrayLike, el: ArrayLike) -> FloatA
     r, az, el = (as_array(v, n, nonempty=False) for v, n in ((r, "r"), (az, "az"), (el, "el")))
     if np.any(r < 0):
         raise ValueError("r (range) must be non-negative")
-    try:
-        np.broadcast_shapes(r.shape, az.shape, el.shape)
-    except ValueError:
-        raise ValueError(f"r, az and el must broadcast together, got shapes {r.shape}, {az.shape}, {el.shape}") from None
+    # rules 9 and 17 on the broadcast (fuzz 57b C5): 7.0 arrays of it at tracemalloc's peak, 37 ns an element
+    broadcast((("r", r.shape), ("az", az.shape), ("el", el.shape)), arrays=7, weight=4)
     return _cartesian(*np.broadcast_arrays(r, az, el))  # the three coordinates stacked share one shape
 
 

@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike
 
 from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, mask, number, same_keys, validated_post_init
 from fusion._shown import shown
+from fusion._counts import broadcast
 from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, count, diagonal_covariance, index, instance_of,
@@ -213,10 +214,8 @@ def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int,
     est, truth = (read_once(est, "est"), read_once(truth, "truth"))  # converted once (fuzz 29a C5)
     est_arr = as_array(est, "est", ndim=3)
     truth_arr = as_array(truth, "truth", ndim=(0, 1, 2, 3))
-    try:
-        np.broadcast_shapes(est_arr.shape, truth_arr.shape)
-    except ValueError:
-        raise ValueError(f"truth of shape {truth_arr.shape} does not match est of shape {est_arr.shape}") from None
+    # rules 9 and 17 on the broadcast (fuzz 57b C5): 3.0 arrays of it at tracemalloc's peak, 3.1 ns an element
+    broadcast((("est", est_arr.shape), ("truth", truth_arr.shape)), arrays=3, weight=1)
     component = index(component, "component", est_arr.shape[2])
     decimals = count(decimals, "decimals", minimum=0)
     e = np.asarray(est, dtype=float) - np.asarray(truth, dtype=float)
