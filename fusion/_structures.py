@@ -171,13 +171,14 @@ def records_of(value: object, name: str, keys: tuple[str, ...] = ()) -> list[Map
     """
     if not isinstance(value, Sequence) or isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must be a sequence (a list) of records, got {type(value).__name__}")
-    for i, r in enumerate(value):
+    records = list(value)   # read once: the records checked are the ones returned (fuzz 57a D1's class)
+    for i, r in enumerate(records):
         if not isinstance(r, Mapping):
             raise TypeError(f"{name}[{i}] must be a mapping (a record), got {type(r).__name__}")
         missing = [k for k in keys if k not in r]
         if missing:
             raise ValueError(f"{name}[{i}] lacks the keys {missing}")
-    return list(value)
+    return records
 
 
 @contextmanager

@@ -55,9 +55,11 @@ def test_c3_object_arrays_are_counted_by_their_size(make) -> None:
     G.glue_all({"k": make(1000), "j": [make(10)]}, decimals=3)
 
 
-def test_numeric_arrays_stay_uncounted() -> None:
-    """A numeric array, Series or Index is checked vectorised (~1 ns an entry): counted 0 units, as before."""
+def test_numeric_arrays_are_counted_by_logical_size() -> None:
+    """A numeric array, Series or Index is checked vectorised (~1 ns an entry): counted ``_GLUE_NUMBER`` (1) unit an
+    entry by its logical size since fuzz 57a C1 (0 before: a RangeIndex(10**12) was converted), still glued."""
     from fusion.book import glue as G
     big = np.full(2 * 10**7, 0.5)
-    assert G._glue_work(big) == G._glue_work(pd.Series(big)) == G._glue_work(pd.Index(big)) == 0
+    assert G._GLUE_NUMBER == 1
+    assert G._glue_work(big) == G._glue_work(pd.Series(big)) == G._glue_work(pd.Index(big)) == 2 * 10**7
     G.glue_all({"k": big, "j": [pd.Series(big)]}, decimals=3)

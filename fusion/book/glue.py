@@ -582,9 +582,12 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
                 continue
             if depth >= MAX_NESTING:  # its text would recurse (fuzz 30a D4: a RecursionError in the kernel)
                 raise nesting_error(f"values[{shown(key)}]", itself=False)
+            if not done:   # its logical size before any conversion (fuzz 57a C1: a RangeIndex(10**10) category)
+                _logical_check(v, key)
             n, weight = (0, 0) if done else _container_work(v)  # done: its container counted it (a Series' array)
             # a table inside a container is printed as a table (the value itself is counted by ``_glue_work``)
             units = n * weight + (_GLUE_TABLE if depth and isinstance(v, (pd.DataFrame, Styler)) else 0)
+            units += 0 if done else _numeric_units(v)   # its numeric entries, checked at once (fuzz 57a C1)
             meter.take(n, units, key)  # charged before its entries are visited (fuzz 46a C2, C3)
             pinned.append(v)
             kind = 0 if isinstance(v, _GLUE_PANDAS) else 2 if type(v).__repr__ in _GUARDED_REPRS else 1
@@ -673,7 +676,7 @@ _GLUE_VALUE, _GLUE_ENTRY, _GLUE_TABLE, _GLUE_CELL, _GLUE_FIGURE = 10_000, 300, 3
 #: object array, object Series or Index, or pandas extension array (``pd.array``, Categorical; visited as objects,
 #: one by one): 1.0-1.3 us visited by :func:`_finite`, 1.1-1.3 us glued (its text is truncated): 200 units. An
 #: entry of a container inside a value (a list of lists): 1.7 us visited, 3.5 us glued (1000 lists of 1000 floats,
-#: 3.46 CPU-s: the text prints every inner list): 400 units. A numeric array: 0 (vectorised, ~1 ns an entry).
+#: 3.46 CPU-s: the text prints every inner list): 400 units. A numeric array: ``_GLUE_NUMBER`` (vectorised).
 #: Fuzz 49a C2: a table's object cell (and label) is such an entry, and what it holds is printed as a Series cell's:
 #: one cell holding ``[[[0.5] * 99] * 99] * 99`` (980,299 printed entries, 3.9e8 units) is glued in 4.2 CPU-s as a
 #: DataFrame (its text and its HTML), 2.1 CPU-s as an object Series (machine shared, load ~8).
@@ -696,7 +699,7 @@ def _container_work(v: object) -> tuple[int, int]:
     a list, tuple or set its length, a mapping its keys and values, at ``_GLUE_NESTED``; an object array, an object
     (or non-NumPy dtype) Series or Index, an extension array its size, a DataFrame or Styler its (table's) object
     cells and labels (``_table_size``), at ``_GLUE_OBJECT``, known without visiting; a structured array holding
-    objects at most one object per 8 bytes of an element; a numeric array 0 (vectorised). A table inside a
+    objects at most one object per 8 bytes of an element; a numeric array 0 (its entries: ``_numeric_units``). A table inside a
     container is charged ``_GLUE_TABLE`` more by :func:`_finite`, where it reaches it."""
     if isinstance(v, (pd.Series, pd.Index)):   # its values, labels and names (fuzz 52 C2)
         return (len(v) if _object_dtype(v.dtype) else 0) + _table_size(v), _GLUE_OBJECT
@@ -709,6 +712,70 @@ def _container_work(v: object) -> tuple[int, int]:
     if isinstance(v, np.ndarray):
         return (int(v.size) * max(1, v.dtype.itemsize // 8) if v.dtype.hasobject else 0), _GLUE_OBJECT
     return len(v), _GLUE_NESTED  # type: ignore[arg-type]
+
+
+#: Fuzz 57a C1: a numeric entry (of a numeric array, Series, Index or table column, or a numeric label) is checked
+#: at once (``np.isfinite``) after its container is converted (``Index.to_numpy``, ``np.asarray``): 0.15-0.7 ns an
+#: entry measured here (10**7 entries, minimum of 3, float64, a broadcast view, a float Index, a Series, a
+#: DatetimeIndex, complex; time.process_time, OPENBLAS_NUM_THREADS=1, shared machine), weighed 1 unit (rounded up
+#: to a whole unit) by its logical size, not by what holding it costs: a ``pd.RangeIndex(10**12)``, a
+#: ``np.broadcast_to(1.0, (10**10,))`` view or a categorical's ``RangeIndex(10**10)`` categories cost nothing to
+#: hold and were charged 0, then converted (a raw MemoryError, "Unable to allocate 7.28 TiB").
+_GLUE_NUMBER = 1
+
+
+def _logical_sizes(v: object) -> list[int]:
+    """The logical sizes (entries, not bytes held) of what :func:`_finite` converts for the container ``v``: its
+    values (an array's shape product, a table's cells), each axis of labels of a Series or table (a Styler's
+    table), and a categorical's categories; empty for a Python container (its entries are visited, counted)."""
+    v = v.data if isinstance(v, Styler) else v
+    if isinstance(v, np.ndarray):
+        return [int(np.prod(v.shape, dtype=object))]
+    if not isinstance(v, (pd.Series, pd.Index, pd.DataFrame, ExtensionArray)):
+        return []
+    sizes = [int(np.prod(v.shape, dtype=object))]
+    if isinstance(v, (pd.Series, pd.DataFrame)):
+        sizes += [len(ax) for ax in _axes(v)[0]]
+    dtype = getattr(v, "dtype", None)
+    if isinstance(dtype, pd.CategoricalDtype):
+        sizes.append(len(dtype.categories))
+    return sizes
+
+
+def _logical_check(v: object, key: str) -> None:
+    """ValueError naming ``values[key]`` when a part of the container ``v`` that :func:`_finite` converts
+    (``_logical_sizes``) holds more than ``fusion._limits.MAX_INPUT_ELEMENTS`` entries (2**25, the input budget
+    of an array argument: rule 9, read by shape before any copy or conversion), fuzz 57a C1."""
+    from fusion._limits import MAX_INPUT_ELEMENTS
+
+    n = max(_logical_sizes(v), default=0)
+    if n > MAX_INPUT_ELEMENTS:
+        raise ValueError(f"values[{shown(key)}] holds a {type(v).__name__} of {n:.3g} entries (its values, labels "
+                         f"or categories, counted by their logical size), beyond the input budget (at most "
+                         f"{MAX_INPUT_ELEMENTS:,}, fusion._limits.MAX_INPUT_ELEMENTS): checking it would convert "
+                         "them all")
+
+
+def _numeric_units(v: object) -> int:
+    """The units (``_GLUE_NUMBER`` each) of the numeric entries :func:`_finite` converts and checks at once in the
+    container ``v``, by their logical size: a numeric array's (a structured one's fields), a numeric Series' or
+    Index's values, a table's or Series' complex columns and complex labels (``_complex_table_finite``); the object
+    ones are counted by ``_container_work``, a categorical's categories where :func:`_finite` reaches them, a
+    Styler's cells by ``_GLUE_CELL``; a table's other numeric columns and labels are not converted (its text is
+    truncated), only their logical size is checked (``_logical_check``)."""
+    if isinstance(v, np.ndarray):
+        fields = v.dtype.names or ("",)
+        return 0 if v.dtype.hasobject and not v.dtype.names else int(v.size) * len(fields) * _GLUE_NUMBER
+    if not isinstance(v, (pd.Series, pd.Index, pd.DataFrame)):
+        return 0
+    n = len(v) if isinstance(v, (pd.Series, pd.Index)) and not _object_dtype(v.dtype) else 0
+    if isinstance(v, pd.DataFrame):
+        n = v.shape[0] * sum(1 for d in v.dtypes if isinstance(d, np.dtype) and d.kind == "c")
+    if isinstance(v, (pd.Series, pd.DataFrame)):
+        for ax in _axes(v)[0]:
+            levels = list(ax.levels) if isinstance(ax, pd.MultiIndex) else [ax]
+            n += sum(len(lv) for lv in levels if isinstance(lv.dtype, np.dtype) and lv.dtype.kind == "c")
+    return n * _GLUE_NUMBER
 
 
 class _Meter:
@@ -736,10 +803,19 @@ class _Meter:
                              f"of the {_GLUE_VISITS:,} entries printed inside containers in one call")
 
 
-def _glue_work(value: object) -> int:
+def _glue_work(value: object, key: str = "") -> int:
     """The units of work of gluing ``value`` (``_GLUE_VALUE`` and the weights beside it), beyond ``_GLUE_VALUE``:
-    a container by its own entries (``_container_work``, a list's at ``_GLUE_ENTRY``); what is inside them is
-    counted as :func:`_finite` reaches it."""
+    a container by its own entries (``_container_work``, a list's at ``_GLUE_ENTRY``) and its numeric entries by
+    their logical size (``_numeric_units``; ValueError naming ``values[key]`` for a part beyond the input budget,
+    ``_logical_check``, fuzz 57a C1); what is inside them is counted as :func:`_finite` reaches it."""
+    if isinstance(value, _GLUE_CONTAINERS):
+        _logical_check(value, key)
+        return _glue_units(value) + _numeric_units(value)
+    return _GLUE_FIGURE if isinstance(value, Figure) else 0
+
+
+def _glue_units(value: object) -> int:
+    """``_glue_work``'s units of the container ``value`` but its numeric entries."""
     if isinstance(value, Figure):
         return _GLUE_FIGURE
     if isinstance(value, Styler):
@@ -827,7 +903,11 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         conversion: with the limit lifted, 10**6 digits took 11 CPU-s to print), wherever an int is, naming
         ``values[key]``. More values (weighed by kind: tables by their cells, lists by their entries, a dict by its
         keys and values, object and extension arrays, object Series and Index by their size, figures) than the work
-        budget glues, naming ``values``, before any is read; entries of containers inside a value (a list of lists,
+        budget glues, naming ``values``, before any is read (a numeric entry 1 unit, by its logical size: a
+        ``RangeIndex``, a broadcast view, a categorical's categories); a numeric array, Series, Index, pandas array,
+        table or categorical whose values, labels or categories hold more than 2**25 entries (the input budget,
+        ``fusion._limits.MAX_INPUT_ELEMENTS``), wherever it is, naming ``values[key]``, before any conversion
+        (fuzz 57a C1: a ``RangeIndex(10**12)`` was converted); entries of containers inside a value (a list of lists,
         a table's object cells and labels, a table inside a list) beyond the rest of the budget or beyond 10**6 in
         one call, counted as they are reached and as they are printed (a container reached by two paths twice),
         naming ``values[key]``.
@@ -836,7 +916,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")
     values = read_mapping(values, "values")  # its values checked and glued as one read (fuzz 31a C3)
     work((len(values),), "values", weight=_GLUE_VALUE)   # by their number, then their kinds: before any is read
-    units = work((len(values) * _GLUE_VALUE + sum(_glue_work(v) for v in values.values()),), "values (their "
+    units = work((len(values) * _GLUE_VALUE + sum(_glue_work(v, k) for k, v in values.items()),), "values (their "
                  "tables, figures and containers)")
     meter = _Meter(MAX_WORK - units)  # what is inside their containers, counted as it is reached (fuzz 46a C2)
     if decimals is not None:

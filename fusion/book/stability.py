@@ -505,7 +505,8 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
         Two results of one task, a result of a seed not in ``seed_list``, a repeated seed or one of 2**31 or more
         (``seed_list[i]``, checked before any is hashed), a committed status not
         one of the rulebook's; ``committed`` of more than 10**7 entries (counted by iterating its keys before any
-        entry is read), or yielding more entries when read than when counted; ``results``, ``seed_list`` and
+        entry is read), or yielding more entries when read than when counted (then read once: its entries are
+        checked and used as that one read, fuzz 57a D1); ``results``, ``seed_list`` and
         ``committed`` beyond the work budget (rule 17: their results and committed entries, then their records x
         seeds, counted before any is read or judged).
 
@@ -527,10 +528,12 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     # rule 17 (fuzz 49b C6): the results and committed first (at least one record if any), then, once grouped (which
     # their units pay for), every record x seed cell
     _summary_work(len(results), min(1, len(results)), len(seed_list), n_committed)
-    for j, (rid, status) in enumerate(committed.items()):
+    given, committed = committed, {}   # read once into a plain dict, checked and used as that one read (fuzz 57a D1)
+    for j, (rid, status) in enumerate(given.items()):
         if j >= n_committed:
             raise ValueError(f"committed yielded more than the {n_committed:,} entries counted before they were read "
                              "(a mapping whose items change while it is read)")
+        committed[rid] = status
         if status is not None and not isinstance(status, str):
             raise TypeError(f"committed[{shown(rid)}] must be a status (str), got {shown(status)}")
         if status is not None and status not in R.STATUSES:
