@@ -268,6 +268,65 @@ def seed_sequence(value: object, name: str = "seed") -> np.random.SeedSequence:
     return value
 
 
+#: The bit generators a Generator argument may draw from: numpy's own five, each exactly its type. A Generator reads its
+#: bit generator's C functions through the ``capsule`` attribute, once, when it is built; a Python override of
+#: ``random_raw`` or ``state`` in a subclass of these has no effect on what the Generator draws (measured, numpy 2.4:
+#: a PCG64 subclass overriding both draws PCG64's own numbers, digit for digit), but a subclass may override
+#: ``capsule`` itself, and any object with a ``capsule`` and a ``lock`` is accepted by ``numpy.random.Generator``:
+#: a capsule of a hand-made (ctypes) bit generator whose ``next_double`` returns NaN made ``random`` and ``uniform``
+#: draw NaN and ``normal`` draw 0 (fuzz 57b C1 follow-up), and a bare ``numpy.random.BitGenerator`` subclass crashed
+#: the interpreter (a segmentation fault) at its first draw.
+BIT_GENERATORS = (np.random.PCG64, np.random.PCG64DXSM, np.random.MT19937, np.random.Philox, np.random.SFC64)
+
+
+def as_rng(rng: object, name: str = "rng") -> np.random.Generator:
+    """Check that ``rng`` is a :class:`numpy.random.Generator` itself over one of numpy's bit generators
+    (:data:`BIT_GENERATORS`, each exactly its type), a TypeError naming ``name`` otherwise.
+
+    A subclass is refused, as :func:`seed_sequence` refuses a SeedSequence subclass: its overridden methods are
+    what the package would draw from (fuzz 57b C1: ``uniform``, ``normal`` or ``random`` returning NaN or 1e300 made
+    ``gauss_markov_gap`` return NaN, ``systematic_resample`` a plausible wrong resample, ``weighted_em`` raise a raw
+    IndexError). So is a bit generator other than numpy's own (a subclass may hand the Generator other C functions:
+    NaN draws, or a crash).
+    """
+    if not isinstance(rng, np.random.Generator):
+        raise TypeError(f"{name} must be a numpy.random.Generator, got {type(rng).__name__}")
+    if type(rng) is not np.random.Generator:
+        raise TypeError(f"{name} must be a numpy.random.Generator itself, not a subclass ({type(rng).__name__}): its "
+                        "methods would be what the package draws from")
+    if type(rng.bit_generator) not in BIT_GENERATORS:
+        raise TypeError(f"{name} must be a numpy.random.Generator over one of numpy's bit generators (PCG64, "
+                        f"PCG64DXSM, MT19937, Philox, SFC64, not a subclass), got one over "
+                        f"{type(rng.bit_generator).__name__}")
+    return rng
+
+
+def as_rngs(rngs: object, name: str = "rngs", n: int | None = None) -> list[np.random.Generator]:
+    """A list of generators, one per problem (rule 12): each entry is checked by :func:`as_rng`, naming it
+    (``rngs[1]``).
+
+    Any sequence (:func:`sequence`: a list, a tuple, a ``UserList``, ...). TypeError for a non-sequence or an
+    entry that is not a Generator (a float seed, a subclass included); ValueError for an empty list, one of other than
+    ``n`` entries, or one whose entries share a stream (one Generator object twice, or two Generators of one bit
+    generator): problem ``b`` could not give what the single call gives with ``rngs[b]`` (fuzz 24a D3).
+    """
+    if isinstance(rngs, np.random.Generator):
+        raise TypeError(f"{name} must be a list of numpy.random.Generator, got one Generator")
+    rngs = sequence(rngs, name)
+    if not rngs or (n is not None and len(rngs) != n):
+        want = "a non-empty list" if n is None else f"a list of {n}"
+        raise ValueError(f"{name} must be {want} generators (one per problem), got {len(rngs)}")
+    seen: dict[int, int] = {}
+    for i, r in enumerate(rngs):
+        as_rng(r, f"{name}[{i}]")
+        j = seen.setdefault(id(r.bit_generator), i)  # the same object, or two Generators of one bit generator
+        if j != i:
+            raise ValueError(f"{name}[{i}] draws from the same stream as {name}[{j}]: each problem needs its own "
+                             "generator (its result is then what the single call gives with it), e.g. "
+                             "np.random.SeedSequence(seed).spawn(n)")
+    return list(rngs)
+
+
 #: The integer types :func:`_plain_integers` checks in one pass (bool and timedelta64 are not among them).
 _PLAIN_INTEGERS = frozenset({int, np.int8, np.int16, np.int32, np.int64, np.uint8, np.uint16, np.uint32, np.uint64})
 
