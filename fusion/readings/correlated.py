@@ -690,6 +690,9 @@ def gauss_markov_gap(H: ArrayLike, R: ArrayLike, rng: np.random.Generator, draws
     ------
     ValueError
         As :func:`gls`, or ``draws`` < 1.
+    TypeError
+        ``rng`` not a :class:`numpy.random.Generator` itself (a subclass's draws are its own) over one of numpy's
+        bit generators.
     """
     H, R = (read_once(H, "H"), read_once(R, "R"))  # converted once (fuzz 29a C5)
     as_rng(rng)  # a Generator itself (fuzz 57b C1: a subclass drawing NaN made the gap NaN)
