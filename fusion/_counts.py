@@ -210,10 +210,42 @@ def seed(value: int, name: str = "seed", span: int = 0) -> int:
 SEED_WORDS = 8
 
 
+#: The most items (entries and nested sequences) :func:`_first_entries` visits to find an argument's first entries: a
+#: SeedSequence of at most :data:`SEED_WORDS` words holds a few; more, without that many entries among them, is a
+#: nesting of empty sequences numpy would walk again at every spawn.
+SEED_ITEMS = 64
+
+
+def _first_entries(items: object, name: str, what: str) -> list:
+    """The first ``SEED_WORDS + 1`` entries of ``items`` in numpy's order (an int; a sequence or array of them, nested
+    sequences and arrays flattened), read lazily: an entropy of 10**8 words is not converted whole (fuzz 57b D1: the
+    former ``np.asarray(items, dtype=object).ravel()`` took 4.4 CPU-s to refuse ``np.arange(10**8)``)."""
+    out: list = []
+    stack = [iter((items,))]
+    visited = 0
+    while stack and len(out) <= SEED_WORDS:
+        x = next(stack[-1], stack)   # the stack itself marks an exhausted level (it is never an entry)
+        if x is stack:
+            stack.pop()
+            continue
+        visited += 1
+        if visited > SEED_ITEMS:
+            raise ValueError(f"{name} must be a SeedSequence of at most {SEED_WORDS} 32-bit words of {what}, got "
+                             f"more than {SEED_ITEMS} nested items in it (every spawn walks them again)")
+        if isinstance(x, np.ndarray):
+            stack.append(iter(x.flat))   # numpy scalars, one at a time (no copy of the array)
+        elif isinstance(x, Sequence) and not isinstance(x, (str, bytes)):
+            stack.append(iter(x))
+        else:
+            out.append(x)
+    return out
+
+
 def _words(items: object, name: str, what: str) -> int:
     """The 32-bit words SeedSequence makes of ``items`` (an int, or a sequence of ints: each entry at least one word),
-    refusing an entry beyond :data:`SEED_MAX` by name (its bit length: cheap)."""
-    entries = [items] if isinstance(items, (int, np.integer)) else list(np.asarray(items, dtype=object).ravel())
+    counted up to ``SEED_WORDS + 1`` from its first entries only, refusing an entry beyond :data:`SEED_MAX` by name
+    (its bit length: cheap)."""
+    entries = _first_entries(items, name, what)
     total = 0
     for k, e in enumerate(entries):
         if not isinstance(e, (int, np.integer)) or isinstance(e, (bool, np.bool_)):
@@ -266,6 +298,65 @@ def seed_sequence(value: object, name: str = "seed") -> np.random.SeedSequence:
         raise ValueError(f"{name} must be a SeedSequence of a pool of at most {SEED_WORDS} words, got "
                          f"{int(value.pool_size):,} (every spawn mixes its entropy into it again)")
     return value
+
+
+#: The bit generators a Generator argument may draw from: numpy's own five, each exactly its type. A Generator reads its
+#: bit generator's C functions through the ``capsule`` attribute, once, when it is built; a Python override of
+#: ``random_raw`` or ``state`` in a subclass of these has no effect on what the Generator draws (measured, numpy 2.4:
+#: a PCG64 subclass overriding both draws PCG64's own numbers, digit for digit), but a subclass may override
+#: ``capsule`` itself, and any object with a ``capsule`` and a ``lock`` is accepted by ``numpy.random.Generator``:
+#: a capsule of a hand-made (ctypes) bit generator whose ``next_double`` returns NaN made ``random`` and ``uniform``
+#: draw NaN and ``normal`` draw 0 (fuzz 57b C1 follow-up), and a bare ``numpy.random.BitGenerator`` subclass crashed
+#: the interpreter (a segmentation fault) at its first draw.
+BIT_GENERATORS = (np.random.PCG64, np.random.PCG64DXSM, np.random.MT19937, np.random.Philox, np.random.SFC64)
+
+
+def as_rng(rng: object, name: str = "rng") -> np.random.Generator:
+    """Check that ``rng`` is a :class:`numpy.random.Generator` itself over one of numpy's bit generators
+    (:data:`BIT_GENERATORS`, each exactly its type), a TypeError naming ``name`` otherwise.
+
+    A subclass is refused, as :func:`seed_sequence` refuses a SeedSequence subclass: its overridden methods are
+    what the package would draw from (fuzz 57b C1: ``uniform``, ``normal`` or ``random`` returning NaN or 1e300 made
+    ``gauss_markov_gap`` return NaN, ``systematic_resample`` a plausible wrong resample, ``weighted_em`` raise a raw
+    IndexError). So is a bit generator other than numpy's own (a subclass may hand the Generator other C functions:
+    NaN draws, or a crash).
+    """
+    if not isinstance(rng, np.random.Generator):
+        raise TypeError(f"{name} must be a numpy.random.Generator, got {type(rng).__name__}")
+    if type(rng) is not np.random.Generator:
+        raise TypeError(f"{name} must be a numpy.random.Generator itself, not a subclass ({type(rng).__name__}): its "
+                        "methods would be what the package draws from")
+    if type(rng.bit_generator) not in BIT_GENERATORS:
+        raise TypeError(f"{name} must be a numpy.random.Generator over one of numpy's bit generators (PCG64, "
+                        f"PCG64DXSM, MT19937, Philox, SFC64, not a subclass), got one over "
+                        f"{type(rng.bit_generator).__name__}")
+    return rng
+
+
+def as_rngs(rngs: object, name: str = "rngs", n: int | None = None) -> list[np.random.Generator]:
+    """A list of generators, one per problem (rule 12): each entry is checked by :func:`as_rng`, naming it
+    (``rngs[1]``).
+
+    Any sequence (:func:`sequence`: a list, a tuple, a ``UserList``, ...). TypeError for a non-sequence or an
+    entry that is not a Generator (a float seed, a subclass included); ValueError for an empty list, one of other than
+    ``n`` entries, or one whose entries share a stream (one Generator object twice, or two Generators of one bit
+    generator): problem ``b`` could not give what the single call gives with ``rngs[b]`` (fuzz 24a D3).
+    """
+    if isinstance(rngs, np.random.Generator):
+        raise TypeError(f"{name} must be a list of numpy.random.Generator, got one Generator")
+    rngs = sequence(rngs, name)
+    if not rngs or (n is not None and len(rngs) != n):
+        want = "a non-empty list" if n is None else f"a list of {n}"
+        raise ValueError(f"{name} must be {want} generators (one per problem), got {len(rngs)}")
+    seen: dict[int, int] = {}
+    for i, r in enumerate(rngs):
+        as_rng(r, f"{name}[{i}]")
+        j = seen.setdefault(id(r.bit_generator), i)  # the same object, or two Generators of one bit generator
+        if j != i:
+            raise ValueError(f"{name}[{i}] draws from the same stream as {name}[{j}]: each problem needs its own "
+                             "generator (its result is then what the single call gives with it), e.g. "
+                             "np.random.SeedSequence(seed).spawn(n)")
+    return list(rngs)
 
 
 #: The integer types :func:`_plain_integers` checks in one pass (bool and timedelta64 are not among them).

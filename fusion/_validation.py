@@ -117,7 +117,8 @@ from scipy.linalg.lapack import dpotrf as _potrf
 from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, seeds and sequences)
     BY_KIND, COUNT_CEILINGS, COUNT_KINDS, MAX_COUNT, MAX_ELEMENTS, _bool_error, _complex_error, _integer, allocation,
     count, count_ceiling, count_kind, counts, distinct, distinct_printed, general, glue_part, grid_points, index,
-    iterable, machine_workers, not_masked, PAIR_WORK, pairwise, seed, seed_array, seed_sequence, seeds, sequence, workers)
+    iterable, machine_workers, not_masked, PAIR_WORK, pairwise, seed, seed_array, seed_sequence, seeds, sequence, workers,
+    as_rng, as_rngs)
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, mapping_of, psd_factor, record, records_of, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
@@ -762,38 +763,6 @@ def solve(A: FloatArray, b: FloatArray, name: str, *, assume: str = "gen") -> Fl
     if not np.isfinite(x).all():
         raise ValueError(f"{name} gives a numerically singular system (the solution overflows)")
     return x
-
-
-def as_rng(rng: object, name: str = "rng") -> np.random.Generator:
-    """Check that ``rng`` is a :class:`numpy.random.Generator` (TypeError otherwise)."""
-    if not isinstance(rng, np.random.Generator):
-        raise TypeError(f"{name} must be a numpy.random.Generator, got {type(rng).__name__}")
-    return rng
-
-
-def as_rngs(rngs: object, name: str = "rngs", n: int | None = None) -> list[np.random.Generator]:
-    """A list of generators, one per problem (rule 12): each entry is checked, naming it (``rngs[1]``).
-
-    Any sequence (:func:`sequence`: a list, a tuple, a ``UserList``, ...). TypeError for a non-sequence or an
-    entry that is not a Generator (a float seed included); ValueError for an empty list, one of other than
-    ``n`` entries, or one whose entries share a stream (one Generator object twice, or two Generators of one bit
-    generator): problem ``b`` could not give what the single call gives with ``rngs[b]`` (fuzz 24a D3).
-    """
-    if isinstance(rngs, np.random.Generator):
-        raise TypeError(f"{name} must be a list of numpy.random.Generator, got one Generator")
-    rngs = sequence(rngs, name)
-    if not rngs or (n is not None and len(rngs) != n):
-        want = "a non-empty list" if n is None else f"a list of {n}"
-        raise ValueError(f"{name} must be {want} generators (one per problem), got {len(rngs)}")
-    seen: dict[int, int] = {}
-    for i, r in enumerate(rngs):
-        as_rng(r, f"{name}[{i}]")
-        j = seen.setdefault(id(r.bit_generator), i)  # the same object, or two Generators of one bit generator
-        if j != i:
-            raise ValueError(f"{name}[{i}] draws from the same stream as {name}[{j}]: each problem needs its own "
-                             "generator (its result is then what the single call gives with it), e.g. "
-                             "np.random.SeedSequence(seed).spawn(n)")
-    return list(rngs)
 
 
 def as_callable(f: object, name: str) -> object:

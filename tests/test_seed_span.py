@@ -162,3 +162,23 @@ def test_fuzz56_a_seed_sequence_subclass_or_a_spent_counter_is_refused_before_sp
     assert seed_sequence(edge) is edge
     with pytest.raises(ValueError, match="spawned at most 2,147,483,648 children"):
         seed_sequence(np.random.SeedSequence(1, n_children_spawned=SPAWNED_MAX + 1))
+
+
+def test_fuzz57b_d1_a_huge_entropy_is_refused_without_reading_it_whole():
+    """Fuzz 57b D1: ``_words`` converted the whole entropy to an object array before counting: ``np.arange(10**8)``
+    was refused after 4.4 CPU-s (10**7 words: 0.44). Now its first entries only are read."""
+    huge = np.random.SeedSequence(np.arange(10**7, dtype=np.uint32))   # ~0.3 CPU-s to build
+    nested = np.random.SeedSequence([np.arange(10**7, dtype=np.uint32)])
+    for ss in (huge, nested):
+        t = time.process_time()
+        with pytest.raises(ValueError, match="^seed must be a SeedSequence of at most 8 32-bit words of entropy"):
+            seed_sequence(ss)
+        assert time.process_time() - t < 0.05
+    # the bound itself is unchanged: 8 words of entropy pass, nested or flat, and their entries are still checked
+    assert seed_sequence(np.random.SeedSequence([[1, 2], np.arange(3, 9)])) is not None
+    with pytest.raises(ValueError, match=r"^seed entropy\[1\] must be a seed of at most 256 bits"):
+        seed_sequence(np.random.SeedSequence([1, [1 << 300]]))
+    empties = np.random.SeedSequence([[] for _ in range(100)] + [1])   # no word until the last entry
+    with pytest.raises(ValueError, match="^seed must be a SeedSequence of at most 8 32-bit words of entropy, got more "
+                                         "than 64 nested items"):
+        seed_sequence(empties)

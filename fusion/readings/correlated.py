@@ -44,7 +44,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
-from fusion._counts import allocation
+from fusion._counts import allocation, as_rng
 from fusion._limits import DENSE_CUBE, LOOP_STEP, dense_work, loop_work
 from fusion._frozen import frozen_arrays
 from fusion._covariances import column_rank_deficient
@@ -690,10 +690,12 @@ def gauss_markov_gap(H: ArrayLike, R: ArrayLike, rng: np.random.Generator, draws
     ------
     ValueError
         As :func:`gls`, or ``draws`` < 1.
+    TypeError
+        ``rng`` not a :class:`numpy.random.Generator` itself (a subclass's draws are its own) over one of numpy's
+        bit generators.
     """
     H, R = (read_once(H, "H"), read_once(R, "R"))  # converted once (fuzz 29a C5)
-    if not isinstance(rng, np.random.Generator):
-        raise TypeError(f"rng must be a numpy.random.Generator, got {type(rng).__name__}")
+    as_rng(rng)  # a Generator itself (fuzz 57b C1: a subclass drawing NaN made the gap NaN)
     draws = count(draws, "draws")
     K = gls_weights(H, R)
     Ha = np.asarray(H, dtype=float)

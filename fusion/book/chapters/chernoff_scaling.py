@@ -18,7 +18,7 @@ from fusion._frozen import constant
 from fusion._docstrings import with_sections
 from fusion._results import ResultSpec, array, dict_of, integer, mask, tuple_of, validated_post_init
 from fusion._shown import shown
-from fusion._validation import FloatArray, allocation, as_array, count, counts, distinct, instance_of, scalar
+from fusion._validation import FloatArray, as_rng, allocation, as_array, count, counts, distinct, instance_of, scalar
 from fusion._limits import dense_work, work
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
@@ -84,7 +84,7 @@ def gaussian_problems(rng: np.random.Generator, runs: int, n: int, d: int = 2) -
         of them held at once, 6 at ``d = 1``) or the work budget (``fusion._limits.dense_work``: at
         ``runs = n = 1``, ``d`` up to 2,714).
     """
-    instance_of(rng, np.random.Generator, "rng")
+    as_rng(rng)  # a Generator itself, over a numpy bit generator (fuzz 57b C1)
     runs, n, d = count(runs, "runs"), count(n, "n"), count(d, "d")
     allocation((runs, n, d, d), "runs, n and d", _problem_arrays(d))
     dense_work(runs * n, d, "runs, n and d", _PROBLEM_CUBE_UNITS)  # the A A^T of each problem and node (fuzz 44 C4)

@@ -34,7 +34,7 @@ import pandas as pd
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
-from fusion._validation import FloatArray, as_array, count, instance_of, positive_scalar, unit_scalar
+from fusion._validation import FloatArray, as_rng, as_array, count, instance_of, positive_scalar, unit_scalar
 from fusion._counts import counts, distinct
 from fusion._limits import work
 from fusion.book.tables import rounded
@@ -373,7 +373,7 @@ def _pool_blocks(rng: np.random.Generator, rs: tuple[int, ...], total: int,
     ``total`` into at least two blocks), ``rs`` sorted; ``rng`` checked to be a Generator; the pool's samples and each
     size's pass over them (``units``: a sample's, and a sample's per size) within the work budget (rule 17, fuzz 42b
     C11), before anything is drawn, naming ``rs`` and ``total``."""
-    instance_of(rng, np.random.Generator, "rng")
+    as_rng(rng)  # a Generator itself, over a numpy bit generator (fuzz 57b C1)
     total = count(total, "total")
     rs = tuple(sorted(distinct(counts(rs, "rs", minimum=2), "rs")))
     work((total, units[0] + units[1] * len(rs)), "rs and total")

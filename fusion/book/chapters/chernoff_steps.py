@@ -42,7 +42,7 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 
-from fusion._validation import (FloatArray, as_array, count, frame_slice, instance_of, positive_scalar, text,
+from fusion._validation import (FloatArray, as_rng, as_array, count, frame_slice, instance_of, positive_scalar, text,
                                 unit_scalar)
 from fusion._counts import count_ceiling, input_allocation, sequence
 from fusion.book.rulebook import judge_paired
@@ -476,7 +476,7 @@ def defensive_study(rng: np.random.Generator, runs: int = 100, r: int = CHAPTER_
         ``runs`` or ``r`` below 2, or ``runs`` × ``r`` samples (drawn at once) beyond the sample count's ceiling or
         the input budget.
     """
-    instance_of(rng, np.random.Generator, "rng")
+    as_rng(rng)  # a Generator itself, over a numpy bit generator (fuzz 57b C1)
     runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
     if runs * r > count_ceiling("n"):  # the samples of every replicate are drawn at once
         raise ValueError(f"runs and r ask for {runs * r:.3g} samples at once, beyond the ceiling of a sample count "

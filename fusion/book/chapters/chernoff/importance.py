@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from fusion._validation import FloatArray, allocation, instance_of
+from fusion._validation import FloatArray, as_rng, allocation, instance_of
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch, mixtures as mx
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
@@ -156,7 +156,7 @@ def is_variance_study(rng: np.random.Generator, R: int = 100, replicates: int = 
     ValueError
         ``R`` below 1, ``replicates`` below 2, or replicates x R samples beyond the memory or input budget.
     """
-    instance_of(rng, np.random.Generator, "rng")
+    as_rng(rng)  # a Generator itself, over a numpy bit generator (fuzz 57b C1)
     R, replicates = count(R, "R"), count(replicates, "replicates", minimum=2)
     allocation((replicates, R, 2), "replicates and R")  # the samples, before they are drawn
     input_allocation((replicates * R, 2), "replicates and R")  # and as the densities' input
