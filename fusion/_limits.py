@@ -70,6 +70,14 @@ PREMISE_STUDY = ("the reseeding sweep's primaries of chf-premise-eps and chf-pre
 #: benchmark's, so its refusal names it by ``work``'s ``served``.
 ARCHITECTURE_STUDY = ("the reseeding sweep's primary of ci-fig4-convex-part at 10x runs (architecture_study, 2,000 runs "
                       "and 2,000 NEES runs)")
+#: The key of chapter 05's two architecture studies (``fusion.book.chapters.ci.architecture.architecture_studies``,
+#: which ``studies.arch_study`` runs: the identical pair with 7 filter banks and the anisotropic pair with 2, summed at
+#: its entry, fuzz 57a C5: each was checked alone against :data:`ARCHITECTURE_STUDY`'s entry, so 6,738 runs were
+#: accepted and ran 68.9 CPU-s): the reseeding sweep's 10x reading of ci-fig4-convex-part (2,000 runs and 2,000 NEES
+#: runs of each pair) counts 1.97e9 units (the studies ran 10.9 and 9.0 CPU-s: fuzz 42b D1); by budget35's rule its
+#: entry is 4e9, which equals the regime study's, so its refusal names it by ``work``'s ``served``.
+ARCHITECTURE_STUDIES = ("the reseeding sweep's primary of ci-fig4-convex-part at 10x runs (architecture_studies, both "
+                        "pairs, 2,000 runs and 2,000 NEES runs)")
 #: The key of chapter 01's membership study (``fusion.book.chapters.ofs.studies.membership_study``: two scale sweeps,
 #: three membership families and the equal-weight ablation on the same draws, counted together at its entry, fuzz 54a
 #: C2): 1.47e9 units at the sweep's 5,000 runs (ran 22.1 CPU-s, niced on the shared machine).
@@ -87,7 +95,8 @@ LEDGER_STUDIES = ("chapter 05's notebook call of ledger_studies (arch, paired, F
 STUDY_WORK: Mapping[str, int] = constant({TRACKING_STUDY: 26 * MAX_WORK, AWF_STUDY: 7 * MAX_WORK,
                                           REGIME_STUDY: 4 * MAX_WORK, READINGS_BENCHMARK: 3 * MAX_WORK,
                                           PREMISE_STUDY: 9 * MAX_WORK, ARCHITECTURE_STUDY: 3 * MAX_WORK,
-                                          MEMBERSHIP_STUDY: 3 * MAX_WORK, LEDGER_STUDIES: 3 * MAX_WORK})
+                                          MEMBERSHIP_STUDY: 3 * MAX_WORK, LEDGER_STUDIES: 3 * MAX_WORK,
+                                          ARCHITECTURE_STUDIES: 4 * MAX_WORK})
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
 #: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).
