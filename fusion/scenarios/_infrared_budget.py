@@ -33,12 +33,13 @@ def _simulate_budget(runs: int, K: int, names: tuple[str, str] = ("runs, T and d
 _BOUND_SCAN_UNITS = 750
 
 
-def _scan_budget(K: int, names: str) -> None:
+def _scan_budget(K: int, names: str) -> int:
     """Rules 17 and 9 of ``many_scan_bound`` on a path of ``K`` scans, refused by ``names``: 3.8-4.8 us a scan measured
     at K = 1e5 and 3e5 (the minimum of two calls, ``OPENBLAS_NUM_THREADS=1``, machine shared; 7.5 in the fuzz at 3e6),
-    weighed ``_BOUND_SCAN_UNITS``; tracemalloc's peak is 5.1-6.1 arrays of (K, 6, 6), counted as 7."""
-    work((K,), names, weight=_BOUND_SCAN_UNITS)
+    weighed ``_BOUND_SCAN_UNITS``; tracemalloc's peak is 5.1-6.1 arrays of (K, 6, 6), counted as 7. Returns its units."""
+    units = work((K,), names, weight=_BOUND_SCAN_UNITS)
     allocation((K, 6, 6), names, arrays=7)
+    return units
 
 
 #: Units of work of one run and scan of ``cartesian_tracks`` (two 6-state Kalman filters and the conversions): 0.96
@@ -53,12 +54,13 @@ _TRACKS_UNITS = 150
 _TRACKS_SCAN_UNITS = 25 * LOOP_STEP
 
 
-def _tracks_budget(runs: int, K: int, names: str) -> None:
+def _tracks_budget(runs: int, K: int, names: str) -> int:
     """Rules 17 and 9 of ``cartesian_tracks`` on ``runs`` runs of ``K`` scans, refused by ``names``:
     ``_TRACKS_SCAN_UNITS`` a scan and ``_TRACKS_UNITS`` a run and scan; tracemalloc's peak 52 float64 a run and scan
-    (9 arrays of 6)."""
-    work((K, _TRACKS_SCAN_UNITS + runs * _TRACKS_UNITS), names)
+    (9 arrays of 6). Returns its units, which a chapter study that runs several trackers sums (fuzz 57a audit)."""
+    units = work((K, _TRACKS_SCAN_UNITS + runs * _TRACKS_UNITS), names)
     allocation((runs, K, 6), names, arrays=9)
+    return units
 
 
 #: Units of work per run and scan of ``rule_errors`` and ``cartesian_errors`` (``"base"``: the local tracks'

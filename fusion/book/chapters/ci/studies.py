@@ -363,22 +363,26 @@ def _ledger_budget(runs: int) -> int:
     checked only itself, so 5,000 runs were accepted and ran 110 CPU-s): :func:`arch_study`'s two architecture studies
     (``architecture_study``'s memory and units), :func:`paired_study` (``_paired_budget``'s parts),
     :func:`fig6_periods` (a scenario and CI at two weights at each period: ``two_sensor_scenario``'s and
-    ``fuse_tracks``' own units) and :func:`ir_reading_study` (``ir_readings``' own checks and units). The sum's budget
+    ``fuse_tracks``' own units) and :func:`ir_reading_study` (``ir_readings``' own checks and the parts it sums). The sum's budget
     is the entry of ``fusion._limits.STUDY_WORK`` that the notebook's call (:data:`LEDGER_RUNS`) serves."""
     from fusion._counts import grid_points
     from fusion._limits import LEDGER_STUDIES, STUDY_WORK
     from fusion.book._study_budget import studies_first
-    from fusion.book.chapters.ci.infrared import _ir_budget, _ir_units
-    from fusion.book.chapters.ci.infrared_readings import _jackknife_budget
+    from fusion.book.chapters.ci.infrared import _ir_budget
+    from fusion.book.chapters.ci.infrared_readings import _jackknife_budget, _readings_parts
     steps = two_sensor.trajectory(SOURCE_T).t.size
 
     def infrared() -> int:
         _ir_budget(IR_T, IR_DURATION, runs)
         _jackknife_budget(runs, "runs")
-        return _ir_units(grid_points(IR_DURATION, IR_T, "runs"), runs, "runs")
+        return 0
+
+    # the infrared readings by what ir_readings runs (its default scaled axis, x: the audit after fuzz 57a; they had
+    # been counted as one study's _ir_units)
+    readings = _readings_parts(runs, grid_points(IR_DURATION, IR_T, "runs"), 1, "runs")
 
     return studies_first([*_arch_parts(steps, runs, runs, len(_ARCH_FIXED), "runs"),
-                          *_paired_parts(runs), *_fig6_parts(runs), infrared],
+                          *_paired_parts(runs), *_fig6_parts(runs), infrared, *readings],
                          "runs", STUDY_WORK[LEDGER_STUDIES], LEDGER_STUDIES)
 
 
@@ -404,7 +408,7 @@ def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> LedgerStudies:
     ------
     ValueError
         ``runs`` whose studies together hold or run beyond the memory or work budget (their sum, the entry of
-        ``fusion._limits.STUDY_WORK`` the notebook's call serves: about 1,800 runs), before any study.
+        ``fusion._limits.STUDY_WORK`` the notebook's call serves: about 1,400 runs), before any study.
     """
     # its studies' seeds, up to fig6_periods' seed + 51, each a seed: checked before the first study (fuzz 55 D1)
     seed = check_seed(seed, span=max(*SEED_OFFSETS.values(), study_seed(0, "fig6 periods") + len(FIG6_PERIODS) - 1))
@@ -430,6 +434,29 @@ _STOCHASTIC = {"ci-fig4-convex-part": (_vs_ci, (_arch_inputs, _paired_inputs)),
                "ci-fig10-x-below-y": (_x_below_y, (_ir_inputs,)),
                "ci-fig10-convex-errors": (_ir_record("ci-fig10-convex-errors"), (_ir_inputs,)),
                "ci-fig10-fuzzy-errors": (_ir_record("ci-fig10-fuzzy-errors"), (_ir_inputs,))}
+
+
+def _record_budget(rid: str, runs: int) -> int:
+    """Rules 9 and 17 of :func:`record_evidence` before any study: the studies the record ``rid`` reads at ``runs``
+    (``_STOCHASTIC``'s parts: :func:`arch_study`, :func:`paired_study` with :func:`fig6_periods`,
+    :func:`ir_reading_study`), each by its own summed budget, summed again (``fusion.book._study_budget.studies_first``)
+    within the entry of ``fusion._limits.STUDY_WORK`` the reseeding sweep's largest call serves, refused naming
+    ``runs`` (the audit after fuzz 57a: the studies were checked one by one, so 4,700 runs of ci-fig4-convex-part ran
+    both architecture studies, some 40 CPU-s, before the paired study refused them)."""
+    from fusion._limits import RECORD_EVIDENCE, STUDY_WORK
+    from fusion.book._study_budget import studies_first
+    from fusion.book.chapters.ci.infrared_readings import _jackknife_budget, _readings_budget
+
+    def infrared() -> int:
+        _jackknife_budget(runs, "runs")
+        return _readings_budget(IR_T, IR_DURATION, runs, 1, "runs")
+
+    parts: dict[object, list[Callable[[], int]]] = {
+        _arch_inputs: [lambda: _arch_budget(SOURCE_T, runs, runs, len(_ARCH_FIXED), "runs")],
+        _paired_inputs: [lambda: _paired_budget(runs), lambda: studies_first(_fig6_parts(runs), "runs")],
+        _ir_inputs: [infrared]}
+    return studies_first([p for study in _STOCHASTIC[rid][1] for p in parts[study]], "runs",
+                         STUDY_WORK[RECORD_EVIDENCE], RECORD_EVIDENCE)
 
 
 @process_cache(maxsize=16)
@@ -464,8 +491,10 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     TypeError
         ``settings`` neither a mapping nor None, ``rid`` or ``settings['reading']`` not a string.
     ValueError
-        If the record or the reading is unknown (before any study), ``settings`` holds a key other than ``reading``, or
-        ``runs`` below the 100 runs rule R4 asks of a paired comparison.
+        If the record or the reading is unknown (before any study), ``settings`` holds a key other than ``reading``,
+        ``runs`` below the 100 runs rule R4 asks of a paired comparison, or ``runs`` whose studies together hold or
+        run beyond the memory or work budget (their sum, the entry of ``fusion._limits.STUDY_WORK`` the reseeding
+        sweep's call serves), before any study.
     """
     seed = check_seed(seed)
     settings = settings_first(settings, ("reading",))  # the one rule of the chapters' readers (fuzz 52 C7)
@@ -477,7 +506,9 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
         # every record here is built with paired comparisons of ``runs`` runs without a reason (the IR records'
         # exact readings too: ev_ir_baselines builds them with ci-fig10-x-below-y's), so rule R4's refusal comes
         # before the studies (fuzz 57c: 9-11 CPU-s of studies at 3 runs, then the same refusal)
-        ev = _record(rid, seed, runs_first(runs))
+        runs = runs_first(runs)
+        _record_budget(rid, runs)   # the studies it reads, summed before the first (the audit after fuzz 57a)
+        ev = _record(rid, seed, runs)
     key = text(settings.get("reading", "primary"), "settings['reading']")
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")
