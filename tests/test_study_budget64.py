@@ -184,3 +184,22 @@ def test_record_evidence_sums_the_studies_it_reads(no_draw):
     for rid in S._STOCHASTIC:   # the reseeding sweep's 10x of each record, and the notebook's runs
         for runs in (S.LEDGER_RUNS, 10 * S.LEDGER_RUNS):
             _reaches_the_draw(lambda: ci.record_evidence(rid, seed=1, runs=runs))
+
+
+def test_table1_by_scale_weighs_its_scales(monkeypatch):
+    # the audit after fuzz 57a: chapter 01's scales were looped over without a budget (69-89 us a scale measured)
+    import numpy as np
+
+    from fusion.book.chapters.ofs import reproduction
+    from test_study_budget61 import Ran
+
+    def ran(*args, **kwargs):
+        raise Ran
+
+    monkeypatch.setattr(reproduction.rd, "fuse_epochs", ran)
+    _refused_by_work = time.process_time()
+    with pytest.raises(ValueError, match="^scales ask for 1e"):
+        reproduction.table1_by_scale(np.linspace(1.0, 2.0, 100_001))
+    assert time.process_time() - _refused_by_work < 1
+    with pytest.raises(Ran):   # the edge, accepted, stopped at its first scale
+        reproduction.table1_by_scale(np.linspace(1.0, 2.0, 100_000))
