@@ -70,6 +70,30 @@ PREMISE_STUDY = ("the reseeding sweep's primaries of chf-premise-eps and chf-pre
 #: benchmark's, so its refusal names it by ``work``'s ``served``.
 ARCHITECTURE_STUDY = ("the reseeding sweep's primary of ci-fig4-convex-part at 10x runs (architecture_study, 2,000 runs "
                       "and 2,000 NEES runs)")
+#: The key of chapter 05's two architecture studies (``fusion.book.chapters.ci.architecture.architecture_studies``,
+#: which ``studies.arch_study`` runs: the identical pair with 7 filter banks and the anisotropic pair with 2, summed at
+#: its entry, fuzz 57a C5: each was checked alone against :data:`ARCHITECTURE_STUDY`'s entry, so 6,738 runs were
+#: accepted and ran 68.9 CPU-s): the reseeding sweep's 10x reading of ci-fig4-convex-part (2,000 runs and 2,000 NEES
+#: runs of each pair) counts 1.97e9 units (the studies ran 10.9 and 9.0 CPU-s: fuzz 42b D1); by budget35's rule its
+#: entry is 4e9, which equals the regime study's, so its refusal names it by ``work``'s ``served``.
+ARCHITECTURE_STUDIES = ("the reseeding sweep's primary of ci-fig4-convex-part at 10x runs (architecture_studies, both "
+                        "pairs, 2,000 runs and 2,000 NEES runs)")
+#: The key of chapter 05's infrared + radar readings (``fusion.book.chapters.ci.infrared_readings.ir_readings``: on
+#: both azimuth axes every tracker reading's simulation or Cartesian tracks and their errors, the many-scan bounds and
+#: the 26 Cartesian readings of the sigma_a levels and scan, summed at its entry, the audit after fuzz 57a: each was
+#: checked alone as it came): the reseeding sweep's 10x reading of ci-fig10-x-below-y (2,000 runs of 101 scans)
+#: counts 1.99e9 units (the chapter's 200 runs, 3.7e8, ran 2.9-3.1 CPU-s, 600 runs, 7.3e8, 4.9 CPU-s:
+#: OPENBLAS_NUM_THREADS=1, the shared machine); by budget35's rule its entry is 4e9, named by ``work``'s ``served``.
+IR_READINGS_STUDY = ("the reseeding sweep's primary of ci-fig10-x-below-y at 10x runs (ir_readings, 2,000 runs of "
+                     "101 scans)")
+#: The key of chapter 05's stochastic records' evidence (``fusion.book.chapters.ci.studies.record_evidence``: the
+#: studies a record reads, each summed by its own budget, summed again at its entry, the audit after fuzz 57a: they
+#: were checked one by one, so a run count the paired study refuses first ran both architecture studies): the
+#: reseeding sweep's 10x reading of ci-fig4-convex-part (2,000 runs: both architecture studies, the paired study and
+#: Fig. 6's periods) counts 3.17e9 units; by budget35's rule its entry is 7e9, which equals the AWF study's, so its
+#: refusal names it by ``work``'s ``served``.
+RECORD_EVIDENCE = ("the reseeding sweep's primary of ci-fig4-convex-part at 10x runs (record_evidence: "
+                   "arch_study, paired_study and fig6_periods, 2,000 runs)")
 #: The key of chapter 01's membership study (``fusion.book.chapters.ofs.studies.membership_study``: two scale sweeps,
 #: three membership families and the equal-weight ablation on the same draws, counted together at its entry, fuzz 54a
 #: C2): 1.47e9 units at the sweep's 5,000 runs (ran 22.1 CPU-s, niced on the shared machine).
@@ -80,14 +104,18 @@ MEMBERSHIP_STUDY = ("the reseeding sweep's primaries of yang-membership-free and
 #: notebook's 200 runs (16.6 CPU-s of studies after a 1.5-2.2 CPU-s import, a fresh process and study cache,
 #: OPENBLAS_NUM_THREADS=1, nothing else running); by budget35's rule its entry is 3e9, whose edge, 1,840 runs (3.0e9
 #: units), ran 42.8 CPU-s of studies there (fuzz 56 C3): the rule's factor of two over a book call that is itself
-#: 1.2 x MAX_WORK, kept as for every entry. The entry equals the readings benchmark's, so its refusal names it by
-#: ``work``'s ``served``.
+#: 1.2 x MAX_WORK, kept as for every entry. The audit after fuzz 57a counted its infrared readings by what
+#: ``ir_readings`` runs (``infrared_readings._readings_parts``: 3.7e8 units at 200 runs, which ran 2.9-3.1 CPU-s; they
+#: had been counted 2.2e6), so the notebook's call counts 1.55e9 and the entry, by the same rule, is 4e9 (its edge
+#: 1,424 runs). It equals the regime study's, so its refusal names it by ``work``'s ``served``.
 LEDGER_STUDIES = ("chapter 05's notebook call of ledger_studies (arch, paired, Fig. 6 period and infrared studies, "
                   "200 runs)")
 STUDY_WORK: Mapping[str, int] = constant({TRACKING_STUDY: 26 * MAX_WORK, AWF_STUDY: 7 * MAX_WORK,
                                           REGIME_STUDY: 4 * MAX_WORK, READINGS_BENCHMARK: 3 * MAX_WORK,
                                           PREMISE_STUDY: 9 * MAX_WORK, ARCHITECTURE_STUDY: 3 * MAX_WORK,
-                                          MEMBERSHIP_STUDY: 3 * MAX_WORK, LEDGER_STUDIES: 3 * MAX_WORK})
+                                          MEMBERSHIP_STUDY: 3 * MAX_WORK, LEDGER_STUDIES: 4 * MAX_WORK,
+                                          ARCHITECTURE_STUDIES: 4 * MAX_WORK, IR_READINGS_STUDY: 4 * MAX_WORK,
+                                          RECORD_EVIDENCE: 7 * MAX_WORK})
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
 #: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).

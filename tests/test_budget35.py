@@ -202,7 +202,10 @@ _SERVED = {"TRACKING_STUDY": ("chf-equal-kl", "fusion.scenarios.range_bearing"),
            "READINGS_BENCHMARK": ("lec-belief-accuracy", "fusion.scenarios.lecture_weighting.readings_benchmark"),
            "PREMISE_STUDY": ("chf-premise-eps", "fusion.book.chapters.chernoff.premise"),
            "ARCHITECTURE_STUDY": ("ci-fig4-convex-part", "fusion.scenarios.two_sensor.architecture"),
-           "MEMBERSHIP_STUDY": ("yang-membership-free", "fusion.book._study_budget")}
+           "MEMBERSHIP_STUDY": ("yang-membership-free", "fusion.book._study_budget"),
+           "ARCHITECTURE_STUDIES": ("ci-fig4-convex-part", "fusion.book._study_budget"),
+           "IR_READINGS_STUDY": ("ci-fig10-x-below-y", "fusion.book._study_budget"),
+           "RECORD_EVIDENCE": ("ci-fig4-convex-part", "fusion.book._study_budget")}
 
 
 @pytest.mark.parametrize("key", sorted(_SERVED))
@@ -245,10 +248,11 @@ def test_study_work_is_twice_the_book_call_it_serves(key, monkeypatch):
     assert counted[0] > L.MAX_WORK  # an entry only for a call beyond MAX_WORK
     # every entry serves a book call (a sweep reading here; chapter 05's notebook call of ledger_studies, LEDGER_STUDIES,
     # in tests/test_study_budget63.py); an entry equal to another's is named by work()'s served (the architecture
-    # study, chapter 01's membership study and chapter 05's ledger studies share the readings benchmark's 3e9), the
+    # study and chapter 01's membership study share the readings benchmark's 3e9; chapter 05's ledger studies, two
+    # architecture studies and infrared readings the regime study's 4e9, its record evidence the AWF study's 7e9), the
     # others by their value
     assert len(L.STUDY_WORK) == len(_SERVED) + 1
-    assert len(set(L.STUDY_WORK.values())) == len(L.STUDY_WORK) - 3
+    assert len(set(L.STUDY_WORK.values())) == len(L.STUDY_WORK) - 6
 
 
 def test_the_tracking_study_entry_refuses_beyond_it():

@@ -47,15 +47,17 @@ def studies_first(parts: Iterable[Callable[[], object]], names: str, limit: int 
     ValueError
         An inner study's own refusal, or the sum beyond ``limit``, naming ``names``, before any study runs.
     """
+    prefix = f"{names} ask for studies beyond the budget, refused before any study: "
     total = 0
     for part in parts:
         try:
             units = part()
         except ValueError as e:
-            raise ValueError(f"{names} ask for studies beyond the budget, refused before any study: {e}") from None
+            # a part that is itself a summed study refuses with the same words: said once
+            raise ValueError(str(e) if str(e).startswith(prefix) else prefix + str(e)) from None
         total += 0 if units is None else int(units)  # type: ignore[call-overload]
     try:
         work((total,), "the studies' summed units", limit=limit, served=served)
     except ValueError as e:
-        raise ValueError(f"{names} ask for studies beyond the budget, refused before any study: {e}") from None
+        raise ValueError(prefix + str(e)) from None
     return total

@@ -171,7 +171,7 @@ def fruit_fly(
     return OptimumResult(x=best_x, fun=best_f, n_evaluations=evals)
 
 
-def batch_budget(n: int, population: int, iterations: int, names: str) -> None:
+def batch_budget(n: int, population: int, iterations: int, names: str) -> int:
     """The memory and work budgets of :func:`fruit_fly_batch` on ``n`` problems (rules 9 and 17), checked under
     ``names``: the batch's own arguments, or those of a caller that sets them (the seeds of a study, its
     generations), so that a caller's refusal names its own arguments before any work (fuzz 24c WN).
@@ -181,10 +181,15 @@ def batch_budget(n: int, population: int, iterations: int, names: str) -> None:
     ValueError
         Every draw at once beyond the memory budget (``fusion._counts.MAX_ELEMENTS``) or the loop beyond the
         work budget (``fusion._limits.MAX_WORK``), naming ``names``.
+
+    Returns
+    -------
+    int
+        Its units of work, which a study that runs several batches sums at its entry.
     """
     allocation((n, 2 + 2 * population * iterations), names)  # every draw, at once
     # rule 17: a draw per generator, then a loop step per iteration over every problem's swarm
-    loop_work((n + iterations,), 4 * n * population, names, step=_FLY_STEP)
+    return loop_work((n + iterations,), 4 * n * population, names, step=_FLY_STEP)
 
 
 def fruit_fly_batch(

@@ -10,23 +10,36 @@ import numpy as np
 from fusion._counts import allocation, input_allocation
 from fusion._covariances import COVARIANCE_RTOL
 from fusion._frozen import constant
-from fusion._limits import LOOP_STEP, work
+from fusion._limits import LOOP_STEP, loop_work, work
 from fusion._shown import shown
 from fusion.filtering.tracks import _fuse_tracks_units
 
 __all__: list[str] = []
+
+def _simulate_budget(runs: int, K: int, names: tuple[str, str] = ("runs, T and duration",
+                                                                   "T and duration (with runs)")) -> int:
+    """Rules 17 and 9 of ``simulate`` on ``runs`` runs of ``K`` scans, before any draw; its units, which a chapter study
+    that runs several simulations sums at its entry (fuzz 57a C3, C4). A filter step per run and scan (rule 17); each
+    sensor's measurements ``(runs, K, 2)`` as ``local_track``'s input (fuzz 24c SZ: a MemoryError at runs = 10**7, a
+    refusal naming the filter's inputs after seconds at 10**6); the filters' Python loop over the scans (three tracks,
+    a few numpy calls a step each), named ``names[1]`` (``names[0]`` the others)."""
+    units = work((runs, K), names[0])
+    input_allocation((runs, K, 2), names[0])
+    return units + loop_work((K,), 3 * 16 * runs, names[1], step=3 * LOOP_STEP)
+
 
 #: Units of work of one scan of ``many_scan_bound`` (its vectorised (K, 6, 6) products, sums and solves): 3.8 to
 #: 4.8 us measured, 7.5 in fuzz 40a's run at 3e6 scans.
 _BOUND_SCAN_UNITS = 750
 
 
-def _scan_budget(K: int, names: str) -> None:
+def _scan_budget(K: int, names: str) -> int:
     """Rules 17 and 9 of ``many_scan_bound`` on a path of ``K`` scans, refused by ``names``: 3.8-4.8 us a scan measured
     at K = 1e5 and 3e5 (the minimum of two calls, ``OPENBLAS_NUM_THREADS=1``, machine shared; 7.5 in the fuzz at 3e6),
-    weighed ``_BOUND_SCAN_UNITS``; tracemalloc's peak is 5.1-6.1 arrays of (K, 6, 6), counted as 7."""
-    work((K,), names, weight=_BOUND_SCAN_UNITS)
+    weighed ``_BOUND_SCAN_UNITS``; tracemalloc's peak is 5.1-6.1 arrays of (K, 6, 6), counted as 7. Returns its units."""
+    units = work((K,), names, weight=_BOUND_SCAN_UNITS)
     allocation((K, 6, 6), names, arrays=7)
+    return units
 
 
 #: Units of work of one run and scan of ``cartesian_tracks`` (two 6-state Kalman filters and the conversions): 0.96
@@ -41,12 +54,13 @@ _TRACKS_UNITS = 150
 _TRACKS_SCAN_UNITS = 25 * LOOP_STEP
 
 
-def _tracks_budget(runs: int, K: int, names: str) -> None:
+def _tracks_budget(runs: int, K: int, names: str) -> int:
     """Rules 17 and 9 of ``cartesian_tracks`` on ``runs`` runs of ``K`` scans, refused by ``names``:
     ``_TRACKS_SCAN_UNITS`` a scan and ``_TRACKS_UNITS`` a run and scan; tracemalloc's peak 52 float64 a run and scan
-    (9 arrays of 6)."""
-    work((K, _TRACKS_SCAN_UNITS + runs * _TRACKS_UNITS), names)
+    (9 arrays of 6). Returns its units, which a chapter study that runs several trackers sums (fuzz 57a audit)."""
+    units = work((K, _TRACKS_SCAN_UNITS + runs * _TRACKS_UNITS), names)
     allocation((runs, K, 6), names, arrays=9)
+    return units
 
 
 #: Units of work per run and scan of ``rule_errors`` and ``cartesian_errors`` (``"base"``: the local tracks'
@@ -60,24 +74,26 @@ _READER_UNITS = constant({
 })
 
 
-def _reader_budget(reader: str, runs: int, K: int, n: int, rules: Mapping[str, str], names: str) -> None:
+def _reader_budget(reader: str, runs: int, K: int, n: int, rules: Mapping[str, str], names: str) -> int:
     """Rules 9 and 17 of a reader of a simulation (``rule_errors``, ``cartesian_errors``), at its entry, naming its own
     arguments (fuzz 40a C4, C5: a valid ``simulate`` of 110,000 runs was refused by ``position``'s input budget,
     naming ``angle_est``, after 18 CPU-s, and by ``fuse_tracks``' budget, naming ``a and b``, after 9): the sum of
     its rules' ``fuse_tracks`` (``_fuse_tracks_units``, ``n``-state tracks; fuzz 41a C2) and the reader's measured work
     (``_READER_UNITS``), the (runs, K, 4) arrays it holds at once (tracemalloc's peak: 5 + 2 a rule for
     ``rule_errors``, 3.8 + 2.5 a rule for ``cartesian_errors``) and the input budget of the (runs, K, 4) and
-    (runs, K, 3) tracks it passes to ``position`` and ``cartesian_to_spherical``."""
+    (runs, K, 3) tracks it passes to ``position`` and ``cartesian_to_spherical``. Returns its units, which a chapter
+    study that runs the reader beside its simulation sums at its entry (fuzz 57a C3)."""
     units = _READER_UNITS[reader]
     # the rules' fuse_tracks summed with the reader's own work (fuzz 41a C2: each rule was checked alone, so the five
     # rules on 1 run of 38,901 scans, each just inside, ran 33-37 CPU-s, 0.95 ms a scan): their Python steps and
     # per-step matrix work (``_fuse_tracks_units`` of no run: 117,000 units a scan with every rule), their work per run
     # and scan being in ``_READER_UNITS``' measured weights
     fused = sum(_fuse_tracks_units(K, 0, n, rule) for rule in rules.values())
-    work((fused + runs * K * (units["base"] + sum(units[rule] for rule in rules.values())),), names)
+    total = work((fused + runs * K * (units["base"] + sum(units[rule] for rule in rules.values())),), names)
     arrays = 5 + 2 * len(rules) if reader == "rule_errors" else 4 + (5 * len(rules) + 1) // 2
     allocation((runs, K, 4), names, arrays=arrays)
     input_allocation((runs, K, 4), names)
+    return total
 
 
 #: The relative eigenvalue tolerance of the reader's semidefinite check (``fusion._covariances.as_semidefinite``'s

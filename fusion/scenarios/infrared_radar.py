@@ -39,12 +39,13 @@ from fusion._limits import MAX_INPUT_ELEMENTS
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
                                 grid_points, positive_scalar, scalar, std_scalar, step_scalar, work)
-from fusion._counts import allocation, broadcast, input_allocation
-from fusion._validation import LOOP_STEP, loop_work
+from fusion._counts import allocation, broadcast
+from fusion._validation import LOOP_STEP
 from fusion._validation import flag, text
 from fusion._options import text_key
 from fusion.filtering.tracks import LocalTrack, _named_track, _symmetric_parts, fuse_tracks
-from fusion.scenarios._infrared_budget import _reader_budget, _scan_budget, _semidefinite_tracks, _tracks_budget
+from fusion.scenarios._infrared_budget import (_reader_budget, _scan_budget, _semidefinite_tracks, _simulate_budget,
+                                               _tracks_budget)
 from fusion.filtering.kalman import cv_model
 from fusion._shown import shown
 
@@ -396,12 +397,7 @@ def simulate(
     T = positive_scalar(T, "T")  # the validated float: a Decimal would reach the arithmetic below
     true_path = truth(T, duration, **geometry)
     t, pos, sph = true_path.t, true_path.pos, true_path.sph
-    work((runs, t.size), "runs, T and duration")  # rule 17: a filter step per run and sample
-    # each sensor's measurements (runs, K, 2) as local_track's input, named here before any draw (fuzz 24c SZ: a
-    # MemoryError at runs = 10**7, a refusal naming the filter's inputs after seconds at 10**6)
-    input_allocation((runs, t.size, 2), "runs, T and duration")
-    # rule 17 for the filters' Python loop over the samples (three tracks, a few numpy calls a step each)
-    loop_work((t.size,), 3 * 16 * runs, "T and duration (with runs)", step=3 * LOOP_STEP)
+    _simulate_budget(runs, t.size)   # rules 17 and 9 before any draw (its filters' steps, their input)
     if t.size < 3:
         raise ValueError("the track needs at least three samples (duration >= 2 T)")
     model = cv_model(T)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
@@ -433,6 +433,35 @@ def q_numbers(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> GlueValues:
             "ci_q_half_nees": rounded(qs.nees[0.5], 2)}
 
 
+def _arch_banks(fixed: int) -> tuple[int, int]:
+    """Fixed-weight filter banks of :func:`architecture_studies`' two ``architecture_study`` runs with ``fixed``
+    further weights: on the identical sensors the published weight and each further weight printed twice, and the
+    placement at the published weight; on the anisotropic pair the published weight printed twice."""
+    return 2 * (1 + fixed) + 1, 2 * 1
+
+
+def _arch_parts(steps: int, runs: int, nees_runs: int, fixed: int, names: str) -> list[Callable[[], int]]:
+    """The parts of :func:`architecture_studies` (``fusion.book._study_budget.studies_first``'s ``parts``): each
+    ``architecture_study``'s own memory and units (``_architecture_units``) at its banks (:func:`_arch_banks`),
+    refused naming ``names``; a chapter study that runs them beside others sums them with its own."""
+    from fusion.scenarios.two_sensor.architecture import _architecture_units
+
+    return [lambda b=b: _architecture_units(steps, runs, nees_runs, b, names) for b in _arch_banks(fixed)]
+
+
+def _arch_budget(T: float, runs: int, nees_runs: int, fixed: int, names: str) -> int:
+    """Rules 9 and 17 of :func:`architecture_studies` before either study: both studies' units summed
+    (``fusion.book._study_budget.studies_first``) within the entry of ``fusion._limits.STUDY_WORK`` the reseeding
+    sweep's call serves (fuzz 57a C5: each study was checked alone against the single study's entry, so 6,738 runs,
+    3.0e9 and 2.6e9 units, were accepted and ran 68.9 CPU-s), refused naming ``names``."""
+    from fusion._limits import ARCHITECTURE_STUDIES, STUDY_WORK
+    from fusion.book._study_budget import studies_first
+
+    steps = two_sensor.trajectory(T).t.size
+    return studies_first(_arch_parts(steps, runs, nees_runs, fixed, names), names,
+                         STUDY_WORK[ARCHITECTURE_STUDIES], ARCHITECTURE_STUDIES)
+
+
 def architecture_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, seeds: Sequence[int], w_pub: float, runs: int,
                          nees_runs: int, T: float = 1.0, fixed_omegas: Sequence[float] = (0.1, 0.5)
                          ) -> dict[str, ArchitectureStudy]:
@@ -467,7 +496,10 @@ def architecture_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, seeds: Sequ
         A seed not an integer, a weight not a number.
     ValueError
         If ``seeds`` does not hold two seeds (integers >= 0), ``w_pub`` or an entry of ``fixed_omegas`` is not in
-        (0, 1], or an entry of ``fixed_omegas`` repeats ``w_pub`` or another entry.
+        (0, 1], or an entry of ``fixed_omegas`` repeats ``w_pub`` or another entry; ``runs``, ``nees_runs``, ``T``
+        and ``fixed_omegas`` whose two studies together hold or run beyond the memory or work budget (their sum, the
+        entry of ``fusion._limits.STUDY_WORK`` the reseeding sweep's call serves, 4e9 units: about 4,700 runs of
+        each kind at T = 1 s), before either study.
     """
     seeds = tuple(check_seeds(seeds, "seeds"))
     w_pub = scalar(w_pub, "w_pub", 0.0, 1.0, lo_open=True)
@@ -481,6 +513,8 @@ def architecture_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, seeds: Sequ
         fixed.append(w)
     if len(seeds) != 2:
         raise ValueError(f"seeds must hold two seeds (identical sensors, anisotropic pair), got {shown(seeds)}")
+    _arch_budget(T, count(runs, "runs"), count(nees_runs, "nees_runs"), len(fixed),
+                 "runs, nees_runs, T and fixed_omegas")
     return {IDENTICAL_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[0]), R1, R2, Q, runs=runs,
                                                            nees_runs=nees_runs, T=T, printed_omegas=(w_pub, *fixed),
                                                            placement_omegas=(w_pub,)),

@@ -35,6 +35,17 @@ LARGEST_ERROR = "largest |ω − minimum|"
 RUNS_WITHIN = "runs within 0.05 of the minimum"
 
 
+def _step_budget(seeds: int, targets: int, names: str) -> int:
+    """Rules 9 and 17 of ``targets`` runs of :func:`fruit_fly_step_study` at ``seeds`` seeds before any search: a batch
+    of the printed 30 x 200 for each rule of :data:`FRUIT_FLY_STEP_RULES` at each target, each by ``batch_budget``,
+    summed (``fusion.book._study_budget.studies_first``), refused naming ``names``. Each rule's batch was checked
+    alone and the targets never summed (the audit after fuzz 57a: a sequence of targets ran study after study)."""
+    from fusion.book._study_budget import studies_first
+    from fusion.optimise.scalar import batch_budget
+
+    return studies_first([lambda: batch_budget(seeds, 30, 200, names)] * (len(FRUIT_FLY_STEP_RULES) * targets), names)
+
+
 def fruit_fly_step_targets(seed: int = 0, targets: Sequence[float] = FRUIT_FLY_STEP_TARGETS, seeds: int = 100) -> pd.DataFrame:
     """The printed FOA's error on test objectives with other minima (:func:`fruit_fly_step_study`'s printed row for each).
 
@@ -51,6 +62,12 @@ def fruit_fly_step_targets(seed: int = 0, targets: Sequence[float] = FRUIT_FLY_S
     -------
     pandas.DataFrame
         Index: the test minimum; the columns of :func:`fruit_fly_step_study` for the printed step.
+
+    Raises
+    ------
+    ValueError
+        ``targets`` empty, repeated or outside (0, 1); ``targets`` and ``seeds`` whose searches (two step rules' batches
+        of 30 x 200 a target) together hold or run beyond the memory or work budget, before any search.
     """
     seed = check_seed(seed)
     items = sequence(targets, "targets")
@@ -59,6 +76,7 @@ def fruit_fly_step_targets(seed: int = 0, targets: Sequence[float] = FRUIT_FLY_S
     # the floats the reader returns (fuzz 22b, FR), not the caller's objects
     items = distinct([scalar(t, f"targets[{i}]", lo=0.0, hi=1.0, lo_open=True, hi_open=True)
                       for i, t in enumerate(items)], "targets")   # the rows are keyed by them (fuzz 26c A2)
+    _step_budget(count(seeds, "seeds"), len(items), "targets and seeds")   # every target's study, summed first
     return pd.DataFrame({t: fruit_fly_step_study(seeds, t, seed).iloc[0] for t in items}).T.rename_axis(
         "test minimum")
 
@@ -106,9 +124,7 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
     seed = check_seed(seed)   # an integer seed (rule 11), named
     seeds = count(seeds, "seeds")  # the int read: glued as "runs" (fuzz 29a C2)
     seed = check_seed(seed, span=seeds - 1)   # seeds seed .. seed + seeds - 1 (fuzz 55 C1)
-    from fusion.optimise.scalar import batch_budget
-
-    batch_budget(seeds, 30, 200, "seeds")   # each rule's batch of the printed 30 × 200, named here (fuzz 24c WN)
+    _step_budget(seeds, 1, "seeds")   # every rule's batch of the printed 30 × 200, named here (fuzz 24c WN)
     # in (0, 1); computed with the float the reader returns (fuzz 22b, FR1-2: a Fraction or a Decimal was used raw)
     target = scalar(target, "target", lo=0.0, hi=1.0, lo_open=True, hi_open=True)
     grid = grid_search(lambda w: (np.asarray(w, dtype=float) - target) ** 2, 1001, vectorized=True)

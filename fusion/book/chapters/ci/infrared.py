@@ -62,6 +62,28 @@ def _ir_units(n: int, runs: int, names: str) -> int:
     return loop_work((n,), 48 * runs, names, step=12 * LOOP_STEP)
 
 
+def _sensitivity_budget(periods: Sequence[float], runs: int, duration: float) -> int:
+    """Rules 9 and 17 of :func:`sensitivity_table` before any simulation: each period's ``simulate`` and the improved
+    CI's ``rule_errors``, each by its own budget (``_simulate_budget``, ``_reader_budget``), summed
+    (``fusion.book._study_budget.studies_first``), refused naming ``periods, runs and duration``. Fuzz 57a C3: the
+    reader's budget was checked only after the simulation (160,000 runs at T = 0.1 refused after 9.6 CPU-s naming
+    ``sim`` and ``rules``); C4: the periods were not summed (8 periods at 83,000 runs ran 55.9 CPU-s)."""
+    from fusion._counts import grid_points
+    from fusion.book._study_budget import studies_first
+    from fusion.scenarios._infrared_budget import _reader_budget, _simulate_budget
+
+    names = "periods, runs and duration"
+
+    def period(T: float) -> int:
+        K = grid_points(duration, T, names)
+        if K < 3:   # simulate's own refusal, before any period runs
+            raise ValueError(f"the period {shown(T)} s leaves fewer than three scans in {shown(duration)} s")
+        return (_simulate_budget(runs, K, (names, names))
+                + _reader_budget("rule_errors", runs, K, 4, {IR_IMP: ir.RULES[IR_IMP]}, names))
+
+    return studies_first([lambda T=T: period(T) for T in periods], names)
+
+
 def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
              azimuth_from: str = "x") -> tuple[ir.IrRadarRuns, dict[str, np.ndarray]]:
     r"""Simulate the infrared + radar case with the printed parameters at sampling period ``T`` (s).
@@ -407,13 +429,17 @@ def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float 
         mean of it not a number.
     ValueError
         ``periods`` empty, repeated or not positive; ``t_min`` negative or after ``duration``; ``known`` with a
-        period that is not positive, or without the azimuth, x or y mean, or one not finite and non-negative.
+        period that is not positive, or without the azimuth, x or y mean, or one not finite and non-negative;
+        ``periods``, ``runs`` and ``duration`` whose simulations and readings, summed over the periods not in
+        ``known``, hold or run beyond the memory or work budget, before any simulation.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     periods = _periods(periods)
     t_min, duration = _averaging_start(t_min, duration)
     imp = IR_IMP
     known = {} if known is None else _known_means(known)
+    runs = count(runs, "runs")
+    _sensitivity_budget([float(T) for T in periods if float(T) not in known], runs, duration)
     means = {}
     for T in periods:
         if float(T) in known:

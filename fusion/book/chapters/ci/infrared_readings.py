@@ -112,10 +112,21 @@ def ir_sigma_band(readings: IrReadings, scan: Sequence[float] = IR_SIGMA_SCAN) -
         ``readings`` is not an :class:`IrReadings`, ``scan`` not a sequence (a list, tuple or 1-D array: a
         generator, a string or a number is refused) or an entry not a number.
     ValueError
-        An entry of ``scan`` is not a finite positive number.
+        An entry of ``scan`` is not a finite positive number; the levels' Cartesian tracks and errors on the readings'
+        runs and scans together beyond the memory or work budget, before the first.
     """
     instance_of(readings, IrReadings, "readings")
     scan = [scalar(sa, f"scan[{i}]", 0.0, None, lo_open=True) for i, sa in enumerate(sequence(scan, "scan"))]
+    # every level's Cartesian tracks and errors summed before the first (the audit after fuzz 57a: each level was
+    # checked alone as it came, and the levels never summed)
+    from fusion.book._study_budget import studies_first
+    names = "scan (with the runs and scans of readings)"
+    studies_first(_sigma_parts(*readings.sims["x"].ir.est.shape[:2], len(scan), names), names)
+    return _sigma_band(readings, scan)
+
+
+def _sigma_band(readings: IrReadings, scan: list[float]) -> tuple[float, float]:
+    """:func:`ir_sigma_band`'s search on levels already read and counted."""
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     pub = np.round([1e3 * irp["azimuth_rad"][0], 1e3 * irp["elevation_rad"][0]], 2)
     hits = [sa for sa in scan if np.array_equal(np.round(ir_sigma_rms(readings, sa)[:2], 2), pub)]
@@ -264,7 +275,9 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
         ``scaled_axes`` a str or not a sequence of str; ``t_min`` or ``duration`` not a number.
     ValueError
         ``scaled_axes`` holds a key that is not an axis of :data:`IR_AXES`; ``t_min`` negative or after the last
-        scan.
+        scan; ``T``, ``duration``, ``runs`` and ``scaled_axes`` whose simulations, trackers, readers and bounds
+        together hold or run beyond the memory or work budget (their sum, the entry of ``fusion._limits.STUDY_WORK``
+        the reseeding sweep's call serves: about 4,200 runs of 101 scans), before any simulation.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     t_min, duration = _averaging_start(t_min, duration)
@@ -277,6 +290,7 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
     unknown = [a for a in scaled_axes if a not in IR_AXES]
     if unknown:
         raise ValueError(f"scaled_axes must hold keys of IR_AXES ({list(IR_AXES)}), got {shown(unknown)}")
+    _readings_budget(T, duration, runs, len(set(scaled_axes)), "T, duration, runs and scaled_axes")
     p = data.WANG2024_IR_RADAR
     out: dict[str, Any] = {"run_rmse": {}, "bound": {}, "bound_scans": {}, "sims": {}, "r_change": 0.0,
                            "runs": count(runs, "runs"), "seed": seed, "t_min": t_min}
@@ -319,7 +333,7 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
     # the σa readings are computed from the first readings: built without them (trusted: checked once, below)
     first = trusted(IrReadings, **out, sigma_rms={}, sigma_band=(float("nan"), float("nan")))
     return dataclasses.replace(first, sigma_rms={sa: ir_sigma_rms(first, sa) for sa in IR_SIGMA_A},
-                               sigma_band=ir_sigma_band(first))
+                               sigma_band=_sigma_band(first, IR_SIGMA_SCAN))   # counted above, at the entry
 
 
 def ir_rms(run_rmse: np.ndarray) -> np.ndarray:
@@ -355,6 +369,56 @@ def _binary_scaled(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     top = x.max(axis=0)
     scale = np.ldexp(1.0, np.frexp(np.where(top > 0, top, 1.0))[1])
     return x / scale, scale
+
+
+def _sigma_parts(runs: int, K: int, levels: int, names: str) -> list[Any]:
+    """What ``levels`` readings of :func:`ir_sigma_rms` run on a simulation of ``runs`` runs and ``K`` scans, each by
+    its own budget (``cartesian_tracks``' and ``cartesian_errors``' with the improved CI), refused naming ``names``
+    (``fusion.book._study_budget.studies_first``'s ``parts``)."""
+    from fusion.scenarios._infrared_budget import _reader_budget, _tracks_budget
+
+    rules = {IR_IMP: ir.RULES[IR_IMP]}
+    return [lambda: _tracks_budget(runs, K, names) + _reader_budget("cartesian_errors", runs, K, 6, rules, names)
+            ] * levels
+
+
+def _readings_parts(runs: int, K: int, scaled: int, names: str) -> list[Any]:
+    """What :func:`ir_readings` runs on ``runs`` runs of ``K`` scans with ``scaled`` axes of scaled readings, each by
+    its own budget, refused naming ``names`` (``fusion.book._study_budget.studies_first``'s ``parts``): on each axis
+    of :data:`IR_AXES` every reading of :data:`IR_READINGS` (the scaled ones on ``scaled`` axes): an angle-space
+    reading's ``simulate`` and ``rule_errors``, a Cartesian one's ``cartesian_tracks`` and ``cartesian_errors``
+    (every rule of ``RULES`` unscaled, the improved CI scaled), two ``many_scan_bound`` an axis; then
+    :func:`ir_sigma_rms` at each of :data:`IR_SIGMA_A` and :func:`ir_sigma_band` over :data:`IR_SIGMA_SCAN`."""
+    from fusion.scenarios._infrared_budget import _reader_budget, _scan_budget, _simulate_budget, _tracks_budget
+
+    parts: list[Any] = []
+    for axis in range(len(IR_AXES)):
+        for tracker, factor in IR_READINGS.values():
+            if factor != 1.0 and axis >= scaled:
+                continue
+            rules = dict(ir.RULES) if factor == 1.0 else {IR_IMP: ir.RULES[IR_IMP]}
+            if tracker == "angle":
+                parts.append(lambda rules=rules: _simulate_budget(runs, K, (names, names))
+                             + _reader_budget("rule_errors", runs, K, 4, rules, names))
+            else:
+                parts.append(lambda rules=rules: _tracks_budget(runs, K, names)
+                             + _reader_budget("cartesian_errors", runs, K, 6, rules, names))
+        parts += [lambda: _scan_budget(K, names)] * 2
+    return parts + _sigma_parts(runs, K, len(IR_SIGMA_A) + len(IR_SIGMA_SCAN), names)
+
+
+def _readings_budget(T: float, duration: float, runs: int, scaled: int, names: str) -> int:
+    """Rules 9 and 17 of :func:`ir_readings` before any simulation: ``_readings_parts`` summed
+    (``fusion.book._study_budget.studies_first``) within the entry of ``fusion._limits.STUDY_WORK`` the reseeding
+    sweep's call serves, refused naming ``names`` (the audit after fuzz 57a: each simulation, tracker, reader and
+    bound was checked alone as it came, so a reader's stricter budget refused after the simulations had run)."""
+    from fusion._counts import grid_points
+    from fusion._limits import IR_READINGS_STUDY, STUDY_WORK
+    from fusion.book._study_budget import studies_first
+
+    K = grid_points(duration, T, names)
+    return studies_first(_readings_parts(runs, K, scaled, names), names, STUDY_WORK[IR_READINGS_STUDY],
+                         IR_READINGS_STUDY)
 
 
 def _jackknife_budget(runs: int, name: str) -> None:

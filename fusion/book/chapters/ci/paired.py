@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -31,6 +31,44 @@ from fusion.book.chapters.ci.weights import WeightPair, _pair_noises
 from fusion._shown import shown
 
 __all__ = ["paired_numbers", "PairedClaimInputs", "PairedStudies", "paired_studies"]
+
+#: Float64 arrays of shape (runs, K, 4) that ``studies.paired_study`` holds at its peak (the three pairs' scenarios, the
+#: fused tracks of every rule of the pair being studied, their errors): ``tracemalloc``'s peak measured at 400 and
+#: 1,200 runs, 57.5 and 57.2 arrays (183 and 547 MiB), rounded up (fuzz 55 C3: 25,542 runs ended in a raw
+#: MemoryError after 34 CPU-s).
+_PAIRED_HELD = 58
+#: Units a run and step of ``studies.paired_study`` beyond what its inner functions' own budgets count (their per-run
+#: RMSEs, ``fusion_study``'s per-step RMSEs and copies): its slope, 935 units a run and step (2.44 ms a run of 261
+#: steps: 2.99 and 6.33 CPU-s for ``paired_study``, 0.31 and 0.63 for ``aniso_pair``, at 500 and 2,000 runs, after the
+#: cached per-step weights; OPENBLAS_NUM_THREADS=1, the shared machine, minimum of 2), less the inner budgets' 551.
+_PAIRED_REST = 384
+#: The rules ``fusion_study`` runs on each pair (CI plain, at FOA's and at the grid's weights; split CI, the convex
+#: combination, fuzzy clustering); the identical pair runs CI at each of Fig. 6's weights and at random weights too.
+_STUDY_RULES = ("ci", "ci", "ci", "split", "convex", "fuzzy")
+
+
+def _paired_studies_parts(runs: int, steps: int, aniso_runs: int, aniso_steps: int, omegas: int, names: str
+                          ) -> list[Callable[[], int | None]]:
+    """What :func:`paired_studies` holds and runs, each part by the inner function's own budget
+    (``fusion.book._study_budget.studies_first``'s ``parts``), refused naming ``names``: ``_PAIRED_HELD`` arrays of
+    ``(runs, steps, 4)`` (the larger pair's runs and steps); the identical and unequal pairs' scenarios
+    (``case._scenario_budget``); every ``fuse_tracks`` of the three ``fusion_study`` runs (the anisotropic pair's on
+    its own ``aniso_runs`` and ``aniso_steps``), of the ``omegas`` fixed weights and of the random weights (its own
+    weights); the unequal and anisotropic pairs' per-step weights (``per_step_weights``' own units); the rest at its
+    measured weight (``_PAIRED_REST``). Fuzz 57a C6: these were counted only by the cached ``studies.paired_study``,
+    so 1,202 weights at 2,000 runs ran 82.5 CPU-s and 30,000 runs a raw MemoryError after 20.8 CPU-s."""
+    from fusion._counts import allocation
+    from fusion.filtering.tracks import _fuse_tracks_units
+    from fusion.scenarios.two_sensor.case import _scenario_budget
+    from fusion.scenarios.two_sensor.weights import _weights_step_units
+
+    fused = 2 * _STUDY_RULES + ("ci",) * (omegas + 1)
+    return [lambda: allocation((max(runs, aniso_runs), max(steps, aniso_steps), 4), names, arrays=_PAIRED_HELD),
+            *[lambda: _scenario_budget(runs, steps, names)] * 2,
+            lambda: sum(_fuse_tracks_units(steps, runs, 4, rule) for rule in fused),
+            lambda: sum(_fuse_tracks_units(aniso_steps, aniso_runs, 4, rule) for rule in _STUDY_RULES),
+            lambda: (steps + aniso_steps) * _weights_step_units(),
+            lambda: runs * steps * _PAIRED_REST]
 
 
 @_glue_doc("paired differences as text with their 95 % intervals, ratios")
@@ -384,7 +422,9 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     ------
     ValueError
         If ``seeds`` does not hold three seeds, ``runs`` is not a positive count or ``fig6_omegas`` misses one of the
-        two published weights; ``aniso`` not a pair at ``ANISO_R`` or ``unequal`` not one with ``R2 = R1 / 9`` (the
+        two published weights; ``runs``, ``fig6_omegas``, ``T`` and ``aniso``'s runs whose scenarios, fusions and
+        per-run errors together hold or run beyond the memory or work budget (about 2,500 runs at the book's two
+        weights), before any scenario; ``aniso`` not a pair at ``ANISO_R`` or ``unequal`` not one with ``R2 = R1 / 9`` (the
         pairs swapped, or one pair twice: each pair's rules would run on the other's noises).
     """
     instance_of(unequal, WeightPair, "unequal")
@@ -397,10 +437,16 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     if len(seeds) != 3:
         raise ValueError(f"seeds must hold three seeds (identical, unequal, random weights), got {shown(seeds)}")
     runs = count(runs, "runs")
-    fig6_omegas = tuple(fig6_omegas)
+    fig6_omegas = tuple(sequence(fig6_omegas, "fig6_omegas"))
     if W_PUB not in fig6_omegas or W_GRID not in fig6_omegas:
         raise ValueError(f"fig6_omegas must hold the source's two published weights {W_PUB} and {W_GRID} (Fig. 6), "
                          f"got {shown(fig6_omegas)}")
+    # rules 9 and 17 before any scenario: every part summed, named by the arguments that set them (fuzz 57a C6)
+    from fusion.book._study_budget import studies_first
+    a_runs, a_steps = aniso.sc.tracks[0].est.shape[:2]
+    studies_first(_paired_studies_parts(runs, two_sensor.trajectory(T).t.size, a_runs, a_steps, len(fig6_omegas),
+                                        "runs, fig6_omegas, T and aniso (its runs)"),
+                  "runs, fig6_omegas, T and aniso (its runs)")
     seed, unequal_seed, random_seed = seeds
     w_fruit_fly, w_grid = weights
     sc_p = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)

@@ -28,7 +28,7 @@ from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import infrared_radar as ir
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, Scenario
-from fusion.book.chapters.ci.architecture import architecture_studies
+from fusion.book.chapters.ci.architecture import _arch_banks, _arch_budget, _arch_parts, architecture_studies
 from fusion.book.chapters.ci.claim_inputs import ArchInputs, IrInputs, LedgerStudies, PairedInputs, PeriodRuns
 from fusion.book.chapters.ci.claim_evidence import (_vs_ci, _x_below_y,
                                                     ev_fig6, ev_ir_baselines)
@@ -170,27 +170,20 @@ def arch_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Architect
     -------
     dict
         ``IDENTICAL_LABEL`` and ``ANISO_LABEL`` -> ArchitectureStudy.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` whose two studies together hold or run beyond the memory or work budget (their sum, the entry of
+        ``fusion._limits.STUDY_WORK`` the reseeding sweep's call serves: about 4,700 runs), before either study.
     """
     seed = check_seed(seed)
+    # both studies summed at entry, named by this function's runs (fuzz 57a C5); architecture_studies checks the same
+    _arch_budget(SOURCE_T, count(runs, "runs"), runs, len(_ARCH_FIXED), "runs")
     Q, R1, R2 = printed_covariances()
     seeds = (study_seed(seed, "architecture identical"), study_seed(seed, "architecture anisotropic"))
-    return architecture_studies(R1, R2, Q, seeds, W_PUB, runs=count(runs, "runs"), nees_runs=runs, T=SOURCE_T)
-
-
-#: Float64 arrays of shape (runs, K, 4) that :func:`paired_study` holds at its peak (the three pairs' scenarios, the
-#: fused tracks of every rule of the pair being studied, their errors): ``tracemalloc``'s peak measured at 400 and
-#: 1,200 runs, 57.5 and 57.2 arrays (183 and 547 MiB), rounded up (fuzz 55 C3: 25,542 runs ended in a raw
-#: MemoryError after 34 CPU-s).
-_PAIRED_HELD = 58
-#: Units a run and step of :func:`paired_study` beyond what its inner functions' own budgets count (their per-run
-#: RMSEs, ``fusion_study``'s per-step RMSEs and copies): its slope, 935 units a run and step (2.44 ms a run of 261
-#: steps: 2.99 and 6.33 CPU-s for ``paired_study``, 0.31 and 0.63 for ``aniso_pair``, at 500 and 2,000 runs, after the
-#: cached per-step weights; OPENBLAS_NUM_THREADS=1, the shared machine, minimum of 2), less the inner budgets' 551.
-_PAIRED_REST = 384
-#: The rules ``fusion_study`` runs on each pair (CI plain, at FOA's and at the grid's weights; split CI, the convex
-#: combination, fuzzy clustering), and the CI runs at Fig. 6's two weights and at random weights on the identical pair.
-_STUDY_RULES = ("ci", "ci", "ci", "split", "convex", "fuzzy")
-_IDENTICAL_EXTRA = ("ci", "ci", "ci")
+    return architecture_studies(R1, R2, Q, seeds, W_PUB, runs=runs, nees_runs=runs, T=SOURCE_T,
+                                fixed_omegas=_ARCH_FIXED)
 
 
 def _paired_budget(runs: int) -> int:
@@ -213,18 +206,15 @@ def _paired_budget(runs: int) -> int:
 def _paired_parts(runs: int) -> list[Callable[[], int | None]]:
     """The parts of :func:`_paired_budget`, each an inner budget (``fusion.book._study_budget.studies_first``'s
     ``parts``): a chapter study that runs :func:`paired_study` beside others sums them with its own."""
-    from fusion._counts import allocation
-    from fusion.filtering.tracks import _fuse_tracks_units
+    from fusion.book.chapters.ci.paired import _paired_studies_parts
     from fusion.scenarios.two_sensor.case import _scenario_budget
     from fusion.scenarios.two_sensor.weights import _weights_step_units
 
     steps = two_sensor.trajectory(SOURCE_T).t.size
-    fused = 3 * _STUDY_RULES + _IDENTICAL_EXTRA
-    return [lambda: allocation((runs, steps, 4), "runs", arrays=_PAIRED_HELD),
-            *[lambda: _scenario_budget(runs, steps, "runs")] * 3,
-            lambda: sum(_fuse_tracks_units(steps, runs, 4, rule) for rule in fused),
-            lambda: 3 * steps * _weights_step_units(),
-            lambda: runs * steps * _PAIRED_REST]
+    # paired_studies' own parts (the identical and unequal pairs' scenarios, every fusion, two per-step weights, the
+    # rest) at Fig. 6's two weights, and what paired_study runs before it: aniso_pair's scenario and step_weights
+    return [*_paired_studies_parts(runs, steps, runs, steps, 2, "runs"), lambda: _scenario_budget(runs, steps, "runs"),
+            lambda: steps * _weights_step_units()]
 
 
 @_study_cache
@@ -284,6 +274,20 @@ def _arch_inputs(seed: int, runs: int) -> ArchInputs:
                       arch_seeds=(study_seed(seed, "architecture identical"), study_seed(seed, "architecture anisotropic")))
 
 
+def _fig6_parts(runs: int) -> list[Callable[[], int]]:
+    """The parts of :func:`fig6_periods` (``fusion.book._study_budget.studies_first``'s ``parts``): at each of
+    :data:`FIG6_PERIODS` a scenario and CI at two weights (``two_sensor_scenario``'s and ``fuse_tracks``' own units),
+    which :func:`fig6_periods` sums at its entry and :func:`ledger_studies` with its other studies."""
+    from fusion.filtering.tracks import _fuse_tracks_units
+    from fusion.scenarios.two_sensor.case import _scenario_budget
+
+    def period(T: float) -> int:
+        k = two_sensor.trajectory(T).t.size
+        return _scenario_budget(runs, k, "runs") + 2 * _fuse_tracks_units(k, runs, 4, "ci")
+
+    return [lambda T=T: period(T) for T in FIG6_PERIODS]
+
+
 @_study_cache
 def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, PeriodRuns]:
     """CI at Fig. 5's two published weights on fresh runs of the identical sensors at each of :data:`FIG6_PERIODS` (cached).
@@ -300,8 +304,18 @@ def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, Perio
     -------
     dict of float to PeriodRuns
         Period (s) -> the per-run RMSE (m) at the two weights and the seed of those runs.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` whose periods' scenarios and fusions together hold or run beyond the memory or work budget (about
+        6,400 runs), before any scenario.
     """
     seed = check_seed(seed, span=study_seed(0, "fig6 periods") + len(FIG6_PERIODS) - 1)   # period i's (fuzz 55 D1)
+    # the periods summed at entry (fuzz 57a C2: each period checked alone, 16,000 runs ran T = 0.5 s for 8.4 CPU-s,
+    # then were refused by T = 0.2 s's scenario naming "runs and T")
+    from fusion.book._study_budget import studies_first
+    studies_first(_fig6_parts(count(runs, "runs")), "runs")
     Q, R1, R2 = printed_covariances()
     out: dict[float, PeriodRuns] = {}
     for i, T in enumerate(FIG6_PERIODS):
@@ -337,10 +351,10 @@ def _shallow(bundle: object) -> dict[str, Any]:
     return {f.name: getattr(bundle, f.name) for f in dataclasses.fields(bundle)}  # type: ignore[arg-type]
 
 
-#: Fixed-weight filter banks of :func:`arch_study`'s two ``architecture_study`` runs (``architecture_studies``: on
-#: the identical sensors the published weight and 0.1 and 0.5, each printed twice, and the placement at the published
-#: weight; on the anisotropic pair the published weight printed twice).
-_ARCH_BANKS = (2 * 3 + 1, 2 * 1)
+#: The further fixed weights :func:`arch_study` runs (``architecture_studies``' default) and the filter banks of its two
+#: ``architecture_study`` runs (``architecture._arch_banks``).
+_ARCH_FIXED = (0.1, 0.5)
+_ARCH_BANKS = _arch_banks(len(_ARCH_FIXED))
 
 
 def _ledger_budget(runs: int) -> int:
@@ -349,30 +363,26 @@ def _ledger_budget(runs: int) -> int:
     checked only itself, so 5,000 runs were accepted and ran 110 CPU-s): :func:`arch_study`'s two architecture studies
     (``architecture_study``'s memory and units), :func:`paired_study` (``_paired_budget``'s parts),
     :func:`fig6_periods` (a scenario and CI at two weights at each period: ``two_sensor_scenario``'s and
-    ``fuse_tracks``' own units) and :func:`ir_reading_study` (``ir_readings``' own checks and units). The sum's budget
+    ``fuse_tracks``' own units) and :func:`ir_reading_study` (``ir_readings``' own checks and the parts it sums). The sum's budget
     is the entry of ``fusion._limits.STUDY_WORK`` that the notebook's call (:data:`LEDGER_RUNS`) serves."""
     from fusion._counts import grid_points
     from fusion._limits import LEDGER_STUDIES, STUDY_WORK
     from fusion.book._study_budget import studies_first
-    from fusion.book.chapters.ci.infrared import _ir_budget, _ir_units
-    from fusion.book.chapters.ci.infrared_readings import _jackknife_budget
-    from fusion.filtering.tracks import _fuse_tracks_units
-    from fusion.scenarios.two_sensor.architecture import _architecture_units
-    from fusion.scenarios.two_sensor.case import _scenario_budget
-
+    from fusion.book.chapters.ci.infrared import _ir_budget
+    from fusion.book.chapters.ci.infrared_readings import _jackknife_budget, _readings_parts
     steps = two_sensor.trajectory(SOURCE_T).t.size
-
-    def period(T: float) -> int:
-        k = two_sensor.trajectory(T).t.size
-        return _scenario_budget(runs, k, "runs") + 2 * _fuse_tracks_units(k, runs, 4, "ci")
 
     def infrared() -> int:
         _ir_budget(IR_T, IR_DURATION, runs)
         _jackknife_budget(runs, "runs")
-        return _ir_units(grid_points(IR_DURATION, IR_T, "runs"), runs, "runs")
+        return 0
 
-    return studies_first([*(lambda b=b: _architecture_units(steps, runs, runs, b, "runs") for b in _ARCH_BANKS),
-                          *_paired_parts(runs), *(lambda T=T: period(T) for T in FIG6_PERIODS), infrared],
+    # the infrared readings by what ir_readings runs (its default scaled axis, x: the audit after fuzz 57a; they had
+    # been counted as one study's _ir_units)
+    readings = _readings_parts(runs, grid_points(IR_DURATION, IR_T, "runs"), 1, "runs")
+
+    return studies_first([*_arch_parts(steps, runs, runs, len(_ARCH_FIXED), "runs"),
+                          *_paired_parts(runs), *_fig6_parts(runs), infrared, *readings],
                          "runs", STUDY_WORK[LEDGER_STUDIES], LEDGER_STUDIES)
 
 
@@ -398,7 +408,7 @@ def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> LedgerStudies:
     ------
     ValueError
         ``runs`` whose studies together hold or run beyond the memory or work budget (their sum, the entry of
-        ``fusion._limits.STUDY_WORK`` the notebook's call serves: about 1,800 runs), before any study.
+        ``fusion._limits.STUDY_WORK`` the notebook's call serves: about 1,400 runs), before any study.
     """
     # its studies' seeds, up to fig6_periods' seed + 51, each a seed: checked before the first study (fuzz 55 D1)
     seed = check_seed(seed, span=max(*SEED_OFFSETS.values(), study_seed(0, "fig6 periods") + len(FIG6_PERIODS) - 1))
@@ -424,6 +434,29 @@ _STOCHASTIC = {"ci-fig4-convex-part": (_vs_ci, (_arch_inputs, _paired_inputs)),
                "ci-fig10-x-below-y": (_x_below_y, (_ir_inputs,)),
                "ci-fig10-convex-errors": (_ir_record("ci-fig10-convex-errors"), (_ir_inputs,)),
                "ci-fig10-fuzzy-errors": (_ir_record("ci-fig10-fuzzy-errors"), (_ir_inputs,))}
+
+
+def _record_budget(rid: str, runs: int) -> int:
+    """Rules 9 and 17 of :func:`record_evidence` before any study: the studies the record ``rid`` reads at ``runs``
+    (``_STOCHASTIC``'s parts: :func:`arch_study`, :func:`paired_study` with :func:`fig6_periods`,
+    :func:`ir_reading_study`), each by its own summed budget, summed again (``fusion.book._study_budget.studies_first``)
+    within the entry of ``fusion._limits.STUDY_WORK`` the reseeding sweep's largest call serves, refused naming
+    ``runs`` (the audit after fuzz 57a: the studies were checked one by one, so 4,700 runs of ci-fig4-convex-part ran
+    both architecture studies, some 40 CPU-s, before the paired study refused them)."""
+    from fusion._limits import RECORD_EVIDENCE, STUDY_WORK
+    from fusion.book._study_budget import studies_first
+    from fusion.book.chapters.ci.infrared_readings import _jackknife_budget, _readings_budget
+
+    def infrared() -> int:
+        _jackknife_budget(runs, "runs")
+        return _readings_budget(IR_T, IR_DURATION, runs, 1, "runs")
+
+    parts: dict[object, list[Callable[[], int]]] = {
+        _arch_inputs: [lambda: _arch_budget(SOURCE_T, runs, runs, len(_ARCH_FIXED), "runs")],
+        _paired_inputs: [lambda: _paired_budget(runs), lambda: studies_first(_fig6_parts(runs), "runs")],
+        _ir_inputs: [infrared]}
+    return studies_first([p for study in _STOCHASTIC[rid][1] for p in parts[study]], "runs",
+                         STUDY_WORK[RECORD_EVIDENCE], RECORD_EVIDENCE)
 
 
 @process_cache(maxsize=16)
@@ -458,8 +491,10 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     TypeError
         ``settings`` neither a mapping nor None, ``rid`` or ``settings['reading']`` not a string.
     ValueError
-        If the record or the reading is unknown (before any study), ``settings`` holds a key other than ``reading``, or
-        ``runs`` below the 100 runs rule R4 asks of a paired comparison.
+        If the record or the reading is unknown (before any study), ``settings`` holds a key other than ``reading``,
+        ``runs`` below the 100 runs rule R4 asks of a paired comparison, or ``runs`` whose studies together hold or
+        run beyond the memory or work budget (their sum, the entry of ``fusion._limits.STUDY_WORK`` the reseeding
+        sweep's call serves), before any study.
     """
     seed = check_seed(seed)
     settings = settings_first(settings, ("reading",))  # the one rule of the chapters' readers (fuzz 52 C7)
@@ -471,7 +506,9 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
         # every record here is built with paired comparisons of ``runs`` runs without a reason (the IR records'
         # exact readings too: ev_ir_baselines builds them with ci-fig10-x-below-y's), so rule R4's refusal comes
         # before the studies (fuzz 57c: 9-11 CPU-s of studies at 3 runs, then the same refusal)
-        ev = _record(rid, seed, runs_first(runs))
+        runs = runs_first(runs)
+        _record_budget(rid, runs)   # the studies it reads, summed before the first (the audit after fuzz 57a)
+        ev = _record(rid, seed, runs)
     key = text(settings.get("reading", "primary"), "settings['reading']")
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")

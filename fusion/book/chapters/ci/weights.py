@@ -701,18 +701,27 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
         A seed, ``k`` or ``runs`` not an integer, a covariance not numeric.
     ValueError
         If ``k`` is not a step of the scenario, ``R1`` or ``R2`` not a diagonal 2 × 2 covariance, a seed negative or
-        ``fruit_fly_seeds`` empty, repeated or beyond FOA's budgets (30 × 200 per seed).
+        ``fruit_fly_seeds`` empty, repeated or beyond FOA's budgets (30 × 200 per seed); ``runs``, ``T`` and
+        ``fruit_fly_seeds`` whose scenario and searches together hold or run beyond the memory or work budget, before
+        the scenario.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     search_seed = check_seed(search_seed, "search_seed")
     # the callee's rules (integers, no repeat, the batch's budgets) named here, before the scenario (fuzz 26c A3)
     fly = distinct(check_seeds(fruit_fly_seeds, "fruit_fly_seeds"), "fruit_fly_seeds")
+    from fusion.book._study_budget import studies_first
     from fusion.optimise.scalar import batch_budget
+    from fusion.scenarios.two_sensor.case import _scenario_budget
 
-    batch_budget(len(fly), 30, 200, "fruit_fly_seeds")   # fruit_fly_over_seeds' printed 30 x 200 per seed
     _sensor_noises(R1, R2)
+    T = _period_key(T)   # the chapter's period rule
+    runs, steps = count(runs, "runs"), two_sensor.trajectory(T).t.size   # type: ignore[arg-type]
+    # the scenario and fruit_fly_over_seeds' printed 30 x 200 per seed, each by its own budget, summed before the
+    # scenario (the audit after fuzz 57a: each was checked alone, the batch only after the scenario had run)
+    studies_first([lambda: batch_budget(len(fly), 30, 200, "fruit_fly_seeds"),
+                   lambda: _scenario_budget(runs, steps, "runs and T")], "runs, T and fruit_fly_seeds")
     sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs,
-                                        T=_period_key(T))  # type: ignore[arg-type]  # the chapter's period rule
+                                        T=T)  # type: ignore[arg-type]
     a, b = sc.tracks
     k = _step_index(k, "k", a.gains.P.shape[0])
     P1, P2 = a.gains.P[k], b.gains.P[k]
