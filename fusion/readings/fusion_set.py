@@ -788,14 +788,10 @@ _PERRON_CUBE = 1.3 * DENSE_CUBE
 
 
 def _belief_stack(B: ArrayLike) -> tuple[FloatArray, bool]:
-    """``B`` as a stack (N, n, n) of finite, non-negative, symmetric matrices, and whether it was one matrix.
-
-    Its eigen-decomposition's dense work (``_PERRON_CUBE`` units a ``n**3`` a matrix, rule 17) is checked once its
-    shape is known, before its O(N n**2) checks (the symmetry check of a 4,300 x 4,300 B took 0.66 CPU-s).
-
-    Raises ``ValueError`` naming ``B`` for any other shape, NaN/inf, a negative entry or asymmetry, or beyond the work
-    budget.
-    """
+    """``B`` as a stack (N, n, n) of finite, non-negative, symmetric matrices, and whether it was one matrix. Raises
+    ``ValueError`` naming ``B`` for any other shape, NaN/inf, a negative entry or asymmetry, or for eigen-decompositions
+    beyond the work budget (``_PERRON_CUBE`` units a ``n**3``, rule 17), checked before its O(N n**2) checks (the
+    symmetry check of a 4,300 x 4,300 B took 0.66 CPU-s)."""
     arr = _numeric(B, "B")
     single = arr.ndim == 2
     if single:
