@@ -38,6 +38,7 @@ References
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -45,7 +46,7 @@ from numpy.typing import ArrayLike
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
 from fusion._counts import allocation, as_rng
-from fusion._limits import DENSE_CUBE, LOOP_STEP, dense_work, loop_work
+from fusion._limits import DENSE_CUBE, LOOP_STEP, dense_work, loop_work, work
 from fusion._frozen import frozen_arrays
 from fusion._covariances import column_rank_deficient
 from fusion._validation import read_once
@@ -187,11 +188,16 @@ def unit_lower_inverse(L: ArrayLike) -> FloatArray:
     Raises
     ------
     ValueError
-        ``L`` not square, not finite or not unit lower triangular.
+        ``L`` not square, not finite or not unit lower triangular, or beyond the work budget (``n`` above about
+        4,250).
     """
     La = as_array(L, "L", ndim=2)
     if La.shape[0] != La.shape[1]:
         raise ValueError(f"L must be square, got shape {La.shape}")
+    # rule 17 (fuzz 57b D2: n = 5,792, the input budget, ran 25.1 CPU-s unchecked): n row steps of an i x i matvec,
+    # measured 0.11 ns a n**3 at n = 300, 0.063 at 1,000, 0.077 at 2,000 (time.process_time, OPENBLAS_NUM_THREADS=1,
+    # shared machine) and 0.13 at 5,792 (fuzz 57b); the n Python steps (a LOOP_STEP each) are 6e6 units there
+    dense_work(1, La.shape[0], "L", 1.3 * DENSE_CUBE)
     if not (np.allclose(np.diag(La), 1.0) and np.allclose(np.triu(La, 1), 0.0)):
         raise ValueError("L must be unit lower triangular")
     n = La.shape[0]
@@ -689,7 +695,9 @@ def gauss_markov_gap(H: ArrayLike, R: ArrayLike, rng: np.random.Generator, draws
     Raises
     ------
     ValueError
-        As :func:`gls`, or ``draws`` < 1.
+        As :func:`gls`, or ``draws`` < 1, or ``draws`` beyond the memory budget (four ``(draws, d, N)`` arrays: about
+        3.4 x 10**6 draws of ``N = 10``, ``d = 2``) or the work budget for this ``H`` (a draw costs
+        ``15 d**2 + d N + 0.05 d N**2`` units).
     TypeError
         ``rng`` not a :class:`numpy.random.Generator` itself (a subclass's draws are its own) over one of numpy's
         bit generators.
@@ -700,6 +708,15 @@ def gauss_markov_gap(H: ArrayLike, R: ArrayLike, rng: np.random.Generator, draws
     K = gls_weights(H, R)
     Ha = np.asarray(H, dtype=float)
     Ra = np.asarray(R, dtype=float)
+    N, d = Ha.shape
+    # rules 9 and 17 (fuzz 57b C2: draws held only to the count ceiling, 10**7 draws of N = 14, d = 2 a raw MemoryError
+    # after 12-17 CPU-s), before any draw. Memory: Z, Z Q, W and W R, (draws, d, N) each, are held together
+    # (tracemalloc's peak 3.1-3.3 arrays, N = 3 to 30). Work: a draw costs 15 d**2 + d N + 0.05 d N**2 units (the d x d
+    # eigvalsh and the stack's per-matrix calls, the draws, the N x N products), measured (time.process_time,
+    # OPENBLAS_NUM_THREADS=1, shared machine): 101 ns a draw at N = 3, d = 1 (18 units), 907 ns at N = 10, d = 2 (90),
+    # 924 ns at N = 6, d = 3 (158), 2.5 us at N = 30, d = 3 (270), 10 us at N = 100, d = 2 (1,140), 15 us at N = 50,
+    # d = 10 (3,250), 152 us at N = 200, d = 20 (50,000).
+    _gap_budget(draws, N, d)
     P = K @ Ra @ K.T
     scale = float(np.linalg.eigvalsh(P).max())
     Q = np.eye(Ha.shape[0]) - Ha @ K
@@ -708,6 +725,13 @@ def gauss_markov_gap(H: ArrayLike, R: ArrayLike, rng: np.random.Generator, draws
     C = W @ Ra[None] @ np.swapaxes(W, 1, 2) - P[None]
     C = 0.5 * (C + np.swapaxes(C, 1, 2))
     return float(np.linalg.eigvalsh(C).min() / scale)
+
+
+def _gap_budget(draws: int, N: int, d: int) -> int:
+    """Refuse ``draws`` estimators of :func:`gauss_markov_gap` for an ``N x d`` H beyond the memory or work budget (the
+    measurements at its call); the units of work."""
+    allocation((draws, d, N), "draws and H (its shape N x d)", arrays=4)
+    return work((draws,), "draws and H (its shape N x d)", weight=15 * d * d + d * N + math.ceil(0.05 * d * N * N))
 
 
 def spd_inverse_count(N: int, d: int) -> float:
