@@ -38,8 +38,13 @@ def _refused(exc: type[Exception], name: str, fn, *args, **kwargs) -> None:
 
 @pytest.fixture(scope="module")
 def arch():
-    """The chapter's architecture studies at 3 runs (cached by the chapter) and their table."""
-    studies = ci.arch_study(2024, 3)
+    """The chapter's architecture studies and their table, at the notebook's seed and runs (:data:`LEDGER_RUNS`).
+
+    The companion checks need any valid studies, not a given run count (they pass the studies' own count and one
+    that differs): the chapter's, which its notebook and ``tests/test_ci_book_chapter.py`` compute in every run
+    anyway, come from the run's study cache; at 3 runs they were a computation of their own (about 7 CPU-s: the
+    per-step covariance recursion does not shrink with the runs)."""
+    studies = ci.arch_study()
     return studies, ci.architecture_table(studies)
 
 
@@ -113,17 +118,18 @@ def test_evidence_settings_of_another_type_refused():
 def test_architecture_numbers_companions_must_agree(arch):
     """E4-E6, F7, F8: the run count, the table, the steps averaged and the two studies of the architecture glue."""
     studies, table = arch
-    assert ci.architecture_numbers(studies, table, 3, 241)["ci_arch_runs"] == 3       # the notebook's call
+    runs = ci.LEDGER_RUNS
+    assert ci.architecture_numbers(studies, table, runs, 241)["ci_arch_runs"] == runs   # the notebook's call
     _refused(ValueError, "arch_runs", ci.architecture_numbers, studies, table, 500, 50)
     # a table of other studies, same shape and labels (the two pairs' studies swapped: no third study computed)
     other = ci.architecture_table({ci.IDENTICAL_LABEL: studies[ci.ANISO_LABEL],
                                    ci.ANISO_LABEL: studies[ci.IDENTICAL_LABEL]})
-    _refused(ValueError, "arch_table", ci.architecture_numbers, studies, other, 3, 50)
-    _refused(TypeError, "arch_table", ci.architecture_numbers, studies, {}, 3, 50)
-    _refused(ValueError, "k_steady", ci.architecture_numbers, studies, table, 3, 10**6)
-    _refused(ValueError, "k_steady", ci.architecture_numbers, studies, table, 3, 0)
-    _refused(ValueError, "arch", ci.architecture_numbers, dict(list(studies.items())[:1]), table, 3, 50)
-    _refused(ValueError, "arch", ci.architecture_numbers, dict(reversed(list(studies.items()))), table, 3, 50)
+    _refused(ValueError, "arch_table", ci.architecture_numbers, studies, other, runs, 50)
+    _refused(TypeError, "arch_table", ci.architecture_numbers, studies, {}, runs, 50)
+    _refused(ValueError, "k_steady", ci.architecture_numbers, studies, table, runs, 10**6)
+    _refused(ValueError, "k_steady", ci.architecture_numbers, studies, table, runs, 0)
+    _refused(ValueError, "arch", ci.architecture_numbers, dict(list(studies.items())[:1]), table, runs, 50)
+    _refused(ValueError, "arch", ci.architecture_numbers, dict(reversed(list(studies.items()))), table, runs, 50)
 
 
 def test_model_rmse_steady_must_select_steps_of_the_estimates(nees_est):
@@ -195,12 +201,12 @@ def test_pcrb_table_singular_system_names_the_arguments():
 
 def test_paired_numbers_run_count_and_methods_must_match_the_studies(arch):
     """The run count given beside the paired studies (the class of E4) and the methods their glue reads."""
-    ps = ci.paired_study(2024, 3)
+    ps = ci.paired_study()   # the chapter's (the run's study cache: the notebook computes it), as arch's studies
     ai = arch[0][ci.IDENTICAL_LABEL]
     kw = dict(paired=ps.paired, paired_u=ps.paired_u, paired_random=ps.paired_random, ai=ai, ml_gap=0.1,
               rmse_avg=50.0, paired_runs=ps.runs, paired_a=ps.paired_an, omega_u=ps.omega_u)
-    assert ci.paired_numbers(**kw)["ci_paired_runs"] == 3
-    _refused(ValueError, "paired_runs", ci.paired_numbers, **{**kw, "paired_runs": 4})
+    assert ci.paired_numbers(**kw)["ci_paired_runs"] == ps.runs == ci.LEDGER_RUNS
+    _refused(ValueError, "paired_runs", ci.paired_numbers, **{**kw, "paired_runs": ps.runs + 1})
     _refused(ValueError, "paired", ci.paired_numbers, **{**kw, "paired": {}})
     _refused(TypeError, "paired_u", ci.paired_numbers, **{**kw, "paired_u": 5})
     _refused(ValueError, "paired_random", ci.paired_numbers, **{**kw, "paired_random": ps.paired_random[:2]})

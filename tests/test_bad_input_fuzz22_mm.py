@@ -220,8 +220,8 @@ def test_a2_chapter01_readers_name_runs(name) -> None:
                                                 ("time_registration_ledger", "ev_improved", 7),
                                                 ("time_registration_ledger", "ev_ls_info", 7)])
 def test_a2_chapter04_05_07_readers_name_runs(module, name, seed) -> None:
-    """Too few runs (3 < MIN_RUNS). Chapter 05's readers at the chapter's seed: their studies of (2024, 3 runs) are
-    the ones tests/test_bad_input_results_chapters.py builds (ledger_studies(runs=3)), computed once (study cache)."""
+    """Too few runs (3 < MIN_RUNS). Chapter 05's readers at the chapter's seed refuse the run count before any
+    study (measured: no study of (2024, 3 runs) is called)."""
     import importlib
     fn = getattr(importlib.import_module(f"fusion.book.chapters.{module}"), name)
     with pytest.raises(ValueError) as e:
