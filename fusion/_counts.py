@@ -281,7 +281,8 @@ def seed_sequence(value: object, name: str = "seed") -> np.random.SeedSequence:
     ------
     TypeError
         Not a SeedSequence itself (a subclass may report values other than those numpy mixes), or one whose entropy or
-        spawn key holds a non-integer.
+        spawn key holds a non-integer or an array that is not a plain ``numpy.ndarray`` (a subclass's ``flat`` may
+        report other words than numpy mixes).
     ValueError
         An entropy, spawn key or pool beyond the bound; more than :data:`SPAWNED_MAX` children spawned already.
     """

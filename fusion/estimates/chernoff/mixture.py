@@ -713,7 +713,9 @@ def fuse_mixtures_batch(
         apart for their covariances that the objective's log-densities leave the range (1e150 in magnitude),
         naming ``means`` (or ``covs``, the one at an extreme magnitude); with the swarm, ``swarm_options`` whose
         swarms (their iterations and particles, for the problems and mixtures given) are beyond the work budget,
-        before any work, naming ``swarm_options.iterations and swarm_options.n_particles``.
+        before any work, naming ``swarm_options.iterations and swarm_options.n_particles``; ``n_samples`` whose
+        samples (their quadratic features, ``1.25 (K + d) + M**N + 32`` float64 a sample of a problem, K =
+        ``1 + d + d (d + 1) / 2``) are beyond the memory budget, naming ``weights and n_samples``.
 
     References
     ----------
