@@ -570,7 +570,7 @@ def weighted_em_batch(
     n_components = count(n_components, "n_components")
     if n_components > xx.shape[1]:
         raise ValueError("n_components must be between 1 and the number of samples")
-    as_rngs(rngs, "rngs", xx.shape[0])
+    rngs = as_rngs(rngs, "rngs", xx.shape[0])  # its list, read once (fuzz 58b C1: a second read could differ)
     max_iter = count(max_iter, "max_iter")
     _em_work(max_iter, xx.shape[0], xx.shape[1], n_components, xx.shape[2])
     tol = nonnegative_scalar(tol, "tol")
@@ -580,7 +580,7 @@ def weighted_em_batch(
         if g is not None:
             instance_of(g, GaussianMixture, f"init[{b}]")
             _check_init(g, n_components, xx.shape[2], f"init[{b}]")
-    return _em_batch(xx, ww, n_components, list(rngs), max_iter, tol, floor, inits)
+    return _em_batch(xx, ww, n_components, rngs, max_iter, tol, floor, inits)
 
 
 def _em_work(max_iter: int, B: int, Q: int, S: int, d: int) -> None:

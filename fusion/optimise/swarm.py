@@ -192,9 +192,9 @@ def particle_swarm_batch(
       58-73.
     """
     as_callable(fitness, "fitness")
-    as_rngs(rngs, "rngs")
+    rngs = as_rngs(rngs, "rngs")  # its list, read once (fuzz 58b C1: a second read could differ)
     flag(trace, "trace")
-    return _swarm(fitness, dim, list(rngs), n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop,
+    return _swarm(fitness, dim, rngs, n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop,
                   xtol, bool(trace))
 
 

@@ -705,10 +705,6 @@ def gauss_markov_gap(H: ArrayLike, R: ArrayLike, rng: np.random.Generator, draws
     H, R = (read_once(H, "H"), read_once(R, "R"))  # converted once (fuzz 29a C5)
     as_rng(rng)  # a Generator itself (fuzz 57b C1: a subclass drawing NaN made the gap NaN)
     draws = count(draws, "draws")
-    K = gls_weights(H, R)
-    Ha = np.asarray(H, dtype=float)
-    Ra = np.asarray(R, dtype=float)
-    N, d = Ha.shape
     # rules 9 and 17 (fuzz 57b C2: draws held only to the count ceiling, 10**7 draws of N = 14, d = 2 a raw MemoryError
     # after 12-17 CPU-s), before any draw. Memory: Z, Z Q, W and W R, (draws, d, N) each, are held together
     # (tracemalloc's peak 3.1-3.3 arrays, N = 3 to 30). Work: a draw costs 15 d**2 + d N + 0.05 d N**2 units (the d x d
@@ -716,7 +712,13 @@ def gauss_markov_gap(H: ArrayLike, R: ArrayLike, rng: np.random.Generator, draws
     # OPENBLAS_NUM_THREADS=1, shared machine): 101 ns a draw at N = 3, d = 1 (18 units), 907 ns at N = 10, d = 2 (90),
     # 924 ns at N = 6, d = 3 (158), 2.5 us at N = 30, d = 3 (270), 10 us at N = 100, d = 2 (1,140), 15 us at N = 50,
     # d = 10 (3,250), 152 us at N = 200, d = 20 (50,000).
+    # Both from H's shape alone, before gls_weights' O(N**3) solve (fuzz 58b C5: draws = 10**7 at N = 4,500 was
+    # refused after 11.5 CPU-s of it).
+    N, d = as_array(H, "H", ndim=2).shape
     _gap_budget(draws, N, d)
+    K = gls_weights(H, R)
+    Ha = np.asarray(H, dtype=float)
+    Ra = np.asarray(R, dtype=float)
     P = K @ Ra @ K.T
     scale = float(np.linalg.eigvalsh(P).max())
     Q = np.eye(Ha.shape[0]) - Ha @ K

@@ -198,11 +198,16 @@ def inverse_variance_weights(estimates: ArrayLike, floor: float = VARIANCE_FLOOR
         if np.any(tot == 0.0):
             raise ValueError("the inverse estimates of a row sum to zero: the unguarded weights are undefined")
         return inv / tot
+    return _guarded_weights(v, guard, floor)
+
+
+def _guarded_weights(v: np.ndarray, guard: str, floor: float) -> FloatArray:
+    """:func:`inverse_variance_weights` of validated estimates under ``guard`` ("floor", "abs" or "equal"); also of
+    the broadcast :func:`cumulative_fusion` holds to its own budget (fuzz 58b C3: the input budget named estimates)."""
     inv = 1.0 / _guarded(v, guard, floor)
     w = inv / inv.sum(axis=-1, keepdims=True)
     if guard == "equal":
-        bad = np.any(v <= 0.0, axis=-1, keepdims=True)
-        w = np.where(bad, 1.0 / v.shape[-1], w)
+        w = np.where(np.any(v <= 0.0, axis=-1, keepdims=True), 1.0 / v.shape[-1], w)
     return w
 
 
@@ -232,8 +237,10 @@ def lecture_variance_sd(level: float, k: ArrayLike, variances: ArrayLike) -> Flo
     ----------
     level : float
         The constant measured quantity :math:`X` (readings' unit).
-    k : array_like of int
-        Number of samples (>= 1); broadcast against the sensor axis as ``k[..., None]``.
+    k : array_like of float
+        Number of samples (>= 1); broadcast against the sensor axis as ``k[..., None]``. A real ``k`` is the
+        formula's continuous extension, the one :func:`lecture_samples_needed` inverts (it returns a real number
+        of samples): an integer ``k`` is a count of samples, a non-integer one a point of that curve.
     variances : array_like, shape (n,)
         True noise variances (unit²), ``n >= 2``.
 
@@ -980,7 +987,7 @@ def cumulative_fusion(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs",
     # 4.6 arrays of it at tracemalloc's peak, 38 ns an element
     shape = broadcast((("X", A.shape), ("variances", V.shape)), arrays=5, weight=4)
     V = np.broadcast_to(V, shape)
-    w = inverse_variance_weights(V, guard=guard)
+    w = _guarded_weights(V, guard, VARIANCE_FLOOR)   # inverse_variance_weights' kernel: V is read and checked above
     inst = np.sum(w * A, axis=-1)
     if time_weights == "equal":
         tau = np.ones(inst.shape)

@@ -61,3 +61,19 @@ def product_size(problems: int, n: int, s: int, d: int, names: str, n_samples: i
     allocation((problems, tuples, n, d, d), f"{names} (the product mixture's {s}**{n} component tuples)")
     entry, square = (FIRST_ORDER_ENTRY, FIRST_ORDER_SQUARE) if first_order else (FUSION_ENTRY, FUSION_SQUARE)
     return tuples, n * (entry + square * d * d) + -(-n_samples * d * d // SAMPLE_DIVISOR)
+
+
+#: float64 a sample of one problem at the peak of ``fuse_mixtures`` beyond ``1.25 (K + d)`` (K = 1 + d + d(d+1)/2
+#: quadratic features, ``_features``, and the d coordinates) and one a tuple (the product's densities at it): the
+#: weights, densities and swarm vectors. tracemalloc's peak (fuse_mixtures, two mixtures, shared machine) per sample:
+#: 32 at d = 1 (1 tuple), 35 at d = 2 (9), 87 at d = 10 (4), 556 at d = 30 (1 or 9), 2,016 at d = 60 (1), 110 at d = 2
+#: (100 tuples), 1,307 at d = 1 (1,296 tuples of four mixtures), 127 at d = 10 with redraw and reference.
+SAMPLE_EXTRA = 32
+
+
+def sample_memory(problems: int, tuples: int, d: int, n_samples: int, names: str) -> None:
+    """Refuse ``n_samples`` draws of ``problems`` fusions of dimension ``d`` (``tuples`` product components) beyond the
+    memory budget, naming ``names`` (fuzz 58b C2: 10**6 samples of d = 30, a raw MemoryError; the samples'
+    features alone are (n_samples, 496) there): ``1.25 (K + d) + tuples + SAMPLE_EXTRA`` float64 a sample."""
+    per = math.ceil(1.25 * (1 + 2 * d + d * (d + 1) // 2)) + tuples + SAMPLE_EXTRA
+    allocation((problems, n_samples, per), f"{names} (the samples' quadratic features and densities)")

@@ -32,7 +32,7 @@ from fusion._results import ResultSpec, instance, number, validated_post_init
 from fusion.estimates.chernoff._timings import FusionTimings
 from fusion.estimates.chernoff._sampling import _mixture_mean, _moments_batch, _sample_mixture  # noqa: F401
 from fusion._timing import LapTimer
-from fusion.estimates.chernoff._product import product_size
+from fusion.estimates.chernoff._product import product_size, sample_memory
 from fusion._validation import (MAX_MAGNITUDE, FloatArray, _covariance_magnitude, _numeric, allocation, as_array, as_rng,
                                 as_rngs, asymmetric, count, derived_inputs, flag, instance_of, one_of, read_once, refuse_singular,
                                 renormalised, sums_to_one, work)
@@ -641,6 +641,7 @@ def fuse_mixtures(
     e0 = np.full(N, 1.0 / N) if eps0 is None else check_simplex(eps0, N, name="eps0")
     tuples, per = product_size(1, N, max(g.weights.size for g in gms), gms[0].dim, "gms and n_samples", n_samples)
     work((tuples,), "gms and n_samples (the product mixture's component tuples)", weight=per)  # fuzz 35a C7
+    sample_memory(1, tuples, gms[0].dim, n_samples, "gms and n_samples")  # fuzz 58b C2
     logw, means, covs = _mixture_arrays(gms)
     flag(timed, "timed")
     return _timed_fusion(logw[None], means[None], covs[None], [rng], n_samples, e0[None], optimiser, redraw, reference,
@@ -712,7 +713,9 @@ def fuse_mixtures_batch(
         apart for their covariances that the objective's log-densities leave the range (1e150 in magnitude),
         naming ``means`` (or ``covs``, the one at an extreme magnitude); with the swarm, ``swarm_options`` whose
         swarms (their iterations and particles, for the problems and mixtures given) are beyond the work budget,
-        before any work, naming ``swarm_options.iterations and swarm_options.n_particles``.
+        before any work, naming ``swarm_options.iterations and swarm_options.n_particles``; ``n_samples`` whose
+        samples (their quadratic features, ``1.25 (K + d) + M**N + 32`` float64 a sample of a problem, K =
+        ``1 + d + d (d + 1) / 2``) are beyond the memory budget, naming ``weights and n_samples``.
 
     References
     ----------
@@ -747,11 +750,12 @@ def fuse_mixtures_batch(
     except np.linalg.LinAlgError:
         raise ValueError("covs must be positive definite (where the weight is positive)") from None
     refuse_singular(np.where(pos[..., None, None], c, np.eye(d)), "covs")  # the covariance rule, where w > 0
-    as_rngs(rngs, "rngs", B)
+    rngs = as_rngs(rngs, "rngs", B)  # its list, read once (fuzz 58b C1: a second read could differ)
     n_samples = count(n_samples, "n_samples", minimum=2)
     tuples, per = product_size(B, N, S, d, "weights and n_samples", n_samples)
     work((B, tuples), "weights and n_samples (the problems and the product mixture's component tuples)",
          weight=per)  # fuzz 35a C7
+    sample_memory(B, tuples, d, n_samples, "weights and n_samples")  # fuzz 58b C2
     if eps0 is None:
         e0 = np.full((B, N), 1.0 / N)
     else:
@@ -763,7 +767,7 @@ def fuse_mixtures_batch(
     with np.errstate(divide="ignore"):
         logw = np.where(pos, np.log(np.where(pos, w, 1.0)), -np.inf)
     c = np.where(pos[..., None, None], c, np.eye(d))
-    return _timed_fusion(logw, m, c, list(rngs), n_samples, e0, optimiser, redraw, reference, swarm_options, bool(timed),
+    return _timed_fusion(logw, m, c, rngs, n_samples, e0, optimiser, redraw, reference, swarm_options, bool(timed),
                          bool(keep_samples))
 
 

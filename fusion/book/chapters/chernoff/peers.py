@@ -96,12 +96,15 @@ def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame,
     A = as_covariance(rec["measurement"]["covariance"], d, "record['measurement']['covariance']")
     b = as_array(rec["prediction"]["mean"], "record['prediction']['mean']", shape=(d,))
     B = as_covariance(rec["prediction"]["covariance"], d, "record['prediction']['covariance']")
+    checked = []   # the values checked are the values used (fuzz 58b C1: a second read of r[key] could differ)
     for i, r in enumerate(rows_in):
         at = f"record['rows'][{i}]"
-        scalar(r["omega"], f"{at}['omega']", 0.0, 1.0, lo_open=True, hi_open=True)
+        row = {"omega": scalar(r["omega"], f"{at}['omega']", 0.0, 1.0, lo_open=True, hi_open=True)}
         for key, shape in (("innovation_covariance", (d, d)), ("posterior_mean", (d,)),
                            ("posterior_covariance", (d, d))):
-            as_array(r[key], f"{at}[{key!r}]", shape=shape)
+            row[key] = as_array(r[key], f"{at}[{key!r}]", shape=shape)
+        checked.append(row)
+    rows_in = checked
     repeat = _first_repeat(float(r["omega"]) for r in rows_in)  # the table has one row per ω (fuzz 36b B7: the last
     if repeat is not None:                                        # row of a repeated ω replaced the first silently)
         i, j, w = repeat
@@ -156,8 +159,8 @@ def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame,
         w = scalar(case["omega"], "record['detection_case']['omega']", 0.0, 1.0, lo_open=True, hi_open=True)
         A2 = as_covariance(case["detection_covariance"], d, "record['detection_case']['detection_covariance']")
         Vd = as_array(case["innovation_covariance"], "record['detection_case']['innovation_covariance']", shape=(d, d))
-        for key, shape in (("posterior_mean", (d,)), ("posterior_covariance", (d, d))):
-            as_array(case[key], f"record['detection_case'][{key!r}]", shape=shape)
+        case = {key: as_array(case[key], f"record['detection_case'][{key!r}]", shape=shape)   # used as checked
+                for key, shape in (("posterior_mean", (d,)), ("posterior_covariance", (d, d)))}
         ours = chernoff_fuse_gaussians(np.stack([a, b]), np.stack([A2, B]), [w, 1 - w])
         g3 = lambda x: float(f"{x:.3g}") if x > 1e-6 else 0.0  # noqa: E731
         values.update(chf_ss_det_model=g3(rel(Vd, A / (1 - w) + B / w)), chf_ss_det_v=g3(rel(Vd, A2 / w + B / (1 - w))),

@@ -438,7 +438,7 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
                                  f"scenarios[{i}] (the same pair at the same period, whatever its runs), whose steps "
                                  "would be counted twice")
     k = _step_index(k, "k", scs[0].tracks[0].Pd.shape[0])
-    check_seeds(seeds, "seeds")
+    seeds = check_seeds(seeds, "seeds")   # the list checked is the list used (fuzz 58b C1)
     n_grid = count(n_grid, "n_grid", minimum=2)
 
     for i, sc in enumerate(scs):   # every step's covariances on the grid at once (fuzz 24c SZ: 6 GiB for 2e5)
