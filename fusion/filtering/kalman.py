@@ -36,8 +36,8 @@ from fusion._covariances import asymmetric
 from fusion._limits import LOOP_STEP, loop_work, work
 from fusion._results import ResultSpec, array, trusted, validated_post_init
 from fusion._frozen import frozen_arrays
-from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_covariance, as_semidefinite,
-                                count, finite_result, instance_of, one_of, positive_scalar)
+from fusion._validation import (_covariance_magnitude, _given_shape, _numeric, FloatArray, as_array, as_covariance,
+                                as_semidefinite, count, input_size, finite_result, instance_of, one_of, positive_scalar)
 
 __all__ = [
     "SplitCovariances",
@@ -713,6 +713,11 @@ def nees(errors: ArrayLike, covariances: ArrayLike) -> FloatArray:
         Non-finite input, mismatched shapes, covariances not symmetric positive definite, or their broadcast
         beyond the memory or work budget (``20 + 3 d**2 + 0.008 d**3`` units a matrix of the broadcast).
     """
+    # rules 9 and 17 before any entry is read (fuzz 57b C4: two 256 MB arrays whose broadcast is refused were read
+    # first, 2.3 CPU-s): each argument's size, then their broadcast from the arrays' shapes, read without converting
+    input_size(errors, "errors")
+    input_size(covariances, "covariances")
+    _nees_shapes_budget(_given_shape(errors), _given_shape(covariances))
     e = as_array(errors, "errors")
     P = as_array(covariances, "covariances", subnormal=True)  # computed covariances: subnormal entries harmless
     if P.ndim >= 2 and P.shape[-1] == P.shape[-2]:
@@ -747,6 +752,19 @@ def nees(errors: ArrayLike, covariances: ArrayLike) -> FloatArray:
         y = np.linalg.solve(L[block], eb[block])[..., 0]
         out[block] = np.sum(y**2, axis=-1)
     return out
+
+
+def _nees_shapes_budget(es: tuple[int, ...] | None, ps: tuple[int, ...] | None) -> None:
+    """:func:`_nees_budget` of the arguments' shapes ``es`` and ``ps`` before their conversion, where both are arrays
+    (None: no shape without converting) of matching, broadcasting shapes; any other shape is left to the checks after
+    the conversion, which name it."""
+    if es is None or ps is None or len(es) < 1 or len(ps) < 2 or tuple(ps[-2:]) != (es[-1], es[-1]):
+        return
+    try:
+        batch = np.broadcast_shapes(tuple(es[:-1]), tuple(ps[:-2]))
+    except ValueError:
+        return
+    _nees_budget(batch, int(es[-1]))
 
 
 def _nees_budget(batch: tuple[int, ...], d: int) -> int:

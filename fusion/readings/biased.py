@@ -109,7 +109,8 @@ def ridge(H: ArrayLike, y: ArrayLike, k: float) -> FloatArray:
     ------
     ValueError
         Shapes not (m, d) and (m,), non-finite entries, ``k`` negative or not finite, or
-        :math:`H^\top H + kI` singular.
+        :math:`H^\top H + kI` singular.; an ``H`` beyond the work budget (``max(m, d) d**2`` units of 0.015,
+        0.03 at ``k = 0``: a square H of about 4,050, 3,200 at ``k = 0``).
 
     References
     ----------
@@ -118,6 +119,10 @@ def ridge(H: ArrayLike, y: ArrayLike, k: float) -> FloatArray:
     """
     Ha, ya = _Hy(H, y)
     kk = _k(k)
+    # rule 17 (fix 65a, after fuzz 57b D2: a square H of 5,792, the input budget, ran 27 CPU-s at k = 1 unchecked):
+    # H^T H, its factor and solve, and at k = 0 H's singular values, max(m, d) d**2 work, 0.14 ns per unit at k > 0
+    # and 0.26 ns at k = 0 measured (d = m = 1,500; time.process_time, OPENBLAS_NUM_THREADS=1, the shared machine)
+    work((max(Ha.shape), Ha.shape[1], Ha.shape[1]), "H", weight=(3 if kk == 0.0 else 1.5) * DENSE_CUBE)
     A = Ha.T @ Ha + kk * np.eye(Ha.shape[1])
     # unit-free at every k (fuzz 27a N1, fuzz 28a C1: matrix_rank's absolute tolerance refused diag(1, 1e16) at k > 0)
     if column_rank_deficient(Ha) if kk == 0.0 else information_singular(A):
@@ -443,7 +448,8 @@ def plugin_ridge(H: ArrayLike, y: ArrayLike, sigma: float | None = None) -> Ridg
     ------
     ValueError
         Bad shapes, non-finite entries, rank-deficient ``H``, ``sigma`` not positive, or
-        ``m <= d`` without ``sigma``.
+        ``m <= d`` without ``sigma``. An ``H`` beyond the work budget (``max(m, d) d**2`` units of
+        0.05: a square H of about 2,700).
 
     References
     ----------
@@ -454,6 +460,10 @@ def plugin_ridge(H: ArrayLike, y: ArrayLike, sigma: float | None = None) -> Ridg
     if Ha.ndim == 1:
         Ha = Ha[:, None]
     allocation((Ha.shape[1], Ha.shape[1]), "H")  # rule 9: H^T H is d x d (fuzz 36a C1), before it is built
+    # rule 17 (fix 65a, after fuzz 57b D2: a square H of 5,792 ran beyond 240 s unchecked): H^T H, H's singular
+    # values and the solves, max(m, d) d**2 work, 0.47 ns per unit measured (d = m = 1,500, 1.57 CPU-s;
+    # time.process_time, OPENBLAS_NUM_THREADS=1, the shared machine)
+    work((max(Ha.shape), Ha.shape[1], Ha.shape[1]), "H", weight=5 * DENSE_CUBE)
     ya = as_array(y, "y", ndim=(1, 2))
     if ya.shape[0] != Ha.shape[0]:
         raise ValueError(f"y must be ({Ha.shape[0]},) or ({Ha.shape[0]}, runs) to match H, got {ya.shape}")
@@ -812,7 +822,8 @@ def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     Raises
     ------
     ValueError
-        ``A`` not symmetric positive definite (or singular to working precision where ``k`` holds 0),
+        ``A`` beyond the work budget (``d**3`` units of 0.022: d of about 3,560), not symmetric positive
+        definite (or singular to working precision where ``k`` holds 0),
         ``x`` of the wrong length, ``k`` negative or non-finite; a risk that overflows (``A``, ``x``
         and ``k`` each in range, their products not).
 
@@ -821,7 +832,11 @@ def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     * Hoerl, A. E., & Kennard, R. W. (1970). Ridge regression: biased estimation for nonorthogonal
       problems. *Technometrics*, 12(1), 55-67.
     """
-    Aa = as_covariance(A, name="A")
+    Aa = as_array(A, "A", subnormal=True)  # a covariance: as_covariance's rule for tiny entries and shapes applies
+    # rule 17 (fix 65a, after fuzz 57b D2: d = 5,792, the input budget, ran 37 CPU-s unchecked): A's check and eigh,
+    # 0.19-0.21 ns a d**3 measured (d = 1,500 and 5,792; time.process_time, OPENBLAS_NUM_THREADS=1, the shared machine)
+    dense_work(1, Aa.shape[0] if Aa.ndim else 1, "A", 2.2 * DENSE_CUBE)
+    Aa = as_covariance(Aa, name="A")
     xa = as_array(x, "x", shape=(Aa.shape[0],))
     ka = as_array(k, "k", nonnegative=True)
     lam, V = np.linalg.eigh(Aa)

@@ -48,7 +48,7 @@ from scipy.linalg import cho_factor, cho_solve, solve_triangular
 from fusion._counts import allocation, as_rng
 from fusion._limits import DENSE_CUBE, LOOP_STEP, dense_work, loop_work, work
 from fusion._frozen import frozen_arrays
-from fusion._covariances import column_rank_deficient
+from fusion._covariances import column_rank_deficient, column_rank_work
 from fusion._validation import read_once
 from fusion._validation import derived_inputs
 from fusion._validation import inverse, solve, FloatArray, as_array, as_covariance, check_invertible, count
@@ -63,6 +63,7 @@ def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike, weight: float = 0.0) -> tup
     """H, R and z validated; with ``weight``, the caller's dense work on the ``Nm x Nm`` R (``weight`` units a
     ``Nm**3``, fuzz 38a C9) is counted before R's own ``O(Nm**3)`` check, naming H and R."""
     Ha = as_array(H, "H", ndim=2)
+    column_rank_work(*Ha.shape)  # rule 17 (fix 65a): H's singular values, before R's O(Nm**3) check
     if weight:
         dense_work(1, Ha.shape[0], "H and R", weight)
     za = as_array(z, "z", ndim=(1, 2))
@@ -351,6 +352,7 @@ def gls_weights(H: ArrayLike, R: ArrayLike) -> FloatArray:
         As :func:`gls`.
     """
     Ha = as_array(H, "H", ndim=2)
+    column_rank_work(*Ha.shape)  # rule 17 (fix 65a): H's singular values, before R's O(Nm**3) check
     Ra = as_covariance(R, dim=Ha.shape[0], name="R")
     if column_rank_deficient(Ha):  # whatever the units of the state (fuzz 27a N1)
         raise ValueError("H must have full column rank")
@@ -527,6 +529,10 @@ def lagrange_weights(H: ArrayLike, R: ArrayLike) -> FloatArray:
       *Proceedings of the Royal Society of Edinburgh*, 55, 42-48.
     """
     Ha = as_array(H, "H", ndim=2)
+    column_rank_work(*Ha.shape)  # rule 17 (fix 65a): H's singular values, before R's O(Nm**3) check
+    # and R's check with the (Nm + d) KKT system's LU solve, 0.03 ns a (Nm + d)**3 measured (Nm = 5,792, d = 2: 5.7
+    # CPU-s; time.process_time, OPENBLAS_NUM_THREADS=1, the shared machine)
+    dense_work(1, Ha.shape[0] + Ha.shape[1], "H and R", 0.3 * DENSE_CUBE)
     Ra = as_covariance(R, dim=Ha.shape[0], name="R")
     if column_rank_deficient(Ha):  # whatever the units of the state (fuzz 27a N1)
         raise ValueError("H must have full column rank")
@@ -611,7 +617,8 @@ def gls_low_rank(H: ArrayLike, D: ArrayLike, U: ArrayLike, z: ArrayLike) -> Line
     Raises
     ------
     ValueError
-        Bad shapes, non-finite values, a non-positive ``D`` or a rank-deficient ``H``.
+        Bad shapes, non-finite values, a non-positive ``D`` or a rank-deficient ``H``, or ``H`` and ``U`` beyond the work budget
+        (``4 N d**2 + N r**2 + 2 N r d`` units of 0.01, and the cubes: N = r of about 3,680 with d = 1).
 
     References
     ----------
@@ -628,6 +635,12 @@ def gls_low_rank(H: ArrayLike, D: ArrayLike, U: ArrayLike, z: ArrayLike) -> Line
         raise ValueError(f"U must have {Ha.shape[0]} rows to match H, got {Ua.shape}")
     allocation((Ua.shape[1], Ua.shape[1]), "U")  # rule 9 (fuzz 36a C1): the r x r core I + U^T D^-1 U
     allocation((Ha.shape[1], Ha.shape[1]), "H")  # and the d x d information H^T R^-1 H, before either is built
+    # rule 17 (fix 65a, after fuzz 57b D2: H and U of 5,792 x 5,792 ran beyond 240 s unchecked): N d**2 (H's singular
+    # values, H^T R^-1 H), N r d (U^T D^-1 H) and N r**2 (the core) work, and r**3 and d**3 (its solves, the inverse),
+    # measured at N = 1,500 as 0.38 ns a N d**2 (U one column: 1.29 CPU-s), 0.07 ns a N r**2 (H one column: 0.24) and
+    # 0.6 CPU-s more with both square (2.13): weighed 4, 1 and 2 DENSE_CUBE (time.process_time, OPENBLAS_NUM_THREADS=1)
+    (N, d), r = Ha.shape, Ua.shape[1]
+    work((max(N, d) * 4 * d * d + max(N, r) * r * r + 2 * N * r * d + d**3 + r**3,), "H and U", weight=DENSE_CUBE)
     za = as_array(z, "z", ndim=(1, 2))
     if za.shape[0] != Ha.shape[0]:
         raise ValueError(f"z must be ({Ha.shape[0]},) or ({Ha.shape[0]}, runs) to match H, got shape {za.shape}")
