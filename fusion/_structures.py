@@ -22,6 +22,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
+from fusion._counts import sequence
 from fusion._shown import shown
 
 
@@ -167,11 +168,15 @@ def records_of(value: object, name: str, keys: tuple[str, ...] = ()) -> list[Map
     TypeError
         Not a sequence (or text), or an item not a mapping.
     ValueError
-        A record without one of ``keys``.
+        A record without one of ``keys``; more than ``fusion._counts.MAX_COUNT`` records, or a ``len()`` that
+        disagrees with them.
     """
     if not isinstance(value, Sequence) or isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must be a sequence (a list) of records, got {type(value).__name__}")
-    records = list(value)   # read once: the records checked are the ones returned (fuzz 57a D1's class)
+    # read once, by the one sequence rule: the records checked are the ones returned (fuzz 57a D1's class), their
+    # len() checked against MAX_COUNT before any copy and never trusted to preallocate (fuzz 58a C2: list() of
+    # range(10**12), or of a Sequence whose __len__ said 2**60, raised a raw MemoryError)
+    records = sequence(value, name)
     for i, r in enumerate(records):
         if not isinstance(r, Mapping):
             raise TypeError(f"{name}[{i}] must be a mapping (a record), got {type(r).__name__}")

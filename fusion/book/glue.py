@@ -729,8 +729,8 @@ def _logical_sizes(v: object) -> list[int]:
     values (an array's shape product, a table's cells), each axis of labels of a Series or table (a Styler's
     table), and a categorical's categories; empty for a Python container (its entries are visited, counted)."""
     v = v.data if isinstance(v, Styler) else v
-    if isinstance(v, np.ndarray):
-        return [int(np.prod(v.shape, dtype=object))]
+    if isinstance(v, np.ndarray):   # a structured one's fields with their subarrays (fuzz 58a C1)
+        return [int(np.prod(v.shape, dtype=object)) * _dtype_entries(v.dtype)]
     if not isinstance(v, (pd.Series, pd.Index, pd.DataFrame, ExtensionArray)):
         return []
     sizes = [int(np.prod(v.shape, dtype=object))]
@@ -740,6 +740,35 @@ def _logical_sizes(v: object) -> list[int]:
     if isinstance(dtype, pd.CategoricalDtype):
         sizes.append(len(dtype.categories))
     return sizes
+
+
+def _dtype_entries(dtype: np.dtype) -> int:
+    """The entries of one element of an array of ``dtype`` that :func:`_finite` converts and checks: 1 for a plain
+    dtype; for a structured one, each field's (nested structured fields alike) times its subarray shape's product:
+    ``[('a', 'f8', (10**5,))]`` holds 10**5 (fuzz 58a C1: such a field was counted once, then ``v['a']`` of shape
+    ``(N, 10**5)`` converted: a raw MemoryError, or 46.7 CPU-s accepted). Each distinct dtype is read once."""
+    memo: dict[int, int] = {}     # by id, the structured dtypes read: the entries of one element
+    pinned: list[np.dtype] = []   # the dtypes read, kept alive: no id is reused during the call
+
+    def split(d: np.dtype) -> tuple[int, np.dtype]:   # a subarray field: its shape's product and its base dtype
+        return (int(np.prod(d.subdtype[1], dtype=object)), d.subdtype[0]) if d.subdtype is not None else (1, d)
+
+    todo = [split(dtype)[1]]   # without recursion: a dtype may nest thousands of levels deep
+    while todo:
+        d = todo[-1]
+        if not d.names or id(d) in memo:
+            todo.pop()
+            continue
+        inner = [split(d.fields[n][0]) for n in d.names]
+        unread = [b for _, b in inner if b.names and id(b) not in memo]
+        if unread:
+            todo += unread
+            continue
+        todo.pop()
+        pinned.append(d)
+        memo[id(d)] = sum(c * (memo[id(b)] if b.names else 1) for c, b in inner)
+    count, base = split(dtype)
+    return count * (memo[id(base)] if base.names else 1)
 
 
 def _logical_check(v: object, key: str) -> None:
@@ -764,8 +793,7 @@ def _numeric_units(v: object) -> int:
     Styler's cells by ``_GLUE_CELL``; a table's other numeric columns and labels are not converted (its text is
     truncated), only their logical size is checked (``_logical_check``)."""
     if isinstance(v, np.ndarray):
-        fields = v.dtype.names or ("",)
-        return 0 if v.dtype.hasobject and not v.dtype.names else int(v.size) * len(fields) * _GLUE_NUMBER
+        return 0 if v.dtype.hasobject and not v.dtype.names else int(v.size) * _dtype_entries(v.dtype) * _GLUE_NUMBER
     if not isinstance(v, (pd.Series, pd.Index, pd.DataFrame)):
         return 0
     n = len(v) if isinstance(v, (pd.Series, pd.Index)) and not _object_dtype(v.dtype) else 0

@@ -172,6 +172,9 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
     for i, p in enumerate(items):
         if isinstance(p, (str, bytes)) or not isinstance(p, Sequence) or len(p) != 2:
             raise TypeError(f"pairs[{i}] must be a (method, method) pair, got {shown(p)}")
+    # each pair read once, and the checked pairs looked up (fuzz 58a D1's class: the caller's pairs were iterated
+    # again for the rows, a list subclass could give other pairs the second time)
+    items = [tuple(sequence(p, f"pairs[{i}]", 2)) for i, p in enumerate(items)]
     key = list(zip(crossings[BETTER_BELOW], crossings[BETTER_ABOVE]))
     if len(crossings):  # one column each, one row a pair (fuzz 24d T); an empty table is crossing_table's too
         _frame(crossings, "crossings", (BETTER_BELOW, BETTER_ABOVE, SIGMA_STAR), maker="crossing_table", unique=True)
@@ -179,10 +182,10 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
     if again is not None:
         raise ValueError(f"crossings holds the pair {shown(again)} more than once (crossing_table gives one row "
                          f"a pair)")
-    missing = [p for p in items if tuple(p) not in key]
+    missing = [p for p in items if p not in key]
     if missing:
         raise ValueError(f"pairs: crossings holds no crossing for {missing}")
-    return crossings.iloc[[key.index(tuple(p)) for p in pairs]].reset_index(drop=True)
+    return crossings.iloc[[key.index(p) for p in items]].reset_index(drop=True)
 
 
 #: The Kalman methods of the source's §3 and §4 and their two-point ablation.

@@ -116,13 +116,13 @@ def ir_sigma_band(readings: IrReadings, scan: Sequence[float] = IR_SIGMA_SCAN) -
         runs and scans together beyond the memory or work budget, before the first.
     """
     instance_of(readings, IrReadings, "readings")
-    scan = [scalar(sa, f"scan[{i}]", 0.0, None, lo_open=True) for i, sa in enumerate(sequence(scan, "scan"))]
+    items = sequence(scan, "scan")
     # every level's Cartesian tracks and errors summed before the first (the audit after fuzz 57a: each level was
-    # checked alone as it came, and the levels never summed)
+    # checked alone as it came, and the levels never summed), counted before any level is converted (fuzz 58a C3)
     from fusion.book._study_budget import studies_first
     names = "scan (with the runs and scans of readings)"
-    studies_first(_sigma_parts(*readings.sims["x"].ir.est.shape[:2], len(scan), names), names)
-    return _sigma_band(readings, scan)
+    studies_first(_sigma_parts(*readings.sims["x"].ir.est.shape[:2], len(items), names), names)
+    return _sigma_band(readings, [scalar(sa, f"scan[{i}]", 0.0, None, lo_open=True) for i, sa in enumerate(items)])
 
 
 def _sigma_band(readings: IrReadings, scan: list[float]) -> tuple[float, float]:
@@ -377,9 +377,12 @@ def _sigma_parts(runs: int, K: int, levels: int, names: str) -> list[Any]:
     (``fusion.book._study_budget.studies_first``'s ``parts``)."""
     from fusion.scenarios._infrared_budget import _reader_budget, _tracks_budget
 
+    from fusion.book._study_budget import repeated
+
     rules = {IR_IMP: ir.RULES[IR_IMP]}
-    return [lambda: _tracks_budget(runs, K, names) + _reader_budget("cartesian_errors", runs, K, 6, rules, names)
-            ] * levels
+    # one level's units times the levels, a closed form (fuzz 58a C3's class: a part per entry of the caller's scan)
+    return [repeated(lambda: _tracks_budget(runs, K, names)
+                     + _reader_budget("cartesian_errors", runs, K, 6, rules, names), levels)]
 
 
 def _readings_parts(runs: int, K: int, scaled: int, names: str) -> list[Any]:
