@@ -813,9 +813,10 @@ def sequence(value: object, name: str, length: int | None = None, *, minimum: in
     if isinstance(value, (list, tuple, range)) or (isinstance(value, Sequence)
                                                    and not isinstance(value, (str, bytes, bytearray))):
         n = _length(value, name, length)
-        if isinstance(value, (list, tuple, range)):
-            items = list(value)  # an honest len(): at most MAX_COUNT items
-        else:  # any other Sequence: its __len__ may lie, so never let list() preallocate from it
+        if type(value) in (list, tuple, range):
+            items = list(value)  # an exact list, tuple or range: an honest len(), at most MAX_COUNT items
+        else:  # any other Sequence, a list or tuple subclass included (its own __len__ or __iter__ may lie, fuzz 59a
+            # C4: an endless __iter__ ran 4.7 CPU-s to a MemoryError), read at most len() + 1 items and compared
             try:
                 items = list(itertools.islice(iter(value), n + 1))
             except MemoryError:

@@ -108,30 +108,43 @@ def test_paired_studies_has_its_own_budget(pairs, no_draw):
 
 
 def test_fruit_fly_step_targets_sum_their_studies(no_draw):
-    # the audit of the chapter after fuzz 57a: each rule's batch was checked alone and the targets never summed
-    from fusion._limits import MAX_WORK
+    # the audit of the chapter after fuzz 57a: each rule's batch was checked alone and the targets never summed.
+    # Fuzz 59a C1: batch_budget charged a loop of seeds + 200 steps of 4 x seeds x 30 units, quadratic in the seeds, so
+    # the study refused 1,931 seeds (it runs ~2 CPU-s) and four targets 1,000 seeds (2.2-3.9 CPU-s). Linear now, 8 units a
+    # fly and generation (measured: the study 4.7 CPU-s at 8,000 seeds), so the edges are some 10,400 and 2,600 seeds.
     from fusion.book.chapters import ci
+    from fusion.book.chapters.ci.fruit_fly_step import _step_budget
     from fusion.optimise.scalar import batch_budget
 
-    _refused_by(lambda: ci.fruit_fly_step_targets(0, (0.1, 0.2, 0.3, 0.4), 1_000), "targets and seeds")
-    assert batch_budget(1_000, 30, 200, "seeds") < MAX_WORK / 3   # each batch well inside alone
-    _refused_by(lambda: ci.fruit_fly_step_study(2_000, 0.8, 0), "seeds")   # its two rules' batches summed
+    study = _edge(_accepts(lambda s: _step_budget(s, 1, "seeds")))
+    four = _edge(_accepts(lambda s: _step_budget(s, 4, "targets and seeds")))
+    assert 9_000 < study < 12_000 and 2_000 < four < 3_000
+    batch_budget(study + 1, 30, 200, "seeds")   # each batch inside alone: its two rules' batches are summed
+    _refused_by(lambda: ci.fruit_fly_step_study(study + 1, 0.8, 0), "seeds")
+    _refused_by(lambda: ci.fruit_fly_step_targets(0, (0.1, 0.2, 0.3, 0.4), four + 1), "targets and seeds")
+    _reaches_the_draw(lambda: ci.fruit_fly_step_study(study, 0.8, 0))
+    _reaches_the_draw(lambda: ci.fruit_fly_step_targets(0, (0.1, 0.2, 0.3, 0.4), four))
     _reaches_the_draw(lambda: ci.fruit_fly_step_targets(0))   # the notebook's call: four targets, 100 seeds
-    _reaches_the_draw(lambda: ci.fruit_fly_step_study(1_000, 0.8, 0))
+    _reaches_the_draw(lambda: ci.fruit_fly_step_study(1_931, 0.8, 0))   # fuzz 59a C1: refused, ~2 CPU-s
+    _reaches_the_draw(lambda: ci.fruit_fly_step_targets(0, ci.FRUIT_FLY_STEP_TARGETS, 1_000))   # refused, 2.2-3.9
 
 
 def test_weight_pair_sums_its_scenario_and_searches(no_draw):
     from fusion._limits import MAX_WORK
     from fusion.book.chapters import ci
-    from fusion.optimise.scalar import batch_budget
     from fusion.scenarios.two_sensor.case import _scenario_budget
+    from fusion.scenarios.two_sensor.weights import _CI_COSTS, _over_seeds_budget
 
     Q, R1, _ = ci.printed_covariances()
-    seeds, runs = list(range(2_500)), 32_000
+    seeds, runs = list(range(1_100)), 32_000
     _refused_by(lambda: ci.weight_pair(R1, R1 / 9, Q, 2, 1, 2, seeds, runs=runs), "runs, T and fruit_fly_seeds")
-    batch, scenario = batch_budget(len(seeds), 30, 200, "s"), _scenario_budget(runs, 261, "r")
+    batch, scenario = _over_seeds_budget(len(seeds), 1001, 30, 200, 4, _CI_COSTS, "s"), _scenario_budget(runs, 261, "r")
     assert max(batch, scenario) < MAX_WORK < batch + scenario   # each alone inside, the sum not
-    _reaches_the_draw(lambda: ci.weight_pair(R1, R1 / 9, Q, 2, 1, 2, seeds, runs=1_000))
+    # fuzz 59a C1: the searches were counted by batch_budget, without their 4 x 4 objective: 2,500 seeds were accepted,
+    # the scenario ran, then fruit_fly_over_seeds refused them
+    _refused_by(lambda: ci.weight_pair(R1, R1 / 9, Q, 2, 1, 2, list(range(2_500)), runs=1_000),
+                "runs, T and fruit_fly_seeds")
+    _reaches_the_draw(lambda: ci.weight_pair(R1, R1 / 9, Q, 2, 1, 2, list(range(1_000)), runs=1_000))
     _reaches_the_draw(lambda: ci.weight_pair(R1, R1 / 9, Q, 2, 1, 2, list(range(100)), runs=10 * ci.LEDGER_RUNS))
 
 

@@ -47,6 +47,14 @@ _FLY_STEP = 3 * 1000
 #: Units of one candidate's objective call when :func:`fruit_fly` calls ``f`` once a point (``vectorized=False``):
 #: about 0.2 us measured, against 4 units (a vectorised element) for a vectorised call.
 _FLY_CALL = 25
+#: Units of one fly of one generation of :func:`fruit_fly_batch` (its two draws and its arithmetic, with a cheap
+#: vectorised objective), measured (fuzz 59a C1; OPENBLAS_NUM_THREADS=1, process_time, minimum of 3 on this machine
+#: shared with other jobs, 30 x 200 a problem): n = 100, 500, 1,000, 2,000 problems ran 0.037, 0.14, 0.29, 0.93 CPU-s
+#: (48 to 77 ns a fly), population 120 at n = 500 0.61 CPU-s (50 ns); the book's step study (two batches, each
+#: candidate recorded) 0.66 CPU-s at 1,000 seeds, 1.8 at 2,000, 4.7 at 8,000 (49 to 76 ns a fly). So about 8 units:
+#: the edge of one batch of 30 x 200 is about 20,800 problems (about 1.25e8 flies, 6 to 10 CPU-s), of the step study
+#: (two batches) 10,404 seeds, measured 10.9 CPU-s.
+_FLY_ELEMENT = 8
 
 
 def _values(f: Callable[[float], float], xs: np.ndarray, vectorized: bool) -> np.ndarray:
@@ -188,8 +196,10 @@ def batch_budget(n: int, population: int, iterations: int, names: str) -> int:
         Its units of work, which a study that runs several batches sums at its entry.
     """
     allocation((n, 2 + 2 * population * iterations), names)  # every draw, at once
-    # rule 17: a draw per generator, then a loop step per iteration over every problem's swarm
-    return loop_work((n + iterations,), 4 * n * population, names, step=_FLY_STEP)
+    # rule 17: a loop step per generation over every problem's swarm, each fly of each generation at _FLY_ELEMENT
+    # units (its two draws, drawn at once per generator, and its arithmetic): linear in n, population and iterations
+    # (the former charge, a loop of n + iterations steps of 4 * n * population units, was quadratic in n: fuzz 59a C1)
+    return loop_work((iterations,), _FLY_ELEMENT * n * population, names, step=_FLY_STEP)
 
 
 def fruit_fly_batch(

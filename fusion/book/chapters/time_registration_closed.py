@@ -14,7 +14,7 @@ import pandas as pd
 from fusion._shown import shown
 from fusion._limits import LOOP_STEP
 from fusion._validation import (as_array, as_times, distinct, instance_of, loop_work, one_of, scalar, sequence,
-                                std_scalar)
+                                std_scalar, text)
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import _frame, integral_index
 from fusion.scenarios import time_registration as sc
@@ -155,7 +155,8 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
     Raises
     ------
     TypeError
-        ``crossings`` is not a DataFrame, or ``pairs`` not a sequence of pairs.
+        ``crossings`` is not a DataFrame, or ``pairs`` not a sequence of pairs of method names (strings), naming
+        the pair.
     ValueError
         ``crossings`` lacks the columns of :func:`crossing_table`, holds a pair (row) or a column read more than
         once, or holds a σ* that is not a finite number >= 0
@@ -175,6 +176,9 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
     # each pair read once, and the checked pairs looked up (fuzz 58a D1's class: the caller's pairs were iterated
     # again for the rows, a list subclass could give other pairs the second time)
     items = [tuple(sequence(p, f"pairs[{i}]", 2)) for i, p in enumerate(items)]
+    # each method named by its text (rule 19): an array or a number in a pair is refused by name, not compared with
+    # the table's pairs (fuzz 59a C3: an array raised numpy's "truth value ... is ambiguous" from ``p not in key``)
+    items = [tuple(text(m, f"pairs[{i}][{j}]") for j, m in enumerate(p)) for i, p in enumerate(items)]
     key = list(zip(crossings[BETTER_BELOW], crossings[BETTER_ABOVE]))
     if len(crossings):  # one column each, one row a pair (fuzz 24d T); an empty table is crossing_table's too
         _frame(crossings, "crossings", (BETTER_BELOW, BETTER_ABOVE, SIGMA_STAR), maker="crossing_table", unique=True)

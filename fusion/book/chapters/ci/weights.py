@@ -351,9 +351,13 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
     # inverse): the memory budget, named n_open before any work (fuzz 26c q9)
     allocation((n_open, 4) + P1.shape, "n_open (with the size of P1)")
     from fusion.optimise.scalar import batch_budget
+    from fusion.scenarios.two_sensor.weights import _CI_COSTS, _over_seeds_budget
 
-    # the short-budget batch (one swarm of 30 per seed of fruit_fly_seeds), named here (fuzz 24c WN)
-    batch_budget(len(fruit_fly_seeds.seeds), 30, short_budget, "short_budget (with fruit_fly_seeds)")
+    # the short-budget batch (one swarm of 30 per seed of fruit_fly_seeds), named here (fuzz 24c WN): its memory, and
+    # its work with its objective's cost on P1's size (fuzz 59a C1: batch_budget alone counts a cheap objective)
+    short_names, n_short = "short_budget (with fruit_fly_seeds)", len(fruit_fly_seeds.seeds)
+    batch_budget(n_short, 30, short_budget, short_names)
+    _over_seeds_budget(n_short, 0, 30, short_budget, P1.shape[0], _CI_COSTS, short_names)
     if flat_pair is not None:  # a pair (P, P): a tuple or a list (fuzz 24e F2)
         flat_pair = tuple(sequence(flat_pair, "flat_pair", 2))
     pub = data.WANG2024_FOA.columns
@@ -710,15 +714,16 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
     # the callee's rules (integers, no repeat, the batch's budgets) named here, before the scenario (fuzz 26c A3)
     fly = distinct(check_seeds(fruit_fly_seeds, "fruit_fly_seeds"), "fruit_fly_seeds")
     from fusion.book._study_budget import studies_first
-    from fusion.optimise.scalar import batch_budget
     from fusion.scenarios.two_sensor.case import _scenario_budget
+    from fusion.scenarios.two_sensor.weights import _CI_COSTS, _over_seeds_budget
 
     _sensor_noises(R1, R2)
     T = _period_key(T)   # the chapter's period rule
     runs, steps = count(runs, "runs"), two_sensor.trajectory(T).t.size   # type: ignore[arg-type]
-    # the scenario and fruit_fly_over_seeds' printed 30 x 200 per seed, each by its own budget, summed before the
-    # scenario (the audit after fuzz 57a: each was checked alone, the batch only after the scenario had run)
-    studies_first([lambda: batch_budget(len(fly), 30, 200, "fruit_fly_seeds"),
+    # the scenario and fruit_fly_over_seeds' printed 30 x 200 per seed (on the scenario's 4 x 4 covariances), each by
+    # its own budget, summed before the scenario (the audit after fuzz 57a; fuzz 59a C1: the searches were counted
+    # by batch_budget, without their objective)
+    studies_first([lambda: _over_seeds_budget(len(fly), 1001, 30, 200, 4, _CI_COSTS, "fruit_fly_seeds"),
                    lambda: _scenario_budget(runs, steps, "runs and T")], "runs, T and fruit_fly_seeds")
     sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs,
                                         T=T)  # type: ignore[arg-type]
