@@ -7,14 +7,19 @@
   on disk (the cache's damaged-entry tests).
 - :func:`parsed`: a source file's syntax tree, parsed once per process (the source-scanning tests).
 - :func:`glue_refused`, :func:`glued`: ``glue_all`` refusing a mapping quickly, or what it hands to ``myst_nb.glue``
-  (the glue tests).
+  (the glue tests); :func:`glued_in_child`: cases glued in one child under a memory limit.
 """
 
 from __future__ import annotations
 
 import ast
 import dataclasses
+import functools
+import json
 import signal
+import subprocess
+import sys
+import textwrap
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -155,3 +160,38 @@ def glued(monkeypatch: pytest.MonkeyPatch, values: dict) -> dict:
     monkeypatch.setattr(myst_nb, "glue", lambda k, v, display=True: got.__setitem__(k, v))
     glue_all(values)
     return got
+
+
+#: The child of :func:`glued_in_child`: each case's value built by its expression, glued, timed, then dropped.
+_GLUE_CHILD = textwrap.dedent("""
+    import json, resource, sys, time
+    resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
+    import numpy as np, pandas as pd
+    from pandas._libs.sparse import IntIndex
+    from fusion.book.glue import glue_all
+    glue_all({"k": 0.5})   # imports (IPython's formatters) outside the timing
+    out = {}
+    for name, expr in json.loads(sys.stdin.read()).items():
+        value = eval(expr)
+        t = time.process_time()
+        try:
+            glue_all({"k": value})
+            out[name] = ["ACCEPTED", time.process_time() - t, ""]
+        except BaseException as e:
+            out[name] = [type(e).__name__, time.process_time() - t, str(e)[:300]]
+        del value
+    print(json.dumps(out))
+""")
+
+
+@functools.cache
+def glued_in_child(cases: tuple[tuple[str, str], ...]) -> dict[str, list]:
+    """Glue each case's value (a Python expression over ``np``, ``pd`` and pandas' ``IntIndex``) in ONE child process
+    under a 3 GiB address-space limit (a conversion the glue should have refused raises MemoryError there instead of
+    taking the machine), once per process: by case name, [outcome, CPU-s of the call, the message's first 300
+    characters], the outcome ``"ACCEPTED"`` or the exception's type name. One child for all cases: each child's import
+    of the book layer costs 1-2 CPU-s."""
+    run = subprocess.run([sys.executable, "-c", _GLUE_CHILD], input=json.dumps(dict(cases)), capture_output=True,
+                         text=True, timeout=600)
+    assert run.returncode == 0, run.stderr[-2000:]
+    return json.loads(run.stdout)

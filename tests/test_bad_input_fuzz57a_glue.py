@@ -3,13 +3,11 @@ converted it (``pd.RangeIndex(10**12)``: a raw MemoryError, "Unable to allocate 
 converts is now checked by its logical size (values, labels, categories) against the input budget, and its numeric
 entries charged ``_GLUE_NUMBER`` units each, before any conversion."""
 
-import subprocess
-import sys
-import textwrap
-
 import numpy as np
 import pandas as pd
 import pytest
+
+from _helpers import glued_in_child
 
 #: Each case builds a container costing nothing to hold, glued in a child under a 3 GiB address-space limit: a
 #: conversion of any of them raises MemoryError there (or takes minutes), a refusal is a ValueError naming the key.
@@ -29,27 +27,9 @@ _CASES = {
     "inside_dict": "{'a': np.broadcast_to(np.float64(1.0), (10**10,))}",
 }
 
-_CHILD = textwrap.dedent("""
-    import resource, sys, time
-    resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
-    import numpy as np, pandas as pd
-    from pandas._libs.sparse import IntIndex
-    from fusion.book.glue import glue_all
-    glue_all({"k": 0.5})   # imports (IPython's formatters) outside the timing
-    value = eval(sys.argv[1])
-    t = time.process_time()
-    try:
-        glue_all({"k": value})
-        print("ACCEPTED")
-    except BaseException as e:
-        print(type(e).__name__, time.process_time() - t, str(e)[:300].replace("\\n", " "))
-""")
-
-
 @pytest.mark.parametrize("case", sorted(_CASES))
 def test_c1_cheap_containers_are_refused_by_logical_size_before_conversion(case: str) -> None:
-    out = subprocess.run([sys.executable, "-c", _CHILD, _CASES[case]], capture_output=True, text=True,
-                         timeout=300).stdout.split(" ", 2)
+    out = glued_in_child(tuple(_CASES.items()))[case]
     assert out[0] == "ValueError", out
     assert float(out[1]) < 1.0, out
     assert out[2].startswith("values['k'] holds a ") and "input budget" in out[2], out

@@ -11,6 +11,8 @@ from collections.abc import Sequence
 import numpy as np
 import pytest
 
+from _helpers import glued_in_child
+
 #: Fuzz 58a C1: structured arrays whose fields are subarrays, as broadcast views costing nothing to hold; glued in a
 #: child under a 3 GiB address-space limit (converting one raised MemoryError, or ran 46.7 CPU-s and was accepted).
 _C1_CASES = {
@@ -20,26 +22,9 @@ _C1_CASES = {
     "scalar_in_list": "[np.zeros(1, dtype=[('a', 'f8', (6 * 10**7,))])[0]]",
 }
 
-_C1_CHILD = textwrap.dedent("""
-    import resource, sys, time
-    resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
-    import numpy as np
-    from fusion.book.glue import glue_all
-    glue_all({"k": 0.5})   # imports (IPython's formatters) outside the timing
-    value = eval(sys.argv[1])
-    t = time.process_time()
-    try:
-        glue_all({"k": value})
-        print("ACCEPTED")
-    except BaseException as e:
-        print(type(e).__name__, time.process_time() - t, str(e)[:300].replace("\\n", " "))
-""")
-
-
 @pytest.mark.parametrize("case", sorted(_C1_CASES))
 def test_c1_subarray_fields_are_counted_before_conversion(case: str) -> None:
-    out = subprocess.run([sys.executable, "-c", _C1_CHILD, _C1_CASES[case]], capture_output=True, text=True,
-                         timeout=300).stdout.split(" ", 2)
+    out = glued_in_child(tuple(_C1_CASES.items()))[case]
     assert out[0] == "ValueError", out
     assert float(out[1]) < 1.0, out
     assert out[2].startswith("values['k'] "), out
