@@ -26,6 +26,7 @@ from matplotlib.figure import Figure
 from pandas.io.formats.style import Styler
 
 from fusion._limits import MAX_WORK, work
+from fusion.book._glue_axes import axis_units
 from fusion._validation import count, read_mapping, text
 from fusion.book.tables import rounded
 from fusion._shown import shown
@@ -587,7 +588,7 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
             n, weight = (0, 0) if done else _container_work(v)  # done: its container counted it (a Series' array)
             # a table inside a container is printed as a table (the value itself is counted by ``_glue_work``)
             units = n * weight + (_GLUE_TABLE if depth and isinstance(v, (pd.DataFrame, Styler)) else 0)
-            units += 0 if done else _numeric_units(v)   # its numeric entries, checked at once (fuzz 57a C1)
+            units += 0 if done else _numeric_units(v) + axis_units(v, key)   # numeric entries (fuzz 57a C1), levels
             meter.take(n, units, key)  # charged before its entries are visited (fuzz 46a C2, C3)
             pinned.append(v)
             kind = 0 if isinstance(v, _GLUE_PANDAS) else 2 if type(v).__repr__ in _GUARDED_REPRS else 1
@@ -838,7 +839,8 @@ def _glue_work(value: object, key: str = "") -> int:
     ``_logical_check``, fuzz 57a C1); what is inside them is counted as :func:`_finite` reaches it."""
     if isinstance(value, _GLUE_CONTAINERS):
         _logical_check(value, key)
-        return _glue_units(value) + _numeric_units(value)
+        levels = axis_units(value, key)   # fuzz 59a C2; a table's are charged where _finite reaches it (not counted)
+        return _glue_units(value) + _numeric_units(value) + (levels if isinstance(value, _GLUE_COUNTED) else 0)
     return _GLUE_FIGURE if isinstance(value, Figure) else 0
 
 

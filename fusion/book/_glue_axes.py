@@ -1,0 +1,48 @@
+"""The units of gluing the labels of a MultiIndex, by its levels (fuzz 59a C2), for :mod:`fusion.book.glue`."""
+
+from __future__ import annotations
+
+import pandas as pd
+from pandas.io.formats.style import Styler
+
+from fusion._limits import MAX_WORK
+from fusion._shown import shown
+
+__all__: list[str] = []
+
+#: Units (``fusion._limits.work``, about 10 ns each) of one level of a MultiIndex of a table's rows or columns or of
+#: a Series' index, printed by the glued text and HTML (fuzz 59a C2: 400,000 levels of a one-row table's index,
+#: counted as one row, ran 39.9 CPU-s). Measured by ``glue_all`` (time.process_time, OPENBLAS_NUM_THREADS=1,
+#: minimum of 2, machine shared with other helpers), one row: a table's index 126 us a level at 10**4 levels, 93-100
+#: us at 2-4 x 10**5; its columns 92 us; a Series' index 28 us; a Styler's table 45 us. Rows are truncated by the
+#: text (at most 60 printed): 1000 levels, 0.18 CPU-s at one row, 0.24 at 100 rows, 10**6 rows of 2 levels 0.23
+#: CPU-s; so a level is weighed 200 us, its rows included.
+_GLUE_LEVEL = 20_000
+#: A MultiIndex glued as the value itself (or inside a container): its text is quadratic in its levels (one row:
+#: 0.38 CPU-s at 1000 levels, 3.17 at 3000, 36.7 at 10**4; 3.7e-7 s a pair of levels), weighed 40 units a pair.
+_GLUE_LEVEL_PAIR = 40
+
+
+def axis_units(v: object, key: str) -> int:
+    """The units of printing the MultiIndex labels of ``v`` (a DataFrame, Styler, Series or Index) by their levels:
+    ``_GLUE_LEVEL`` a level of each MultiIndex axis (a table's rows and columns, a Series' index), and for a
+    MultiIndex itself ``_GLUE_LEVEL`` a level and ``_GLUE_LEVEL_PAIR`` a pair of levels; 0 for anything else.
+
+    Raises
+    ------
+    ValueError
+        Beyond ``fusion._limits.MAX_WORK`` units, naming ``values[key]``, before any text is made.
+    """
+    v = v.data if isinstance(v, Styler) else v
+    if isinstance(v, pd.MultiIndex):
+        units = v.nlevels * _GLUE_LEVEL + v.nlevels**2 * _GLUE_LEVEL_PAIR
+    elif isinstance(v, (pd.DataFrame, pd.Series)):
+        axes = [v.index, v.columns] if isinstance(v, pd.DataFrame) else [v.index]
+        units = sum(ax.nlevels for ax in axes if isinstance(ax, pd.MultiIndex)) * _GLUE_LEVEL
+    else:
+        return 0
+    if units > MAX_WORK:
+        raise ValueError(f"values[{shown(key)}] holds a {type(v).__name__} whose MultiIndex labels would print "
+                         f"{units:.3g} units of work (their levels counted), beyond the work budget (at most "
+                         f"{MAX_WORK:.3g} units, fusion._limits.MAX_WORK, about 10 CPU-s)")
+    return units
