@@ -243,9 +243,9 @@ def _first_entries(items: object, name: str, what: str) -> list:
             # only an exact list, tuple or range (fuzz 59b C1: a list subclass whose ``__iter__`` gave this check one
             # word and numpy 10**6 at every spawn ran 15 CPU-s): numpy iterates the container again at every spawn
             if type(x) not in (list, tuple, range):
-                raise TypeError(f"{name} must be a SeedSequence whose sequences of {what} are plain lists, tuples, ranges or "
-                                f"numpy.ndarray, got a {type(x).__name__} in it (its iteration may report other "
-                                "words than numpy mixes)")
+                raise TypeError(f"{name} must be a SeedSequence whose sequences of {what} are plain lists, tuples, "
+                                f"ranges or numpy.ndarray, got a {type(x).__name__} in it (its iteration may report "
+                                "other words than numpy mixes)")
             stack.append(iter(x))
         else:
             out.append(x)

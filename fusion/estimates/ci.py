@@ -174,7 +174,8 @@ def _split_omega_units(n: int) -> int:
     only the ``n**3`` term was counted, so 2**25 weights at n = 1 ran 22.8 CPU-s counted 8.4e5 units). Measured per
     weight (time.process_time, OPENBLAS_NUM_THREADS=1, the shared machine): 580 ns at n = 1 (2**23 weights; 680 at
     2**25, fuzz 59b), 1.0 us at n = 2 (2**22), 13 us at n = 16, 52 us at 32, 0.20 ms at 64, 1.3 ms at 128 and 7.7 ms
-    at 256: the stacks' per-matrix overhead and ``O(n**2)`` passes up to n of about 100, the inverses' ``n**3`` beyond."""
+    at 256: the stacks' per-matrix overhead and ``O(n**2)`` passes up to n of about 100, the inverses' ``n**3``
+    beyond."""
     return 60 + 6 * n * n + -(-n**3 // 40)   # 0.025 = 2.5 fusion._limits.DENSE_CUBE, the former count
 
 

@@ -197,7 +197,8 @@ def _blocks(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequence[Array
             raise ValueError(f"sensor {i}: H has {Ha.shape[1]} columns, expected {d}")
         Hys.append((Ha, ya))
     _blocks_work([Ha.shape for Ha, _ in Hys], step)   # the blocks' summed dense work, before the first R's check
-    return [(Ha, as_covariance(R, dim=Ha.shape[0], name=f"Rs[{i}]"), ya) for i, ((Ha, ya), R) in enumerate(zip(Hys, Rs))]
+    return [(Ha, as_covariance(R, dim=Ha.shape[0], name=f"Rs[{i}]"), ya)
+            for i, ((Ha, ya), R) in enumerate(zip(Hys, Rs))]
 
 
 def ridge_centralised(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequence[ArrayLike], k: float) -> FloatArray:
