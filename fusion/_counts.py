@@ -240,6 +240,12 @@ def _first_entries(items: object, name: str, what: str) -> list:
                                 f"got a {type(x).__name__} (an ndarray subclass) in it")
             stack.append(iter(x.flat))   # numpy scalars, one at a time (no copy of the array)
         elif isinstance(x, Sequence) and not isinstance(x, (str, bytes)):
+            # only an exact list, tuple or range (fuzz 59b C1: a list subclass whose ``__iter__`` gave this check one
+            # word and numpy 10**6 at every spawn ran 15 CPU-s): numpy iterates the container again at every spawn
+            if type(x) not in (list, tuple, range):
+                raise TypeError(f"{name} must be a SeedSequence whose sequences of {what} are plain lists, tuples, "
+                                f"ranges or numpy.ndarray, got a {type(x).__name__} in it (its iteration may report "
+                                "other words than numpy mixes)")
             stack.append(iter(x))
         else:
             out.append(x)
@@ -255,6 +261,11 @@ def _words(items: object, name: str, what: str) -> int:
     for k, e in enumerate(entries):
         if not isinstance(e, (int, np.integer)) or isinstance(e, (bool, np.bool_)):
             raise TypeError(f"{name} must be a SeedSequence of integer {what}, got {shown(e)} in it")
+        if not (type(e) is int or type(e) is np.dtype(type(e)).type):
+            # an int subclass's ``__int__`` (or a numpy integer subclass's) may report another number than numpy
+            # reads (fuzz 59b C1's class): only a Python int or one of numpy's own integer scalar types
+            raise TypeError(f"{name} must be a SeedSequence of Python int or numpy integer {what}, got a "
+                            f"{type(e).__name__} (a subclass) in it")
         _seed_size(int(e), f"{name} {what}" + (f"[{k}]" if len(entries) > 1 else ""))
         total += max(1, -(-int(e).bit_length() // 32))
         if total > SEED_WORDS:
@@ -282,7 +293,8 @@ def seed_sequence(value: object, name: str = "seed") -> np.random.SeedSequence:
     TypeError
         Not a SeedSequence itself (a subclass may report values other than those numpy mixes), or one whose entropy or
         spawn key holds a non-integer or an array that is not a plain ``numpy.ndarray`` (a subclass's ``flat`` may
-        report other words than numpy mixes).
+        report other words than numpy mixes), a sequence other than an exact list, tuple or range (a subclass's
+        ``__iter__`` may too, fuzz 59b C1), or an integer other than a Python int or a numpy integer scalar type.
     ValueError
         An entropy, spawn key or pool beyond the bound; more than :data:`SPAWNED_MAX` children spawned already.
     """

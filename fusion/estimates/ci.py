@@ -43,7 +43,7 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import chi2
 
 from fusion._frozen import frozen_arrays
-from fusion._limits import DENSE_CUBE, dense_work
+from fusion._limits import DENSE_CUBE, dense_work, work
 from fusion._validation import read_once
 from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, check_invertible,
                                 covariance_pair, one_of, scalar, singular_error, singular_system, unit_scalar)
@@ -169,6 +169,16 @@ def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criteri
     return float(out) if w.ndim == 0 else np.asarray(out)
 
 
+def _split_omega_units(n: int) -> int:
+    """Units of one weight of :func:`split_ci_objective` at dimension ``n``: ``60 + 6 n**2 + 0.025 n**3`` (fuzz 59b D1:
+    only the ``n**3`` term was counted, so 2**25 weights at n = 1 ran 22.8 CPU-s counted 8.4e5 units). Measured per
+    weight (time.process_time, OPENBLAS_NUM_THREADS=1, the shared machine): 580 ns at n = 1 (2**23 weights; 680 at
+    2**25, fuzz 59b), 1.0 us at n = 2 (2**22), 13 us at n = 16, 52 us at 32, 0.20 ms at 64, 1.3 ms at 128 and 7.7 ms
+    at 256: the stacks' per-matrix overhead and ``O(n**2)`` passes up to n of about 100, the inverses' ``n**3``
+    beyond."""
+    return 60 + 6 * n * n + -(-n**3 // 40)   # 0.025 = 2.5 fusion._limits.DENSE_CUBE, the former count
+
+
 @singular_system('P1d, P1i, P2d and P2i', finite=True)
 def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: ArrayLike,
                        same_omega: bool = False) -> float | FloatArray:
@@ -229,10 +239,10 @@ def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike,
     hi_ok = (w <= 1.0) if same_omega else (w < 1.0)
     if not np.all((w > 0.0) & hi_ok):
         raise ValueError(f"omega must lie in (0, {'1]' if same_omega else '1)'}, got {omega}")
-    dense_work(w.size + 3, n, "omega, P1d, P1i, P2d and P2i", 2.5 * DENSE_CUBE)
     # rule 9: the stack of both (fuzz 38a C1), three times at once: tracemalloc's peak 6.2 stacks of one, 3.1 of
     # both, measured (20,000 weights, d = 20; fuzz 39a D2), rounded up (review 18)
     allocation((2, w.size, n, n), "omega, P1d, P1i, P2d and P2i", arrays=4)
+    work((w.size + 3,), "omega, P1d, P1i, P2d and P2i", weight=_split_omega_units(n))
     w1 = w[..., None, None]
     w2 = w1 if same_omega else 1.0 - w1
     T1, T2 = A1d / w1 + A1i, A2d / w2 + A2i

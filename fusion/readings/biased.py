@@ -32,9 +32,11 @@ References
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import StrEnum
+from fractions import Fraction
 from functools import lru_cache
 
 import numpy as np
@@ -162,6 +164,22 @@ _BLOCK_STEP = 7 * LOOP_STEP
 _CENTRAL_BLOCK_STEP = 4 * LOOP_STEP
 
 
+#: Units of one sensor block's dense work, a term of ``m**3 + m**2 d + m d**2 + d**3`` for its (m, d) H: R's check
+#: (``as_covariance``) and its solves against H and y, H^T R^-1 H and the d x d inverses. Measured (one block, min of 2,
+#: time.process_time, OPENBLAS_NUM_THREADS=1, the shared machine): 0.096-0.142 ns a term at d = 1 (m = 1,500 and
+#: 2,500), 0.08-0.10 at d = 300 and 1,500 (m = 1,500), both fusions; fuzz 59b C3 measured 0.144 (m = 3,000).
+_BLOCK_CUBE = 1.5 * DENSE_CUBE
+
+
+def _blocks_work(dims: Sequence[tuple[int, int]], step: int, names: str = "Hs, Rs and ys") -> int:
+    """Refuse sensor blocks of H shapes ``dims`` ((m_i, d) each) whose dense work and Python steps, summed over the
+    blocks, are beyond the work budget (rule 17, fuzz 59b C3: each block was checked alone, so 10 blocks of m = 3,000
+    ran about 40 CPU-s), naming ``names``; called once every H is read, before the first R's ``O(m**3)`` check."""
+    cubes = sum(m**3 + m * m * d + m * d * d + d**3 for m, d in dims)
+    units = math.ceil(Fraction(cubes) * Fraction(_BLOCK_CUBE)) + len(dims) * int(step)
+    return work((units,), names)
+
+
 def _blocks(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequence[ArrayLike], step: int = _BLOCK_STEP):
     for nm, seq in (("Hs", Hs), ("Rs", Rs), ("ys", ys)):
         if isinstance(seq, (str, bytes)) or not hasattr(seq, "__len__"):
@@ -169,17 +187,18 @@ def _blocks(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequence[Array
     if not (len(Hs) == len(Rs) == len(ys)) or len(Hs) == 0:
         raise ValueError("Hs, Rs and ys must be non-empty sequences of equal length")
     loop_work((len(Hs),), 0, "Hs, Rs and ys", step=step)  # rule 17 (fuzz 38a C8): a Python step a block
-    out = []
+    Hys = []
     d = None
-    for i, (H, R, y) in enumerate(zip(Hs, Rs, ys)):
+    for i, (H, y) in enumerate(zip(Hs, ys)):
         Ha, ya = _Hy(H, y, f"Hs[{i}]", f"ys[{i}]")
         if d is None:
             d = Ha.shape[1]
         elif Ha.shape[1] != d:
             raise ValueError(f"sensor {i}: H has {Ha.shape[1]} columns, expected {d}")
-        Ra = as_covariance(R, dim=Ha.shape[0], name=f"Rs[{i}]")
-        out.append((Ha, Ra, ya))
-    return out
+        Hys.append((Ha, ya))
+    _blocks_work([Ha.shape for Ha, _ in Hys], step)   # the blocks' summed dense work, before the first R's check
+    return [(Ha, as_covariance(R, dim=Ha.shape[0], name=f"Rs[{i}]"), ya)
+            for i, ((Ha, ya), R) in enumerate(zip(Hys, Rs))]
 
 
 def ridge_centralised(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequence[ArrayLike], k: float) -> FloatArray:
@@ -544,9 +563,10 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
             raise TypeError(f"{nm} must be a sequence of arrays, got {type(seq).__name__}")
     if not (len(Hs) == len(Rs) == len(ys)) or len(Hs) == 0:
         raise ValueError("Hs, Rs and ys must be non-empty sequences of equal length")
-    loop_work((len(Hs),), 0, "Hs, Rs and ys", step=_CENTRAL_BLOCK_STEP if where == ShrinkAt.CENTRALISED else _BLOCK_STEP)
-    As, bs, runs, d, one = [], [], None, None, True
-    for i, (H, R, y) in enumerate(zip(Hs, Rs, ys)):
+    step = _CENTRAL_BLOCK_STEP if where == ShrinkAt.CENTRALISED else _BLOCK_STEP
+    loop_work((len(Hs),), 0, "Hs, Rs and ys", step=step)
+    As, bs, runs, d, one, read = [], [], None, None, True, []
+    for i, (H, y) in enumerate(zip(Hs, ys)):
         Ha = as_array(H, f"Hs[{i}]", ndim=(1, 2))
         Ha = Ha[:, None] if Ha.ndim == 1 else Ha
         ya = as_array(y, f"ys[{i}]", ndim=(1, 2))
@@ -559,6 +579,9 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
         elif Y.shape[1] != runs or Ha.shape[1] != d:
             raise ValueError(f"Hs[{i}] and ys[{i}] of shapes {Ha.shape} and {ya.shape} do not match those of "
                              "sensor 0 (Hs[0], ys[0]): every sensor needs the same state size and runs")
+        read.append((Ha, Y))
+    _blocks_work([Ha.shape for Ha, _ in read], step)   # fuzz 59b C3's class: summed, before the first R's check
+    for i, ((Ha, Y), R) in enumerate(zip(read, Rs)):
         Ra = as_covariance(R, dim=Ha.shape[0], name=f"Rs[{i}]")
         RiH = np.linalg.solve(Ra, Ha)
         As.append(Ha.T @ RiH)
@@ -822,7 +845,8 @@ def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     Raises
     ------
     ValueError
-        ``A`` beyond the work budget (``d**3`` units of 0.022: d of about 3,560), not symmetric positive
+        ``A`` beyond the work budget (``d**3`` units of 0.022: d of about 3,560), ``k`` and ``A`` beyond the memory
+        budget (5 float64 arrays of ``k.size x d``: ``k.size x d`` of at most about 5.4e7), not symmetric positive
         definite (or singular to working precision where ``k`` holds 0),
         ``x`` of the wrong length, ``k`` negative or non-finite; a risk that overflows (``A``, ``x``
         and ``k`` each in range, their products not).
@@ -835,10 +859,17 @@ def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     Aa = as_array(A, "A", subnormal=True)  # a covariance: as_covariance's rule for tiny entries and shapes applies
     # rule 17 (fix 65a, after fuzz 57b D2: d = 5,792, the input budget, ran 37 CPU-s unchecked): A's check and eigh,
     # 0.19-0.21 ns a d**3 measured (d = 1,500 and 5,792; time.process_time, OPENBLAS_NUM_THREADS=1, the shared machine)
-    dense_work(1, Aa.shape[0] if Aa.ndim else 1, "A", 2.2 * DENSE_CUBE)
+    d = Aa.shape[0] if Aa.ndim else 1
+    dense_work(1, d, "A", 2.2 * DENSE_CUBE)
+    ka = as_array(k, "k", nonnegative=True)
+    # rules 9 and 17 (fuzz 59b C2: k of 10**7 against d = 1,000 was a raw MemoryError for 74.5 GiB): each k meets A's
+    # d eigenvalues in (k.size, d) arrays, before A's check and eigh. tracemalloc's peak measured 4.0-4.2 such arrays
+    # (d = 100 and 1,000), 4.5 at d = 2 and 5.0 at d = 1 (k's own copy): 5 held; 8-23 ns a (k, d) element measured
+    # (d = 1,000 to 1: min of 3, time.process_time, OPENBLAS_NUM_THREADS=1, the shared machine): 3 units
+    allocation((ka.size, d), "k and A", arrays=5)
+    work((ka.size, d), "k and A", weight=3)
     Aa = as_covariance(Aa, name="A")
     xa = as_array(x, "x", shape=(Aa.shape[0],))
-    ka = as_array(k, "k", nonnegative=True)
     lam, V = np.linalg.eigh(Aa)
     if np.any(ka == 0) and lam[0] <= lam[-1] * lam.size * np.finfo(float).eps:  # rule 5: a singular system
         raise ValueError(f"A is singular to working precision (eigenvalues {lam[0]:.3g} .. {lam[-1]:.3g}): "
