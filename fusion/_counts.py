@@ -381,11 +381,19 @@ def as_rngs(rngs: object, name: str = "rngs", n: int | None = None) -> list[np.r
 _PLAIN_INTEGERS = frozenset({int, np.int8, np.int16, np.int32, np.int64, np.uint8, np.uint16, np.uint32, np.uint64})
 
 
-def _integer_array(value: object) -> bool:
-    """Whether ``value`` is a 1-D ndarray of a plain integer dtype (its entries checked at once); a masked array is
-    not (it goes through :func:`sequence`, which refuses it: :func:`not_masked`)."""
-    return (isinstance(value, np.ndarray) and not isinstance(value, np.ma.MaskedArray) and value.ndim == 1
-            and value.dtype.type in _PLAIN_INTEGERS)
+def _integer_array(value: object) -> np.ndarray | None:
+    """``value``'s data as a plain 1-D ``numpy.ndarray`` when it is a 1-D ndarray of a plain integer dtype (its
+    entries checked at once), else ``None``; a masked array is not one (it goes through :func:`sequence`, which
+    refuses it: :func:`not_masked`).
+
+    An ndarray subclass is viewed through the base class (``numpy.ndarray.view``, never its own ``view``), so that its
+    ``ndim``, ``dtype``, ``min``, ``max`` and ``tolist`` are numpy's, reading its real data (fuzz 60b C2: a subclass
+    whose ``min()`` and ``max()`` returned 0 passed the seed ``-5`` to numpy, whose raw ValueError named nothing).
+    """
+    if not isinstance(value, np.ndarray) or isinstance(value, np.ma.MaskedArray):
+        return None
+    arr = np.ndarray.view(value, np.ndarray)
+    return arr if arr.ndim == 1 and arr.dtype.type in _PLAIN_INTEGERS else None
 
 
 def _plain_integers(items: list | np.ndarray, minimum: int, maximum: int | None) -> list[int] | None:
@@ -396,10 +404,11 @@ def _plain_integers(items: list | np.ndarray, minimum: int, maximum: int | None)
     any other entry (a float, a bool, a numpy scalar of another type, an entry out of range) leaves the
     entry-by-entry rule, which names the first bad entry.
     """
-    if _integer_array(items):  # a 1-D integer ndarray: its range in one vectorised pass
-        if items.min() < minimum or (maximum is not None and items.max() > maximum):
+    arr = _integer_array(items)
+    if arr is not None:  # a 1-D integer ndarray (a subclass read as a plain one): its range in one vectorised pass
+        if arr.min() < minimum or (maximum is not None and arr.max() > maximum):
             return None
-        return items.tolist()
+        return arr.tolist()
     types = set(map(type, items))
     if not types <= _PLAIN_INTEGERS:
         return None
@@ -415,7 +424,8 @@ def counts(values: object, name: str, minimum: int = 1, maximum: int | None = BY
     TypeError for a non-sequence or a non-integer entry (booleans, strings, nested lists included);
     ValueError for an empty sequence or an entry out of range.
     """
-    items = values if _integer_array(values) and _length(values, name, None) else sequence(values, name)
+    arr = _integer_array(values)
+    items = arr if arr is not None and _length(arr, name, None) else sequence(values, name)
     if not len(items):
         raise ValueError(f"{name} is empty")
     top = count_ceiling(f"{name}[0]") if maximum == BY_KIND else maximum
@@ -427,7 +437,8 @@ def counts(values: object, name: str, minimum: int = 1, maximum: int | None = BY
 
 def seeds(values: object, name: str = "seeds") -> list[int]:
     """A non-empty sequence of seeds: each entry an integer (rule 11), named (``seeds[1]``)."""
-    items = values if _integer_array(values) and _length(values, name, None) else sequence(values, name)
+    arr = _integer_array(values)
+    items = arr if arr is not None and _length(arr, name, None) else sequence(values, name)
     if not len(items):
         raise ValueError(f"{name} is empty")
     fast = _plain_integers(items, 0, SEED_MAX)
@@ -850,7 +861,9 @@ def sequence(value: object, name: str, length: int | None = None, *, minimum: in
         if arr.ndim != 1:
             raise TypeError(f"{name} must be a sequence (1-D), got {type(value).__name__} of shape {arr.shape}")
         _length(arr, name, length)
-        items = list(value) if isinstance(value, np.ndarray) else list(arr)
+        # the items of ``arr``, the plain array whose length was checked: an ndarray subclass is read through it,
+        # never through its own ``__iter__`` (fuzz 60b C1: an endless one ran 4.4-5.4 CPU-s to a MemoryError)
+        items = list(arr)
     else:
         raise TypeError(f"{name} must be a sequence (a list, tuple or 1-D array), got {type(value).__name__}")
     if len(items) < minimum:

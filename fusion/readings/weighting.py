@@ -48,12 +48,9 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import read_once
-from fusion._validation import integer
+from fusion._validation import derived_inputs, finite_result, flag, integer, read_once
 from fusion._frozen import frozen_arrays
 from fusion._results import BATCH, RTOL as _RTOL, ResultSpec, array, trusted, validated_post_init
-from fusion._validation import flag
-from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude, count, one_of, positive_scalar, scalar,
                                 std_scalar)
 from fusion._shown import shown
@@ -669,21 +666,24 @@ def wls(H: ArrayLike, W: ArrayLike, Y: ArrayLike) -> FloatArray:
     Raises
     ------
     ValueError
-        Shapes that differ, ``W`` negative, not symmetric or not positive semidefinite; an estimate
-        that overflows (``H``, ``W`` and ``Y`` each in range, :math:`H^\top W H` not); ``H`` and ``W`` beyond
-        the work budget (``n**2 (n + d)`` units of 0.015: n of about 4,050 for d = 1).
+        Shapes that differ, ``W`` negative, not symmetric or not positive semidefinite; ``H`` wider than tall (d >
+        n: :math:`H^\top W H` is then singular), at once; an estimate that overflows (``H``, ``W`` and ``Y`` each in
+        range, :math:`H^\top W H` not); ``H`` and ``W`` beyond the work budget (``n**2 (n + d) + n d**2 + d**3`` units
+        of 0.015: n of about 4,050 for d = 1, 2,550 for d = n).
     """
     H = as_array(H, "H", ndim=(1, 2))
     if H.ndim == 1:
         H = H[:, None]
     Y = as_array(Y, "Y", ndim=1)
     W = as_array(W, "W", ndim=(1, 2))
-    if Y.shape != (H.shape[0],):
-        raise ValueError(f"H must be (n, d) and Y (n,), got {H.shape} and {Y.shape}")
+    (n, d), (m,) = H.shape, Y.shape
+    if m != n or d > n:   # d > n: refused before the d x d H^T W H is built (fuzz 60b C3: d = 12,000 ran 9.5 CPU-s)
+        raise ValueError(f"H must be (n, d) and Y (n,), got {H.shape} and {Y.shape}" if m != n else f"H must have at "
+                         f"least as many rows as columns, got {H.shape}: H^T W H (d x d, rank <= n < d) is singular")
     # rule 17 (fix 65a, after fuzz 57b D2: n = 5,792, the input budget, ran 20 CPU-s with H one column and 48 with H
-    # square, unchecked): W's eigenvalues and H^T W H, n**2 (n + d) work, 0.08-0.10 ns per unit measured with d = 1
-    # and 0.13-0.16 with d = n (n = 1,500 and 5,792; time.process_time, OPENBLAS_NUM_THREADS=1, the shared machine)
-    work((H.shape[0], H.shape[0], H.shape[0] + H.shape[1]), "H and W", weight=1.5 * DENSE_CUBE)
+    # square, unchecked): W's eigenvalues, H W, H^T W H, its factors: n**2 (n + d) + n d**2 + d**3 work (fix 68a:
+    # 0.048-0.053 ns a unit, min of 3, n = 1,500, d = 1 to n; process_time, OPENBLAS_NUM_THREADS=1, shared; d x d <= W)
+    work((n * n * (n + d) + n * d * d + d**3,), "H and W", weight=1.5 * DENSE_CUBE)
     if W.ndim == 1:
         if np.any(W < 0):
             raise ValueError("W must be non-negative")
