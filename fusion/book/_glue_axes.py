@@ -1,4 +1,5 @@
-"""The units of gluing the labels of a MultiIndex, by its levels (fuzz 59a C2), for :mod:`fusion.book.glue`."""
+"""The units of gluing the labels of a MultiIndex, by its levels (fuzz 59a C2), and the logical sizes of an axis of
+labels (fuzz 60a C1), for :mod:`fusion.book.glue`."""
 
 from __future__ import annotations
 
@@ -46,3 +47,22 @@ def axis_units(v: object, key: str) -> int:
                          f"{units:.3g} units of work (their levels counted), beyond the work budget (at most "
                          f"{MAX_WORK:.3g} units, fusion._limits.MAX_WORK, about 10 CPU-s)")
     return units
+
+
+def label_sizes(labels: pd.Index) -> list[int]:
+    """The logical sizes (entries, not bytes held) of the index of labels ``labels`` that the glue may convert: its
+    length, a CategoricalIndex's categories, each level of a MultiIndex (``levels[i].size``), and so on inside them
+    (a level that is a CategoricalIndex: its categories). Fuzz 60a C1: a CategoricalIndex of ``RangeIndex(10**10)``
+    categories as a table's rows or columns or a Series' index, and a MultiIndex of one row with a level of 10**10
+    entries, cost nothing to hold and were counted by their length alone, then converted (a raw MemoryError,
+    "Unable to allocate 74.5 GiB"). Read without converting anything."""
+    sizes: list[int] = []
+    todo = [labels]   # without recursion
+    while todo:
+        ax = todo.pop()
+        sizes.append(int(ax.size))
+        if isinstance(ax, pd.MultiIndex):
+            todo += list(ax.levels)
+        elif isinstance(ax, pd.CategoricalIndex):
+            todo.append(ax.categories)
+    return sizes

@@ -26,7 +26,7 @@ from matplotlib.figure import Figure
 from pandas.io.formats.style import Styler
 
 from fusion._limits import MAX_WORK, work
-from fusion.book._glue_axes import axis_units
+from fusion.book._glue_axes import axis_units, label_sizes
 from fusion._validation import count, read_mapping, text
 from fusion.book.tables import rounded
 from fusion._shown import shown
@@ -727,20 +727,20 @@ _GLUE_NUMBER = 1
 
 def _logical_sizes(v: object) -> list[int]:
     """The logical sizes (entries, not bytes held) of what :func:`_finite` converts for the container ``v``: its
-    values (an array's shape product, a table's cells), each axis of labels of a Series or table (a Styler's
-    table), and a categorical's categories; empty for a Python container (its entries are visited, counted)."""
+    values (an array's shape product, a table's cells), each axis of labels of a Series or table (a Styler's table)
+    and an Index itself with a CategoricalIndex's categories and a MultiIndex's levels (``label_sizes``), and the
+    categories of a categorical and of each categorical column of a table (fuzz 60a C1: a table has no ``dtype``,
+    its columns' categories were not counted); empty for a Python container (its entries are visited, counted)."""
     v = v.data if isinstance(v, Styler) else v
     if isinstance(v, np.ndarray):   # a structured one's fields with their subarrays (fuzz 58a C1)
         return [int(np.prod(v.shape, dtype=object)) * _dtype_entries(v.dtype)]
     if not isinstance(v, (pd.Series, pd.Index, pd.DataFrame, ExtensionArray)):
         return []
     sizes = [int(np.prod(v.shape, dtype=object))]
-    if isinstance(v, (pd.Series, pd.DataFrame)):
-        sizes += [len(ax) for ax in _axes(v)[0]]
-    dtype = getattr(v, "dtype", None)
-    if isinstance(dtype, pd.CategoricalDtype):
-        sizes.append(len(dtype.categories))
-    return sizes
+    axes = _axes(v)[0] if isinstance(v, (pd.Series, pd.DataFrame)) else [v] if isinstance(v, pd.Index) else []
+    sizes += [n for ax in axes for n in label_sizes(ax)]
+    dtypes = list(v.dtypes) if isinstance(v, pd.DataFrame) else [v.dtype]   # not hashed: that reads the categories
+    return sizes + [n for d in dtypes if isinstance(d, pd.CategoricalDtype) for n in label_sizes(d.categories)]
 
 
 def _dtype_entries(dtype: np.dtype) -> int:

@@ -528,7 +528,7 @@ def sigma_sweep(sigmas: Sequence[float], names: Sequence[str]) -> pd.DataFrame:
         ``_registration_work``: 54 levels of all fifteen methods, 4,748 of two-point alone).
     """
     _noise_levels(sigmas, "sigmas"), _method_names(names, "names")
-    sc._exact_work(names, [sc.instants()[1].size] * len(sigmas), "sigmas and names", period_change=False)  # rule 17
+    sc._exact_work(names, {sc.instants()[1].size: len(sigmas)}, "sigmas and names", period_change=False)  # rule 17
     return pd.DataFrame({n: [sc.expected(n, s) for s in sigmas] for n in names},
                         index=pd.Index(np.asarray(sigmas, dtype=float), name="σ (m)"))
 
@@ -767,7 +767,7 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
     runs = count(runs, "runs")  # the int read (fuzz 29a C2)
     k = len(sigmas) * len(TUNING_READINGS)  # rule 17 before any run: per level and reading a Monte Carlo, 2 exact
     sc._monte_carlo_work([IMPROVED, TWO] * k, runs, *(t.size for t in sc.instants()), "sigmas and runs", "sigmas")
-    sc._exact_work((IMPROVED, TWO), [sc.instants()[1].size] * k, "sigmas")
+    sc._exact_work((IMPROVED, TWO), {sc.instants()[1].size: k}, "sigmas")
     rows = {}
     for s in sigmas:
         s = float(s)
