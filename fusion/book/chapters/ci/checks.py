@@ -362,3 +362,32 @@ def _every_method(study: object, reader: str, name: str = "study", *, published:
     if runs < min_runs:
         raise ValueError(f"{name} holds {runs} run, fewer than {min_runs}: a Monte-Carlo standard error needs at "
                          f"least {min_runs} runs (give the scenario more runs)")
+
+
+def _flat_pair_read(flat_pair: object, n_open: int) -> tuple | None:
+    """``fig5_hypotheses``'s ``flat_pair`` as a pair (None: skipped), its grid ``k / n_open`` on the size of its
+    matrices counted before any work (fuzz 60a C5: the entry counted the grid on ``P1``'s size only, so a large pair
+    was refused by ``ci_objective``'s own budget naming its P1 and P2, after the FOA batch and the pair's four
+    ``O(m**3)`` readings, 13.5 CPU-s at m = 3,000). The size m is read from the shapes as given, before any
+    conversion (``fusion._validation.given_entries``: a square's m x m entries). Memory: ``ci_objective``'s own
+    count, three ``(n_open, m, m)`` stacks (m = 500, n_open = 300 runs, 6.2-7.2 CPU-s). Work, in
+    ``fusion._limits.DENSE_CUBE`` units a ``m**3``: its two readings here (each measured 3.3 CPU-s at m = 3,000 by
+    fuzz 60a, ~1.2 cubes, counted 1.5), ``ci_objective``'s reading of the two (1.5 each, its own weight) and its
+    ``n_open + 2`` inverses (1 each, its own weight): ``n_open + 8`` cubes."""
+    if flat_pair is None:
+        return None
+    from math import isqrt
+
+    from fusion._counts import allocation, sequence
+    from fusion._limits import DENSE_CUBE, MAX_INPUT_ELEMENTS, dense_work
+    from fusion._validation import given_entries
+
+    pair = tuple(sequence(flat_pair, "flat_pair", 2))   # a pair (P, P): a tuple or a list (fuzz 24e F2)
+    sizes = [given_entries(F, MAX_INPUT_ELEMENTS) for F in pair]
+    m = max([isqrt(int(n)) for n in sizes if n is not None and n != float("inf")] or [1])
+    if any(n == float("inf") for n in sizes):
+        m = isqrt(MAX_INPUT_ELEMENTS) + 1   # beyond the input budget: refused by the memory check below
+    names = "flat_pair and n_open (the grid k/n_open on flat_pair's size)"
+    allocation((n_open, m, m), names, arrays=3)
+    dense_work(n_open + 8, m, names, DENSE_CUBE)
+    return pair

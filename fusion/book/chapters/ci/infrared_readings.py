@@ -113,15 +113,21 @@ def ir_sigma_band(readings: IrReadings, scan: Sequence[float] = IR_SIGMA_SCAN) -
         generator, a string or a number is refused) or an entry not a number.
     ValueError
         An entry of ``scan`` is not a finite positive number; the levels' Cartesian tracks and errors on the readings'
-        runs and scans together beyond the memory or work budget, before the first.
+        runs and scans together beyond the memory or work budget (the entry of ``fusion._limits.STUDY_WORK`` that
+        :func:`ir_readings`'s book call serves, which runs this band), before the first.
     """
     instance_of(readings, IrReadings, "readings")
     items = sequence(scan, "scan")
     # every level's Cartesian tracks and errors summed before the first (the audit after fuzz 57a: each level was
     # checked alone as it came, and the levels never summed), counted before any level is converted (fuzz 58a C3)
+    # within the entry of ir_readings, whose book call runs this band on the readings it returns (fuzz 60a C4: under
+    # MAX_WORK the band refused ir_readings(0.1, 0, 2000), the sweep's 10x reading, at 1.28e9 units, though the band
+    # ran 6.3 CPU-s on it: a reader refused from ~1,560 runs what its producer accepts to ~4,200)
+    from fusion._limits import IR_READINGS_STUDY, STUDY_WORK
     from fusion.book._study_budget import studies_first
     names = "scan (with the runs and scans of readings)"
-    studies_first(_sigma_parts(*readings.sims["x"].ir.est.shape[:2], len(items), names), names)
+    studies_first(_sigma_parts(*readings.sims["x"].ir.est.shape[:2], len(items), names), names,
+                  STUDY_WORK[IR_READINGS_STUDY], IR_READINGS_STUDY)
     return _sigma_band(readings, [scalar(sa, f"scan[{i}]", 0.0, None, lo_open=True) for i, sa in enumerate(items)])
 
 

@@ -13,8 +13,8 @@ from fusion._results import (ResultSpec, array, dict_of, instance, integer, numb
                              validated_post_init)
 from fusion import data
 from fusion._docstrings import reads_results
-from fusion._validation import as_array, count, general, instance_of, scalar
-from fusion._counts import seed as check_seed, seeds as check_seeds, sequence
+from fusion._validation import as_array, count, general, instance_of, scalar, unit_scalar
+from fusion._counts import distinct, seed as check_seed, seeds as check_seeds, sequence
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.estimates.ci import ci_weight
@@ -421,8 +421,9 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     Raises
     ------
     ValueError
-        If ``seeds`` does not hold three seeds, ``runs`` is not a positive count or ``fig6_omegas`` misses one of the
-        two published weights; ``runs``, ``fig6_omegas``, ``T`` and ``aniso``'s runs whose scenarios, fusions and
+        If ``seeds`` does not hold three seeds, ``runs`` is not a positive count, an entry of ``fig6_omegas`` is not a
+        weight in [0, 1] (named ``fig6_omegas[i]``), two entries are equal, or it misses one of the two published
+        weights; ``runs``, ``fig6_omegas``, ``T`` and ``aniso``'s runs whose scenarios, fusions and
         per-run errors together hold or run beyond the memory or work budget (about 2,500 runs at the book's two
         weights), before any scenario; ``aniso`` not a pair at ``ANISO_R`` or ``unequal`` not one with ``R2 = R1 / 9`` (the
         pairs swapped, or one pair twice: each pair's rules would run on the other's noises).
@@ -437,7 +438,11 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     if len(seeds) != 3:
         raise ValueError(f"seeds must hold three seeds (identical, unequal, random weights), got {shown(seeds)}")
     runs = count(runs, "runs")
-    fig6_omegas = tuple(sequence(fig6_omegas, "fig6_omegas"))
+    # each entry read as a CI weight (fuse_tracks' omega, [0, 1]) and distinct at entry (fuzz 60a C2, D1: an array
+    # entry reached numpy's raw truth-value error, 1.5 was refused naming omega after 1.7 CPU-s of scenarios, a
+    # repeat was counted twice by the budget and kept once in paired_fig6)
+    fig6_omegas = tuple(distinct([unit_scalar(w, f"fig6_omegas[{i}]")
+                                  for i, w in enumerate(sequence(fig6_omegas, "fig6_omegas"))], "fig6_omegas"))
     if W_PUB not in fig6_omegas or W_GRID not in fig6_omegas:
         raise ValueError(f"fig6_omegas must hold the source's two published weights {W_PUB} and {W_GRID} (Fig. 6), "
                          f"got {shown(fig6_omegas)}")

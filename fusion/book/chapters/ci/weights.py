@@ -30,9 +30,9 @@ from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, St
 from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
 from fusion.book.chapters._defaults import study_defaults
 from fusion.book.chapters.ci.text import _glue_doc, _sig3, excess_text, readable
-from fusion.book.chapters.ci.checks import (_entries, _frame, _indices, _objective_grid, _optima_of, _per_step,
-                                            _period_key, _results, _same_search, _sensor_noises, _step_index,
-                                            _study_of)
+from fusion.book.chapters.ci.checks import (_entries, _flat_pair_read, _frame, _indices, _objective_grid, _optima_of,
+                                            _per_step, _period_key, _results, _same_search, _sensor_noises,
+                                            _step_index, _study_of)
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
@@ -333,7 +333,9 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
         Points of the grid that omits ω = 0 (1: the one point ω = 1); the objective holds four arrays of
         ``n_open`` matrices of the size of ``P1`` at once, within the memory budget (``fusion._counts.MAX_ELEMENTS``).
     flat_pair : (array_like, array_like), optional
-        Two equal covariances (the source's identical sensors) for the last hypothesis; skipped if ``None``.
+        Two equal covariances (the source's identical sensors) for the last hypothesis; skipped if ``None``. Its
+        grid ``k / n_open`` on their size is within the memory and work budgets (a ValueError names ``flat_pair and
+        n_open``), checked before any work.
 
     Returns
     -------
@@ -350,6 +352,7 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
     # the grid's objective holds four (n_open, n, n) arrays at once (the two weighted inverses, their sum and its
     # inverse): the memory budget, named n_open before any work (fuzz 26c q9)
     allocation((n_open, 4) + P1.shape, "n_open (with the size of P1)")
+    flat_pair = _flat_pair_read(flat_pair, n_open)   # its grid on its own size, at entry (fuzz 60a C5)
     from fusion.optimise.scalar import batch_budget
     from fusion.scenarios.two_sensor.weights import _CI_COSTS, _over_seeds_budget
 
@@ -358,8 +361,6 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
     short_names, n_short = "short_budget (with fruit_fly_seeds)", len(fruit_fly_seeds.seeds)
     batch_budget(n_short, 30, short_budget, short_names)
     _over_seeds_budget(n_short, 0, 30, short_budget, P1.shape[0], _CI_COSTS, short_names)
-    if flat_pair is not None:  # a pair (P, P): a tuple or a list (fuzz 24e F2)
-        flat_pair = tuple(sequence(flat_pair, "flat_pair", 2))
     pub = data.WANG2024_FOA.columns
 
     def objective(w: ArrayLike) -> Any:
