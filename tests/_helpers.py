@@ -138,6 +138,26 @@ class ShrinkingLen(Sequence):
         return self.items[i]
 
 
+def refused_quickly(call: Callable[[], Any], error: type[BaseException], match: str, cpu: float = 1.0) -> None:
+    """``call()`` raises ``error`` matching ``match`` within ``cpu`` CPU-s of its own: a refusal before any work.
+
+    Garbage collection is off during the call (a collection of a full run's heap inside a timed call cost 1.12 CPU-s
+    late in a worker, 0.12-0.17 in a fresh process), and not forced before it (a ``gc.collect()`` of a full run's heap
+    at each call cost 33 CPU-s over one file). A first use that imports or builds caches belongs outside, untimed.
+    """
+    import gc
+    import time
+
+    gc.disable()
+    try:
+        t = time.process_time()
+        with pytest.raises(error, match=match):
+            call()
+        assert time.process_time() - t < cpu, f"refused after {time.process_time() - t:.2f} CPU-s"
+    finally:
+        gc.enable()
+
+
 def glue_refused(values: dict, error: type, match: str = r"values\['k'\]") -> None:
     """``glue_all(values)`` raises ``error`` matching ``match`` within 1 CPU-s (a refusal before any work)."""
     import time

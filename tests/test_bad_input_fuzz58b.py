@@ -5,18 +5,12 @@ O(N**3) solve). Report: /work/tmp/fuzz58b/report.md."""
 
 from __future__ import annotations
 
-import time
 from collections.abc import Sequence
 
 import numpy as np
 import pytest
 
-
-def _refused(call, error, match):
-    t0 = time.process_time()
-    with pytest.raises(error, match=match):
-        call()
-    assert time.process_time() - t0 < 1.0  # before any work
+from _helpers import refused_quickly
 
 
 # --- C1: the list as_rngs checked is the list used -----------------------------------------------------------------
@@ -86,7 +80,7 @@ def _gms(d, n=2):
 def test_c2_fuse_mixtures_refuses_samples_beyond_the_memory_budget_by_name():
     from fusion.estimates.chernoff.mixture import fuse_mixtures
     rng = np.random.default_rng(0)   # was a raw MemoryError of 6.7 GiB, (10**6, 30, 30), after 0.5 CPU-s
-    _refused(lambda: fuse_mixtures(_gms(30), rng, n_samples=10**6), ValueError, r"^gms and n_samples .*memory budget")
+    refused_quickly(lambda: fuse_mixtures(_gms(30), rng, n_samples=10**6), ValueError, r"^gms and n_samples .*memory budget")
     assert rng.bit_generator.state == np.random.default_rng(0).bit_generator.state  # no draw
 
 
@@ -95,7 +89,7 @@ def test_c2_fuse_mixtures_batch_refuses_samples_beyond_the_memory_budget_by_name
     d = 30
     w, m = np.ones((1, 2, 1)), np.zeros((1, 2, 1, d))
     c = np.broadcast_to(np.eye(d), (1, 2, 1, d, d)).copy()
-    _refused(lambda: fuse_mixtures_batch(w, m, c, [np.random.default_rng(0)], n_samples=10**6), ValueError,
+    refused_quickly(lambda: fuse_mixtures_batch(w, m, c, [np.random.default_rng(0)], n_samples=10**6), ValueError,
              r"^weights and n_samples .*memory budget")
 
 
@@ -158,7 +152,7 @@ class _Liar(np.ndarray):
 def test_c4_seed_sequence_refuses_an_entropy_ndarray_subclass_by_name():
     from fusion._counts import seed_sequence
     big = np.arange(10**6, dtype=np.uint32).view(_Liar)   # a one-word flat over 10**6 words numpy mixes
-    _refused(lambda: seed_sequence(np.random.SeedSequence(big), "seeds[0]"), TypeError, r"^seeds\[0\] .*subclass")
+    refused_quickly(lambda: seed_sequence(np.random.SeedSequence(big), "seeds[0]"), TypeError, r"^seeds\[0\] .*subclass")
     seed_sequence(np.random.SeedSequence(np.arange(8, dtype=np.uint32)), "seed")   # a plain array of 8 words: kept
     with pytest.raises(ValueError, match="^seed "):
         seed_sequence(np.random.SeedSequence(np.arange(9, dtype=np.uint32)), "seed")
@@ -169,5 +163,5 @@ def test_c4_seed_sequence_refuses_an_entropy_ndarray_subclass_by_name():
 def test_c5_gauss_markov_gap_refuses_draws_before_the_gls_solve():
     from fusion.readings.correlated import gauss_markov_gap
     N = 3000   # gls_weights' solve alone: 3.5 CPU-s before the draws were refused
-    _refused(lambda: gauss_markov_gap(np.ones((N, 1)), np.eye(N) + 0.1, np.random.default_rng(0), 10**7),
+    refused_quickly(lambda: gauss_markov_gap(np.ones((N, 1)), np.eye(N) + 0.1, np.random.default_rng(0), 10**7),
              ValueError, r"^draws and H .*memory budget")

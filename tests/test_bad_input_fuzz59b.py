@@ -5,19 +5,12 @@ never summed) and D1 (split_ci_objective's weights counted n**3 each, no per-wei
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 import pytest
 
 from fusion._limits import MAX_WORK
 
-
-def _refused(call, error, match):
-    t0 = time.process_time()
-    with pytest.raises(error, match=match):
-        call()
-    assert time.process_time() - t0 < 1.0  # before any work
+from _helpers import refused_quickly
 
 
 # --- C1: only exact containers and integers in a SeedSequence's entropy and spawn key ------------------------------
@@ -52,15 +45,15 @@ def test_c1_seed_sequence_refuses_a_sequence_subclass_in_its_entropy_by_name():
     from fusion._counts import seed_sequence
     _Liar.reads = 0
     liar = np.random.SeedSequence(_Liar([7]))   # numpy reads 10**5 words (its first read)
-    _refused(lambda: seed_sequence(liar, "seeds[0]"), TypeError, r"^seeds\[0\] .*_Liar")
+    refused_quickly(lambda: seed_sequence(liar, "seeds[0]"), TypeError, r"^seeds\[0\] .*_Liar")
     for entropy in ([1, _Tuple((2, 3))], _Tuple((1, 2))):
-        _refused(lambda: seed_sequence(np.random.SeedSequence(entropy), "seed"), TypeError, r"^seed .*_Tuple")
+        refused_quickly(lambda: seed_sequence(np.random.SeedSequence(entropy), "seed"), TypeError, r"^seed .*_Tuple")
 
 
 def test_c1_seed_sequence_refuses_an_integer_subclass_by_name():
     from fusion._counts import seed_sequence
     for entropy in (_Int(3), [1, _Int(3)], [_Int64(3)]):
-        _refused(lambda: seed_sequence(np.random.SeedSequence(entropy), "seed"), TypeError, r"^seed .*subclass")
+        refused_quickly(lambda: seed_sequence(np.random.SeedSequence(entropy), "seed"), TypeError, r"^seed .*subclass")
 
 
 def test_c1_seed_sequence_keeps_plain_containers_and_numpy_integers():
@@ -79,16 +72,16 @@ def test_c1_run_tracking_batch_refuses_the_liar_before_any_spawn():
                                  n_components=1)
     _Liar.reads = 0
     liar = np.random.SeedSequence(_Liar([7]))
-    _refused(lambda: rb.run_tracking_batch(sc, [liar], workers=1), TypeError, r"^seeds\[0\] ")
+    refused_quickly(lambda: rb.run_tracking_batch(sc, [liar], workers=1), TypeError, r"^seeds\[0\] ")
 
 
 # --- C2: ridge_risk's (k.size, d) arrays -----------------------------------------------------------------------------
 
 def test_c2_ridge_risk_refuses_k_against_a_by_memory_before_the_work():
     from fusion.readings.biased import ridge_risk
-    _refused(lambda: ridge_risk(np.eye(1000), np.ones(1000), np.ones(10**7)), ValueError, r"^k and A ask for an array")
+    refused_quickly(lambda: ridge_risk(np.eye(1000), np.ones(1000), np.ones(10**7)), ValueError, r"^k and A ask for an array")
     # 5 arrays of (k.size, d) held (tracemalloc, measured): 536,871 x 100 is just beyond 2**28 float64, 536,870 inside
-    _refused(lambda: ridge_risk(np.eye(100), np.ones(100), np.ones(536_871)), ValueError, r"^k and A ask for an array")
+    refused_quickly(lambda: ridge_risk(np.eye(100), np.ones(100), np.ones(536_871)), ValueError, r"^k and A ask for an array")
 
 
 def test_c2_ridge_risk_edge_is_inside_both_budgets():
@@ -109,7 +102,7 @@ def test_c3_ridge_fusions_sum_their_blocks_dense_work(fusion_name):
     m = 3000   # each block alone about 4 CPU-s (fuzz 59b); three together beyond the budget
     H, R, y = np.ones((m, 1)), np.eye(m) + 0.1, np.ones(m)
     last = 1.0 if fusion_name != "ridge_fusion_plugin" else "distributed"
-    _refused(lambda: getattr(biased, fusion_name)([H] * 3, [R] * 3, [y] * 3, last), ValueError,
+    refused_quickly(lambda: getattr(biased, fusion_name)([H] * 3, [R] * 3, [y] * 3, last), ValueError,
              r"^Hs, Rs and ys ask for .* units of work")
 
 
@@ -130,7 +123,7 @@ def test_c3_two_blocks_of_3000_and_small_blocks_are_inside():
 def test_d1_split_ci_objective_counts_each_weight_at_least_its_overhead():
     from fusion.estimates.ci import split_ci_objective
     eye = np.eye(1)   # 14,925,371 weights at n = 1: just beyond the budget at 67 units a weight (580-680 ns measured)
-    _refused(lambda: split_ci_objective(np.full(14_925_371, 0.5), eye, 0.5 * eye, 2 * eye, eye), ValueError,
+    refused_quickly(lambda: split_ci_objective(np.full(14_925_371, 0.5), eye, 0.5 * eye, 2 * eye, eye), ValueError,
              r"^omega, P1d, P1i, P2d and P2i ask for .* units of work")
 
 

@@ -10,19 +10,12 @@ CPU-s).
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 import pytest
 
 from test_study_budget61 import Ran, _accepts, _edge, _reaches_the_draw, no_draw  # noqa: F401
 
-
-def _refused(call, exc, match):
-    t0 = time.process_time()
-    with pytest.raises(exc, match=match):
-        call()
-    assert time.process_time() - t0 < 1
+from _helpers import refused_quickly
 
 
 @pytest.fixture(scope="module")
@@ -41,11 +34,11 @@ def test_paired_studies_reads_each_fig6_omega(pairs, no_draw):
         return ci.paired_studies(R1, R2, Q, (ci.W_PUB, ci.W_GRID), *pairs, runs=2_000, seeds=(1, 2, 3), weight_seed=4,
                                  fig6_omegas=omegas)
 
-    _refused(lambda: call((np.array([0.1, 0.2]), ci.W_PUB, ci.W_GRID)), TypeError, r"^fig6_omegas\[0\]")
-    _refused(lambda: call((ci.W_PUB, ci.W_GRID, np.full(261, 0.3))), TypeError, r"^fig6_omegas\[2\]")
-    _refused(lambda: call((ci.W_PUB, ci.W_GRID, 1.5)), ValueError, r"^fig6_omegas\[2\]")
-    _refused(lambda: call((ci.W_PUB, ci.W_GRID, "a")), TypeError, r"^fig6_omegas\[2\]")
-    _refused(lambda: call((ci.W_PUB, ci.W_PUB, ci.W_GRID)), ValueError, r"^fig6_omegas must not repeat")   # D1
+    refused_quickly(lambda: call((np.array([0.1, 0.2]), ci.W_PUB, ci.W_GRID)), TypeError, r"^fig6_omegas\[0\]")
+    refused_quickly(lambda: call((ci.W_PUB, ci.W_GRID, np.full(261, 0.3))), TypeError, r"^fig6_omegas\[2\]")
+    refused_quickly(lambda: call((ci.W_PUB, ci.W_GRID, 1.5)), ValueError, r"^fig6_omegas\[2\]")
+    refused_quickly(lambda: call((ci.W_PUB, ci.W_GRID, "a")), TypeError, r"^fig6_omegas\[2\]")
+    refused_quickly(lambda: call((ci.W_PUB, ci.W_PUB, ci.W_GRID)), ValueError, r"^fig6_omegas must not repeat")   # D1
     _reaches_the_draw(lambda: call((ci.W_PUB, ci.W_GRID, np.float64(0.5), 1)))   # weights in [0, 1], as fuse_tracks
 
 
@@ -73,7 +66,7 @@ def test_ir_sigma_band_accepts_what_ir_readings_returns(readings, monkeypatch):
     # the band counted on readings of the producer's largest runs (its scans as the readings'): accepted
     monkeypatch.setattr(R, "_sigma_parts", lambda runs, K, levels, names: parts(edge, K, levels, names))
     _reaches_the_draw(lambda: ci.ir_sigma_band(readings))
-    _refused(lambda: ci.ir_sigma_band(readings, [1.0 + 1e-3 * i for i in range(200)]), ValueError,
+    refused_quickly(lambda: ci.ir_sigma_band(readings, [1.0 + 1e-3 * i for i in range(200)]), ValueError,
              r"^scan \(with the runs and scans of readings\)")
 
 
@@ -91,12 +84,12 @@ def test_fig5_hypotheses_counts_the_flat_pair_at_entry(monkeypatch):
         F = np.eye(m)
         return fig5_hypotheses(P1, P2, seeds, 0, n_open=n_open, flat_pair=(F, F))
 
-    _refused(lambda: call(600, 300), ValueError, names + " ask for an array")   # named ci_objective's P1 and P2
-    _refused(lambda: call(3_000, 8), ValueError, names + " ask for")            # the same after 13.5 CPU-s
+    refused_quickly(lambda: call(600, 300), ValueError, names + " ask for an array")   # named ci_objective's P1 and P2
+    refused_quickly(lambda: call(3_000, 8), ValueError, names + " ask for")            # the same after 13.5 CPU-s
     # the work's edge at m = 1,500: n_open + 8 cubes of 0.01 units
     m = 1_500
     n = int(MAX_WORK / (DENSE_CUBE * m**3)) - 8
     F = np.eye(m)
     assert checks._flat_pair_read([F, F], n) == (F, F)   # inside: accepted by the budget alone
-    _refused(lambda: call(m, n + 1), ValueError, names + " ask for")
+    refused_quickly(lambda: call(m, n + 1), ValueError, names + " ask for")
     assert checks._flat_pair_read(None, 10**9) is None

@@ -12,6 +12,8 @@ import pytest
 
 from fusion._counts import as_rngs, counts, iterable, seed_array, seeds, sequence
 
+from _helpers import refused_quickly
+
 
 class _Iterating(np.ndarray):
     """An ndarray whose own ``__iter__`` and ``__len__`` disagree with its data (10**5 copies of its first entry)."""
@@ -41,13 +43,6 @@ def _quick(call):
     out = call()
     assert time.process_time() - t0 < 1.0
     return out
-
-
-def _refused(call, match):
-    t0 = time.process_time()
-    with pytest.raises(ValueError, match=match):
-        call()
-    assert time.process_time() - t0 < 1.0  # before any work
 
 
 def test_c1_an_ndarray_subclass_is_read_through_its_data():
@@ -83,8 +78,8 @@ def test_c3_wls_refuses_h_wider_than_tall_at_once():
     old code ran 9.5-12.2 CPU-s at d = 12,000, a raw MemoryError at d = 20,000 and 10**6)."""
     from fusion.readings.weighting import wls
     for d in (4, 12_000, 10**6):
-        _refused(lambda: wls(np.ones((3, d)), np.eye(3), np.ones(3)),
-                 r"^H must have at least as many rows as columns, got \(3, ")
+        refused_quickly(lambda: wls(np.ones((3, d)), np.eye(3), np.ones(3)),
+                 ValueError, r"^H must have at least as many rows as columns, got \(3, ")
     assert wls(np.eye(3), np.ones(3), np.array([1.0, 2.0, 3.0])).tolist() == [1.0, 2.0, 3.0]  # d = n: solved
 
 
@@ -92,7 +87,7 @@ def test_c3_wls_counts_the_d_by_d_product_and_its_factors(monkeypatch):
     """Fuzz 60b C3: the work of H^T W H and its factorisation (n d**2 + d**3) is counted: H square of n = 2,600
     (1.05e9 units; the old n**2 (n + d) count gave 5.3e8 and ran it) is refused at once, 2,540 passes the budget."""
     from fusion.readings import weighting
-    _refused(lambda: weighting.wls(np.eye(2600), np.ones(2600), np.ones(2600)), r"^H and W ask for .*work budget")
+    refused_quickly(lambda: weighting.wls(np.eye(2600), np.ones(2600), np.ones(2600)), ValueError, r"^H and W ask for .*work budget")
     real = weighting.work
 
     def budget(*args, **kwargs):
