@@ -93,3 +93,18 @@ def test_fig5_hypotheses_counts_the_flat_pair_at_entry(monkeypatch):
     assert checks._flat_pair_read([F, F], n) == (F, F)   # inside: accepted by the budget alone
     refused_quickly(lambda: call(m, n + 1), ValueError, names + " ask for")
     assert checks._flat_pair_read(None, 10**9) is None
+
+
+def test_d2_stream_of_reads_a_generator_by_the_one_rule():
+    """Fuzz 60a D2: ``records.stream_of`` read a Generator subclass's state and raised a raw AttributeError for a
+    non-Generator; now the package's rng rule (``fusion._counts.as_rng``), naming ``rng``."""
+    from fusion.book.chapters.ci.records import stream_of
+
+    class Sub(np.random.Generator):
+        pass
+
+    assert stream_of(np.random.default_rng(3)) == stream_of(np.random.default_rng(3)) != stream_of(np.random.default_rng(4))
+    with pytest.raises(TypeError, match=r"^rng must be a numpy.random.Generator itself, not a subclass"):
+        stream_of(Sub(np.random.PCG64(3)))
+    with pytest.raises(TypeError, match=r"^rng must be a numpy.random.Generator, got int"):
+        stream_of(3)

@@ -10,6 +10,7 @@ import hashlib
 
 import numpy as np
 
+from fusion._counts import as_rng
 from fusion._counts import seed as check_seed
 from fusion._frozen import ReadOnlyMapping
 from fusion._validation import one_of
@@ -21,8 +22,10 @@ __all__ = ["NeesPerStep", "SplitExactness", "PairRuns"]
 
 def stream_of(rng: np.random.Generator) -> str:
     """A digest of the state of ``rng``'s bit generator (the draws it will give): two runs started from one seed
-    have the same one."""
-    return hashlib.sha256(repr(rng.bit_generator.state).encode()).hexdigest()[:16]
+    have the same one. ``rng`` is checked by the package's one rule (``fusion._counts.as_rng``: a Generator itself
+    over one of numpy's bit generators, a TypeError naming ``rng`` otherwise; fuzz 60a D2: a subclass was read, and
+    a non-Generator raised a raw AttributeError)."""
+    return hashlib.sha256(repr(as_rng(rng, "rng").bit_generator.state).encode()).hexdigest()[:16]
 
 
 class _Values(Mapping):
