@@ -127,7 +127,7 @@ from fusion._limits import LOOP_STEP, MAX_INPUT_ELEMENTS, MAX_MAGNITUDE, MAX_WOR
 from fusion._limits import loop_work, work  # noqa: F401
 from fusion._shown import MAX_SHOWN, shown  # noqa: F401 (re-exported: the echo of a bad value)
 from fusion._nesting import MAX_NESTING, is_ragged, ndim_of, ragged_error, shape_of  # noqa: F401 (re-exported)
-from fusion._entries import _F64_EPS, given_dtype, input_eps, non_number_entry, sequence_entries  # noqa: F401
+from fusion._entries import _F64_EPS, NUMPY_INTEGERS, given_dtype, input_eps, non_number_entry, sequence_entries  # noqa: F401
 from fusion._options import (  # noqa: F401 (re-exported: rules 6, 18, 19)
     _plain_text, _safe_repr, flag, keywords, one_of, options, template, text, text_fields, texts)
 
@@ -333,7 +333,7 @@ def _holds_bool(x: object) -> bool:
 
 
 #: Scalar types that are numbers and never booleans (the fast path of :func:`_holds_bool`).
-_PLAIN_NUMBERS = frozenset({int, float, np.float64, np.float32, np.int64, np.int32})
+_PLAIN_NUMBERS = frozenset({int, float, np.float64, np.float32}) | NUMPY_INTEGERS
 
 
 def _holds_complex(a: np.ndarray) -> bool:
