@@ -515,7 +515,7 @@ def _stream_metrics(produce: Any, truth: np.ndarray, blocks: list[slice], each: 
 
 
 def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence[float], seed: int,
-                 kind: Signal | str = Signal.TWO_TONES, weight: int = 0, configs: int = 0,
+                 kind: Signal | str = Signal.TWO_TONES, weight: int = 0, configs: Sequence[dict[str, Any]] = (),
                  readings: int = 0) -> tuple[np.ndarray, ...]:
     runs = count(runs, "runs", minimum=2)
     g = as_array(gains, "gains", ndim=1)
@@ -537,7 +537,14 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
         else:
             work((runs, g.size, S.size), "runs, gains and length", weight=weight)
     if configs:  # rule 17 (fuzz 35a D3): mechanism_study's loop over its settings, at their measured cost
-        loop_work((configs,), _MECH_SAMPLE * runs * g.size * S.size, "configs, runs, gains and length", step=_MECH_STEP)
+        units = loop_work((len(configs),), _MECH_SAMPLE * runs * g.size * S.size, "configs, runs, gains and length",
+                          step=_MECH_STEP)
+        for i, c in enumerate(configs):  # each config read, then each stationary one's transforms counted, all blocks
+            with within(f"configs[{i}]"):  # and both orders (fuzz 61b C2), before the draw
+                config_label(c)
+        calls, nm = 2 * len(_blocks(runs, g.size * S.size)), "configs (levels, wavelets), runs, gains and length"
+        swt = [(int(c["level"]), _kw(c)["wavelet"]) for c in configs if _kw(c)["transform"] == "swt"]
+        work((units + sum(wv._swt_work(runs * (g.size + 1), S.size, lv, w, nm, calls) for lv, w in swt),), nm)
     noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size))
     noise *= sig[:, None]                                   # in place: the same numbers, one array fewer
     truth = g[:, None] * S
@@ -872,10 +879,7 @@ def mechanism_study(
     configs = [read_mapping(c, f"configs[{i}]") for i, c in enumerate(sequence(configs, "configs"))]
     if not configs:
         raise ValueError("configs must be a non-empty sequence of dicts")
-    g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed, kind, configs=len(configs))
-    for i, c in enumerate(configs):
-        with within(f"configs[{i}]"):
-            config_label(c)
+    g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed, kind, configs=configs)
     R_, n, size = noise.shape
     blocks = _blocks(R_, n * size)
     raw = _stream_metrics(partial(_raw, truth=truth, noise=noise), truth, blocks, tvar=False)["raw"]
