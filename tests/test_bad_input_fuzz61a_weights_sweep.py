@@ -118,3 +118,39 @@ def test_c4_class_time_registration_runs_read_names_once():
     assert list(runs.fused) == ["reg_two_point"]
     mc = sc.monte_carlo(FlipIter(["reg_two_point"], ["reg_least_squares"]), 1.0, 2, 0)
     assert list(mc.per_run) == ["reg_two_point"]
+
+
+class Flip:
+    """A valid array_like (only ``__array__``) whose first conversion is ``first``, every later one ``later``."""
+
+    def __init__(self, first, later):
+        self.first, self.later, self.reads = np.asarray(first, dtype=float), np.asarray(later, dtype=float), 0
+
+    def __array__(self, dtype=None, copy=None):
+        self.reads += 1
+        return self.first if self.reads == 1 else self.later
+
+
+def test_c4_class_robustness_readings_reads_t2_once():
+    """The same class for array_like arguments checked and then converted again: the checked array is used."""
+    from fusion.book.chapters.time_registration_robustness import robustness_readings
+    from fusion.scenarios import time_registration as sc
+
+    t2 = sc.instants()[1]
+    got = robustness_readings(1.0, Flip(t2, t2[:3] + 0.5))
+    want = robustness_readings(1.0, t2)
+    assert [r.reading for r in got] == [r.reading for r in want]
+    for g, w in zip(got, want):   # the instants run are the ones checked (before: the second conversion's)
+        assert g.options.keys() == w.options.keys()
+        assert all(np.array_equal(np.asarray(g.options[k], dtype=object), np.asarray(w.options[k], dtype=object))
+                   for k in g.options)
+
+
+def test_c4_class_single_sensor_crb_reads_truths_once():
+    from fusion.book.chapters import chernoff_steps as cst
+    from fusion.scenarios import range_bearing as rb
+
+    s = rb.RangeBearingScenario(frames=6, n_particles=60, n_samples=60, n_central=100, em_iterations=2,
+                                n_components=2)
+    truths = cst.study_truths(s, 1, 2)
+    assert cst.single_sensor_crb(s, Flip(truths, truths * 1e3)) == cst.single_sensor_crb(s, truths)
