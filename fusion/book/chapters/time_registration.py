@@ -527,7 +527,7 @@ def sigma_sweep(sigmas: Sequence[float], names: Sequence[str]) -> pd.DataFrame:
         An entry empty, repeated or invalid, or the sweep beyond the work budget (``fusion._limits.MAX_WORK``, rule
         ``_registration_work``: 54 levels of all fifteen methods, 4,748 of two-point alone).
     """
-    _noise_levels(sigmas, "sigmas"), _method_names(names, "names")
+    sigmas, names = _noise_levels(sigmas, "sigmas"), _method_names(names, "names")   # the checked lists (61a C4)
     sc._exact_work(names, {sc.instants()[1].size: len(sigmas)}, "sigmas and names", period_change=False)  # rule 17
     return pd.DataFrame({n: [sc.expected(n, s) for s in sigmas] for n in names},
                         index=pd.Index(np.asarray(sigmas, dtype=float), name="σ (m)"))

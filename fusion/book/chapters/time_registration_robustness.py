@@ -237,9 +237,8 @@ def robustness_readings(sigma: float, t2: ArrayLike) -> list[RobustnessReading]:
     """
     from fusion._validation import as_times, std_scalar
 
-    sigma, _ = std_scalar(sigma, "sigma"), as_times(t2, "t2")
+    sigma, T2 = std_scalar(sigma, "sigma"), as_times(t2, "t2")   # the instants read once, used (fuzz 61a C4's class)
     SIGMA = sigma
-    T2 = np.asarray(t2, dtype=float)
     T2_6 = sc.instants(6.0)[1]                   # integer ratio 3: instants coincide with sensor-1 samples
     return [RobustnessReading(*r) for r in (  # (key, choice, reading, options)
         ("p0-small", "initial covariance", "P0 = diag(σ², 1, 1)", dict(kf={"p0": (1.0, 1.0)})),

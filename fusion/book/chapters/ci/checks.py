@@ -368,8 +368,11 @@ def _flat_pair_read(flat_pair: object, n_open: int) -> tuple | None:
     """``fig5_hypotheses``'s ``flat_pair`` as a pair (None: skipped), its grid ``k / n_open`` on the size of its
     matrices counted before any work (fuzz 60a C5: the entry counted the grid on ``P1``'s size only, so a large pair
     was refused by ``ci_objective``'s own budget naming its P1 and P2, after the FOA batch and the pair's four
-    ``O(m**3)`` readings, 13.5 CPU-s at m = 3,000). The size m is read from the shapes as given, before any
-    conversion (``fusion._validation.given_entries``: a square's m x m entries). Memory: ``ci_objective``'s own
+    ``O(m**3)`` readings, 13.5 CPU-s at m = 3,000). Each matrix is read once by the package's array reader (its
+    entries within the input budget, ``O(m**2)``), its size m taken from the array read (fuzz 61a C2: the size read
+    from the shape as given took an array-like with only ``__array__`` for m = 1, and the call ran 11.5-12.1 CPU-s
+    before ``ci_objective`` refused), the budget checked, and only then the two read as covariances; the checked
+    matrices are returned and used by the caller, never the arguments read again. Memory: ``ci_objective``'s own
     count, three ``(n_open, m, m)`` stacks (m = 500, n_open = 300 runs, 6.2-7.2 CPU-s). Work, in
     ``fusion._limits.DENSE_CUBE`` units a ``m**3``: its two readings here (each measured 3.3 CPU-s at m = 3,000 by
     fuzz 60a, ~1.2 cubes, counted 1.5), ``ci_objective``'s reading of the two (1.5 each, its own weight) and its
@@ -379,15 +382,14 @@ def _flat_pair_read(flat_pair: object, n_open: int) -> tuple | None:
     from math import isqrt
 
     from fusion._counts import allocation, sequence
-    from fusion._limits import DENSE_CUBE, MAX_INPUT_ELEMENTS, dense_work
-    from fusion._validation import given_entries
+    from fusion._covariances import as_covariance
+    from fusion._limits import DENSE_CUBE, dense_work
+    from fusion._validation import _numeric
 
     pair = tuple(sequence(flat_pair, "flat_pair", 2))   # a pair (P, P): a tuple or a list (fuzz 24e F2)
-    sizes = [given_entries(F, MAX_INPUT_ELEMENTS) for F in pair]
-    m = max([isqrt(int(n)) for n in sizes if n is not None and n != float("inf")] or [1])
-    if any(n == float("inf") for n in sizes):
-        m = isqrt(MAX_INPUT_ELEMENTS) + 1   # beyond the input budget: refused by the memory check below
+    read = [_numeric(F, f"flat_pair[{i}]") for i, F in enumerate(pair)]   # once, within the input budget
+    m = max(max(isqrt(a.size) for a in read), 1)   # a square's m x m entries (a scalar: m = 1)
     names = "flat_pair and n_open (the grid k/n_open on flat_pair's size)"
     allocation((n_open, m, m), names, arrays=3)
     dense_work(n_open + 8, m, names, DENSE_CUBE)
-    return pair
+    return tuple(as_covariance(a, name=f"flat_pair[{i}]") for i, a in enumerate(read))

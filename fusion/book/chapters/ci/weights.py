@@ -352,7 +352,7 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
     # the grid's objective holds four (n_open, n, n) arrays at once (the two weighted inverses, their sum and its
     # inverse): the memory budget, named n_open before any work (fuzz 26c q9)
     allocation((n_open, 4) + P1.shape, "n_open (with the size of P1)")
-    flat_pair = _flat_pair_read(flat_pair, n_open)   # its grid on its own size, at entry (fuzz 60a C5)
+    flat_pair = _flat_pair_read(flat_pair, n_open)   # read once, its grid on its size, at entry (60a C5, 61a C2)
     from fusion.optimise.scalar import batch_budget
     from fusion.scenarios.two_sensor.weights import _CI_COSTS, _over_seeds_budget
 
@@ -382,7 +382,7 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
          pub["foa_optimum"][0]),
     ]
     if flat_pair is not None:   # the source's identical sensors: every ω ties, the first grid point wins
-        F1, F2 = as_covariance(flat_pair[0], name="flat_pair[0]"), as_covariance(flat_pair[1], name="flat_pair[1]")
+        F1, F2 = flat_pair   # the covariances read and checked at entry
         if n_open == 1:   # the one-point grid k/1 is ω = 1 (grid_search needs two points): fuzz 26c A7
             flat_x, flat_fun = 1.0, float(ci_objective(1.0, F1, F2))
         else:
