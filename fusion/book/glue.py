@@ -745,7 +745,10 @@ def _logical_sizes(v: object) -> list[int]:
     # an Index's values are its labels: counted once (``label_sizes``), not as its shape too
     sizes = [] if isinstance(v, pd.Index) else [int(np.prod(v.shape, dtype=object))]
     axes = _axes(v)[0] if isinstance(v, (pd.Series, pd.DataFrame)) else [v] if isinstance(v, pd.Index) else []
-    sizes += [n for ax in axes for n in label_sizes(ax)]
+    # a Series' or table's RangeIndex labels are never converted (numbers printed truncated): not summed when the
+    # values already count as many (a Series of 2 x 10**7 floats is not refused by its default index)
+    sizes += [n for ax in axes if not (v is not ax and type(ax) is pd.RangeIndex and ax.size <= sizes[0])
+              for n in label_sizes(ax)]
     dtypes = list(v.dtypes) if isinstance(v, pd.DataFrame) else [v.dtype]   # not hashed: that reads the categories
     return sizes + [n for d in dtypes if isinstance(d, pd.CategoricalDtype) for n in label_sizes(d.categories)]
 
