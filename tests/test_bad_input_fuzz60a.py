@@ -49,11 +49,14 @@ def test_c1_logical_size_edge() -> None:
         return [pd.DataFrame({"a": cat}), pd.DataFrame({"a": cat}).style, pd.DataFrame([[1.0]], columns=axis),
                 pd.Series([1.0], index=axis), level, pd.DataFrame({"a": [1.0]}, index=level)]
 
-    for v in values(MAX_INPUT_ELEMENTS):
-        G._logical_check(v, "k")
-    for v in values(MAX_INPUT_ELEMENTS + 1):
+    # the parts summed (fuzz 61a C3): what each holds besides its n categories or level entries counts too
+    extras = [sum(G._logical_sizes(v)) - 1 for v in values(1)]
+    assert extras == [2, 2, 2, 2, 2, 4]   # e.g. a one-cell table: its cell and column label (its RangeIndex rows
+    # are counted by its cells)
+    for i, extra in enumerate(extras):
+        G._logical_check(values(MAX_INPUT_ELEMENTS - extra)[i], "k")
         with pytest.raises(ValueError, match=r"^values\['k'\] holds a .* input budget"):
-            G._logical_check(v, "k")
+            G._logical_check(values(MAX_INPUT_ELEMENTS - extra + 1)[i], "k")
 
 
 def test_c1_small_categorical_table_still_glued(monkeypatch: pytest.MonkeyPatch) -> None:
