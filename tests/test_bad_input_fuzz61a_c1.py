@@ -104,3 +104,16 @@ def test_alpha_methods_counts_alphas_by_length(many):
     with pytest.raises(ValueError, match="alphas"):
         work((edge + 1,), "alphas", weight=_ALPHA_UNITS)
     assert len(alpha_methods((0.1, 0.5))) == 3
+
+
+@pytest.mark.parametrize("which", ["ns", "ss"])
+def test_cost_table_counts_cells_by_length(which):
+    """2.8-3.2 CPU-s before (10**7 entries read by counts and hashed by distinct): refused at once naming ns and ss;
+    the book's table accepted."""
+    from fusion.book.chapters.chernoff_scaling import cost_table
+    ints = list(range(1, N + 1))
+    kw = {"ns": ints, "ss": (1,)} if which == "ns" else {"ns": (2,), "ss": ints}
+    refused_quickly(lambda: cost_table(**kw), ValueError, "ns and ss")
+    assert cost_table().shape == (4, 3)
+    with pytest.raises(ValueError, match=r"ns\[1\]"):
+        cost_table(ns=(2, 0))
