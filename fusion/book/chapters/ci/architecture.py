@@ -503,18 +503,21 @@ def architecture_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, seeds: Sequ
     """
     seeds = tuple(check_seeds(seeds, "seeds"))
     w_pub = scalar(w_pub, "w_pub", 0.0, 1.0, lo_open=True)
+    if len(seeds) != 2:
+        raise ValueError(f"seeds must hold two seeds (identical sensors, anisotropic pair), got {shown(seeds)}")
+    items = sequence(fixed_omegas, "fixed_omegas")
+    # the budget by len(fixed_omegas) before any entry is read (fuzz 61a C1: 10**7 weights were read and compared
+    # first, refused after 32.8 CPU-s); a repeat, refused below, is counted here as its own weight
+    _arch_budget(T, count(runs, "runs"), count(nees_runs, "nees_runs"), len(items),
+                 "runs, nees_runs, T and fixed_omegas")
     seen = {w_pub: "w_pub"}
     fixed = []   # the floats read (fuzz 29b B1: a checked value is the one used)
-    for i, w in enumerate(sequence(fixed_omegas, "fixed_omegas")):
+    for i, w in enumerate(items):
         w = scalar(w, f"fixed_omegas[{i}]", 0.0, 1.0, lo_open=True)
         if w in seen:   # the studies are keyed by the weights
             raise ValueError(f"fixed_omegas[{i}] repeats {seen[w]} ({shown(w)}): every weight is run once")
         seen[w] = f"fixed_omegas[{i}]"
         fixed.append(w)
-    if len(seeds) != 2:
-        raise ValueError(f"seeds must hold two seeds (identical sensors, anisotropic pair), got {shown(seeds)}")
-    _arch_budget(T, count(runs, "runs"), count(nees_runs, "nees_runs"), len(fixed),
-                 "runs, nees_runs, T and fixed_omegas")
     return {IDENTICAL_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[0]), R1, R2, Q, runs=runs,
                                                            nees_runs=nees_runs, T=T, printed_omegas=(w_pub, *fixed),
                                                            placement_omegas=(w_pub,)),

@@ -62,10 +62,12 @@ def _paired_studies_parts(runs: int, steps: int, aniso_runs: int, aniso_steps: i
     from fusion.scenarios.two_sensor.case import _scenario_budget
     from fusion.scenarios.two_sensor.weights import _weights_step_units
 
-    fused = 2 * _STUDY_RULES + ("ci",) * (omegas + 1)
+    # the fixed and random weights' CI fusions in closed form, ``omegas + 1`` times one (fuzz 61a C1: a sum over a
+    # tuple of one entry per weight was built for 10**7 weights)
     return [lambda: allocation((max(runs, aniso_runs), max(steps, aniso_steps), 4), names, arrays=_PAIRED_HELD),
             *[lambda: _scenario_budget(runs, steps, names)] * 2,
-            lambda: sum(_fuse_tracks_units(steps, runs, 4, rule) for rule in fused),
+            lambda: (sum(_fuse_tracks_units(steps, runs, 4, rule) for rule in 2 * _STUDY_RULES)
+                     + (omegas + 1) * _fuse_tracks_units(steps, runs, 4, "ci")),
             lambda: sum(_fuse_tracks_units(aniso_steps, aniso_runs, 4, rule) for rule in _STUDY_RULES),
             lambda: (steps + aniso_steps) * _weights_step_units(),
             lambda: runs * steps * _PAIRED_REST]
@@ -438,20 +440,23 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     if len(seeds) != 3:
         raise ValueError(f"seeds must hold three seeds (identical, unequal, random weights), got {shown(seeds)}")
     runs = count(runs, "runs")
+    omega_items = sequence(fig6_omegas, "fig6_omegas")
+    # rules 9 and 17 before any scenario: every part summed, named by the arguments that set them (fuzz 57a C6), by
+    # len(fig6_omegas) before any entry is read (fuzz 61a C1: 10**7 weights were converted and hashed first, refused
+    # after 47.5 CPU-s; a repeat, which the reading below refuses, is counted here as its own weight)
+    from fusion.book._study_budget import studies_first
+    a_runs, a_steps = aniso.sc.tracks[0].est.shape[:2]
+    studies_first(_paired_studies_parts(runs, two_sensor.trajectory(T).t.size, a_runs, a_steps, len(omega_items),
+                                        "runs, fig6_omegas, T and aniso (its runs)"),
+                  "runs, fig6_omegas, T and aniso (its runs)")
     # each entry read as a CI weight (fuse_tracks' omega, [0, 1]) and distinct at entry (fuzz 60a C2, D1: an array
     # entry reached numpy's raw truth-value error, 1.5 was refused naming omega after 1.7 CPU-s of scenarios, a
     # repeat was counted twice by the budget and kept once in paired_fig6)
-    fig6_omegas = tuple(distinct([unit_scalar(w, f"fig6_omegas[{i}]")
-                                  for i, w in enumerate(sequence(fig6_omegas, "fig6_omegas"))], "fig6_omegas"))
+    fig6_omegas = tuple(distinct([unit_scalar(w, f"fig6_omegas[{i}]") for i, w in enumerate(omega_items)],
+                                 "fig6_omegas"))
     if W_PUB not in fig6_omegas or W_GRID not in fig6_omegas:
         raise ValueError(f"fig6_omegas must hold the source's two published weights {W_PUB} and {W_GRID} (Fig. 6), "
                          f"got {shown(fig6_omegas)}")
-    # rules 9 and 17 before any scenario: every part summed, named by the arguments that set them (fuzz 57a C6)
-    from fusion.book._study_budget import studies_first
-    a_runs, a_steps = aniso.sc.tracks[0].est.shape[:2]
-    studies_first(_paired_studies_parts(runs, two_sensor.trajectory(T).t.size, a_runs, a_steps, len(fig6_omegas),
-                                        "runs, fig6_omegas, T and aniso (its runs)"),
-                  "runs, fig6_omegas, T and aniso (its runs)")
     seed, unequal_seed, random_seed = seeds
     w_fruit_fly, w_grid = weights
     sc_p = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)

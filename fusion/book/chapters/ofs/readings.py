@@ -217,6 +217,12 @@ def alpha_key(alpha: float) -> str:
     return f"support_degree_alpha_{scalar(alpha, 'alpha', lo=0.0, lo_open=True):g}"
 
 
+#: Units of work of one α of :func:`alpha_methods` (read, printed to 6 digits, hashed, keyed): 3.9 CPU-s for 900,000
+#: distinct α (434 units an α; OPENBLAS_NUM_THREADS=1, the shared machine, minimum of 2; fuzz 61a: 5.1 CPU-s for
+#: 10**6), counted as 450.
+_ALPHA_UNITS = 450
+
+
 def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, str | float]]:
     """:data:`METHODS`-style specs: the optimal fusion set and the support degree at each α.
 
@@ -238,12 +244,19 @@ def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, str |
         ``alphas`` not a sequence of numbers.
     ValueError
         ``alphas`` empty (nothing to compare with the optimal fusion set), an α not finite and positive, or two
-        α equal to 6 significant digits (they would share one method key).
+        α equal to 6 significant digits (they would share one method key); more α than the work budget
+        (``fusion._limits.MAX_WORK``, 450 units an α: about 2.2 million), by their number before any is
+        read.
     """
+    from fusion._limits import work
+
     out: dict[str, dict[str, str | float]] = {"optimal_fusion_set": {"method": "optimal_fusion_set"}}
     items = sequence(alphas, "alphas")
     if not items:
         raise ValueError("alphas must hold at least one α (the support degree compared with the optimal fusion set)")
+    # rule 17 by len(alphas) before any α is read (fuzz 61a C1: 10**7 - 1 alphas were read, printed and hashed
+    # first, a repeat refused after 30 CPU-s)
+    work((len(items),), "alphas", weight=_ALPHA_UNITS)
     alphas = [scalar(a, f"alphas[{i}]", lo=0.0, lo_open=True) for i, a in enumerate(items)]
     # two alphas equal to 6 significant digits would share one method key (the shared rule, fuzz 30b)
     for a in distinct_printed(alphas, "alphas", general, "keys a method"):
