@@ -451,6 +451,32 @@ def schedule_order(scopes: list[str], costs: dict[str, float], last: set[str] = 
     return order
 
 
+@pytest.hookimpl(hookwrapper=True)
+def pytest_collection(session: pytest.Session):  # noqa: ANN201 - hook wrapper
+    """Collect with the cyclic garbage collector off, then collect once and freeze what collection built (speed66b).
+
+    Collection imports every test module and builds the registries, parametrisations and items: the heap grows
+    from nothing to millions of objects, and CPython ran a full collection each time it had grown by a quarter (24
+    of them, 7.8 of a collection's 26 CPU-s, measured with ``gc.callbacks`` on a loaded machine), in every worker.
+    Here one ``gc.collect()`` at its end frees collection's garbage cycles, and ``gc.freeze()`` moves the objects
+    that remain (modules, registries, items: alive for the whole run) out of the collector's generations, so the
+    full collections during the tests scan only what the tests build (one cost about 1 CPU-s late in a worker).
+    The tests run with the collector on, as before; nothing is freed that was freed before, except cycles of
+    frozen objects that become garbage during the run (kept until the process ends).
+    """
+    import gc
+
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.collect()
+            gc.freeze()
+            gc.enable()
+
+
 def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config, items: list[pytest.Item]) -> None:
     """Order the items by :func:`schedule_order` of their work units (each unit's items keep their order).
 

@@ -137,8 +137,11 @@ def test_fixed_weight_of_the_printed_rule() -> None:
 
 
 def test_architecture_study_shapes() -> None:
+    """The shapes (per run, per NEES run) and the keys of the study's results. Sampled at T = 5 s, not the default
+    1 s: what is checked does not depend on the track's number of steps (the same 19 and 18 keys at both), and the
+    study costs 0.55 CPU-s instead of 2.2 (speed66b)."""
     st = two_sensor.architecture_study(np.random.default_rng(1), np.eye(2) * 2500.0, np.eye(2) * 900.0,
-                                       np.diag([1.0] * 4), runs=3, nees_runs=2)
+                                       np.diag([1.0] * 4), runs=3, nees_runs=2, T=5.0)
     assert all(v.shape == (3,) for v in st.run_rmse.values())
     assert all(v.shape == (2,) for v in st.model_rmse.values())
     A, AR = two_sensor.Architecture, two_sensor.ArchRule

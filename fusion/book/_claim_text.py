@@ -25,6 +25,7 @@ import unicodedata
 from fusion._limits import work
 from fusion._shown import shown
 from fusion._validation import text
+from fusion.book import _claim_text_ucd as _ucd
 
 __all__: list[str] = []  # private module
 
@@ -75,19 +76,41 @@ _ASCII_REFUSED = re.compile("[\x00-\x08\x0b-\x1f\x7f]")
 @functools.lru_cache(maxsize=1)
 def _refused_class() -> str:
     """The characters :func:`text_problem` refuses, as the text of one character class: categories Cc (but tab and
-    line break), Cf and Cs of the running Python's Unicode database (found once, about 0.05 CPU-s)."""
-    codes = [i for i in range(sys.maxunicode + 1)
-             if unicodedata.category(chr(i)) in ("Cc", "Cf", "Cs") and chr(i) not in "\t\n"]
-    return "[" + "".join(f"\\U{a:08x}-\\U{b:08x}" for a, b in _ranges(codes)) + "]"
+    line break), Cf and Cs of the running Python's Unicode database (the runs stored for its version,
+    ``fusion.book._claim_text_ucd``, about 0.1 ms; derived again for another version, 0.08 CPU-s)."""
+    runs = _stored_runs(_ucd.REFUSED) if unicodedata.unidata_version == _ucd.UNIDATA_VERSION else _refused_runs()
+    return "[" + "".join(f"\\U{a:08x}-\\U{b:08x}" for a, b in runs) + "]"
 
 
 @functools.lru_cache(maxsize=1)
 def _visible_class() -> str:
     """The visible characters of :func:`text_problem`, as the text of one character class: every character but the
-    categories of ``_INVISIBLE`` and the ``_BLANK`` ones (found once, about 0.05 CPU-s)."""
-    codes = [i for i in range(sys.maxunicode + 1)
-             if chr(i) in _BLANK or unicodedata.category(chr(i)) in _INVISIBLE]
-    return "[^" + "".join(f"\\U{a:08x}-\\U{b:08x}" for a, b in _ranges(codes)) + "]"
+    categories of ``_INVISIBLE`` and the ``_BLANK`` ones (the runs stored for the running Python's Unicode database,
+    ``fusion.book._claim_text_ucd``, about 1 ms; derived again for another version, 0.23 CPU-s)."""
+    runs = _stored_runs(_ucd.INVISIBLE) if unicodedata.unidata_version == _ucd.UNIDATA_VERSION else _invisible_runs()
+    return "[^" + "".join(f"\\U{a:08x}-\\U{b:08x}" for a, b in runs) + "]"
+
+
+def _refused_runs() -> list[list[int]]:
+    """The runs of ``_refused_class`` derived from the running Python's ``unicodedata`` (every code point)."""
+    return _ranges([i for i in range(sys.maxunicode + 1)
+                    if unicodedata.category(chr(i)) in ("Cc", "Cf", "Cs") and chr(i) not in "\t\n"])
+
+
+def _invisible_runs() -> list[list[int]]:
+    """The runs ``_visible_class`` excludes, derived from the running Python's ``unicodedata``."""
+    return _ranges([i for i in range(sys.maxunicode + 1)
+                    if chr(i) in _BLANK or unicodedata.category(chr(i)) in _INVISIBLE])
+
+
+def _stored_runs(runs: str) -> list[list[int]]:
+    """Runs written by ``_runs_text`` read back."""
+    return [[int(a, 16), int(b or a, 16)] for a, _, b in (r.partition("-") for r in runs.split())]
+
+
+def _runs_text(runs: list[list[int]]) -> str:
+    """Runs as ``fusion.book._claim_text_ucd`` stores them: ``first-last`` or one code point, in hexadecimal."""
+    return " ".join(f"{a:x}" if a == b else f"{a:x}-{b:x}" for a, b in runs)
 
 
 def _ranges(codes: list[int]) -> list[list[int]]:
