@@ -56,7 +56,7 @@ from fusion._validation import derived_inputs
 from fusion._validation import shown
 from fusion._validation import text
 from fusion._validation import _numeric, FloatArray, as_array, check_magnitude, count, one_of
-from fusion._validation import LOOP_STEP, work
+from fusion._validation import work
 
 __all__ = ["denoise", "Reconstruction", "reconstruct", "fuse_denoised", "variance_estimates", "VARIANCES",
            "NORMALISERS"]
@@ -143,7 +143,8 @@ def denoise(x: ArrayLike, wavelet: str = "db4", level: int = 4, mode: Literal["s
         if a.shape[-1] % 2 ** int(level):
             raise ValueError(f"x must have a multiple of 2**level = {2 ** int(level)} samples for transform='swt', "
                              f"got {a.shape[-1]}")
-        _swt_work(a.size // a.shape[-1], a.shape[-1], int(level), wavelet, "x, level and wavelet")
+        _swt_work(a.size // a.shape[-1], a.shape[-1], int(level), wavelet, "x, level and wavelet",
+                  flat=a.ndim == 1)
         coeffs = pywt.swt(a, wavelet, level=int(level), axis=-1, trim_approx=True, norm=False)
     else:
         coeffs = _wavedec_periodic(a, wavelet, int(level))
@@ -177,28 +178,36 @@ def _wavelet_name(wavelet: object) -> str:
 #: Units (about 10 ns, ``fusion._validation.MAX_WORK``) of the stationary transform as :func:`denoise` runs it
 #: (``pywt.swt`` then ``pywt.iswt``, PyWavelets 1.8; fuzz 61b C2: it had no budget, and a 2**17-sample signal at level
 #: 17 ran 54.7 CPU-s). ``_swt_work`` counts, for ``rows`` signals of ``I`` samples at level ``J`` with a filter of
-#: ``L`` taps: ``5 J**2`` a sample (``iswt``'s gathers of every level's shifted subsequences, dearer as the stride
-#: ``2**(j-1)`` grows), ``0.3 L J`` a sample (the filters' taps), ``0.06`` a sample per tap of every level whose
-#: dilated filter ``L 2**(j-1)`` is at least ``I`` long (``swt`` then runs over its zeros too: the growth by ~4 a
-#: level of the fuzz, I and the dilated filter doubling together) and ``10 LOOP_STEP`` per shift of ``iswt``'s Python
-#: loop (``2**J`` a call). Measured (``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, machine shared with other
-#: jobs): a least-squares fit of 16 calls of :func:`denoise` (1 to 64 rows, I = 2**12 to 2**20, J = 4 to 16, haar, db4,
-#: db16, db38; 0.08 to 5.6 CPU-s) gave 9.5 ns, 1.3 ns, 0.29 ns and 54 us, its predictions 0.50 to 1.54 of the
-#: measured; the weights are twice the fit, and the first 2.5 times it after the edges were run (4 signals of 2**18
-#: at level 14, 8 MB out of cache, ran 14.8 CPU-s at 6.1e8 units counted with 2): a count bounds the measured time
-#: (calls counting 5.6e8 to 8.2e8 units ran 0.6 to 7.6 CPU-s, 1.1 to 11.3 ns a unit: 2**10 samples at levels 4 and 6,
-#: 2**12 to 2**20 at levels 10 to 15, haar to db38).
-_SWT_SQUARE, _SWT_TAP, _SWT_WIDE, _SWT_SHIFT = 5, Fraction(3, 10), Fraction(6, 100), 10 * LOOP_STEP
+#: ``L`` taps: ``5 J`` a sample (every level's passes and ``iswt``'s strided gathers, out of cache for long signals),
+#: ``0.36 L J`` a sample (the filters' taps), ``0.07`` a sample per tap of every level whose dilated filter
+#: ``L 2**(j-1)`` is at least ``I`` long (``swt`` then runs over its zeros too), and per shift of the inverse's Python
+#: loop (``2**J`` a call): for a 1-D signal (``iswt``) 2,440 units, for more axes (``iswtn``, reached by every
+#: 2-D or 3-D array) 7,870 units plus ``1/8`` a sample, since ``iswtn`` copies the whole array at each of its
+#: ``2**J`` shifts (fix69f: 4 signals of 2**18 at level 14 ran 12.3 CPU-s, one signal of 2**21 at level 10 1.7;
+#: the former ``5 J**2`` a sample counted the second 1.1e9 units, refused, and the first 6.1e8). Measured
+#: (``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, machine shared with other jobs, min of 2): a non-negative
+#: least-squares fit of relative error over 37 calls of :func:`denoise` (1-D and 1 to 16 rows, I = 2**12 to 2**21,
+#: J = 4 to 16, haar, db4, db16, db38; 0.06 to 13.9 CPU-s) gave 25.4 ns, 1.78 ns, 0.34 ns, 12.2 us, 39.3 us and
+#: 0.62 ns, its predictions 0.31 to 1.48 of the measured (low: 16 rows of 2**18, memory-bound ``swt``; high: 2**16
+#: samples at level 16); the weights are twice the fit, so a count of MAX_WORK runs about 3.4 to 16 CPU-s.
+_SWT_LEVEL, _SWT_TAP, _SWT_WIDE = 5, Fraction(36, 100), Fraction(7, 100)
+_SWT_SHIFT_1D, _SWT_SHIFT_ND, _SWT_COPY = 2440, 7870, Fraction(1, 8)
 
 
-def _swt_work(rows: int, samples: int, level: int, wavelet: str, names: str, calls: int = 1) -> int:
+def _swt_work(rows: int, samples: int, level: int, wavelet: str, names: str, calls: int = 1,
+              flat: bool = False) -> int:
     """Refuse the stationary transform and its inverse of ``rows`` signals of ``samples`` samples at depth ``level``
-    (``calls`` calls of :func:`denoise` between them) beyond the work budget, naming ``names``; the units
-    otherwise (weights above). ``wavelet`` is a checked name."""
+    (``calls`` calls of :func:`denoise` between them; ``flat``: one 1-D signal a call, ``pywt.iswt``, else arrays
+    of more axes, ``pywt.iswtn``) beyond the work budget, naming ``names``; the units otherwise (weights above).
+    ``wavelet`` is a checked name."""
     taps = pywt.Wavelet(wavelet).dec_len
     wide = sum(taps << (j - 1) for j in range(1, level + 1) if taps << (j - 1) >= samples)
     n = rows * samples
-    units = n * (_SWT_SQUARE * level * level + _SWT_TAP * taps * level + _SWT_WIDE * wide) + calls * _SWT_SHIFT * 2**level
+    units = n * (_SWT_LEVEL * level + _SWT_TAP * taps * level + _SWT_WIDE * wide)
+    if flat:
+        units += calls * _SWT_SHIFT_1D * 2**level
+    else:
+        units += (calls * _SWT_SHIFT_ND + _SWT_COPY * n) * 2**level
     return work((math.ceil(units),), names)
 
 
