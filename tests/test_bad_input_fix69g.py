@@ -69,3 +69,26 @@ def test_book_calls_inside_budget():
     n1, n2 = (t.size for t in sc.instants())
     sc._monte_carlo_work([RegMethod.IMPROVED, RegMethod.TWO_POINT], 10000, n1, n2, "w", "t", filtered=False, repeat=4)
     _tuning_work(1000, 3 * len(TUNING_READINGS))
+
+
+@pytest.mark.parametrize("n", [10**6, N])
+def test_sensitivity_table_counts_periods_by_length(n):
+    """3.7 CPU-s for 10**6 periods before (each read, compared and printed before the value-based budget): refused
+    at once by a lower bound, their number times the cheapest valid period (three scans)."""
+    from fusion.book.chapters.ci.infrared import sensitivity_table
+    many = np.linspace(0.01, 4.0, n).tolist()
+    refused_quickly(lambda: sensitivity_table(many, 1, 20, 10.0), ValueError, "periods, runs and duration")
+
+
+def test_sensitivity_floor_below_exact_budget():
+    """The lower bound never exceeds the exact budget: a period list the exact rule accepts (the longest valid
+    period, many of them) is accepted by the bound; ``known`` periods are left out of the count."""
+    from fusion.book.chapters.ci.infrared import _sensitivity_budget, _sensitivity_floor
+    for T in (5.0, 3.0, 1.0, 0.1):
+        units = _sensitivity_budget([T], 20, 10.0)
+        k = max(int(1e9 // units), 1)
+        _sensitivity_budget([T] * k, 20, 10.0)   # accepted by the exact rule (as a sum of equal periods)
+        _sensitivity_floor([T] * k, {}, 20, 10.0)
+    with pytest.raises(ValueError, match="periods, runs and duration"):
+        _sensitivity_floor([0.1] * N, {}, 20, 10.0)
+    _sensitivity_floor([0.1] * 2, {0.1: {}, 0.2: {}}, 10**9, 10.0)   # all known: nothing counted
