@@ -136,7 +136,7 @@ def _exact_work(names: Sequence[str], n_dsts: Sequence[int] | Mapping[int, int],
 
 
 def _monte_carlo_work(names: Sequence[str], runs: int, n_src: int, n_dst: int, what: str, times: str, *,
-                      filtered: bool = True) -> None:
+                      filtered: bool = True, repeat: int = 1) -> None:
     """Refuse (rule 17) a ``monte_carlo`` of ``runs`` runs of ``names`` on ``n_src`` samples and ``n_dst``
     instants before any draw, naming ``what`` (its runs) or ``times`` (its weight matrices and filter passes).
 
@@ -149,13 +149,19 @@ def _monte_carlo_work(names: Sequence[str], runs: int, n_src: int, n_dst: int, w
     ``what`` counts at least each ``kalman_runs`` call's own budget and is refused first (fix60a: the smoother's runs
     weighed 10 units here, 25 there, and a Monte Carlo of it alone from about 2.0 million runs was refused inside,
     naming ``t and Z``).
+
+    ``repeat`` counts ``names`` as that many ``monte_carlo`` calls of them (a sweep of levels or readings, each
+    point a call), in closed form: the units of a list of ``repeat`` copies of ``names``, weight matrices and runs,
+    and the filter's passes of each call, without building that list (fix69g: ``fig4_compatibility`` built a list
+    of two methods a level before this rule, 10**7 levels still running at 100 s wall).
     """
     from fusion.scenarios import time_registration as sc
 
+    repeat = int(repeat)
     weight = sum(RUN_WEIGHT.get(n, 1) for n in names) if filtered else len(names)
     kalman = [n for n in names if filtered and n in sc._KALMAN]
     matrices = [n for n in names if n not in kalman] + [sc._ON_STATES[n] for n in kalman if sc._ON_STATES[n]]
-    work((_registration_work(matrices, n_src, n_dst, n_src, times) + _filter_work(kalman, 0, n_src + n_dst, times),),
-         times)
-    runs_units = work((int(runs), n_src + n_dst, weight), what)
-    work((runs_units + _filter_work(kalman, runs, n_src + n_dst, what),), what)
+    work((_registration_work(matrices, n_src, n_dst, n_src * repeat, times)
+          + repeat * _filter_work(kalman, 0, n_src + n_dst, times),), times)
+    runs_units = work((int(runs), n_src + n_dst, weight, repeat), what)
+    work((runs_units + repeat * _filter_work(kalman, runs, n_src + n_dst, what),), what)

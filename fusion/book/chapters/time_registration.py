@@ -33,7 +33,8 @@ from fusion.book.chapters.time_registration_robustness import (RobustnessReading
                                                                delay_table, robustness_readings, robustness_table)
 from fusion.book.chapters.time_registration_robustness import CI_HIGH, CI_LOW, IMPROVED_IS
 # Fig. 4's compatibility study (which noise levels could give the published figure) lives in its own module
-from fusion.book.chapters.time_registration_fig4 import _noise_levels, fig4_compatibility, fig4_reading_table
+from fusion.book.chapters.time_registration_fig4 import (_noise_levels, _tuning_work, fig4_compatibility,
+                                                          fig4_reading_table)
 # the closed form E[MSE] = b + g·σ², its crossings and the Kalman methods' exact transient live in their own module
 from fusion.book.chapters.time_registration_closed import B_OFFSET, BETTER_ABOVE, BETTER_BELOW, SIGMA_STAR  # noqa: F401
 from fusion.book.chapters import time_registration_closed as _closed
@@ -762,12 +763,10 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
         ``sigmas`` is empty or holds a level that is not a valid standard deviation; ``runs`` below 1; the two
         beyond the work budget (``fusion._limits.MAX_WORK``, chapter 07's rule ``_registration_work``).
     """
-    seed, sigmas = check_seed(seed), _noise_levels(sigmas, "sigmas")   # reading i of a level: seed + 120 + i (55 C1)
-    seed = check_seed(seed, span=120 + len(robustness_readings(float(sigmas[0]), sc.instants()[1])) - 1)
-    runs = count(runs, "runs")  # the int read (fuzz 29a C2)
-    k = len(sigmas) * len(TUNING_READINGS)  # rule 17 before any run: per level and reading a Monte Carlo, 2 exact
-    sc._monte_carlo_work([IMPROVED, TWO] * k, runs, *(t.size for t in sc.instants()), "sigmas and runs", "sigmas")
-    sc._exact_work((IMPROVED, TWO), {sc.instants()[1].size: k}, "sigmas")
+    seed, runs = check_seed(seed), count(runs, "runs")   # runs: the int read (fuzz 29a C2); reading i of a level:
+    seed = check_seed(seed, span=120 + len(robustness_readings(1.0, sc.instants()[1])) - 1)  # seed + 120 + i (55 C1)
+    # rule 17 before any level is read, by their count (fix69g): per level and reading a Monte Carlo, 2 exact
+    sigmas = _noise_levels(sigmas, "sigmas", lambda k: _tuning_work(runs, k * len(TUNING_READINGS)))
     rows = {}
     for s in sigmas:
         s = float(s)

@@ -8,7 +8,7 @@ API page lists them.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 import pandas as pd
@@ -25,15 +25,27 @@ __all__ = ["fig4_compatibility", "fig4_reading_table"]
 IMPROVED, TWO = RegMethod.IMPROVED, RegMethod.TWO_POINT
 
 
-def _noise_levels(sigmas: object, name: str) -> list:
+def _noise_levels(sigmas: object, name: str, budget: Callable[[int], object] | None = None) -> list:
     """The noise levels of a sequence argument (m), each a valid standard deviation named ``name[i]``; non-empty,
-    none repeated (a table's rows are keyed by them)."""
+    none repeated (a table's rows are keyed by them). ``budget``, given the number of levels, is called before any
+    level is read: a sweep's budget needs only their count (fix69g: 10**7 levels were each read and hashed first)."""
     items = sequence(sigmas, name)
     if not items:
         raise ValueError(f"{name} is empty (it must hold at least one noise level)")
+    if budget is not None:
+        budget(len(items))
     items = [std_scalar(s, f"{name}[{i}]") for i, s in enumerate(items)]  # the floats read (fuzz 22b, FR)
     distinct(items, name)
     return items
+
+
+def _tuning_work(runs: int, k: int) -> None:
+    """Refuse (rule 17), naming ``sigmas and runs`` or ``sigmas``, ``k`` Monte Carlos of ``runs`` runs of the two
+    Fig. 4 methods (filtered) and their exact MSEs, before any run: ``tuning_by_noise``'s levels times readings,
+    counted in closed form (fix69g: a list of two methods per level and reading was built first)."""
+    sc._monte_carlo_work([IMPROVED, TWO], runs, *(t.size for t in sc.instants()), "sigmas and runs", "sigmas",
+                         repeat=k)
+    sc._exact_work((IMPROVED, TWO), {sc.instants()[1].size: k}, "sigmas")
 
 
 def _levels(sigmas: Sequence[float], runs: int, seed: int, axis_max: float):  # noqa: ANN202 - a generator
@@ -42,14 +54,18 @@ def _levels(sigmas: Sequence[float], runs: int, seed: int, axis_max: float):  # 
     from fusion.registration import affine_decomposition
 
     seed = check_seed(seed)   # also where it meets default_rng (the AST test of rule 11)
-    sigmas = _noise_levels(sigmas, "sigmas")
-    seed = check_seed(seed, span=len(sigmas) - 1)   # level i: seed + i, a seed too (fuzz 55 C1)
-    axis_max = scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     t1, t2 = sc.instants()
-    # rule 17 before the first level (fuzz 28b: runs x levels had no budget): per level, runs of two methods, each
-    # through its weight matrix (no filter per run)
-    sc._monte_carlo_work([IMPROVED, TWO] * len(sigmas), runs, t1.size, t2.size, "sigmas and runs", "sigmas",
-                         filtered=False)
+
+    def budget(k: int) -> None:
+        # level i: seed + i, a seed too (fuzz 55 C1); rule 17 before the first level is read (fuzz 28b: runs x
+        # levels had no budget; fix69g: by their count, in closed form): per level, runs of two methods, each
+        # through its weight matrix (no filter per run)
+        check_seed(seed, span=k - 1)
+        sc._monte_carlo_work([IMPROVED, TWO], runs, t1.size, t2.size, "sigmas and runs", "sigmas", filtered=False,
+                             repeat=k)
+
+    sigmas = _noise_levels(sigmas, "sigmas", budget)
+    axis_max = scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     x1, x2 = sc.truth(t1), sc.truth(t2)
     for i, s in enumerate(sigmas):
         rng = np.random.default_rng(seed + i)

@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike
 
 from fusion._counts import seed as check_seed
 from fusion import data
+from fusion._limits import work
 from fusion._shown import shown
 from fusion._validation import as_array, count, given_number, instance_of, scalar
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -82,6 +83,24 @@ def _sensitivity_budget(periods: Sequence[float], runs: int, duration: float) ->
                 + _reader_budget("rule_errors", runs, K, 4, {IR_IMP: ir.RULES[IR_IMP]}, names))
 
     return studies_first([lambda T=T: period(T) for T in periods], names)
+
+
+def _sensitivity_floor(periods: object, known: Mapping, runs: int, duration: float) -> None:
+    """A lower bound of :func:`_sensitivity_budget` by the number of periods alone, before any is read (fix69g, fuzz
+    61a C1's class: 10**6 periods were each read, compared and printed first, refused after 3.7 CPU-s): every
+    period not in ``known`` (at least their count less ``known``'s size) costs at least a period of three scans,
+    the fewest ``simulate`` takes (the longest allowed period). The exact budget, by each period's value, follows."""
+    from fusion.book._study_budget import studies_first
+    from fusion.scenarios._infrared_budget import _reader_budget, _simulate_budget
+
+    if not isinstance(periods, (list, tuple, range)) and not (isinstance(periods, np.ndarray) and periods.ndim == 1):
+        return   # a scalar or another sequence: the exact budget alone
+    n, names = len(periods) - len(known), "periods, runs and duration"
+    if n <= 0:
+        return   # every period may be known: none simulated
+    one = studies_first([lambda: _simulate_budget(runs, 3, (names, names))
+                         + _reader_budget("rule_errors", runs, 3, 4, {IR_IMP: ir.RULES[IR_IMP]}, names)], names)
+    work((n, one), names)
 
 
 def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
@@ -434,11 +453,12 @@ def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float 
         ``known``, hold or run beyond the memory or work budget, before any simulation.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
-    periods = _periods(periods)
     t_min, duration = _averaging_start(t_min, duration)
     imp = IR_IMP
     known = {} if known is None else _known_means(known)
     runs = count(runs, "runs")
+    _sensitivity_floor(periods, known, runs, duration)   # by their number, before any period is read (fix69g)
+    periods = _periods(periods)
     _sensitivity_budget([float(T) for T in periods if float(T) not in known], runs, duration)
     means = {}
     for T in periods:
