@@ -4,9 +4,9 @@ comparisons, tables, figure and glue."""
 from __future__ import annotations
 
 from fusion.book._few_runs import study_runs_named
-from fusion._counts import sequence
+from fusion._counts import allocation, sequence
 from fusion._structures import within
-from fusion._limits import LOOP_STEP, loop_work
+from fusion._limits import LOOP_STEP, loop_work, work
 from fusion._validation import (as_array, distinct_printed, general, glue_part, instance_of, scalar, selection,
                                 std_scalar)
 
@@ -36,7 +36,9 @@ K = BeliefKind
 #: The Parameters entries the functions of E2.4b share (:class:`fusion._docstrings.ParameterDocs`).
 _PARAMS = ParameterDocs({
     "s": "BeliefParameterStudy\n    Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.",
-    "grid": "(values of A's parameter, values of B's parameter), optional\n    Default: the study's primary grid for both.",
+    "grid": ("(values of A's parameter, values of B's parameter), optional\n    Default: the study's primary grid for "
+             "both. Both grids together at most the work budget (``fusion._limits.MAX_WORK``, 350 units a value plus "
+             "one a run: about 2.2 million at 100 runs), by their lengths before any value is read."),
 })
 
 __all__ = [
@@ -207,20 +209,34 @@ _PARAM = {K.FUZZY: "s", K.BINARY: "ε", K.DELETION: "ε", K.DELETION_THIRD: "ε"
           K.DELETION_ALL: "ε", K.FUZZY_LIMIT: "m"}
 
 
+#: Units of work of one value of a ``grid`` of :func:`belief_parameter_comparison` (read, matched, its spread), on top
+#: of one a run (fix70c).
+_GRID_UNITS = 350
+
+
 def _grids(s: BeliefParameterStudy, grid: object) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """``grid`` as (A's values, B's values): the study's primary grid for both when ``None``, else a pair of
     non-empty sequences of numbers (TypeError/ValueError naming ``grid``; membership in ``s.params`` is checked
     where the values are read, under ``grid``)."""
     if grid is None:
         return tuple(s.grid), tuple(s.grid)
-    pair = sequence(grid, "grid", 2)
-    return tuple(tuple(scalar(v, f"grid[{i}][{j}]") for j, v in
-                       enumerate(sequence(g, f"grid[{i}]", minimum=1, what="grid value")))
+    pair = [sequence(g, f"grid[{i}]", minimum=1, what="grid value") for i, g in enumerate(sequence(grid, "grid", 2))]
+    # rule 17 by the grids' lengths before any value is read (fix70c: 2 x 10**7 values were each read, then matched
+    # and their spreads taken): 4.2 us a value at 100 runs over 2 x 10**5 values (belief_parameter_comparison,
+    # OPENBLAS_NUM_THREADS=1, the shared machine), counted as 350 units and one a run
+    runs = next(iter(s.sq.values())).shape[0]
+    work((len(pair[0]) + len(pair[1]),), "grid and s (its runs)", weight=_GRID_UNITS + runs)
+    return tuple(tuple(scalar(v, f"grid[{i}][{j}]") for j, v in enumerate(g))
                  for i, g in enumerate(pair))  # type: ignore[return-value]
 
 
 def _grid_text(v: tuple[float, ...] | np.ndarray) -> str:
     return "{" + ", ".join(f"{float(x):g}" for x in v) + "}"
+
+
+#: Units of work of one grid value of :func:`belief_accuracy` (read and matched to ``s.params``; 3.0 us measured,
+#: fix70c), on top of one unit per run for its column of squared errors.
+_VALUE_UNITS = 300
 
 
 @_PARAMS("s")
@@ -245,13 +261,21 @@ def belief_accuracy(s: BeliefParameterStudy, kind: BeliefKind, values: tuple[flo
     TypeError
         ``s`` not a BeliefParameterStudy, ``values`` not a sequence of numbers.
     ValueError
-        ``kind`` not a kind of the study, ``values`` empty or an entry not one of ``s.params``.
+        ``kind`` not a kind of the study, ``values`` empty or an entry not one of ``s.params``; more ``values``
+        than the work budget (``fusion._limits.MAX_WORK``, 300 units a value plus one a run: about 2.5 million at
+        100 runs), by their number before any is read.
     """
     instance_of(s, BeliefParameterStudy, "s")
     kind = _key(kind, s.sq, "kind")
     params = [float(p) for p in s.params]
-    idx = [params.index(_key(scalar(v, f"values[{i}]"), params, f"values[{i}]"))
-           for i, v in enumerate(sequence(values, "values", minimum=1, what="grid value"))]
+    items = sequence(values, "values", minimum=1, what="grid value")
+    # rules 9 and 17 by len(values) before any value is read (fix70c: 10**7 values were each read and matched, then
+    # a (runs, 10**7) selection of s.sq averaged): a value measured 3.0 us read and matched (10**5 values,
+    # OPENBLAS_NUM_THREADS=1, minimum of 2, the shared machine), 300 units, and one unit per selected squared error
+    runs = s.sq[kind].shape[0]
+    allocation((runs, len(items)), "values and s (its runs)")
+    work((len(items),), "values and s (its runs)", weight=_VALUE_UNITS + runs)
+    idx = [params.index(_key(scalar(v, f"values[{i}]"), params, f"values[{i}]")) for i, v in enumerate(items)]
     return Comparison(np.mean(s.sq[kind][:, idx], axis=1), s.sq_mean, f"{METHOD_LABELS[kind]}, {_grid_text(values)}",
                       METHOD_LABELS["mean"], "less", "squared error averaged over the grid (°C²)", seed=s.seed)
 
@@ -609,6 +633,11 @@ def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float
                             mean_rebound=float(np.max(mean - np.minimum.accumulate(mean))), draws=draws, seed=seed)
 
 
+#: Units of work of one shift of :func:`table_shift_weight` (read and matched to the grid; fix70c), on top of 3 a
+#: draw for its column of weights and their quartiles.
+_SHIFT_UNITS = 900
+
+
 def table_shift_weight(s: ShiftWeightDraws, at: tuple[float, ...] = (0.0, 1.0, 2.0, 3.0, 5.0, 8.0, 12.0, 20.0)) -> pd.DataFrame:
     """The shifted reading's weight at a few shifts: mean over draws, with the quartiles (review F9).
 
@@ -630,11 +659,21 @@ def table_shift_weight(s: ShiftWeightDraws, at: tuple[float, ...] = (0.0, 1.0, 2
     TypeError
         ``s`` not a ShiftWeightDraws, ``at`` not a sequence of numbers.
     ValueError
-        ``at`` empty or an entry not a shift of the grid.
+        ``at`` empty or an entry not a shift of the grid; more shifts than the work budget
+        (``fusion._limits.MAX_WORK``, 900 units a shift plus 3 a draw: about 660,000 at 200 draws), by their
+        number before any is read.
     """
     instance_of(s, ShiftWeightDraws, "s")
+    items = sequence(at, "at", minimum=1, what="shift")
+    # rules 9 and 17 by len(at) before any shift is read (fix70c: 10**7 shifts were each read and matched, then a
+    # (draws, 10**7) selection of s.W copied and sorted for its quartiles): one shift measured 8.8 us at 5 draws,
+    # 17.9 us at 400 (10**5 and 2 x 10**4 shifts, OPENBLAS_NUM_THREADS=1, minimum of 2, the shared machine), about
+    # 880 units and 2.3 a draw, counted as 900 and 3
+    draws = s.W.shape[0]
+    allocation((draws, len(items)), "at and s (its draws)", arrays=2)
+    work((len(items),), "at and s (its draws)", weight=_SHIFT_UNITS + 3 * draws)
     idx = []
-    for i, a in enumerate(sequence(at, "at", minimum=1, what="shift")):
+    for i, a in enumerate(items):
         a = scalar(a, f"at[{i}]")
         j = int(np.argmin(np.abs(s.deltas - a)))
         # a grid point up to round-off, or as written down (fusion._limits.written_as: a float32 0.3 is 0.3, as in
