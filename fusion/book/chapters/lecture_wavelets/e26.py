@@ -363,8 +363,13 @@ def table_seeds(e26: SignalStudy, block: int = 100, ss: SeedStudy | None = None,
         than E2.6's runs, an entry of ``sensors`` not an index of its sensors or repeated.
     """
     instance_of(e26, SignalStudy, "e26")
-    sensors = distinct([index(j, f"sensors[{i}]", e26.gains.size) for i, j in enumerate(sequence(sensors, "sensors"))],
-                       "sensors")
+    items = sequence(sensors, "sensors")
+    # distinct indices below the study's sensors: more entries than it has sensors hold a repeat, refused by len()
+    # before any is read (fix70c: 10**7 entries were each read, 1.4 us, and the repeat refused after about 14 CPU-s)
+    if len(items) > e26.gains.size:
+        raise ValueError(f"sensors must hold at most {e26.gains.size} distinct sensors (the study's), got "
+                         f"{len(items):,} entries")
+    sensors = distinct([index(j, f"sensors[{i}]", e26.gains.size) for i, j in enumerate(items)], "sensors")
     rows = {}
     for lab, conj in _seed_rows(e26, block, ss):
         r = {}
