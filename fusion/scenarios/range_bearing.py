@@ -357,11 +357,14 @@ def _check_runs(runs: object, nonempty: bool, sc: object = _NO_SCENARIO, *, name
     seq = sequence(runs, name)
     if nonempty and not seq:
         raise ValueError(f"{name} is empty: at least one TrackingRun is needed")
+    if seq:  # rule 17 (fuzz 38a C8): the readers' loops over the runs, 136-146 us a run and 2 us a frame measured;
+        # by len(runs) and the first run's frames before the other entries are read (fuzz 62b's class, fix70a: 10**7
+        # runs were each checked first, refused after 1.9 CPU-s)
+        instance_of(seq[0], TrackingRun, f"{name}[0]")
+        loop_work((len(seq),), 200 * np.shape(seq[0].truth)[0], name, step=14 * LOOP_STEP)
     for i, r in enumerate(seq):  # type: ignore[arg-type]
         instance_of(r, TrackingRun, f"{name}[{i}]")
     out: list[TrackingRun] = list(seq)  # type: ignore[arg-type]
-    if out:  # rule 17 (fuzz 38a C8): the readers' loops over the runs, 136-146 us a run and 2 us a frame measured
-        loop_work((len(out),), 200 * np.shape(out[0].truth)[0], name, step=14 * LOOP_STEP)
     own = next((r.scenario for r in out if r.scenario is not None), None)
     # each scenario object's unguarded copy built once, not twice a run (speed58: the runs of a study share one
     # scenario; 71,000 copies, each validated again, were a fifth of chapter 06's notebook): the same comparisons
