@@ -112,3 +112,38 @@ def test_tracking_run_readers_count_runs_by_length():
         rb.min_local_ess([r, 3])
     with pytest.raises(TypeError, match=r"runs\[0\]"):
         rb.min_local_ess([3, r])
+
+
+@pytest.fixture(scope="module")
+def floats() -> list[float]:
+    """10**7 distinct positive floats, built once, outside every timing."""
+    return np.arange(1, N + 1, dtype=float).tolist()
+
+
+@pytest.mark.parametrize("call, match, cpu", [
+    # 8.2 CPU-s before (params hashed twice and printed before loop_work); 1.8 after, most of it the conversion
+    (lambda v: __import__("fusion.scenarios.lecture_weighting.belief", fromlist=["x"]).belief_parameter_study(
+        params=v, grid=[1.0]), "params and snapshots", 4.0),
+    # 3.2 CPU-s before (levels hashed before loop_work); 1.2 after
+    (lambda v: __import__("fusion.scenarios.lecture_weighting.estimators", fromlist=["x"]).awf_study(levels=v),
+     "levels, runs, k_max and sigma", 2.5),
+    # 3.7 CPU-s before (xs hashed before loop_work); 1.1 after
+    (lambda v: __import__("fusion.scenarios.lecture_correlated", fromlist=["x"]).ridge_study(xs=v),
+     "xs and ks_fixed", 2.5),
+], ids=["belief_parameter_study", "awf_study", "ridge_study"])
+def test_sweeps_hashed_after_budget(floats, call, match, cpu):
+    """The same class found by grep (fix70a): a sweep's repeats looked for (distinct, 2.5 CPU-s for 10**7 entries)
+    before a budget that needs only its number; now after it (the array conversion stays first)."""
+    refused_quickly(lambda: call(floats), ValueError, match, cpu=cpu)
+
+
+def test_sweep_repeats_still_refused():
+    """A repeated entry is still refused by name after the budget."""
+    from fusion.scenarios import lecture_correlated as lc
+    from fusion.scenarios.lecture_weighting import estimators
+    with pytest.raises(ValueError, match="xs"):
+        lc.ridge_study(xs=[1.0, 1.0])
+    with pytest.raises(ValueError, match="levels"):
+        estimators.awf_study(levels=[1.0, 1.0], runs=2, k_max=100)
+    with pytest.raises(ValueError, match="sizes"):
+        lc.correlated_study(sizes=[2, 2])
