@@ -773,7 +773,9 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     Parameters
     ----------
     names : sequence of str
-        Keys of :data:`METHODS`.
+        Keys of :data:`METHODS`. Each entry weighs at least ``MC_NAME_UNITS`` units of work (its check, call and MSE:
+        22-25 us measured for a Kalman method; about 333,000 names in all), refused by their number before any entry
+        is read.
     sigma : float
         Measurement-noise standard deviation (m), > 0.
     runs : int
