@@ -70,6 +70,15 @@ FUSION_RUN_WEIGHT: dict[str, int] = {
                                    "reg_cubic_spline")}}
 
 
+#: Units of one entry of ``monte_carlo``'s ``names`` beyond its runs (its check, its registration call and its MSE
+#: over all runs, in Python): a Kalman method on its filtered states, whose filter pass is shared by the methods and
+#: whose runs weigh 2 units a run and sample, measured 22-25 us a name (1,000 and 5,000 repeats of
+#: ``reg_kalman_predict``, 2 runs, ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two, the machine
+#: shared; fix70a: uncounted, so about 8.9 million names of 2 runs, some 200 CPU-s, were within the budget), counted
+#: as ``3 * LOOP_STEP``. Also the bound by ``len(names)`` alone that ``monte_carlo`` checks before any entry is read.
+MC_NAME_UNITS = 3 * LOOP_STEP
+
+
 def _filter_work(names: Sequence[str], runs: int, steps: int, what: str) -> int:
     """The units of the Kalman filter's passes a call of ``names`` runs over ``runs`` runs and ``steps`` grid steps
     (every sample and instant: the filter's largest grid, with ``period_change``), each counted by the filter's own
@@ -136,7 +145,7 @@ def _exact_work(names: Sequence[str], n_dsts: Sequence[int] | Mapping[int, int],
 
 
 def _monte_carlo_work(names: Sequence[str], runs: int, n_src: int, n_dst: int, what: str, times: str, *,
-                      filtered: bool = True, repeat: int = 1) -> None:
+                      filtered: bool = True, repeat: int = 1, name_units: int = 0) -> None:
     """Refuse (rule 17) a ``monte_carlo`` of ``runs`` runs of ``names`` on ``n_src`` samples and ``n_dst``
     instants before any draw, naming ``what`` (its runs) or ``times`` (its weight matrices and filter passes).
 
@@ -148,7 +157,8 @@ def _monte_carlo_work(names: Sequence[str], runs: int, n_src: int, n_dst: int, w
     alone with the weight matrices (named ``times``), their steps and runs with the runs (named ``what``), so that
     ``what`` counts at least each ``kalman_runs`` call's own budget and is refused first (fix60a: the smoother's runs
     weighed 10 units here, 25 there, and a Monte Carlo of it alone from about 2.0 million runs was refused inside,
-    naming ``t and Z``).
+    naming ``t and Z``). ``name_units``: units of each entry of ``names`` beyond its runs, with the weight matrices
+    (``monte_carlo``'s ``MC_NAME_UNITS``; 0 for a caller whose loop is counted otherwise).
 
     ``repeat`` counts ``names`` as that many ``monte_carlo`` calls of them (a sweep of levels or readings, each
     point a call), in closed form: the units of a list of ``repeat`` copies of ``names``, weight matrices and runs,
@@ -162,6 +172,6 @@ def _monte_carlo_work(names: Sequence[str], runs: int, n_src: int, n_dst: int, w
     kalman = [n for n in names if filtered and n in sc._KALMAN]
     matrices = [n for n in names if n not in kalman] + [sc._ON_STATES[n] for n in kalman if sc._ON_STATES[n]]
     work((_registration_work(matrices, n_src, n_dst, n_src * repeat, times)
-          + repeat * _filter_work(kalman, 0, n_src + n_dst, times),), times)
+          + repeat * _filter_work(kalman, 0, n_src + n_dst, times) + repeat * len(names) * int(name_units),), times)
     runs_units = work((int(runs), n_src + n_dst, weight, repeat), what)
     work((runs_units + repeat * _filter_work(kalman, runs, n_src + n_dst, what),), what)

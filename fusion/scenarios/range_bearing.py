@@ -151,16 +151,18 @@ def run_tracking_batch(
     workers = check_workers(workers, "workers")  # at most the machine's CPUs (rule 9)
     if not seeds:
         raise ValueError("seeds is empty: at least one SeedSequence is needed")
-    for i, s in enumerate(seeds):
-        seed_sequence(s, f"seeds[{i}]")  # entropy and spawn key of at most 256 bits: each spawn mixes them (fuzz 55 C2)
-    flags = [False] * len(seeds) if all_nodes is None else [flag(f, f"all_nodes[{i}]")
-                                                                for i, f in enumerate(sequence(all_nodes, "all_nodes"))]
-    if len(flags) != len(seeds):
-        raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
+    node_items = [False] * len(seeds) if all_nodes is None else sequence(all_nodes, "all_nodes")
+    if len(node_items) != len(seeds):
+        raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(node_items)}")
     swarm_options = check_swarm_options(swarm_options)
+    # the memory and work budgets by len(seeds) before any entry is read (fuzz 62b C2: each seed was checked by
+    # seed_sequence first, 3 * 10**6 seeds refused after 13.7 CPU-s, while the budget accepts about 700 runs)
     _block_allocation(sc, len(seeds), "seeds, sc.sensors and sc.n_particles")
     _tracking_work(sc, len(seeds), "seeds, sc.frames, sc.sensors, sc.n_initial, sc.n_components and sc's particle and "
                    "sample counts", swarm_options)
+    for i, s in enumerate(seeds):
+        seed_sequence(s, f"seeds[{i}]")  # entropy and spawn key of at most 256 bits: each spawn mixes them (fuzz 55 C2)
+    flags = [flag(f, f"all_nodes[{i}]") for i, f in enumerate(node_items)]
     seen: dict[int, int] = {}
     for i, s in enumerate(seeds):
         j = seen.setdefault(id(s), i)
@@ -355,11 +357,14 @@ def _check_runs(runs: object, nonempty: bool, sc: object = _NO_SCENARIO, *, name
     seq = sequence(runs, name)
     if nonempty and not seq:
         raise ValueError(f"{name} is empty: at least one TrackingRun is needed")
+    if seq:  # rule 17 (fuzz 38a C8): the readers' loops over the runs, 136-146 us a run and 2 us a frame measured;
+        # by len(runs) and the first run's frames before the other entries are read (fuzz 62b's class, fix70a: 10**7
+        # runs were each checked first, refused after 1.9 CPU-s)
+        instance_of(seq[0], TrackingRun, f"{name}[0]")
+        loop_work((len(seq),), 200 * np.shape(seq[0].truth)[0], name, step=14 * LOOP_STEP)
     for i, r in enumerate(seq):  # type: ignore[arg-type]
         instance_of(r, TrackingRun, f"{name}[{i}]")
     out: list[TrackingRun] = list(seq)  # type: ignore[arg-type]
-    if out:  # rule 17 (fuzz 38a C8): the readers' loops over the runs, 136-146 us a run and 2 us a frame measured
-        loop_work((len(out),), 200 * np.shape(out[0].truth)[0], name, step=14 * LOOP_STEP)
     own = next((r.scenario for r in out if r.scenario is not None), None)
     # each scenario object's unguarded copy built once, not twice a run (speed58: the runs of a study share one
     # scenario; 71,000 copies, each validated again, were a fifth of chapter 06's notebook): the same comparisons
