@@ -229,12 +229,13 @@ def ridge_study(
     m0 = count(m0, "m0")
     sigma = std_scalar(sigma, "sigma")
     xs = as_array(xs, "xs", ndim=1).tolist()
-    distinct(xs, "xs"), distinct(ms, "ms")  # mse and rel are keyed by x, conv's entries by m
     ks_fixed = as_array(ks_fixed, "ks_fixed", ndim=1).tolist()  # fuzz 24a U7: numbers, at least one, each > 0
     if min(ks_fixed) <= 0:
         raise ValueError(f"ks_fixed must hold positive ridge parameters, got {shown(ks_fixed)}")
+    # rule 17: ~100 us a row, by the lengths before the repeat checks (fuzz 62b: distinct() read 10**7 xs first)
+    loop_work((len(xs) + 1, 3 + len(ks_fixed)), 501, "xs and ks_fixed", step=20 * LOOP_STEP)
+    distinct(xs, "xs"), distinct(ms, "ms")  # mse and rel are keyed by x, conv's entries by m
     distinct_printed(ks_fixed, "ks_fixed", general)  # rel_k's rows are labelled f"k = {k:g}" (fuzz 30b)
-    loop_work((len(xs) + 1, 3 + len(ks_fixed)), 501, "xs and ks_fixed", step=20 * LOOP_STEP)  # rule 17: ~100 us a row
     for i, x in enumerate(xs):
         _optimal_k_representable(x, sigma, f"xs[{i}]")
     x_far = scalar(x_far, "x_far")
@@ -403,8 +404,8 @@ def correlated_study(
         raise ValueError("x must have length 2")
     seed = _seed(seed)
     sizes = [int(n) for n in _ints(sizes, "sizes")]  # the validated values (any 1-D array-like)
-    distinct(sizes, "sizes")  # one row per size: a repeated size would repeat its row
-    loop_work((len(sizes),), 0, "sizes", step=10 * LOOP_STEP)  # rule 17: a closed-form row (~40 us) per size
+    loop_work((len(sizes),), 0, "sizes", step=10 * LOOP_STEP)  # rule 17: a closed-form row (~40 us) per size, first
+    distinct(sizes, "sizes")  # one row per size: a repeated size would repeat its row (fuzz 62b: after the budget)
     R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
     if not _conditioning(R) <= MAX_COND:   # fuzz 37b C5: beyond what the chapter can glue and check
         raise ValueError(f"sigma and sigma_env must give R a condition number, and sigma_env**2 / min(sigma)**2, of at "

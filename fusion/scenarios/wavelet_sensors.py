@@ -762,12 +762,12 @@ def seed_study(
         budget (``fusion._validation.MAX_WORK``), or bad arguments of :func:`signal_study`.
     """
     sv = check_seeds(seeds, "seeds")  # a non-empty list, tuple or 1-D array of seeds
-    distinct(sv, "seeds")  # the cases are keyed by seed: a repeated seed would collapse two of them
     runs_ = count(runs, "runs", minimum=2)
     n_gains = len(sequence(kwargs.get("gains", (1,) * 4), "gains"))
     per_seed = runs_ * count(kwargs.get("length", 1024), "length") * n_gains
     # rule 17: one signal_study per seed (a study of ~300 loop steps of numpy calls besides its runs)
     loop_work((len(sv),), per_seed, "seeds, runs, length and gains", step=300 * LOOP_STEP)
+    distinct(sv, "seeds")  # the cases are keyed by seed: a repeated seed would collapse two of them (after the budget)
     kind = _signal(kind)
     mode = one_of(mode, ("hard", "soft"), "mode")
     normaliser = one_of(normaliser, wv.NORMALISERS, "normaliser")

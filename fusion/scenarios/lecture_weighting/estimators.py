@@ -589,11 +589,11 @@ def awf_study(
     k_max = count(k_max, "k_max", minimum=100)
     runs = count(runs, "runs")
     allocation((runs, k_max, n_sig), "runs, k_max and sigma")
-    distinct(lv.tolist(), "levels")  # the estimates are keyed by (level, estimator)
     # rule 17: per level, 25 units a draw (run x sample x sensor), measured (budget35: 1.6 CPU-s for 2 x 2 passes of
     # 3,900 runs x 100 x 4, ~3x the 8 units counted before; 78,000 runs, ~32 CPU-s, were accepted)
     # (the reseeding sweep's 10x reading, lec-awf-estimated, counts 3e9: its entry of fusion._limits.STUDY_WORK)
     loop_work((lv.size, 2), 25 * runs * k_max * n_sig, "levels, runs, k_max and sigma", limit=STUDY_WORK[AWF_STUDY])
+    distinct(lv.tolist(), "levels")  # the estimates are keyed by (level, estimator); after the budget (fuzz 62b)
     seed = _seed(seed)
     ks_chk = _ints(ks, "ks")
     if np.any(ks_chk > k_max):

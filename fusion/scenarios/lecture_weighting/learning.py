@@ -331,8 +331,8 @@ def learned_limit_check(ns: Sequence[int] = _CHECK_NS, draws: int = 20000, seed:
     draws = count(draws, "draws")
     allocation((draws, int(n_arr.max())), "ns and draws")
     input_allocation((draws, int(n_arr.max())), "ns and draws")  # the variance sets are the weights' input
-    distinct(n_arr.tolist(), "ns")  # one rule for sizes: a repeated n would draw its sets twice
     work((_limit_check_units(n_arr.tolist(), draws),), "ns and draws")  # rule 17: draws x sum(ns)
+    distinct(n_arr.tolist(), "ns")  # one rule for sizes: a repeated n would draw its sets twice (after the budget)
     seed = _seed(seed)
     a = scalar(log_range, "log_range", lo=0.0, lo_open=True, hi=MAX_LOG_RANGE)
     m = scalar(margin, "margin", lo=0.0)
