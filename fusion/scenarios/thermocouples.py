@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -223,12 +223,16 @@ def random_failure(
     return out
 
 
-def _check_methods(methods: object) -> dict[str, dict[str, object]]:
+def _check_methods(methods: object, first: Callable[[int], object] | None = None) -> dict[str, dict[str, object]]:
     """``methods``: a dict label -> options dict with a string ``"method"`` key (issue 35, class 6), returned with
     its labels and method names as plain texts (rule 19) and each entry's options checked under its place in the
-    argument (``methods['mean']: ...``, fuzz 32a C5)."""
+    argument (``methods['mean']: ...``, fuzz 32a C5). ``first(len(methods))``, when given, is called before any
+    entry is read: the caller's budget by the number of methods (fuzz 62b C4: 10**6 specs were each read and
+    checked first, refused after 8.1-8.3 CPU-s)."""
     if not isinstance(methods, Mapping):
         raise TypeError(f"methods must be a dict label -> options, got {type(methods).__name__}")
+    if first is not None:
+        first(len(methods))
     out: dict[str, dict[str, object]] = {}
     for label, spec in methods.items():
         key = text_key(label, "methods")   # a text label (fuzz 33a C5), refused by the caller's argument
@@ -291,6 +295,14 @@ def _methods_work(rows: int, n: int, methods: Mapping[str, Mapping[str, object]]
     return work((math.ceil(total),), names)
 
 
+def _methods_floor(rows: int, n: int, k: int, names: str, fusions: int = 1, per_reading: int = 0) -> int:
+    """:func:`_methods_work`'s total for ``k`` methods at the cheapest method's cost (the mean's, ``_EPOCH_UNITS``),
+    before any method's spec is read: a lower bound of what the methods ask for, refused under the same names."""
+    reading, pair = min(u[0] for u in _EPOCH_UNITS.values()), min(u[1] for u in _EPOCH_UNITS.values())
+    total = per_reading * rows * n + k * fusions * (_METHOD_CALL + rows * (reading * n + pair * n * n))
+    return work((math.ceil(total),), names)
+
+
 def absolute_errors(
     z: ArrayLike, methods: dict[str, dict[str, object]], truth: float = 900.0
 ) -> dict[str, FloatArray]:
@@ -314,7 +326,8 @@ def absolute_errors(
     if arr.ndim < 1:
         raise ValueError(f"z must have a sensor axis, got shape {arr.shape}")
     truth = scalar(truth, "truth")
-    methods = _check_methods(methods)
+    methods = _check_methods(methods, lambda k: _methods_floor(arr.size // max(arr.shape[-1], 1), arr.shape[-1], k,
+                                                               "z and methods"))
     flat = as_reading_rows(arr.reshape(-1, arr.shape[-1]), "z")
     _methods_work(flat.shape[0], flat.shape[1], methods, "z and methods")
     out: dict[str, FloatArray] = {}
@@ -368,7 +381,9 @@ def _draws(seed: int, n_runs: int, methods: dict[str, dict[str, object]], sigma:
     """The readings :func:`monte_carlo` fuses (its checks, in its order): shape (n_runs, n_samples, n_sensors)."""
     n_runs = count(n_runs, "n_runs")
     seed = check_seed(seed)
-    checked = _check_methods(methods)
+    checked = _check_methods(methods, lambda k: _methods_floor(
+        n_runs * count(n_samples, "n_samples"), count(n_sensors, "n_sensors"), k,
+        "n_runs, n_samples, n_sensors and methods"))
     # fuse_epochs's input and kernel limits on the n_runs * n_samples epochs, checked before the draws by the
     # same rule, naming these arguments (fuzz 39a D1: refused inside fuse_epochs, naming every argument)
     rows, n = count(n_runs, "n_runs") * count(n_samples, "n_samples"), count(n_sensors, "n_sensors")
@@ -569,7 +584,9 @@ def paired_study(
     sigma = read_once(sigma, "sigma")  # a Sequence class read once (fuzz 31a C4)
     n_runs = count(n_runs, "n_runs")
     seed = check_seed(seed)
-    methods = _check_methods(methods)
+    methods = _check_methods(methods, lambda k: _methods_floor(
+        n_runs * count(n_samples, "n_samples"), count(n_sensors, "n_sensors"), k,
+        "n_runs, n_samples, n_sensors and methods", fusions=2, per_reading=_PAIRED_READING))
     failure = read_mapping(failure, "failure")
     instance_of(failure, (Mapping, type(None)), "failure")
     if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name

@@ -49,6 +49,7 @@ from fusion._validation import derived_inputs, read_mapping, read_once, record, 
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
 from fusion._validation import LOOP_STEP, count_ceiling, distinct, loop_work, seeds as check_seeds, work
 from fusion.readings import wavelet as wv
+from fusion.scenarios._wavelet_names import _names
 from fusion.scenarios._wavelet_stats import _accumulate_rec, _error_stats  # noqa: F401 (tests read them here)
 from fusion.scenarios._wavelet_relations import MECHANISM_ERRORS, cases_relation, configs_relation, seed_cases_relation
 
@@ -353,19 +354,6 @@ def config_label(cfg: dict[str, Any]) -> str:
     return f"{kw['wavelet']}, {level} levels, {kw['threshold']} {kw['mode']}{ti}"
 
 
-def _names(seq: object, nm: str, allowed: tuple[str, ...]) -> list[str]:
-    """A non-empty sequence ``nm`` of names among ``allowed``, as plain texts (rule 19), named by place (32a C4)."""
-    items = sequence(seq, nm)   # a list, tuple or 1-D array: TypeError otherwise (an iterator, a str)
-    if not items:
-        raise ValueError(f"{nm} must be a non-empty sequence of names")
-    for i, v in enumerate(items):
-        if not isinstance(v, str):
-            raise TypeError(f"{nm}[{i}] must be a name (a str), got {type(v).__name__}")
-        if v not in allowed:
-            raise ValueError(f"{nm} must be among {allowed}, got {shown(v)}")
-    return [one_of(v, allowed, f"{nm}[{i}]") for i, v in enumerate(items)]
-
-
 def _kw(cfg: dict[str, Any]) -> dict[str, str | int]:
     """``denoise``'s keywords of a configuration: plain texts (rule 19), options checked here (fuzz 32a C5)."""
     wavelets = tuple(pywt.wavelist(kind="discrete"))
@@ -515,7 +503,7 @@ def _stream_metrics(produce: Any, truth: np.ndarray, blocks: list[slice], each: 
 
 
 def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence[float], seed: int,
-                 kind: Signal | str = Signal.TWO_TONES, weight: int = 0, configs: Sequence[dict[str, Any]] = (),
+                 kind: Signal | str = Signal.TWO_TONES, weight: int = 0, configs: list[dict[str, Any]] | tuple = (),
                  readings: int = 0) -> tuple[np.ndarray, ...]:
     runs = count(runs, "runs", minimum=2)
     g = as_array(gains, "gains", ndim=1)
@@ -542,8 +530,11 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
         for i, c in enumerate(configs):  # each config read, then each stationary one's transforms counted, all blocks
             with within(f"configs[{i}]"):  # and both orders (fuzz 61b C2), before the draw
                 config_label(c)
+                # the level read once, counted and run (fuzz 62b C6: int() gave 1 to the budget, __index__ 8 to the
+                # run): the caller's list holds the copy with the int read
+                configs[i] = {**c, "level": count(c["level"], "cfg['level']")}
         calls, nm = 2 * len(_blocks(runs, g.size * S.size)), "configs (levels, wavelets), runs, gains and length"
-        swt = [(int(c["level"]), _kw(c)["wavelet"]) for c in configs if _kw(c)["transform"] == "swt"]
+        swt = [(c["level"], _kw(c)["wavelet"]) for c in configs if _kw(c)["transform"] == "swt"]
         work((units + sum(wv._swt_work(runs * (g.size + 1), S.size, lv, w, nm, calls) for lv, w in swt),), nm)
     noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size))
     noise *= sig[:, None]                                   # in place: the same numbers, one array fewer
@@ -657,8 +648,10 @@ def signal_study(
         (``fusion._validation.MAX_WORK``: signals x modes x (normalisers + 1) x runs x sensors x length x 20).
     """
     gains = read_once(gains, "gains")  # a Sequence class read once (fuzz 31a C4)
-    signals = _names(signals, "signals", _SIGNAL_KEYS)  # the list read is what is counted and run (fuzz 42a C14)
-    modes, normalisers = _names(modes, "modes", ("hard", "soft")), _names(normalisers, "normalisers", wv.NORMALISERS)
+    # the lists read are what is counted and run (fuzz 42a C14), counted by their lengths before any name is read
+    # (fuzz 62b C5: 10**7 modes were each checked first, refused after 10.3 CPU-s)
+    signals, modes, normalisers = (sequence(v, k) for v, k in ((signals, "signals"), (modes, "modes"),
+                                                               (normalisers, "normalisers")))
     # rule 17, before any draw: every case denoises and fuses runs x sensors x samples (an undecimated transform
     # at a few levels, ~20 vectorised operations per sample); "max" adds the fuse-first order
     n_gains = len(sequence(gains, "gains"))
@@ -667,6 +660,8 @@ def signal_study(
     level = count(level, "level")  # its ceiling before the work budget: a bad level is named whatever the counts
     loop_work((len(signals), len(modes), len(normalisers) + 1), 20 * runs_ * max(n_gains, 1) * length_,
               "signals, modes, normalisers, runs, gains and length")
+    signals = _names(signals, "signals", _SIGNAL_KEYS)
+    modes, normalisers = _names(modes, "modes", ("hard", "soft")), _names(normalisers, "normalisers", wv.NORMALISERS)
     # every wavelet option (level against length included) checked on one noise-free signal, before the noise
     signals = [Signal(v) for v in signals]          # the cases are keyed by the signals' keys
     wv.denoise(measurand(signals[0], length_)[None], wavelet=wavelet, level=level, threshold=threshold, mode=modes[0])
@@ -767,12 +762,12 @@ def seed_study(
         budget (``fusion._validation.MAX_WORK``), or bad arguments of :func:`signal_study`.
     """
     sv = check_seeds(seeds, "seeds")  # a non-empty list, tuple or 1-D array of seeds
-    distinct(sv, "seeds")  # the cases are keyed by seed: a repeated seed would collapse two of them
     runs_ = count(runs, "runs", minimum=2)
     n_gains = len(sequence(kwargs.get("gains", (1,) * 4), "gains"))
     per_seed = runs_ * count(kwargs.get("length", 1024), "length") * n_gains
     # rule 17: one signal_study per seed (a study of ~300 loop steps of numpy calls besides its runs)
     loop_work((len(sv),), per_seed, "seeds, runs, length and gains", step=300 * LOOP_STEP)
+    distinct(sv, "seeds")  # the cases are keyed by seed: a repeated seed would collapse two of them (after the budget)
     kind = _signal(kind)
     mode = one_of(mode, ("hard", "soft"), "mode")
     normaliser = one_of(normaliser, wv.NORMALISERS, "normaliser")
@@ -876,7 +871,10 @@ def mechanism_study(
                          f"MechanismStudy.bias_share_period, needs whole periods), got {int(length)}")
     # the list sequence() reads is what is counted and iterated, each config read once (fuzz 42a C12: a len() true on
     # its first call and 1 after counted 600 configs as 1, 35.2 CPU-s)
-    configs = [read_mapping(c, f"configs[{i}]") for i, c in enumerate(sequence(configs, "configs"))]
+    # its length counted first, a setting's step (fuzz 62b: 10**7 configs were each read first)
+    items = sequence(configs, "configs")
+    loop_work((len(items),), 0, "configs, runs, gains and length", step=_MECH_STEP)
+    configs = [read_mapping(c, f"configs[{i}]") for i, c in enumerate(items)]
     if not configs:
         raise ValueError("configs must be a non-empty sequence of dicts")
     g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed, kind, configs=configs)

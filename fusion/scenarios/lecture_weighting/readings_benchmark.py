@@ -185,7 +185,7 @@ def benchmark(
     sigma = read_once(sigma, "sigma")  # a Sequence class read once (fuzz 31a C4)
     if isinstance(seeds, (str, bytes)):
         raise TypeError("seeds must be a sequence of ints, got a string")
-    seeds = check_seeds(seeds, "seeds")
+    seed_items = sequence(seeds, "seeds")   # counted by its length below, before any seed is read (fuzz 62b D1)
     runs = count(runs, "runs")
     samples = count(samples, "samples")
     lv = _values(levels, "levels")
@@ -195,16 +195,19 @@ def benchmark(
     allocation((runs, samples, sig_chk.size), "runs, samples and sigma")
     fault_sensor = _index(fault_sensor, sig_chk.size, "fault_sensor")
     fault_from = count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
-    faults = [flag(f, f"faults[{i}]")  # fuzz 24a U8: one rule for a sequence argument, then for each flag
-              for i, f in enumerate(sequence(faults, "faults", minimum=1, what="flag"))]
+    fault_items = sequence(faults, "faults", minimum=1, what="flag")  # fuzz 24a U8: one rule for a sequence argument
+    # rule 17: ~20 methods per key, a reading weighing its measured cost (budget35: ~0.43 us, 45 units; 1.5e6 runs,
+    # about 400 CPU-s, were accepted), so the edge is about 30 CPU-s (STUDY_WORK); by the lengths, before any seed,
+    # flag or level label is read (fuzz 62b D1: 10**6 faults were each read as a flag first, 0.5 CPU-s, ~5 at 10**7;
+    # a repeated key, refused below, counted as its own)
+    loop_work((len(seed_items), lv.size, len(fault_items)), _BENCH_READING * runs * samples * sig_chk.size,
+              "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP,
+              limit=STUDY_WORK[READINGS_BENCHMARK])  # the reseeding sweep's 10x (lec-belief-accuracy): 1.35e9
+    seeds = check_seeds(seed_items, "seeds")
+    faults = [flag(f, f"faults[{i}]") for i, f in enumerate(fault_items)]  # then each flag
     # the results are keyed by (seed, level, fault): a repeated entry would collapse two of them
     distinct(list(seeds), "seeds"), distinct([bool(f) for f in faults], "faults")
     distinct_printed(lv.tolist(), "levels", general, "labels a column")  # the chapter's f"X={X:g}" (fuzz 30b)
-    # rule 17: ~20 methods per key, a reading weighing its measured cost (budget35: ~0.43 us, 45 units; 1.5e6 runs,
-    # about 400 CPU-s, were accepted), so the edge is about 30 CPU-s (STUDY_WORK)
-    loop_work((len(seeds), lv.size, len(faults)), _BENCH_READING * runs * samples * sig_chk.size,
-              "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP,
-              limit=STUDY_WORK[READINGS_BENCHMARK])  # the reseeding sweep's 10x (lec-belief-accuracy): 1.35e9
     # the checked AWF's (runs, samples, n, n) pair arrays, at entry by the callee's own rule (named here, not as X):
     # their memory, and their work at every key (fuzz 42a C4: one key's was counted, so 12 keys of 1 run x 3,300
     # samples x 100 sensors, 1.8e8 units by the readings, ran 32.8 CPU-s). A key of the benchmark measured the checked
