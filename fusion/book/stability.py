@@ -88,6 +88,12 @@ READING_WORK = 1000
 #: readings (fuzz 42b D3: 5e6 records without readings were checked for 6.4 CPU-s, counted 0): 0.95 us measured on
 #: this shared machine (CPU time, minimum of 3, 10**6 records without readings at one seed), so 100 units.
 RECORD_WORK = 100
+#: Units of work of one seed of ``seed_list`` that :func:`tasks` and :func:`summarise` check (its size, type and
+#: range, then hashed for a repeat): 0.69 CPU-s for 10**6 distinct seeds of a list (69 units a seed; OPENBLAS_NUM_THREADS=1,
+#: niced, the shared machine, minimum of 2), counted as 100, by ``len(seed_list)`` before any seed is read (fuzz 62a
+#: C3: 10**7 seeds were read, checked and hashed for 6.9-9.0 CPU-s before the budget, which needs only their number,
+#: refused them).
+SEED_WORK = 100
 
 #: Units of work of one result that :func:`summarise` checks, groups and judges (rule R5 over its record's readings at
 #: its seed, or its failure's record): 6.4-7.1 us measured on this shared machine (CPU time, minimum of 3: 100,000
@@ -396,16 +402,19 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
         ``runs_factor``; more readings and tasks (seeds x readings, plus the scaled primaries) than the work budget
         checks and builds in about 10 CPU-s (``READING_WORK`` units a reading and ``RECORD_WORK`` a record, counted by
         iterating them before any is checked, whatever their ``len()`` says, and ``TASK_WORK`` units a task: about
-        330,000 readings at one seed, 500,000 tasks of the book's 512 readings), naming ``readings`` and ``seed_list``;
+        330,000 readings at one seed, 500,000 tasks of the book's 512 readings; and ``SEED_WORK`` units a seed to
+        check, counted by ``len(seed_list)`` before any seed is read), naming ``readings`` and ``seed_list``;
         a ``readings`` that yields more records or readings when read than when counted; a ``seed_list`` entry of
         2**31 or more (checked before any seed is hashed), naming ``seed_list[i]``.
     """
     runs_factor = count(runs_factor, "runs_factor")
-    seed_list = _seed_list(seed_list)
+    seed_list = sequence(seed_list, "seed_list")  # its length only: the seeds are read once the budget has passed
     instance_of(readings, Mapping, "readings")
     # counted before any reading is checked (fuzz 41b C1), from what iterating them yields (fuzz 42b C3: a Mapping whose
-    # __len__ lies), every record too (D3); _readings then reads no more than was counted
+    # __len__ lies), every record too (D3); _readings then reads no more than was counted; the seeds by len(seed_list)
+    # before any is read (fuzz 62a C3: they were checked and hashed first, 6.9-9.0 CPU-s for 10**7)
     n_records, n_readings = _reading_count(readings, len(seed_list), runs_factor > 1)
+    seed_list = _seed_list(seed_list)
     readings = _readings(readings, runs_factor, (n_records, n_readings))
     if runs_factor > 1 and readings:
         top = max(rs["primary"][1] for rs in readings.values())
@@ -518,7 +527,7 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     primary reading's own status at the scaled run count (no other reading is rerun there).
     """
     by: dict[str, list[TaskResult]] = {}
-    seed_list = _seed_list(seed_list)
+    seed_list = sequence(seed_list, "seed_list")  # its length: read once the budget has passed (fuzz 62a C3)
     instance_of(committed, Mapping, "committed")
     n_committed = sum(1 for _ in itertools.islice(iter(committed), MAX_COUNT + 1))  # keys only, none read (53a C2)
     if n_committed > MAX_COUNT:
@@ -528,6 +537,7 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     # rule 17 (fuzz 49b C6): the results and committed first (at least one record if any), then, once grouped (which
     # their units pay for), every record x seed cell
     _summary_work(len(results), min(1, len(results)), len(seed_list), n_committed)
+    seed_list = _seed_list(seed_list)
     given, committed = committed, {}   # read once into a plain dict, checked and used as that one read (fuzz 57a D1)
     for j, (rid, status) in enumerate(given.items()):
         if j >= n_committed:
@@ -580,13 +590,15 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
 
 def _summary_work(results: int, records: int, seeds: int, committed: int = 0) -> int:
     """The units of :func:`summarise`: ``results`` checked, grouped and judged, ``SUMMARY_RESULT_WORK`` units each,
-    ``records x seeds`` statuses, ``SUMMARY_CELL_WORK`` units each, and ``committed`` entries checked,
+    ``records x seeds`` statuses, ``SUMMARY_CELL_WORK`` units each, ``seeds`` checked, ``SEED_WORK`` units each (by
+    ``len(seed_list)`` before any is read, fuzz 62a C3), and ``committed`` entries checked,
     ``SUMMARY_COMMITTED_WORK`` units each; refused beyond the work budget (rule 17) naming ``results``, ``seed_list``
     and ``committed``."""
-    return work((results * SUMMARY_RESULT_WORK + records * seeds * SUMMARY_CELL_WORK
+    return work((results * SUMMARY_RESULT_WORK + records * seeds * SUMMARY_CELL_WORK + seeds * SEED_WORK
                  + committed * SUMMARY_COMMITTED_WORK,),
                 f"results and seed_list and committed ({results:,} results, {SUMMARY_RESULT_WORK:,} units each, "
-                f"{records:,} records x {seeds:,} seeds, {SUMMARY_CELL_WORK:,} units a record's seed, and "
+                f"{records:,} records x {seeds:,} seeds, {SUMMARY_CELL_WORK:,} units a record's seed, "
+                f"{SEED_WORK:,} units a seed to check, and "
                 f"{committed:,} committed entries, {SUMMARY_COMMITTED_WORK:,} units each)")
 
 
@@ -661,10 +673,11 @@ def _reading_count(readings: Mapping, seeds: int, scaled: bool) -> tuple[int, in
     ``TASK_WORK``), a reading ``READING_WORK`` plus a task's per seed."""
     per_record = RECORD_WORK + (TASK_WORK if scaled else 0)
     per_reading = READING_WORK + seeds * TASK_WORK
+    checked = seeds * SEED_WORK  # the seeds' own check, with or without readings (fuzz 62a C3)
     # the keys first, one past the budget at most (iterating them reads no value: 10**7 records in well under 1 CPU-s)
-    records = sum(1 for _ in itertools.islice(iter(readings), MAX_WORK // per_record + 1))
+    records = sum(1 for _ in itertools.islice(iter(readings), max(0, MAX_WORK - checked) // per_record + 1))
     n = 0
-    units = records * per_record
+    units = checked + records * per_record
     for rs in itertools.islice(readings.values(), records if units <= MAX_WORK else 0):
         if isinstance(rs, Mapping):  # one that is not is refused by _readings
             left = max(0, (MAX_WORK - units) // per_reading + 1)  # the readings past the budget: one is enough
@@ -673,10 +686,10 @@ def _reading_count(readings: Mapping, seeds: int, scaled: bool) -> tuple[int, in
             units += k * per_reading
         if units > MAX_WORK:
             break
-    over = records * per_record > MAX_WORK  # the keys past the budget: no reading was counted
+    over = checked + records * per_record > MAX_WORK  # the keys past the budget: no reading was counted
     work((units,), f"readings and seed_list ({'at least ' if units > MAX_WORK and not over else ''}{n:,} readings, "
-         f"{READING_WORK:,} units each to check, x {seeds:,} seeds, {TASK_WORK:,} units a task, in "
-         f"{'at least ' if over else ''}{records:,} records, {RECORD_WORK:,} units each)")
+         f"{READING_WORK:,} units each to check, x {seeds:,} seeds, {TASK_WORK:,} units a task and {SEED_WORK:,} a "
+         f"seed to check, in {'at least ' if over else ''}{records:,} records, {RECORD_WORK:,} units each)")
     return records, n
 
 
