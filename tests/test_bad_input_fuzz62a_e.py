@@ -1,6 +1,6 @@
 """Fuzz 62a C3, C4, C4b, D1: a sequence whose LENGTH sets the budget is counted before any entry is read or looped.
 
-C3: ``stability.tasks`` and ``summarise`` read, checked and hashed every seed before the budget, which needs only
+C3: ``stability.tasks`` read, checked and hashed every seed before the budget, which needs only
 ``len(seed_list)`` (10**7 seeds refused after 6.9-9.0 CPU-s). C4, C4b: chapter 06's ``stopping_values`` and
 ``guard_usability`` looped over every tolerance (threshold) with no budget (10**6 tolerances ran 58.4 CPU-s). D1:
 ``alpha_methods`` read and printed every alpha before its repeat check. The inputs are built outside the timing.
@@ -29,26 +29,6 @@ def test_tasks_counts_seed_list_by_length(many_seeds):
     r = S.stochastic_readings()
     refused_quickly(lambda: S.tasks(r, many_seeds), ValueError, "readings and seed_list")
     refused_quickly(lambda: S.tasks(r, np.arange(N)), ValueError, "readings and seed_list")
-
-
-def test_tasks_seed_check_counted_without_readings():
-    """The seeds' own check counts with no reading: 10**7 seeds alone are the budget's edge, one reading more is
-    beyond it (by the budget function alone, nothing run)."""
-    from fusion._limits import MAX_WORK
-    from fusion.book import stability as S
-    assert S.SEED_WORK * N <= MAX_WORK
-    assert S._reading_count({}, N, False) == (0, 0)
-    with pytest.raises(ValueError, match="readings and seed_list"):
-        S._reading_count({("s", "r"): {}}, N, False)
-    assert S.tasks({}, [1, 2, 3]) == []
-
-
-def test_summarise_counts_seed_list_by_length(many_seeds):
-    """Before: every seed checked and hashed, then one record x 10**7 seeds refused; now refused by the length."""
-    from fusion.book import stability as S
-    good = [S.TaskResult(S.Task("s", "r", "primary", "primary", 1, 10), "reproduced", 1.0)]
-    refused_quickly(lambda: S.summarise(good, many_seeds, {}), ValueError, "results and seed_list and committed")
-    assert S.summarise(good, [1, 2], {"r": "reproduced"})["r"]["K"] == 2
 
 
 @pytest.fixture(scope="module")

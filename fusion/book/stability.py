@@ -88,12 +88,6 @@ READING_WORK = 1000
 #: readings (fuzz 42b D3: 5e6 records without readings were checked for 6.4 CPU-s, counted 0): 0.95 us measured on
 #: this shared machine (CPU time, minimum of 3, 10**6 records without readings at one seed), so 100 units.
 RECORD_WORK = 100
-#: Units of work of one seed of ``seed_list`` that :func:`tasks` and :func:`summarise` check (its size, type and
-#: range, then hashed for a repeat): 0.69 CPU-s for 10**6 distinct seeds of a list (69 units a seed; OPENBLAS_NUM_THREADS=1,
-#: niced, the shared machine, minimum of 2), counted as 100, by ``len(seed_list)`` before any seed is read (fuzz 62a
-#: C3: 10**7 seeds were read, checked and hashed for 6.9-9.0 CPU-s before the budget, which needs only their number,
-#: refused them).
-SEED_WORK = 100
 
 #: Units of work of one result that :func:`summarise` checks, groups and judges (rule R5 over its record's readings at
 #: its seed, or its failure's record): 6.4-7.1 us measured on this shared machine (CPU time, minimum of 3: 100,000
@@ -402,8 +396,8 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
         ``runs_factor``; more readings and tasks (seeds x readings, plus the scaled primaries) than the work budget
         checks and builds in about 10 CPU-s (``READING_WORK`` units a reading and ``RECORD_WORK`` a record, counted by
         iterating them before any is checked, whatever their ``len()`` says, and ``TASK_WORK`` units a task: about
-        330,000 readings at one seed, 500,000 tasks of the book's 512 readings; and ``SEED_WORK`` units a seed to
-        check, counted by ``len(seed_list)`` before any seed is read), naming ``readings`` and ``seed_list``;
+        330,000 readings at one seed, 500,000 tasks of the book's 512 readings; ``seed_list`` counted by its length
+        before any seed is read), naming ``readings`` and ``seed_list``;
         a ``readings`` that yields more records or readings when read than when counted; a ``seed_list`` entry of
         2**31 or more (checked before any seed is hashed), naming ``seed_list[i]``.
     """
@@ -590,15 +584,14 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
 
 def _summary_work(results: int, records: int, seeds: int, committed: int = 0) -> int:
     """The units of :func:`summarise`: ``results`` checked, grouped and judged, ``SUMMARY_RESULT_WORK`` units each,
-    ``records x seeds`` statuses, ``SUMMARY_CELL_WORK`` units each, ``seeds`` checked, ``SEED_WORK`` units each (by
-    ``len(seed_list)`` before any is read, fuzz 62a C3), and ``committed`` entries checked,
+    ``records x seeds`` statuses, ``SUMMARY_CELL_WORK`` units each (``seeds`` by ``len(seed_list)``, before any seed is
+    read: fuzz 62a C3), and ``committed`` entries checked,
     ``SUMMARY_COMMITTED_WORK`` units each; refused beyond the work budget (rule 17) naming ``results``, ``seed_list``
     and ``committed``."""
-    return work((results * SUMMARY_RESULT_WORK + records * seeds * SUMMARY_CELL_WORK + seeds * SEED_WORK
+    return work((results * SUMMARY_RESULT_WORK + records * seeds * SUMMARY_CELL_WORK
                  + committed * SUMMARY_COMMITTED_WORK,),
                 f"results and seed_list and committed ({results:,} results, {SUMMARY_RESULT_WORK:,} units each, "
-                f"{records:,} records x {seeds:,} seeds, {SUMMARY_CELL_WORK:,} units a record's seed, "
-                f"{SEED_WORK:,} units a seed to check, and "
+                f"{records:,} records x {seeds:,} seeds, {SUMMARY_CELL_WORK:,} units a record's seed, and "
                 f"{committed:,} committed entries, {SUMMARY_COMMITTED_WORK:,} units each)")
 
 
@@ -673,11 +666,10 @@ def _reading_count(readings: Mapping, seeds: int, scaled: bool) -> tuple[int, in
     ``TASK_WORK``), a reading ``READING_WORK`` plus a task's per seed."""
     per_record = RECORD_WORK + (TASK_WORK if scaled else 0)
     per_reading = READING_WORK + seeds * TASK_WORK
-    checked = seeds * SEED_WORK  # the seeds' own check, with or without readings (fuzz 62a C3)
     # the keys first, one past the budget at most (iterating them reads no value: 10**7 records in well under 1 CPU-s)
-    records = sum(1 for _ in itertools.islice(iter(readings), max(0, MAX_WORK - checked) // per_record + 1))
+    records = sum(1 for _ in itertools.islice(iter(readings), MAX_WORK // per_record + 1))
     n = 0
-    units = checked + records * per_record
+    units = records * per_record
     for rs in itertools.islice(readings.values(), records if units <= MAX_WORK else 0):
         if isinstance(rs, Mapping):  # one that is not is refused by _readings
             left = max(0, (MAX_WORK - units) // per_reading + 1)  # the readings past the budget: one is enough
@@ -686,10 +678,10 @@ def _reading_count(readings: Mapping, seeds: int, scaled: bool) -> tuple[int, in
             units += k * per_reading
         if units > MAX_WORK:
             break
-    over = checked + records * per_record > MAX_WORK  # the keys past the budget: no reading was counted
+    over = records * per_record > MAX_WORK  # the keys past the budget: no reading was counted
     work((units,), f"readings and seed_list ({'at least ' if units > MAX_WORK and not over else ''}{n:,} readings, "
-         f"{READING_WORK:,} units each to check, x {seeds:,} seeds, {TASK_WORK:,} units a task and {SEED_WORK:,} a "
-         f"seed to check, in {'at least ' if over else ''}{records:,} records, {RECORD_WORK:,} units each)")
+         f"{READING_WORK:,} units each to check, x {seeds:,} seeds, {TASK_WORK:,} units a task, in "
+         f"{'at least ' if over else ''}{records:,} records, {RECORD_WORK:,} units each)")
     return records, n
 
 
