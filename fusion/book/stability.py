@@ -396,16 +396,19 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
         ``runs_factor``; more readings and tasks (seeds x readings, plus the scaled primaries) than the work budget
         checks and builds in about 10 CPU-s (``READING_WORK`` units a reading and ``RECORD_WORK`` a record, counted by
         iterating them before any is checked, whatever their ``len()`` says, and ``TASK_WORK`` units a task: about
-        330,000 readings at one seed, 500,000 tasks of the book's 512 readings), naming ``readings`` and ``seed_list``;
+        330,000 readings at one seed, 500,000 tasks of the book's 512 readings; ``seed_list`` counted by its length
+        before any seed is read), naming ``readings`` and ``seed_list``;
         a ``readings`` that yields more records or readings when read than when counted; a ``seed_list`` entry of
         2**31 or more (checked before any seed is hashed), naming ``seed_list[i]``.
     """
     runs_factor = count(runs_factor, "runs_factor")
-    seed_list = _seed_list(seed_list)
+    seed_list = sequence(seed_list, "seed_list")  # its length only: the seeds are read once the budget has passed
     instance_of(readings, Mapping, "readings")
     # counted before any reading is checked (fuzz 41b C1), from what iterating them yields (fuzz 42b C3: a Mapping whose
-    # __len__ lies), every record too (D3); _readings then reads no more than was counted
+    # __len__ lies), every record too (D3); _readings then reads no more than was counted; the seeds by len(seed_list)
+    # before any is read (fuzz 62a C3: they were checked and hashed first, 6.9-9.0 CPU-s for 10**7)
     n_records, n_readings = _reading_count(readings, len(seed_list), runs_factor > 1)
+    seed_list = _seed_list(seed_list)
     readings = _readings(readings, runs_factor, (n_records, n_readings))
     if runs_factor > 1 and readings:
         top = max(rs["primary"][1] for rs in readings.values())
@@ -518,7 +521,7 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     primary reading's own status at the scaled run count (no other reading is rerun there).
     """
     by: dict[str, list[TaskResult]] = {}
-    seed_list = _seed_list(seed_list)
+    seed_list = sequence(seed_list, "seed_list")  # its length: read once the budget has passed (fuzz 62a C3)
     instance_of(committed, Mapping, "committed")
     n_committed = sum(1 for _ in itertools.islice(iter(committed), MAX_COUNT + 1))  # keys only, none read (53a C2)
     if n_committed > MAX_COUNT:
@@ -528,6 +531,7 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     # rule 17 (fuzz 49b C6): the results and committed first (at least one record if any), then, once grouped (which
     # their units pay for), every record x seed cell
     _summary_work(len(results), min(1, len(results)), len(seed_list), n_committed)
+    seed_list = _seed_list(seed_list)
     given, committed = committed, {}   # read once into a plain dict, checked and used as that one read (fuzz 57a D1)
     for j, (rid, status) in enumerate(given.items()):
         if j >= n_committed:
@@ -580,7 +584,8 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
 
 def _summary_work(results: int, records: int, seeds: int, committed: int = 0) -> int:
     """The units of :func:`summarise`: ``results`` checked, grouped and judged, ``SUMMARY_RESULT_WORK`` units each,
-    ``records x seeds`` statuses, ``SUMMARY_CELL_WORK`` units each, and ``committed`` entries checked,
+    ``records x seeds`` statuses, ``SUMMARY_CELL_WORK`` units each (``seeds`` by ``len(seed_list)``, before any seed is
+    read: fuzz 62a C3), and ``committed`` entries checked,
     ``SUMMARY_COMMITTED_WORK`` units each; refused beyond the work budget (rule 17) naming ``results``, ``seed_list``
     and ``committed``."""
     return work((results * SUMMARY_RESULT_WORK + records * seeds * SUMMARY_CELL_WORK

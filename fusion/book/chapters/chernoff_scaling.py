@@ -20,7 +20,7 @@ from fusion._results import ResultSpec, array, dict_of, integer, mask, tuple_of,
 from fusion._shown import shown
 from fusion._validation import FloatArray, as_rng, allocation, as_array, count, counts, distinct, instance_of, scalar
 from fusion._counts import sequence
-from fusion._limits import dense_work, work
+from fusion._limits import dense_work, loop_work, work
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
@@ -284,6 +284,10 @@ def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r:
     """
     seed = check_seed(seed)
     runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
+    # fuzz 62a's class (C3): each N runs a study, a loop step at least, counted by len(ns) before any is read (10**7
+    # entries were read and hashed for 4.1 CPU-s before the budget)
+    ns = sequence(ns, "ns")
+    loop_work((len(ns),), 0, "ns")
     ns = tuple(distinct(counts(ns, "ns", minimum=2), "ns"))
     _problem_budget(max(ns), runs, r, ("ns", "runs", "r"), square=11)
     _swarm_budget(runs, r, {n: tuple(SWARM_VARIANTS.values()) if n == max(ns) else (SwarmOptions(),) for n in ns},
@@ -370,6 +374,8 @@ def within_se_counts(seed: int, ns: tuple[int, ...] = (3, 5, 10), runs: int = 10
     """
     seed = check_seed(seed)
     out = {"chf_sw_within_runs": count(runs, "runs", minimum=2)}
+    ns = sequence(ns, "ns")
+    loop_work((len(ns),), 0, "ns")  # a study an N, a loop step at least, by len(ns) before any is read (fuzz 62a C3)
     ns = distinct(counts(ns, "ns", minimum=2), "ns")
     # every N at entry (fuzz 42b C9: n = 2 ran, then the largest N was refused naming r, not an argument here)
     _problem_budget(max(ns), runs, _WITHIN_R, ("ns", "runs", f"the {_WITHIN_R:,} importance samples"), square=11)
@@ -633,6 +639,8 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
     """
     seed = check_seed(seed)
     runs, n = count(runs, "runs", minimum=2), count(n, "n", minimum=2)
+    rs = sequence(rs, "rs")
+    loop_work((len(rs),), 0, "rs")  # a batch an R, a loop step at least, by len(rs) before any is read (fuzz 62a C3)
     rs = tuple(sorted(distinct(counts(rs, "rs", minimum=2), "rs")))  # fuzz 24b OR1: the glue's lo/hi follow R
     if len(rs) < 2:
         raise ValueError(f"rs must hold at least two sample sizes (the slope of the error in R needs two), got {rs}")

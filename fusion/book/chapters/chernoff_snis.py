@@ -35,7 +35,7 @@ from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
 from fusion._validation import FloatArray, as_rng, as_array, count, instance_of, positive_scalar, unit_scalar
-from fusion._counts import counts, distinct
+from fusion._counts import counts, distinct, sequence
 from fusion._limits import work
 from fusion.book.tables import rounded
 from fusion.estimates import mixtures as mx
@@ -375,8 +375,10 @@ def _pool_blocks(rng: np.random.Generator, rs: tuple[int, ...], total: int,
     C11), before anything is drawn, naming ``rs`` and ``total``."""
     as_rng(rng)  # a Generator itself, over a numpy bit generator (fuzz 57b C1)
     total = count(total, "total")
-    rs = tuple(sorted(distinct(counts(rs, "rs", minimum=2), "rs")))
+    # by len(rs) before any R is read (fuzz 62a C3's class: 10**7 entries were read and hashed first)
+    rs = sequence(rs, "rs")
     work((total, units[0] + units[1] * len(rs)), "rs and total")
+    rs = tuple(sorted(distinct(counts(rs, "rs", minimum=2), "rs")))
     if any(total % r for r in rs):
         raise ValueError(f"rs must divide total = {total}, got {rs}")
     if rs[-1] > total // 2:

@@ -30,6 +30,7 @@ from fusion._counts import COUNT_CEILINGS, count, index
 from fusion.book.chapters.chernoff.compare import _reason, _word
 from fusion.book.chapters.chernoff.tracking import per_run_mse
 from fusion.book.glue import GlueValues
+from fusion._limits import LOOP_STEP, loop_work
 from fusion.book.chapters._defaults import study_defaults
 
 __all__ = ["BENCH_SCHEMA", "BenchStage", "PATENT_STAGES", "stopping_values", "eps_figure", "pso_figure", "benchmark_cost"]
@@ -377,6 +378,14 @@ def _slower(ratio: float) -> str:
     return f"{math.floor(r + 0.5)} times {word}" if r2 >= 2 else f"{r2:.2f} times {word}"
 
 
+#: The overhead of one tolerance of :func:`stopping_values`, in units: its loop step (a few numpy passes over the swarm
+#: traces and five glue values) ran 66 us with 2 runs x 5 frames x 51 iterations (510 trace cells; 5,001 tolerances
+#: 0.33 CPU-s) and 83 us with 40 runs (10,200 cells; 0.42 CPU-s): about 6,600 units of overhead and 0.18 units a
+#: cell (OPENBLAS_NUM_THREADS=1, niced, the shared machine, minimum of 2; fuzz 62a C4: 10**6 tolerances ran 58.4
+#: CPU-s unbudgeted). Counted as 7 loop steps plus one unit a cell (a vectorised element).
+_XTOL_STEP = 7 * LOOP_STEP
+
+
 def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
                     xtols: tuple[float, ...] = (1e-3, 3e-3, 1e-2, 3e-2)) -> GlueValues:
     """The swarm's two readings of G6 on every tracking frame, from the swarm followed to its limit (``readings``).
@@ -422,10 +431,15 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
         ``runs`` is empty, of several scenarios, holds a run twice, or is without the readings (``readings=False``),
         or ``sc`` is not the runs' scenario, or ``xtols`` empty or holding a value that is not finite and positive,
         ``runs`` of one run (a paired interval needs 2), of fewer than 5 frames (no frame of LATE) or computed with
-        ``RangeBearingScenario.variants=False`` (not a study the chapter's tables show).
+        ``RangeBearingScenario.variants=False`` (not a study the chapter's tables show); ``len(xtols)`` x the runs'
+        swarm-trace cells beyond the work budget (``fusion._limits.loop_work``, 7,000 units a tolerance plus one a
+        cell: about 130,000 tolerances of 2 runs x 5 frames), by their number before any is read.
     """
     runs = _check_study(runs, sc, readings=True, window=True, variants=True, least=2, why="paired runs")
-    xtols = tuple(scalar(x, f"xtols[{j}]", 0.0, lo_open=True) for j, x in enumerate(sequence(xtols, "xtols", minimum=1)))
+    xtols = sequence(xtols, "xtols", minimum=1)
+    # rule 17 by len(xtols) before any is read (fuzz 62a C4: the loop below had no budget)
+    loop_work((len(xtols),), sum(int(np.size(r.swarm_trace["spread"])) for r in runs), "xtols", step=_XTOL_STEP)
+    xtols = tuple(scalar(x, f"xtols[{j}]", 0.0, lo_open=True) for j, x in enumerate(xtols))
     fit = np.stack([r.swarm_trace["fitness"] for r in runs])  # (runs, K, T + 1)
     spread = np.stack([r.swarm_trace["spread"] for r in runs])
     ref = np.stack([r.objective["slsqp"] for r in runs])
