@@ -45,9 +45,10 @@ def test_c1_only_converted_labels_are_summed() -> None:
                   pd.to_timedelta(np.arange(n), unit="s"), pd.Index(np.arange(n, dtype=np.uint8))):
         assert sum(G._logical_sizes(pd.Series(values, index=index))) == n, index
         assert sum(G._logical_sizes(pd.DataFrame({"a": values}, index=index))) == n + 1, index   # its object label
+    codes = np.zeros(n, int)
     for index, extra in ((pd.date_range("2000", periods=n, tz="UTC"), n), (pd.Index([str(i) for i in range(n)]), n),
                          (pd.Index(np.arange(n) + 1j), n),
-                         (pd.CategoricalIndex(pd.Categorical.from_codes(np.zeros(n, int), categories=range(30))), n + 30),
+                         (pd.CategoricalIndex(pd.Categorical.from_codes(codes, categories=range(30))), n + 30),
                          (pd.MultiIndex.from_arrays([np.arange(n), np.arange(n)]), 3 * n)):
         assert sum(G._logical_sizes(pd.Series(values, index=index))) == n + extra, index
     # the edge: a Series view of 2**24 values with a tz-aware index of as many (converted), 2**25 in all, is
