@@ -20,7 +20,8 @@ _CASES = {
     "categorical_index": "pd.CategoricalIndex(pd.Categorical.from_codes([0], categories=pd.RangeIndex(10**10)))",
     "categorical_series": "pd.Series(pd.Categorical.from_codes([0], categories=pd.RangeIndex(10**10)))",
     "series_view": "pd.Series(np.broadcast_to(np.float64(1.0), (10**10,)), copy=False)",
-    "table_index": "pd.DataFrame(index=pd.RangeIndex(10**10))",
+    # fuzz 62a C1: a table's numeric labels are never converted (its text is truncated): glued, not refused
+    "accepted_table_index": "pd.DataFrame(index=pd.RangeIndex(10**10))",
     "sparse": ("pd.arrays.SparseArray._simple_new(np.array([], dtype=float), IntIndex(10**10, np.array([], "
                "dtype=np.int32)), pd.SparseDtype(float, 0.0))"),
     "inside_list": "[1.0, pd.RangeIndex(10**10)]",
@@ -30,9 +31,9 @@ _CASES = {
 @pytest.mark.parametrize("case", sorted(_CASES))
 def test_c1_cheap_containers_are_refused_by_logical_size_before_conversion(case: str) -> None:
     out = glued_in_child(tuple(_CASES.items()))[case]
-    assert out[0] == "ValueError", out
+    assert out[0] == ("ACCEPTED" if case.startswith("accepted") else "ValueError"), out
     assert float(out[1]) < 1.0, out
-    assert out[2].startswith("values['k'] holds a ") and "input budget" in out[2], out
+    assert case.startswith("accepted") or out[2].startswith("values['k'] holds a ") and "input budget" in out[2], out
 
 
 def test_c1_logical_size_edge() -> None:

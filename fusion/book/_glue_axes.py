@@ -1,8 +1,9 @@
 """The units of gluing the labels of a MultiIndex, by its levels (fuzz 59a C2), and the logical sizes of an axis of
-labels (fuzz 60a C1), for :mod:`fusion.book.glue`."""
+labels (fuzz 60a C1; fuzz 62a C1: only the labels the glue converts), for :mod:`fusion.book.glue`."""
 
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 from pandas.io.formats.style import Styler
 
@@ -66,3 +67,64 @@ def label_sizes(labels: pd.Index) -> list[int]:
         elif isinstance(ax, pd.CategoricalIndex):
             todo.append(ax.categories)
     return sizes
+
+
+def object_dtype(dtype: object) -> bool:
+    """Whether a Series, Index or table column of ``dtype`` holds objects that the glue visits one by one (an object
+    or non-NumPy dtype: its cells print as their own text), not numbers checked at once."""
+    return not (isinstance(dtype, np.dtype) and dtype.kind != "O")
+
+
+def converted_label_sizes(labels: pd.Index) -> list[int]:
+    """The logical sizes (``label_sizes``) of a Series' or table's axis of labels ``labels`` that the glue converts,
+    one rule for every kind of index: a MultiIndex (a table's text formats each of its levels whole: fuzz 60a C1,
+    a level of ``RangeIndex(10**7)`` 0.30 CPU-s) and an axis holding objects (``object_dtype``: converted to
+    objects, a CategoricalIndex with its categories) or complex numbers (checked at once); an axis of real numbers,
+    dates or times is neither converted nor counted (its text is truncated). Fuzz 62a C1: a Series of 2 x 10**7
+    floats with a DatetimeIndex or a float Index, summed with its labels, was refused; glued without the count it
+    takes 0.08 / 0.01 CPU-s (process_time, OPENBLAS_NUM_THREADS=1, machine shared)."""
+    dtype = labels.dtype
+    converted = (isinstance(labels, pd.MultiIndex) or object_dtype(dtype)
+                 or (isinstance(dtype, np.dtype) and dtype.kind == "c"))
+    return label_sizes(labels) if converted else []
+
+
+#: Units of reading one categorical column of a table without its unused categories
+#: (``Series.cat.remove_unused_categories``) before its cells are converted to objects (fuzz 62a C2), measured by
+#: ``glue_all`` on one-row tables of 10**4 and 3 x 10**4 such columns (time.process_time, OPENBLAS_NUM_THREADS=1,
+#: minimum of 2, machine shared with other helpers): 203-214 us a column in all, 144-154 us of it the pruning (the
+#: same tables of one category a column, not pruned: 53-80 us); weighed 250 us, the whole column's glue.
+_GLUE_PRUNE = 25_000
+
+
+def pruned_columns(table: pd.DataFrame) -> list[int]:
+    """The positions of the categorical columns of ``table`` read without their unused categories before its object
+    cells are converted: those whose categories outnumber its rows (converting two or more columns to objects
+    together boxes every category of each, fuzz 61a C3: 30-36 ns a number, 0.94 us a date with a time zone; a column
+    of at most as many categories as rows boxes no more of them than it has cells, each charged as an object cell).
+    Fuzz 62a C2: pruning every categorical column cost ~300 us a column, uncharged (10**5 one-row columns 32.2
+    CPU-s); now only these are pruned, each charged ``_GLUE_PRUNE`` (``prune_units``). Read from the dtypes alone."""
+    rows = table.shape[0]
+    return [j for j, d in enumerate(table.dtypes) if isinstance(d, pd.CategoricalDtype) and len(d.categories) > rows]
+
+
+def prune_units(v: object) -> int:
+    """The units of pruning the categorical columns of the table (or a Styler's table) ``v``: ``_GLUE_PRUNE`` each
+    of ``pruned_columns``; 0 for anything else."""
+    v = v.data if isinstance(v, Styler) else v
+    return len(pruned_columns(v)) * _GLUE_PRUNE if isinstance(v, pd.DataFrame) else 0
+
+
+def object_cells(part: pd.DataFrame) -> np.ndarray:
+    """The cells of the table ``part`` (its object columns) as a 2-D object array, each column of
+    ``pruned_columns`` read without its unused categories (its cells are the same)."""
+    prune = pruned_columns(part)
+    if not prune:
+        return part.to_numpy(dtype=object)
+    out = np.empty(part.shape, dtype=object)
+    keep = sorted(set(range(part.shape[1])) - set(prune))
+    if keep:
+        out[:, keep] = part.iloc[:, keep].to_numpy(dtype=object)
+    for j in prune:
+        out[:, j] = part.iloc[:, j].cat.remove_unused_categories().to_numpy(dtype=object)
+    return out

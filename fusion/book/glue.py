@@ -26,7 +26,8 @@ from matplotlib.figure import Figure
 from pandas.io.formats.style import Styler
 
 from fusion._limits import MAX_WORK, work
-from fusion.book._glue_axes import axis_units, label_sizes
+from fusion.book._glue_axes import axis_units, converted_label_sizes, label_sizes, object_cells, prune_units
+from fusion.book._glue_axes import object_dtype as _object_dtype
 from fusion._validation import count, read_mapping, text
 from fusion.book.tables import rounded
 from fusion._shown import shown
@@ -353,12 +354,6 @@ def _own_text(v: object, plain: set[type] | None = None, container: bool = False
     return None
 
 
-def _object_dtype(dtype: object) -> bool:
-    """Whether a Series, Index or table column of ``dtype`` holds objects that :func:`_finite` visits one by one (an
-    object or non-NumPy dtype: its cells print as their own text), not numbers checked at once."""
-    return not (isinstance(dtype, np.dtype) and dtype.kind != "O")
-
-
 def _table_labels(labels: pd.Index) -> list[pd.Index]:
     """The indexes of labels a table prints for ``labels`` (its rows or columns): its levels for a MultiIndex (each
     value once), else itself; only those holding objects (:func:`_object_dtype`)."""
@@ -417,13 +412,9 @@ def _table_cells(table: pd.DataFrame | Styler | pd.Series | pd.Index) -> list[ob
     cells: list[object] = []
     if isinstance(table, pd.DataFrame):
         cols = [j for j, d in enumerate(table.dtypes) if _object_dtype(d)]
-        # a categorical column without its unused categories (fuzz 61a C3: converting two or more columns to objects
-        # together boxed every category of each, 30-36 ns a number, 0.94 us a date with a time zone, 16 columns of
-        # 2**25 categories ran 29.3 CPU-s); its cells are the same
-        part = table.iloc[:, cols]
-        part = part.apply(lambda c: c.cat.remove_unused_categories() if isinstance(c.dtype, pd.CategoricalDtype)
-                          else c) if any(isinstance(d, pd.CategoricalDtype) for d in part.dtypes) else part
-        cells = list(part.to_numpy(dtype=object).ravel(order="F")) if cols else []
+        # a categorical column of more categories than rows without its unused ones (fuzz 61a C3: 16 columns of
+        # 2**25 categories boxed, 29.3 CPU-s; fuzz 62a C2: only those, charged, ``pruned_columns``)
+        cells = list(object_cells(table.iloc[:, cols]).ravel(order="F")) if cols else []
     axes, names = _axes(table)
     for ax in axes:
         for lv in _table_labels(ax):
@@ -595,6 +586,7 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
             # a table inside a container is printed as a table (the value itself is counted by ``_glue_work``)
             units = n * weight + (_GLUE_TABLE if depth and isinstance(v, (pd.DataFrame, Styler)) else 0)
             units += 0 if done else _numeric_units(v) + axis_units(v, key)   # numeric entries (fuzz 57a C1), levels
+            units += prune_units(v)   # a table's categorical columns read without unused categories (fuzz 62a C2)
             meter.take(n, units, key)  # charged before its entries are visited (fuzz 46a C2, C3)
             pinned.append(v)
             kind = 0 if isinstance(v, _GLUE_PANDAS) else 2 if type(v).__repr__ in _GUARDED_REPRS else 1
@@ -734,7 +726,8 @@ _GLUE_NUMBER = 1
 def _logical_sizes(v: object) -> list[int]:
     """The logical sizes (entries, not bytes held) of what :func:`_finite` converts for the container ``v``: its
     values (an array's shape product, a table's cells), each axis of labels of a Series or table (a Styler's table)
-    and an Index itself with a CategoricalIndex's categories and a MultiIndex's levels (``label_sizes``), and the
+    that it converts (fuzz 62a C1) and an Index itself, with a CategoricalIndex's categories and a MultiIndex's
+    levels (``label_sizes``), and the
     categories of a categorical and of each categorical column of a table (fuzz 60a C1: a table has no ``dtype``,
     its columns' categories were not counted); empty for a Python container (its entries are visited, counted)."""
     v = v.data if isinstance(v, Styler) else v
@@ -745,10 +738,8 @@ def _logical_sizes(v: object) -> list[int]:
     # an Index's values are its labels: counted once (``label_sizes``), not as its shape too
     sizes = [] if isinstance(v, pd.Index) else [int(np.prod(v.shape, dtype=object))]
     axes = _axes(v)[0] if isinstance(v, (pd.Series, pd.DataFrame)) else [v] if isinstance(v, pd.Index) else []
-    # a Series' or table's RangeIndex labels are never converted (numbers printed truncated): not summed when the
-    # values already count as many (a Series of 2 x 10**7 floats is not refused by its default index)
-    sizes += [n for ax in axes if not (v is not ax and type(ax) is pd.RangeIndex and ax.size <= sizes[0])
-              for n in label_sizes(ax)]
+    # a Series' or table's axis only where the glue converts it (fuzz 62a C1: ``converted_label_sizes``)
+    sizes += [n for ax in axes for n in (label_sizes(ax) if ax is v else converted_label_sizes(ax))]
     dtypes = list(v.dtypes) if isinstance(v, pd.DataFrame) else [v.dtype]   # not hashed: that reads the categories
     return sizes + [n for d in dtypes if isinstance(d, pd.CategoricalDtype) for n in label_sizes(d.categories)]
 
