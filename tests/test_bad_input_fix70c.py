@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from fusion._limits import work
-from tests._helpers import refused_quickly
+from _helpers import refused_quickly
 
 N = 10**7   # MAX_COUNT: the most entries a sequence argument may hold
 

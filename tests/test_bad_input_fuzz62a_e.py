@@ -13,7 +13,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from tests._helpers import refused_quickly
+from _helpers import refused_quickly
 
 N = 10**7   # MAX_COUNT: the most entries a sequence argument may hold
 
@@ -74,7 +74,7 @@ def test_guard_usability_counts_thresholds(many_fractions):
     from fusion._limits import MAX_WORK, loop_work
     from fusion.book.chapters import chernoff as chc
     from fusion.book.chapters.chernoff.guard import _THRESHOLD_STEP
-    from tests.test_chernoff_chapter import TINY
+    from test_chernoff_chapter import TINY
     from fusion.scenarios import range_bearing as dist
     runs = dist.monte_carlo(TINY, 5, 3)
     refused_quickly(lambda: chc.guard_usability(runs, runs, TINY, thresholds=many_fractions), ValueError,

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tests._helpers import refused_quickly
+from _helpers import refused_quickly
 
 N = 10**7   # MAX_COUNT: the most entries a sequence argument may hold
 
