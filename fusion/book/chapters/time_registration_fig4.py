@@ -60,7 +60,8 @@ def _levels(sigmas: Sequence[float], runs: int, seed: int, axis_max: float):  # 
         # level i: seed + i, a seed too (fuzz 55 C1); rule 17 before the first level is read (fuzz 28b: runs x
         # levels had no budget; fix69g: by their count, in closed form): per level, runs of two methods, each
         # through its weight matrix (no filter per run)
-        check_seed(seed, span=k - 1)
+        nonlocal seed
+        seed = check_seed(seed, span=k - 1)
         sc._monte_carlo_work([IMPROVED, TWO], runs, t1.size, t2.size, "sigmas and runs", "sigmas", filtered=False,
                              repeat=k)
 
