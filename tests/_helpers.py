@@ -215,3 +215,18 @@ def glued_in_child(cases: tuple[tuple[str, str], ...]) -> dict[str, list]:
                          text=True, timeout=600)
     assert run.returncode == 0, run.stderr[-2000:]
     return json.loads(run.stdout)
+
+
+def glue_outcome(cases: Mapping[str, str], case: str, refused: str) -> None:
+    """Case ``case`` of ``cases`` (name -> expression, all glued in one child by :func:`glued_in_child`) ends within
+    1 CPU-s: accepted if its name starts with ``accepted``, else a ValueError whose message (its first 300
+    characters) matches the regular expression ``refused`` (``re.search``, dot matching line breaks)."""
+    import re
+
+    out = glued_in_child(tuple(cases.items()))[case]
+    assert float(out[1]) < 1.0, out
+    if case.startswith("accepted"):
+        assert out[0] == "ACCEPTED", out
+    else:
+        assert out[0] == "ValueError", out
+        assert re.search(refused, out[2], re.S), out

@@ -5,7 +5,7 @@ to objects together boxed every category of each (30-36 ns a number, 0.94 us a d
 
 import pytest
 
-from _helpers import glued_in_child
+from _helpers import glue_outcome
 
 _COLS = "pd.DataFrame({{f'c{{i}}': pd.Categorical.from_codes([0], categories={cats}) for i in range({n})}})"
 _TZ = "pd.date_range('2000', periods=2**21, freq='s', tz='UTC')"
@@ -24,13 +24,7 @@ _CASES = {
 
 @pytest.mark.parametrize("case", sorted(_CASES))
 def test_c3_categorical_columns_are_summed_and_not_boxed(case: str) -> None:
-    out = glued_in_child(tuple(_CASES.items()))[case]
-    assert float(out[1]) < 1.0, out
-    if case.startswith("accepted"):
-        assert out[0] == "ACCEPTED", out
-    else:
-        assert out[0] == "ValueError", out
-        assert out[2].startswith("values['k'] holds a ") and "summed" in out[2] and "input budget" in out[2], out
+    glue_outcome(_CASES, case, r"^values\['k'\] holds a (?=.*summed)(?=.*input budget)")
 
 
 def test_c3_table_cells_are_the_same_without_unused_categories() -> None:
