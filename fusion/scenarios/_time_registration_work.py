@@ -48,6 +48,13 @@ RUN_WEIGHT: dict[str, int] = {"reg_kalman_predict": 2, "reg_kalman_two_point": 2
 #: weighs 1 (9-22 ns measured in a weight matrix). The cubic spline solves for the whole record each time: 42 ns
 #: at 6,000 and 12,000 samples, 34-50 ns at 22,664 (fuzz 33a C9: its largest accepted Monte Carlo ran 27-46 CPU-s).
 REGISTRATION_WEIGHT: dict[str, int] = {"reg_cubic_spline": 5}
+#: Units of one multiply-add of the runs through a weight matrix (``z @ W.T``: ``runs x n_src x n_dst`` a method that
+#: applies one, a fixed-weight method or a Kalman method registering from its filtered states): 0.037-0.038 ns
+#: measured (2,000-4,000 runs on 1,000-6,000 samples and instants, a strided ``xs[:, :, 0]`` too,
+#: ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two, the machine shared; fix71a: uncounted, a
+#: Monte Carlo of ``reg_two_point`` on 8,000 samples and instants at 16,000 runs ran 51-55 CPU-s), counted as 0.1 ns
+#: (the runs' own ``n_src + n_dst`` term counts the small products, 0.4-1.1 ns a multiply-add at 20 x 8).
+PRODUCT_WEIGHT = 0.01
 #: Units of one instant of a Kalman method's registration from its filtered states (prediction or interpolation onto
 #: the instants, vectorised; the filter's own steps are counted by its rule): ``register`` measured 23-57 ns an
 #: instant (100,000 and 1,000,000 instants on the scenario's 20 samples, ``time.process_time``,
@@ -152,7 +159,8 @@ def _monte_carlo_work(names: Sequence[str], runs: int, n_src: int, n_dst: int, w
     A run of one method over one sample or instant weighs the method's :data:`RUN_WEIGHT` (1 each when not
     ``filtered``: the runs go through each method's weight matrix, as Fig. 4's levels). A fixed-weight method's
     weight matrix is ``n_src`` registrations (:func:`_registration_work`; fuzz 28b C4: ``t_dst`` was not counted
-    and 20,000 instants ran unbounded), as is a filtered Kalman method's fixed-weight base. The filter's passes, all
+    and 20,000 instants ran unbounded), as is a filtered Kalman method's fixed-weight base; the runs through each of
+    those matrices are ``runs x n_src x n_dst`` multiply-adds of :data:`PRODUCT_WEIGHT` (named ``what``). The filter's passes, all
     runs at once over the samples and instants, count by the filter's own rule (:func:`_filter_work`): their steps
     alone with the weight matrices (named ``times``), their steps and runs with the runs (named ``what``), so that
     ``what`` counts at least each ``kalman_runs`` call's own budget and is refused first (fix60a: the smoother's runs
@@ -174,4 +182,6 @@ def _monte_carlo_work(names: Sequence[str], runs: int, n_src: int, n_dst: int, w
     work((_registration_work(matrices, n_src, n_dst, n_src * repeat, times)
           + repeat * _filter_work(kalman, 0, n_src + n_dst, times) + repeat * len(names) * int(name_units),), times)
     runs_units = work((int(runs), n_src + n_dst, weight, repeat), what)
+    if matrices:   # the runs through each weight matrix, runs x n_src x n_dst multiply-adds (fix71a)
+        runs_units += work((int(runs), n_src, n_dst, len(matrices), repeat), what, weight=PRODUCT_WEIGHT)
     work((runs_units + repeat * _filter_work(kalman, runs, n_src + n_dst, what),), what)
