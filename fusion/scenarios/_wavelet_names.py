@@ -19,3 +19,13 @@ def _names(seq: object, nm: str, allowed: tuple[str, ...]) -> list[str]:
         if v not in allowed:
             raise ValueError(f"{nm} must be among {allowed}, got {shown(v)}")
     return [one_of(v, allowed, f"{nm}[{i}]") for i, v in enumerate(items)]
+
+
+def _swt_level(cfg: dict[str, object], length: int, nm: str) -> None:
+    """Refuse, naming ``nm`` (``configs[i]``) and ``length``, a stationary (``"swt"``) config whose ``2**level`` does
+    not divide ``length`` samples, before any draw (fix71a: ``denoise`` refused it after the draw and the earlier
+    configs, ~3.6 CPU-s, naming its own ``x``); ``level`` already read as an int. Other transforms pass."""
+    level = int(cfg["level"])  # type: ignore[call-overload]
+    if cfg.get("transform", "dwt") == "swt" and (level >= int(length).bit_length() or int(length) % 2**level):
+        raise ValueError(f"{nm}: a stationary (transform 'swt') config needs length a multiple of 2**level; level "
+                         f"{level} does not divide length {int(length)}")

@@ -49,7 +49,7 @@ from fusion._validation import derived_inputs, read_mapping, read_once, record, 
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
 from fusion._validation import LOOP_STEP, count_ceiling, distinct, loop_work, seeds as check_seeds, work
 from fusion.readings import wavelet as wv
-from fusion.scenarios._wavelet_names import _names
+from fusion.scenarios._wavelet_names import _names, _swt_level
 from fusion.scenarios._wavelet_stats import _accumulate_rec, _error_stats  # noqa: F401 (tests read them here)
 from fusion.scenarios._wavelet_relations import MECHANISM_ERRORS, cases_relation, configs_relation, seed_cases_relation
 
@@ -533,6 +533,7 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
                 # the level read once, counted and run (fuzz 62b C6: int() gave 1 to the budget, __index__ 8 to the
                 # run): the caller's list holds the copy with the int read
                 configs[i] = {**c, "level": count(c["level"], "cfg['level']")}
+            _swt_level(configs[i], S.size, f"configs[{i}]")  # its 2**level divides length (fix71a)
         calls, nm = 2 * len(_blocks(runs, g.size * S.size)), "configs (levels, wavelets), runs, gains and length"
         swt = [(c["level"], _kw(c)["wavelet"]) for c in configs if _kw(c)["transform"] == "swt"]
         work((units + sum(wv._swt_work(runs * (g.size + 1), S.size, lv, w, nm, calls) for lv, w in swt),), nm)
