@@ -93,30 +93,33 @@ def test_exact_sweeps_edges(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def test_monte_carlo_runs_weigh_by_method() -> None:
-    """A filtered run weighs its method's RUN_WEIGHT and the filter's passes their own rule: every method at 415,154
-    runs is accepted, one more refused (452,079 before fix60a, whose filter passes weighed less than the filter's own
-    budget; 1e5 ran 1.05 CPU-s; 2.4e6 were accepted); runs through weight matrices (Fig. 4) weigh 1 each."""
+    """A filtered run weighs its method's RUN_WEIGHT and the filter's passes their own rule: every method at 411,870
+    runs is accepted, one more refused (415,154 before fix71a counted the products through the weight matrices,
+    452,079 before fix60a, whose filter passes weighed less than the filter's own budget; 1e5 ran 1.05 CPU-s; 2.4e6
+    were accepted); runs through weight matrices (Fig. 4) weigh 1 each and 0.01 a multiply-add (fix71a)."""
     n1, n2 = (t.size for t in sc.instants())
     names = list(sc.METHODS)
-    tw._monte_carlo_work(names, 415154, n1, n2, "runs", "t_dst")
+    tw._monte_carlo_work(names, 411870, n1, n2, "runs", "t_dst")
     with pytest.raises(ValueError, match=r"^runs ask for"):
-        tw._monte_carlo_work(names, 415155, n1, n2, "runs", "t_dst")
+        tw._monte_carlo_work(names, 411871, n1, n2, "runs", "t_dst")
     assert set(tw.RUN_WEIGHT) == set(sc._KALMAN) and set(tw.RUN_WEIGHT) <= set(R)
     fig4 = [R.IMPROVED, R.TWO_POINT] * 19
-    edge = MAX_WORK // ((n1 + n2) * len(fig4))
+    edge = 100 * MAX_WORK // (len(fig4) * (100 * (n1 + n2) + n1 * n2))
     tw._monte_carlo_work(fig4, edge, n1, n2, "sigmas and runs", "sigmas", filtered=False)
     with pytest.raises(ValueError, match=r"^sigmas and runs ask for"):
         tw._monte_carlo_work(fig4, edge + 1, n1, n2, "sigmas and runs", "sigmas", filtered=False)
 
 
 def test_fig4_runs_through_weight_matrices(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Fig. 4's levels are not filtered per run (9.4e5 runs of 19 levels, formerly accepted, still are)."""
+    """Fig. 4's levels are not filtered per run: a run weighs its samples and instants and 0.01 a multiply-add through
+    each weight matrix (fix71a: 8.9e5 runs of 19 levels accepted, 9.4e5 before; the book runs 1e4)."""
     from fusion.book.chapters import time_registration as ch
 
     monkeypatch.setattr(sc, "truth", _stop)
     sigmas = list(np.round(np.arange(0.3, 1.26, 0.05), 2))
     n = sum(t.size for t in sc.instants())
-    edge = MAX_WORK // (n * 2 * len(sigmas))
+    n1, n2 = (t.size for t in sc.instants())
+    edge = 100 * MAX_WORK // (2 * len(sigmas) * (100 * n + n1 * n2))
     assert _accepted(lambda: ch.fig4_compatibility(sigmas, edge, 0, 3.0))
     assert not _accepted(lambda: ch.fig4_compatibility(sigmas, edge + 1, 0, 3.0))
 
