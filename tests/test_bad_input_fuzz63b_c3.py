@@ -72,3 +72,18 @@ def test_estimated_covariance_study_still_refuses_a_repeat():
     from fusion.scenarios import correlated_sensors as cs
     with pytest.raises(ValueError, match="ns"):
         cs.estimated_covariance_study(ns=(10, 30, 10), reps=2)
+
+
+def test_ridge_study_budgets_ms_before_copying_and_hashing_them():
+    """3.7 CPU-s before (10**7 ms copied to ints and hashed first; found by grep, fuzz 63b's class): refused at once."""
+    from fusion.scenarios import lecture_correlated as lc
+    ms = np.arange(1, N + 1)
+    with pytest.raises(ValueError, match="ms and draws"):   # imports and caches, untimed
+        lc.ridge_study(ms=ms[:10**5])
+    refused_quickly(lambda: lc.ridge_study(ms=ms), ValueError, "ms and draws")
+
+
+def test_ridge_study_still_refuses_a_repeated_m():
+    from fusion.scenarios import lecture_correlated as lc
+    with pytest.raises(ValueError, match="ms"):
+        lc.ridge_study(ms=(1, 5, 1), draws=2)
