@@ -225,7 +225,6 @@ def ridge_study(
         :math:`A = \sum_i H_i^\top R_i^{-1}H_i` in ``var_gap_min_eig``.
     """
     m_arr = _ints(ms, "ms")
-    ms = [int(m) for m in m_arr]  # the validated values (ms may be any 1-D array-like)
     m0 = count(m0, "m0")
     sigma = std_scalar(sigma, "sigma")
     xs = as_array(xs, "xs", ndim=1).tolist()
@@ -235,7 +234,7 @@ def ridge_study(
     loop_work((len(xs) + 1, 3 + len(ks_fixed)), 501, "xs and ks_fixed", step=20 * LOOP_STEP)  # rule 17: ~100 us a row
     # the repeats looked for after the budget by their number
     # (fix70a, fuzz 62b's class: each entry hashed before a budget that needs only their number, 2.5 CPU-s a 10**7 list)
-    distinct(xs, "xs"), distinct(ms, "ms")  # mse and rel are keyed by x, conv's entries by m
+    distinct(xs, "xs")  # mse and rel are keyed by x; ms after their budgets below
     distinct_printed(ks_fixed, "ks_fixed", general)  # rel_k's rows are labelled f"k = {k:g}" (fuzz 30b)
     for i, x in enumerate(xs):
         _optimal_k_representable(x, sigma, f"xs[{i}]")
@@ -251,7 +250,12 @@ def ridge_study(
     # measured at sum(ms) = 20,000 and 40,000 of 2,000 draws (the least of two calls, time.process_time,
     # OPENBLAS_NUM_THREADS=1, machine shared; 28.5 in fuzz 40a D2, whose 8e8 normals at one unit ran 22.8 CPU-s),
     # weighed 2.5 units: the edge, 4e8 normals, runs 6-11 CPU-s
-    work((4, draws, sum(ms)), "ms and draws", weight=2.5)
+    work((4, draws, int(m_arr.sum())), "ms and draws", weight=2.5)  # exact: at most 10**7 counts of 10**7
+    # the validated values as ints (ms may be any 1-D array-like); conv's entries are keyed by m. Both after the
+    # budgets, which need only the largest and the sum (fuzz 63b's class: 10**7 ms, np.arange(1, 10**7 + 1), were
+    # copied and hashed first, refused after 3.7 CPU-s)
+    ms = [int(m) for m in m_arr]
+    distinct(ms, "ms")
     kgrid = np.linspace(0, 5, 501)
     i1 = int(np.argmin(np.abs(kgrid - 1.0)))
     delta = sigma / np.sqrt(m0)
