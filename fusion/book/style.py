@@ -469,6 +469,14 @@ def color(method: str) -> str:
 _MAX_PANELS = 16
 
 
+def _panels(n: int, name: str, what: str) -> int:
+    """``n`` panels drawn one per entry of the caller's argument ``name`` (``what``: its entries), refused naming it
+    beyond ``_MAX_PANELS`` before ``new_figure`` (fuzz 63a C5: ``ncols must be at most 16``, not the caller's)."""
+    if n > _MAX_PANELS:
+        raise ValueError(f"{name} must hold at most {_MAX_PANELS} {what} (one panel each), got {n}")
+    return n
+
+
 @functools.cache
 def _figure_keywords() -> frozenset[str]:
     """The keywords :func:`matplotlib.pyplot.subplots` takes: its own, :func:`matplotlib.pyplot.figure`'s, the

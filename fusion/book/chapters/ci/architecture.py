@@ -14,7 +14,8 @@ from numpy.typing import ArrayLike
 from fusion._docstrings import reads_results
 from fusion._validation import count, shown, text, instance_of, scalar
 from fusion._counts import seeds as check_seeds, sequence
-from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
+from fusion._limits import work
+from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure, _panels
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
@@ -180,6 +181,23 @@ def _studies(studies: object, name: str) -> Mapping[str, ArchitectureStudy]:
     return studies
 
 
+#: Units of work of one row of one study in :func:`architecture_table` (its paired 95 % interval, labels and cells):
+#: 440-500 us measured (a study of 19 rows under 100 and 300 labels, 3 and 2,000 runs: 8.4-9.4 ms a study, the
+#: shared machine, other helpers running; fix71d), on top of ``_TABLE_RUN_UNITS`` a run.
+_TABLE_ROW_UNITS = 50_000
+#: Units of one run of one row in :func:`architecture_table` (the difference, mean and interval: vectorised passes).
+_TABLE_RUN_UNITS = 5
+
+
+def _table_budget(studies: Mapping[str, ArchitectureStudy]) -> int:
+    """Rule 17 of :func:`architecture_table` before its loop (fuzz 63a C4: the studies were never counted, one small
+    study under 5,000 labels was accepted after 48.0 CPU-s): every study's rows, each ``_TABLE_ROW_UNITS`` plus
+    ``_TABLE_RUN_UNITS`` a run, refused naming ``studies``."""
+    units = sum(len(st.run_rmse) * (_TABLE_ROW_UNITS + _TABLE_RUN_UNITS * int(np.size(st.run_rmse[_ARCH_BASE])))
+                for st in studies.values())
+    return work((1,), "studies", weight=units)
+
+
 def architecture_table(studies: Mapping[str, ArchitectureStudy]) -> pd.DataFrame:
     r"""Every rule with and without the source's Fig. 2 feedback, per sensor pair.
 
@@ -200,9 +218,13 @@ def architecture_table(studies: Mapping[str, ArchitectureStudy]) -> pd.DataFrame
     TypeError
         ``studies`` not a mapping, or an entry not an ArchitectureStudy.
     ValueError
-        ``studies`` empty, or a study without CI on independent filters (the baseline of the differences).
+        ``studies`` empty, or a study without CI on independent filters (the baseline of the differences); studies
+        whose rows (their (architecture, rule) keys, each a paired interval) are beyond the work budget
+        (``fusion._limits.MAX_WORK``, 50,000 units a row plus 5 a run: about 1,000 studies of chapter 05's 19 rows),
+        before the first.
     """
     studies = _studies(studies, "studies")
+    _table_budget(studies)
     cols = {}
     for label, st in studies.items():
         base = st.run_rmse[_ARCH_BASE]
@@ -249,10 +271,12 @@ def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
     TypeError
         ``studies`` not a mapping, or an entry not an ArchitectureStudy.
     ValueError
-        ``studies`` empty, or a study without CI on independent filters.
+        ``studies`` empty, holding more than 16 studies (one panel each, the book style's limit), or a study without CI
+        on independent filters.
     """
     studies = _studies(studies, "studies")
-    fig, axes = new_figure(1, len(studies), figsize=(7.5, 6.8), sharey=True, squeeze=False)
+    fig, axes = new_figure(1, _panels(len(studies), "studies", "studies"), figsize=(7.5, 6.8), sharey=True,
+                           squeeze=False)
     first = next(iter(studies.values()))
     # the rules run on every pair (a reading run on one pair only, e.g. a fixed weight, is in the table only)
     rules = [name for name in dict.fromkeys(name for _, name in first.run_rmse)

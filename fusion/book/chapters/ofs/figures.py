@@ -17,7 +17,7 @@ from fusion._limits import recorded_as, work
 from fusion._shown import shown
 from fusion._structures import same_keys, within
 from fusion._validation import as_array, instance_of, read_mapping, scalar, window as check_window
-from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.style import METHOD_LABELS, _panels, color, new_figure
 from fusion.book.tables import _frame, rounded
 from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
@@ -96,6 +96,13 @@ def _mc_frame(studies: Mapping[str, PairedStudy], bounds: Mapping[str, float] | 
 #: Units of work of one entry of ``highlight`` of :func:`figure_readings` (read as a 1-based sensor: 1.3 us measured
 #: over 10**6 entries, the shared machine; fix70c), on top of one a sensor for its membership test.
 _HIGHLIGHT_UNITS = 130
+#: Units of work of one sensor's line in :func:`figure_readings` (an ``ax.plot`` call): 290-390 us measured (400 to
+#: 4,000 sensors of 2 to 2,000 samples, the shared machine, other helpers running; fix71d), on top of
+#: ``_SAMPLE_UNITS`` a sample drawn.
+_SENSOR_UNITS = 40_000
+#: Units of one sample of one sensor's line in :func:`figure_readings`: 33-65 ns measured (4 to 40 sensors of 20,000
+#: to 200,000 samples, fix71d).
+_SAMPLE_UNITS = 7
 
 
 @study_defaults("readings", "window")  # a default the study does not fit, named by the study (fuzz 34b D2)
@@ -106,7 +113,8 @@ def figure_readings(readings: ArrayLike, highlight: Sequence[int] = (), window: 
     Parameters
     ----------
     readings : array_like, shape (n_samples, n_sensors)
-        Readings, °C.
+        Readings, °C: one line a sensor, at most the work budget (``fusion._limits.MAX_WORK``, 40,000 units a sensor
+        plus 7 a sample of it: about 25,000 sensors of few samples), before any is drawn.
     highlight : sequence of int
         1-based sensors drawn bold and labelled (the failing ones); the window is shaded then. At most the work
         budget (``fusion._limits.MAX_WORK``, 130 units an entry plus one a sensor: about 7 million), by their number
@@ -123,6 +131,9 @@ def figure_readings(readings: ArrayLike, highlight: Sequence[int] = (), window: 
         dotted, the window shaded.
     """
     z = as_array(readings, "readings", ndim=2)
+    # rule 17 by the lines drawn (fuzz 63a C2: the sensors were never counted, (2, 10**5) readings were accepted after
+    # 35.6 CPU-s): one ax.plot a sensor, _SENSOR_UNITS each plus _SAMPLE_UNITS a sample
+    work((z.shape[1],), "readings", weight=_SENSOR_UNITS + _SAMPLE_UNITS * z.shape[0])
     items = sequence(highlight, "highlight")
     # rule 17 by len(highlight) before any entry is read (fix70c: 10**7 entries were each read, 1.3 us, a bad last
     # one refused after about 13 CPU-s): 130 units an entry read (10**6 entries, the shared machine), and one a sensor
@@ -237,8 +248,8 @@ def figure_mc(table: pd.DataFrame) -> Figure:
         ``table`` not a DataFrame.
     ValueError
         ``table`` empty, lacking a column or a (setting, case) row of :func:`mc_table` of the three methods, holding
-        a row or a column read more than once, or a
-        cell drawn (a method's MAE, the bound without failure) that is not a finite number >= 0.
+        a row or a column read more than once, more than 16 noise settings (one panel each, the book style's limit),
+        or a cell drawn (a method's MAE, the bound without failure) that is not a finite number >= 0.
     """
     instance_of(table, pd.DataFrame, "table")
     if table.empty:
@@ -254,6 +265,7 @@ def figure_mc(table: pd.DataFrame) -> Figure:
     if missing:
         raise ValueError(f"table lacks the rows {missing} (mc_table gives both cases of every noise setting)")
     settings = list(dict.fromkeys(table.index.get_level_values(0)))
+    _panels(len(settings), "table", "noise settings")   # one panel each (fuzz 63a C5: new_figure named ncols)
     cases = [METHOD_LABELS[c] for c in FailureCase]               # the table's rows are labelled by them
     # the bars and the bound drawn: finite MAEs >= 0 (a missing one would be drawn as no bar); the bound is NaN
     # under failure by design and read only without it
