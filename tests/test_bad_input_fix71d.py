@@ -76,3 +76,13 @@ def test_figure_mc_refuses_a_17th_noise_setting_by_its_name() -> None:
     rows = pd.MultiIndex.from_tuples([(f"s{i}", METHOD_LABELS[c]) for i in range(17) for c in FailureCase])
     table = pd.DataFrame(1.0, index=rows, columns=[METHOD_LABELS[m] for m in METHODS] + [BOUND_CLEAN])
     refused_quickly(lambda: figure_mc(table), ValueError, r"^table must hold at most 16 noise settings")
+
+
+def test_figure_fair_refuses_a_33rd_sweep_by_its_name() -> None:
+    """fix71d's report: figure_fair draws two rows of panels; a study of 33 sweeps raised new_figure's "ncols must be
+    at most 16", naming an argument the caller never passed."""
+    from fusion.book.chapters.ofs_fair import FAIR_METHODS, FairStudy, figure_fair
+
+    errs = {m: np.ones(2) for m in FAIR_METHODS}
+    study = FairStudy(mae={(f"s{i}", 1.0): errs for i in range(33)}, n_runs=2, n_samples=10, seed=0)
+    refused_quickly(lambda: figure_fair(study), ValueError, r"^study must hold at most 32 sweeps .*got 33")

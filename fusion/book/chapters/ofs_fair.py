@@ -29,7 +29,7 @@ from fusion._results import ResultSpec, array, dict_of, integer, validated_post_
 from fusion._validation import FloatArray, as_array, count, instance_of, one_of, read_mapping, scalar
 from fusion.book._few_runs import runs_named
 from fusion.book.ledger import Comparison
-from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.style import _MAX_PANELS, METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings._row_blocks import epochs_limit
 from fusion.readings.robust import _robust_limit, ROBUST_METHODS, robust_fuse
@@ -440,9 +440,17 @@ def figure_fair(study: FairStudy) -> Figure:
     -------
     Figure
         One panel per sweep: each method's mean absolute error over the runs (°C, log scale) against the swept value.
+
+    Raises
+    ------
+    ValueError
+        ``study`` holding more than 32 sweeps (two rows of at most 16 panels), naming it.
     """
     _fair_study(study)
     sweeps = list(dict.fromkeys(s for s, _ in study.mae))
+    if len(sweeps) > 2 * _MAX_PANELS:   # two rows of panels (fix71d's report: new_figure's "ncols" named instead)
+        raise ValueError(f"study must hold at most {2 * _MAX_PANELS} sweeps (one panel each, in two rows), got "
+                         f"{len(sweeps)}")
     rows = 1 if len(sweeps) <= 3 else 2
     cols = -(-len(sweeps) // rows)
     fig, axes = new_figure(rows, cols, figsize=(7.5, 4.6 if rows == 1 else 7.4), sharey=True)
