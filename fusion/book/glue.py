@@ -28,6 +28,7 @@ from pandas.io.formats.style import Styler
 from fusion._limits import MAX_WORK, work
 from fusion.book._glue_axes import atom_units, axis_units, converted_label_sizes, label_sizes, object_cells, prune_units
 from fusion.book._glue_axes import object_dtype as _object_dtype
+from fusion.book._glue_figure import figure_units
 from fusion._validation import count, read_mapping, text
 from fusion.book.tables import rounded
 from fusion._shown import shown
@@ -856,15 +857,15 @@ def _glue_work(value: object, key: str = "") -> int:
     a container by its own entries (``_container_work``, a list's at ``_GLUE_ENTRY``) and its numeric entries by
     their logical size (``_numeric_units``; ValueError naming ``values[key]`` for a part beyond the input budget,
     ``_logical_check``, fuzz 57a C1); what is inside them is counted as :func:`_finite` reaches it. ValueError naming
-    ``values[key]`` beyond ``MAX_WORK`` units alone, its ``_GLUE_VALUE`` included (fuzz 63a C1), before any entry is read."""
+    ``values[key]`` beyond ``MAX_WORK`` units alone with its ``_GLUE_VALUE`` (fuzz 63a C1), before reading it."""
     if isinstance(value, _GLUE_CONTAINERS):
         _logical_check(value, key)
         levels = axis_units(value, key)   # fuzz 59a C2; a table's are charged where _finite reaches it (not counted)
         units = _glue_units(value) + _numeric_units(value) + (levels if isinstance(value, _GLUE_COUNTED) else 0)
         if _GLUE_VALUE + units > MAX_WORK:   # its own refusal, naming it (``work`` counts at least 1)
-            work((_GLUE_VALUE + units,), f"values[{shown(key)}] (a {type(value).__name__}, its entries weighed by their kind)")
+            work((_GLUE_VALUE + units,), f"values[{shown(key)}] ({type(value).__name__}, entries weighed by kind)")
         return units
-    return _GLUE_FIGURE if isinstance(value, Figure) else 0
+    return figure_units(value, key) if isinstance(value, Figure) else 0   # by its drawn points (fuzz 63a C3)
 
 
 def _glue_units(value: object) -> int:
