@@ -80,6 +80,6 @@ def test_c7_glue_all_counts_its_values_by_the_work_budget() -> None:
                {"k": [0.5] * ((MAX_WORK - G._GLUE_VALUE) // G._GLUE_ENTRY + 1)})
     for values in too_big:
         t = time.process_time()
-        with pytest.raises(ValueError, match="^values .*work budget"):
+        with pytest.raises(ValueError, match=r"^values(\['k'\])? .*work budget"):
             G.glue_all(values, decimals=3)
         assert time.process_time() - t < 1.0

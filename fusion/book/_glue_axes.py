@@ -128,3 +128,32 @@ def object_cells(part: pd.DataFrame) -> np.ndarray:
     for j in prune:
         out[:, j] = part.iloc[:, j].cat.remove_unused_categories().to_numpy(dtype=object)
     return out
+
+
+#: Units (``fusion._limits.work``, about 10 ns each) of one entry of a Series, Index, table column or pandas array
+#: whose dtype holds atoms that cost more to check and print than ``glue._GLUE_OBJECT`` (200 units, ~2 us), known
+#: from the dtype before any conversion (fuzz 63a C1: 4,900,000 Intervals of ints, charged 200 units each, accepted
+#: after 73.9 CPU-s). Measured by ``glue_all`` on Series of 2**17 entries (time.process_time, OPENBLAS_NUM_THREADS=1,
+#: minimum of 2, machine shared with other helpers; fuzz 63a's 2**18 in brackets), weighed twice the largest: an
+#: Interval of numbers 10.9 us (8-14), as an IntervalIndex of labels 10.7 us: 2,800 units; an Interval of dates and
+#: times 15.8-17.9 us (33 with a time zone): 6,600; a date-time with a time zone 6.6 us as values, 7.9 us as
+#: labels (7-10): 2,000; a Period 6.1-6.4 us: 1,300; a categorical of any of them twice its categories' (Intervals
+#: 21.2 us, 23): numbers, naive dates and durations are checked at once (0.01 us, ``_GLUE_NUMBER``).
+_ATOM_INTERVAL, _ATOM_INTERVAL_TIME, _ATOM_ZONED, _ATOM_PERIOD = 2_800, 6_600, 2_000, 1_300
+
+
+def atom_units(dtype: object, plain: int) -> int:
+    """The units of one object entry of ``dtype`` (a Series', Index's, table column's or pandas array's) that the
+    glue checks and prints: by the atoms it holds (``_ATOM_*``), else ``plain`` (``glue._GLUE_OBJECT``)."""
+    if isinstance(dtype, pd.CategoricalDtype):   # of plain atoms: plain (measured as such, fuzz 46a)
+        inner = atom_units(dtype.categories.dtype, plain)
+        return plain if inner == plain else 2 * inner
+    if isinstance(dtype, pd.IntervalDtype):
+        sub = dtype.subtype
+        timed = isinstance(sub, pd.DatetimeTZDtype) or (isinstance(sub, np.dtype) and sub.kind in "mM")
+        return _ATOM_INTERVAL_TIME if timed else _ATOM_INTERVAL
+    if isinstance(dtype, pd.DatetimeTZDtype):
+        return _ATOM_ZONED
+    if isinstance(dtype, pd.PeriodDtype):
+        return _ATOM_PERIOD
+    return plain

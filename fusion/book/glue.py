@@ -26,8 +26,9 @@ from matplotlib.figure import Figure
 from pandas.io.formats.style import Styler
 
 from fusion._limits import MAX_WORK, work
-from fusion.book._glue_axes import axis_units, converted_label_sizes, label_sizes, object_cells, prune_units
+from fusion.book._glue_axes import atom_units, axis_units, converted_label_sizes, label_sizes, object_cells, prune_units
 from fusion.book._glue_axes import object_dtype as _object_dtype
+from fusion.book._glue_figure import figure_units
 from fusion._validation import count, read_mapping, text
 from fusion.book.tables import rounded
 from fusion._shown import shown
@@ -387,6 +388,18 @@ def _table_size(table: pd.DataFrame | Styler | pd.Series | pd.Index) -> int:
     return table.shape[0] * sum(1 for d in table.dtypes if _object_dtype(d)) + labels
 
 
+def _table_units(table: pd.DataFrame | Styler | pd.Series | pd.Index) -> int:
+    """The units of ``_table_size``'s entries: each by its column's or labels' dtype (``atom_units``), a name at
+    ``_GLUE_OBJECT`` (fuzz 63a C1: a Series' 2**22 labels with a time zone ran 34.95 CPU-s charged 200 units each)."""
+    table = table.data if isinstance(table, Styler) else table
+    axes, names = _axes(table)
+    units = sum(len(lv) * atom_units(lv.dtype, _GLUE_OBJECT) for ax in axes for lv in _table_labels(ax))
+    units += len(names) * _GLUE_OBJECT
+    if isinstance(table, pd.DataFrame):
+        units += table.shape[0] * sum(atom_units(d, _GLUE_OBJECT) for d in table.dtypes if _object_dtype(d))
+    return units
+
+
 def _is_missing_cell(cell: object) -> bool:
     """Whether a table cell is missing or a real number that is not finite: a table prints it as a word (NaN, inf,
     <NA>, NaT, None), in an object column as in a numeric one (not looked into). Not a complex number (fuzz 50a D3:
@@ -582,9 +595,9 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
                 raise nesting_error(f"values[{shown(key)}]", itself=False)
             if not done:   # its logical size before any conversion (fuzz 57a C1: a RangeIndex(10**10) category)
                 _logical_check(v, key)
-            n, weight = (0, 0) if done else _container_work(v)  # done: its container counted it (a Series' array)
+            n, units = (0, 0) if done else _container_work(v)  # done: its container counted it (a Series' array)
             # a table inside a container is printed as a table (the value itself is counted by ``_glue_work``)
-            units = n * weight + (_GLUE_TABLE if depth and isinstance(v, (pd.DataFrame, Styler)) else 0)
+            units += (_GLUE_TABLE if depth and isinstance(v, (pd.DataFrame, Styler)) else 0)
             units += 0 if done else _numeric_units(v) + axis_units(v, key)   # numeric entries (fuzz 57a C1), levels
             units += prune_units(v)   # a table's categorical columns read without unused categories (fuzz 62a C2)
             meter.take(n, units, key)  # charged before its entries are visited (fuzz 46a C2, C3)
@@ -694,23 +707,27 @@ _GLUE_COUNTED = (list, tuple, set, frozenset, dict, pd.Series, pd.Index, Extensi
 
 
 def _container_work(v: object) -> tuple[int, int]:
-    """The entries of the container ``v`` that :func:`_finite` visits one by one and the units of each (``_GLUE_*``):
+    """The entries of the container ``v`` that :func:`_finite` visits one by one and their units (``_GLUE_*``; an
+    entry of a pandas dtype of costlier atoms, an Interval, a date-time with a time zone, a Period, by
+    ``atom_units``, fuzz 63a C1):
     a list, tuple or set its length, a mapping its keys and values, at ``_GLUE_NESTED``; an object array, an object
     (or non-NumPy dtype) Series or Index, an extension array its size, a DataFrame or Styler its (table's) object
     cells and labels (``_table_size``), at ``_GLUE_OBJECT``, known without visiting; a structured array holding
     objects at most one object per 8 bytes of an element; a numeric array 0 (its entries: ``_numeric_units``). A table inside a
     container is charged ``_GLUE_TABLE`` more by :func:`_finite`, where it reaches it."""
     if isinstance(v, (pd.Series, pd.Index)):   # its values, labels and names (fuzz 52 C2)
-        return (len(v) if _object_dtype(v.dtype) else 0) + _table_size(v), _GLUE_OBJECT
+        n = len(v) if _object_dtype(v.dtype) else 0
+        return n + _table_size(v), n * atom_units(v.dtype, _GLUE_OBJECT) + _table_units(v)
     if isinstance(v, (pd.DataFrame, Styler)):
-        return _table_size(v), _GLUE_OBJECT
+        return _table_size(v), _table_units(v)
     if isinstance(v, Mapping):
-        return 2 * len(v), _GLUE_NESTED   # its keys and its values
+        return 2 * len(v), 2 * len(v) * _GLUE_NESTED   # its keys and its values
     if isinstance(v, ExtensionArray):
-        return len(v), _GLUE_OBJECT
+        return len(v), len(v) * atom_units(v.dtype, _GLUE_OBJECT)
     if isinstance(v, np.ndarray):
-        return (int(v.size) * max(1, v.dtype.itemsize // 8) if v.dtype.hasobject else 0), _GLUE_OBJECT
-    return len(v), _GLUE_NESTED  # type: ignore[arg-type]
+        n = int(v.size) * max(1, v.dtype.itemsize // 8) if v.dtype.hasobject else 0
+        return n, n * _GLUE_OBJECT
+    return len(v), len(v) * _GLUE_NESTED  # type: ignore[arg-type]
 
 
 #: Fuzz 57a C1: a numeric entry (of a numeric array, Series, Index or table column, or a numeric label) is checked
@@ -839,12 +856,16 @@ def _glue_work(value: object, key: str = "") -> int:
     """The units of work of gluing ``value`` (``_GLUE_VALUE`` and the weights beside it), beyond ``_GLUE_VALUE``:
     a container by its own entries (``_container_work``, a list's at ``_GLUE_ENTRY``) and its numeric entries by
     their logical size (``_numeric_units``; ValueError naming ``values[key]`` for a part beyond the input budget,
-    ``_logical_check``, fuzz 57a C1); what is inside them is counted as :func:`_finite` reaches it."""
+    ``_logical_check``, fuzz 57a C1); what is inside them is counted as :func:`_finite` reaches it. ValueError naming
+    ``values[key]`` beyond ``MAX_WORK`` units alone with its ``_GLUE_VALUE`` (fuzz 63a C1), before reading it."""
     if isinstance(value, _GLUE_CONTAINERS):
         _logical_check(value, key)
         levels = axis_units(value, key)   # fuzz 59a C2; a table's are charged where _finite reaches it (not counted)
-        return _glue_units(value) + _numeric_units(value) + (levels if isinstance(value, _GLUE_COUNTED) else 0)
-    return _GLUE_FIGURE if isinstance(value, Figure) else 0
+        units = _glue_units(value) + _numeric_units(value) + (levels if isinstance(value, _GLUE_COUNTED) else 0)
+        if _GLUE_VALUE + units > MAX_WORK:   # its own refusal, naming it (``work`` counts at least 1)
+            work((_GLUE_VALUE + units,), f"values[{shown(key)}] ({type(value).__name__}, entries weighed by kind)")
+        return units
+    return figure_units(value, key) if isinstance(value, Figure) else 0   # by its drawn points (fuzz 63a C3)
 
 
 def _glue_units(value: object) -> int:
@@ -860,8 +881,7 @@ def _glue_units(value: object) -> int:
     if isinstance(value, dict):
         return _GLUE_ENTRY * 2 * len(value)   # its keys and its values (fuzz 49a C3)
     if isinstance(value, _GLUE_COUNTED):
-        n, weight = _container_work(value)
-        return n * weight
+        return _container_work(value)[1]
     return 0
 
 
