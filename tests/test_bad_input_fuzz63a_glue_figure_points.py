@@ -40,11 +40,29 @@ def test_a_figure_is_weighed_by_its_drawn_points_at_both_bounds() -> None:
 
 
 def test_scatter_and_image_points_are_counted() -> None:
-    """A scatter's offsets and an image's pixels are drawn points too."""
+    """A scatter's offsets are drawn points too; an image's pixels are counted at their own (lower) weight."""
     from fusion.book import _glue_figure as F
 
     fig, ax = plt.subplots()
     ax.scatter(np.arange(1000), np.arange(1000))
     ax.imshow(np.zeros((30, 40)))
-    assert F.drawn_points(fig) >= 1000 + 1200
+    assert F.drawn_points(fig) >= 1000 and F.drawn_pixels(fig) == 1200
+    plt.close(fig)
+
+
+def test_an_image_is_weighed_by_its_pixels_at_both_bounds() -> None:
+    """A 1000 x 1000 image (glued in 0.15 CPU-s; refused when a pixel weighed as a line's vertex) is within the budget;
+    one of more pixels than the budget holds at ``PIXEL`` units each is refused naming values['k'] within 1 CPU-s."""
+    from fusion._limits import MAX_WORK
+    from fusion.book import _glue_figure as F
+    from fusion.book import glue as G
+
+    fig, ax = plt.subplots()
+    ax.imshow(np.zeros((1000, 1000)))
+    assert G._GLUE_VALUE + G._glue_work(fig, "k") <= MAX_WORK
+    plt.close(fig)
+    side = int(np.sqrt((MAX_WORK - G._GLUE_VALUE - F.FIGURE) // F.PIXEL)) + 1
+    fig, ax = plt.subplots()
+    ax.imshow(np.zeros((side, side), dtype=np.uint8))
+    glue_refused({"k": fig}, ValueError, r"values\['k'\] is a figure drawing .* image pixels")
     plt.close(fig)

@@ -26,36 +26,47 @@ FIGURE = 5_000_000
 #: above, machine shared with nbval running); 4 x 3e5 and more, and a line of 5e5 or more points, are refused before
 #: any rendering.
 POINT = 2_000
+#: Units of one image pixel (``imshow``): far cheaper than a line's vertex, the image is resampled once a render, not
+#: stroked. Measured (glue_all of one ``imshow`` of random n x n floats, this weight off, process_time,
+#: OPENBLAS_NUM_THREADS=1): 2.5e5 pixels 0.17 CPU-s, 1e6 0.15, 4e6 0.75, 1.6e7 2.17 (0.14 us a pixel); weighed twice
+#: that, 30 units (a 1000 x 1000 image, refused at POINT's weight, is glued).
+PIXEL = 30
 
 
 def drawn_points(fig: Figure) -> int:
     """The points ``fig`` draws, read from its artists without rendering: each line's vertices, each collection's
-    offsets and path vertices, each image's pixels."""
+    offsets and path vertices (images' pixels: ``drawn_pixels``)."""
     n = 0
-    for a in fig.findobj(lambda a: isinstance(a, (Line2D, Collection, AxesImage))):
+    for a in fig.findobj(lambda a: isinstance(a, (Line2D, Collection))):
         if isinstance(a, Line2D):
             n += int(np.size(a.get_xdata(orig=True)))
-        elif isinstance(a, Collection):
-            n += len(a.get_offsets()) + sum(len(p.vertices) for p in a.get_paths())
         else:
-            arr = a.get_array()
-            n += int(np.prod(np.shape(arr)[:2], dtype=object)) if arr is not None else 0
+            n += len(a.get_offsets()) + sum(len(p.vertices) for p in a.get_paths())
+    return n
+
+
+def drawn_pixels(fig: Figure) -> int:
+    """The pixels of ``fig``'s images (each image's first two dimensions), read without rendering."""
+    n = 0
+    for a in fig.findobj(lambda a: isinstance(a, AxesImage)):
+        arr = a.get_array()
+        n += int(np.prod(np.shape(arr)[:2], dtype=object)) if arr is not None else 0
     return n
 
 
 def figure_units(fig: Figure, key: str) -> int:
-    """``FIGURE`` plus ``POINT`` a drawn point (``drawn_points``).
+    """``FIGURE`` plus ``POINT`` a drawn point (``drawn_points``) and ``PIXEL`` an image pixel (``drawn_pixels``).
 
     Raises
     ------
     ValueError
         Beyond ``fusion._limits.MAX_WORK`` units, naming ``values[key]``, before the figure is audited or rendered.
     """
-    points = drawn_points(fig)
-    units = FIGURE + POINT * points
+    points, pixels = drawn_points(fig), drawn_pixels(fig)
+    units = FIGURE + POINT * points + PIXEL * pixels
     if units > MAX_WORK:
         raise ValueError(f"values[{shown(key)}] is a figure drawing {points:,} points (lines' vertices, collections' "
-                         f"offsets and paths, images' pixels), {units:.3g} units of work at {POINT:,} a point "
-                         f"rendered, beyond the work budget (at most {MAX_WORK:.3g} units, fusion._limits.MAX_WORK, "
+                         f"offsets and paths) and {pixels:,} image pixels, {units:.3g} units of work at {POINT:,} a "
+                         f"point and {PIXEL} a pixel rendered, beyond the work budget (at most {MAX_WORK:.3g} units, fusion._limits.MAX_WORK, "
                          "about 10 CPU-s)")
     return units
