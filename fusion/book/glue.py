@@ -679,11 +679,11 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
 #: display message. An entry of a list, tuple, set or dict value: 2.1 us (one list of 10**6 floats, 2.12 CPU-s; a
 #: numeric array is vectorised: 10**7 entries in 0.01 s). A DataFrame: 1.0-2.7 ms (10 x 2 to 10**6 cells, its text
 #: truncated). A Styler: 0.9 ms at 10 x 2, then 5.6-12.6 us a cell (10**4 cells 126 ms, 10**6 cells 5.6 s). A figure:
-#: 31-34 ms (one axes, audited and saved as PNG). The book's largest call glues 118 values (1.2e6 units). A table
-#: inside a container is printed as a table too, and charged ``_GLUE_TABLE`` where :func:`_finite` reaches it (fuzz
-#: 49a, fix56a: ``[[df] * 300] * 300`` of a 2 x 1 DataFrame, 90,000 printed tables at 0.27 ms, was charged as list
-#: entries and ran 24.6 CPU-s; now refused before the work).
-_GLUE_VALUE, _GLUE_ENTRY, _GLUE_TABLE, _GLUE_CELL, _GLUE_FIGURE = 10_000, 300, 300_000, 1_000, 5_000_000
+#: 31-34 ms (one axes, audited and saved as PNG; ``_glue_figure.figure_units``, by its drawn points). The book's
+#: largest call glues 118 values (1.2e6 units). A table inside a container is printed as a table too, and charged
+#: ``_GLUE_TABLE`` where :func:`_finite` reaches it (fuzz 49a, fix56a: ``[[df] * 300] * 300`` of a 2 x 1 DataFrame,
+#: 90,000 printed tables at 0.27 ms, was charged as list entries and ran 24.6 CPU-s; now refused before the work).
+_GLUE_VALUE, _GLUE_ENTRY, _GLUE_TABLE, _GLUE_CELL = 10_000, 300, 300_000, 1_000
 #: Fuzz 46a C2, C3 (measured as above, 10**6 entries, minimum of 3, shared machine under load ~11): an entry of an
 #: object array, object Series or Index, or pandas extension array (``pd.array``, Categorical; visited as objects,
 #: one by one): 1.0-1.3 us visited by :func:`_finite`, 1.1-1.3 us glued (its text is truncated): 200 units. An
@@ -869,9 +869,7 @@ def _glue_work(value: object, key: str = "") -> int:
 
 
 def _glue_units(value: object) -> int:
-    """``_glue_work``'s units of the container ``value`` but its numeric entries."""
-    if isinstance(value, Figure):
-        return _GLUE_FIGURE
+    """``_glue_work``'s units of the container ``value`` but its numeric entries (a figure value: ``figure_units``)."""
     if isinstance(value, Styler):
         return _GLUE_TABLE + _GLUE_CELL * int(value.data.size)
     if isinstance(value, pd.DataFrame):
