@@ -26,7 +26,8 @@ from matplotlib.figure import Figure
 from pandas.io.formats.style import Styler
 
 from fusion._limits import MAX_WORK, work
-from fusion.book._glue_axes import atom_units, axis_units, converted_label_sizes, label_sizes, object_cells, prune_units
+from fusion.book._glue_axes import axis_units, by_type, columns_units, converted_label_sizes, entries_units, label_sizes
+from fusion.book._glue_axes import object_cells, prune_units
 from fusion.book._glue_axes import object_dtype as _object_dtype
 from fusion.book._glue_figure import figure_units
 from fusion._validation import count, read_mapping, text
@@ -393,10 +394,10 @@ def _table_units(table: pd.DataFrame | Styler | pd.Series | pd.Index) -> int:
     ``_GLUE_OBJECT`` (fuzz 63a C1: a Series' 2**22 labels with a time zone ran 34.95 CPU-s charged 200 units each)."""
     table = table.data if isinstance(table, Styler) else table
     axes, names = _axes(table)
-    units = sum(len(lv) * atom_units(lv.dtype, _GLUE_OBJECT) for ax in axes for lv in _table_labels(ax))
+    units = sum(entries_units(lv.dtype, len(lv), lv.to_numpy, _GLUE_OBJECT) for ax in axes for lv in _table_labels(ax))
     units += len(names) * _GLUE_OBJECT
     if isinstance(table, pd.DataFrame):
-        units += table.shape[0] * sum(atom_units(d, _GLUE_OBJECT) for d in table.dtypes if _object_dtype(d))
+        units += columns_units(table, _GLUE_OBJECT)
     return units
 
 
@@ -712,22 +713,23 @@ def _container_work(v: object) -> tuple[int, int]:
     ``atom_units``, fuzz 63a C1):
     a list, tuple or set its length, a mapping its keys and values, at ``_GLUE_NESTED``; an object array, an object
     (or non-NumPy dtype) Series or Index, an extension array its size, a DataFrame or Styler its (table's) object
-    cells and labels (``_table_size``), at ``_GLUE_OBJECT``, known without visiting; a structured array holding
+    cells and labels (``_table_size``), at ``_GLUE_OBJECT``, known without visiting (an Interval, Period or date-time
+    of a Python container or an object dtype by its type, ``by_type``); a structured array holding
     objects at most one object per 8 bytes of an element; a numeric array 0 (its entries: ``_numeric_units``). A table inside a
     container is charged ``_GLUE_TABLE`` more by :func:`_finite`, where it reaches it."""
     if isinstance(v, (pd.Series, pd.Index)):   # its values, labels and names (fuzz 52 C2)
         n = len(v) if _object_dtype(v.dtype) else 0
-        return n + _table_size(v), n * atom_units(v.dtype, _GLUE_OBJECT) + _table_units(v)
+        return n + _table_size(v), entries_units(v.dtype, n, v.to_numpy, _GLUE_OBJECT) + _table_units(v)
     if isinstance(v, (pd.DataFrame, Styler)):
         return _table_size(v), _table_units(v)
-    if isinstance(v, Mapping):
-        return 2 * len(v), 2 * len(v) * _GLUE_NESTED   # its keys and its values
+    if isinstance(v, Mapping):   # its keys and its values
+        return 2 * len(v), by_type(2 * len(v) * _GLUE_NESTED, lambda: (e for kv in v.items() for e in kv), _GLUE_NESTED)
     if isinstance(v, ExtensionArray):
-        return len(v), len(v) * atom_units(v.dtype, _GLUE_OBJECT)
+        return len(v), entries_units(v.dtype, len(v), lambda: np.asarray(v, dtype=object).ravel(), _GLUE_OBJECT)
     if isinstance(v, np.ndarray):
         n = int(v.size) * max(1, v.dtype.itemsize // 8) if v.dtype.hasobject else 0
-        return n, n * _GLUE_OBJECT
-    return len(v), len(v) * _GLUE_NESTED  # type: ignore[arg-type]
+        return n, entries_units(v.dtype, n, lambda: v.flat, _GLUE_OBJECT)
+    return len(v), by_type(len(v) * _GLUE_NESTED, lambda: v, _GLUE_NESTED)  # type: ignore[arg-type]
 
 
 #: Fuzz 57a C1: a numeric entry (of a numeric array, Series, Index or table column, or a numeric label) is checked
@@ -874,10 +876,10 @@ def _glue_units(value: object) -> int:
         return _GLUE_TABLE + _GLUE_CELL * int(value.data.size)
     if isinstance(value, pd.DataFrame):
         return _GLUE_TABLE
-    if isinstance(value, (list, tuple, set, frozenset)):
-        return _GLUE_ENTRY * len(value)
-    if isinstance(value, dict):
-        return _GLUE_ENTRY * 2 * len(value)   # its keys and its values (fuzz 49a C3)
+    if isinstance(value, (list, tuple, set, frozenset)):   # an Interval, Period, date-time by its type (``by_type``)
+        return by_type(_GLUE_ENTRY * len(value), lambda: value, _GLUE_ENTRY)
+    if isinstance(value, dict):   # its keys and its values (fuzz 49a C3)
+        return by_type(_GLUE_ENTRY * 2 * len(value), lambda: (e for kv in value.items() for e in kv), _GLUE_ENTRY)
     if isinstance(value, _GLUE_COUNTED):
         return _container_work(value)[1]
     return 0
