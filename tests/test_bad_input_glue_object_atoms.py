@@ -6,6 +6,7 @@ past 40 CPU-s; measured 6.9-11.8 us an Interval, 3.4-6.3 us a Period or date-tim
 from __future__ import annotations
 
 import datetime
+import warnings
 
 import numpy as np
 import pandas as pd
@@ -15,7 +16,8 @@ from _helpers import glue_refused
 
 #: The plain units of an entry of each container inside a value (``glue._container_work``): a Python container's
 #: ``_GLUE_NESTED``, an object array's, Series', Index's, table column's ``_GLUE_OBJECT``.
-_PLAIN = {"list": 400, "dict": 400, "object array": 200, "object Series": 200, "labels": 200, "column": 200}
+_PLAIN = {"list": 400, "dict": 400, "object array": 200, "object Series": 200, "labels": 200, "column": 200,
+          "pandas array": 200, "sparse array": 200}
 
 
 def _holder(kind: str, atoms: np.ndarray) -> object:
@@ -27,6 +29,12 @@ def _holder(kind: str, atoms: np.ndarray) -> object:
         return atoms
     if kind == "object Series":
         return pd.Series(atoms, dtype=object)
+    if kind == "pandas array":
+        return pd.array(atoms, dtype=object)
+    if kind == "sparse array":   # pandas warns that it drops a time zone here: the entries stay date-times
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)
+            return pd.arrays.SparseArray(atoms, dtype=pd.SparseDtype(object, None))
     if kind == "labels":
         return pd.Series(np.zeros(len(atoms)), index=pd.Index(atoms, dtype=object))
     return pd.DataFrame({"a": pd.Series(atoms, dtype=object)})

@@ -191,7 +191,9 @@ def entries_units(dtype: object, n: int, entries: Callable[[], Iterable[object]]
     dtype holding objects ``plain`` an entry."""
     if isinstance(dtype, np.dtype) and dtype.fields is not None:
         return n * plain
-    return by_type(n * plain, entries, plain) if dtype == object else n * atom_units(dtype, plain)
+    # a pandas array of objects (``NumpyEADtype``, ``SparseDtype``) by its NumPy dtype
+    inner = dtype.subtype if isinstance(dtype, pd.SparseDtype) else getattr(dtype, "numpy_dtype", dtype)
+    return by_type(n * plain, entries, plain) if inner == object else n * atom_units(dtype, plain)
 
 
 def columns_units(table: pd.DataFrame, plain: int) -> int:
