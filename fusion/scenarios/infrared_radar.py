@@ -39,7 +39,7 @@ from fusion._limits import MAX_INPUT_ELEMENTS
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
                                 grid_points, positive_scalar, scalar, std_scalar, step_scalar, work)
-from fusion._counts import allocation, broadcast
+from fusion._counts import allocation, broadcast, distinct, sequence
 from fusion._validation import LOOP_STEP
 from fusion._validation import flag, text
 from fusion._options import text_key
@@ -506,12 +506,16 @@ def _rule_subset(rules: Sequence[str] | None) -> dict[IrMethod, str]:
         raise ValueError(f"rules must be a sequence of keys of RULES, got the string {shown(rules)}")
     if not isinstance(rules, Sequence):
         raise TypeError(f"rules must be a sequence of keys of RULES, got {type(rules).__name__}")
+    if len(rules) > len(RULES):   # by its length, before any entry is read: each rule at most once (repeats refused)
+        raise ValueError(f"rules must name each of the {len(RULES)} keys of RULES at most once, got {len(rules):,} "
+                         "entries")
+    rules = sequence(rules, "rules")   # its items, a ``__len__`` that disagrees with them refused
     if not all(isinstance(r, str) for r in rules):
         raise TypeError(f"rules must hold keys (strings) of RULES, got {shown(list(rules))}")
     unknown = [r for r in rules if r not in RULES]
     if unknown:
         raise ValueError(f"rules must be keys of RULES ({sorted(map(str, RULES))}), got {shown(unknown)}")
-    rules = [text(r, f"rules[{i}]") for i, r in enumerate(rules)]  # plain texts (rule 19): entries named
+    rules = distinct([text(r, f"rules[{i}]") for i, r in enumerate(rules)], "rules")  # plain texts (rule 19), once
     return {IrMethod(name): RULES[IrMethod(name)] for name in rules}
 
 
@@ -537,9 +541,9 @@ def rule_errors(sim: IrRadarRuns, rules: Sequence[str] | None = None) -> dict[Ir
     Raises
     ------
     ValueError
-        A key in ``rules`` that is not in :data:`RULES`; ``sim``'s runs times scans beyond the work, memory or input
-        budget of this reading (270 units a run and scan with every rule, 13 arrays of 4 entries; about 3.7 million
-        with every rule), refused before any work.
+        A key in ``rules`` that is not in :data:`RULES` or is named twice (more entries than RULES: by the length);
+        ``sim``'s runs times scans beyond the work, memory or input budget of this reading (270 units a run and
+        scan with every rule, 13 arrays of 4 entries; about 3.7 million with every rule), refused before any work.
     """
     instance_of(sim, IrRadarRuns, "sim")
     subset = _rule_subset(rules)
@@ -973,9 +977,10 @@ def cartesian_errors(sim: IrRadarRuns, tracks: CartesianTracks, rules: Sequence[
     Raises
     ------
     ValueError
-        A key in ``rules`` that is not in :data:`RULES`; ``tracks`` built from another simulation
-        than ``sim`` (other runs, scans or draws); their runs times scans beyond the work, memory or input budget
-        of this reading (355 units a run and scan with every rule, about 2.8 million), refused before any work.
+        A key in ``rules`` that is not in :data:`RULES` or is named twice (more entries than RULES: by the length);
+        ``tracks`` built from another simulation than ``sim`` (other runs, scans or draws); their runs times scans
+        beyond the work, memory or input budget of this reading (355 units a run and scan with every rule, about 2.8
+        million), refused before any work.
     """
     instance_of(sim, IrRadarRuns, "sim")
     instance_of(tracks, CartesianTracks, "tracks")
