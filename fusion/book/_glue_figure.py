@@ -1,12 +1,17 @@
-"""The units of gluing a figure by the points it draws (fuzz 63a C3), for :mod:`fusion.book.glue`."""
+"""The units of gluing a figure by what it draws (fuzz 63a C3, 64a C1-C6), for :mod:`fusion.book.glue`: every visible
+artist, walked without rendering, weighed by its kind (points, image pixels, mesh cells, markers drawn per offset,
+characters)."""
 
 from __future__ import annotations
 
 import numpy as np
-from matplotlib.collections import Collection
+from matplotlib.artist import Artist
+from matplotlib.collections import Collection, QuadMesh
 from matplotlib.figure import Figure
 from matplotlib.image import AxesImage
 from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
+from matplotlib.text import Text
 
 from fusion._limits import MAX_WORK
 from fusion._shown import shown
@@ -33,40 +38,145 @@ POINT = 2_000
 PIXEL = 30
 
 
+#: Units of one QuadMesh cell (``pcolormesh``, drawn by ``draw_quad_mesh`` like an image, fuzz 64a C3/C4): glue_all
+#: of one ``pcolormesh`` of random n x n floats (this weight off, process_time, OPENBLAS_NUM_THREADS=1, minimum of 2,
+#: machine shared): 1500 x 1500 0.58 CPU-s, 3000 x 3000 1.75 (0.19 us a cell); weighed twice that. Counted from the
+#: mesh's coordinates' shape: building its cells' paths (``get_paths``) took 7.6-9.6 CPU-s for 1500 x 1500.
+CELL = 40
+#: Units of one marker stamped by a collection drawn per offset (``draw_path_collection``: sizes, colours or widths
+#: varying, fuzz 64a C6), and of each vertex of its path at each offset: glue_all of one scatter of n points of
+#: varying sizes and colours (as above): an empty axes 0.035 CPU-s; 10**4 4-sided markers 0.063 (2.8 us a marker),
+#: 26-sided 0.133 (0.3 us a further vertex); 2 x 10**4 200-sided 0.687 (0.15 us a vertex; fuzz 64a's 10**5
+#: 2000-sided 30.5, 0.15 us); weighed about twice: 6 us a marker, 0.3 us a vertex.
+MARKER = 600
+MARKER_VERTEX = 30
+#: Units of any artist the figure holds (axes, ticks, patches, texts, unknown kinds), so none is counted 0 (fuzz 64a
+#: C5: 80,000 Rectangles ran 31.6 CPU-s, 0.4 ms each with their 5 vertices; 2,000 texts of 2-5 characters 1.205
+#: CPU-s here, 0.59 ms each, 0.27 ms but their characters): 0.5 ms. A default axes holds about 115 artists (5.8e6).
+ARTIST = 50_000
+#: Units of one character of a text (newlines included): one text of 10**4 characters (one line) 0.678 CPU-s, of
+#: 10**5 6.38 (64 us a character); fuzz 64a's 'ab\n' * 10**5 28.5 (95 us a character); weighed 150 us.
+CHARACTER = 15_000
+
+_WEIGHTS = {"points": POINT, "image pixels": PIXEL, "mesh cells": CELL, "markers": MARKER,
+            "marker vertices": MARKER_VERTEX, "artists": ARTIST, "characters": CHARACTER}
+
+
+def _size(*arrays: object) -> int:
+    """The rows a broadcast of ``arrays`` holds (matplotlib broadcasts a line's x and y, fuzz 64a C1)."""
+    shapes = [np.shape(a)[:1] for a in arrays if a is not None]
+    try:
+        shape = np.broadcast_shapes(*shapes)
+    except ValueError:            # not drawable as given: the largest, an over-count
+        shape = (max((s[0] for s in shapes if s), default=1),)
+    return int(np.prod(shape, dtype=object))
+
+
+def _vertices(a: Artist) -> int | None:
+    """The 3-D vertices of an mplot3d artist (projected to 2-D paths only when drawn, fuzz 64a C2), or None."""
+    if hasattr(a, "_verts3d"):                       # Line3D
+        return _size(*a._verts3d)
+    if hasattr(a, "_faces"):                         # Poly3DCollection (plot_surface, add_collection3d)
+        faces = np.shape(a._faces)
+        return int(np.prod(faces[:2], dtype=object)) if len(faces) >= 2 else 0
+    if hasattr(a, "_segments3d"):                    # Line3DCollection
+        return sum(len(s) for s in a._segments3d)
+    if hasattr(a, "_segment3d"):                     # Patch3D, PathPatch3D
+        return len(a._segment3d)
+    if hasattr(a, "_offsets3d"):                     # Path3DCollection, Patch3DCollection (scatter in 3-D)
+        return _size(*a._offsets3d)
+    return None
+
+
+def _per_offset(a: Collection) -> bool:
+    """Whether Agg draws ``a``'s path at each offset (``draw_path_collection``) rather than stamping one marker
+    (``Collection.draw``'s single path optimisation), read as that method does but the extents test (colours mapped
+    from an array, ``scatter(c=...)``, are set only when drawn: varying)."""
+    return a.get_array() is not None or not (
+        len(a.get_paths()) == 1 and len(a.get_transforms()) <= 1 and len(a.get_facecolor()) == 1
+        and len(a.get_edgecolor()) == 1 and len(a.get_linewidth()) == 1 and a.get_hatch() is None)
+
+
+def _collection(a: Collection, tally: dict[str, int]) -> None:
+    """Add the collection ``a``'s drawn points to ``tally``: its offsets, and its paths' vertices once (one marker
+    stamped at every offset) or at every offset (``_per_offset``; paths cycle over the offsets)."""
+    offsets = len(a.get_offsets())
+    paths = a.get_paths()
+    vertices = sum(len(p.vertices) for p in paths)
+    if offsets > 1 and paths and _per_offset(a):
+        draws = max(offsets, len(paths))
+        tally["markers"] += draws
+        tally["marker vertices"] += -(-draws // len(paths)) * vertices
+    else:
+        tally["points"] += offsets + vertices
+
+
+def _artists(fig: Figure) -> list[Artist]:
+    """``fig``'s visible artists, itself included, walked without ``Artist.findobj``'s list sums (quadratic in the
+    children: 40,000 texts took 1.6 CPU-s to walk)."""
+    out, stack = [], [fig]
+    while stack:
+        a = stack.pop()
+        if a.get_visible():
+            out.append(a)
+            stack.extend(a.get_children())
+    return out
+
+
+def _tally(fig: Figure) -> dict[str, int]:
+    """What ``fig`` draws, by kind (``_WEIGHTS``' keys), read from its visible artists without rendering."""
+    tally = dict.fromkeys(_WEIGHTS, 0)
+    for a in _artists(fig):
+        tally["artists"] += 1
+        n = _vertices(a)
+        if n is not None:
+            tally["points"] += n
+        elif isinstance(a, Line2D):
+            tally["points"] += _size(a.get_xdata(orig=True), a.get_ydata(orig=True))
+        elif isinstance(a, QuadMesh):               # its cells from its coordinates' shape, no paths built
+            rows, cols = np.shape(a.get_coordinates())[:2]    # (rows + 1, cols + 1, 2) corners
+            tally["mesh cells"] += max(rows - 1, 0) * max(cols - 1, 0)
+        elif isinstance(a, Collection):
+            _collection(a, tally)
+        elif isinstance(a, AxesImage):
+            arr = a.get_array()
+            tally["image pixels"] += int(np.prod(np.shape(arr)[:2], dtype=object)) if arr is not None else 0
+        elif isinstance(a, Patch):
+            tally["points"] += len(a.get_path().vertices)
+        elif isinstance(a, Text):
+            tally["characters"] += len(a.get_text())
+    return tally
+
+
 def drawn_points(fig: Figure) -> int:
-    """The points ``fig`` draws, read from its artists without rendering: each line's vertices, each collection's
-    offsets and path vertices (images' pixels: ``drawn_pixels``)."""
-    n = 0
-    for a in fig.findobj(lambda a: isinstance(a, (Line2D, Collection))):
-        if isinstance(a, Line2D):
-            n += int(np.size(a.get_xdata(orig=True)))
-        else:
-            n += len(a.get_offsets()) + sum(len(p.vertices) for p in a.get_paths())
-    return n
+    """The points ``fig`` draws at ``POINT`` units each, read from its artists without rendering: lines' vertices
+    (their x and y broadcast), 3-D artists' vertices, patches' path vertices, collections' offsets and path vertices
+    (but paths drawn at each offset: ``MARKER`` and ``MARKER_VERTEX``; meshes' cells: ``CELL``; images' pixels:
+    ``drawn_pixels``)."""
+    return _tally(fig)["points"]
 
 
 def drawn_pixels(fig: Figure) -> int:
     """The pixels of ``fig``'s images (each image's first two dimensions), read without rendering."""
-    n = 0
-    for a in fig.findobj(lambda a: isinstance(a, AxesImage)):
-        arr = a.get_array()
-        n += int(np.prod(np.shape(arr)[:2], dtype=object)) if arr is not None else 0
-    return n
+    return _tally(fig)["image pixels"]
 
 
 def figure_units(fig: Figure, key: str) -> int:
-    """``FIGURE`` plus ``POINT`` a drawn point (``drawn_points``) and ``PIXEL`` an image pixel (``drawn_pixels``).
+    """``FIGURE`` plus each drawn kind's count at its weight (``POINT`` a point, ``PIXEL`` an image pixel, ``CELL`` a
+    mesh cell, ``MARKER`` and ``MARKER_VERTEX`` a marker drawn per offset and its vertices, ``ARTIST`` an artist,
+    ``CHARACTER`` a text's character).
 
     Raises
     ------
     ValueError
         Beyond ``fusion._limits.MAX_WORK`` units, naming ``values[key]``, before the figure is audited or rendered.
     """
-    points, pixels = drawn_points(fig), drawn_pixels(fig)
-    units = FIGURE + POINT * points + PIXEL * pixels
+    tally = _tally(fig)
+    units = FIGURE + sum(_WEIGHTS[k] * n for k, n in tally.items())
     if units > MAX_WORK:
-        raise ValueError(f"values[{shown(key)}] is a figure drawing {points:,} points (lines' vertices, collections' "
-                         f"offsets and paths) and {pixels:,} image pixels, {units:.3g} units of work at {POINT:,} a "
-                         f"point and {PIXEL} a pixel rendered, beyond the work budget (at most {MAX_WORK:.3g} units, fusion._limits.MAX_WORK, "
-                         "about 10 CPU-s)")
+        drawn = ", ".join(f"{tally[k]:,} {k} at {w:,}" for k, w in _WEIGHTS.items() if tally[k])
+        raise ValueError(f"values[{shown(key)}] is a figure drawing {tally['points']:,} points (lines', patches' and "
+                         f"3-D vertices, collections' offsets and paths) and {tally['image pixels']:,} image pixels "
+                         f"({drawn} units each), {units:.3g} units of work rendered, beyond the work budget (at most "
+                         f"{MAX_WORK:.3g} units, fusion._limits.MAX_WORK, about 10 CPU-s)")
     return units
