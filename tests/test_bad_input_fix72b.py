@@ -77,3 +77,44 @@ def test_the_books_ridge_calls_stay_accepted():
         rs._vector_work(3, runs, "runs")
     for runs in (4000, 40_000):           # the chapter's plug-in runs, and the sweep's 10x
         rs._plugin_work(7, 3, 5, runs, "runs")
+
+
+# the audit of the class in correlated_sensors and lecture_correlated (fix 72b) ------------------------------------
+
+_CASE = {"own": (1.0, 2.0, 3.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5}
+_NS = tuple(range(4, 74))   # 70 sizes a case: the most CPU-s a unit the old weight allowed
+
+
+def test_estimated_covariance_study_weighs_its_n_step():
+    """A step over ns was weighed one LOOP_STEP (10 us) for 85-100 us measured: 5,167 cases of 70 ns (reps = 2) were
+    inside the budget, ~44 CPU-s; now 761, ~6.5 CPU-s."""
+    from fusion._limits import MAX_WORK
+    from fusion.scenarios import correlated_sensors as cs
+    per = cs._estimated_case_units(3, 2, _NS)
+    assert 760 * per <= 761 * per <= MAX_WORK < 762 * per           # just inside and just outside, by the rule
+    assert MAX_WORK // per < 1_000
+    call = functools.partial(cs.estimated_covariance_study, {f"c{i}": _CASE for i in range(5_167)}, ns=_NS, reps=2)
+    with pytest.raises(ValueError, match=r"scenarios \(their sensors\), ns and reps"):   # imports, untimed
+        call()
+    refused_quickly(call, ValueError, r"scenarios \(their sensors\), ns and reps")
+    cs.estimated_covariance_study(ns=(10, 30), reps=400)             # the chapter's call: accepted
+
+
+def test_ridge_study_budgets_xs_and_ks_fixed_before_listing_them():
+    """10**7 xs (ks_fixed) were copied into a list before the budget that needs only their number: 0.36-0.96 CPU-s."""
+    from fusion.scenarios import lecture_correlated as lc
+    big = np.linspace(0.5, 3.0, 10**7)
+    for name, call in (("xs", functools.partial(lc.ridge_study, xs=big)),
+                       ("ks_fixed", functools.partial(lc.ridge_study, ks_fixed=big))):
+        with pytest.raises(ValueError, match="xs and ks_fixed"):   # imports, untimed
+            call()
+        refused_quickly(call, ValueError, "xs and ks_fixed", cpu=0.2)
+
+
+def test_correlated_study_budgets_sizes_before_converting_them():
+    """10**7 sizes were converted to ints before the budget that needs only their number: refused after 1.7 CPU-s."""
+    from fusion.scenarios import lecture_correlated as lc
+    call = functools.partial(lc.correlated_study, runs=2, sizes=np.arange(1, 10**7))
+    with pytest.raises(ValueError, match="^sizes ask for"):   # imports, untimed
+        call()
+    refused_quickly(call, ValueError, "^sizes ask for")
