@@ -144,13 +144,14 @@ def _cases(c, N=3):
 
 def test_estimated_covariance_study_sums_its_cases():
     """C6 (a): each case was counted alone and without its fixed ~0.76 ms step: 20,000 cases of N = 3 (ns=(10, 30),
-    reps=400) were accepted and ran 38.6 CPU-s. Now 221,000 units a case, summed: 4,525 are refused at once; 4,524
-    (about 8.4 CPU-s at 1.85 ms a case) pass the budget and reach a bad 4,525th case, named."""
+    reps=400) were accepted and ran 38.6 CPU-s. Now 253,000 units a case (since fix 72b, a step over ns weighed 17
+    LOOP_STEP: 221,000 before), summed: 3,953 are refused at once; 3,952 (about 7.3 CPU-s at 1.85 ms a case) pass the
+    budget and reach a bad 3,953rd case, named."""
     from fusion.scenarios.correlated_sensors import estimated_covariance_study
 
     kw = dict(ns=(10, 30), reps=400)
-    refused_quickly(partial(estimated_covariance_study, _cases(4525), **kw), ValueError, r"^scenarios \(their sensors\), ns and reps ask for 1e\+09 units")
-    refused_quickly(partial(estimated_covariance_study, {**_cases(4524), "wide": _cases(1, N=10)["c0"]}, **kw), ValueError, r"^ns must exceed the number of sensors \(10\) of case 'wide'")
+    refused_quickly(partial(estimated_covariance_study, _cases(3953), **kw), ValueError, r"^scenarios \(their sensors\), ns and reps ask for 1e\+09 units")
+    refused_quickly(partial(estimated_covariance_study, {**_cases(3952), "wide": _cases(1, N=10)["c0"]}, **kw), ValueError, r"^ns must exceed the number of sensors \(10\) of case 'wide'")
 
 
 def test_estimated_covariance_study_counts_before_any_covariance():

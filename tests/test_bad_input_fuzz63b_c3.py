@@ -47,13 +47,13 @@ def test_ridge_budgets_both_bounds():
     """The budgets themselves: the most scales (xs) a call may take are accepted, one more refused."""
     from fusion._limits import LOOP_STEP, MAX_WORK
     from fusion.scenarios import ridge_sensors as rs
-    runs = 2
-    edge = MAX_WORK // (2 * (LOOP_STEP + 60 * runs))
+    runs = 2   # the steps weighed by their measured cost since fix 72b (fuzz 64b C1, C2)
+    edge = MAX_WORK // (2 * (130 * LOOP_STEP + 60 * runs))
     rs._vector_work(edge, runs, "scales and runs")
     with pytest.raises(ValueError, match="scales and runs"):
         rs._vector_work(edge + 1, runs, "scales and runs")
     m, runs, deltas = 5, 4000, 3
-    edge = MAX_WORK // ((deltas + 3) * (LOOP_STEP + m * runs))
+    edge = MAX_WORK // ((deltas + 3) * (14 * LOOP_STEP + (m + 5) * runs))
     rs._plugin_work(edge, deltas, m, runs, "xs, deltas, m and runs")
     with pytest.raises(ValueError, match="xs, deltas, m and runs"):
         rs._plugin_work(edge + 1, deltas, m, runs, "xs, deltas, m and runs")

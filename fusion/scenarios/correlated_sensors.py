@@ -376,6 +376,18 @@ def _coupling_case_units(N: int, runs: int, grid: int) -> int:
 #: (``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls, machine shared with other jobs), 75
 #: ``LOOP_STEP``: 2,000 cases of N = 3 with ``ns=(10, 30), reps=400`` ran 3.7 CPU-s (1.85 ms a case, counted 2.2 ms).
 _ESTIMATED_CASE_STEP = 75 * LOOP_STEP
+#: Units of a step of :func:`estimated_covariance_study`'s loop over ``ns`` (besides its ``reps x N x N x n``): a
+#: batched product, solve and two einsums, 85-100 us a step measured at reps = 2, N = 3 (10 and 40 cases of 200 ns,
+#: ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls, machine shared; fix 72b), weighed
+#: 17 ``LOOP_STEP`` (fuzz 64b's class: weighed one ``LOOP_STEP``, the edge at 70 ns a case, 5,167 cases, would have run
+#: ~44 CPU-s, 8.5 ms a case; now 761 cases, ~6.5 CPU-s).
+_ESTIMATED_N_STEP = 17 * LOOP_STEP
+
+
+def _estimated_case_units(N: int, reps: int, ns: Sequence[int]) -> int:
+    """Units of work (rule 17) of one case of N sensors of :func:`estimated_covariance_study`: its fixed step, a loop
+    step per n of ``ns`` and ``reps x N x N x n`` for each."""
+    return _ESTIMATED_CASE_STEP + len(ns) * _ESTIMATED_N_STEP + reps * N * N * sum(ns)
 
 
 def _coupling_case_budget(N: int, runs: int, grid: int, where: str) -> int:
@@ -530,7 +542,7 @@ def estimated_covariance_study(
     ValueError
         Bad scenario entries, an n not above the number of sensors or repeated, ``reps`` < 2, a bad
         ``misstate``, or the cases' work beyond the work budget (``fusion._validation.MAX_WORK``; 75,000 units a case,
-        1,000 a case and n, and reps x sensors² x sum(ns), summed over the cases), before any case's covariance.
+        17,000 a case and n, and reps x sensors² x sum(ns), summed over the cases), before any case's covariance.
     """
     nv = counts(ns, "ns")  # a non-empty list, tuple or 1-D array of counts (TypeError otherwise)
     reps = count(reps, "reps", minimum=2)
@@ -549,7 +561,7 @@ def estimated_covariance_study(
         if min(nv) <= N:
             raise ValueError(f"ns must exceed the number of sensors ({N}) of case {shown(name)}, got {min(nv)}")
         allocation((reps, N, max(nv)), "reps, ns and the sensors of case " + repr(name))
-        units += _ESTIMATED_CASE_STEP + len(nv) * LOOP_STEP + reps * N * N * sum(nv)
+        units += _estimated_case_units(N, reps, nv)
         work((units,), "scenarios (their sensors), ns and reps")
 
     cases = _scenarios(scenarios, count_case)

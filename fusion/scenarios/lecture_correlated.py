@@ -227,11 +227,15 @@ def ridge_study(
     m_arr = _ints(ms, "ms")
     m0 = count(m0, "m0")
     sigma = std_scalar(sigma, "sigma")
-    xs = as_array(xs, "xs", ndim=1).tolist()
-    ks_fixed = as_array(ks_fixed, "ks_fixed", ndim=1).tolist()  # fuzz 24a U7: numbers, at least one, each > 0
-    if min(ks_fixed) <= 0:
-        raise ValueError(f"ks_fixed must hold positive ridge parameters, got {shown(ks_fixed)}")
-    loop_work((len(xs) + 1, 3 + len(ks_fixed)), 501, "xs and ks_fixed", step=20 * LOOP_STEP)  # rule 17: ~100 us a row
+    xv = as_array(xs, "xs", ndim=1)
+    kv = as_array(ks_fixed, "ks_fixed", ndim=1)  # fuzz 24a U7: numbers, at least one, each > 0
+    if kv.min() <= 0:
+        raise ValueError(f"ks_fixed must hold positive ridge parameters, got {shown(kv.tolist())}")
+    # rule 17: ~100 us a row (215-246 us a row of xs x ks_fixed measured at 11-101 xs, 1-30 ks_fixed, fix 72b:
+    # time.process_time, OPENBLAS_NUM_THREADS=1, shared machine; the edge ~12 CPU-s); by the sizes before the entries
+    # are copied into lists (fix 72b, fuzz 64b's class: 10**7 xs were listed first, 0.4-1 CPU-s to refuse)
+    loop_work((xv.size + 1, 3 + kv.size), 501, "xs and ks_fixed", step=20 * LOOP_STEP)
+    xs, ks_fixed = xv.tolist(), kv.tolist()
     # the repeats looked for after the budget by their number
     # (fix70a, fuzz 62b's class: each entry hashed before a budget that needs only their number, 2.5 CPU-s a 10**7 list)
     distinct(xs, "xs")  # mse and rel are keyed by x; ms after their budgets below
@@ -408,8 +412,11 @@ def correlated_study(
     if as_array(x, "x", ndim=1).size != 2:
         raise ValueError("x must have length 2")
     seed = _seed(seed)
-    sizes = [int(n) for n in _ints(sizes, "sizes")]  # the validated values (any 1-D array-like)
-    loop_work((len(sizes),), 0, "sizes", step=10 * LOOP_STEP)  # rule 17: a closed-form row (~40 us) per size
+    size_arr = _ints(sizes, "sizes")  # the validated values (any 1-D array-like)
+    loop_work((size_arr.size,), 0, "sizes", step=10 * LOOP_STEP)  # rule 17: a closed-form row (~40 us) per size
+    # the budget by the number of sizes before they are converted to ints (fix 72b, fuzz 64b's class: 10**7 sizes
+    # were listed first, refused after 1.7 CPU-s; 1.0 of them the list)
+    sizes = [int(n) for n in size_arr]
     distinct(sizes, "sizes")  # one row per size: a repeated size would repeat its row; after the budget (fix70a)
     R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
     if not _conditioning(R) <= MAX_COND:   # fuzz 37b C5: beyond what the chapter can glue and check

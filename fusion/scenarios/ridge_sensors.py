@@ -30,6 +30,7 @@ from fusion._results import (NONNEGATIVE, ResultSpec, array, dict_of, instance, 
 from fusion._validation import derived_inputs
 from fusion._counts import input_allocation
 from fusion._validation import seed as check_seed
+from fusion._limits import LOOP_STEP
 from fusion._validation import distinct, distinct_printed, glue_part, loop_work
 from fusion._validation import allocation, as_array, count, finite_result, positive_scalar, std_scalar
 from fusion.readings import biased as rg
@@ -173,15 +174,30 @@ def _plugin_memory(m: int, runs: int, names: str) -> None:
 
 
 def _plugin_work(n_xs: int, n_deltas: int, m: int, runs: int, names: str) -> int:
-    """Rule 17 of :func:`plugin_study`: three estimates per x, a loop step each of ``m x runs`` units, naming
-    ``names``; its units (a chapter study that runs it with others sums them, fuzz 54a C3)."""
-    return loop_work((n_xs, n_deltas + 3), m * runs, names)
+    """Rule 17 of :func:`plugin_study`: per x three estimates and a pass per tolerance, ``n_deltas + 3`` loop steps
+    of ``14 x LOOP_STEP + (m + 5) x runs`` units each, naming ``names``; its units (a chapter study that runs it with
+    others sums them, fuzz 54a C3).
+
+    Measured (OPENBLAS_NUM_THREADS=1, process time, minimum of 3 on a shared 2-core machine; fuzz 64b C2: a step
+    was counted ``LOOP_STEP + m x runs``, ~40 us an x at m = 2, runs = 2, and the edge of 249,003 xs would have run
+    ~90 CPU-s): an x costs 0.27-0.28 ms at m = 2 to 340, runs = 2, one delta (the two validated ``plugin_ridge``
+    calls), 1.0 ms with 20 deltas (~38 us a tolerance), so ~70 us a step: weighed 140 us (14 LOOP_STEP). A run
+    costs ~32 ns a step at m = 2, runs = 20,000 (3.4 ms an x, one delta; 15.8 ms with 20) and ~1.1 us a step at
+    m = 340, runs = 2,000 (9.1 ms an x): weighed ``(m + 5)`` units a run. The edge at m = 2, runs = 2, one delta is
+    17,839 xs, ~5 CPU-s."""
+    return loop_work((n_xs, n_deltas + 3), (m + 5) * runs, names, step=14 * LOOP_STEP)
 
 
 def _vector_work(n_scales: int, runs: int, names: str) -> int:
-    """Rule 17 of :func:`vector_study`: three fusions per scale and direction, ``60 x runs`` units a loop step,
-    naming ``names``; its units (fuzz 54a C3)."""
-    return loop_work((n_scales, 2), 60 * runs, names)
+    """Rule 17 of :func:`vector_study`: three fusions per scale and direction, a loop step of
+    ``130 x LOOP_STEP + 60 x runs`` units, naming ``names``; its units (fuzz 54a C3).
+
+    Measured (OPENBLAS_NUM_THREADS=1, process time, minimum of 3 on a shared 2-core machine; fuzz 64b C1: a step was
+    counted ``LOOP_STEP + 60 x runs``, ~11 us at runs = 2, and the edge of 446,428 scales would have run ~14 min): a
+    step (three 2 x 2 solves, two validated ``ridge_fusion_plugin`` calls) costs 0.64-0.67 ms at runs = 2 to 200,
+    weighed 1.3 ms (130 LOOP_STEP); 6.4 ms at runs = 20,000 (~0.29 us a run, weighed 0.6 us). The edge at
+    runs = 2 is 3,842 scales, ~5 CPU-s."""
+    return loop_work((n_scales, 2), 60 * runs, names, step=130 * LOOP_STEP)
 
 
 @derived_inputs()
@@ -230,7 +246,8 @@ def plugin_study(
         Empty or non-finite ``xs`` or ``curve``, bad ``m``, ``sigma``, ``runs``, ``seed`` or ``deltas``; a ``curve``
         so long that its exact quadratures are beyond the memory or work budget; ``xs``, ``m`` and ``sigma`` giving a
         true value beyond ``fusion.readings.biased.PLUGIN_RANGE`` standard errors (its exact risk is not computed);
-        ``deltas`` above 8 (the exact crossings are not computed).
+        ``deltas`` above 8 (the exact crossings are not computed); ``m`` above
+        ``fusion.readings.biased.PLUGIN_MAX_M`` (the exact curves are not computed), before any run.
     """
     xv = as_array(xs, "xs", ndim=1)
     if xv.size == 0:
@@ -239,6 +256,9 @@ def plugin_study(
     sigma = std_scalar(sigma, "sigma")
     runs = count(runs, "runs", minimum=2)
     _plugin_memory(m, runs, "m and runs")
+    if m > rg.PLUGIN_MAX_M:  # the exact curves' plugin_risk(m=m) refused it only after the Monte Carlo over xs
+        raise ValueError(f"m must be at most {rg.PLUGIN_MAX_M} (beyond, the Gauss-Laguerre weights of the "
+                         f"estimated sigma overflow in the exact curves), got {m}")
     seed = check_seed(seed)
     cv = as_array(curve, "curve", ndim=1)
     if cv.size == 0:
