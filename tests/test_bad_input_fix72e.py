@@ -42,3 +42,16 @@ def test_sigmas_not_printed_whole():
     assert len(str(info.value)) < 500
     many = -np.ones(10**6)
     refused_quickly(functools.partial(ar1_study, sigma=many), ValueError, "beyond the ceiling")
+
+
+def test_range_bearing_sensors_refused_by_their_number():
+    # fix72e: the rows were checked and stored as tuples before any rule on their number (2 million: 2.1 CPU-s,
+    # accepted); the ceiling of a count of sensors (a dimension) now refuses them by the length first
+    from fusion.scenarios.range_bearing_scenario import RangeBearingScenario
+
+    S = np.random.default_rng(0).uniform(0.0, 1e4, (10_001, 2))
+    refused_quickly(functools.partial(RangeBearingScenario, sensors=S), ValueError, r"sensors holds 10,001 sensors",
+                    cpu=0.2)
+    many = np.random.default_rng(1).uniform(0.0, 1e4, (2 * 10**6, 2))
+    refused_quickly(functools.partial(RangeBearingScenario, sensors=many), ValueError, "beyond the ceiling", cpu=0.5)
+    assert len(RangeBearingScenario(sensors=S[:10_000]).sensors) == 10_000   # at the ceiling: accepted
