@@ -16,16 +16,24 @@ from fusion.filtering.tracks import _fuse_tracks_units
 
 __all__: list[str] = []
 
+#: Units of one scan of ``simulate``'s filters' Python loop (three tracks, each step a few numpy calls): 77-82 us a
+#: scan measured at 1 run of 10,001 and 30,001 scans (the least of two calls, ``time.process_time``,
+#: ``OPENBLAS_NUM_THREADS=1``, machine shared; fix72e: weighed ``3 * LOOP_STEP``, 30 us, the edge of 1 run, 327,976
+#: scans, would run 25-27 CPU-s), weighed about twice that: 1 run is accepted up to 62,313 scans (about 5 CPU-s).
+_SIMULATE_SCAN_UNITS = 16 * LOOP_STEP
+
+
 def _simulate_budget(runs: int, K: int, names: tuple[str, str] = ("runs, T and duration",
                                                                    "T and duration (with runs)")) -> int:
     """Rules 17 and 9 of ``simulate`` on ``runs`` runs of ``K`` scans, before any draw; its units, which a chapter study
     that runs several simulations sums at its entry (fuzz 57a C3, C4). A filter step per run and scan (rule 17); each
     sensor's measurements ``(runs, K, 2)`` as ``local_track``'s input (fuzz 24c SZ: a MemoryError at runs = 10**7, a
     refusal naming the filter's inputs after seconds at 10**6); the filters' Python loop over the scans (three tracks,
-    a few numpy calls a step each), named ``names[1]`` (``names[0]`` the others)."""
+    a few numpy calls a step each), named ``names[1]`` (``names[0]`` the others), weighed ``_SIMULATE_SCAN_UNITS`` a
+    scan."""
     units = work((runs, K), names[0])
     input_allocation((runs, K, 2), names[0])
-    return units + loop_work((K,), 3 * 16 * runs, names[1], step=3 * LOOP_STEP)
+    return units + loop_work((K,), 3 * 16 * runs, names[1], step=_SIMULATE_SCAN_UNITS)
 
 
 #: Units of work of one scan of ``many_scan_bound`` (its vectorised (K, 6, 6) products, sums and solves): 3.8 to

@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._shown import shown
 from fusion._validation import integer
 from fusion._validation import as_array, count_ceiling
 from fusion._validation import counts as check_counts, seed as V_seed
@@ -18,13 +19,16 @@ def _sigmas(sigma: ArrayLike, name: str = "sigma", minimum: int = 2) -> np.ndarr
     the ceiling of a count of sensors (a dimension, ``fusion._validation.COUNT_CEILINGS``).
     """
     sig = as_array(sigma, name, ndim=1)
-    if np.any(sig <= 0):
-        raise ValueError(f"{name} must hold positive noise SDs, got {sig.tolist()}")
-    if sig.size < minimum:
-        raise ValueError(f"{name} must hold at least {minimum} sensors, got {sig.size}")
     if sig.size > count_ceiling("sensors"):  # rule 9: one SD per sensor, a count of sensors is a dimension
         raise ValueError(f"{name} holds {sig.size} sensors, beyond the ceiling of a count of dimension "
                          f"({count_ceiling('sensors'):,}; fusion._validation.COUNT_CEILINGS)")
+    if np.any(sig <= 0):  # by its length first, then the first bad entry shown (fix72e: 10**7 negative SDs were all
+        # printed, a message of 60 million characters built in 1.6 CPU-s, before the ceiling refused their number)
+        i = int(np.argmax(sig <= 0))
+        raise ValueError(f"{name} must hold positive noise SDs, got {name}[{i}] = {shown(float(sig[i]))} "
+                         f"(of {sig.size} entries: {shown(sig.tolist()) if sig.size <= 20 else 'not shown'})")
+    if sig.size < minimum:
+        raise ValueError(f"{name} must hold at least {minimum} sensors, got {sig.size}")
     return sig
 
 

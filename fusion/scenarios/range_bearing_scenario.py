@@ -17,7 +17,7 @@ from fusion._public import resolve_annotations
 from fusion.estimates.chernoff import FusionTimings
 from fusion._validation import (_numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
                                 scalar, std_scalar)
-from fusion._validation import flag
+from fusion._validation import count_ceiling, flag
 from fusion._validation import store_read
 from fusion._results import ResultSpec, array, instance, keyed, number, trusted, validated_post_init
 from fusion.filtering.particles import ncv_model, range_bearing
@@ -144,6 +144,10 @@ class RangeBearingScenario:
         S = _numeric(self.sensors, "sensors")
         if S.ndim != 2 or S.shape[0] < 1 or S.shape[1] != 2:
             raise ValueError(f"sensors must be N >= 1 positions (x, y), shape (N, 2), got {S.shape}")
+        if S.shape[0] > count_ceiling("sensors"):  # rule 9 by its length, before the rows are checked and stored as
+            # tuples (fix72e: 2 million sensors were converted in 2.1 CPU-s, about 17 at the input budget, and accepted)
+            raise ValueError(f"sensors holds {S.shape[0]:,} sensors, beyond the ceiling of a count of dimension "
+                             f"({count_ceiling('sensors'):,}; fusion._validation.COUNT_CEILINGS)")
         S = as_array(S, "sensors", shape=(None, 2))   # finite, and the shared magnitude rule (1e150, no subnormal)
         # frozen: store what was checked, as tuples of floats (hashable, and no alias of the caller's list or array)
         object.__setattr__(self, "sensors", tuple(tuple(row) for row in S.tolist()))
