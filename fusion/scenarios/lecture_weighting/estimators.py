@@ -291,11 +291,13 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     # two sensors, time.process_time, shared machine): 4 LOOP_STEP, on top of the readings' units (fuzz 39a C3:
     # chunk = 1 of 2.5e8 runs, accepted, would have run about 8,000 CPU-s)
     _chunk_loop(runs, chunk, units, 4 * LOOP_STEP)
-    t = _values(thresholds, "thresholds")
+    t = _values(thresholds, "thresholds")  # a vectorised conversion (at most MAX_INPUT_ELEMENTS entries)
+    # rule 17 by the length, before any entry is printed (fuzz 64b C6: 10**7 thresholds were each printed first,
+    # refused after 17.6 CPU-s by a printed repeat)
+    loop_work((t.size,), runs, "thresholds and runs", step=3 * LOOP_STEP)  # rule 17: a pass over the errors
     if np.any(t <= 0):
         raise ValueError("thresholds must be positive")
     distinct_printed(t.tolist(), "thresholds", glue_part, "keys a glue value")  # lec_tail_p_* (fuzz 30b B2, 31b D4)
-    loop_work((t.size,), runs, "thresholds and runs", step=3 * LOOP_STEP)  # rule 17: a pass over the errors
     rng = np.random.default_rng(seed)
     errs, done = [], 0
     while done < runs:
