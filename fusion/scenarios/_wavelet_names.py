@@ -2,9 +2,16 @@
 
 from __future__ import annotations
 
-from fusion._validation import one_of, sequence, shown
+from fusion._validation import LOOP_STEP, one_of, sequence, shown
 
 __all__: list[str] = []
+
+#: Units of one step of ``signal_study`` (a signal's raw metrics, a rule's denoising, a normaliser's fusion and
+#: metrics: a few validated calls each), on top of its 20 units a sample: 205-300 us a step measured at 2 runs x 2
+#: sensors x 64 samples (1 or 4 signals, 1 or 2 modes, 1 or 4 normalisers; min of 3, time.process_time,
+#: OPENBLAS_NUM_THREADS=1, shared machine), so about twice that, 600 us (fuzz 64b C8: LOOP_STEP, 10 us, let 80,000
+#: steps of one signal run 44.7 CPU-s).
+_SIGNAL_STEP = 60 * LOOP_STEP
 
 
 def _names(seq: object, nm: str, allowed: tuple[str, ...]) -> list[str]:

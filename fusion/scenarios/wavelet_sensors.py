@@ -49,7 +49,7 @@ from fusion._validation import derived_inputs, read_mapping, read_once, record, 
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
 from fusion._validation import LOOP_STEP, count_ceiling, distinct, loop_work, seeds as check_seeds, work
 from fusion.readings import wavelet as wv
-from fusion.scenarios._wavelet_names import _names, _swt_level
+from fusion.scenarios._wavelet_names import _SIGNAL_STEP, _names, _swt_level
 from fusion.scenarios._wavelet_stats import _accumulate_rec, _error_stats  # noqa: F401 (tests read them here)
 from fusion.scenarios._wavelet_relations import MECHANISM_ERRORS, cases_relation, configs_relation, seed_cases_relation
 
@@ -646,23 +646,24 @@ def signal_study(
     ------
     ValueError
         Bad lengths, values or option names, or empty option lists; a study beyond the work budget
-        (``fusion._validation.MAX_WORK``: signals x modes x (normalisers + 1) x runs x sensors x length x 20).
+        (``fusion._validation.MAX_WORK``: signals x modes x (normalisers + 1) steps of 60,000 units and 20 a run,
+        sensor and sample); a repeated signal, mode or normaliser (the cases are keyed by them).
     """
     gains = read_once(gains, "gains")  # a Sequence class read once (fuzz 31a C4)
     # the lists read are what is counted and run (fuzz 42a C14), counted by their lengths before any name is read
     # (fuzz 62b C5: 10**7 modes were each checked first, refused after 10.3 CPU-s)
     signals, modes, normalisers = (sequence(v, k) for v, k in ((signals, "signals"), (modes, "modes"),
                                                                (normalisers, "normalisers")))
-    # rule 17, before any draw: every case denoises and fuses runs x sensors x samples (an undecimated transform
-    # at a few levels, ~20 vectorised operations per sample); "max" adds the fuse-first order
+    # rule 17, before any draw: runs x sensors x samples a case, ~20 vectorised operations each, in _SIGNAL_STEP steps
     n_gains = len(sequence(gains, "gains"))
     runs_, length_ = count(runs, "runs", minimum=2), count(length, "length")
     runs, length = runs_, length_  # the ints read, never the caller's objects (fuzz 29a C2)
     level = count(level, "level")  # its ceiling before the work budget: a bad level is named whatever the counts
     loop_work((len(signals), len(modes), len(normalisers) + 1), 20 * runs_ * max(n_gains, 1) * length_,
-              "signals, modes, normalisers, runs, gains and length")
+              "signals, modes, normalisers, runs, gains and length", step=_SIGNAL_STEP)
     signals = _names(signals, "signals", _SIGNAL_KEYS)
     modes, normalisers = _names(modes, "modes", ("hard", "soft")), _names(normalisers, "normalisers", wv.NORMALISERS)
+    distinct(signals, "signals"), distinct(modes, "modes"), distinct(normalisers, "normalisers")  # keys (64b C8)
     # every wavelet option (level against length included) checked on one noise-free signal, before the noise
     signals = [Signal(v) for v in signals]          # the cases are keyed by the signals' keys
     wv.denoise(measurand(signals[0], length_)[None], wavelet=wavelet, level=level, threshold=threshold, mode=modes[0])
@@ -765,8 +766,9 @@ def seed_study(
     sv = check_seeds(seeds, "seeds")  # a non-empty list, tuple or 1-D array of seeds
     runs_ = count(runs, "runs", minimum=2)
     n_gains = len(sequence(kwargs.get("gains", (1,) * 4), "gains"))
-    per_seed = runs_ * count(kwargs.get("length", 1024), "length") * n_gains
-    # rule 17: one signal_study per seed (a study of ~300 loop steps of numpy calls besides its runs)
+    # rule 17: a signal_study a seed, 40 units a sample (1 was: 127-186 ns measured at 100 runs x 1,024 x 4 gains, 1,409
+    # seeds accepted, ~75 CPU-s) and 300 LOOP_STEP (2.2-2.7 ms at 2 x 64 x 2; process_time, least of 2, shared machine)
+    per_seed = 40 * runs_ * count(kwargs.get("length", 1024), "length") * n_gains
     loop_work((len(sv),), per_seed, "seeds, runs, length and gains", step=300 * LOOP_STEP)
     distinct(sv, "seeds")  # the cases are keyed by seed: a repeated seed would collapse two of them (after the budget)
     kind = _signal(kind)

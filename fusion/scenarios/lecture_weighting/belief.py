@@ -199,6 +199,11 @@ def belief_study(
     # measured (budget35: 0.57 CPU-s for 20,000 snapshots of 4 sensors, 1.2 for 2,000 of 20); without it 10**7
     # snapshots (some 260 CPU-s) were accepted
     work((snapshots, n_sig, n_sig), "snapshots and sigma", weight=180)
+    # and the ~210 belief_degree calls on one n x n snapshot each (the weight curve, the examples) and the Perron
+    # statistics, uncounted (fuzz 64b's class: 1,666 sensors of 2 snapshots were accepted, some 90 CPU-s): 1.3e-5 s an
+    # entry and 2.9e-8 s a cube fitted to 3.98 and 11.05 CPU-s at 400 and 600 sensors (0.08 at 50; 2 snapshots,
+    # time.process_time, OPENBLAS_NUM_THREADS=1, machine shared), so about twice: 2,650 units an entry, 6 a cube
+    work((snapshots * 180 * n_sig**2 + 2650 * n_sig**2 + 6 * n_sig**3,), "snapshots and sigma")
     base = x + np.random.default_rng(seeds[0]).normal(size=sig.size) * sig
     deltas = np.linspace(0, 20, 201)
     e1 = np.eye(sig.size)[0]
@@ -398,8 +403,6 @@ def belief_parameter_study(
     if np.any(vals <= 0):
         raise ValueError("params must be positive")
     g = _values(grid, "grid")
-    if not set(g.tolist()) <= set(vals.tolist()):
-        raise ValueError(f"grid must be a subset of params, got {tuple(g.tolist())}")
     snapshots = count(snapshots, "snapshots", minimum=2)
     # rule 17: a fusion per param (and per snapshot and deletion support) of sensors² belief degrees, two LOOP_STEPs
     # each (fix39a: one gave 19.8-20.5 CPU-s at the edge, 163,934 snapshots, measured at 1/20 and 1/5); by the number
@@ -407,6 +410,8 @@ def belief_parameter_study(
     # (fix70a, fuzz 62b's class: each entry hashed before a budget that needs only their number, 2.5 CPU-s a 10**7 list)
     loop_work((vals.size, 3 + snapshots * len(DELETION_SUPPORT)), sig.size**2, "params and snapshots",
               step=2 * LOOP_STEP)
+    if g.size > vals.size or not set(g.tolist()) <= set(vals.tolist()):  # after the budget (fuzz 64b's class)
+        raise ValueError(f"grid must be a subset of params, got {shown(tuple(g.tolist()))}")
     distinct(vals.tolist(), "params"), distinct(g.tolist(), "grid")  # the spread is keyed by the params' values
     distinct_printed(vals.tolist(), "params", general, "labels a column")  # the chapter's f"{p:g}" (fuzz 30b)
     shift = scalar(shift, "shift", lo=0.0)

@@ -291,11 +291,13 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     # two sensors, time.process_time, shared machine): 4 LOOP_STEP, on top of the readings' units (fuzz 39a C3:
     # chunk = 1 of 2.5e8 runs, accepted, would have run about 8,000 CPU-s)
     _chunk_loop(runs, chunk, units, 4 * LOOP_STEP)
-    t = _values(thresholds, "thresholds")
+    t = _values(thresholds, "thresholds")  # a vectorised conversion (at most MAX_INPUT_ELEMENTS entries)
+    # rule 17 by the length, before any entry is printed (fuzz 64b C6: 10**7 thresholds were each printed first,
+    # refused after 17.6 CPU-s by a printed repeat)
+    loop_work((t.size,), runs, "thresholds and runs", step=3 * LOOP_STEP)  # rule 17: a pass over the errors
     if np.any(t <= 0):
         raise ValueError("thresholds must be positive")
     distinct_printed(t.tolist(), "thresholds", glue_part, "keys a glue value")  # lec_tail_p_* (fuzz 30b B2, 31b D4)
-    loop_work((t.size,), runs, "thresholds and runs", step=3 * LOOP_STEP)  # rule 17: a pass over the errors
     rng = np.random.default_rng(seed)
     errs, done = [], 0
     while done < runs:
@@ -540,6 +542,12 @@ class AwfStudy:
 #: (20,000 and 100,000 entries of 100 runs), 12 at 40, 6 at 400 (20,000 entries of 10 runs), over the same call with
 #: one entry (``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls, machine shared): 12 units.
 _AWF_K = 12
+#: Units of one level of :func:`awf_study` beyond its draws' (a pass of ``_running_estimates``, four validated
+#: ``EstimatorRow`` and a few statistics): 700-750 us a level measured at 1 run x k_max 100 x 4 sensors (200 and 800
+#: levels; ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls, machine shared), so about twice,
+#: 140 ``LOOP_STEP``, within ``MAX_WORK`` (fuzz 64b's class: a step of LOOP_STEP under the study's 7e9 let 175,000
+#: levels run about 120 CPU-s, accepted).
+_AWF_LEVEL = 140 * LOOP_STEP
 
 
 @derived_inputs()
@@ -578,7 +586,8 @@ def awf_study(
     ------
     ValueError
         A bad argument, named; before any draw: the draws beyond the memory budget or their work at every level (25
-        units a draw, measured) beyond its entry of ``fusion._limits.STUDY_WORK``; the running means at ``ks``
+        units a draw, measured) beyond its entry of ``fusion._limits.STUDY_WORK``, or its levels' Python steps
+        (1.4 ms a level, about twice the measured) beyond ``fusion._validation.MAX_WORK``; the running means at ``ks``
         (``runs x len(ks) x n``) beyond the memory budget, or their work at two levels (12 units a run and entry of
         ``ks``, measured) beyond ``fusion._validation.MAX_WORK``.
     """
@@ -593,6 +602,7 @@ def awf_study(
     # 3,900 runs x 100 x 4, ~3x the 8 units counted before; 78,000 runs, ~32 CPU-s, were accepted)
     # (the reseeding sweep's 10x reading, lec-awf-estimated, counts 3e9: its entry of fusion._limits.STUDY_WORK)
     loop_work((lv.size, 2), 25 * runs * k_max * n_sig, "levels, runs, k_max and sigma", limit=STUDY_WORK[AWF_STUDY])
+    loop_work((lv.size,), 0, "levels", step=_AWF_LEVEL)  # its Python steps, at MAX_WORK (fuzz 64b's class)
     # the estimates are keyed by (level, estimator); the repeats looked for after the budget by their number
     # (fix70a, fuzz 62b's class: each entry hashed before a budget that needs only their number, 2.5 CPU-s a 10**7 list)
     distinct(lv.tolist(), "levels")

@@ -44,6 +44,11 @@ BENCH_SIGMA = (0.5, 1.0, 1.5, 2.0, 4.0)
 #: 100 x 5 readings count about 1.4e8 units (about 1.4 CPU-s); its budget is its entry of ``fusion._limits.STUDY_WORK``
 #: (the reseeding sweep's 5,000 runs count 1.35e9 units: 3e9).
 _BENCH_READING = 45
+#: Units of one key (seed, level, fault) of :func:`benchmark` beyond its readings' (its ~20 methods' validated calls):
+#: 1.6-2.3 ms a key measured at 1 run x 2 samples and 2 x 10 x 5 sensors (20 and 80 keys; ``time.process_time``,
+#: ``OPENBLAS_NUM_THREADS=1``, the least of two calls, machine shared), so about twice, 400 ``LOOP_STEP``, within
+#: ``MAX_WORK`` (fuzz 64b's class: 100 under the study's 3e9 let 29,866 keys run about 60 CPU-s, accepted).
+_BENCH_KEY = 400 * LOOP_STEP
 #: The methods of :func:`fusion.readings.robust.robust_fuse` the benchmark applies to the readings at k = K (median,
 #: biweight): their own limits are checked at its entry.
 _BENCH_ROBUST = ("median", "biweight")
@@ -176,7 +181,8 @@ def benchmark(
     ------
     ValueError
         A bad argument, named; before any work: the readings of every (seed, level, fault) key beyond the work budget
-        (45 units a reading, measured, and a step a key; its entry of ``fusion._limits.STUDY_WORK``), the checked AWF's
+        (45 units a reading, measured, and a step a key; its entry of ``fusion._limits.STUDY_WORK``) or the keys' own
+        steps (4 ms a key, about twice the measured) beyond ``fusion._validation.MAX_WORK``, the checked AWF's
         eight ``(runs, samples, n, n)`` pair arrays beyond the memory budget (naming runs, samples and sigma), or their
         work at every key (6 units a pair element, measured) beyond ``fusion._validation.MAX_WORK``, or the
         ``(runs, len(sigma))`` readings at k = K beyond what :func:`fusion.readings.robust.robust_fuse` takes for the
@@ -203,6 +209,7 @@ def benchmark(
     loop_work((len(seed_items), lv.size, len(fault_items)), _BENCH_READING * runs * samples * sig_chk.size,
               "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP,
               limit=STUDY_WORK[READINGS_BENCHMARK])  # the reseeding sweep's 10x (lec-belief-accuracy): 1.35e9
+    loop_work((len(seed_items), lv.size, len(fault_items)), 0, "seeds, levels and faults", step=_BENCH_KEY)
     seeds = check_seeds(seed_items, "seeds")
     faults = [flag(f, f"faults[{i}]") for i, f in enumerate(fault_items)]  # then each flag
     # the results are keyed by (seed, level, fault): a repeated entry would collapse two of them
