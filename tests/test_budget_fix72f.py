@@ -47,3 +47,26 @@ def test_mixture_fusions_count_a_step_a_mixture(fused):
             else functools.partial(mixture.fuse_mixtures, gms, np.random.default_rng(0), n_samples=2))
     refused_quickly(call, ValueError, r"^gms (and n_samples )?\(the product mixture's component tuples\) ask for",
                     cpu=2.0)
+
+
+@pytest.mark.parametrize("feedback", ["split", "common"])
+def test_printed_fusion_loop_with_feedback_weighs_its_step(feedback):
+    """fusion_loop with rule "printed" and feedback costs 1.2-1.5 ms a step (n = 2, one run), counted as the split
+    rules' 60 LOOP_STEP before: the edge, ~16,500 steps, ran 20-25 CPU-s. 10,000 steps are refused before any work
+    (they were accepted); without feedback the printed rule keeps its weight (10,000 steps accepted by the rule)."""
+    from fusion.filtering import feedback as fb
+    from fusion.filtering import kalman as km
+
+    def rule(step, K):  # fusion_loop's rule for n = 2, m = 1, one run of the printed rule
+        km._steps_work(K, 1, 2, 1, step, "z1 and z2 (their steps K) and the sizes of F and H",
+                       km.FUSION_LOOP_PRINTED_CUBE, km.FUSION_LOOP_SPLIT_M_CUBE, run=km.FUSION_LOOP_RUN,
+                       product=km.FUSION_LOOP_PRODUCT, matrix=km.FUSION_LOOP_PRINTED_MATRIX)
+
+    rule(km.FUSION_LOOP_SPLIT_STEP, 10_000)  # without feedback: accepted
+    rule(km.FUSION_LOOP_PRINTED_FEEDBACK_STEP, 6_600)  # the new edge, just inside (~8-10 CPU-s): accepted
+    K = 10_000
+    z = np.zeros((1, K, 1))
+    x0 = np.zeros((1, 2))
+    F, H, Q, R, P0 = np.array([[1.0, 1.0], [0.0, 1.0]]), np.array([[1.0, 0.0]]), 0.01 * np.eye(2), np.eye(1), np.eye(2)
+    call = functools.partial(fb.fusion_loop, z, z, x0, x0, F, H, Q, R, R, P0, P0, P0, "printed", feedback=feedback)
+    refused_quickly(call, ValueError, r"^z1 and z2 \(their steps K\) and the sizes of F and H ask for")
