@@ -583,16 +583,25 @@ def weighted_em_batch(
     return _em_batch(xx, ww, n_components, rngs, max_iter, tol, floor, inits)
 
 
+#: Units of one EM iteration's Python step (its numpy calls, whatever the sizes): measured 71-87 us an iteration of one
+#: set (Q = 60 to 200 points, 3 to 5 components, d = 1 to 3; time.process_time, OPENBLAS_NUM_THREADS=1, the least of
+#: 3, the machine shared), 103 us of 10 sets, so twice that (fix 72f, fuzz 64b's class: uncounted, the edge of one
+#: set of 200 points and 5 components, 10**6 iterations at tol = 0, would have run ~80 CPU-s; now ~9).
+_EM_STEP = 16 * LOOP_STEP
+
+
 def _em_work(max_iter: int, B: int, Q: int, S: int, d: int) -> None:
     """Rule 17 for EM (fuzz 36a C3): ``max_iter`` iterations of B sets of Q points and S components in d dimensions.
 
-    An iteration of a component costs Q (d + K/8) units, its vectorised steps and the two products with the K
-    quadratic features (:func:`_n_features`, about 1.2 ns a point and feature measured, d = 4 to 500), plus
-    ``d**3 / 40`` for the inverse and the Cholesky of its covariance (about 0.25 ns a ``d**3``, d = 250 to 750:
-    40 points of 5,000 dimensions, about 150 CPU-s, counted only Q d before), refused by name before any work.
+    An iteration of a component costs Q (d + K/8 + 2) units, its vectorised steps and the two products with the K
+    quadratic features (:func:`_n_features`, about 1.2 ns a point and feature measured, d = 4 to 500; the 2 units a
+    point, fix 72f: 21 ns a point and component measured at d = 1, 31 ns at d = 4, against 10 and 50 counted before),
+    plus ``d**3 / 40`` for the inverse and the Cholesky of its covariance (about 0.25 ns a ``d**3``, d = 250 to 750:
+    40 points of 5,000 dimensions, about 150 CPU-s, counted only Q d before), and an iteration's Python step
+    ``_EM_STEP``, refused by name before any work.
     """
-    per = Q * (d + _n_features(d) // 8) + d ** 3 // 40
-    work((max_iter, B * S, per), "max_iter, x and n_components")
+    per = Q * (d + _n_features(d) // 8 + 2) + d ** 3 // 40
+    loop_work((max_iter,), B * S * per, "max_iter, x and n_components", step=_EM_STEP)
 
 
 def _wscatter(X: FloatArray, means: FloatArray, g: FloatArray) -> FloatArray:

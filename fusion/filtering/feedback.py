@@ -81,6 +81,7 @@ from fusion.filtering.kalman import (FUSION_LOOP_CUBE, FUSION_LOOP_M_CUBE, FUSIO
                                     FUSION_LOOP_PRINTED_CUBE, FUSION_LOOP_PRINTED_MATRIX, FUSION_LOOP_PRODUCT,
                                     FUSION_LOOP_RUN, FUSION_LOOP_SPLIT_CUBE, FUSION_LOOP_SPLIT_M_CUBE,
                                     FUSION_LOOP_SPLIT_MATRIX, FUSION_LOOP_SPLIT_STEP, FUSION_LOOP_STEP, _model,
+                                    FUSION_LOOP_PRINTED_FEEDBACK_STEP,
                                     _steps_allocation, _steps_work)
 from fusion._shown import shown
 
@@ -301,7 +302,8 @@ def fusion_loop(
     _steps_allocation(K, n, runs + 6 * n, "z1 and the sizes of F and H")
     # each step's dense n x n and m x m algebra too (fuzz 37a C2): the split rules search a weight a step, dearer
     searched = rule in ("split", "printed")
-    _steps_work(K, runs, n, m, FUSION_LOOP_SPLIT_STEP if searched else FUSION_LOOP_STEP,
+    _steps_work(K, runs, n, m, FUSION_LOOP_PRINTED_FEEDBACK_STEP if rule == "printed" and feedback != "none"
+                else FUSION_LOOP_SPLIT_STEP if searched else FUSION_LOOP_STEP,
                 "z1 and z2 (their steps K) and the sizes of F and H",
                 FUSION_LOOP_PRINTED_CUBE if rule == "printed" else FUSION_LOOP_SPLIT_CUBE if searched else FUSION_LOOP_CUBE,
                 FUSION_LOOP_SPLIT_M_CUBE if searched else FUSION_LOOP_M_CUBE, run=FUSION_LOOP_RUN,

@@ -200,6 +200,9 @@ LOCAL_TRACK_PRODUCT = 0.001
 #: 15 ns a run's entry and 0.13 ns a product (both filters and the fusion).
 FUSION_LOOP_STEP = 30 * LOOP_STEP
 FUSION_LOOP_SPLIT_STEP = 60 * LOOP_STEP
+#: ``"printed"`` with feedback (``"split"`` or ``"common"``): 1.2-1.5 ms a step measured (fix 72f: K = 1,000 and 3,000,
+#: n = 2, one run; the least of 3, the machine loaded, load average 10 on 2 cores), so the edge at 60 ran 20-25 CPU-s.
+FUSION_LOOP_PRINTED_FEEDBACK_STEP = 150 * LOOP_STEP
 FUSION_LOOP_MATRIX = 20.0
 FUSION_LOOP_SPLIT_MATRIX = 25.0
 FUSION_LOOP_PRINTED_MATRIX = 40.0

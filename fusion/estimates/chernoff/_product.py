@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 from fusion._counts import allocation
+from fusion._limits import LOOP_STEP
 
 #: Units (about 10 ns, ``fusion._limits.MAX_WORK``) of one (tuple, mixture) entry of the product mixture in the whole
 #: fusion (``fuse_mixtures``: the proposal, its samples' densities and the fused moments), ``FUSION_ENTRY + d * d``
@@ -20,6 +21,12 @@ FUSION_ENTRY, FUSION_SQUARE = 40, 3
 #: The same for the first-order fusion alone (``first_order_fusion``): about 0.17-0.3 us an entry at d = 2, 0.26 us
 #: at d = 4.
 FIRST_ORDER_ENTRY, FIRST_ORDER_SQUARE = 28, 1
+#: Units of one mixture's Python step in ``first_order_fusion`` and ``fuse_mixtures`` (``_mixture_arrays``'
+#: reading of its arrays, its checks, the first-order fusion's per-mixture terms): measured 11-12 us a mixture
+#: (one-component mixtures of d = 1, 10**4 to 10**6 of them; time.process_time, OPENBLAS_NUM_THREADS=1, the machine
+#: shared), uncounted before (28 + d**2 units a mixture: 10**6 mixtures were accepted and ran 12 CPU-s, the edge,
+#: 3.4e7, ~400 CPU-s; fix 72f, fuzz 64b's class), so about twice that.
+MIXTURE_STEP = 25 * LOOP_STEP // 10
 #: A tuple's units per sample and covariance entry (the samples' proposal densities, ``n_samples x d x d`` a tuple):
 #: about 1.3 ns measured at 2**10 tuples and 5,000 to 20,000 samples, a fifth of a unit.
 SAMPLE_DIVISOR = 5

@@ -32,7 +32,7 @@ from fusion._results import ResultSpec, instance, number, validated_post_init
 from fusion.estimates.chernoff._timings import FusionTimings
 from fusion.estimates.chernoff._sampling import _mixture_mean, _moments_batch, _sample_mixture  # noqa: F401
 from fusion._timing import LapTimer
-from fusion.estimates.chernoff._product import product_size, sample_memory
+from fusion.estimates.chernoff._product import MIXTURE_STEP, product_size, sample_memory
 from fusion._validation import (MAX_MAGNITUDE, FloatArray, _covariance_magnitude, _numeric, allocation, as_array, as_rng,
                                 as_rngs, asymmetric, count, derived_inputs, flag, instance_of, one_of, read_once, refuse_singular,
                                 renormalised, sums_to_one, work)
@@ -187,7 +187,7 @@ def first_order_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplifie
     _check_mixtures(gms)
     e = check_simplex(eps, len(gms))
     tuples, per = product_size(1, len(gms), max(g.weights.size for g in gms), gms[0].dim, "gms", first_order=True)
-    work((tuples,), "gms (the product mixture's component tuples)", weight=per)  # fuzz 35a C7
+    work((tuples * per + len(gms) * MIXTURE_STEP,), "gms (the product mixture's component tuples)")  # fuzz 35a C7
     logw, means, covs = _mixture_arrays(gms)
     w, mu, P, log_z = _first_order_arrays(logw[None], means[None], covs[None], e[None], simplified=simplified)
     keep = w[0] > 0
@@ -640,7 +640,7 @@ def fuse_mixtures(
     N = len(gms)
     e0 = np.full(N, 1.0 / N) if eps0 is None else check_simplex(eps0, N, name="eps0")
     tuples, per = product_size(1, N, max(g.weights.size for g in gms), gms[0].dim, "gms and n_samples", n_samples)
-    work((tuples,), "gms and n_samples (the product mixture's component tuples)", weight=per)  # fuzz 35a C7
+    work((tuples * per + N * MIXTURE_STEP,), "gms and n_samples (the product mixture's component tuples)")  # 35a C7
     sample_memory(1, tuples, gms[0].dim, n_samples, "gms and n_samples")  # fuzz 58b C2
     logw, means, covs = _mixture_arrays(gms)
     flag(timed, "timed")
