@@ -4,7 +4,7 @@ scaling control.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 
 from dataclasses import dataclass, field
 from enum import StrEnum
@@ -212,6 +212,14 @@ def _architecture_units(steps: int, runs: int, nees_runs: int, banks: int, names
     return steps * (step + run * runs + nees * nees_runs)
 
 
+#: Units of :func:`q_scaling_study`'s loop over scales, twice the measured cost (fuzz 64b C5: a (scale, path step)
+#: was counted ``LOOP_STEP`` + 16 a run, about 10 us, where it costs 175-260 us with 2 runs and 0.45 us more a run,
+#: so 700 scales at T = 1 ran 33.3 CPU-s accepted and the edge, 3,712, about 175): a (scale, step) 40 ``LOOP_STEP``, a
+#: run's step of it 90 units (45, 67 ms a scale at 5 and 20 scales of 2 runs, 76 and 146 at 5 scales of 200 and 800
+#: runs; T = 1, 261 steps; ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls, machine shared).
+_SCALE_STEP, _SCALE_RUN_STEP = 40 * LOOP_STEP, 90
+
+
 #: Float64 values per run and step that the run studies hold at once at their peak (the measurements, truths, both
 #: local tracks, the fused track, its errors and the NEES's stacked factors): measured with ``tracemalloc`` at 38 and
 #: 53 (:func:`q_scaling_study`, path runs and model runs), 47 and 62 (:func:`architecture_study`), so that
@@ -222,10 +230,13 @@ _HELD = 64
 def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int, nees_runs: int,
                  T: float, velocity_sigma: float, t_steady: float, scales: int | None = None,
                  step_units: tuple[int, int, int] | None = None, names: str = "runs, nees_runs and T",
-                 limit: int = MAX_WORK, served: str | None = None) -> _PairedRuns:
+                 limit: int = MAX_WORK, served: str | None = None,
+                 entries: Callable[[], object] | None = None) -> _PairedRuns:
     """Validate the run studies' common arguments and draw their measurements on the path of :func:`trajectory`
     and on targets that follow the model (:func:`_path_and_model_measurements`); ``scales``: the number of filter
-    banks the caller runs on them, checked against the work budget (rule 17) before anything is drawn."""
+    banks the caller runs on them, checked against the work budget (rule 17) before anything is drawn; ``entries``:
+    the caller's checks of its sequences' entries, run after the budget (which needs only their number) and before
+    the draws (length -> budget -> entries, fuzz 64b C4 and C7)."""
     as_rng(rng)
     runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
     R1, R2 = diagonal_covariance(R1, 2, "R1"), diagonal_covariance(R2, 2, "R2")
@@ -240,24 +251,29 @@ def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: Arra
     allocation((runs + nees_runs, t.size, _HELD), "runs, nees_runs and T")  # every array the study holds at once
     if scales is not None:
         # rule 17: one filter bank per scale, a loop step per sample over every run's 4-state filter
-        loop_work((scales, t.size), 16 * (runs + nees_runs), "scales, runs, nees_runs and T")
+        loop_work((scales, t.size), _SCALE_RUN_STEP * (runs + nees_runs), "scales, runs, nees_runs and T",
+                  step=_SCALE_STEP)
     if step_units is not None:
         # rule 17: the study's architectures and rules at their measured cost a step, a step of a path run and of a
         # model run (``step_units``), before the draws, naming ``names``, within ``limit``
         work((t.size, step_units[0] + step_units[1] * runs + step_units[2] * nees_runs), names, limit=limit,
              served=served)
+    if entries is not None:
+        entries()
     z, Xm = _path_and_model_measurements(rng, X, model.F, Q, R1, R2, runs, nees_runs)
     truth = np.concatenate([np.broadcast_to(X, (runs, t.size, 4)), Xm])
     return _PairedRuns(runs, nees_runs, R1, R2, Q, model.F, model.H, np.diag([0.0, s2, 0.0, s2]), steady, z, truth)
 
 
-def _unit_weights(value: ArrayLike, name: str) -> list[float]:
-    """Weights in (0, 1], none repeated (the results are keyed by weight), checked in one vectorised pass."""
+def _unit_weights(value: ArrayLike, name: str) -> np.ndarray:
+    """Weights in (0, 1], checked in one vectorised pass; that none is repeated (the results are keyed by weight) is
+    checked by ``distinct`` once the budget, which needs only their number, has passed (fuzz 64b C7: 10**7 weights were
+    read entry by entry first, refused after 14-16 CPU-s)."""
     w = np.atleast_1d(as_array(value, name, ndim=(0, 1), nonempty=False))
     bad = ~((w > 0) & (w <= 1))
     if bad.any():
         raise ValueError(f"{name} must lie in (0, 1], got {shown(float(w[bad][0]))} at index {int(np.argmax(bad))}")
-    return distinct(w.tolist(), name)
+    return w
 
 
 @derived_inputs()
@@ -304,18 +320,24 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     """
     from fusion.filtering.feedback import fusion_loop
 
-    omegas, placed = (_unit_weights(w, nm) for w, nm in ((printed_omegas, "printed_omegas"),
-                                                          (placement_omegas, "placement_omegas")))
+    w_printed, w_placed = (_unit_weights(w, nm) for w, nm in ((printed_omegas, "printed_omegas"),
+                                                               (placement_omegas, "placement_omegas")))
+    weights: dict[str, list[float]] = {}
+
+    def distinct_weights() -> None:   # after the budget, before the draws (length -> budget -> entries)
+        weights["printed_omegas"] = distinct(w_printed.tolist(), "printed_omegas")
+        weights["placement_omegas"] = distinct(w_placed.tolist(), "placement_omegas")
 
     # rule 17 before the draws: every step, every run's step, and a filter bank per printed (twice) and placement
     # omega at their measured cost (78,000 NEES runs, ~50 CPU-s, were accepted: budget35; the steps: fuzz 42b D1); the
     # budget is its entry of fusion._limits.STUDY_WORK (the reseeding sweep's 10x reading of chapter 05, 1.08e9)
-    banks = 2 * len(omegas) + len(placed)
+    banks = 2 * w_printed.size + w_placed.size
     p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady,
                      step_units=_arch_step_units(banks),
                      names="runs, nees_runs and T" if not banks else
                      "printed_omegas, placement_omegas, runs, nees_runs and T",
-                     limit=STUDY_WORK[ARCHITECTURE_STUDY], served=ARCHITECTURE_STUDY)
+                     limit=STUDY_WORK[ARCHITECTURE_STUDY], served=ARCHITECTURE_STUDY, entries=distinct_weights)
+    omegas, placed = weights["printed_omegas"], weights["placement_omegas"]
     runs, nees_runs, R1, R2, Q, F, H, steady, z, truth = (p.runs, p.nees_runs, p.R1, p.R2, p.Q, p.F, p.H, p.steady,
                                                           p.z, p.truth)
     x0 = [np.column_stack([zj[:, 0, 0], np.zeros(runs + nees_runs), zj[:, 0, 1], np.zeros(runs + nees_runs)])
@@ -436,14 +458,21 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     ------
     ValueError
         Covariances not valid, counts or scales not positive, ``scales`` repeating an entry to 6 significant digits
-        (each keys a result and a table row, printed ``f"{c:g}"``), ``t_steady`` beyond the path.
+        (each keys a result and a table row, printed ``f"{c:g}"``), ``t_steady`` beyond the path; the scales' filter
+        banks beyond the work budget (40,000 units a scale and step, 90 more a run's step, measured) by their number
+        before any entry is printed or any draw.
     """
     sv = np.atleast_1d(as_array(scales, "scales", ndim=(0, 1)))
     if not np.all(sv > 0):  # one vectorised pass (10**6 scales are refused by the work budget at once)
         raise ValueError(f"scales must be positive, got {shown(float(sv[~(sv > 0)][0]))} at index {int(np.argmin(sv > 0))}")
     check_magnitude(sv, "scales")  # rule 2, as positive_scalar entry by entry
-    cs = tuple(distinct_printed(sv.tolist(), "scales", general, "keys a result and a row"))  # f"{c:g} Q" (fuzz 30b)
-    p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady, scales=len(cs))
+    keyed: list[tuple[float, ...]] = []
+    # f"{c:g} Q" (fuzz 30b), read after the budget, which needs only their number (fuzz 64b C4: 10**7 scales were
+    # printed and hashed first, refused after 21-26 CPU-s)
+    p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady, scales=sv.size,
+                     entries=lambda: keyed.append(tuple(distinct_printed(sv.tolist(), "scales", general,
+                                                                         "keys a result and a row"))))
+    cs = keyed[0]
     runs, nees_runs, R1, R2, Q, F, H, steady, z, truth = (p.runs, p.nees_runs, p.R1, p.R2, p.Q, p.F, p.H, p.steady,
                                                           p.z, p.truth)
     P0d = p.P0d

@@ -11,7 +11,7 @@ from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_semidefinite, finite_result, instance_of, nonnegative_scalar,
                                 one_of, positive_scalar, solve, std_scalar, step_scalar)
 from fusion._validation import flag
-from fusion._validation import distinct, loop_work, sequence
+from fusion._validation import LOOP_STEP, distinct, sequence, work
 from fusion.filtering.kalman import cv_model
 from fusion.scenarios.two_sensor.case import _PARAMS
 from fusion.scenarios.two_sensor.case import _legs, trajectory
@@ -187,6 +187,21 @@ def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] 
     return t, on_leg, floor[on_leg]
 
 
+#: Units (about 10 ns, ``fusion._limits.MAX_WORK``) of :func:`path_by_period`, twice the measured cost (fuzz 64b C3:
+#: the old count, a path step x (readings + 1) x (LOOP_STEP + 64), missed the period's own cost, so 5,000 periods
+#: in [40, 60] s ran 34.3 CPU-s accepted and 40,000 about 270): a period 1,300 ``LOOP_STEP`` (its trajectory, model,
+#: two straight-leg floors and two error passes: 6.4 ms measured at 6 steps), a path step 14 ``LOOP_STEP`` and 1,500
+#: units more a reading (58-70 us a step with one reading, 6.5 us more a reading, at T = 0.25-2 s). Measured with
+#: ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of three calls, machine shared.
+_PERIOD_UNITS, _PATH_STEP_UNITS, _READING_STEP_UNITS = 1300 * LOOP_STEP, 14 * LOOP_STEP, 1500
+
+
+def _path_units(periods: int, steps: float, readings: int) -> int:
+    """The units of :func:`path_by_period` for ``periods`` periods of ``steps`` path steps in all and ``readings``
+    readings (the weights above), exact for any count (a float of steps beyond 1e18 is capped there)."""
+    return periods * _PERIOD_UNITS + int(min(steps, 1e18)) * (_PATH_STEP_UNITS + readings * _READING_STEP_UNITS)
+
+
 def _path_error(F: FloatArray, H: FloatArray, Qs: FloatArray, R: FloatArray, P0: FloatArray, X: FloatArray,
                 mean0: FloatArray, cov0: FloatArray, components: tuple[int, ...] = (0, 2)) -> tuple[FloatArray, FloatArray]:
     r"""Mean and variance of the error of Kalman filters on the path, one per process noise of ``Qs`` (B, n, n).
@@ -277,7 +292,7 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
     # and the periods' array before any entry is read or hashed (fuzz 62b C3: 10**7 readings were each checked by
     # one_of first, refused after 8.7-9.9 CPU-s)
     steps = float(np.sum(np.floor(float(trajectory(1.0).t[-1]) / Ts) + 1.0))
-    loop_work((int(min(steps, 1e18)), len(items) + 1), 64, "periods and readings")
+    work((1,), "periods and readings", weight=_path_units(Ts.size, steps, len(items)))
     readings = tuple(one_of(rd, Q_READINGS, "readings") for rd in items)
     distinct(Ts.tolist(), "periods")  # the results are keyed by (period, reading)
     out: dict[tuple[float, str], dict[str, float]] = {}
@@ -290,6 +305,11 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
                              f"(its last step is at {float(traj.t[-1]):.6g} s): lower t_steady, or that entry of "
                              "periods")
         tl, on_leg, floor = straight_leg_floor(Tp, sigma)
+        if not (tl[on_leg] >= t_steady).any():   # fuzz 64b D1: an empty mean was refused as an overflow
+            last = (f"its last straight-leg step is at {float(tl[on_leg][-1]):.6g} s): lower t_steady, or"
+                    if on_leg.any() else "no leg has two of its samples): lower")
+            raise ValueError(f"t_steady = {t_steady} leaves no straight-leg step of the path sampled with periods "
+                             f"entry {Tp} s ({last} that entry of periods")
         fl = float(floor[tl[on_leg] >= t_steady].mean())
         fl_causal = float(straight_leg_floor(Tp, sigma, causal=True)[2][tl[on_leg] >= t_steady].mean())
         Qs = []

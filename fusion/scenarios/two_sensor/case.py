@@ -265,11 +265,18 @@ def _scenario_budget(runs: int, n_steps: int, names: str) -> int:
     after the first track's draws and filter: 70,000 runs of 261 steps ran 3.1 CPU-s, then were refused naming every
     argument, fuzz 54a D4); the work of two local filters, their gains and the centralised filter, about 0.5 us a
     run and step measured (budget35: 1.6 CPU-s for 12,600 runs of 261 steps; with a memory budget only, 250,000 runs,
-    ~33 CPU-s, ran). A chapter study that runs several scenarios sums the units (fuzz 54a D4).
+    ~33 CPU-s, ran), and each step's own cost, 12 ``LOOP_STEP`` (twice 51 us measured: 0.51 and 2.06 CPU-s for one
+    run of 10,000 and 40,000 steps, ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, machine shared; audit after
+    fuzz 64b: with the runs alone counted, one run of 400,000 steps, about 20 CPU-s, was accepted, its edge set by the
+    local tracks' own budgets). A chapter study that runs several scenarios sums the units (fuzz 54a D4).
     """
     allocation((runs, n_steps, 4), names)
     input_allocation((runs, n_steps, 4), names)
-    return work((runs, n_steps), names, weight=50)
+    return work((n_steps, _SCENARIO_STEP + 50 * runs), names)
+
+
+#: Units of a step of :func:`two_sensor_scenario` whatever its runs (``_scenario_budget``).
+_SCENARIO_STEP = 12 * LOOP_STEP
 
 
 @derived_inputs()
