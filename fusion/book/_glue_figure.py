@@ -58,8 +58,10 @@ ARTIST = 50_000
 #: 10**5 6.38 (64 us a character); fuzz 64a's 'ab\n' * 10**5 28.5 (95 us a character); weighed 150 us.
 CHARACTER = 15_000
 
-_WEIGHTS = {"points": POINT, "image pixels": PIXEL, "mesh cells": CELL, "markers": MARKER,
-            "marker vertices": MARKER_VERTEX, "artists": ARTIST, "characters": CHARACTER}
+#: The kinds a figure is tallied by (``_tally``), named once (a header used in several functions, issue 36).
+_PIXELS, _CELLS, _MARKER_VERTICES = "image pixels", "mesh cells", "marker vertices"
+_WEIGHTS = {"points": POINT, _PIXELS: PIXEL, _CELLS: CELL, "markers": MARKER, _MARKER_VERTICES: MARKER_VERTEX,
+            "artists": ARTIST, "characters": CHARACTER}
 
 
 def _size(*arrays: object) -> int:
@@ -106,7 +108,7 @@ def _collection(a: Collection, tally: dict[str, int]) -> None:
     if offsets > 1 and paths and _per_offset(a):
         draws = max(offsets, len(paths))
         tally["markers"] += draws
-        tally["marker vertices"] += -(-draws // len(paths)) * vertices
+        tally[_MARKER_VERTICES] += -(-draws // len(paths)) * vertices
     else:
         tally["points"] += offsets + vertices
 
@@ -135,12 +137,12 @@ def _tally(fig: Figure) -> dict[str, int]:
             tally["points"] += _size(a.get_xdata(orig=True), a.get_ydata(orig=True))
         elif isinstance(a, QuadMesh):               # its cells from its coordinates' shape, no paths built
             rows, cols = np.shape(a.get_coordinates())[:2]    # (rows + 1, cols + 1, 2) corners
-            tally["mesh cells"] += max(rows - 1, 0) * max(cols - 1, 0)
+            tally[_CELLS] += max(rows - 1, 0) * max(cols - 1, 0)
         elif isinstance(a, Collection):
             _collection(a, tally)
         elif isinstance(a, AxesImage):
             arr = a.get_array()
-            tally["image pixels"] += int(np.prod(np.shape(arr)[:2], dtype=object)) if arr is not None else 0
+            tally[_PIXELS] += int(np.prod(np.shape(arr)[:2], dtype=object)) if arr is not None else 0
         elif isinstance(a, Patch):
             tally["points"] += len(a.get_path().vertices)
         elif isinstance(a, Text):
@@ -158,7 +160,7 @@ def drawn_points(fig: Figure) -> int:
 
 def drawn_pixels(fig: Figure) -> int:
     """The pixels of ``fig``'s images (each image's first two dimensions), read without rendering."""
-    return _tally(fig)["image pixels"]
+    return _tally(fig)[_PIXELS]
 
 
 def figure_units(fig: Figure, key: str) -> int:
@@ -176,7 +178,7 @@ def figure_units(fig: Figure, key: str) -> int:
     if units > MAX_WORK:
         drawn = ", ".join(f"{tally[k]:,} {k} at {w:,}" for k, w in _WEIGHTS.items() if tally[k])
         raise ValueError(f"values[{shown(key)}] is a figure drawing {tally['points']:,} points (lines', patches' and "
-                         f"3-D vertices, collections' offsets and paths) and {tally['image pixels']:,} image pixels "
+                         f"3-D vertices, collections' offsets and paths) and {tally[_PIXELS]:,} image pixels "
                          f"({drawn} units each), {units:.3g} units of work rendered, beyond the work budget (at most "
                          f"{MAX_WORK:.3g} units, fusion._limits.MAX_WORK, about 10 CPU-s)")
     return units
