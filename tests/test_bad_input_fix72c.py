@@ -55,8 +55,8 @@ def test_q_scaling_study_budget_before_the_scales_are_printed():
 def test_q_scaling_study_weighs_a_scale_step_by_its_cost():
     """C5: 700 scales at T = 1 ran 33.3 CPU-s accepted (a scale's step counted 10 us, measured 175-260 us): refused;
     the edge, about 95 scales of one run each (about 5 CPU-s), accepted by the budget, the chapter's call inside."""
-    def units(scales, runs):
-        return scales * 261 * (architecture._SCALE_STEP + architecture._SCALE_RUN_STEP * 2 * runs)
+    def units(scales, runs):   # with each scale's fixed cost (fix73a, fuzz 65b C2)
+        return architecture._q_scaling_units(scales, 261, 2 * runs)
     assert units(90, 1) <= MAX_WORK < units(100, 1)
     assert units(5, 2000) < MAX_WORK   # notebook 05's five scales, at ten times its 200 runs
     call = functools.partial(two_sensor.q_scaling_study, np.random.default_rng(0), R, R, Q, np.linspace(0.1, 2, 100),

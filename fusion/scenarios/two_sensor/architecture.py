@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 
 from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, number, same_keys, tuple_of
 from fusion._results import real_key, validated_post_init
-from fusion._validation import check_magnitude, derived_inputs, distinct, distinct_printed, general, loop_work
+from fusion._validation import check_magnitude, derived_inputs, distinct, distinct_printed, general
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar, work)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees
@@ -190,12 +190,24 @@ class _PairedRuns(NamedTuple):
 
 #: Units (about 10 ns, ``fusion._limits.MAX_WORK``) of :func:`architecture_study` (fuzz 42b D1, re-measured: the
 #: steps' own cost, 6.3-6.6 ms a step whatever the runs, was not counted, so 261 steps of 2 runs ran 1.7 CPU-s and 26,100
-#: would run about 170): a step 700 ``LOOP_STEP`` and 50 more for each filter bank of a fixed weight (10.1 ms a step with
-#: 7 of them); a step of a path run 350 units, of a model-following (NEES) run 850 and 50 more a bank (3.3 and 8.3 us;
-#: 11.3 with 7 banks). Measured at T = 1 (261 steps), 2 and 402 runs, the least of two calls, ``time.process_time``,
-#: ``OPENBLAS_NUM_THREADS=1``, machine shared; chapter 05's identical pair at 2,000 and 2,000 runs with 7 banks ran
-#: 10.9 CPU-s (counted 1.08e9), its anisotropic pair with 2 banks 9.0 (8.9e8).
-_ARCH_STEP, _BANK_STEP, _RUN_STEP, _NEES_RUN_STEP, _NEES_BANK = 700 * LOOP_STEP, 50 * LOOP_STEP, 350, 850, 50
+#: would run about 170): a step 700 ``LOOP_STEP``; a step of a path run 350 units, of a model-following (NEES) run 850
+#: (3.3 and 8.3 us); 3.5 ms a step and 3 us a NEES run's step more with the 8 filter banks of chapter 05's identical pair
+#: (10.1 ms and 11.3 us; they were counted as 7 banks of 50), so 44 ``LOOP_STEP`` a bank's step and 44 units a bank's
+#: NEES run step. Measured at T = 1 (261 steps), 2 and 402 runs, the least of two calls, ``time.process_time``,
+#: ``OPENBLAS_NUM_THREADS=1``, machine shared; chapter 05's identical pair at 2,000 and 2,000 runs ran 10.9 CPU-s, its
+#: anisotropic pair 9.0. A filter bank is one ``fusion_loop`` run of a fixed weight: a printed weight runs two (without
+#: and with feedback), a placement weight two (Q own; the fused covariance common). Fuzz 65b C1: a bank was counted by
+#: its steps only, and a placement weight as one bank, so 9,500 printed weights at T = 130 (3 steps) ran 50.0 CPU-s
+#: accepted and 4,000 placement weights at T = 200 ran 16.2 CPU-s counted 4e8 units. Measured (fix73a, 2 path and 2
+#: NEES runs, the least of two calls, the machine shared and about 1.4 times slower than above: 9.2 ms a step without a
+#: bank), a printed / placement weight (two banks) costs 2.6 / 2.4 ms at 1 step (T = 300), 4.4 / 4.8 at 3 (T = 130),
+#: 17.5 / 15.1 at 14 (T = 20), 307 / 278 at 261 (T = 1): 1.1-1.2 ms a step (0.8 at the speed above) and about 1.4 ms
+#: whatever the steps (0.7 ms a bank), so a bank's own fixed cost is counted 200 ``LOOP_STEP``, about three times
+#: that: its steps are counted 0.88 ms a weight's step against 1.1-1.2 measured here (2,000 placement weights at T = 200
+#: ran 10.9 CPU-s, counted 7.5e8 units without it), and its edge must hold on the loaded machine. The call's own fixed
+#: cost, 5,000 ``LOOP_STEP`` (60 ms at one step without a bank).
+_ARCH_CALL, _BANK_CALL = 5000 * LOOP_STEP, 200 * LOOP_STEP
+_ARCH_STEP, _BANK_STEP, _RUN_STEP, _NEES_RUN_STEP, _NEES_BANK = 700 * LOOP_STEP, 44 * LOOP_STEP, 350, 850, 44
 
 
 def _arch_step_units(banks: int) -> tuple[int, int, int]:
@@ -204,20 +216,34 @@ def _arch_step_units(banks: int) -> tuple[int, int, int]:
     return _ARCH_STEP + banks * _BANK_STEP, _RUN_STEP, _NEES_RUN_STEP + banks * _NEES_BANK
 
 
+def _arch_units(steps: int, runs: int, nees_runs: int, banks: int) -> int:
+    """The units of :func:`architecture_study`: the call's and each bank's fixed cost, plus every step's (above)."""
+    step, run, nees = _arch_step_units(banks)
+    return _ARCH_CALL + banks * _BANK_CALL + steps * (step + run * runs + nees * nees_runs)
+
+
 def _architecture_units(steps: int, runs: int, nees_runs: int, banks: int, names: str) -> int:
     """Rule 9 of :func:`architecture_study` (``_HELD`` values a run and step) and its units of work, without the work
     refusal: a chapter study that runs it beside others sums the units (fuzz 55 C4), refused naming ``names``."""
     allocation((runs + nees_runs, steps, _HELD), names)
-    step, run, nees = _arch_step_units(banks)
-    return steps * (step + run * runs + nees * nees_runs)
+    return _arch_units(steps, runs, nees_runs, banks)
 
 
 #: Units of :func:`q_scaling_study`'s loop over scales, twice the measured cost (fuzz 64b C5: a (scale, path step)
 #: was counted ``LOOP_STEP`` + 16 a run, about 10 us, where it costs 175-260 us with 2 runs and 0.45 us more a run,
 #: so 700 scales at T = 1 ran 33.3 CPU-s accepted and the edge, 3,712, about 175): a (scale, step) 40 ``LOOP_STEP``, a
 #: run's step of it 90 units (45, 67 ms a scale at 5 and 20 scales of 2 runs, 76 and 146 at 5 scales of 200 and 800
-#: runs; T = 1, 261 steps; ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls, machine shared).
-_SCALE_STEP, _SCALE_RUN_STEP = 40 * LOOP_STEP, 90
+#: runs; T = 1, 261 steps; ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two calls, machine shared),
+#: and a scale whatever its steps 400 ``LOOP_STEP`` (fuzz 65b C2: it was not counted, so 24,000 scales at T = 300, one
+#: step, counted 0.40 ms each, ran 38.7-48.2 CPU-s accepted; measured by fix73a at 2 path and 2 NEES runs: 2.07, 2.28,
+#: 4.67 and 55.6 ms a scale at 1, 3, 14 and 261 steps, about 1.9 ms fixed and 0.21 ms a step).
+_SCALE_CALL, _SCALE_STEP, _SCALE_RUN_STEP = 400 * LOOP_STEP, 40 * LOOP_STEP, 90
+
+
+def _q_scaling_units(scales: int, steps: int, runs: int) -> int:
+    """The units of :func:`q_scaling_study`'s ``scales`` filter banks on ``steps`` steps of ``runs`` runs (path and
+    NEES runs together): each scale's fixed cost plus each of its steps' (the weights above)."""
+    return scales * (_SCALE_CALL + steps * (_SCALE_STEP + _SCALE_RUN_STEP * runs))
 
 
 #: Float64 values per run and step that the run studies hold at once at their peak (the measurements, truths, both
@@ -229,13 +255,15 @@ _HELD = 64
 
 def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int, nees_runs: int,
                  T: float, velocity_sigma: float, t_steady: float, scales: int | None = None,
-                 step_units: tuple[int, int, int] | None = None, names: str = "runs, nees_runs and T",
+                 banks: int | None = None, names: str = "runs, nees_runs and T",
                  limit: int = MAX_WORK, served: str | None = None,
                  entries: Callable[[], object] | None = None) -> _PairedRuns:
     """Validate the run studies' common arguments and draw their measurements on the path of :func:`trajectory`
     and on targets that follow the model (:func:`_path_and_model_measurements`); ``scales``: the number of filter
-    banks the caller runs on them, checked against the work budget (rule 17) before anything is drawn; ``entries``:
-    the caller's checks of its sequences' entries, run after the budget (which needs only their number) and before
+    banks :func:`q_scaling_study` runs on them, ``banks``: the fixed-weight filter banks :func:`architecture_study` runs
+    beside its rules, checked against the work budget (rule 17, each bank's fixed cost and its steps') before anything
+    is drawn; ``entries``: the caller's checks of its sequences' entries, run after the budget (which needs only their
+    number) and before
     the draws (length -> budget -> entries, fuzz 64b C4 and C7)."""
     as_rng(rng)
     runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
@@ -250,14 +278,13 @@ def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: Arra
                          f"(its last step is at {float(t[-1]):.6g} s): lower t_steady, or T")
     allocation((runs + nees_runs, t.size, _HELD), "runs, nees_runs and T")  # every array the study holds at once
     if scales is not None:
-        # rule 17: one filter bank per scale, a loop step per sample over every run's 4-state filter
-        loop_work((scales, t.size), _SCALE_RUN_STEP * (runs + nees_runs), "scales, runs, nees_runs and T",
-                  step=_SCALE_STEP)
-    if step_units is not None:
-        # rule 17: the study's architectures and rules at their measured cost a step, a step of a path run and of a
-        # model run (``step_units``), before the draws, naming ``names``, within ``limit``
-        work((t.size, step_units[0] + step_units[1] * runs + step_units[2] * nees_runs), names, limit=limit,
-             served=served)
+        # rule 17: one filter bank per scale, its fixed cost and a loop step per sample over every run's 4-state filter
+        work((_q_scaling_units(scales, t.size, runs + nees_runs),), "scales, runs, nees_runs and T")
+    if banks is not None:
+        # rule 17: the study's architectures, rules and ``banks`` fixed-weight filter banks at their measured cost
+        # (the call's and each bank's fixed cost, a step, a step of a path run and of a model run), before the draws,
+        # naming ``names``, within ``limit``
+        work((_arch_units(t.size, runs, nees_runs, banks),), names, limit=limit, served=served)
     if entries is not None:
         entries()
     z, Xm = _path_and_model_measurements(rng, X, model.F, Q, R1, R2, runs, nees_runs)
@@ -315,8 +342,9 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     ValueError
         Covariances not valid, counts not positive, ``t_steady`` beyond the path, a weight outside (0, 1];
         the steps of ``T``, each run's step and the fixed-weight filter banks beyond the work budget (its entry of
-        ``fusion._limits.STUDY_WORK``, 3e9 units: 700,000 a step, 50,000 more a bank; 350 a step of a path run,
-        850 and 50 a bank a step of a model run, measured), before any draw.
+        ``fusion._limits.STUDY_WORK``, 3e9 units: 5e6 a call and 200,000 a bank whatever the steps, 700,000 a step,
+        44,000 more a bank; 350 a step of a path run, 850 and 44 a bank a step of a model run, measured; a
+        printed or placement weight is two banks), before any draw.
     """
     from fusion.filtering.feedback import fusion_loop
 
@@ -328,12 +356,12 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
         weights["printed_omegas"] = distinct(w_printed.tolist(), "printed_omegas")
         weights["placement_omegas"] = distinct(w_placed.tolist(), "placement_omegas")
 
-    # rule 17 before the draws: every step, every run's step, and a filter bank per printed (twice) and placement
-    # omega at their measured cost (78,000 NEES runs, ~50 CPU-s, were accepted: budget35; the steps: fuzz 42b D1); the
+    # rule 17 before the draws: the call, every step, every run's step, and two filter banks (fusion_loop runs) per
+    # printed and per placement omega, each with its fixed cost, at their measured cost (fuzz 65b C1) (78,000 NEES runs, ~50 CPU-s, were accepted: budget35; the steps: fuzz 42b D1); the
     # budget is its entry of fusion._limits.STUDY_WORK (the reseeding sweep's 10x reading of chapter 05, 1.08e9)
-    banks = 2 * w_printed.size + w_placed.size
+    banks = 2 * (w_printed.size + w_placed.size)
     p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady,
-                     step_units=_arch_step_units(banks),
+                     banks=banks,
                      names="runs, nees_runs and T" if not banks else
                      "printed_omegas, placement_omegas, runs, nees_runs and T",
                      limit=STUDY_WORK[ARCHITECTURE_STUDY], served=ARCHITECTURE_STUDY, entries=distinct_weights)
@@ -459,7 +487,8 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     ValueError
         Covariances not valid, counts or scales not positive, ``scales`` repeating an entry to 6 significant digits
         (each keys a result and a table row, printed ``f"{c:g}"``), ``t_steady`` beyond the path; the scales' filter
-        banks beyond the work budget (40,000 units a scale and step, 90 more a run's step, measured) by their number
+        banks beyond the work budget (400,000 units a scale whatever the steps, 40,000 a scale and step, 90 more a
+        run's step, measured) by their number
         before any entry is printed or any draw.
     """
     sv = np.atleast_1d(as_array(scales, "scales", ndim=(0, 1)))
