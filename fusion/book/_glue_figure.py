@@ -75,13 +75,22 @@ EFFECT_MARKER = 6_000
 #: an effect (3.2 us a character); of 2,000 lines 'ab', 5 to 20 effects 3.7 us a character; weighed twice, 7.5 us.
 EFFECT_CHARACTER = 750
 
+#: Units of a hundred pixels of markers' boxes (a Line2D's markers, a collection's sizes: Agg fills each marker's
+#: pixels at each vertex or offset, a cost the points' weight misses for large markers). Measured (glue_all of 10**4
+#: markers, every weight off, process_time, OPENBLAS_NUM_THREADS=1, machine shared, 100 dpi): a line's 'o' markers of
+#: markersize 3 0.054 CPU-s, 30 0.107, 300 (417 pixels a side, 1.7e5 a box) 0.691 (0.37 ns a box pixel); a scatter
+#: of s=9 0.075, of s=90,000 (the same box) 0.747, sizes varying (drawn per offset) 0.170 and 1.608 (0.84 ns a box
+#: pixel). Weighed 1 ns a pixel. A box is counted at most the figure's pixels (drawn clipped to it).
+MARKER_AREA = 10
+
 #: The kinds a figure is tallied by (``_tally``), named once (a header used in several functions, issue 36).
 _PIXELS, _CELLS, _MARKER_VERTICES = "image pixels", "mesh cells", "marker vertices"
 _FIGURE_PIXELS, _EFFECT_MARKERS = "figure image pixels", "markers drawn per path effect"
 _EFFECT_CHARACTERS = "characters drawn per path effect"
+_MARKER_AREA = "hundreds of marker box pixels"
 _WEIGHTS = {"points": POINT, _PIXELS: PIXEL, _FIGURE_PIXELS: FIGURE_PIXEL, _CELLS: CELL, "markers": MARKER,
             _MARKER_VERTICES: MARKER_VERTEX, "artists": ARTIST, "characters": CHARACTER, _EFFECT_MARKERS: EFFECT_MARKER,
-            _EFFECT_CHARACTERS: EFFECT_CHARACTER}
+            _EFFECT_CHARACTERS: EFFECT_CHARACTER, _MARKER_AREA: MARKER_AREA}
 
 
 def _size(*arrays: object) -> int:
@@ -161,10 +170,33 @@ def _under_effects(a: Artist, one: dict[str, int], effects: int, tally: dict[str
     for k, n in one.items():
         tally[k] += n if k == "characters" else n * effects
     tally[_EFFECT_CHARACTERS] += one["characters"] * effects
-    if isinstance(a, Line2D) and a.get_marker() not in (None, "", " ", "None", "none"):
+    if isinstance(a, Line2D) and _has_marker(a):
         tally[_EFFECT_MARKERS] += one["points"] * effects
     elif isinstance(a, Collection) and not isinstance(a, QuadMesh):
         tally[_EFFECT_MARKERS] += max(len(a.get_offsets()), len(a.get_paths())) * effects
+
+
+def _marker_area(a: Line2D | Collection, markers: int) -> int:
+    """Hundreds of pixels of ``markers`` of ``a``'s marker boxes (a line's ``markersize``, a collection's largest
+    ``sizes``, points at the figure's dpi), each at most the figure's pixels."""
+    fig = a.get_figure(root=True)
+    if fig is None:
+        return 0
+    if isinstance(a, Line2D):
+        side = float(a.get_markersize()) if _has_marker(a) else 0.0
+        box = side * side
+    else:
+        sizes = np.asarray(a.get_sizes(), dtype=float) if hasattr(a, "get_sizes") else np.zeros(0)
+        box = float(np.nanmax(np.abs(sizes))) if sizes.size else 0.0          # points squared
+    if not np.isfinite(box):
+        box = float("inf")
+    pixels = min(box * (fig.dpi / 72.0) ** 2, fig.bbox.width * fig.bbox.height)
+    return int(markers * pixels) // 100
+
+
+def _has_marker(a: Line2D) -> bool:
+    """Whether the line ``a`` draws a marker at its vertices."""
+    return a.get_marker() not in (None, "", " ", "None", "none")
 
 
 def _artist(a: Artist, tally: dict[str, int]) -> None:
@@ -174,12 +206,15 @@ def _artist(a: Artist, tally: dict[str, int]) -> None:
     if n is not None:
         tally["points"] += n
     elif isinstance(a, Line2D):
-        tally["points"] += _size(a.get_xdata(orig=True), a.get_ydata(orig=True))
+        n = _size(a.get_xdata(orig=True), a.get_ydata(orig=True))
+        tally["points"] += n
+        tally[_MARKER_AREA] += _marker_area(a, n)
     elif isinstance(a, QuadMesh):               # its cells from its coordinates' shape, no paths built
         rows, cols = np.shape(a.get_coordinates())[:2]    # (rows + 1, cols + 1, 2) corners
         tally[_CELLS] += max(rows - 1, 0) * max(cols - 1, 0)
     elif isinstance(a, Collection):
         _collection(a, tally)
+        tally[_MARKER_AREA] += _marker_area(a, len(a.get_offsets()))
     elif isinstance(a, _ImageBase):             # every image kind, a figure's own (figimage) too (fuzz 65a C3)
         arr = a.get_array()
         pixels = int(np.prod(np.shape(arr)[:2], dtype=object)) if arr is not None else 0
