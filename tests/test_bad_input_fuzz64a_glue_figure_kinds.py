@@ -125,10 +125,11 @@ def test_every_artist_is_weighed() -> None:
     _both_bounds(_rectangles, F.ARTIST + 5 * F.POINT)
 
 
-def test_markers_drawn_per_offset_are_weighed_by_their_vertices() -> None:
+def test_markers_drawn_per_offset_are_weighed_by_their_vertices(monkeypatch: pytest.MonkeyPatch) -> None:
     """C6: 10**5 2000-sided markers of varying sizes (counted 102,065 points) ran 30.5 CPU-s; each offset draws the
     marker's 2001 vertices."""
     from fusion.book import _glue_figure as F
+    monkeypatch.setitem(F._WEIGHTS, F._MARKER_AREA, 0)   # the markers' boxes: their own test
     _both_bounds(_markers, F.MARKER + 2001 * F.MARKER_VERTEX)
 
 
@@ -206,17 +207,19 @@ def _effects_text(n: int):
     return fig
 
 
-def test_a_line_is_weighed_once_per_path_effect() -> None:
+def test_a_line_is_weighed_once_per_path_effect(monkeypatch: pytest.MonkeyPatch) -> None:
     """Fuzz 65a C4: one line of 1e5 points with 1,000 ``pe.Normal()`` (its points counted once) ran 40.1 CPU-s; each
     effect redraws its path (and its markers, one ``draw_path`` each)."""
     from fusion.book import _glue_figure as F
+    monkeypatch.setitem(F._WEIGHTS, F._MARKER_AREA, 0)   # the markers' boxes: their own test
     _both_bounds(_effects_line, F.ARTIST + 10_000 * F.POINT)
     _both_bounds(functools.partial(_effects_line, marker="o"), F.ARTIST + 10_000 * (F.POINT + F.EFFECT_MARKER))
 
 
-def test_a_collection_and_a_text_are_weighed_once_per_path_effect() -> None:
+def test_a_collection_and_a_text_are_weighed_once_per_path_effect(monkeypatch: pytest.MonkeyPatch) -> None:
     """Fuzz 65a C4: each effect redraws a scatter's markers one ``draw_path`` each, and a text (laid out once)."""
     from fusion.book import _glue_figure as F
+    monkeypatch.setitem(F._WEIGHTS, F._MARKER_AREA, 0)   # the markers' boxes: their own test
     _both_bounds(_effects_scatter, F.ARTIST + 10_026 * F.POINT + 10_000 * F.EFFECT_MARKER)  # the circle: 26 vertices
     _both_bounds(_effects_text, F.ARTIST + 900 * F.EFFECT_CHARACTER)
 
