@@ -125,10 +125,11 @@ def test_every_artist_is_weighed() -> None:
     _both_bounds(_rectangles, F.ARTIST + 5 * F.POINT)
 
 
-def test_markers_drawn_per_offset_are_weighed_by_their_vertices() -> None:
+def test_markers_drawn_per_offset_are_weighed_by_their_vertices(monkeypatch: pytest.MonkeyPatch) -> None:
     """C6: 10**5 2000-sided markers of varying sizes (counted 102,065 points) ran 30.5 CPU-s; each offset draws the
     marker's 2001 vertices."""
     from fusion.book import _glue_figure as F
+    monkeypatch.setitem(F._WEIGHTS, F._MARKER_AREA, 0)   # the markers' boxes: their own test
     _both_bounds(_markers, F.MARKER + 2001 * F.MARKER_VERTEX)
 
 
@@ -166,3 +167,72 @@ def _mesh(n: int, rng: np.random.Generator):
     fig, ax = _axes()
     ax.pcolormesh(np.linspace(0, 1, n + 1), [0.0, 1.0], rng.random((1, n)))
     return fig
+
+
+def _figimages(n: int, image: np.ndarray):
+    fig = plt.figure()
+    for i in range(n):
+        fig.figimage(image, xo=i, yo=i)
+    return fig
+
+
+def test_a_figure_image_is_weighed_by_its_pixels() -> None:
+    """Fuzz 65a C3: a figimage (a FigureImage, no AxesImage) was counted one artist: 400 of 2000 x 2000 uint8 were
+    glued in 29.9 CPU-s; each is an artist and its pixels."""
+    from fusion.book import _glue_figure as F
+    image = np.zeros((600, 600), dtype=np.uint8)
+    _both_bounds(functools.partial(_figimages, image=image), F.ARTIST + 600 * 600 * F.FIGURE_PIXEL)
+
+
+def _effects_line(n: int, marker: str = ""):
+    import matplotlib.patheffects as pe
+    fig, ax = _axes()
+    line, = ax.plot(np.linspace(0, 1, 10_000), np.sin(np.arange(10_000.0)), color="0.3", marker=marker)
+    line.set_path_effects([pe.Normal()] * n)
+    return fig
+
+
+def _effects_scatter(n: int):
+    import matplotlib.patheffects as pe
+    fig, ax = _axes()
+    ax.scatter(np.linspace(0, 1, 10_000), np.linspace(0, 1, 10_000), s=9, color="0.3").set_path_effects(
+        [pe.Normal()] * n)
+    return fig
+
+
+def _effects_text(n: int):
+    import matplotlib.patheffects as pe
+    fig, ax = _axes()
+    ax.text(0.1, 0.5, "ab\n" * 300, fontsize=9).set_path_effects([pe.Normal()] * n)
+    return fig
+
+
+def test_a_line_is_weighed_once_per_path_effect(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Fuzz 65a C4: one line of 1e5 points with 1,000 ``pe.Normal()`` (its points counted once) ran 40.1 CPU-s; each
+    effect redraws its path (and its markers, one ``draw_path`` each)."""
+    from fusion.book import _glue_figure as F
+    monkeypatch.setitem(F._WEIGHTS, F._MARKER_AREA, 0)   # the markers' boxes: their own test
+    _both_bounds(_effects_line, F.ARTIST + 10_000 * F.POINT)
+    _both_bounds(functools.partial(_effects_line, marker="o"), F.ARTIST + 10_000 * (F.POINT + F.EFFECT_MARKER))
+
+
+def test_a_collection_and_a_text_are_weighed_once_per_path_effect(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Fuzz 65a C4: each effect redraws a scatter's markers one ``draw_path`` each, and a text (laid out once)."""
+    from fusion.book import _glue_figure as F
+    monkeypatch.setitem(F._WEIGHTS, F._MARKER_AREA, 0)   # the markers' boxes: their own test
+    _both_bounds(_effects_scatter, F.ARTIST + 10_026 * F.POINT + 10_000 * F.EFFECT_MARKER)  # the circle: 26 vertices
+    _both_bounds(_effects_text, F.ARTIST + 900 * F.EFFECT_CHARACTER)
+
+
+def _large_markers(n: int):
+    fig, ax = _axes()
+    fig.set_dpi(72)                             # a box of 300 x 300 pixels
+    ax.plot(np.linspace(0, 1, n), np.linspace(0, 1, n), "o", markersize=300, color="0.3")
+    return fig
+
+
+def test_large_markers_are_weighed_by_their_boxes() -> None:
+    """A line's markers of markersize 300 (1.7e5 pixels a box at 100 dpi) cost 69 us each, 3.5 times a point's
+    weight: weighed by their boxes' pixels (a hundred at MARKER_AREA)."""
+    from fusion.book import _glue_figure as F
+    _both_bounds(_large_markers, F.POINT + 900 * F.MARKER_AREA)

@@ -1,6 +1,6 @@
 """The units of gluing a figure by what it draws (fuzz 63a C3, 64a C1-C6), for :mod:`fusion.book.glue`: every visible
 artist, walked without rendering, weighed by its kind (points, image pixels, mesh cells, markers drawn per offset,
-characters)."""
+characters), and once per path effect it is drawn with (fuzz 65a C4)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 from matplotlib.artist import Artist
 from matplotlib.collections import Collection, QuadMesh
 from matplotlib.figure import Figure
-from matplotlib.image import AxesImage
+from matplotlib.image import FigureImage, _ImageBase
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.text import Text
@@ -36,6 +36,12 @@ POINT = 2_000
 #: OPENBLAS_NUM_THREADS=1): 2.5e5 pixels 0.17 CPU-s, 1e6 0.15, 4e6 0.75, 1.6e7 2.17 (0.14 us a pixel); weighed twice
 #: that, 30 units (a 1000 x 1000 image, refused at POINT's weight, is glued).
 PIXEL = 30
+#: Units of one pixel of a figure's own image (``fig.figimage``, a ``FigureImage``, fuzz 65a C3: counted one
+#: artist, 400 figimages of 2000 x 2000 uint8 ran 29.9 CPU-s): drawn unresampled at its size, normalised and converted
+#: at every render. Measured (glue_all of k figimages of one 2000 x 2000 array, every weight off, process_time,
+#: OPENBLAS_NUM_THREADS=1, machine shared): uint8 k=5 0.77 CPU-s, k=20 2.36 (29 ns a pixel); float64 k=5 0.55, k=20
+#: 2.96 (37 ns); weighed about twice, 80 ns (the edge, 1.25e8 pixels, about 31 such figimages, 4-5 CPU-s).
+FIGURE_PIXEL = 8
 
 
 #: Units of one QuadMesh cell (``pcolormesh``, drawn by ``draw_quad_mesh`` like an image, fuzz 64a C3/C4): glue_all
@@ -58,10 +64,33 @@ ARTIST = 50_000
 #: 10**5 6.38 (64 us a character); fuzz 64a's 'ab\n' * 10**5 28.5 (95 us a character); weighed 150 us.
 CHARACTER = 15_000
 
+#: Units of a marker (a Line2D's at each vertex, a collection's at each offset) drawn under a path effect, once per
+#: effect: ``PathEffectRenderer`` draws markers and collections by one Python ``draw_path`` call each (fuzz 65a C4).
+#: Measured (glue_all, every weight off, process_time, OPENBLAS_NUM_THREADS=1, machine shared; 10**4 markers, per
+#: ``pe.Normal()`` added): a line's 'o' markers 0.30 CPU-s (30 us a marker), a scatter's 0.22-0.31 (22-31 us, sizes
+#: varying or not); against 0.049-0.059 CPU-s with no effect. Weighed twice, 60 us.
+EFFECT_MARKER = 6_000
+#: Units of a text's character drawn under a path effect, once per effect (the text laid out once, at
+#: ``CHARACTER``, then drawn as a path by each effect): one text of 10**4 characters, 10 to 50 ``pe.Normal()`` 32 ms
+#: an effect (3.2 us a character); of 2,000 lines 'ab', 5 to 20 effects 3.7 us a character; weighed twice, 7.5 us.
+EFFECT_CHARACTER = 750
+
+#: Units of a hundred pixels of markers' boxes (a Line2D's markers, a collection's sizes: Agg fills each marker's
+#: pixels at each vertex or offset, a cost the points' weight misses for large markers). Measured (glue_all of 10**4
+#: markers, every weight off, process_time, OPENBLAS_NUM_THREADS=1, machine shared, 100 dpi): a line's 'o' markers of
+#: markersize 3 0.054 CPU-s, 30 0.107, 300 (417 pixels a side, 1.7e5 a box) 0.691 (0.37 ns a box pixel); a scatter
+#: of s=9 0.075, of s=90,000 (the same box) 0.747, sizes varying (drawn per offset) 0.170 and 1.608 (0.84 ns a box
+#: pixel). Weighed 1 ns a pixel. A box is counted at most the figure's pixels (drawn clipped to it).
+MARKER_AREA = 10
+
 #: The kinds a figure is tallied by (``_tally``), named once (a header used in several functions, issue 36).
 _PIXELS, _CELLS, _MARKER_VERTICES = "image pixels", "mesh cells", "marker vertices"
-_WEIGHTS = {"points": POINT, _PIXELS: PIXEL, _CELLS: CELL, "markers": MARKER, _MARKER_VERTICES: MARKER_VERTEX,
-            "artists": ARTIST, "characters": CHARACTER}
+_FIGURE_PIXELS, _EFFECT_MARKERS = "figure image pixels", "markers drawn per path effect"
+_EFFECT_CHARACTERS = "characters drawn per path effect"
+_MARKER_AREA = "hundreds of marker box pixels"
+_WEIGHTS = {"points": POINT, _PIXELS: PIXEL, _FIGURE_PIXELS: FIGURE_PIXEL, _CELLS: CELL, "markers": MARKER,
+            _MARKER_VERTICES: MARKER_VERTEX, "artists": ARTIST, "characters": CHARACTER, _EFFECT_MARKERS: EFFECT_MARKER,
+            _EFFECT_CHARACTERS: EFFECT_CHARACTER, _MARKER_AREA: MARKER_AREA}
 
 
 def _size(*arrays: object) -> int:
@@ -125,28 +154,88 @@ def _artists(fig: Figure) -> list[Artist]:
     return out
 
 
+def _effects(a: Artist) -> int:
+    """The path effects ``a`` is drawn with (each redraws its path, markers and text, fuzz 65a C4), 0 if none."""
+    try:
+        return len(a.get_path_effects() or ())
+    except TypeError:                           # an iterable of no length: one (matplotlib checks it is not empty)
+        return 1
+
+
+def _under_effects(a: Artist, one: dict[str, int], effects: int, tally: dict[str, int]) -> None:
+    """Add to ``tally`` what ``a`` (``one``, its tally drawn once) draws with ``effects`` path effects: its path (its
+    points, pixels, cells, markers and artist's overhead) once per effect, its markers each by one ``draw_path`` call
+    per effect (``EFFECT_MARKER``; a line's at each vertex when it has a marker, a collection's at each offset or
+    path), its text laid out once (``CHARACTER``) and drawn once per effect (``EFFECT_CHARACTER``)."""
+    for k, n in one.items():
+        tally[k] += n if k == "characters" else n * effects
+    tally[_EFFECT_CHARACTERS] += one["characters"] * effects
+    if isinstance(a, Line2D) and _has_marker(a):
+        tally[_EFFECT_MARKERS] += one["points"] * effects
+    elif isinstance(a, Collection) and not isinstance(a, QuadMesh):
+        tally[_EFFECT_MARKERS] += max(len(a.get_offsets()), len(a.get_paths())) * effects
+
+
+def _marker_area(a: Line2D | Collection, markers: int) -> int:
+    """Hundreds of pixels of ``markers`` of ``a``'s marker boxes (a line's ``markersize``, a collection's largest
+    ``sizes``, points at the figure's dpi), each at most the figure's pixels."""
+    fig = a.get_figure(root=True)
+    if fig is None:
+        return 0
+    if isinstance(a, Line2D):
+        side = float(a.get_markersize()) if _has_marker(a) else 0.0
+        box = side * side
+    else:
+        sizes = np.asarray(a.get_sizes(), dtype=float) if hasattr(a, "get_sizes") else np.zeros(0)
+        box = float(np.nanmax(np.abs(sizes))) if sizes.size else 0.0          # points squared
+    if not np.isfinite(box):
+        box = float("inf")
+    pixels = min(box * (fig.dpi / 72.0) ** 2, fig.bbox.width * fig.bbox.height)
+    return int(markers * pixels) // 100
+
+
+def _has_marker(a: Line2D) -> bool:
+    """Whether the line ``a`` draws a marker at its vertices."""
+    return a.get_marker() not in (None, "", " ", "None", "none")
+
+
+def _artist(a: Artist, tally: dict[str, int]) -> None:
+    """Add what the artist ``a`` draws once to ``tally`` (``_WEIGHTS``' keys), read without rendering."""
+    tally["artists"] += 1
+    n = _vertices(a)
+    if n is not None:
+        tally["points"] += n
+    elif isinstance(a, Line2D):
+        n = _size(a.get_xdata(orig=True), a.get_ydata(orig=True))
+        tally["points"] += n
+        tally[_MARKER_AREA] += _marker_area(a, n)
+    elif isinstance(a, QuadMesh):               # its cells from its coordinates' shape, no paths built
+        rows, cols = np.shape(a.get_coordinates())[:2]    # (rows + 1, cols + 1, 2) corners
+        tally[_CELLS] += max(rows - 1, 0) * max(cols - 1, 0)
+    elif isinstance(a, Collection):
+        _collection(a, tally)
+        tally[_MARKER_AREA] += _marker_area(a, len(a.get_offsets()))
+    elif isinstance(a, _ImageBase):             # every image kind, a figure's own (figimage) too (fuzz 65a C3)
+        arr = a.get_array()
+        pixels = int(np.prod(np.shape(arr)[:2], dtype=object)) if arr is not None else 0
+        tally[_FIGURE_PIXELS if isinstance(a, FigureImage) else _PIXELS] += pixels
+    elif isinstance(a, Patch):
+        tally["points"] += len(a.get_path().vertices)
+    elif isinstance(a, Text):
+        tally["characters"] += len(a.get_text())
+
+
 def _tally(fig: Figure) -> dict[str, int]:
     """What ``fig`` draws, by kind (``_WEIGHTS``' keys), read from its visible artists without rendering."""
     tally = dict.fromkeys(_WEIGHTS, 0)
     for a in _artists(fig):
-        tally["artists"] += 1
-        n = _vertices(a)
-        if n is not None:
-            tally["points"] += n
-        elif isinstance(a, Line2D):
-            tally["points"] += _size(a.get_xdata(orig=True), a.get_ydata(orig=True))
-        elif isinstance(a, QuadMesh):               # its cells from its coordinates' shape, no paths built
-            rows, cols = np.shape(a.get_coordinates())[:2]    # (rows + 1, cols + 1, 2) corners
-            tally[_CELLS] += max(rows - 1, 0) * max(cols - 1, 0)
-        elif isinstance(a, Collection):
-            _collection(a, tally)
-        elif isinstance(a, AxesImage):
-            arr = a.get_array()
-            tally[_PIXELS] += int(np.prod(np.shape(arr)[:2], dtype=object)) if arr is not None else 0
-        elif isinstance(a, Patch):
-            tally["points"] += len(a.get_path().vertices)
-        elif isinstance(a, Text):
-            tally["characters"] += len(a.get_text())
+        effects = _effects(a)
+        if not effects:
+            _artist(a, tally)
+            continue
+        one = dict.fromkeys(_WEIGHTS, 0)
+        _artist(a, one)
+        _under_effects(a, one, effects, tally)
     return tally
 
 
@@ -159,14 +248,16 @@ def drawn_points(fig: Figure) -> int:
 
 
 def drawn_pixels(fig: Figure) -> int:
-    """The pixels of ``fig``'s images (each image's first two dimensions), read without rendering."""
+    """The pixels of ``fig``'s axes' images (each image's first two dimensions; a figure's own images, ``figimage``, at
+    ``FIGURE_PIXEL``), read without rendering."""
     return _tally(fig)[_PIXELS]
 
 
 def figure_units(fig: Figure, key: str) -> int:
-    """``FIGURE`` plus each drawn kind's count at its weight (``POINT`` a point, ``PIXEL`` an image pixel, ``CELL`` a
-    mesh cell, ``MARKER`` and ``MARKER_VERTEX`` a marker drawn per offset and its vertices, ``ARTIST`` an artist,
-    ``CHARACTER`` a text's character).
+    """``FIGURE`` plus each drawn kind's count at its weight (``POINT`` a point, ``PIXEL`` an image pixel,
+    ``FIGURE_PIXEL`` a figure image's pixel, ``CELL`` a mesh cell, ``MARKER`` and ``MARKER_VERTEX`` a marker drawn per
+    offset and its vertices, ``ARTIST`` an artist, ``CHARACTER`` a text's character; an artist drawn with path effects
+    once per effect, its markers at ``EFFECT_MARKER`` and its characters at ``EFFECT_CHARACTER`` per effect).
 
     Raises
     ------
@@ -177,8 +268,9 @@ def figure_units(fig: Figure, key: str) -> int:
     units = FIGURE + sum(_WEIGHTS[k] * n for k, n in tally.items())
     if units > MAX_WORK:
         drawn = ", ".join(f"{tally[k]:,} {k} at {w:,}" for k, w in _WEIGHTS.items() if tally[k])
+        pixels = tally[_PIXELS] + tally[_FIGURE_PIXELS]
         raise ValueError(f"values[{shown(key)}] is a figure drawing {tally['points']:,} points (lines', patches' and "
-                         f"3-D vertices, collections' offsets and paths) and {tally[_PIXELS]:,} image pixels "
+                         f"3-D vertices, collections' offsets and paths) and {pixels:,} image pixels "
                          f"({drawn} units each), {units:.3g} units of work rendered, beyond the work budget (at most "
                          f"{MAX_WORK:.3g} units, fusion._limits.MAX_WORK, about 10 CPU-s)")
     return units
