@@ -204,8 +204,9 @@ _TRANSIENT_STEP = 3 * LOOP_STEP
 #: filters' step, so ``['reg_fixed_lag']`` at its edge, 577 samples, ran 20.1 CPU-s): the Kalman filters 41-52 us a
 #: step (:data:`_TRANSIENT_STEP`, the 24 us measured unloaded; the improved method alone 44 us at 333 samples, 4.9
 #: CPU-s); the smoothers (RTS, fixed lag) 1.3-1.6 times that, 59-71 us (the fixed lag alone at 500 samples: 17.7
-#: CPU-s), ``5 * LOOP_STEP`` (one method is accepted to 447 samples, horizon 894 s); the methods fitting each
-#: instant 7-15 us (8-15 at 1,153 samples), 1,500 units (one method to 816 samples: ``reg_qls_next`` ran 9.2 CPU-s);
+#: CPU-s), ``5 * LOOP_STEP`` (one method is accepted to 447 samples, horizon 894 s: the fixed lag ran 12.3 CPU-s,
+#: load 6.9 on the 2 cores); the methods fitting each instant 7-15 us (8-15 at 1,153 samples), 1,500 units (one
+#: method to 816 samples: ``reg_qls_next`` ran 9.2 CPU-s);
 #: the fixed-weight methods and the cubic spline (one vectorised call a sample) 0.06-0.5 us, the spline the dearest
 #: (0.21 us at 3,162 samples), 30 units (one method to 5,773 samples: the spline ran 5.0 CPU-s). Not
 #: ``fusion.scenarios._time_registration_work``'s ``FUSION_RUN_WEIGHT``: that weighs a call on 20 samples (its
