@@ -12,8 +12,8 @@ import numpy as np
 import pandas as pd
 
 from fusion._shown import shown
-from fusion._limits import LOOP_STEP
-from fusion._validation import (as_array, as_times, distinct, instance_of, loop_work, one_of, scalar, sequence,
+from fusion._limits import LOOP_STEP, work
+from fusion._validation import (as_array, as_times, distinct, instance_of, one_of, scalar, sequence,
                                 std_scalar, text)
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import _frame, integral_index
@@ -194,9 +194,30 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
 
 #: The Kalman methods of the source's §3 and §4 and their two-point ablation.
 KALMAN_METHODS: tuple[str, ...] = (RegMethod.KALMAN_PREDICT, RegMethod.KALMAN_TWO_POINT, IMPROVED)
-#: Units of one step of :func:`transient_table`'s decomposition (a method over the run at one sample, about 24 us
-#: measured; ``fusion._limits.MAX_WORK``: a unit is about 10 ns).
+#: Units of one step of :func:`transient_table`'s decomposition of a Kalman filter method (the method over the run at
+#: one sample, about 24 us measured; ``fusion._limits.MAX_WORK``: a unit is about 10 ns).
 _TRANSIENT_STEP = 3 * LOOP_STEP
+#: Units of one step of :func:`transient_table`'s decomposition (a registration of the run a sample: ``n1 x n1`` steps
+#: a method), by method, measured as ``transient_table(horizon, 1.0, [method])`` at 101, 201, 577 and 1,153 samples
+#: (``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the least of two, the machine shared and loaded, about 2.5
+#: jobs a core, which inflates each cost some 1.5-2 times; fix73c, fuzz 65a D1: every method weighed the Kalman
+#: filters' step, so ``['reg_fixed_lag']`` at its edge, 577 samples, ran 20.1 CPU-s): the Kalman filters 41-52 us a
+#: step (:data:`_TRANSIENT_STEP`, the 24 us measured unloaded; the improved method alone 44 us at 333 samples, 4.9
+#: CPU-s); the smoothers (RTS, fixed lag) 1.3-1.6 times that, 59-71 us (the fixed lag alone at 500 samples: 17.7
+#: CPU-s), ``5 * LOOP_STEP`` (one method is accepted to 447 samples, horizon 894 s: the fixed lag ran 12.3 CPU-s,
+#: load 6.9 on the 2 cores); the methods fitting each instant 7-15 us (8-15 at 1,153 samples), 1,500 units (one
+#: method to 816 samples: ``reg_qls_next`` ran 9.2 CPU-s);
+#: the fixed-weight methods and the cubic spline (one vectorised call a sample) 0.06-0.5 us, the spline the dearest
+#: (0.21 us at 3,162 samples), 30 units (one method to 5,773 samples: the spline ran 5.0 CPU-s). Not
+#: ``fusion.scenarios._time_registration_work``'s ``FUSION_RUN_WEIGHT``: that weighs a call on 20 samples (its
+#: overhead, where the fixed-weight methods cost more than the filters), not a step of this decomposition.
+_TRANSIENT_STEPS: dict[str, int] = {
+    **{n: _TRANSIENT_STEP for n in ("reg_kalman_predict", "reg_kalman_two_point", "reg_improved",
+                                    "reg_causal_improved")},
+    **{n: 5 * LOOP_STEP for n in ("reg_rts_smoother", "reg_fixed_lag")},
+    **{n: 3 * LOOP_STEP // 2 for n in ("reg_least_squares", "reg_qls_next", "reg_qls_causal", "reg_local_qls")},
+    **{n: 30 for n in ("reg_two_point", "reg_three_point", "reg_two_point_extrapolation",
+                       "reg_three_point_extrapolation", "reg_cubic_spline")}}
 
 
 def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_METHODS) -> pd.DataFrame:
@@ -227,19 +248,20 @@ def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_
     TypeError
         ``horizon`` or ``sigma`` is not a number, or ``names`` not a sequence of strings.
     ValueError
-        ``horizon`` below 5 s or so long that the exact decomposition (its work grows as the number of methods
-        times the square of the number of sensor-1 samples) is beyond the work budget (from about 667 s for three
-        methods, some 8 CPU-s); ``sigma`` not a valid standard deviation; ``names`` empty or holding an unknown
-        method.
+        ``horizon`` below 5 s or so long that the exact decomposition (its work grows as the methods' measured
+        costs a step, summed, times the square of the number of sensor-1 samples) is beyond the work budget (from
+        about 667 s for the three Kalman methods, some 8 CPU-s; 895 s for a smoother alone); ``sigma`` not a valid
+        standard deviation; ``names`` empty or holding an unknown method.
     """
     horizon = scalar(horizon, "horizon", lo=5.0)
     sigma = std_scalar(sigma, "sigma")  # the float read (fuzz 22b, FR)
     names = _method_names(names, "names")
     # the decomposition runs each method once per sensor-1 sample over the whole run: (samples)**2 steps per
-    # method of about 24 us each (measured: 0.25 CPU-s at 100 s, 3.0 at 400 s, 4.4 at 500 s, three methods; fuzz
-    # 30b D2: 1,100 s was accepted at LOOP_STEP a step and ran some 35 CPU-s), refused before the time grids
+    # method, each weighed by its method's measured cost (_TRANSIENT_STEPS; a Kalman filter about 24 us: 0.25 CPU-s
+    # at 100 s, 3.0 at 400 s, 4.4 at 500 s, three methods; fuzz 30b D2: 1,100 s was accepted at LOOP_STEP a step and
+    # ran some 35 CPU-s; fix73c, fuzz 65a D1: a smoother costs more), refused before the time grids
     n1 = int((horizon - 1.0) // 2.0) + 1
-    loop_work((len(names), n1, n1), 0, "horizon and names", step=_TRANSIENT_STEP)
+    work((n1, n1), "horizon and names", weight=sum(_TRANSIENT_STEPS[n] for n in names))
     t1 = np.arange(1.0, horizon + 1e-9, 2.0)
     t2 = np.arange(3.0, horizon + 1e-9, 5.0)
     from fusion import registration as reg

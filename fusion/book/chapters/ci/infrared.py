@@ -32,14 +32,15 @@ __all__ = ["ir_flown_numbers", "ir_numbers", "ir_study", "ir_table", "ir_figure"
            "sensitivity_numbers", "IR_BOUND_LABEL", "IR_SHOWN"]
 
 
-def _ir_budget(T: object, duration: object, runs: object, names: tuple[str, str, str] = ("T", "duration", "runs")
-               ) -> tuple[float, float, int]:
+def _ir_budget(T: object, duration: object, runs: object, names: tuple[str, str, str] = ("T", "duration", "runs"),
+               reader: bool = False) -> tuple[float, float, int]:
     """The sizes of an infrared + radar study checked before any draw (fuzz 24c SZ/WN): ``T`` and ``duration``
     positive, ``runs`` a count, the scans ``duration / T + 1`` a grid within the sample ceiling, every sensor's
     measurements ``runs × scans × 2`` within the input budget of the filters (``fusion._limits.MAX_INPUT_ELEMENTS``,
-    a MemoryError at 10**7 runs otherwise) and the rules' fusion, a Python step per scan of about 0.7 ms, within
-    the work budget (``fusion._limits.MAX_WORK``: at most about 8·10⁴ scans; 3·10⁶ ran for minutes). A ValueError
-    names ``names`` (the caller's arguments: ``distance`` where the duration is a distance flown).
+    a MemoryError at 10**7 runs otherwise) and the work and memory of what the study runs (``_ir_units``: the
+    simulation, and with ``reader`` the readings of every rule that :func:`ir_study` runs next), summed within the
+    work budget before the simulation. A ValueError names ``names`` (the caller's arguments: ``distance`` where the
+    duration is a distance flown).
     """
     from fusion._counts import grid_points, input_allocation
     from fusion._validation import positive_scalar
@@ -51,16 +52,25 @@ def _ir_budget(T: object, duration: object, runs: object, names: tuple[str, str,
     both = f"{d_name} and {t_name}" if t_name else d_name
     n = grid_points(duration, T, both)
     input_allocation((runs, n, 2), f"{r_name}, {both}")
-    _ir_units(n, runs, f"{both} (with {r_name})")
+    _ir_units(n, runs, f"{both} (with {r_name})", reader)
     return T, duration, runs
 
 
-def _ir_units(n: int, runs: int, names: str) -> int:
-    """Rule 17 of an infrared + radar study of ``n`` scans and ``runs`` runs (``_ir_budget``'s count), refused naming
-    ``names``; its units, which a chapter study that runs it beside others sums (fuzz 55 C4)."""
-    from fusion._validation import LOOP_STEP, loop_work
+def _ir_units(n: int, runs: int, names: str, reader: bool = False) -> int:
+    """Rules 9 and 17 of an infrared + radar study of ``n`` scans and ``runs`` runs (``_ir_budget``'s count), refused
+    naming ``names``; its units. The simulation by ``simulate``'s own budget (``_simulate_budget``: its filters'
+    scan re-weighed by fix72e, ``_SIMULATE_SCAN_UNITS``, 77-82 us a scan measured) and, with ``reader``, the readings
+    of every rule that :func:`ir_study` runs next (``rmse_by_rule``: ``rule_errors``' own ``_reader_budget``, about
+    117,000 units a scan and 305 a run and scan), summed before the simulation (``studies_first``; fix73c, fuzz 65a
+    C1: the reader was checked only after the simulation had run, so ``ir_study(0.1, 1, 150_000)`` was refused
+    after 11.8 CPU-s and ``ir_study(0.001, 1, 1, duration=62.0)`` after 5.5, both naming ``sim`` and ``rules``)."""
+    from fusion.book._study_budget import studies_first
+    from fusion.scenarios._infrared_budget import _reader_budget, _simulate_budget
 
-    return loop_work((n,), 48 * runs, names, step=12 * LOOP_STEP)
+    parts = [lambda: _simulate_budget(runs, n, (names, names))]
+    if reader:
+        parts.append(lambda: _reader_budget("rule_errors", runs, n, 4, ir.RULES, names))
+    return studies_first(parts, names)
 
 
 def _sensitivity_budget(periods: Sequence[float], runs: int, duration: float) -> int:
@@ -128,12 +138,18 @@ def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
         The true path, the infrared and radar measurements and the three local tracks of every run, at period ``T``.
     rmse : dict of str to ndarray, shape (K, 4)
         :func:`fusion.scenarios.infrared_radar.rmse_by_rule`.
+
+    Raises
+    ------
+    ValueError
+        ``T`` or ``duration`` not positive, ``runs`` not a count, or ``T``, ``duration`` and ``runs`` whose simulation
+        and readings of every rule together hold or run beyond the memory or work budget, before the simulation.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     from fusion._validation import one_of
 
     azimuth_from = one_of(azimuth_from, ("x", "y"), "azimuth_from")
-    T, duration, runs = _ir_budget(T, duration, runs)
+    T, duration, runs = _ir_budget(T, duration, runs, reader=True)   # the simulation and its readings (fix73c)
     p = data.WANG2024_IR_RADAR
     sim = ir.simulate(np.random.default_rng(seed), runs=runs, T=T, duration=duration, sigma_ir=p["sigma_ir"],
                       sigma_angle=p["sigma_angle"], sigma_range=p["sigma_range"], r0=p["range"],
@@ -181,7 +197,7 @@ def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], d
     seed = check_seed(seed)
     distance = scalar(distance, "distance", lo=0.0, lo_open=True)
     duration = distance / float(np.linalg.norm(data.WANG2024_IR_RADAR["velocity"]))
-    _ir_budget(IR_T, duration, runs, ("", "distance", "runs"))   # the flight's scans, named by distance
+    _ir_budget(IR_T, duration, runs, ("", "distance", "runs"), reader=True)   # the flight's study, by distance
     t_min, _ = _averaging_start(t_min, duration)
     chapter_means = _entries(chapter_means, "chapter_means", (ir.AZIMUTH_MRAD, ir.ELEVATION_MRAD, ir.X_M, ir.Y_M),
              "infrared_radar.late_means (the improved CI's entry)", nonnegative=True)
