@@ -5,10 +5,13 @@ from __future__ import annotations
 
 import collections
 import datetime
-from collections.abc import Callable, Iterable
+import enum
+import pathlib
+from collections.abc import Callable, Iterable, Mapping
 
 import numpy as np
 import pandas as pd
+from pandas.api.extensions import ExtensionArray
 from pandas.io.formats.style import Styler
 
 from fusion._limits import MAX_WORK
@@ -163,25 +166,47 @@ def atom_units(dtype: object, plain: int) -> int:
     return plain
 
 
-#: Units of one Interval, Period or date-time held by an object container (a list, tuple, set or mapping, an object
-#: array, Series, Index or table column), known only from each entry's type (round 63's remainder: 4,900,000
-#: Intervals in an object Series were charged 200 units each). Measured by ``glue_all`` on 2**17 entries
-#: (time.process_time, OPENBLAS_NUM_THREADS=1, minimum of 2, machine shared with two other jobs): an Interval of
-#: numbers 6.9-9.2 us (an object array, list, Series, Index of labels, table column), of dates with a time zone
-#: 11.2-11.8 us: ``_ATOM_INTERVAL`` (2.4 times the largest); a Period 3.7-5.1 us, a date-time (naive or with a time
-#: zone, Python's or pandas') 3.4-6.3 us: 1,300 units each (twice the largest). Other objects keep the plain weight.
-_OBJECT_ATOMS = ((pd.Interval, _ATOM_INTERVAL), (pd.Period, _ATOM_PERIOD), (datetime.datetime, 1_300))
+#: Units of one atom held by an object container (a list, tuple, set or mapping, an object array, Series, Index or
+#: table column), known only from each entry's type (round 63's remainder: 4,900,000 Intervals in an object Series were
+#: charged 200 units each; fuzz 65a C2: 4,900,000 Enum members in an object array, 43.9 CPU-s accepted). Measured by
+#: ``glue_all`` on 2**17 entries of one type, in a list, an object array and an object Series (time.process_time,
+#: OPENBLAS_NUM_THREADS=1, minimum of 3, machine shared with the test suite and two helpers), us an entry: an Interval
+#: 7.5-9.0 (of dates with a time zone 11.2-11.8): ``_ATOM_INTERVAL``; an Enum member 7.3-7.6: 1,600 units; a
+#: date-time 5.1-6.8, a date 4.5-4.8, a time 4.8-5.2, a duration (Python's, pandas', NumPy's) 3.7-5.4, a NumPy
+#: date-time 4.9-6.1, a Period 4.6-5.1, a path 4.3-5.5, a range 5.6-5.8: 1,300 units; any other atom (an int, str,
+#: bytes, complex, None, bool, Decimal, Fraction, NumPy number; a float of an object array, Series or Index) 2.8-5.4:
+#: 900 units (each about twice its measured cost). A float of a list, tuple, set or mapping is checked at once with
+#: its siblings (0.12 us: its container's plain weight), and a container held is charged where it is reached.
+_OBJECT_ATOMS = ((pd.Interval, _ATOM_INTERVAL), (enum.Enum, 1_600),
+                 ((datetime.date, datetime.time, datetime.timedelta, np.datetime64, np.timedelta64, pd.Period,
+                   pathlib.PurePath, range), 1_300))
+_OBJECT_ANY = 900
+_HOLDERS = (list, tuple, set, frozenset, Mapping, np.ndarray, pd.Series, pd.Index, pd.DataFrame, ExtensionArray, Styler)
 
 
-def by_type(units: int, entries: Callable[[], Iterable[object]], plain: int) -> int:
-    """``units`` (``plain`` units an entry of an object container) plus what its Intervals, Periods and date-times
-    cost beyond ``plain`` (``_OBJECT_ATOMS``), counted by the entries' types (``map(type)``, about 30 ns an entry,
-    no entry visited in Python); ``entries`` is read only when ``units`` is within ``MAX_WORK`` (beyond, the plain
-    weight alone is refused)."""
+def _type_units(t: type, python: bool) -> int:
+    """The units of one entry of type ``t`` of an object container (``_OBJECT_ATOMS``; a Python container's float:
+    0, ``python``)."""
+    if python and t is float:
+        return 0
+    w = next((w for base, w in _OBJECT_ATOMS if issubclass(t, base)), None)
+    return w if w is not None else 0 if issubclass(t, _HOLDERS) else _OBJECT_ANY
+
+
+def keys_values(m: Mapping) -> Iterable[object]:
+    """The keys and the values of the mapping ``m`` (its text prints both), read once through ``items()``."""
+    return (e for kv in m.items() for e in kv)
+
+
+def by_type(units: int, entries: Callable[[], Iterable[object]], plain: int, python: bool = False) -> int:
+    """``units`` (``plain`` units an entry of an object container) plus what its atoms cost beyond ``plain`` by type
+    (``_OBJECT_ATOMS``, ``_OBJECT_ANY``; ``python``: a list's, tuple's, set's or mapping's, whose floats are checked
+    at once), counted by the entries' types (``map(type)``, about 30 ns an entry, no entry visited in Python);
+    ``entries`` is read only when ``units`` is within ``MAX_WORK`` (beyond, the plain weight alone is refused)."""
     if units > MAX_WORK:
         return units
     for t, k in collections.Counter(map(type, entries())).items():
-        units += k * max(0, next((w for base, w in _OBJECT_ATOMS if issubclass(t, base)), 0) - plain)
+        units += k * max(0, _type_units(t, python) - plain)
     return units
 
 

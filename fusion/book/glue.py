@@ -27,7 +27,7 @@ from pandas.io.formats.style import Styler
 
 from fusion._limits import MAX_WORK, work
 from fusion.book._glue_axes import axis_units, by_type, columns_units, converted_label_sizes, entries_units, label_sizes
-from fusion.book._glue_axes import object_cells, prune_units
+from fusion.book._glue_axes import keys_values, object_cells, prune_units
 from fusion.book._glue_axes import object_dtype as _object_dtype
 from fusion.book._glue_figure import figure_units
 from fusion._validation import count, read_mapping, text
@@ -723,13 +723,13 @@ def _container_work(v: object) -> tuple[int, int]:
     if isinstance(v, (pd.DataFrame, Styler)):
         return _table_size(v), _table_units(v)
     if isinstance(v, Mapping):   # its keys and its values
-        return 2 * len(v), by_type(2 * len(v) * _GLUE_NESTED, lambda: (e for kv in v.items() for e in kv), _GLUE_NESTED)
+        return 2 * len(v), by_type(2 * len(v) * _GLUE_NESTED, lambda: keys_values(v), _GLUE_NESTED, True)
     if isinstance(v, ExtensionArray):
         return len(v), entries_units(v.dtype, len(v), lambda: np.asarray(v, dtype=object).ravel(), _GLUE_OBJECT)
     if isinstance(v, np.ndarray):
         n = int(v.size) * max(1, v.dtype.itemsize // 8) if v.dtype.hasobject else 0
         return n, entries_units(v.dtype, n, lambda: v.flat, _GLUE_OBJECT)
-    return len(v), by_type(len(v) * _GLUE_NESTED, lambda: v, _GLUE_NESTED)  # type: ignore[arg-type]
+    return len(v), by_type(len(v) * _GLUE_NESTED, lambda: v, _GLUE_NESTED, True)  # type: ignore[arg-type]
 
 
 #: Fuzz 57a C1: a numeric entry (of a numeric array, Series, Index or table column, or a numeric label) is checked
@@ -877,9 +877,9 @@ def _glue_units(value: object) -> int:
     if isinstance(value, pd.DataFrame):
         return _GLUE_TABLE
     if isinstance(value, (list, tuple, set, frozenset)):   # an Interval, Period, date-time by its type (``by_type``)
-        return by_type(_GLUE_ENTRY * len(value), lambda: value, _GLUE_ENTRY)
+        return by_type(_GLUE_ENTRY * len(value), lambda: value, _GLUE_ENTRY, True)
     if isinstance(value, dict):   # its keys and its values (fuzz 49a C3)
-        return by_type(_GLUE_ENTRY * 2 * len(value), lambda: (e for kv in value.items() for e in kv), _GLUE_ENTRY)
+        return by_type(_GLUE_ENTRY * 2 * len(value), lambda: keys_values(value), _GLUE_ENTRY, True)
     if isinstance(value, _GLUE_COUNTED):
         return _container_work(value)[1]
     return 0
