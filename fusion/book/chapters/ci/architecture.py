@@ -460,8 +460,9 @@ def q_numbers(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> GlueValues:
 def _arch_banks(fixed: int) -> tuple[int, int]:
     """Fixed-weight filter banks of :func:`architecture_studies`' two ``architecture_study`` runs with ``fixed``
     further weights: on the identical sensors the published weight and each further weight printed twice, and the
-    placement at the published weight; on the anisotropic pair the published weight printed twice."""
-    return 2 * (1 + fixed) + 1, 2 * 1
+    placement at the published weight (two banks, as ``architecture_study`` counts a placement weight: fuzz 65b C1);
+    on the anisotropic pair the published weight printed twice."""
+    return 2 * (1 + fixed) + 2, 2 * 1
 
 
 def _arch_parts(steps: int, runs: int, nees_runs: int, fixed: int, names: str) -> list[Callable[[], int]]:
