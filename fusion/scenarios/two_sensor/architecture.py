@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 
 from fusion._results import NONNEGATIVE, ResultSpec, array, dict_of, integer, number, same_keys, tuple_of
 from fusion._results import real_key, validated_post_init
-from fusion._validation import check_magnitude, derived_inputs, distinct, distinct_printed, general
+from fusion._validation import check_magnitude, derived_inputs, distinct_printed, general
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar, work)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees
@@ -293,9 +293,9 @@ def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: Arra
 
 
 def _unit_weights(value: ArrayLike, name: str) -> np.ndarray:
-    """Weights in (0, 1], checked in one vectorised pass; that none is repeated (the results are keyed by weight) is
-    checked by ``distinct`` once the budget, which needs only their number, has passed (fuzz 64b C7: 10**7 weights were
-    read entry by entry first, refused after 14-16 CPU-s)."""
+    """Weights in (0, 1], checked in one vectorised pass; that no two print the same (the results are keyed by
+    ``f"{w:g}"``) is checked by ``distinct_printed`` once the budget, which needs only their number, has passed (fuzz
+    64b C7: 10**7 weights were read entry by entry first, refused after 14-16 CPU-s)."""
     w = np.atleast_1d(as_array(value, name, ndim=(0, 1), nonempty=False))
     bad = ~((w > 0) & (w <= 1))
     if bad.any():
@@ -321,10 +321,10 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     ----------
     Q : array_like, shape (4, 4)
         Process noise of the filters (and of the model targets).
-    printed_omegas : array_like of float in (0, 1], optional, no two equal
+    printed_omegas : array_like of float in (0, 1], optional, no two printing the same (6 significant digits)
         Fixed weights with which eqs. 11-12 as printed are run as well, without and with feedback, Q in the
         shared part (e.g. the source's published FOA optimum 0.0018); keyed ``fixed_weight_rule("shared", w)``.
-    placement_omegas : array_like of float in (0, 1], optional, no two equal
+    placement_omegas : array_like of float in (0, 1], optional, no two printing the same (6 significant digits)
         Fixed weights with which eqs. 11-12 as printed are also fed back with Q in each sensor's own part
         (``fixed_weight_rule("own", w)``) and fed back with the fused covariance as the common part
         (:data:`Architecture.FEEDBACK_COMMON`, Q in the shared part): where Q
@@ -353,8 +353,10 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     weights: dict[str, list[float]] = {}
 
     def distinct_weights() -> None:   # after the budget, before the draws (length -> budget -> entries)
-        weights["printed_omegas"] = distinct(w_printed.tolist(), "printed_omegas")
-        weights["placement_omegas"] = distinct(w_placed.tolist(), "placement_omegas")
+        # each weight keys its results by f"{w:g}" (fixed_weight_rule): two that print the same would share a key, the
+        # last silently replacing the other (fuzz 66b C2: [0.5, 0.5 + 1e-12] returned one weight's keys)
+        for w, nm in ((w_printed, "printed_omegas"), (w_placed, "placement_omegas")):
+            weights[nm] = distinct_printed(w.tolist(), nm, general, "keys a rule's results")
 
     # rule 17 before the draws: the call, every step, every run's step, and two filter banks (fusion_loop runs) per
     # printed and per placement omega, each with its fixed cost, at their measured cost (fuzz 65b C1) (78,000 NEES runs, ~50 CPU-s, were accepted: budget35; the steps: fuzz 42b D1); the

@@ -265,7 +265,7 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
     delta0 : float
         :math:`\Delta_0` of the process noise (:func:`process_noise`).
     readings : tuple of str
-        Readings of :data:`Q_READINGS` to run (a singular reading gets 1e-12 on its diagonal so that the
+        Readings of :data:`Q_READINGS` to run, no two equal (a singular reading gets 1e-12 on its diagonal so that the
         initial covariance stays invertible; no effect at the printed digits).
 
     Returns
@@ -295,6 +295,7 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
     work((1,), "periods and readings", weight=_path_units(Ts.size, steps, len(items)))
     readings = tuple(one_of(rd, Q_READINGS, "readings") for rd in items)
     distinct(Ts.tolist(), "periods")  # the results are keyed by (period, reading)
+    distinct(list(readings), "readings")  # a repeat was run, counted and merged into one key (fuzz 66b D1)
     out: dict[tuple[float, str], dict[str, float]] = {}
     for Tp in (float(v) for v in Ts):
         traj, model = trajectory(Tp), cv_model(Tp)
