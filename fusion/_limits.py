@@ -74,8 +74,8 @@ ARCHITECTURE_STUDY = ("the reseeding sweep's primary of ci-fig4-convex-part at 1
 #: which ``studies.arch_study`` runs: the identical pair with 7 filter banks and the anisotropic pair with 2, summed at
 #: its entry, fuzz 57a C5: each was checked alone against :data:`ARCHITECTURE_STUDY`'s entry, so 6,738 runs were
 #: accepted and ran 68.9 CPU-s): the reseeding sweep's 10x reading of ci-fig4-convex-part (2,000 runs and 2,000 NEES
-#: runs of each pair) counts 1.97e9 units (the studies ran 10.9 and 9.0 CPU-s: fuzz 42b D1); by budget35's rule its
-#: entry is 4e9, which equals the regime study's, so its refusal names it by ``work``'s ``served``.
+#: runs of each pair) counts 1.97e9 units (the studies ran 10.9 and 9.0 CPU-s: fuzz 42b D1), 2.08e9 since fuzz 66b C1
+#: (a bank's step of a path run counted, ``two_sensor.architecture._PATH_BANK``); by budget35's rule its entry is 5e9.
 ARCHITECTURE_STUDIES = ("the reseeding sweep's primary of ci-fig4-convex-part at 10x runs (architecture_studies, both "
                         "pairs, 2,000 runs and 2,000 NEES runs)")
 #: The key of chapter 05's infrared + radar readings (``fusion.book.chapters.ci.infrared_readings.ir_readings``: on
@@ -114,7 +114,7 @@ STUDY_WORK: Mapping[str, int] = constant({TRACKING_STUDY: 26 * MAX_WORK, AWF_STU
                                           REGIME_STUDY: 4 * MAX_WORK, READINGS_BENCHMARK: 3 * MAX_WORK,
                                           PREMISE_STUDY: 9 * MAX_WORK, ARCHITECTURE_STUDY: 3 * MAX_WORK,
                                           MEMBERSHIP_STUDY: 3 * MAX_WORK, LEDGER_STUDIES: 4 * MAX_WORK,
-                                          ARCHITECTURE_STUDIES: 4 * MAX_WORK, IR_READINGS_STUDY: 4 * MAX_WORK,
+                                          ARCHITECTURE_STUDIES: 5 * MAX_WORK, IR_READINGS_STUDY: 4 * MAX_WORK,
                                           RECORD_EVIDENCE: 7 * MAX_WORK})
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it

@@ -42,8 +42,8 @@ def _arch(T, name, n, **kw):
                              nees_runs=2, T=T, t_steady=0.0, **{name: np.linspace(0.01, 1.0, n)}, **kw)
 
 
-@pytest.mark.parametrize("name, T, edge", [("printed_omegas", 130.0, 4_503), ("placement_omegas", 200.0, 5_194),
-                                           ("placement_omegas", 300.0, 6_133)])
+@pytest.mark.parametrize("name, T, edge", [("printed_omegas", 130.0, 4_502), ("placement_omegas", 200.0, 5_192),
+                                           ("placement_omegas", 300.0, 6_132)])
 def test_architecture_study_counts_each_weights_fixed_cost(no_draw, name, T, edge):
     """C1: 9,500 printed weights at T = 130 (3 steps) ran 50.0 CPU-s accepted; 4,000 placement weights at T = 200 ran
     16.2 CPU-s counted 4e8 units (a placement weight, two filter banks, was counted as one, with no fixed cost). Now a

@@ -60,3 +60,15 @@ def test_path_by_period_accepts_distinct_readings(monkeypatch):
     for rd in (two_sensor.Q_READINGS, two_sensor.Q_READINGS[:1]):
         with pytest.raises(Drew):
             two_sensor.path_by_period([10.0, 5.0], 10.0, 1.0, readings=rd, t_steady=0.0)
+
+
+def test_a_banks_path_run_step_is_counted() -> None:
+    """Fuzz 66b C1: every fixed-weight bank filters every path run, but only its NEES runs' steps were counted: 8,000
+    path runs, 1 NEES run, 88 printed weights (176 banks) at T = 1 counted 2.977e9 (its entry 3e9) and ran 92.0
+    CPU-s. A bank's path-run step is counted (``_PATH_BANK``): that call is now beyond its entry by the count alone."""
+    from fusion._limits import ARCHITECTURE_STUDY, STUDY_WORK
+    from fusion.scenarios.two_sensor import architecture
+
+    assert architecture._arch_step_units(176)[1] == architecture._RUN_STEP + 176 * architecture._PATH_BANK
+    steps = 261   # T = 1 on the 260 s path
+    assert architecture._arch_units(steps, 8_000, 1, 176) > STUDY_WORK[ARCHITECTURE_STUDY]

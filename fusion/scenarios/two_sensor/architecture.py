@@ -208,12 +208,18 @@ class _PairedRuns(NamedTuple):
 #: cost, 5,000 ``LOOP_STEP`` (60 ms at one step without a bank).
 _ARCH_CALL, _BANK_CALL = 5000 * LOOP_STEP, 200 * LOOP_STEP
 _ARCH_STEP, _BANK_STEP, _RUN_STEP, _NEES_RUN_STEP, _NEES_BANK = 700 * LOOP_STEP, 44 * LOOP_STEP, 350, 850, 44
+#: Units of a bank's step of a path run (fuzz 66b C1: not counted, yet every bank runs every run, so 8,000 path runs
+#: and 1 NEES run with 176 banks at T = 1, counted 2.98e9, ran 92.0 CPU-s accepted): measured by fix74a at T = 1, one
+#: NEES run, 0 and 20 banks, ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the machine shared (load 4-7): a bank
+#: 0.16 s at 20 and 1,000 runs, 0.21 at 3,000, 0.23 at 6,000, 0.29-0.38 at 4,000, 0.42 at 8,000 (the report's call),
+#: 6-13 units a bank's path-run step; counted 20 (a bank's NEES-run step measured 56 the same way, counted 44).
+_PATH_BANK = 20
 
 
 def _arch_step_units(banks: int) -> tuple[int, int, int]:
     """The units of :func:`architecture_study` with ``banks`` fixed-weight filter banks: a step, a step of a path run,
     a step of a model run (the weights above)."""
-    return _ARCH_STEP + banks * _BANK_STEP, _RUN_STEP, _NEES_RUN_STEP + banks * _NEES_BANK
+    return _ARCH_STEP + banks * _BANK_STEP, _RUN_STEP + banks * _PATH_BANK, _NEES_RUN_STEP + banks * _NEES_BANK
 
 
 def _arch_units(steps: int, runs: int, nees_runs: int, banks: int) -> int:
