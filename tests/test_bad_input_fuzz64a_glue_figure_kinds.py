@@ -236,3 +236,77 @@ def test_large_markers_are_weighed_by_their_boxes() -> None:
     weight: weighed by their boxes' pixels (a hundred at MARKER_AREA)."""
     from fusion.book import _glue_figure as F
     _both_bounds(_large_markers, F.POINT + 900 * F.MARKER_AREA)
+
+
+def _diagonal_points(ax) -> float:
+    """The length in points of the diagonal of ``ax`` (limits 0 to 1), as Agg strokes a line from (0, 0) to (1, 1)."""
+    return float(np.hypot(ax.bbox.width, ax.bbox.height)) * 72.0 / ax.figure.dpi
+
+
+def _dashed_lines(n: int, dash: float = 1e-4):
+    fig, ax = _axes()
+    for _ in range(n):
+        ax.plot([0, 1], [0, 1], color="0.3", lw=1.5, dashes=(dash, dash))
+    return fig
+
+
+def _ticked_lines(n: int, spacing: float = 1e-3):
+    from matplotlib import patheffects as pe
+    fig, ax = _axes()
+    for _ in range(n):
+        ax.plot([0, 1], [0, 1], color="0.3", path_effects=[pe.withTickedStroke(spacing=spacing, length=1)])
+    return fig
+
+
+def _hatched(n: int, hatch: str = "oooooo"):
+    fig, ax = _axes()
+    for _ in range(n):
+        ax.add_patch(Rectangle((0.1, 0.1), 0.05, 0.05, hatch=hatch, fill=False))
+    return fig
+
+
+def test_a_dashed_line_is_weighed_by_its_dashes() -> None:
+    """Fuzz 66a C4: 10 two-point lines of dashes (1e-5, 1e-5) were counted 9.0e6 units and ran 35.7 CPU-s: a dash
+    every period (the pattern scaled by the line width, 1.5) of the line's length in points."""
+    from fusion.book import _glue_figure as F
+    fig = _dashed_lines(1)
+    dashes = int(_diagonal_points(fig.axes[0]) / (2 * 1e-4 * 1.5)) + 1
+    plt.close(fig)
+    assert dashes > 10**6
+    _both_bounds(_dashed_lines, F.ARTIST + 2 * F.POINT + dashes * F.DASH)
+
+
+def test_a_ticked_stroke_is_weighed_by_its_ticks() -> None:
+    """Fuzz 66a C3: 16 two-point lines under ``withTickedStroke(spacing=1e-4)`` were counted 9.3e6 units and ran 33.3
+    CPU-s: a tick every ``spacing`` points of the line's length."""
+    from fusion.book import _glue_figure as F
+    fig = _ticked_lines(1)
+    ticks = int(_diagonal_points(fig.axes[0]) / 1e-3 + 1)
+    plt.close(fig)
+    assert ticks > 10**5
+    _both_bounds(_ticked_lines, F.ARTIST + 2 * F.POINT + ticks * F.TICK)
+
+
+def test_a_hatch_is_weighed_by_its_tile() -> None:
+    """A hatch is rasterised into a tile at every patch drawn: 400 small Rectangles hatched 'oooooo' (70,252 vertices
+    a tile) ran 4.2 CPU-s, weighed 400 artists."""
+    from matplotlib.path import Path
+
+    from fusion.book import _glue_figure as F
+    tile = Path.hatch("oooooo", 6.0)
+    length = sum(float(np.hypot(*np.diff(q, axis=0).T).sum()) for q in tile.to_polygons(closed_only=False))
+    _both_bounds(_hatched, F.ARTIST + 5 * F.POINT + len(tile.vertices) * F.HATCH_VERTEX
+                 + int(np.ceil(length)) * F.HATCH_LENGTH)
+
+
+def test_solid_and_default_dashed_lines_count_no_more_than_their_dashes() -> None:
+    """A solid line counts no dash; a default '--' line of 10 points its length over its period (lines.dashed_pattern,
+    3.7 + 1.6 points, x its width 1.5)."""
+    from fusion.book import _glue_figure as F
+    fig, ax = _axes()
+    before = F._tally(fig)[F._DASHES]                   # the axes' own lines (grid styles vary with rcParams)
+    ax.plot([0, 1], [0, 1])
+    assert F._tally(fig)[F._DASHES] == before
+    ax.plot(np.linspace(0, 1, 10), np.linspace(0, 1, 10), "--")
+    assert F._tally(fig)[F._DASHES] - before == int(_diagonal_points(ax) / (sum(plt.rcParams["lines.dashed_pattern"]) * 1.5)) + 1
+    plt.close(fig)

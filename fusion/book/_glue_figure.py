@@ -4,6 +4,8 @@ characters), and once per path effect it is drawn with (fuzz 65a C4)."""
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from matplotlib.artist import Artist
 from matplotlib.collections import Collection, QuadMesh
@@ -11,6 +13,7 @@ from matplotlib.figure import Figure
 from matplotlib.image import FigureImage, _ImageBase
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
+from matplotlib.path import Path
 from matplotlib.text import Text
 
 from fusion._limits import MAX_WORK
@@ -83,14 +86,43 @@ EFFECT_CHARACTER = 750
 #: pixel). Weighed 1 ns a pixel. A box is counted at most the figure's pixels (drawn clipped to it).
 MARKER_AREA = 10
 
+#: Units of one dash of a dashed line, patch edge or collection (fuzz 66a C4: Agg's dasher emits one segment per dash
+#: along the drawn path, path length / the pattern's period, the period scaled by the line width as matplotlib does,
+#: ``_dash_pattern``; 10 two-point lines of dashes (1e-5, 1e-5) were weighed 9.0e6 units and ran 35.7 CPU-s).
+#: Measured (glue_all of one two-point diagonal line, 405 points long, of dashes (d, d) at width 1.5, every weight off,
+#: process_time, OPENBLAS_NUM_THREADS=1, minimum of 2, machine shared; an undashed line 0.03 CPU-s): d=1e-4 1.35e6
+#: dashes 0.39 CPU-s, 3e-5 4.5e6 1.36, 1e-5 1.35e7 4.19 (0.30-0.31 us a dash); weighed twice, 0.6 us: the
+#: edge, one line of dashes (8.6e-6, 8.6e-6) counted 9.5e8 units, glued in 5.6 CPU-s (as above).
+DASH = 60
+#: Units of one tick of a ticked stroke (``patheffects.TickedStroke`` / ``withTickedStroke``, fuzz 66a C3: one tick
+#: every ``spacing`` points of the drawn path, unclipped; 16 two-point lines of spacing 1e-4 ran 33.3 CPU-s). Measured
+#: (as ``DASH``, one such line, ``withTickedStroke(spacing=s, length=1)``): s=1e-3 4.0e5 ticks 0.21 CPU-s, 3e-4
+#: 1.35e6 0.92, 1e-4 4.05e6 2.93 (0.68-0.72 us a tick); weighed about twice, 1.5 us: the edge, one
+#: line of spacing 6.2e-5 counted 9.88e8 units, glued in 7.0 CPU-s.
+TICK = 150
+
+#: Units of a hatch tile's vertex and of its stroke's length (a unit tile's side): Agg rasterises a patch's hatch path
+#: into a tile each time it draws it (each patch, each path of a hatched collection), whatever the patch's area.
+#: Measured (glue_all of 400 hatched Rectangles of 0.05 axes, every weight off, process_time, OPENBLAS_NUM_THREADS=1,
+#: minimum of 2, machine shared; less 400 unhatched, 0.062 CPU-s; ``Path.hatch(h, 6)``'s vertices V and stroke length
+#: L): '/' (V 14, L 9.9) 0.05 ms a patch, '|' x 12 (144, 72) 0.26, 'x' x 6 (148, 105) 1.8, 'o' x 6 (70,252, 91) 10.4,
+#: '.' x 6 (35,126, 24) 4.5, '*' x 6 (14,861, 83) 5.2 ms: 0.13-0.15 us a vertex of circles, up to 36 us a unit of
+#: length ('*'); weighed 0.3 us a vertex and 50 us a unit (1.6-4x over, lines 5-19x over: a hatched patch's tile of
+#: '//' about one artist). 200 axes-sized Rectangles of '//////' ran 0.30 CPU-s, the same small: not by area.
+HATCH_VERTEX = 30
+HATCH_LENGTH = 5_000
+
 #: The kinds a figure is tallied by (``_tally``), named once (a header used in several functions, issue 36).
 _PIXELS, _CELLS, _MARKER_VERTICES = "image pixels", "mesh cells", "marker vertices"
 _FIGURE_PIXELS, _EFFECT_MARKERS = "figure image pixels", "markers drawn per path effect"
 _EFFECT_CHARACTERS = "characters drawn per path effect"
 _MARKER_AREA = "hundreds of marker box pixels"
+_DASHES, _TICKS = "dashes", "ticks of ticked strokes"
+_HATCH_VERTICES, _HATCH_LENGTH = "hatch tile vertices", "hatch tile stroke lengths"
 _WEIGHTS = {"points": POINT, _PIXELS: PIXEL, _FIGURE_PIXELS: FIGURE_PIXEL, _CELLS: CELL, "markers": MARKER,
             _MARKER_VERTICES: MARKER_VERTEX, "artists": ARTIST, "characters": CHARACTER, _EFFECT_MARKERS: EFFECT_MARKER,
-            _EFFECT_CHARACTERS: EFFECT_CHARACTER, _MARKER_AREA: MARKER_AREA}
+            _EFFECT_CHARACTERS: EFFECT_CHARACTER, _MARKER_AREA: MARKER_AREA, _DASHES: DASH,
+            _TICKS: TICK, _HATCH_VERTICES: HATCH_VERTEX, _HATCH_LENGTH: HATCH_LENGTH}
 
 
 def _size(*arrays: object) -> int:
@@ -199,10 +231,104 @@ def _has_marker(a: Line2D) -> bool:
     return a.get_marker() not in (None, "", " ", "None", "none")
 
 
+def _paths_points(a: Artist, clipped: bool) -> tuple[float, int]:
+    """The length in points of the paths ``a`` (a line, patch or collection) draws, read without rendering (its
+    paths through its transform, a Bezier's control polygon an upper bound of its curve), and their count; each
+    segment at most the figure's diagonal when ``clipped`` (Agg clips a stroke to the figure before dashing it), and
+    a collection drawn at offsets or with per-path transforms bounded by its vertices times that diagonal."""
+    fig = a.get_figure(root=True)
+    if fig is None:
+        return 0.0, 0
+    scale = 72.0 / float(fig.dpi)
+    diagonal = float(np.hypot(fig.bbox.width, fig.bbox.height))
+    paths = a.get_paths() if isinstance(a, Collection) else [a.get_path()]
+    draws = 1
+    if isinstance(a, Collection) and (len(a.get_offsets()) > 1 or len(a.get_transforms())):
+        draws = max(len(a.get_offsets()), 1)
+        return sum(len(p.vertices) for p in paths) * draws * diagonal * scale, len(paths) * draws
+    length, transform = 0.0, a.get_transform()
+    for p in paths:
+        try:
+            xy = np.asarray(transform.transform_path(p).vertices, dtype=float)
+            steps = np.hypot(*np.diff(xy, axis=0).T) if len(xy) > 1 else np.zeros(0)
+        except (TypeError, ValueError):          # not transformable as given: every segment the diagonal
+            steps = np.full(max(len(p.vertices) - 1, 0), diagonal)
+        steps = np.where(np.isfinite(steps), steps, diagonal if clipped else np.inf)
+        length += float(np.minimum(steps, diagonal).sum() if clipped else steps.sum())
+    return length * scale, len(paths)
+
+
+def _dash_periods(a: Artist) -> list[float]:
+    """The periods in points of the dash patterns ``a`` strokes with (scaled by its line width as matplotlib does),
+    none if it is solid or draws no edge."""
+    if isinstance(a, Collection):
+        patterns = list(getattr(a, "_linestyles", ()))
+    else:
+        patterns = [getattr(a, "_dash_pattern", (0, None))]
+    periods = [float(np.sum(seq)) for _, seq in patterns if seq is not None and len(seq)]
+    if isinstance(a, (Line2D, Patch)) and periods and not (a.get_linewidth() and
+                                                           (isinstance(a, Line2D) or a.get_edgecolor()[3])):
+        return []
+    return periods
+
+
+@functools.lru_cache(maxsize=256)
+def _hatch_tile(hatch: str) -> tuple[int, int]:
+    """The vertices of the hatch path Agg rasterises for ``hatch`` (``Path.hatch`` at the default density 6), and its
+    stroke length in unit tiles (rounded up)."""
+    path = Path.hatch(hatch, 6.0)
+    if path is None:
+        return 0, 0
+    length = sum(float(np.hypot(*np.diff(q, axis=0).T).sum()) for q in path.to_polygons(closed_only=False))
+    return len(path.vertices), int(np.ceil(length))
+
+
+def _hatch(a: Artist, tally: dict[str, int]) -> None:
+    """Add ``a``'s hatch tiles to ``tally``: a patch draws one, a hatched collection one a path it draws."""
+    hatch = a.get_hatch() if isinstance(a, (Patch, Collection)) else None
+    if not hatch:
+        return
+    tiles = max(len(a.get_offsets()), len(a.get_paths()), 1) if isinstance(a, Collection) else 1
+    vertices, length = _hatch_tile(str(hatch))
+    tally[_HATCH_VERTICES] += tiles * vertices
+    tally[_HATCH_LENGTH] += tiles * length
+
+
+def _dashes(a: Artist) -> int:
+    """The dashes ``a`` strokes: its drawn path's length over its shortest dash period (twice with a gap colour)."""
+    periods = _dash_periods(a)
+    if not periods:
+        return 0
+    length, paths = _paths_points(a, clipped=True)
+    period = min(periods)
+    count = length / period if period > 0 and np.isfinite(period) else float("inf")
+    if not np.isfinite(count):
+        return 2 * MAX_WORK
+    gaps = 2 if getattr(a, "_gapcolor", None) is not None else 1
+    return gaps * (int(count) + paths)
+
+
+def _ticks(a: Artist) -> int:
+    """The ticks ``a``'s ticked strokes draw (``TickedStroke``: one every ``spacing`` points of its whole path)."""
+    from matplotlib.patheffects import TickedStroke
+    try:
+        strokes = [e for e in (a.get_path_effects() or ()) if isinstance(e, TickedStroke)]
+    except TypeError:                           # not iterable: matplotlib would refuse it when drawing
+        return 0
+    if not strokes or not isinstance(a, (Line2D, Patch, Collection)):
+        return 0
+    length, paths = _paths_points(a, clipped=False)
+    total = 0.0
+    for e in strokes:
+        spacing = float(e._spacing)
+        total += length / spacing + paths if spacing > 0 else float("inf")
+    return int(total) if np.isfinite(total) else 2 * MAX_WORK
+
+
 def _artist(a: Artist, tally: dict[str, int]) -> None:
     """Add what the artist ``a`` draws once to ``tally`` (``_WEIGHTS``' keys), read without rendering."""
     tally["artists"] += 1
-    n = _vertices(a)
+    n = three_d = _vertices(a)
     if n is not None:
         tally["points"] += n
     elif isinstance(a, Line2D):
@@ -223,6 +349,9 @@ def _artist(a: Artist, tally: dict[str, int]) -> None:
         tally["points"] += len(a.get_path().vertices)
     elif isinstance(a, Text):
         tally["characters"] += len(a.get_text())
+    if isinstance(a, (Line2D, Patch, Collection)) and not isinstance(a, QuadMesh) and three_d is None:
+        tally[_DASHES] += _dashes(a)
+        _hatch(a, tally)
 
 
 def _tally(fig: Figure) -> dict[str, int]:
@@ -236,6 +365,7 @@ def _tally(fig: Figure) -> dict[str, int]:
         one = dict.fromkeys(_WEIGHTS, 0)
         _artist(a, one)
         _under_effects(a, one, effects, tally)
+        tally[_TICKS] += _ticks(a)
     return tally
 
 
@@ -256,8 +386,10 @@ def drawn_pixels(fig: Figure) -> int:
 def figure_units(fig: Figure, key: str) -> int:
     """``FIGURE`` plus each drawn kind's count at its weight (``POINT`` a point, ``PIXEL`` an image pixel,
     ``FIGURE_PIXEL`` a figure image's pixel, ``CELL`` a mesh cell, ``MARKER`` and ``MARKER_VERTEX`` a marker drawn per
-    offset and its vertices, ``ARTIST`` an artist, ``CHARACTER`` a text's character; an artist drawn with path effects
-    once per effect, its markers at ``EFFECT_MARKER`` and its characters at ``EFFECT_CHARACTER`` per effect).
+    offset and its vertices, ``ARTIST`` an artist, ``CHARACTER`` a text's character, ``DASH`` a dash of a dashed stroke,
+    ``TICK`` a tick of a ticked stroke, ``HATCH_VERTEX`` and ``HATCH_LENGTH`` a hatch tile's vertices and stroke; an
+    artist drawn with path effects once per effect, its markers at ``EFFECT_MARKER`` and its characters at
+    ``EFFECT_CHARACTER`` per effect).
 
     Raises
     ------

@@ -586,11 +586,26 @@ def weighted_em_batch(
 #: Units of one EM iteration's Python step (its numpy calls, whatever the sizes): measured 71-87 us an iteration of one
 #: set (Q = 60 to 200 points, 3 to 5 components, d = 1 to 3; time.process_time, OPENBLAS_NUM_THREADS=1, the least of
 #: 3, the machine shared), 103 us of 10 sets, so twice that (fix 72f, fuzz 64b's class: uncounted, the edge of one
-#: set of 200 points and 5 components, 10**6 iterations at tol = 0, would have run ~80 CPU-s; now ~9).
+#: set of 200 points and 5 components, 10**6 iterations at tol = 0, would have run ~80 CPU-s; now ~9). Counted once
+#: an iteration of each block of ``_EM_BLOCK`` sets (the kernel iterates block by block).
 _EM_STEP = 16 * LOOP_STEP
+#: Units of a set's share of an iteration's Python (its log-likelihood appended, its convergence test): an iteration
+#: of a block of 16 sets of 4 points and 4 components measured 214 us (16,000 sets, 11 against 1 iteration; the
+#: shared machine, fix 74b), 54 us beyond ``_EM_STEP``, ~3.4 us a set.
+_EM_SET_ITER = LOOP_STEP // 2
+#: Units of a set's fixed cost outside the iterations (its first k-means++ draw, its ``EmFit`` and validated
+#: ``GaussianMixture``): ~107 us a set measured (weighted_em_batch of 5,000 to 20,000 sets of 4 points, 1 component,
+#: max_iter = 1: 119-120 us a set, less its share of the iteration; fix 74b, fuzz 66b C4: uncounted, 200,000 sets ran
+#: 37.8 CPU-s counted ~9.6e6 units).
+_EM_SET = 15 * LOOP_STEP
+#: Units of a k-means++ step's Python (a ``Generator.choice`` over the set with probabilities and the running
+#: minimum): ~20 us measured (the sets of 4 points above, 4 components against 1: 179 against 119 us a set), plus
+#: ``Q (d + 2)`` units for its vectorised passes over the points (~12 ns a point at d = 1, Q = S = 4,000: 0.43 CPU-s
+#: the whole fit).
+_EM_INIT_STEP = 3 * LOOP_STEP
 
 
-def _em_work(max_iter: int, B: int, Q: int, S: int, d: int) -> None:
+def _em_work(max_iter: int, B: int, Q: int, S: int, d: int) -> int:
     """Rule 17 for EM (fuzz 36a C3): ``max_iter`` iterations of B sets of Q points and S components in d dimensions.
 
     An iteration of a component costs Q (d + K/8 + 2) units, its vectorised steps and the two products with the K
@@ -598,10 +613,16 @@ def _em_work(max_iter: int, B: int, Q: int, S: int, d: int) -> None:
     point, fix 72f: 21 ns a point and component measured at d = 1, 31 ns at d = 4, against 10 and 50 counted before),
     plus ``d**3 / 40`` for the inverse and the Cholesky of its covariance (about 0.25 ns a ``d**3``, d = 250 to 750:
     40 points of 5,000 dimensions, about 150 CPU-s, counted only Q d before), and an iteration's Python step
-    ``_EM_STEP``, refused by name before any work.
+    ``_EM_STEP`` for each block of ``_EM_BLOCK`` sets plus ``_EM_SET_ITER`` a set. Before the iterations, each set
+    costs ``_EM_SET`` and its k-means++ initialisation S - 1 steps of ``_EM_INIT_STEP + Q (d + 2)`` units (counted
+    for every set, an upper bound when some are warm-started: fix 74b, fuzz 66b C3 and C4). Refused by name before
+    any work; returns the units.
     """
     per = Q * (d + _n_features(d) // 8 + 2) + d ** 3 // 40
-    loop_work((max_iter,), B * S * per, "max_iter, x and n_components", step=_EM_STEP)
+    blocks = -(-B // _EM_BLOCK)
+    init = B * (_EM_SET + (S - 1) * (_EM_INIT_STEP + Q * (d + 2)))
+    iterations = max_iter * (blocks * _EM_STEP + B * (_EM_SET_ITER + S * per))
+    return work((init + iterations,), "max_iter, x and n_components")
 
 
 def _wscatter(X: FloatArray, means: FloatArray, g: FloatArray) -> FloatArray:
@@ -854,8 +875,10 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
             continue
         x1, w1, rng = xx[b], ww[b], rngs[b]  # weighted k-means++ initial means
         idx = [int(rng.choice(Q, p=w1))]
-        for _ in range(1, S):
-            d2 = np.min(((x1[:, None, :] - x1[idx][None]) ** 2).sum(-1), axis=1)
+        d2 = None  # the squared distance of each point to its nearest chosen mean, kept running (fuzz 66b C3: the
+        for _ in range(1, S):  # distances to all chosen means were recomputed at each step, O(Q S**2 d) uncounted);
+            new = ((x1 - x1[idx[-1]]) ** 2).sum(-1)  # the same sums, and a minimum is exact: the same draws
+            d2 = new if d2 is None else np.minimum(d2, new, out=d2)
             p = w1 * d2
             idx.append(int(rng.choice(Q, p=p / p.sum())) if p.sum() > 0 else int(rng.integers(Q)))
         means[b] = x1[idx]
