@@ -96,8 +96,8 @@ def test_a_valid_list_of_intervals_within_the_budget_is_glued(monkeypatch) -> No
 
 def test_any_other_atom_of_an_object_array_weighs_its_measured_cost() -> None:
     """An int, str or float of an object array (2.8-5.4 us measured) weighs ``_OBJECT_ANY`` (900 units), a float of
-    a list its list's plain weight (checked at once, 0.12 us), a container held nothing more (charged where it is
-    reached); fuzz 65a C2: 4,900,000 Enum members of an object array ran 43.9 CPU-s accepted."""
+    a list its list's plain weight (checked at once, 0.12 us), a container held its kind's fixed cost (its entries
+    charged where they are reached; fix74c, fuzz 66a C5: a list 2,000 units); fuzz 65a C2: 4,900,000 Enum members of an object array ran 43.9 CPU-s accepted."""
     from fusion.book import glue as G
 
     n = 1_000
@@ -106,5 +106,5 @@ def test_any_other_atom_of_an_object_array_weighs_its_measured_cost() -> None:
         arr[:] = [atom] * n
         assert G._container_work(arr)[1] == n * 900
     assert G._glue_units([0.5] * n) == n * G._GLUE_ENTRY
-    assert G._glue_units([[0.5]] * n) == n * G._GLUE_ENTRY
+    assert G._glue_units([[0.5]] * n) == n * 2_000
     assert G._glue_units([1] * n) == n * 900

@@ -30,6 +30,7 @@ from fusion.book._glue_axes import axis_units, by_type, columns_units, converted
 from fusion.book._glue_axes import keys_values, object_cells, prune_units
 from fusion.book._glue_axes import object_dtype as _object_dtype
 from fusion.book._glue_figure import figure_units
+from fusion.book._glue_meter import GLUE_VISITS, Meter as _Meter
 from fusion._validation import count, read_mapping, text
 from fusion.book.tables import rounded
 from fusion._shown import shown
@@ -314,7 +315,8 @@ def _known_zone(tz: object) -> bool:
     return tz is None or t is datetime.timezone or t.__module__.split(".")[0] in ("zoneinfo", "pytz", "dateutil")
 
 
-def _own_text(v: object, plain: set[type] | None = None, container: bool = False) -> str | None:
+def _own_text(v: object, plain: set[type] | None = None, container: bool = False, meter: _Meter | None = None,
+              key: str = "key") -> str | None:
     """The attribute by which ``v``, an atom whose type is not one of ``_ATOM_TYPES``, would print a text of its own
     (fuzz 52 C5: a float subclass whose ``__repr__`` is ``'nan'`` glued ``nan``), or None. ``container``: ``v`` is
     a container, whose base types are Python's, NumPy's, pandas' and the package's (``_library_class``; fuzz 54a C1:
@@ -326,8 +328,12 @@ def _own_text(v: object, plain: set[type] | None = None, container: bool = False
     ``datetime`` subclass's ``isoformat`` is its ``str``); an attribute that is the atom type's own (the one Enum's
     metaclass copies into a ``(str, Enum)`` class: ``Enum.__repr__``, ``str.__format__``; an Enum's ``_value_repr_``
     None or its mixed-in type's ``__repr__``) is no override. Its instance attributes likewise (IPython finds a
-    ``_repr_html_`` there). ``plain``: the types already found to pass (a cache for one walk), updated."""
+    ``_repr_html_`` there). ``plain``: the types already found to pass (a cache for one call), updated; ``meter``
+    (its ``plain``, and the objects whose instance attributes passed) charged each scan before it is made (fuzz 66a
+    C1, C2: ``GLUE_ATTR`` an attribute), ValueError naming ``values[key]`` beyond the budget."""
     t, inst = type(v), getattr(v, "__dict__", None)
+    plain = meter.plain if meter is not None else plain
+    inst = None if meter is not None and id(v) in meter.scanned else inst   # that object's attributes passed
     if plain is not None and t in plain and (not inst or inst.keys() <= _MEMBER_NAMES):
         return None
     mro = t.__mro__
@@ -336,6 +342,8 @@ def _own_text(v: object, plain: set[type] | None = None, container: bool = False
     member = isinstance(v, enum.Enum)
     own = [] if plain is not None and t in plain else [(c.__dict__, False) for c in mro if not base(c)]
     own += [(inst, True)] * isinstance(inst, dict)
+    if meter is not None:
+        meter.scan(sum(len(attrs) for attrs, _ in own), key)
     for attrs, instance in own:
         for name, attr in list(attrs.items()):
             text_name = (name.startswith(("_repr_", "_ipython_")) or name == "__html__" if instance   # an Enum
@@ -353,6 +361,8 @@ def _own_text(v: object, plain: set[type] | None = None, container: bool = False
             return name
     if plain is not None:
         plain.add(t)
+    if meter is not None and isinstance(inst, dict) and inst:
+        meter.scanned[id(v)] = v
     return None
 
 
@@ -537,7 +547,6 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
     open_pandas = 0                      # how many of them are pandas objects (``_GLUE_PANDAS``)
     tainted: set[int] = set()            # containers whose memo counted an outer open container as [...] (fuzz 48)
     pinned: list[object] = []            # the containers reached, kept alive: no id is reused during the call
-    plain: set[type] = set()             # the types of atoms found to print their atom type's text (fuzz 52 C5)
     while todo:
         v, depth, done, outer = todo.pop()
         if v is _EXIT:                   # every entry of the container ``depth`` (its id) visited
@@ -557,13 +566,13 @@ def _finite(value: object, key: str = "key", meter: _Meter | None = None, counte
                             f"pandas or NumPy array of them, got {type(v).__name__} {shown(v, 60)}{why}"
                             + (f" inside {type(value).__name__}" if v is not value else ""))
         if type(v) not in _ATOM_TYPES and not isinstance(v, _GLUE_CONTAINERS):
-            own = _own_text(v, plain)   # an atom type's subclass printing its own text (fuzz 52 C5)
+            own = _own_text(v, meter=meter, key=key)   # an atom type's subclass printing its own text (fuzz 52 C5)
             if own is not None:
                 raise TypeError(f"values[{shown(key)}] must hold atoms whose text is their type's (a subclass of an "
                                 f"atom type must not define {own}), got {type(v).__name__} {shown(v, 60)}"
                                 + (f" inside {type(value).__name__}" if v is not value else ""))
         if isinstance(v, _GLUE_CONTAINERS) and type(v) not in _PLAIN_CONTAINERS:
-            own = _own_text(v, plain, container=True)   # a container subclass printing its own text (fuzz 54a C1)
+            own = _own_text(v, container=True, meter=meter, key=key)   # a container subclass's own text (fuzz 54a C1)
             if own is not None:   # its type's name only: its text is not to be trusted (nor its size)
                 raise TypeError(f"values[{shown(key)}] must hold containers whose text is their type's (a subclass of "
                                 f"a list, tuple, set, mapping, NumPy array, Series, Index, table or pandas array must "
@@ -702,7 +711,7 @@ _GLUE_OBJECT, _GLUE_NESTED = 200, 400
 #: 0.002 CPU-s; time.process_time, OPENBLAS_NUM_THREADS=1, machine shared). The plain floats of a list, tuple, set
 #: or mapping are checked where it is reached, not walked (a list of 400,000 and a dict of 400,000: 0.03 CPU-s, 1.0
 #: walked one by one), so the weights above stay upper bounds.
-_GLUE_VISITS = 10**6
+_GLUE_VISITS = GLUE_VISITS
 #: The containers whose own entries ``_glue_work`` counts when a value is one (a dict, not any mapping).
 _GLUE_COUNTED = (list, tuple, set, frozenset, dict, pd.Series, pd.Index, ExtensionArray, np.ndarray)
 
@@ -829,31 +838,6 @@ def _numeric_units(v: object) -> int:
     return n * _GLUE_NUMBER
 
 
-class _Meter:
-    """What :func:`_finite` may still visit in one call: ``units`` of the work budget (``fusion._limits.MAX_WORK``
-    by default) and ``entries`` (``_GLUE_VISITS``)."""
-
-    def __init__(self, units: int = MAX_WORK) -> None:
-        self.units, self.entries = units, _GLUE_VISITS
-
-    def charge(self, n: int, weight: int, key: str) -> None:
-        """Take ``n`` entries of ``weight`` units each; ValueError naming ``values[key]`` beyond either allowance."""
-        self.take(n, n * weight, key)
-
-    def take(self, n: int, units: int, key: str) -> None:
-        """Take ``n`` entries of ``units`` units in all (a container reached again: its printed entries, fuzz 47
-        C3); ValueError naming ``values[key]`` beyond either allowance."""
-        if n == 0 and units == 0:
-            return
-        self.units -= units
-        self.entries -= n
-        if self.units < 0 or self.entries < 0:
-            raise ValueError(f"values[{shown(key)}] ask for more work than the work budget allows (fusion."
-                             f"_validation.MAX_WORK, about 10 CPU-s): a container inside it (or with the values "
-                             f"before it) prints {n:,} more entries ({units:,} units) than remain of the budget or "
-                             f"of the {_GLUE_VISITS:,} entries printed inside containers in one call")
-
-
 def _glue_work(value: object, key: str = "") -> int:
     """The units of work of gluing ``value`` (``_GLUE_VALUE`` and the weights beside it), beyond ``_GLUE_VALUE``:
     a container by its own entries (``_container_work``, a list's at ``_GLUE_ENTRY``) and its numeric entries by
@@ -955,7 +939,8 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         decimal digits than the limit in Notes (IPython would glue nothing; told by its bit length, before any
         conversion: with the limit lifted, 10**6 digits took 11 CPU-s to print), wherever an int is, naming
         ``values[key]``. More values (weighed by kind: tables by their cells, lists by their entries, a dict by its
-        keys and values, object and extension arrays, object Series and Index by their size, figures) than the work
+        keys and values, object and extension arrays, object Series and Index by their size, a container they
+        hold by its kind, figures) than the work
         budget glues, naming ``values``, before any is read (a numeric entry 1 unit, by its logical size: a
         ``RangeIndex``, a broadcast view, a categorical's categories); a numeric array, Series, Index, pandas array,
         table or categorical whose values, labels or categories hold more than 2**25 entries (the input budget,
