@@ -303,10 +303,12 @@ def test_solid_and_default_dashed_lines_count_no_more_than_their_dashes() -> Non
     """A solid line counts no dash; a default '--' line of 10 points its length over its period (lines.dashed_pattern,
     3.7 + 1.6 points, x its width 1.5)."""
     from fusion.book import _glue_figure as F
-    fig, ax = _axes()
-    before = F._tally(fig)[F._DASHES]                   # the axes' own lines (grid styles vary with rcParams)
-    ax.plot([0, 1], [0, 1])
-    assert F._tally(fig)[F._DASHES] == before
-    ax.plot(np.linspace(0, 1, 10), np.linspace(0, 1, 10), "--")
-    assert F._tally(fig)[F._DASHES] - before == int(_diagonal_points(ax) / (sum(plt.rcParams["lines.dashed_pattern"]) * 1.5)) + 1
+    # matplotlib's defaults, whatever style an earlier test of the worker left (a fresh clone's make test: 60 != 56)
+    with plt.rc_context({"lines.linewidth": 1.5, "lines.dashed_pattern": [3.7, 1.6], "lines.scale_dashes": True}):
+        fig, ax = _axes()
+        before = F._tally(fig)[F._DASHES]                   # the axes' own lines (grid styles vary with rcParams)
+        ax.plot([0, 1], [0, 1])
+        assert F._tally(fig)[F._DASHES] == before
+        ax.plot(np.linspace(0, 1, 10), np.linspace(0, 1, 10), "--")
+        assert F._tally(fig)[F._DASHES] - before == int(_diagonal_points(ax) / ((3.7 + 1.6) * 1.5)) + 1
     plt.close(fig)

@@ -4,8 +4,6 @@ characters), and once per path effect it is drawn with (fuzz 65a C4)."""
 
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 from matplotlib.artist import Artist
 from matplotlib.collections import Collection, QuadMesh
@@ -18,6 +16,7 @@ from matplotlib.text import Text
 
 from fusion._limits import MAX_WORK
 from fusion._shown import shown
+from fusion.book.study_cache import process_cache
 
 __all__: list[str] = []
 
@@ -272,7 +271,7 @@ def _dash_periods(a: Artist) -> list[float]:
     return periods
 
 
-@functools.lru_cache(maxsize=256)
+@process_cache(maxsize=256)
 def _hatch_tile(hatch: str) -> tuple[int, int]:
     """The vertices of the hatch path Agg rasterises for ``hatch`` (``Path.hatch`` at the default density 6), and its
     stroke length in unit tiles (rounded up)."""
