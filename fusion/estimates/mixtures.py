@@ -605,6 +605,26 @@ _EM_SET = 15 * LOOP_STEP
 _EM_INIT_STEP = 3 * LOOP_STEP
 
 
+#: Units of one step of the quadratic features' Python loop (:func:`_features`, one ``np.multiply`` a feature and block):
+#: 0.9-1.9 us measured (blocks of 1 and 16 sets of 2 points, d = 100 and 300; fix 75a, the machine shared), so 2.5 us.
+_FEATURE_STEP = LOOP_STEP // 4
+#: Units of a feature's entry (a set, a feature, a point) built by :func:`_features`: 1.6-2.6 ns measured while the
+#: block fits the caches, 25 ns at 1.4e8 entries (1 set of 1,100 points, d = 500: 3.5 CPU-s; fix 75a, fuzz 67b C2:
+#: uncounted, d = 1,000 ran 15.8 CPU-s counted 9.5e7 units), so twice the latter.
+_FEATURE_ENTRY = 5
+#: Units of a set's costs growing with d beyond those of an iteration: ``_SET_D2 d**2 + d**3 / 40`` (its validated
+#: ``GaussianMixture``'s eigvalsh, its weighted scatter, the regularisation and copies of its (d, d) matrices):
+#: measured beyond the rest of the count at max_iter = 1, 2 points and 1 component, 115 us a set at d = 25, 1.1 ms
+#: at d = 100, 3.2 ms at d = 200, 14 ms at d = 400 (fix 75a, fuzz 67b C3: uncounted, 20,000 sets at d = 100 ran
+#: 48.8 CPU-s counted 8.6e8 units); counted 0.1, 1.75, 8 and 40 ms.
+_SET_D2 = 15
+
+
+def _em_block(B: int) -> int:
+    """Sets in a block of the kernel (:func:`_em_arrays`): at most ``_EM_BLOCK``, blocks of equal sizes (within one)."""
+    return -(-B // -(-B // _EM_BLOCK))
+
+
 def _em_work(max_iter: int, B: int, Q: int, S: int, d: int) -> int:
     """Rule 17 for EM (fuzz 36a C3): ``max_iter`` iterations of B sets of Q points and S components in d dimensions.
 
@@ -615,12 +635,23 @@ def _em_work(max_iter: int, B: int, Q: int, S: int, d: int) -> int:
     40 points of 5,000 dimensions, about 150 CPU-s, counted only Q d before), and an iteration's Python step
     ``_EM_STEP`` for each block of ``_EM_BLOCK`` sets plus ``_EM_SET_ITER`` a set. Before the iterations, each set
     costs ``_EM_SET`` and its k-means++ initialisation S - 1 steps of ``_EM_INIT_STEP + Q (d + 2)`` units (counted
-    for every set, an upper bound when some are warm-started: fix 74b, fuzz 66b C3 and C4). Refused by name before
-    any work; returns the units.
+    for every set, an upper bound when some are warm-started: fix 74b, fuzz 66b C3 and C4), plus
+    ``_SET_D2 d**2 + d**3 / 40`` for its (d, d) matrices; each block builds its K features of its points,
+    ``_FEATURE_STEP`` a feature and ``_FEATURE_ENTRY`` a set, feature and point (fix 75a, fuzz 67b C2 and C3).
+
+    The memory budget (``allocation``) holds a block's features, ``(b, K, Q)`` (b sets of the block), and the (d, d)
+    matrices of all sets: 2 S + 2 of ``(B, d, d)`` (the fitted and returned covariances, the weighted scatter of each
+    set and its regularisation; counted from the kernel: fix 75a, fuzz 67b C1, a block's (16, 501501, 100) features,
+    6 GiB, raised a raw ``MemoryError``). Refused by name before any work; returns the units.
     """
-    per = Q * (d + _n_features(d) // 8 + 2) + d ** 3 // 40
-    blocks = -(-B // _EM_BLOCK)
-    init = B * (_EM_SET + (S - 1) * (_EM_INIT_STEP + Q * (d + 2)))
+    K = _n_features(d)
+    nb = _em_block(B)
+    allocation((nb, K, Q), "x (its points and dimension: the quadratic features of a block of sets)")
+    allocation((B, d, d), "x (its sets and dimension) and n_components", arrays=2 * S + 2)
+    per = Q * (d + K // 8 + 2) + d ** 3 // 40
+    blocks = -(-B // nb)
+    features = blocks * K * _FEATURE_STEP + B * K * Q * _FEATURE_ENTRY
+    init = B * (_EM_SET + _SET_D2 * d ** 2 + d ** 3 // 40 + (S - 1) * (_EM_INIT_STEP + Q * (d + 2))) + features
     iterations = max_iter * (blocks * _EM_STEP + B * (_EM_SET_ITER + S * per))
     return work((init + iterations,), "max_iter, x and n_components")
 
@@ -885,7 +916,7 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
         covs[b] = cov_all[b] / S + reg[b]
         pis[b] = 1.0 / S
     history: list[list[float]] = [[] for _ in range(B)]
-    nb = -(-B // -(-B // _EM_BLOCK))  # blocks of at most _EM_BLOCK problems, of equal sizes (within one)
+    nb = _em_block(B)  # blocks of at most _EM_BLOCK problems, of equal sizes (within one)
     # work buffers of one block, reused at every iteration (no fresh temporaries)
     gam_buf, m_buf, tot_buf, t_buf = np.empty((nb, S, Q)), np.empty((nb, Q)), np.empty((nb, Q)), np.empty((nb, Q))
     for j0 in range(0, B, nb):  # block by block, each to its end: its features stay in cache across iterations
