@@ -605,7 +605,7 @@ _EM_SET = 15 * LOOP_STEP
 _EM_INIT_STEP = 3 * LOOP_STEP
 
 
-#: Units of one step of the quadratic features' Python loop (:func:`_features`, one ``np.multiply`` a feature and block):
+#: Units of one step of the quadratic features' Python loop (``_features``, one ``np.multiply`` a feature and block):
 #: 0.9-1.9 us measured (blocks of 1 and 16 sets of 2 points, d = 100 and 300; fix 75a, the machine shared), so 2.5 us.
 _FEATURE_STEP = LOOP_STEP // 4
 #: Units of a feature's entry (a set, a feature, a point) built by :func:`_features`: 1.6-2.6 ns measured while the
@@ -621,7 +621,7 @@ _SET_D2 = 15
 
 
 def _em_block(B: int) -> int:
-    """Sets in a block of the kernel (:func:`_em_arrays`): at most ``_EM_BLOCK``, blocks of equal sizes (within one)."""
+    """Sets in a block of the kernel (``_em_arrays``): at most ``_EM_BLOCK``, blocks of equal sizes (within one)."""
     return -(-B // -(-B // _EM_BLOCK))
 
 
