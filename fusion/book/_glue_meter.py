@@ -3,6 +3,9 @@ already found (the types and objects whose attributes were scanned for a text of
 
 from __future__ import annotations
 
+import collections.abc
+import types
+
 from fusion._limits import MAX_WORK
 from fusion._shown import shown
 
@@ -59,3 +62,22 @@ class Meter:
                              f"text of its own scans {attrs:,} attributes ({attrs * GLUE_ATTR:,} units), more than "
                              f"remain of the budget")
         self.units -= attrs * GLUE_ATTR
+
+
+def stored_len(attrs: object) -> int:
+    """The attributes ``attrs`` (a class's ``__dict__``, an instance's, or None) stores: a dict subclass's by dict's
+    own ``len`` (an instance's ``__dict__`` may be one whose ``len`` and ``items`` are its own, fuzz 67a C1: 10**5
+    attributes billed as 0 and walked, 34.4 CPU-s accepted), 0 for anything but a dict or a class's mapping."""
+    if isinstance(attrs, dict):
+        return dict.__len__(attrs)
+    return len(attrs) if isinstance(attrs, types.MappingProxyType) else 0
+
+
+def stored_keys(attrs: object) -> collections.abc.Set:
+    """The names ``attrs`` stores (``stored_len``'s rule: a dict subclass's by dict's own ``keys``)."""
+    return dict.keys(attrs) if isinstance(attrs, dict) else attrs.keys() if stored_len(attrs) else frozenset()
+
+
+def stored_items(attrs: object) -> list[tuple[object, object]]:
+    """The attributes ``attrs`` stores, as a list (``stored_len``'s rule: a dict subclass's by dict's own ``items``)."""
+    return list(dict.items(attrs) if isinstance(attrs, dict) else attrs.items())

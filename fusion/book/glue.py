@@ -30,7 +30,7 @@ from fusion.book._glue_axes import axis_units, by_type, columns_units, converted
 from fusion.book._glue_axes import keys_values, object_cells, prune_units
 from fusion.book._glue_axes import object_dtype as _object_dtype
 from fusion.book._glue_figure import figure_units
-from fusion.book._glue_meter import GLUE_VISITS, Meter as _Meter
+from fusion.book._glue_meter import GLUE_VISITS, Meter as _Meter, stored_items, stored_keys, stored_len
 from fusion._validation import count, read_mapping, text
 from fusion.book.tables import rounded
 from fusion._shown import shown
@@ -334,7 +334,7 @@ def _own_text(v: object, plain: set[type] | None = None, container: bool = False
     t, inst = type(v), getattr(v, "__dict__", None)
     plain = meter.plain if meter is not None else plain
     inst = None if meter is not None and id(v) in meter.scanned else inst   # that object's attributes passed
-    if plain is not None and t in plain and (not inst or inst.keys() <= _MEMBER_NAMES):
+    if plain is not None and t in plain and (not stored_len(inst) or stored_keys(inst) <= _MEMBER_NAMES):
         return None
     mro = t.__mro__
     base = _library_class if container else _ATOM_BASES.__contains__
@@ -343,11 +343,13 @@ def _own_text(v: object, plain: set[type] | None = None, container: bool = False
     own = [] if plain is not None and t in plain else [(c.__dict__, False) for c in mro if not base(c)]
     own += [(inst, True)] * isinstance(inst, dict)
     if meter is not None:
-        meter.scan(sum(len(attrs) for attrs, _ in own), key)
+        meter.scan(sum(stored_len(attrs) for attrs, _ in own), key)
     for attrs, instance in own:
-        for name, attr in list(attrs.items()):
+        for name, attr in stored_items(attrs):
             text_name = (name.startswith(("_repr_", "_ipython_")) or name == "__html__" if instance   # an Enum
                          else name in _TEXT_NAMES or name.startswith(("_repr_", "_ipython_")))         # member's _name_
+            if name == "__dict__" and not instance and not isinstance(attr, types.GetSetDescriptorType):
+                return name   # a class's own ``__dict__`` hides the instance's attributes IPython reads
             if name in _CLASS_NAMES or not (text_name or (not member and any(name in b.__dict__ for b in bases)
                                                            and not (container and instance and name[:1] == "_"
                                                                     and not callable(attr)))):
@@ -361,7 +363,7 @@ def _own_text(v: object, plain: set[type] | None = None, container: bool = False
             return name
     if plain is not None:
         plain.add(t)
-    if meter is not None and isinstance(inst, dict) and inst:
+    if meter is not None and stored_len(inst):
         meter.scanned[id(v)] = v
     return None
 

@@ -1,0 +1,59 @@
+"""Fuzz 67a C1 (an instance's ``__dict__`` a dict subclass lying about its size) and a class's own ``__dict__``
+hiding an instance's attributes: ``glue_all`` reads what the dict stores, by dict's own methods."""
+
+from __future__ import annotations
+
+import pytest
+
+from _helpers import glued, refused_quickly
+
+
+class _Lying(dict):
+    """A dict that says it is empty."""
+
+    def __len__(self) -> int:
+        return 0
+
+    def __bool__(self) -> bool:
+        return False
+
+
+class _Int(int):
+    pass
+
+
+def _with_dict(value: int, attrs: dict) -> _Int:
+    out = _Int(value)
+    out.__dict__ = _Lying(attrs)
+    return out
+
+
+def test_c1_a_lying_instance_dict_is_scanned_for_a_text_of_its_own(monkeypatch: pytest.MonkeyPatch) -> None:
+    plain = _Int(1)   # its type found plain first: the second value's attributes must still be read
+    hidden = _with_dict(2, {"_repr_html_": lambda: "nan"})
+    with pytest.raises(TypeError, match=r"values\['k'\].*_repr_html_"):
+        glued(monkeypatch, {"k": [hidden, plain]})   # walked last first
+
+
+def test_c1_a_lying_instance_dict_is_charged_by_what_it_stores(monkeypatch: pytest.MonkeyPatch) -> None:
+    import fusion.book._glue_meter as meter
+
+    big = _with_dict(3, {f"a{i}": i for i in range(10**4)})
+    monkeypatch.setattr(meter, "GLUE_ATTR", 10**6)   # 10**4 attributes at 10**6 units: beyond the budget
+    refused_quickly(lambda: glued(monkeypatch, {"k": big}), ValueError, r"values\['k'\].*scans 10,0\d\d attributes")
+
+
+def test_c1_an_honest_instance_dict_is_still_accepted(monkeypatch: pytest.MonkeyPatch) -> None:
+    v = _Int(4)
+    v.note = "plain data"
+    assert glued(monkeypatch, {"k": [v, _with_dict(5, {"x": 1})]})["k"] is not None
+
+
+def test_a_class_defining_its_own_dict_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
+    class Hiding(int):
+        __dict__ = property(lambda self: {})   # type: ignore[assignment]
+
+    v = Hiding(3)
+    object.__setattr__(v, "_repr_html_", lambda: "nan")   # stored in the real instance dict, read by IPython
+    with pytest.raises(TypeError, match=r"values\['k'\].*__dict__"):
+        glued(monkeypatch, {"k": v})
