@@ -3,6 +3,7 @@ hiding an instance's attributes: ``glue_all`` reads what the dict stores, by dic
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from _helpers import glued, refused_quickly
@@ -57,3 +58,25 @@ def test_a_class_defining_its_own_dict_is_refused(monkeypatch: pytest.MonkeyPatc
     object.__setattr__(v, "_repr_html_", lambda: "nan")   # stored in the real instance dict, read by IPython
     with pytest.raises(TypeError, match=r"values\['k'\].*__dict__"):
         glued(monkeypatch, {"k": v})
+
+
+def _fields(n: int) -> np.dtype:
+    return np.dtype([(f"f{i}", "f8") for i in range(n)])
+
+
+def test_c3_structured_arrays_held_by_a_list_are_weighed_by_their_fields(monkeypatch: pytest.MonkeyPatch) -> None:
+    held = [np.zeros(1, dtype=_fields(2_000)) for _ in range(400)]   # 8e5 fields at 2,500 units: 2e9
+    refused_quickly(lambda: glued(monkeypatch, {"k": held}), ValueError, r"values\['k'\]")
+
+
+def test_c3_nested_fields_count_each_time_they_occur() -> None:
+    from fusion.book._glue_axes import _GLUE_FIELD, field_units
+
+    inner = _fields(10)
+    outer = np.dtype([("a", inner), ("b", inner, (3,)), ("c", "f8")])
+    assert field_units(outer) == (3 + 2 * 10) * _GLUE_FIELD   # its 3 fields, then a's and b's 10 each
+    assert field_units(np.dtype("f8")) == 0
+
+
+def test_c3_a_few_structured_arrays_are_still_glued(monkeypatch: pytest.MonkeyPatch) -> None:
+    assert glued(monkeypatch, {"k": [np.zeros(3, dtype=_fields(20)) for _ in range(20)]})["k"] is not None

@@ -27,7 +27,7 @@ from pandas.io.formats.style import Styler
 
 from fusion._limits import MAX_WORK, work
 from fusion.book._glue_axes import axis_units, by_type, columns_units, converted_label_sizes, entries_units, label_sizes
-from fusion.book._glue_axes import keys_values, object_cells, prune_units
+from fusion.book._glue_axes import field_units, keys_values, object_cells, prune_units
 from fusion.book._glue_axes import object_dtype as _object_dtype
 from fusion.book._glue_figure import figure_units
 from fusion.book._glue_meter import GLUE_VISITS, Meter as _Meter, stored_items, stored_keys, stored_len
@@ -737,9 +737,9 @@ def _container_work(v: object) -> tuple[int, int]:
         return 2 * len(v), by_type(2 * len(v) * _GLUE_NESTED, lambda: keys_values(v), _GLUE_NESTED, True)
     if isinstance(v, ExtensionArray):
         return len(v), entries_units(v.dtype, len(v), lambda: np.asarray(v, dtype=object).ravel(), _GLUE_OBJECT)
-    if isinstance(v, np.ndarray):
+    if isinstance(v, np.ndarray):   # a structured one's fields each read (fuzz 67a C3)
         n = int(v.size) * max(1, v.dtype.itemsize // 8) if v.dtype.hasobject else 0
-        return n, entries_units(v.dtype, n, lambda: v.flat, _GLUE_OBJECT)
+        return n, entries_units(v.dtype, n, lambda: v.flat, _GLUE_OBJECT) + field_units(v.dtype)
     return len(v), by_type(len(v) * _GLUE_NESTED, lambda: v, _GLUE_NESTED, True)  # type: ignore[arg-type]
 
 
