@@ -1,6 +1,7 @@
 """The units of gluing a figure by what it draws (fuzz 63a C3, 64a C1-C6), for :mod:`fusion.book.glue`: every visible
 artist, walked without rendering, weighed by its kind (points, image pixels, mesh cells, markers drawn per offset,
-characters), and once per path effect it is drawn with (fuzz 65a C4)."""
+characters, dashes: a filled or hatched path's unclipped, fuzz 67a C2), and once per path effect it is drawn with
+(fuzz 65a C4), with that effect's own dashes and hatch (fuzz 67a C4)."""
 
 from __future__ import annotations
 
@@ -91,7 +92,11 @@ MARKER_AREA = 10
 #: Measured (glue_all of one two-point diagonal line, 405 points long, of dashes (d, d) at width 1.5, every weight off,
 #: process_time, OPENBLAS_NUM_THREADS=1, minimum of 2, machine shared; an undashed line 0.03 CPU-s): d=1e-4 1.35e6
 #: dashes 0.39 CPU-s, 3e-5 4.5e6 1.36, 1e-5 1.35e7 4.19 (0.30-0.31 us a dash); weighed twice, 0.6 us: the
-#: edge, one line of dashes (8.6e-6, 8.6e-6) counted 9.5e8 units, glued in 5.6 CPU-s (as above).
+#: edge, one line of dashes (8.6e-6, 8.6e-6) counted 9.5e8 units, glued in 5.6 CPU-s (as above). A filled or hatched
+#: path is dashed unclipped (fuzz 67a C2: a filled Rectangle of 1e6 axes widths dashed (1e-3, 1e-3) ran 44.4 CPU-s):
+#: a filled Rectangle of 1e3 axes widths, width 1, dashes (d, d) (as above): d=0.5 1.25e6 dashes 0.20 CPU-s, 0.15
+#: 4.15e6 0.56 (0.14-0.16 us a dash), a filled scatter of two markers of s=1e8 0.2-0.33 us; the edge, d=0.04 1.56e7
+#: dashes (9.43e8 units), glued in 2.8 CPU-s.
 DASH = 60
 #: Units of one tick of a ticked stroke (``patheffects.TickedStroke`` / ``withTickedStroke``, fuzz 66a C3: one tick
 #: every ``spacing`` points of the drawn path, unclipped; 16 two-point lines of spacing 1e-4 ran 33.3 CPU-s). Measured
@@ -106,6 +111,7 @@ TICK = 150
 #: the same pixel pattern as the line's own dashes 3.92 CPU-s against 2.02 (0.79 against 0.41 us): twice a dash of
 #: ``DASH``; weighed 2.2 us. At d=1e-5 Agg refused the stroke ("Exceeded cell block limit"). A ``pe.PathPatchEffect``'s
 #: patch's dashes measured 0.30-0.47 us (2.2e6-7.4e6 dashes) and a line's own under ``pe.Normal()`` 0.47: ``DASH``.
+#: The edge, one such line of d=5.1e-5 (4.4e6 dashes, 9.68e8 units), glued in 4.5 CPU-s.
 EFFECT_DASH = 220
 
 #: Units of a hatch tile's vertex and of its stroke's length (a unit tile's side): Agg rasterises a patch's hatch path
