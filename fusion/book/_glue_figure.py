@@ -1,6 +1,7 @@
 """The units of gluing a figure by what it draws (fuzz 63a C3, 64a C1-C6), for :mod:`fusion.book.glue`: every visible
 artist, walked without rendering, weighed by its kind (points, image pixels, mesh cells, markers drawn per offset,
-characters), and once per path effect it is drawn with (fuzz 65a C4)."""
+characters, dashes: a filled or hatched path's unclipped, fuzz 67a C2), and once per path effect it is drawn with
+(fuzz 65a C4), with that effect's own dashes and hatch (fuzz 67a C4)."""
 
 from __future__ import annotations
 
@@ -91,7 +92,11 @@ MARKER_AREA = 10
 #: Measured (glue_all of one two-point diagonal line, 405 points long, of dashes (d, d) at width 1.5, every weight off,
 #: process_time, OPENBLAS_NUM_THREADS=1, minimum of 2, machine shared; an undashed line 0.03 CPU-s): d=1e-4 1.35e6
 #: dashes 0.39 CPU-s, 3e-5 4.5e6 1.36, 1e-5 1.35e7 4.19 (0.30-0.31 us a dash); weighed twice, 0.6 us: the
-#: edge, one line of dashes (8.6e-6, 8.6e-6) counted 9.5e8 units, glued in 5.6 CPU-s (as above).
+#: edge, one line of dashes (8.6e-6, 8.6e-6) counted 9.5e8 units, glued in 5.6 CPU-s (as above). A filled or hatched
+#: path is dashed unclipped (fuzz 67a C2: a filled Rectangle of 1e6 axes widths dashed (1e-3, 1e-3) ran 44.4 CPU-s):
+#: a filled Rectangle of 1e3 axes widths, width 1, dashes (d, d) (as above): d=0.5 1.25e6 dashes 0.20 CPU-s, 0.15
+#: 4.15e6 0.56 (0.14-0.16 us a dash), a filled scatter of two markers of s=1e8 0.2-0.33 us; the edge, d=0.04 1.56e7
+#: dashes (9.43e8 units), glued in 2.8 CPU-s.
 DASH = 60
 #: Units of one tick of a ticked stroke (``patheffects.TickedStroke`` / ``withTickedStroke``, fuzz 66a C3: one tick
 #: every ``spacing`` points of the drawn path, unclipped; 16 two-point lines of spacing 1e-4 ran 33.3 CPU-s). Measured
@@ -99,6 +104,15 @@ DASH = 60
 #: 1.35e6 0.92, 1e-4 4.05e6 2.93 (0.68-0.72 us a tick); weighed about twice, 1.5 us: the edge, one
 #: line of spacing 6.2e-5 counted 9.88e8 units, glued in 7.0 CPU-s.
 TICK = 150
+#: Units of one dash of a path effect's own dash pattern (its ``dashes`` gc keyword: ``pe.Stroke``,
+#: ``pe.withStroke``, ``pe.SimpleLineShadow``, ``pe.TickedStroke``, fuzz 67a C4: 34.0 CPU-s accepted, the pattern
+#: not read). Measured (as ``DASH``, one two-point diagonal line of width 1.5 under ``pe.Stroke(dashes={"dash_offset":
+#: 0, "dash_list": [d, d]})``): d=1e-3 2.2e5 dashes 0.24 CPU-s, 1e-4 2.2e6 1.97, 3e-5 7.4e6 8.3 (0.9-1.1 us a dash);
+#: the same pixel pattern as the line's own dashes 3.92 CPU-s against 2.02 (0.79 against 0.41 us): twice a dash of
+#: ``DASH``; weighed 2.2 us. At d=1e-5 Agg refused the stroke ("Exceeded cell block limit"). A ``pe.PathPatchEffect``'s
+#: patch's dashes measured 0.30-0.47 us (2.2e6-7.4e6 dashes) and a line's own under ``pe.Normal()`` 0.47: ``DASH``.
+#: The edge, one such line of d=5.1e-5 (4.4e6 dashes, 9.68e8 units), glued in 4.5 CPU-s.
+EFFECT_DASH = 220
 
 #: Units of a hatch tile's vertex and of its stroke's length (a unit tile's side): Agg rasterises a patch's hatch path
 #: into a tile each time it draws it (each patch, each path of a hatched collection), whatever the patch's area.
@@ -117,11 +131,12 @@ _FIGURE_PIXELS, _EFFECT_MARKERS = "figure image pixels", "markers drawn per path
 _EFFECT_CHARACTERS = "characters drawn per path effect"
 _MARKER_AREA = "hundreds of marker box pixels"
 _DASHES, _TICKS = "dashes", "ticks of ticked strokes"
+_EFFECT_DASHES = "dashes of path effects' own patterns"
 _HATCH_VERTICES, _HATCH_LENGTH = "hatch tile vertices", "hatch tile stroke lengths"
 _WEIGHTS = {"points": POINT, _PIXELS: PIXEL, _FIGURE_PIXELS: FIGURE_PIXEL, _CELLS: CELL, "markers": MARKER,
             _MARKER_VERTICES: MARKER_VERTEX, "artists": ARTIST, "characters": CHARACTER, _EFFECT_MARKERS: EFFECT_MARKER,
             _EFFECT_CHARACTERS: EFFECT_CHARACTER, _MARKER_AREA: MARKER_AREA, _DASHES: DASH,
-            _TICKS: TICK, _HATCH_VERTICES: HATCH_VERTEX, _HATCH_LENGTH: HATCH_LENGTH}
+            _TICKS: TICK, _EFFECT_DASHES: EFFECT_DASH, _HATCH_VERTICES: HATCH_VERTEX, _HATCH_LENGTH: HATCH_LENGTH}
 
 
 def _size(*arrays: object) -> int:
@@ -257,6 +272,54 @@ def _paths_points(a: Artist, clipped: bool) -> tuple[float, int]:
     return length * scale, len(paths)
 
 
+def _steps(xy: np.ndarray, nonfinite: float) -> np.ndarray:
+    """The lengths of the segments between the rows of ``xy``; ``nonfinite`` for one with a non-finite end (Agg's NaN
+    remover drops it: 0 when drawn), infinite for finite ends too far apart to measure."""
+    if len(xy) < 2:
+        return np.zeros(0)
+    ends = np.isfinite(xy).all(axis=1)
+    with np.errstate(all="ignore"):
+        steps = np.hypot(*np.diff(xy, axis=0).T)
+    return np.where(ends[1:] & ends[:-1], np.where(np.isfinite(steps), steps, np.inf), nonfinite)
+
+
+def _unclipped_points(a: Artist, nonfinite: float) -> tuple[float, int]:
+    """The length in points of the paths ``a`` draws, unclipped (a filled or hatched stroke, a path effect's ticks),
+    and the paths drawn: a line's or patch's path through its transform; a collection's paths each through its
+    transform's non-affine part (as ``Collection.draw``), then at most the largest per-path transform's and the
+    affine part's spectral norms, each path drawn once an offset (paths cycling), read without rendering (a Bezier's
+    control polygon an upper bound of its curve; a segment with a non-finite end ``nonfinite``)."""
+    fig = a.get_figure(root=True)
+    if fig is None:
+        return 0.0, 0
+    scale = 72.0 / float(fig.dpi)
+    transform = a.get_transform()
+    if not isinstance(a, Collection):
+        try:
+            xy = np.asarray(transform.transform_path(a.get_path()).vertices, dtype=float)
+        except (TypeError, ValueError):          # not transformable as given: not drawable, an infinite length
+            return float("inf"), 1
+        return float(_steps(xy, nonfinite).sum()) * scale, 1
+    paths = a.get_paths()
+    if not paths:
+        return 0.0, 0
+    try:
+        if not transform.is_affine:
+            paths = [transform.transform_path_non_affine(p) for p in paths]
+        affine = np.asarray(transform.get_affine().get_matrix(), dtype=float)[:2, :2]
+        per_path = np.asarray(a.get_transforms(), dtype=float).reshape(-1, 3, 3)[:, :2, :2]
+        norm = float(np.linalg.svd(affine, compute_uv=False).max())
+        if len(per_path):
+            norm *= float(np.linalg.svd(per_path, compute_uv=False).max())
+        lengths = [float(_steps(np.asarray(p.vertices, dtype=float), nonfinite).sum()) for p in paths]
+    except (TypeError, ValueError, np.linalg.LinAlgError):   # not drawable as given: an infinite length
+        return float("inf"), len(paths)
+    draws = max(len(a.get_offsets()), len(paths))
+    with np.errstate(all="ignore"):
+        length = -(-draws // len(paths)) * float(np.sum(lengths)) * norm * scale
+    return (float("inf") if np.isnan(length) else length), draws
+
+
 def _dash_periods(a: Artist) -> list[float]:
     """The periods in points of the dash patterns ``a`` strokes with (scaled by its line width as matplotlib does),
     none if it is solid or draws no edge."""
@@ -293,18 +356,103 @@ def _hatch(a: Artist, tally: dict[str, int]) -> None:
     tally[_HATCH_LENGTH] += tiles * length
 
 
-def _dashes(a: Artist) -> int:
-    """The dashes ``a`` strokes: its drawn path's length over its shortest dash period (twice with a gap colour)."""
-    periods = _dash_periods(a)
+def _filled(a: Artist) -> bool:
+    """Whether Agg draws ``a`` (a patch or collection) filled or hatched, and so strokes it unclipped (Agg clips a
+    stroke to the figure only when the path is neither, src/_backend_agg.h, fuzz 67a C2): a patch whose face is
+    not transparent or that is hatched (its ``rgbFace`` is None otherwise), a collection with any face colour or a
+    hatch."""
+    if isinstance(a, Collection):
+        return len(a.get_facecolor()) > 0 or bool(a.get_hatch())
+    if isinstance(a, Patch):
+        return bool(a.get_facecolor()[3]) or bool(a.get_hatch())
+    return False
+
+
+def _dash_count(a: Artist, periods: list[float], unclipped: bool, gaps: int = 1) -> int:
+    """The dashes of ``periods`` (points) along ``a``'s drawn path: its length over the shortest period, plus one a
+    path, ``gaps`` times (twice with a gap colour); the length clipped to the figure unless ``unclipped``."""
     if not periods:
         return 0
-    length, paths = _paths_points(a, clipped=True)
+    length, paths = _unclipped_points(a, 0.0) if unclipped else _paths_points(a, clipped=True)
     period = min(periods)
     count = length / period if period > 0 and np.isfinite(period) else float("inf")
     if not np.isfinite(count):
         return 2 * MAX_WORK
-    gaps = 2 if getattr(a, "_gapcolor", None) is not None else 1
     return gaps * (int(count) + paths)
+
+
+def _dashes(a: Artist) -> int:
+    """The dashes ``a`` strokes: its drawn path's length over its shortest dash period (twice with a gap colour),
+    the whole length when it is filled or hatched (``_filled``)."""
+    gaps = 2 if getattr(a, "_gapcolor", None) is not None else 1
+    return _dash_count(a, _dash_periods(a), _filled(a), gaps)
+
+
+def _gc_period(dashes: object) -> list[float]:
+    """The period in points of a path effect's ``dashes`` keyword (``gc.set_dashes(**dashes)``, the dash list
+    unscaled by the line width), none when it sets no pattern or matplotlib could not apply it (it raises then,
+    drawing); a non-finite or non-positive period as is (counted beyond the budget)."""
+    if not dashes or not isinstance(dashes, dict) or dashes.get("dash_list") is None:
+        return []
+    try:
+        seq = np.asarray(dashes["dash_list"], dtype=float).ravel()
+    except (TypeError, ValueError):
+        return []
+    return [float(np.sum(seq))] if seq.size else []
+
+
+def _effect_list(a: Artist) -> list:
+    """``a``'s path effects, none when they are not iterable (matplotlib refuses them when drawing)."""
+    try:
+        return list(a.get_path_effects() or ())
+    except TypeError:
+        return []
+
+
+def _tick_periods(stroke: object, periods: list[float]) -> list[float]:
+    """``periods`` over a ticked stroke's ``length`` (its ticks' path is ``length`` times the path it ticks), none
+    for ticks of no length or a length matplotlib could not draw."""
+    try:
+        reach = abs(float(getattr(stroke, "_length", 1.0)))
+    except (TypeError, ValueError):
+        return []
+    return [p / reach for p in periods] if reach else []
+
+
+def _effect_strokes(a: Artist, tally: dict[str, int]) -> None:
+    """Add to ``tally`` the dashes and hatch tiles each of ``a``'s path effects draws along its path (fuzz 67a C4): a
+    ``PathPatchEffect`` its patch's (its own dash pattern, hatch, face), another its ``gc`` keywords' (``dashes``
+    unscaled, ``hatch``, ``linewidth``) over ``a``'s own; unclipped when that draw is filled or hatched (a
+    ``SimplePatchShadow`` is filled, its edge of width 0 unless set); a ``TickedStroke``'s dashes along its ticks
+    (``length`` times the path)."""
+    from matplotlib.patheffects import PathPatchEffect, SimpleLineShadow, SimplePatchShadow, TickedStroke
+    own_periods, own_filled = _dash_periods(a), _filled(a)
+    own_hatch = a.get_hatch() if isinstance(a, (Patch, Collection)) else None
+    draws = max(len(a.get_offsets()), len(a.get_paths()), 1) if isinstance(a, Collection) else 1
+    for e in _effect_list(a):
+        if isinstance(e, PathPatchEffect):
+            patch = e.patch
+            periods, filled, hatch = _dash_periods(patch), _filled(patch), patch.get_hatch()
+            key = _DASHES
+        else:
+            keywords = getattr(e, "_gc", None)
+            keywords = keywords if isinstance(keywords, dict) else {}
+            hatch = keywords.get("hatch")        # ``a``'s own hatch: counted once an effect with its tally
+            periods = _gc_period(keywords.get("dashes"))
+            key = _EFFECT_DASHES if periods else _DASHES
+            periods = periods or own_periods
+            width = keywords.get("linewidth", 0 if isinstance(e, SimplePatchShadow) else 1)
+            if not isinstance(width, (int, float, np.number)) or width == 0:
+                periods = []
+            shadow = isinstance(e, SimplePatchShadow) or (own_filled and not isinstance(e, SimpleLineShadow))
+            filled = shadow or bool(hatch) or bool(own_hatch)
+            if isinstance(e, TickedStroke):      # its ticks' path, not ``a``'s: ``length`` times as long
+                periods = _tick_periods(e, periods)
+        tally[key] += _dash_count(a, periods, filled)
+        if hatch:
+            vertices, length = _hatch_tile(str(hatch))
+            tally[_HATCH_VERTICES] += draws * vertices
+            tally[_HATCH_LENGTH] += draws * length
 
 
 def _ticks(a: Artist) -> int:
@@ -316,7 +464,7 @@ def _ticks(a: Artist) -> int:
         return 0
     if not strokes or not isinstance(a, (Line2D, Patch, Collection)):
         return 0
-    length, paths = _paths_points(a, clipped=False)
+    length, paths = _unclipped_points(a, float("inf"))
     total = 0.0
     for e in strokes:
         spacing = float(e._spacing)
@@ -363,7 +511,10 @@ def _tally(fig: Figure) -> dict[str, int]:
             continue
         one = dict.fromkeys(_WEIGHTS, 0)
         _artist(a, one)
+        one[_DASHES] = 0                        # each effect's own (``_effect_strokes``)
         _under_effects(a, one, effects, tally)
+        if isinstance(a, (Line2D, Patch, Collection)) and not isinstance(a, QuadMesh) and _vertices(a) is None:
+            _effect_strokes(a, tally)
         tally[_TICKS] += _ticks(a)
     return tally
 
@@ -386,9 +537,9 @@ def figure_units(fig: Figure, key: str) -> int:
     """``FIGURE`` plus each drawn kind's count at its weight (``POINT`` a point, ``PIXEL`` an image pixel,
     ``FIGURE_PIXEL`` a figure image's pixel, ``CELL`` a mesh cell, ``MARKER`` and ``MARKER_VERTEX`` a marker drawn per
     offset and its vertices, ``ARTIST`` an artist, ``CHARACTER`` a text's character, ``DASH`` a dash of a dashed stroke,
-    ``TICK`` a tick of a ticked stroke, ``HATCH_VERTEX`` and ``HATCH_LENGTH`` a hatch tile's vertices and stroke; an
-    artist drawn with path effects once per effect, its markers at ``EFFECT_MARKER`` and its characters at
-    ``EFFECT_CHARACTER`` per effect).
+    ``TICK`` a tick of a ticked stroke, ``EFFECT_DASH`` a dash of a path effect's own pattern, ``HATCH_VERTEX`` and
+    ``HATCH_LENGTH`` a hatch tile's vertices and stroke; an artist drawn with path effects once per effect, its
+    markers at ``EFFECT_MARKER`` and its characters at ``EFFECT_CHARACTER`` per effect).
 
     Raises
     ------
