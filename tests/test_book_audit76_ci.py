@@ -97,3 +97,13 @@ def test_weight_pair_counts_its_seeds_before_reading_them():
     refused_quickly(lambda: ci.weight_pair(R1, R1 / 9, Q, 10, 0, 0, many), ValueError, r"^fruit_fly_seeds")
     pair = ci.weight_pair(R1, R1 / 9, Q, 10, 0, 0, [1, 2, 3], runs=2)
     assert len(pair.fruit_fly_seeds.seeds) == 3
+
+
+def test_nees_per_step_weighs_its_own_steps():
+    """Counted at ``nees_study``'s weights (58 loop steps and 250 units a run), its edge of about 17,000 steps of 2
+    runs would run about 38 CPU-s (2.24 ms a step measured). Refused at once by ``n_steps and runs``; 50 steps of 3
+    runs accepted."""
+    Q, R1, _ = ci.printed_covariances()
+    refused_quickly(lambda: ci.nees_per_step(np.random.default_rng(0), Q, R1, R1 / 9, np.zeros(4), 17_000, 2),
+                    ValueError, r"^n_steps and runs ask")
+    assert set(ci.nees_per_step(np.random.default_rng(0), Q, R1, R1 / 9, np.zeros(4), 50, 3))
