@@ -94,7 +94,8 @@ def test_weight_pair_counts_its_seeds_before_reading_them():
     refused at once by ``fruit_fly_seeds``; three seeds accepted."""
     Q, R1, _ = ci.printed_covariances()
     many = list(range(10**7))
-    refused_quickly(lambda: ci.weight_pair(R1, R1 / 9, Q, 10, 0, 0, many), ValueError, r"^fruit_fly_seeds")
+    refused_quickly(lambda: ci.weight_pair(R1, R1 / 9, Q, 10, 0, 0, many), ValueError,
+                    r"^runs, T and fruit_fly_seeds ask .*: fruit_fly_seeds ask")
     pair = ci.weight_pair(R1, R1 / 9, Q, 10, 0, 0, [1, 2, 3], runs=2)
     assert len(pair.fruit_fly_seeds.seeds) == 3
 

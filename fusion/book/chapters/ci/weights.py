@@ -720,7 +720,9 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
     from fusion.scenarios.two_sensor.case import _scenario_budget
     from fusion.scenarios.two_sensor.weights import _CI_COSTS, _over_seeds_budget
     # the searches' budget by the seeds' count first (book audit 76: a 10**7 list was checked, 3.1 CPU-s, then hashed)
-    _over_seeds_budget(_given_count(fruit_fly_seeds, "fruit_fly_seeds"), 1001, 30, 200, 4, _CI_COSTS, "fruit_fly_seeds")
+    n_fly = _given_count(fruit_fly_seeds, "fruit_fly_seeds")
+    studies_first([lambda: _over_seeds_budget(n_fly, 1001, 30, 200, 4, _CI_COSTS, "fruit_fly_seeds")],
+                  "runs, T and fruit_fly_seeds")
     fly = distinct(check_seeds(fruit_fly_seeds, "fruit_fly_seeds"), "fruit_fly_seeds")
 
     _sensor_noises(R1, R2)
