@@ -12,7 +12,8 @@ from fusion._limits import loop_work
 
 
 def test_split_ci_exactness_states_its_edge():
-    """Point 2: the docstring said n_steps "at most 10^5"; the budget's edge is 14,285 steps (70 loop steps each)."""
+    """Point 2: the docstring said n_steps "at most 10^5"; the budget's edge is 4,347 steps (230 loop steps each since
+    book audit 76)."""
     from fusion.book.chapters.ci import printed
 
     doc = printed.split_ci_exactness.__doc__

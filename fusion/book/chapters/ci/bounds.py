@@ -17,13 +17,19 @@ from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor.bounds import CAUSAL_FLOOR, CENTRALISED_KF, CI_AVERAGE, STRAIGHT_LEG_FLOOR
 from fusion._shown import shown
 from fusion._structures import derived
+from fusion._limits import work
 from fusion._validation import scalar
-from fusion.book.chapters.ci.checks import PERIOD_KEY, _frame, _periods
+from fusion.book.chapters.ci.checks import PERIOD_KEY, _frame, _given_count, _periods
 
 __all__ = ["pcrb_numbers", "pcrb_table", "path_period_table", "path_numbers"]
 
 #: Row of :func:`pcrb_table` for the limit of a short period, which :func:`pcrb_numbers` reads (issue 36: named once).
 T_LIMIT = "T → 0"
+
+#: Units of a period of :func:`pcrb_table` (a steady-state bound of each reading of Q): twice the 4 ms measured
+#: (0.040 CPU-s for 10 periods, 0.40 for 100; ``time.process_time``, minimum of 2, ``OPENBLAS_NUM_THREADS=1``, the
+#: machine shared and loaded; book audit 76: no budget, so 10**4 periods ran about 40 CPU-s, 10**6 hours).
+_PCRB_PERIOD = 800_000
 
 
 def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
@@ -52,11 +58,13 @@ def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
     TypeError
         ``periods``, ``sigma`` or ``delta0`` not numbers.
     ValueError
-        ``periods`` empty, repeated or not positive; ``sigma`` or ``delta0`` not valid, or together with a
-        period giving a singular steady-state system (``delta0`` far beyond ``sigma``).
+        ``periods`` empty, repeated or not positive, or so many that their bounds are beyond the work budget
+        (``fusion._limits.MAX_WORK``: about 1,250 periods), before any is read; ``sigma`` or ``delta0`` not valid, or
+        together with a period giving a singular steady-state system (``delta0`` far beyond ``sigma``).
     """
     from fusion.scenarios import two_sensor as ts
 
+    work((_given_count(periods, "periods"),), "periods", weight=_PCRB_PERIOD)   # before any is read (book audit 76)
     periods = _periods(periods)
     with derived("periods, sigma and delta0", "a steady-state PCRB"):
         rows = {float(T): {r: ts.pcrb_steady(float(T), sigma, ts.process_noise(float(T), delta0, r))

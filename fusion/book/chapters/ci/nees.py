@@ -10,7 +10,7 @@ import pandas as pd
 from scipy.stats import chi2
 from numpy.typing import ArrayLike
 
-from fusion._limits import recorded_as
+from fusion._limits import LOOP_STEP, loop_work, recorded_as
 from fusion._structures import same_keys
 from fusion._validation import as_array, as_covariance, as_mask, as_rng, count, flag, scalar, shown
 from fusion.book.tables import rounded, roundoff
@@ -70,6 +70,15 @@ def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> GlueValues:
             "ci_nees_band_100": rounded(nees_band(NEES_RUNS), 2)}
 
 
+#: Units of a step of :func:`nees_per_step` (two local filters' step, every rule's fusion, split CI's search among
+#: them): twice the 2.24 ms measured (4.48 and 4.57 CPU-s for 2,000 steps of 2 runs, from the true and a drawn
+#: velocity; ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the machine shared and loaded; book audit 76).
+_NEES_STEP = 450 * LOOP_STEP
+#: Units of a run and step of :func:`nees_per_step`: twice the 5.2 us measured (2.44-2.61 CPU-s for 261 steps of
+#: 1,500 runs; book audit 76).
+_NEES_RUN_STEP = 1_040
+
+
 def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
                   n_steps: int, runs: int, T: float = 1.0, velocity_sigma: float = 100.0,
                   random_velocity: bool = False) -> NeesPerStep:
@@ -91,7 +100,8 @@ def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: Arr
     x_start : array_like, shape (4,)
         Initial true state (its velocity is the filters' initial velocity).
     n_steps, runs : int
-        Steps and runs, within the memory and work budgets of ``nees_study`` (a ValueError names them).
+        Steps and runs, within the memory budget of ``nees_study`` and a work budget of this function's own
+        measured steps (about 2,200 steps of 2 runs; a ValueError names them).
     T : float
         Sampling period (s).
     velocity_sigma : float
@@ -121,6 +131,9 @@ def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: Arr
     from fusion.scenarios.two_sensor.study import _nees_work
 
     allocation((runs, n_steps, 4), "n_steps and runs")   # the budgets of nees_study, the same runs (fuzz 24c SZ)
+    # its own steps, heavier than nees_study's (book audit 76: at nees_study's weights, 58 loop steps and 250 units a
+    # run, its edge of about 17,000 steps of 2 runs would run about 38 CPU-s)
+    loop_work((n_steps,), _NEES_RUN_STEP * runs, "n_steps and runs", step=_NEES_STEP)
     _nees_work(n_steps, runs)
     T = scalar(T, "T", lo=0.0, lo_open=True)
     velocity_sigma = scalar(velocity_sigma, "velocity_sigma", lo=0.0, lo_open=True)

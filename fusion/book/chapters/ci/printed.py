@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -13,6 +14,7 @@ from fusion.data import as_printed
 from fusion._docstrings import reads_results
 from fusion._results import ResultSpec, dict_of, flag, instance, integer, number, real_key, validated_post_init
 from fusion._shown import shown
+from fusion._limits import work
 from fusion._validation import LOOP_STEP, as_array, as_covariance, count, instance_of, loop_work, scalar
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -72,6 +74,15 @@ def _printed_relation(values: Mapping, cls: str) -> None:
                          f"got {shown(values['monotone'])}")
 
 
+#: Units of a run of :func:`ml_vs_product` (its ``convex_combination`` call): twice the 190 us measured (1.91 CPU-s for
+#: 10,000 runs of n = 1, 1.20 for n = 4; ``time.process_time``, minimum of 2, ``OPENBLAS_NUM_THREADS=1``, the machine
+#: shared and loaded; book audit 76).
+_ML_RUN = 38 * LOOP_STEP
+#: Units of a run of :func:`ml_vs_product` per ``n**3`` (the run's n x n checks and inverses): twice the 1 ns measured
+#: (0.089 and 0.398 CPU-s for 10 and 50 runs of n = 200, 0.62 for 10 of n = 400; book audit 76).
+_ML_CUBE = 0.2
+
+
 def ml_vs_product(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) -> float:
     r"""Largest difference between the maximum-likelihood and the multi-Bayesian fusion of two Gaussian estimates.
 
@@ -98,12 +109,17 @@ def ml_vs_product(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) ->
     TypeError
         An estimate or a covariance not numeric.
     ValueError
-        Shapes that do not match, estimates not finite, covariances not symmetric positive definite.
+        Shapes that do not match, estimates not finite, covariances not symmetric positive definite; runs and a size
+        n whose fusions, one run at a time, are beyond the work budget (``fusion._limits.MAX_WORK``: about 26,000
+        runs of n = 4), before the covariances are checked.
     """
     x1, x2 = np.atleast_2d(as_array(x1, "x1", ndim=(1, 2))), np.atleast_2d(as_array(x2, "x2", ndim=(1, 2)))
     if x1.shape != x2.shape or x1.ndim != 2:
         raise ValueError(f"x1 and x2 must have the same shape (n,) or (runs, n), got {x1.shape} and {x2.shape}")
     n = x1.shape[1]
+    # rule 17 before the covariances' checks (book audit 76: no budget, a Python step a run; 10**6 runs of n = 1
+    # ran about 190 CPU-s)
+    loop_work((x1.shape[0],), math.ceil(_ML_CUBE * n**3), "x1 and x2 (their runs and size n)", step=_ML_RUN)
     P1, P2 = as_covariance(P1, dim=n, name="P1"), as_covariance(P2, dim=n, name="P2")
     W1, W2 = (np.linalg.inv(np.linalg.cholesky(P)) for P in (P1, P2))   # whitening: W P Wᵀ = I
     A = np.vstack([W1, W2])
@@ -112,8 +128,10 @@ def ml_vs_product(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) ->
     return float(np.max(np.abs(ml - mb)))
 
 
-#: Units of one step of :func:`split_ci_exactness` (a split CI search and a few 4 x 4 products, 0.70 ms measured).
-_SPLIT_CI_STEP = 70 * LOOP_STEP
+#: Units of one step of :func:`split_ci_exactness` (a split CI search and a few 4 x 4 products): twice the 1.15 ms
+#: measured (book audit 76: 3.45 CPU-s for 3,000 steps, 0.29 for 300, and the old edge, 14,285 steps at the 0.70 ms
+#: first measured, ran 20.5 CPU-s; ``time.process_time``, ``OPENBLAS_NUM_THREADS=1``, the machine shared and loaded).
+_SPLIT_CI_STEP = 230 * LOOP_STEP
 
 
 def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, velocity_sigma: float = 100.0,
@@ -141,8 +159,8 @@ def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, veloc
     T : float
         Sampling period (s).
     n_steps : int
-        Steps, the initial one included (at most 14,285: a split CI search per step, 0.70 ms measured, within the
-        work budget ``fusion._validation.MAX_WORK``; a ValueError names ``n_steps``).
+        Steps, the initial one included (at most 4,347: a split CI search per step, 1.15 ms measured, weighed twice,
+        within the work budget ``fusion._validation.MAX_WORK``; a ValueError names ``n_steps``).
     velocity_sigma : float
         Prior velocity standard deviation (m/s), common to both filters.
     t_steady : float
@@ -166,7 +184,8 @@ def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, veloc
     n_steps = count(n_steps, "n_steps")
     # rule 17: a Python step per step, each a split CI search (a bounded minimisation) and a few 4 x 4 products:
     # 0.70 ms measured (98,000 steps, the edge at ten loop steps, ran 68 CPU-s; time.process_time, shared machine;
-    # fuzz 39a E4), weighed as 70 loop steps: 14,285 steps (~10 CPU-s) the most accepted
+    # fuzz 39a E4), then 1.15 ms (book audit 76: the edge at 70 loop steps, 14,285 steps, ran 20.5 CPU-s), weighed as
+    # 230 loop steps: 4,347 steps (about 5 CPU-s measured) the most accepted
     loop_work((n_steps,), 0, "n_steps", step=_SPLIT_CI_STEP)
     T = scalar(T, "T", lo=0.0, lo_open=True)
     velocity_sigma = scalar(velocity_sigma, "velocity_sigma", lo=0.0, lo_open=True)
@@ -202,6 +221,33 @@ def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, veloc
          "nees_true_first": float(et[0]), "nees_true_transient": float(et[~steady].mean()),
          "nees_true_steady": float(et[steady].mean()), "nees_true_steady_min": float(et[steady].min()),
          "omega_dev_steady": float(np.array(dev)[steady].max())}, Q, R, T, velocity_sigma, t_steady, n_steps)
+
+
+#: Units of a step and grid point of ``printed_weight_facts`` (three 4 x 4 inverses and a trace): twice the 4 us
+#: measured (20.8 CPU-s for one scenario of 261 steps on 20,000 points, 1.11 on 2,000; ``time.process_time``,
+#: ``OPENBLAS_NUM_THREADS=1``, the machine shared and loaded; book audit 76: the grid had a memory budget only, whose
+#: edge, about 64,000 points, ran about 66 CPU-s).
+_PRINTED_POINT = 800
+#: Units of a pair of scenarios in ``printed_weight_facts``' repeat rule: four ``np.allclose`` of a step's 16
+#: entries, each twice the 50 us and 0.16 us a step measured (0.07 CPU-s for 780 pairs of 261 steps; book audit 76:
+#: the pairs grow as the square of the scenarios, uncounted).
+_PRINTED_PAIR, _PRINTED_PAIR_STEP = 40 * LOOP_STEP, 128
+
+
+def _printed_facts_budget(shapes: list[tuple[int, ...]], n_grid: int, seeds: int) -> int:
+    """Rule 17 of ``printed_weight_facts`` (book audit 76), before the repeat rule and any seed is read: each
+    scenario's steps on the grid, the repeat rule's pairs and ``printed_fruit_fly_over_seeds``' own budget (its
+    printed 30 x 200 per seed beside its 1001-point grid), summed (``fusion.book._study_budget.studies_first``),
+    refused naming ``scenarios, seeds and n_grid``; ``shapes`` are the scenarios' ``Pd`` shapes (steps, n, n)."""
+    from fusion.book._study_budget import studies_first
+    from fusion.scenarios.two_sensor.weights import _SPLIT_CI_COSTS, _over_seeds_budget
+
+    names = "scenarios, seeds and n_grid"
+    grid = sum(K * (n_grid * _PRINTED_POINT + LOOP_STEP) for K, *_ in shapes)
+    pairs = sum(j * (_PRINTED_PAIR + _PRINTED_PAIR_STEP * K) for j, (K, *_) in enumerate(shapes))
+    return studies_first([lambda: work((grid + pairs,), names),
+                          lambda: _over_seeds_budget(seeds, 1001, 30, 200, shapes[0][1], _SPLIT_CI_COSTS, names)],
+                         names)
 
 
 def printed_covariances() -> tuple[np.ndarray, np.ndarray, np.ndarray]:

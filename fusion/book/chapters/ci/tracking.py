@@ -19,6 +19,7 @@ from fusion._frozen import constant
 from fusion import data
 from fusion._docstrings import reads_results
 from fusion._counts import distinct, sequence
+from fusion._limits import LOOP_STEP, work
 from fusion._validation import (as_array, count, distinct_printed, general, given_number, record, scalar, std_scalar,
                                instance_of)
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -32,8 +33,8 @@ from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
 from fusion.scenarios.two_sensor.study import OVER_STEPS, RUN_AVERAGED
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 from fusion.book.chapters.ci.text import _glue_doc
-from fusion.book.chapters.ci.checks import (_every_method, _entries, _exact_keys, _frame, _leg_of, _per_step, _steps,
-                                           _study_of)
+from fusion.book.chapters.ci.checks import (_every_method, _entries, _exact_keys, _frame, _given_count, _leg_of,
+                                           _per_step, _steps, _study_of)
 from fusion._counts import index
 from fusion._structures import mapping_of
 from fusion._structures import same_keys
@@ -320,6 +321,15 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
 CAUSAL_FLOOR_LABEL = "floor: causal straight-leg least squares"
 
 
+#: Units of a level's step of :func:`fuzzy_levels` (a ``fuzzy_cluster_fusion`` call on every run at once): twice the
+#: 0.65 ms measured (0.167 CPU-s for one level of one run's 261 steps, 0.864 for five; ``time.process_time``, minimum
+#: of 2, ``OPENBLAS_NUM_THREADS=1``, the machine shared and loaded; book audit 76).
+_FUZZY_STEP = 130 * LOOP_STEP
+#: Units of a level's step of :func:`fuzzy_levels` per run: twice the 1.5 us measured (0.93 CPU-s for one level of
+#: 2,000 runs of 261 steps, against 0.16 for 50 runs; book audit 76).
+_FUZZY_RUN_STEP = 300
+
+
 @study_defaults("sc", "t_steady")  # a default the study does not fit, named by the study (fuzz 36b D1)
 @reads_results("sc")
 def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dict[float, np.ndarray]:
@@ -346,7 +356,8 @@ def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dic
     ValueError
         ``levels`` is empty, not a number or 1-D, holds an entry outside (0, 1) (named by its position) or repeats one
         to 6 significant digits (the result and the ledger's readings are keyed by level); ``t_steady`` is not
-        finite, negative or after the last step.
+        finite, negative or after the last step; so many ``levels`` that their fusions of ``sc``'s steps and runs
+        are beyond the work budget (``fusion._limits.MAX_WORK``), before any level is read.
 
     References
     ----------
@@ -356,6 +367,11 @@ def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dic
     from fusion.scenarios.two_sensor import run_rmse
 
     a, b = sc.tracks
+    # rule 17, before any level is converted or checked (book audit 76: no budget; a level ran 0.65 ms a step, one
+    # run, and 1.5 us more a run and step, so 100 levels of the chapter's 261 steps ran about 17 CPU-s, 10**5 levels
+    # hours, and a 10**5-long list was checked entry by entry first)
+    work((_given_count(levels, "levels"), a.est.shape[1], _FUZZY_STEP + _FUZZY_RUN_STEP * a.est.shape[0]),
+         "levels (with the steps and runs of sc)")
     Ps = np.stack([a.gains.P, b.gains.P], axis=1)
     X = np.stack([a.est, b.est], axis=2)
     lams = distinct_printed([scalar(lam, f"levels[{i}]", 0.0, 1.0, lo_open=True, hi_open=True)
@@ -370,6 +386,15 @@ def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dic
         est = np.stack([fuzzy_cluster_fusion(X[:, k], Ps[k], lam).x for k in range(sc.t.size)], axis=1)
         out[lam] = run_rmse(est, sc.truth, steady, 0)
     return out
+
+
+#: Units of a weight's step of :func:`slip_at_weights` (a CI ``fuse_tracks`` step and its slip): twice the 0.35 ms
+#: measured (0.166 CPU-s for two weights of one run's 261 steps, 1.95 for 20; 1.74 for two of 2,601 steps;
+#: ``time.process_time``, minimum of 2, ``OPENBLAS_NUM_THREADS=1``, the machine shared and loaded; book audit 76).
+_SLIP_STEP = 70 * LOOP_STEP
+#: Units of a weight's step of :func:`slip_at_weights` per run: twice the 0.23 us measured (2.57 CPU-s for two weights
+#: of 20,000 runs of 261 steps; book audit 76).
+_SLIP_RUN_STEP = 46
 
 
 @reads_results("sc", "study")
@@ -398,12 +423,18 @@ def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = 
     ValueError
         ``omegas`` empty, an entry outside [0, 1] or repeated to 6 significant digits (the result is keyed by
         weight); ``study`` not ``fusion_study`` of ``sc`` (its steps, truth or local tracks differ: another seed,
-        runs or scenario).
+        runs or scenario); so many ``omegas`` that their fusions of ``sc``'s steps and runs are beyond the work budget
+        (``fusion._limits.MAX_WORK``), before any weight is read.
     """
     _study_of(sc, study)
-    ws = distinct_printed([scalar(w, f"omegas[{i}]", 0.0, 1.0) for i, w in enumerate(
-        sequence(omegas, "omegas", minimum=1, what="weight"))], "omegas", general)  # ledger keys print (fuzz 30b)
+    items = sequence(omegas, "omegas", minimum=1, what="weight")
     a, b = sc.tracks
+    # rule 17, before any weight is checked (book audit 76: each weight's fuse_tracks was checked alone, so 1,000
+    # weights of the chapter's 261 steps ran about 95 CPU-s)
+    work((len(items), a.est.shape[1], _SLIP_STEP + _SLIP_RUN_STEP * a.est.shape[0]),
+         "omegas (with the steps and runs of sc)")
+    ws = distinct_printed([scalar(w, f"omegas[{i}]", 0.0, 1.0) for i, w in enumerate(items)],
+                          "omegas", general)  # ledger keys print (fuzz 30b)
     every = np.ones(study.t.size, dtype=bool)
     out = {}
     for w in ws:

@@ -27,12 +27,12 @@ from fusion.optimise.result import OptimumResult
 from fusion.optimise.scalar import bounded_minimum, fruit_fly, fruit_fly_batch, grid_search
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, StudyMethod
-from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
+from fusion.book.chapters.ci.printed import PrintedWeightFacts, _printed_facts_budget, ml_vs_product
 from fusion.book.chapters._defaults import study_defaults
 from fusion.book.chapters.ci.text import _glue_doc, _sig3, excess_text, readable
-from fusion.book.chapters.ci.checks import (_entries, _flat_pair_read, _frame, _indices, _objective_grid, _optima_of,
-                                            _per_step, _period_key, _results, _same_search, _sensor_noises,
-                                            _step_index, _study_of)
+from fusion.book.chapters.ci.checks import (_entries, _flat_pair_read, _frame, _given_count, _indices, _objective_grid,
+                                            _optima_of, _per_step, _period_key, _results, _same_search,
+                                            _sensor_noises, _step_index, _study_of)
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
@@ -429,11 +429,15 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
     ValueError
         ``scenarios`` empty or repeating a sensor pair (two scenarios with the same local covariances: the same
         pair at the same period, whose steps would be counted twice, whatever their runs); ``k`` not a step of the
-        first; ``seeds`` empty or repeating a seed; ``n_grid`` below 2 or beyond the memory budget.
+        first; ``seeds`` empty or repeating a seed; ``n_grid`` below 2 or beyond the memory budget; ``scenarios``,
+        ``seeds`` and ``n_grid`` whose grids, repeat rule and searches are beyond the work budget
+        (``fusion._limits.MAX_WORK``), before any seed is read.
     """
     scs = sequence(scenarios, "scenarios", minimum=1, what="Scenario")
     for i, sc in enumerate(scs):
         instance_of(sc, Scenario, f"scenarios[{i}]")
+    n_grid = count(n_grid, "n_grid", minimum=2)
+    _printed_facts_budget([sc.tracks[0].Pd.shape for sc in scs], n_grid, _given_count(seeds, "seeds"))
     for j, sc in enumerate(scs):   # the repeat rule (fuzz 26c q3): the counts read the covariances, not the runs
         parts = [x for tr in sc.tracks for x in (tr.Pd, tr.Pi)]
         for i in range(j):
@@ -444,7 +448,6 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
                                  "would be counted twice")
     k = _step_index(k, "k", scs[0].tracks[0].Pd.shape[0])
     seeds = check_seeds(seeds, "seeds")   # the list checked is the list used (fuzz 58b C1)
-    n_grid = count(n_grid, "n_grid", minimum=2)
 
     for i, sc in enumerate(scs):   # every step's covariances on the grid at once (fuzz 24c SZ: 6 GiB for 2e5)
         allocation(sc.tracks[0].Pd.shape[:1] + (n_grid,) + sc.tracks[0].Pd.shape[1:],
@@ -713,10 +716,14 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
     seed = check_seed(seed)   # an integer seed (rule 11), named
     search_seed = check_seed(search_seed, "search_seed")
     # the callee's rules (integers, no repeat, the batch's budgets) named here, before the scenario (fuzz 26c A3)
-    fly = distinct(check_seeds(fruit_fly_seeds, "fruit_fly_seeds"), "fruit_fly_seeds")
     from fusion.book._study_budget import studies_first
     from fusion.scenarios.two_sensor.case import _scenario_budget
     from fusion.scenarios.two_sensor.weights import _CI_COSTS, _over_seeds_budget
+    # the searches' budget by the seeds' count first (book audit 76: a 10**7 list was checked, 3.1 CPU-s, then hashed)
+    n_fly = _given_count(fruit_fly_seeds, "fruit_fly_seeds")
+    studies_first([lambda: _over_seeds_budget(n_fly, 1001, 30, 200, 4, _CI_COSTS, "fruit_fly_seeds")],
+                  "runs, T and fruit_fly_seeds")
+    fly = distinct(check_seeds(fruit_fly_seeds, "fruit_fly_seeds"), "fruit_fly_seeds")
 
     _sensor_noises(R1, R2)
     T = _period_key(T)   # the chapter's period rule
