@@ -55,3 +55,34 @@ def test_study_truths_and_prior_means_weigh_their_runs():
     refused_quickly(lambda: prior_means(net, 1, 10**7), ValueError, "^runs ask")
     assert study_truths(sc, 1, 3).shape[0] == 3
     assert prior_means(net, 1, 3).shape == (3, 2)
+
+
+def test_sigma_first_order_problem_weighs_its_grid():
+    from fusion.book.chapters.chernoff_first_order import random_two_mixtures, sigma_first_order_problem
+    a, b = random_two_mixtures(np.random.default_rng(3))
+    # only the memory budget: n = 11,000 (1.2e8 nodes, ~0.9 us each) was accepted
+    refused_quickly(lambda: sigma_first_order_problem(a, b, n=11_000), ValueError, "^n ask")
+    assert 0.0 <= sigma_first_order_problem(a, b, n=101).omega_exact <= 1.0
+
+
+class _Ran(Exception):
+    """The call passed its budget and reached its work."""
+
+
+def test_sigma_first_order_study_weighs_its_problems(monkeypatch):
+    import fusion._limits as L
+    import fusion.book.chapters.chernoff_first_order as cf
+    # no budget: 10**7 problems (~120 ms each) were accepted; the entry serves the appendix's 100 problems
+    refused_quickly(lambda: cf.sigma_first_order_study(np.random.default_rng(0), runs=10**7), ValueError,
+                    "^runs ask.*STUDY_WORK: chapter 06's appendix call of sigma_first_order_study")
+    refused_quickly(lambda: cf.sigma_first_order_study(np.random.default_rng(0), runs=210), ValueError, "^runs ask")
+    counted = []
+
+    def spy(shape, names, weight=1, limit=L.MAX_WORK, served=None):
+        counted.append(L.work(shape, names, weight=weight, limit=10**30))
+        raise _Ran
+    monkeypatch.setattr(cf, "work", spy)
+    with pytest.raises(_Ran):  # the appendix's call, counted: the entry is twice it, rounded up to a whole MAX_WORK
+        cf.sigma_first_order_study(np.random.default_rng(0))
+    entry = L.STUDY_WORK[L.SIGMA_FIRST_ORDER_STUDY]
+    assert L.MAX_WORK < counted[0] <= entry and entry == -(-2 * counted[0] // L.MAX_WORK) * L.MAX_WORK
