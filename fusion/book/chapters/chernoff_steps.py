@@ -491,11 +491,11 @@ def defensive_study(rng: np.random.Generator, runs: int = 100, r: int = CHAPTER_
     """
     as_rng(rng)  # a Generator itself, over a numpy bit generator (fuzz 57b C1)
     runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
-    work((runs, _DEFENSIVE_RUN + r * _DEFENSIVE_SAMPLE), "runs and r")  # before the first draw (book audit 76)
     if runs * r > count_ceiling("n"):  # the samples of every replicate are drawn at once
         raise ValueError(f"runs and r ask for {runs * r:.3g} samples at once, beyond the ceiling of a sample count "
                          f"({count_ceiling('n'):,}; fusion._validation.COUNT_CEILINGS)")
     input_allocation((runs * r, 2), "runs and r")
+    work((runs, _DEFENSIVE_RUN + r * _DEFENSIVE_SAMPLE), "runs and r")  # before the first draw (book audit 76)
     ref = toy_reference()
     gms = list(ref.gms)
     gdef = defensive_mixture(ref.proposal, gms, alpha)
