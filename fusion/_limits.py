@@ -110,12 +110,21 @@ MEMBERSHIP_STUDY = ("the reseeding sweep's primaries of yang-membership-free and
 #: 1,424 runs). It equals the regime study's, so its refusal names it by ``work``'s ``served``.
 LEDGER_STUDIES = ("chapter 05's notebook call of ledger_studies (arch, paired, Fig. 6 period and infrared studies, "
                   "200 runs)")
+#: The key of chapter 06's appendix study of the sigma-point first-order mixture
+#: (``fusion.book.chapters.chernoff_first_order.sigma_first_order_study``, the appendix notebook's 100 random problems
+#: on a 401 x 401 grid and the two-mixture example on 601 x 601): 2.47e9 units (about 12.4 CPU-s measured, 120 ms a
+#: problem, weighed twice; book audit 76: it had no budget, 10**7 problems were accepted); by budget35's rule its
+#: entry is 5e9 (its edge about 205 problems), which equals chapter 05's two architecture studies', so its refusal
+#: names it by ``work``'s ``served``.
+SIGMA_FIRST_ORDER_STUDY = ("chapter 06's appendix call of sigma_first_order_study (100 random problems and the "
+                           "two-mixture example)")
 STUDY_WORK: Mapping[str, int] = constant({TRACKING_STUDY: 26 * MAX_WORK, AWF_STUDY: 7 * MAX_WORK,
                                           REGIME_STUDY: 4 * MAX_WORK, READINGS_BENCHMARK: 3 * MAX_WORK,
                                           PREMISE_STUDY: 9 * MAX_WORK, ARCHITECTURE_STUDY: 3 * MAX_WORK,
                                           MEMBERSHIP_STUDY: 3 * MAX_WORK, LEDGER_STUDIES: 4 * MAX_WORK,
                                           ARCHITECTURE_STUDIES: 5 * MAX_WORK, IR_READINGS_STUDY: 4 * MAX_WORK,
-                                          RECORD_EVIDENCE: 7 * MAX_WORK})
+                                          RECORD_EVIDENCE: 7 * MAX_WORK,
+                                          SIGMA_FIRST_ORDER_STUDY: 5 * MAX_WORK})
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
 #: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).

@@ -19,6 +19,7 @@ import pandas as pd
 from numpy.typing import ArrayLike
 from fusion._guards import own_underflow
 from fusion._results import ResultSpec, instance, number, table, validated_post_init
+from fusion._limits import SIGMA_FIRST_ORDER_STUDY, STUDY_WORK
 from fusion._validation import FloatArray, as_rng, allocation, count, instance_of, work
 from fusion.estimates.chernoff._product import product_size
 from fusion.book.tables import rounded
@@ -192,6 +193,18 @@ class SigmaProblem:
 
 
 
+#: Units (``fusion._limits.MAX_WORK``'s 10 ns) of one node of :func:`sigma_first_order_problem`'s n x n grid (both
+#: mixtures' log-densities, the exact and both approximate normalisers and their searches): about 0.8-0.9 us (the
+#: two-mixture example, n 401 -> 1,201: 0.125 -> 1.321 CPU-s; a random problem 0.138 -> 1.115; process_time, minimum of
+#: 2, OPENBLAS_NUM_THREADS=1, the shared machine loaded), weighed twice (book audit 76: only the memory budget, so
+#: n = 11,000, about 1.2e8 nodes and some 100 CPU-s, was accepted).
+_SIGMA_NODE = 200
+#: Units of one random problem of :func:`sigma_first_order_study` (:data:`SIGMA_RANDOM_NODES` per axis, the mixtures
+#: drawn): about 120 ms (runs 5 -> 25: 0.979 -> 3.371 CPU-s, as above), weighed twice (book audit 76: no budget, so
+#: 10**7 problems were accepted).
+_SIGMA_PROBLEM = 24_000_000
+
+
 #: :func:`sigma_first_order_problem` refuses two mixtures whose exact log Z at ω = 1/2 lies at most this far below
 #: the mean of its end points (nats; the Bhattacharyya distance of a and b): one density, whose ω* is undetermined.
 SAME_DENSITY_NATS = 1e-12
@@ -228,7 +241,7 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
         ``a`` or ``b`` not a mixture, ``n`` not an integer.
     ValueError
         ``a`` or ``b`` not 2-D, ``n`` below 2, an n x n grid beyond the memory budget
-        (``fusion._validation.allocation``), or ``b`` the same density as ``a`` on the grid (their Bhattacharyya
+        (``fusion._validation.allocation``) or the work budget (``fusion._limits.MAX_WORK``: n about 2,200), or ``b`` the same density as ``a`` on the grid (their Bhattacharyya
         distance at most :data:`SAME_DENSITY_NATS`; ``a`` itself, or its components reordered or split): every
         exponent then gives the same fusion and ω* is undetermined (fuzz 26b D5: the bounded search returned its
         end point as "exact").
@@ -242,6 +255,7 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
 
     n = count(n, "n", minimum=2)
     allocation((n, n, 2), "n")  # the n x n grid's log-densities of the two mixtures, before they are computed
+    work((n, n), "n", weight=_SIGMA_NODE)  # the grid's nodes, before any is computed (book audit 76)
     axis = np.linspace(-_SIGMA_GRID[0], _SIGMA_GRID[0], n)
     X, Y = np.meshgrid(axis, axis)
     pts = np.column_stack([X.ravel(), Y.ravel()])
@@ -354,9 +368,19 @@ def sigma_first_order_study(rng: np.random.Generator, runs: int = 100) -> SigmaF
     -------
     SigmaFirstOrderStudy
         The two-mixture example's :class:`SigmaProblem` and a DataFrame of the random problems, one row each.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` below 2 or beyond the work budget (``fusion._limits.STUDY_WORK``'s entry for the appendix's call:
+        about 205 problems).
     """
     as_rng(rng)  # a Generator itself, over a numpy bit generator (fuzz 57b C1)
     runs = count(runs, "runs", minimum=2)
+    # the example's grid and every problem, before the first (book audit 76: no budget); a STUDY_WORK entry, the
+    # appendix's 100 problems counting 2.47e9 units
+    work((_SIGMA_GRID[1] ** 2 * _SIGMA_NODE + runs * _SIGMA_PROBLEM,), "runs", limit=STUDY_WORK[SIGMA_FIRST_ORDER_STUDY],
+         served=SIGMA_FIRST_ORDER_STUDY)
     toy = two_mixtures.toy_mixtures()
     rows = [sigma_first_order_problem(*random_two_mixtures(rng), n=SIGMA_RANDOM_NODES) for _ in range(runs)]
     return SigmaFirstOrderStudy(toy=sigma_first_order_problem(toy.a, toy.b),

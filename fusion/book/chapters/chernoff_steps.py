@@ -45,6 +45,7 @@ from numpy.typing import ArrayLike
 from fusion._validation import (FloatArray, as_rng, as_array, count, frame_slice, instance_of, positive_scalar, text,
                                 unit_scalar)
 from fusion._counts import count_ceiling, input_allocation, sequence
+from fusion._limits import work
 from fusion.book.rulebook import judge_paired
 from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
@@ -441,6 +442,17 @@ def _estimate(xs: FloatArray, lw: FloatArray) -> FloatArray:
     return np.einsum("...r,...rd->...d", w / w.sum(axis=-1, keepdims=True), xs)
 
 
+#: Units (``fusion._limits.MAX_WORK``'s 10 ns) of one replicate of :func:`defensive_study`: two SLSQP minimisations
+#: and the redraw's mixture, samples and densities, about 5 ms (r = 2, runs 200 -> 2,000: 0.881 -> 10.05 CPU-s,
+#: process_time, minimum of 2, OPENBLAS_NUM_THREADS=1, the shared machine loaded), weighed twice (book audit 76: only
+#: the ceiling of a sample count, so 5e6 replicates of r = 2, about 7 CPU-hours, were accepted).
+_DEFENSIVE_RUN = 1_000_000
+#: Units of one of the ``runs`` x ``r`` samples of :func:`defensive_study` (three proposals' draws and densities):
+#: about 4.7 us (runs = 2, r 1e5 -> 1e6: 0.504 -> 4.709 CPU-s, as above), weighed twice (book audit 76: 10**7
+#: samples, about 47 CPU-s, were accepted).
+_DEFENSIVE_SAMPLE = 1_000
+
+
 def defensive_study(rng: np.random.Generator, runs: int = 100, r: int = CHAPTER_R, alpha: float = 0.2
                     ) -> DefensiveStudy:
     r"""Step E with three proposals on the two-mixture example, ``runs`` independent replicates each.
@@ -474,7 +486,8 @@ def defensive_study(rng: np.random.Generator, runs: int = 100, r: int = CHAPTER_
         ``rng`` not a Generator, ``runs`` or ``r`` not an integer.
     ValueError
         ``runs`` or ``r`` below 2, or ``runs`` × ``r`` samples (drawn at once) beyond the sample count's ceiling or
-        the input budget.
+        the input budget, or the replicates beyond the work budget (``fusion._limits.MAX_WORK``: about 1,000
+        replicates, or 1e6 samples).
     """
     as_rng(rng)  # a Generator itself, over a numpy bit generator (fuzz 57b C1)
     runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
@@ -482,6 +495,7 @@ def defensive_study(rng: np.random.Generator, runs: int = 100, r: int = CHAPTER_
         raise ValueError(f"runs and r ask for {runs * r:.3g} samples at once, beyond the ceiling of a sample count "
                          f"({count_ceiling('n'):,}; fusion._validation.COUNT_CEILINGS)")
     input_allocation((runs * r, 2), "runs and r")
+    work((runs, _DEFENSIVE_RUN + r * _DEFENSIVE_SAMPLE), "runs and r")  # before the first draw (book audit 76)
     ref = toy_reference()
     gms = list(ref.gms)
     gdef = defensive_mixture(ref.proposal, gms, alpha)
@@ -520,6 +534,12 @@ def defensive_study(rng: np.random.Generator, runs: int = 100, r: int = CHAPTER_
 # ---------------------------------------------------------------------------------------------- local filters: PCRB
 
 
+#: Units of one run of :func:`study_truths` (a SeedSequence spawn and a simulated target): about 1 ms (runs 200 ->
+#: 2,000: 0.146 -> 1.992 CPU-s, process_time, minimum of 2, the shared machine loaded), weighed twice (book audit 76:
+#: no budget, so 10**7 runs, about 3 CPU-hours, were accepted).
+_TRUTH_RUN = 200_000
+
+
 def study_truths(sc: RangeBearingScenario, seed: int, runs: int) -> FloatArray:
     """The true trajectories (runs, K, 4) of ``monte_carlo(sc, seed, runs)``, without running the filters.
 
@@ -537,10 +557,16 @@ def study_truths(sc: RangeBearingScenario, seed: int, runs: int) -> FloatArray:
     -------
     ndarray, shape (runs, K, 4)
         Per run the target's true state (x, vx, y, vy) at each of the K frames, as the study drew it.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` below 1 or beyond the work budget (``fusion._limits.MAX_WORK``: about 5,000 runs).
     """
     seed = check_seed(seed)
     instance_of(sc, RangeBearingScenario, "sc")
     runs = count(runs, "runs")
+    work((runs,), "runs", weight=_TRUTH_RUN)  # before the first spawn (book audit 76)
     seeds = np.random.SeedSequence(seed).spawn(runs)
     return np.stack([simulate_target(sc, np.random.default_rng(s.spawn(6)[0])).truth for s in seeds])
 

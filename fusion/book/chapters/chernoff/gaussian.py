@@ -10,6 +10,7 @@ import numpy as np
 
 from fusion._guards import own_underflow
 from fusion._results import ResultSpec, integer, number, tuple_of, validated_post_init
+from fusion._limits import work
 from fusion._validation import FloatArray, allocation, as_rng, count
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch, covariance_intersection, mixtures as mx
@@ -98,6 +99,20 @@ class GaussianChecks:
         return {"chf_k1": t1, "chf_k2": t2, "chf_k5": t5, "chf_k5_interior": self.n_interior}
 
 
+#: Units (``fusion._limits.MAX_WORK``'s 10 ns) of one case of :func:`gaussian_checks`: a pair of 4-D Gaussians fused
+#: two ways, about 1.1 ms (``cases`` 20 -> 200 at one triple: 0.029 -> 0.224 CPU-s, process_time, minimum of 2,
+#: OPENBLAS_NUM_THREADS=1, the shared machine loaded), weighed twice (book audit 76: no budget, so 10**7 cases, some
+#: 3 CPU-hours, were accepted).
+_CHECK_CASE = 220_000
+#: Units of one triple of :func:`gaussian_checks` (a Chernoff optimisation of three 2-D Gaussians and three KLs):
+#: about 4.2 ms (``triples`` 20 -> 200 at one case: 0.083 -> 0.850 CPU-s, as above), weighed twice (book audit 76).
+_CHECK_TRIPLE = 840_000
+#: Units of one case of :func:`common_information_check` (a Gaussian fusion and densities on a 2,001-point grid):
+#: about 1.4 ms (``cases`` 10 -> 100: 0.013 -> 0.141 CPU-s, as above), weighed twice (book audit 76: no budget, so
+#: 10**7 cases, about 4 CPU-hours, were accepted).
+_COMMON_CASE = 280_000
+
+
 def gaussian_checks(rng: np.random.Generator, cases: int = 100, triples: int = 20) -> GaussianChecks:
     """K1-K3 on random pairs of 4-D Gaussians, the Gaussian IS identity and K5 on random triples.
 
@@ -120,10 +135,12 @@ def gaussian_checks(rng: np.random.Generator, cases: int = 100, triples: int = 2
     TypeError
         ``rng`` is not a Generator, or ``cases`` or ``triples`` not an integer.
     ValueError
-        ``cases`` or ``triples`` below 1 (a check of no case would pass vacuously).
+        ``cases`` or ``triples`` below 1 (a check of no case would pass vacuously), or the cases and triples beyond
+        the work budget (``fusion._limits.MAX_WORK``: about 4,500 cases, or 1,200 triples).
     """
     as_rng(rng, "rng")
     cases, triples = count(cases, "cases"), count(triples, "triples")
+    work((cases * _CHECK_CASE + triples * _CHECK_TRIPLE,), "cases and triples")  # before the first case
     k1 = k2 = k3 = 0.0
     for _ in range(cases):
         a, b = 100 * rng.normal(size=4), 100 * rng.normal(size=4)
@@ -201,10 +218,12 @@ def common_information_check(rng: np.random.Generator, cases: int = 100) -> tupl
     TypeError
         ``rng`` is not a Generator or ``cases`` not an integer.
     ValueError
-        ``cases`` below 1 (a check of no case would pass vacuously).
+        ``cases`` below 1 (a check of no case would pass vacuously) or beyond the work budget
+        (``fusion._limits.MAX_WORK``: about 3,500 cases).
     """
     as_rng(rng, "rng")
     cases = count(cases, "cases")
+    work((cases,), "cases", weight=_COMMON_CASE)  # before the first case
     err_g = err_d = 0.0
     x = np.linspace(-10, 10, 2001)
     for _ in range(cases):

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from fusion._limits import work
 from fusion._validation import FloatArray, as_rng, allocation, instance_of
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch, mixtures as mx
@@ -213,6 +214,22 @@ def _sample_sets(runs: int, r: int) -> tuple[int, int]:
     return runs, r
 
 
+#: Units (``fusion._limits.MAX_WORK``'s 10 ns) of one set of :func:`is_replicates`: its SLSQP minimisation on the
+#: simplex, about 1.5 ms (r = 2, runs 200 -> 2,000: 0.286 -> 2.951 CPU-s, process_time, minimum of 2,
+#: OPENBLAS_NUM_THREADS=1, the shared machine loaded), weighed twice (book audit 76: no work budget, only the ceiling
+#: of a sample count, so 5e6 sets of r = 2, about 2 CPU-hours, were accepted).
+_IS_SET = 300_000
+#: Units of one importance sample of :func:`is_replicates` (drawn, both mixtures' and the proposal's densities, the
+#: objective's sums): about 1.4 us (runs = 2, r 1e5 -> 1e6: 0.214 -> 2.832 CPU-s, as above), weighed twice (book
+#: audit 76: 10**7 samples, about 14 CPU-s, were accepted; ``is_replicate_values``' two calls at 500 runs, ~30).
+_IS_SAMPLE = 300
+
+
+def _replicates_work(runs: int, rs: tuple[int, ...], names: str) -> int:
+    """Refuse :func:`is_replicates` calls of ``runs`` sets at each R of ``rs`` beyond the work budget, by ``names``."""
+    return work((sum(runs * (_IS_SET + r * _IS_SAMPLE) for r in rs),), names)
+
+
 #: The offset :func:`is_replicates` adds to its seed (``default_rng(seed + 100)``): the largest a chapter-06 study adds.
 _IS_OFFSET = 100
 
@@ -243,9 +260,11 @@ def is_replicates(seed: int, r: int, runs: int = STUDY_RUNS) -> FloatArray:
     TypeError
         An argument not an integer.
     ValueError
-        ``r`` or ``runs`` not positive, or ``runs`` x ``r`` beyond the ceiling of a sample count.
+        ``r`` or ``runs`` not positive, ``runs`` x ``r`` beyond the ceiling of a sample count, or the sets beyond
+        the work budget (``fusion._limits.MAX_WORK``: about 3,300 sets of few samples, 3.3e6 samples).
     """
     runs, r = _sample_sets(runs, r)
+    _replicates_work(runs, (r,), "runs and r")
     seed = check_seed(seed, span=_IS_OFFSET)   # an integer seed (rule 11), named; seed + 100 a seed too (fuzz 55 C1)
     t = toy(seed)
     gms = list(t.gms)
@@ -278,10 +297,12 @@ def is_replicate_values(seed: int, runs: int = STUDY_RUNS) -> GlueValues:
     TypeError
         ``seed`` or ``runs`` not an integer.
     ValueError
-        ``runs`` not positive, or so many that its sets of 20 000 samples pass the ceiling of a sample count.
+        ``runs`` not positive, or so many that its sets of 20 000 samples pass the ceiling of a sample count, or
+        both calls of :func:`is_replicates` beyond the work budget (``fusion._limits.MAX_WORK``: about 150 runs).
     """
     seed = check_seed(seed, span=_IS_OFFSET)   # is_replicates' seed + 100, checked before toy runs (fuzz 55 D1)
     runs, _ = _sample_sets(runs, 20_000)
+    _replicates_work(runs, (20_000, 2_000), "runs")  # both calls at once, before the first (book audit 76)
     t = toy(seed)
     first_order = abs(t.w_first_order - t.w_exact)
     hi, lo = is_replicates(seed, 20_000, runs), is_replicates(seed, 2_000, runs)
