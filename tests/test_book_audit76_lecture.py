@@ -94,3 +94,12 @@ def test_table_sequential_counted_first() -> None:
     # 600 sensors of one reading: about 7 CPU-s before, 2,000 about 130-250
     refused_quickly(lambda: appendix.table_sequential(np.linspace(1.0, 3.0, 600), 1.5, 1), ValueError, "sigma and m")
     assert len(appendix.table_sequential(np.linspace(1.0, 3.0, 40), 1.5, 2)) == 40
+
+
+def test_spread_check_half_widths_counted() -> None:
+    from fusion.book.chapters.lecture_weighting import learning
+
+    # 5,000 half-widths of one draw: about 5.6 CPU-s before (159,000 accepted, about 180)
+    refused_quickly(lambda: learning.spread_check(tuple(1.0 + i * 1e-4 for i in range(5000)), 1), ValueError,
+                    "log_ranges and draws")
+    assert len(learning.spread_check((1.0, 2.0), 50)) == 2
