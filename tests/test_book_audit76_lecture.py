@@ -103,12 +103,3 @@ def test_spread_check_half_widths_counted() -> None:
     refused_quickly(lambda: learning.spread_check(tuple(1.0 + i * 1e-4 for i in range(5000)), 1), ValueError,
                     "log_ranges and draws")
     assert len(learning.spread_check((1.0, 2.0), 50)) == 2
-
-
-def test_table_james_stein_cells_counted() -> None:
-    from fusion.book.chapters.lecture_correlated import appendix
-
-    # 41,000 cells at d = 3: accepted before (up to 107,000, about 27 CPU-s), 255 us a cell measured
-    refused_quickly(lambda: appendix.table_james_stein([3], np.linspace(0.0, 3.0, 41_000), 100), ValueError,
-                    "ds, ratios and runs")
-    assert len(appendix.table_james_stein([3, 5], [0.0, 1.0], 100)) == 4

@@ -183,10 +183,7 @@ _JS_TERM_WORK = 6
 #: ``poisson.pmf`` call, a row. Measured (fuzz 42b C1: 530,000 cells ran 42.9 CPU-s, counted 1.8e3 units each; CPU time,
 #: minimum of 2, OPENBLAS_NUM_THREADS=1, shared machine): 72-88 us a cell at d = 3, 100 runs, ratio 0 (5,000 and 20,000
 #: ratios) and 120 us at d = 3 to 52 (50 x 400 cells, 27 us of them its 2,700 elements): 9 ``LOOP_STEP`` (90 us).
-#: Book audit 76: 255 us a cell at d = 3, 100 runs, 2,000 ratios over [0, 3] (0.51 CPU-s; 0.27 CPU-s for 20 ds x
-#: 50 ratios; loaded machine), so 107,000 cells were accepted, about 27 CPU-s: 25 ``LOOP_STEP`` (250 us), twice
-#: the 120 us above.
-_JS_CELL_WORK = 25 * LOOP_STEP
+_JS_CELL_WORK = 9 * LOOP_STEP
 
 
 def _js_terms(ratio: float) -> int:
@@ -257,7 +254,7 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
         ``runs`` below ``MIN_RUNS``; ``ds`` or ``ratios`` empty, an entry of ``ds`` below 2, above the ceiling of a
         dimension (``10**4``, as :func:`james_stein_risk`) or repeated, of ``ratios`` outside [0, ``MAX_JS_RATIO``];
         before any draw, the draws and estimates of every cell (``runs`` x the sum of ``ds`` x (3 + the ratios),
-        units of about 10 ns), each cell's calls (25,000 units, measured) and the exact risks' Poisson sums beyond
+        units of about 10 ns), each cell's calls (9,000 units, measured) and the exact risks' Poisson sums beyond
         the work budget (``fusion._limits.MAX_WORK``), naming ``ds``, ``ratios`` and ``runs``; the cells are
         counted before any ratio is checked.
     """
