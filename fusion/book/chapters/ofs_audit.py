@@ -46,6 +46,7 @@ from fusion.readings.fusion_set import TIE_RTOL, _set_weights
 from fusion.book.glue import GlueValues
 # the support-degree variants of Table 3's column (audited apart from Table 2) live in their own module
 from fusion.book.chapters import ofs_support as _support
+from fusion.book.chapters import _ofs_audit_budget as _budget
 from fusion.book.chapters.ofs_support import _TOL, support_values, support_variants
 
 # named by this module, as before the split (the API page, its back-links to the chapter, the registries)
@@ -203,7 +204,8 @@ def run_program(t1: ArrayLike, program: str = "correct", rule: str = "averages, 
         ``order`` not of integers (a float, even a whole one, is not an observation index).
     ValueError
         ``t1`` not of the shapes above, ``program`` or ``rule`` unknown, ``order`` not of the shapes above or not a
-        permutation of the observations.
+        permutation of the observations; ``t1`` beyond the work budget (``fusion._limits.MAX_WORK``: 10 units a pair
+        of readings of an observation, and a stateful program's 20,000 units a step plus 80 a table and one a pair).
     """
     program = one_of(program, tuple(PROGRAMS), "program")
     arr = as_array(t1, "t1")
@@ -212,6 +214,7 @@ def run_program(t1: ArrayLike, program: str = "correct", rule: str = "averages, 
         arr = arr[None]
     if arr.ndim != 3:
         raise ValueError(f"t1 must have shape (H, n_obs, n) or (n_obs, n), got {arr.shape}")
+    _budget.program_budget(arr.shape, _program_shape(program, arr.shape[2])[0], program != "correct")
     return _run(arr, set_members(arr, rule), program, None if order is None else _order(order, arr.shape[:2]), single)
 
 
@@ -502,10 +505,17 @@ def corrections(t1: ArrayLike | None = None, window: float = 20.0, slips_only: b
     -------
     list of Correction
         Starting with "no correction".
+
+    Raises
+    ------
+    ValueError
+        ``window`` not in (0, :data:`MAX_WINDOW`]; the corrections beyond the work budget (``fusion._limits.MAX_WORK``,
+        80,000 units a reading of ``t1`` and 4,000 a value of its grid), naming ``t1 and window``.
     """
     window = _window(window)
     slips_only = flag(slips_only, "slips_only")
     t = data.YANG2012_TABLE1.values if t1 is None else as_array(t1, "t1", ndim=(2,))
+    _budget.corrections_budget(int(np.size(t)), window, slips_only)  # 80,000 units a reading, 4,000 a grid value
     out = [Correction(0, 0, float("nan"), "none")]
     grid = np.round(np.arange(-round(window * 10), round(window * 10) + 1) / 10, 1)
     for i, k in itertools.product(range(t.shape[0]), range(t.shape[1])):
@@ -661,9 +671,16 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
     AuditResult
         The best hypothesis of each (program, set rule, correction class, order class), the hypotheses that explain all
         26 printed values, the count scored.
+
+    Raises
+    ------
+    ValueError
+        ``window`` not in (0, :data:`MAX_WINDOW`] or beyond the work budget (``fusion._limits.MAX_WORK``, 16,000 units
+        a correction: a window up to about 160 °C, 65 °C with ``"slips"``).
     """
     order_search = one_of(order_search, ("mean-consistent", "slips"), "order_search")
     window = _window(window)
+    _budget.joint_budget(int(np.size(data.YANG2012_TABLE1.values)), window, order_search)  # 16,000 units a correction
     cors = corrections(window=window)
     tabs = _tables(cors)
     mean = tabs.mean(axis=2)

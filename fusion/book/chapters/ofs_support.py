@@ -22,11 +22,48 @@ from scipy import optimize
 from fusion._guards import own_underflow
 from fusion._frozen import constant
 from fusion import data
+from fusion._counts import allocation
+from fusion._limits import LOOP_STEP, work
 from fusion._validation import FloatArray, as_array, one_of
 
 __all__ = ["SUPPORT_KERNELS", "SUPPORT_AGGREGATIONS", "support_values", "support_variants"]
 
 _TOL = 5e-5  # half a unit of the printed 4th decimal (the audit of Table 2 reads it too)
+
+# The work of support_values (rule 17; book audit 76: it had no budget, a (40000, 3) t1 under the self-reliability
+# weights ran about 50 CPU-s, 2 * 10**5 alphas on a (6, 5) t1 under the principal eigenvector 6 CPU-s and more
+# alphas without end). Measured with time.process_time, OPENBLAS_NUM_THREADS=1, minimum of 2, shared 2-core machine:
+# an entry of the (k, n_obs, n, n) support matrices cost 11 to 27 ns over the five kernels under the row sums
+# (k = 2 * 10**5, t1 (6, 5): 0.33 to 0.82 CPU-s), 38 ns under the accumulated row sums (1.14 CPU-s): 8 units each;
+# a (n, n) matrix's principal eigenvector 5 us (k = 2 * 10**4, t1 (6, 5): 0.61 CPU-s), 1,000 units each besides
+# perron_weights' own dense budget; the self-reliability loop 22 us a step plus 17 ns an entry of the readings it
+# takes the variance of (t1 (2000, 3): 0.15 CPU-s, (4000, 3): 0.50 CPU-s): 5 * LOOP_STEP a step, 4 units an entry.
+_SUPPORT_ENTRY = 8
+_EIGEN_MATRIX = 1000
+_RELIABILITY_STEP = 5 * LOOP_STEP
+_RELIABILITY_ENTRY = 4
+# support_variants: 80 calls of support_values over the grid (40 variants, two tables), 2.3 ms an alpha measured
+# (600 - 20 alphas: 0.74 - 0.56 CPU-s for 100 - 20, one run each), weighed 500,000 units (5 ms) an alpha besides
+# the roots refined by Brent's method (book audit 76: 10**6 alphas, accepted, would run about 40 minutes).
+_VARIANT_ALPHA = 500_000
+
+
+def _alphas_length(alphas: object) -> int | None:
+    """The number of alphas of a list or tuple, read before any is converted (None for another array_like)."""
+    return len(alphas) if isinstance(alphas, (list, tuple)) else None
+
+
+def _support_budget(shape: tuple[int, int], k: int, aggregation: str) -> None:
+    """Refuse a :func:`support_values` call beyond the work budget or the memory budget, naming ``alphas and t1``."""
+    n_obs, n = shape
+    names = "alphas and t1"
+    allocation((k, n_obs, n, n), names, arrays=2)
+    units = k * n_obs * n * n * _SUPPORT_ENTRY
+    if aggregation == SUPPORT_AGGREGATIONS[1]:
+        units += k * n_obs * _EIGEN_MATRIX
+    if aggregation == SUPPORT_AGGREGATIONS[3]:
+        units += n_obs * _RELIABILITY_STEP + (n_obs * (n_obs + 1) // 2) * n * _RELIABILITY_ENTRY
+    work((units,), names)
 
 #: Support kernels of the support-degree literature: name -> support of a distance d at sharpness α.
 SUPPORT_KERNELS: dict[str, str] = constant({
@@ -66,11 +103,24 @@ def support_values(t1: ArrayLike, kernel: str, aggregation: str, alphas: ArrayLi
     -------
     ndarray, shape (k, n_obs)
         Fused values (°C).
+
+    Raises
+    ------
+    ValueError
+        An unknown ``kernel`` or ``aggregation``, an α not positive, or the support matrices (``k * n_obs * n**2``
+        entries, 8 units each; 1,000 more a matrix under the principal eigenvector; the self-reliability's
+        ``n_obs`` steps of 5,000 units and 4 units an entry of its variances) beyond the work budget
+        (``fusion._limits.MAX_WORK``) or the memory budget, naming ``alphas and t1`` (a list's length counted
+        before its entries are converted).
     """
     kernel = one_of(kernel, tuple(SUPPORT_KERNELS), "kernel")
     aggregation = one_of(aggregation, SUPPORT_AGGREGATIONS, "aggregation")
     s = as_array(t1, "t1", ndim=(2,))
+    k = _alphas_length(alphas)
+    if k is not None:  # a list's length counted before its entries are converted (book audit 76)
+        _support_budget(s.shape, k, aggregation)
     a = as_array(alphas, "alphas", ndim=(1,))
+    _support_budget(s.shape, a.size, aggregation)
     if np.any(a <= 0):
         raise ValueError("alphas must be positive")
     d = np.abs(s[:, :, None] - s[:, None, :])[None]  # (1, n_obs, n, n)
@@ -116,8 +166,18 @@ def support_variants(alphas: ArrayLike | None = None) -> pd.DataFrame:
     DataFrame
         Rows: (kernel, aggregation); columns: for Table 1 as printed and with the joint audit's
         correction, the reachable observations and whether one α reaches all six.
+
+    Raises
+    ------
+    ValueError
+        More α than the work budget (``fusion._limits.MAX_WORK``, 500,000 units an α: at most 2,000), by their
+        number before any is converted, naming ``alphas``.
     """
+    k = _alphas_length(alphas)
+    if k is not None:  # counted before any α is converted (book audit 76)
+        work((k,), "alphas", weight=_VARIANT_ALPHA)
     a = np.logspace(-6, 3, 600) if alphas is None else as_array(alphas, "alphas", ndim=(1,))
+    work((a.size,), "alphas", weight=_VARIANT_ALPHA)
     pub = np.asarray(data.YANG2012_TABLE3.columns["reliability"])
     t_print = np.array(data.YANG2012_TABLE1.values, dtype=float).T
     t_fix = t_print.copy()

@@ -7,6 +7,8 @@ from fusion._validation import instance_of
 from fusion._shown import shown
 
 
+import math
+
 import numpy as np
 import pandas as pd
 
@@ -44,6 +46,26 @@ BEST_SCALED_LS = "best c·LS"
 BEST_RIDGE = "best ridge"
 
 
+# The work of table_sequential (book audit 76: 2,000 sensors of one reading were accepted, about 130-250 CPU-s;
+# time.process_time, OPENBLAS_NUM_THREADS=1, minimum of 2, shared 2-core machine): the whole R's factors 0.3 ns an
+# n**3 (2 sensors of 1,000 readings: 4.1 CPU-s), and the loop over the sensors 2 ms a step plus 0.18 ns a k**3 of
+# its k x k batch GLS (500 sensors of one reading: 4.0 CPU-s; 250: 0.68): 0.06 units an n**3, 400 * LOOP_STEP a
+# sensor and 0.04 units a k**3.
+_SEQ_CUBE, _SEQ_STEP, _SEQ_GLS_CUBE = 0.06, 400 * LOOP_STEP, 0.04
+
+
+def _sequential_readings(sensors: int | None, m: int) -> None:
+    """Refuse ``sensors`` x ``m`` readings beyond :data:`MAX_SEQUENTIAL_READINGS` or the work budget (no check when
+    ``sensors`` is None: not yet known)."""
+    if sensors is None:
+        return
+    if sensors * m > MAX_SEQUENTIAL_READINGS:
+        raise ValueError(f"sigma and m give {sensors} x {m} = {sensors * m} readings, beyond "
+                         f"{MAX_SEQUENTIAL_READINGS} (their covariance is factored)")
+    gls = sum((i * m) ** 3 for i in range(1, sensors + 1))
+    work((math.ceil(_SEQ_CUBE * (sensors * m) ** 3 + _SEQ_GLS_CUBE * gls) + sensors * _SEQ_STEP,), "sigma and m")
+
+
 def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: float = 1.5, m: int = 4,
                      seed: int = SEED) -> pd.DataFrame:
     r"""The block structure of :math:`M = L^{-1}` and its sensor-by-sensor use (§2.7), on a small example.
@@ -78,20 +100,24 @@ def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: floa
     TypeError
         An argument of the wrong type.
     ValueError
-        ``sigma`` or ``sigma_env`` not a valid SD, ``m`` not a positive count, too many readings, or ``sigma_env``
-        so large beside ``sigma`` that R is singular to working precision (its factorisation fails).
+        ``sigma`` or ``sigma_env`` not a valid SD, ``m`` not a positive count, too many readings or their work beyond
+        the work budget (``fusion._limits.MAX_WORK``: 0.06 units an ``n**3``, 400,000 a sensor and 0.04 a ``k**3``
+        of each sensor's batch GLS over the first k readings; about 520 sensors of one reading), counted before
+        any entry of ``sigma`` is checked, or ``sigma_env`` so large beside ``sigma`` that R is singular to working
+        precision (its factorisation fails).
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    m = count(m, "m")
+    # the readings counted before sigma's entries are converted and checked one by one (book audit 76: 10**6 sigma
+    # were checked first, 3.1 CPU-s, before the refusal of their number)
+    _sequential_readings(len(sigma) if isinstance(sigma, (list, tuple)) else None, m)
     sig = as_array(sigma, "sigma", ndim=1)
+    _sequential_readings(sig.size, m)
     for i, v in enumerate(sig):
         std_scalar(v, f"sigma[{i}]")
     sigma_env = scalar(sigma_env, "sigma_env", lo=0.0)
     if sigma_env > 0.0:
         std_scalar(sigma_env, "sigma_env")
-    m = count(m, "m")
-    if sig.size * m > MAX_SEQUENTIAL_READINGS:
-        raise ValueError(f"sigma and m give {sig.size} x {m} = {sig.size * m} readings, beyond "
-                         f"{MAX_SEQUENTIAL_READINGS} (their covariance is factored)")
     n = sig.size * int(m)
     R = np.kron(np.diag(sig ** 2), np.eye(int(m))) + float(sigma_env) ** 2 * np.ones((n, n))
     H = np.ones((n, 1))

@@ -4,7 +4,7 @@ figures and glue."""
 from __future__ import annotations
 
 from fusion._counts import sequence
-from fusion._limits import work
+from fusion._limits import LOOP_STEP, work
 from fusion._validation import count, instance_of, scalar
 
 import numpy as np
@@ -261,6 +261,13 @@ def learning_settling(s22: LearningStudy, tol: float = 0.05) -> dict[int, int]:
 #: Practical margin of "no worse than" in record lec-ls-learning: the mse quantity's 5 % of the bar (rule R9).
 LS_MARGIN = 0.05
 
+#: Units of one half-width of :func:`spread_check` besides its check's own (book audit 76: a half-width of one draw,
+#: counted 6,264 units, cost 1.1 ms, its check's six draws and its row: 1,000 half-widths 1.12 CPU-s, 100 0.13;
+#: time.process_time, OPENBLAS_NUM_THREADS=1, minimum of 2, shared 2-core machine; 159,000 half-widths were
+#: accepted, about 180 CPU-s): 220 * LOOP_STEP, about twice.
+_SPREAD_ROW = 220 * LOOP_STEP
+
+
 def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0),
                  draws: int = 20000, seed: int = 2204) -> pd.DataFrame:
     """§2.2's random check at several spreads of the variances (review F7).
@@ -290,7 +297,8 @@ def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 
         ``log_ranges`` not a sequence of numbers, ``draws`` or ``seed`` not an integer.
     ValueError
         ``log_ranges`` empty (no row to show) or an entry not finite and positive, or beyond ``MAX_LOG_RANGE``; every
-        half-width's check together (``draws`` x 33 variances, 8 units each, per half-width) beyond the work budget
+        half-width's check together (``draws`` x 33 variances, 8 units each, and 226,000 units, per half-width)
+        beyond the work budget
         (``fusion._limits.MAX_WORK``), counted before any entry is checked, naming ``log_ranges`` and ``draws``.
     """
     seed = check_seed(seed)
@@ -299,7 +307,7 @@ def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 
     ranges = sequence(log_ranges, "log_ranges", minimum=1, what="half-width")
     # rule 17: each half-width runs a whole check, counted before any entry is checked (fuzz 42b C8: 5 half-widths at
     # 3.7e6 draws, each within the check's own budget, ran 46 CPU-s)
-    work((len(ranges), _limit_check_units(_CHECK_NS, count(draws, "draws"))), "log_ranges and draws")
+    work((len(ranges), _limit_check_units(_CHECK_NS, count(draws, "draws")) + _SPREAD_ROW), "log_ranges and draws")
     ranges = [scalar(a, f"log_ranges[{i}]", lo=0.0, lo_open=True, hi=sc.learning.MAX_LOG_RANGE)
               for i, a in enumerate(ranges)]
     rows = []

@@ -14,6 +14,7 @@ from fusion._guards import own_underflow
 from fusion._frozen import constant
 from fusion import readings as rd
 from fusion._counts import count, distinct_printed_as_read, sequence
+from fusion._limits import LOOP_STEP, loop_work, work
 from fusion._validation import FloatArray, as_array, general, instance_of, one_of, scalar
 from fusion._validation import read_mapping, window as check_window
 from fusion.readings.robust import robust_fuse
@@ -74,6 +75,18 @@ def _eq11(mu: FloatArray, tau: FloatArray) -> FloatArray:
     return om / om.sum()
 
 
+# Book audit 76 (eq9_readings with weight_epochs=None and family_mae's loop over families had no budget: a
+# (10**7, 3) z, accepted, would run about 5,000 CPU-s; 10**6 families on a (1, 1, 3) z about 300 CPU-s). Measured
+# with time.process_time, OPENBLAS_NUM_THREADS=1, minimum of 2, shared 2-core machine: an epoch of eq9_readings'
+# Python loop 0.5 ms (z (5000, 5): 2.5 CPU-s) plus 43 ns a pair of its readings (z (200, 300): 0.89 CPU-s), counted
+# 100 * LOOP_STEP a step and 10 units a pair, and 20 units a pair of every epoch for its two fuse_epochs calls;
+# family_values 50 ns a pair of readings of an epoch (z (2000, 100): 0.55 to 0.99 CPU-s), 10 units a pair, and
+# family_mae 0.3 ms a family besides (z (1, 1, 3), 10**4 families: 3.2 CPU-s), 60 * LOOP_STEP a family.
+_EQ9_STEP = 100 * LOOP_STEP
+_PAIR_UNITS = 10
+_FAMILY_STEP = 60 * LOOP_STEP
+
+
 def eq9_readings(z: ArrayLike, weight_epochs: int | None = 200) -> dict[str, float | int]:
     """Effect of the open choices of eq. 9 on the weights and fused values.
 
@@ -101,13 +114,19 @@ def eq9_readings(z: ArrayLike, weight_epochs: int | None = 200) -> dict[str, flo
     Raises
     ------
     ValueError
-        ``z`` not a finite 2-D array, or ``weight_epochs`` below 1.
+        ``z`` not a finite 2-D array, or ``weight_epochs`` below 1; the epochs compared beyond the work budget
+        (``fusion._limits.MAX_WORK``: 100,000 units an epoch compared plus 10 a pair of its readings, and 20 a pair
+        of every epoch), naming ``z and weight_epochs``.
     TypeError
         ``weight_epochs`` not an integer.
     """
     z = as_array(z, "z", ndim=2)
     if weight_epochs is not None:
         weight_epochs = count(weight_epochs, "weight_epochs", minimum=1)
+    n_epochs, n = z.shape
+    steps = n_epochs if weight_epochs is None else min(weight_epochs, n_epochs)
+    work((loop_work((steps,), _PAIR_UNITS * n * n, "z and weight_epochs", step=_EQ9_STEP)
+          + 2 * _PAIR_UNITS * n_epochs * n * n,), "z and weight_epochs")
     diffs, self_diffs = [], []
     for row in z[:weight_epochs]:
         sel = rd.optimal_set_members(row)
@@ -289,7 +308,9 @@ def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: floa
     TypeError
         ``families`` not a mapping, or a family not a string.
     ValueError
-        ``families`` empty, or a family not one of those of :data:`FAMILIES` (naming ``families[label]``).
+        ``families`` empty, or a family not one of those of :data:`FAMILIES` (naming ``families[label]``); the
+        families beyond the work budget (``fusion._limits.MAX_WORK``: 60,000 units a family plus 10 a pair of
+        readings of an epoch of ``z``), by their number before any is read, naming ``families and z``.
     """
     arr = as_array(z, "z", ndim=3)
     scale = scalar(scale, "scale", lo=0.0, lo_open=True)
@@ -297,11 +318,14 @@ def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: floa
     instance_of(families, Mapping, "families")
     if not families:
         raise ValueError("families must be a non-empty mapping of label to family, got an empty mapping")
-    families = {label: one_of(fam, _FAMILY_NAMES, f"families[{shown(label)}]")  # read once, the checked names used
-                for label, fam in read_mapping(families, "families").items()}  # (fuzz 31a C3)
     if window is not None:   # only the window's epochs: each is fused on its own
         first, last = check_window(window, "window", arr.shape[1], one_based=True)
         arr = arr[:, first - 1:last]
+    # counted before any family is read (book audit 76)
+    loop_work((len(families),), _PAIR_UNITS * arr.shape[0] * arr.shape[1] * arr.shape[2] ** 2, "families and z",
+              step=_FAMILY_STEP)
+    families = {label: one_of(fam, _FAMILY_NAMES, f"families[{shown(label)}]")  # read once, the checked names used
+                for label, fam in read_mapping(families, "families").items()}  # (fuzz 31a C3)
     out = {}
     for label, fam in families.items():
         v = family_values(arr.reshape(-1, arr.shape[-1]), fam, scale).reshape(arr.shape[:2])
