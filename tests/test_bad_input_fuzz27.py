@@ -107,13 +107,22 @@ def _singular() -> tuple[Any, Any]:
 
 
 def test_per_run_nees_follows_method_tables_rule() -> None:
+    from fusion.book.chapters.chernoff.settings import LATE
+    from fusion.book.chapters.chernoff.tracking import _defined_nees
+
     sc, (p, g) = _singular()
     table = chc.method_table(g, chc.crb_position(sc, g), p)
-    late = chc.per_run_nees(g, "chernoff_prev")  # frames 5 on: defined, as the table's column
-    assert np.isfinite(late).all()
-    with pytest.raises(ValueError, match=r"runs\[\d\].*'chernoff_prev'.*singular.*frame \d") as exc:
-        chc.per_run_nees(g, "chernoff_prev", ALL_FRAMES)
-    assert "positive definite" not in str(exc.value)
+    undefined = np.isnan(_defined_nees(g, "chernoff_prev"))   # the table's rule: singular to working precision
+    assert undefined[:, ALL_FRAMES].any()   # 10 particles: singular somewhere
+    # which late frames are singular is round-off (it differs between BLAS kernels): a window is defined, per run,
+    # exactly when none of its run-frames is undefined, else refused naming the run and the frame
+    for frames in (LATE, ALL_FRAMES):
+        if not undefined[:, frames].any():
+            assert np.isfinite(chc.per_run_nees(g, "chernoff_prev", frames)).all()
+            continue
+        with pytest.raises(ValueError, match=r"runs\[\d\].*'chernoff_prev'.*singular.*frame \d") as exc:
+            chc.per_run_nees(g, "chernoff_prev", frames)
+        assert "positive definite" not in str(exc.value)
     assert table.shape[0] > 0
 
 

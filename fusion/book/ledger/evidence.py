@@ -459,6 +459,13 @@ class Comparison:
             scale = float(max(np.max(np.abs(fa)), np.max(np.abs(fb))))
         return 10.0 ** (math.floor(math.log10(scale)) - 3) if scale > 0 else 1.0
 
+    def at_resolution(self, x: float) -> float:
+        """``x`` as this comparison stores and shows its numbers: rounded to :meth:`resolution` (an end closer to zero
+        than it keeps two significant digits). A number derived from its runs and glued beside it (an interval end, a
+        median of the differences) is rounded so too: its further digits are the runs' round-off, which differs between
+        BLAS kernels (a notebook's interval end printed 9.6038 under one kernel, 9.6037 under another)."""
+        return self._rounded(x)
+
     def _rounded(self, x: float) -> float:
         """``x`` rounded to :meth:`resolution`; a non-zero ``x`` that would round to 0 keeps its sign.
 

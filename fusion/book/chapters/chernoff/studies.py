@@ -209,7 +209,8 @@ def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) 
     -------
     dict
         Glue values ``chf_pr_ngx_*``: ``runs``, ``seed`` (int), ``d``/``lo``/``hi`` (mixture fusion − CI of Gaussians,
-        mean and paired 95 % interval, m²), ``margin`` (R2's, m²), ``status`` (the rulebook's), ``median`` (m²),
+        mean and paired 95 % interval, m²), ``margin`` (R2's, m²), ``status`` (the rulebook's), ``median`` (m²; these
+        five rounded as the comparison stores its numbers, :meth:`~fusion.book.ledger.Comparison.at_resolution`),
         ``win`` (share of runs in which the mixtures are more accurate) and ``hill`` (the differences' Hill index).
 
     Raises
@@ -231,7 +232,8 @@ def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) 
     c = _pcmp(st, "chernoff_pso", "ci_gaussian")
     jd = c.judgement()
     d = st.mse("chernoff_pso") - st.mse("ci_gaussian")
-    return {"chf_pr_ngx_runs": int(st.runs), "chf_pr_ngx_seed": int(st.seed), "chf_pr_ngx_d": rounded(jd.estimate),
-            "chf_pr_ngx_lo": rounded(jd.low), "chf_pr_ngx_hi": rounded(jd.high), "chf_pr_ngx_margin": rounded(jd.margin),
-            "chf_pr_ngx_status": jd.status, "chf_pr_ngx_median": rounded(float(np.median(d))),
+    r = c.at_resolution   # the comparison's own rounding: further digits are the runs' round-off (kernel-dependent)
+    return {"chf_pr_ngx_runs": int(st.runs), "chf_pr_ngx_seed": int(st.seed), "chf_pr_ngx_d": r(jd.estimate),
+            "chf_pr_ngx_lo": r(jd.low), "chf_pr_ngx_hi": r(jd.high), "chf_pr_ngx_margin": r(jd.margin),
+            "chf_pr_ngx_status": jd.status, "chf_pr_ngx_median": r(float(np.median(d))),
             "chf_pr_ngx_win": rounded(float(jd.share)), "chf_pr_ngx_hill": rounded(float(jd.tail_index), 2)}
