@@ -203,11 +203,40 @@ _SIGMA_NODE = 200
 #: drawn): about 120 ms (runs 5 -> 25: 0.979 -> 3.371 CPU-s, as above), weighed twice (book audit 76: no budget, so
 #: 10**7 problems were accepted).
 _SIGMA_PROBLEM = 24_000_000
+#: Units of one node x component of a density :func:`sigma_first_order_problem` evaluates on its grid (``a`` and
+#: ``b``, then each method's fused mixture of up to S_a x S_b components): twice the 40-46 ns measured where the
+#: arrays are large (S_a = S_b = 60 at n = 201, 13.5 CPU-s for 2 x 1.45e8 node-components, 46 ns; 30 at n = 201,
+#: 3.4 CPU-s for 7.5e7, 45 ns; ``_logpdf`` alone 14-16 ns at 8 MB, 26-28 ns at 1.2 GB; process_time, minimum of 2,
+#: OPENBLAS_NUM_THREADS=1, the machine shared). Fuzz 68b C9/C9b: only the n x n nodes were counted, so
+#: 100-component mixtures ran to a raw MemoryError (a 3 GiB array) and 60 components ran 14.9 CPU-s.
+_GRID_COMPONENT = 9
+#: Calls of each method's fusion in :func:`sigma_first_order_problem` (its bounded search, then its fused mixture at
+#: ω* and its normaliser there): at most 16 measured (33 problems: the book's, random ones, 3-30 components), 20 here.
+_SEARCH_CALLS = 20
+#: Units of a component tuple of one first-order fusion call (the search's): twice the 1.5 us measured at 3,600-10,000
+#: tuples (5.5 ms, 14.6 ms; 9 us a tuple at 100 tuples, whose call overhead :data:`_SIGMA_NODE` covers; fuzz 68b C9).
+_FO_TUPLE = 300
+#: Units of a tuple x component of one :func:`sigma_point_first_order` call: twice the 110 ns measured (47 ms at
+#: S_a = S_b = 60, 222 ms at 100; as above; fuzz 68b C9).
+_SP_TUPLE_COMPONENT = 22
 
 
 #: :func:`sigma_first_order_problem` refuses two mixtures whose exact log Z at ω = 1/2 lies at most this far below
 #: the mean of its end points (nats; the Bhattacharyya distance of a and b): one density, whose ω* is undetermined.
 SAME_DENSITY_NATS = 1e-12
+
+
+def _problem_budget(s_a: int, s_b: int, n: int) -> None:
+    """The memory and work of :func:`sigma_first_order_problem` by its mixtures' components and grid, refused naming
+    ``a, b and n`` before the grid (fuzz 68b C9, C9b): each fused mixture of up to ``s_a * s_b`` components on the
+    n x n nodes (two arrays of that shape at once, tracemalloc's peak of ``_logpdf``: 2.00-2.01 of one), the two
+    mixtures' own densities there, and each method's fusions in its search."""
+    tuples, nodes = s_a * s_b, n * n
+    allocation((tuples, nodes), "a, b and n (the fused mixture's components on the n x n grid)", arrays=2)
+    grid = nodes * (s_a + s_b + 2 * tuples) * _GRID_COMPONENT
+    search = _SEARCH_CALLS * tuples * (_FO_TUPLE + (s_a + s_b) * _SP_TUPLE_COMPONENT)
+    work((1,), "a, b and n (the mixtures' components on the n x n grid and in each method's search)",
+         weight=grid + search)
 
 
 @own_underflow  # underflow to 0 by design (a kernel, a density or normalised weights: fuzz 33b D6)
@@ -241,8 +270,10 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
         ``a`` or ``b`` not a mixture, ``n`` not an integer.
     ValueError
         ``a`` or ``b`` not 2-D, ``n`` below 2, an n x n grid beyond the memory budget
-        (``fusion._validation.allocation``) or the work budget (``fusion._limits.MAX_WORK``: n about 2,200), or ``b`` the same density as ``a`` on the grid (their Bhattacharyya
-        distance at most :data:`SAME_DENSITY_NATS`; ``a`` itself, or its components reordered or split): every
+        (``fusion._validation.allocation``) or the work budget (``fusion._limits.MAX_WORK``: n about 2,200), ``a`` and
+        ``b`` whose components (their fused mixture's ``S_a * S_b`` on the grid and in each method's search) with
+        ``n`` are beyond those budgets (fuzz 68b C9), before the grid; or ``b`` the same density as ``a`` on the grid
+        (their Bhattacharyya distance at most :data:`SAME_DENSITY_NATS`; ``a`` itself, or its components reordered or split): every
         exponent then gives the same fusion and ω* is undetermined (fuzz 26b D5: the bounded search returned its
         end point as "exact").
     """
@@ -256,6 +287,7 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
     n = count(n, "n", minimum=2)
     allocation((n, n, 2), "n")  # the n x n grid's log-densities of the two mixtures, before they are computed
     work((n, n), "n", weight=_SIGMA_NODE)  # the grid's nodes, before any is computed (book audit 76)
+    _problem_budget(a.weights.size, b.weights.size, n)
     axis = np.linspace(-_SIGMA_GRID[0], _SIGMA_GRID[0], n)
     X, Y = np.meshgrid(axis, axis)
     pts = np.column_stack([X.ravel(), Y.ravel()])
