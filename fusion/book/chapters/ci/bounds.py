@@ -19,7 +19,7 @@ from fusion._shown import shown
 from fusion._structures import derived
 from fusion._limits import work
 from fusion._validation import scalar
-from fusion.book.chapters.ci.checks import PERIOD_KEY, _frame, _given_count, _periods
+from fusion.book.chapters.ci.checks import PERIOD_KEY, _counted, _frame, _periods
 
 __all__ = ["pcrb_numbers", "pcrb_table", "path_period_table", "path_numbers"]
 
@@ -64,7 +64,8 @@ def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
     """
     from fusion.scenarios import two_sensor as ts
 
-    work((_given_count(periods, "periods"),), "periods", weight=_PCRB_PERIOD)   # before any is read (book audit 76)
+    periods, n_periods = _counted(periods, "periods")   # read once, counted (fuzz 68b C1, C1b)
+    work((n_periods,), "periods", weight=_PCRB_PERIOD)   # before any is checked (book audit 76)
     periods = _periods(periods)
     with derived("periods, sigma and delta0", "a steady-state PCRB"):
         rows = {float(T): {r: ts.pcrb_steady(float(T), sigma, ts.process_noise(float(T), delta0, r))

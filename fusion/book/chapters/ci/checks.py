@@ -18,7 +18,8 @@ import pandas as pd
 from fusion._results import real_key
 from fusion._shown import shown
 from fusion._limits import MAX_INPUT_ELEMENTS
-from fusion._validation import FloatArray, as_array, distinct_printed, general, given_entries, input_size, read_mapping, scalar
+from fusion._validation import (FloatArray, as_array, distinct_printed, general, given_entries, input_size, read_mapping,
+                               read_once, scalar)
 from fusion.book.chapters.lecture import _frame  # noqa: F401 (the chapter's modules import it from here)
 
 __all__: list[str] = []   # nothing public: the chapter's functions document these checks in their Raises sections
@@ -48,10 +49,37 @@ def _entries(value: object, name: str, keys: Collection[object], maker: str, *, 
     return out
 
 
+def _counted(value: object, name: str) -> tuple[object, int]:
+    """The sequence or array argument ``value`` as read once, and its entries' count (:func:`_given_count`), the
+    count a work budget refuses first: an object with ``__array__`` (or a buffer, an ``array.array``, a user's
+    Sequence class), which has no shape or length to count, is converted here once (``read_once``, by its protocol:
+    the caller then checks and computes with that array, never a second conversion) and counted by the array's
+    shape; a list or tuple subclass whose ``len()`` disagrees with its entries is refused naming ``name`` (numpy
+    converts its entries, not its ``len()``). Fuzz 68b C1, C1b, C2: both counted one, so 6,000 periods or 150 levels
+    ran 20-24 CPU-s under a budget of one."""
+    for base in (list, tuple):
+        if isinstance(value, base) and type(value) is not base:
+            given, held = _length(value, name), base.__len__(value)  # type: ignore[arg-type]
+            if given != held:
+                raise ValueError(f"{name} has len() {given} but {held} entries (a {type(value).__name__} whose len() "
+                                 "disagrees with its entries)")
+    value = read_once(value, name)
+    return value, _given_count(value, name)
+
+
+def _length(value: object, name: str) -> int:
+    """``len(value)``, the argument's own exception re-raised as a TypeError naming ``name`` (rule 15)."""
+    try:
+        return len(value)  # type: ignore[arg-type]
+    except Exception as exc:  # noqa: BLE001 (the argument's own exception, named and chained)
+        raise TypeError(f"{name} has no length: it raised {type(exc).__name__}: {str(exc):.200}") from exc
+
+
 def _given_count(value: object, name: str) -> int:
     """The number of entries of the sequence or array argument ``value``, read from its lengths or shape before any
-    conversion or entry-by-entry check (``fusion._validation.given_entries``; a scalar or anything else counts one):
-    the count a work budget refuses first (book audit 76: a list of 10**7 seeds, omegas or levels was converted and
+    conversion or entry-by-entry check (``fusion._validation.given_entries``; a scalar or anything else counts one:
+    an object without shape or length is counted after :func:`_counted` has read it): the count a work budget refuses
+    first (book audit 76: a list of 10**7 seeds, omegas or levels was converted and
     checked entry by entry, seconds, before the budget its length sets). Beyond the input budget it is refused
     naming ``name`` (``input_size``)."""
     n = given_entries(value, MAX_INPUT_ELEMENTS)   # one pass over a list's entries (0.7 CPU-s at the input budget)

@@ -30,7 +30,7 @@ from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, St
 from fusion.book.chapters.ci.printed import PrintedWeightFacts, _printed_facts_budget, ml_vs_product
 from fusion.book.chapters._defaults import study_defaults
 from fusion.book.chapters.ci.text import _glue_doc, _sig3, excess_text, readable
-from fusion.book.chapters.ci.checks import (_entries, _flat_pair_read, _frame, _given_count, _indices, _objective_grid,
+from fusion.book.chapters.ci.checks import (_entries, _flat_pair_read, _counted, _frame, _indices, _objective_grid,
                                             _optima_of, _per_step, _period_key, _results, _same_search,
                                             _sensor_noises, _step_index, _study_of)
 
@@ -437,7 +437,8 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
     for i, sc in enumerate(scs):
         instance_of(sc, Scenario, f"scenarios[{i}]")
     n_grid = count(n_grid, "n_grid", minimum=2)
-    _printed_facts_budget([sc.tracks[0].Pd.shape for sc in scs], n_grid, _given_count(seeds, "seeds"))
+    seeds, n_seeds = _counted(seeds, "seeds")   # read once, counted (fuzz 68b: an __array__ object counted one)
+    _printed_facts_budget([sc.tracks[0].Pd.shape for sc in scs], n_grid, n_seeds)
     for j, sc in enumerate(scs):   # the repeat rule (fuzz 26c q3): the counts read the covariances, not the runs
         parts = [x for tr in sc.tracks for x in (tr.Pd, tr.Pi)]
         for i in range(j):
@@ -720,7 +721,7 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
     from fusion.scenarios.two_sensor.case import _scenario_budget
     from fusion.scenarios.two_sensor.weights import _CI_COSTS, _over_seeds_budget
     # the searches' budget by the seeds' count first (book audit 76: a 10**7 list was checked, 3.1 CPU-s, then hashed)
-    n_fly = _given_count(fruit_fly_seeds, "fruit_fly_seeds")
+    fruit_fly_seeds, n_fly = _counted(fruit_fly_seeds, "fruit_fly_seeds")   # read once, counted (fuzz 68b C1's class)
     studies_first([lambda: _over_seeds_budget(n_fly, 1001, 30, 200, 4, _CI_COSTS, "fruit_fly_seeds")],
                   "runs, T and fruit_fly_seeds")
     fly = distinct(check_seeds(fruit_fly_seeds, "fruit_fly_seeds"), "fruit_fly_seeds")
