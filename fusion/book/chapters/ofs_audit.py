@@ -510,12 +510,13 @@ def corrections(t1: ArrayLike | None = None, window: float = 20.0, slips_only: b
     ------
     ValueError
         ``window`` not in (0, :data:`MAX_WINDOW`]; the corrections beyond the work budget (``fusion._limits.MAX_WORK``,
-        80,000 units a reading of ``t1`` and 4,000 a value of its grid), naming ``t1 and window``.
+        25,000 units a character of a reading of ``t1`` printed to 0.1 and 4,000 a value of its grid), naming
+        ``t1 and window``.
     """
     window = _window(window)
     slips_only = flag(slips_only, "slips_only")
     t = data.YANG2012_TABLE1.values if t1 is None else as_array(t1, "t1", ndim=(2,))
-    _budget.corrections_budget(int(np.size(t)), window, slips_only)  # 80,000 units a reading, 4,000 a grid value
+    _budget.corrections_budget(t, window, slips_only)  # 25,000 units a printed character, 4,000 a grid value
     out = [Correction(0, 0, float("nan"), "none")]
     grid = np.round(np.arange(-round(window * 10), round(window * 10) + 1) / 10, 1)
     for i, k in itertools.product(range(t.shape[0]), range(t.shape[1])):

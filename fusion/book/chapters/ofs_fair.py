@@ -36,7 +36,7 @@ from fusion.readings.robust import _robust_limit, ROBUST_METHODS, robust_fuse
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
 from fusion._counts import allocation, distinct, sequence
-from fusion._limits import LOOP_STEP, loop_work, work
+from fusion._limits import LOOP_STEP, MAX_MAGNITUDE, loop_work, work
 from fusion._structures import record, records_of
 from fusion._shown import shown
 
@@ -240,6 +240,29 @@ def _budget(shape: tuple[int, int, int], points: int, methods: Sequence[str], na
     work((points, rows, n), names[1], weight=max(per_point / (rows * n), 1e-9))
 
 
+#: Largest float spacing at ``truth`` accepted, as a fraction of the smallest noise SD of a study: the readings
+#: ``truth + noise`` are rounded to that spacing (fuzz 68b D1: at ``truth = 1e150`` the noise and the faults of
+#: :func:`fault_shapes_study` were below one ulp, and every method's MAE was exactly 0).
+_TRUTH_SPACING = 1e-3
+
+
+def _resolved_truth(truth: float, smallest_sd: float, names: str) -> None:
+    """Refuse a ``truth`` at which a float's spacing is beyond :data:`_TRUTH_SPACING` of the smallest noise SD."""
+    ulp = float(np.spacing(abs(truth)))
+    if ulp > _TRUTH_SPACING * smallest_sd:
+        raise ValueError(f"{names}: readings near truth = {truth:g} are rounded to {ulp:.3g} °C, beyond "
+                         f"{_TRUTH_SPACING:g} of the smallest noise SD ({smallest_sd:.3g} °C): the noise and the "
+                         f"faults would be lost in the rounding; give a truth nearer 0 or a larger SD")
+
+
+def _readings_in_range(top: float, names: str) -> None:
+    """Refuse readings derived from the arguments (``truth + noise``, faults) whose magnitude may reach ``top``,
+    beyond :data:`MAX_MAGNITUDE`, by name."""
+    if not top <= MAX_MAGNITUDE:
+        raise ValueError(f"{names}: the readings derived from them may reach magnitude {top:.3g}, beyond the "
+                         f"representable range (at most {MAX_MAGNITUDE:g}); give a smaller sigma or truth")
+
+
 def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequence[float] = (0, 1, 2, 3, 4, 6, 8, 10),
                counts: Sequence[int] = (0, 1, 2, 3, 4, 5), spreads: Sequence[float] = (1, 2, 4, 8, 16),
                n_sensors: int = 10, truth: float = 900.0, opposite: Sequence[float] = (2, 3, 4, 6),
@@ -290,7 +313,9 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
         repeated; the draws beyond the memory budget (naming ``n_runs, n_samples and n_sensors``) or the study
         beyond the work budget (``fusion._limits.MAX_WORK``; each method weighed by its measured cost a reading and
         point, the optimal-set methods' n x n kernel by its pairs: about 360 runs of the default sweeps, 2,000 of
-        ``methods=("mean",)``), refused before anything is drawn.
+        ``methods=("mean",)``), refused before anything is drawn; ``truth`` (``truth and spreads`` with a spread
+        above 1) when the float spacing at ``truth`` is beyond 1e-3 of the smallest noise SD (1 °C, or the widest
+        spread's ``spread**-0.5``): the noise and the faults would be lost in the rounding.
     """
     seed = check_seed(seed)
     n_runs, n_samples, n_sensors = (count(v, k) for v, k in ((n_runs, "n_runs"), (n_samples, "n_samples"),
@@ -319,6 +344,8 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     spreads = [scalar(v, f"spreads[{i}]", lo=1.0) for i, v in enumerate(items["spreads"])]
     for name, points in (("sizes", sizes), ("counts", counts), ("opposite", opposite), ("spreads", spreads)):
         distinct(points, name)
+    widest = max(spreads, default=1.0)   # the smallest SD: 1 °C, or the spread sweep's widest**-0.5 (fuzz 68b D1)
+    _resolved_truth(truth, min(1.0, widest ** -0.5), "truth and spreads" if widest > 1.0 else "truth")
     rng = np.random.default_rng(count(seed, "seed", minimum=0, maximum=None))
     e = rng.standard_normal((n_runs, n_samples, n_sensors))
     perm = np.argsort(rng.random((n_runs, n_sensors)), axis=1)
@@ -742,7 +769,10 @@ def fault_shapes_study(seed: int, n_runs: int = 500, sigma: ArrayLike = np.linsp
     ValueError
         ``n_runs`` below 1, or the draws of every shape (``n_runs`` x 100 x 10 each) beyond the memory budget
         (``fusion._counts.MAX_ELEMENTS``) or their fusions beyond the work budget (``fusion._limits.MAX_WORK``: about
-        12,000 runs, 6 CPU-s); ``sigma`` not one positive SD or 10; ``truth`` not finite.
+        12,000 runs, 6 CPU-s); ``sigma`` not one positive SD or 10; ``truth`` not finite; ``truth and sigma`` when
+        the float spacing at ``truth`` is beyond 1e-3 of the smallest SD (the noise and the faults lost in the
+        rounding); ``sigma and truth`` when the readings derived from them (truth plus noise, the noise inflated
+        x8, faults up to 8 °C) exceed the representable range (``MAX_MAGNITUDE``), before any fusion.
     """
     seed = check_seed(seed)
     n_runs = count(n_runs, "n_runs")
@@ -754,10 +784,15 @@ def fault_shapes_study(seed: int, n_runs: int = 500, sigma: ArrayLike = np.linsp
     sig_in = as_array(sigma, "sigma", ndim=(0, 1))
     if sig_in.shape not in ((), (1,), (10,)) or np.any(sig_in <= 0):
         raise ValueError(f"sigma must be one positive SD or 10 (one per sensor), got shape {sig_in.shape}")
+    _resolved_truth(truth, float(np.min(sig_in)), "truth and sigma")   # fuzz 68b D1
     rng = np.random.default_rng(seed)
     sig = np.broadcast_to(sig_in, (10,))   # the array read (fuzz 29b B1)
     e = rng.standard_normal((n_runs, 100, 10)) * sig
     offsets = rng.standard_normal((n_runs, 1, 10))
+    # the readings' bound (noise inflated x8; offsets and 8 °C faults; +5 °C) before any is built or fused (fuzz 68b
+    # C6: sigma = 3e149 was refused by an internal fusion naming "x", not an argument; 2.1 CPU-s at 10,000 runs)
+    big, off_big = float(np.max(np.abs(e))), float(np.max(np.abs(offsets)))
+    _readings_in_range(abs(truth) + max(8.0 * big, big + off_big + 8.0, big + 5.0), "sigma and truth")
     cols, win = np.array([3, 9]), slice(49, 80)
     ramp = np.zeros((100, 1))
     ramp[win, 0] = np.linspace(1.0 / 31.0, 1.0, 31)
