@@ -14,11 +14,13 @@ from fusion._results import ResultSpec, dict_of, instance, integer, trusted, val
 from fusion._frozen import constant
 from fusion.book._few_runs import runs_named
 from fusion.book.ledger import Comparison, Conjunction
+from fusion.book.ledger.evidence import _MEMBER, _MEMBER_RUN
 from fusion.book.rulebook import _runs_won
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
 from fusion._counts import seed as check_seed, sequence
 from fusion._docstrings import with_sections
+from fusion._limits import work
 from fusion._validation import as_array, instance_of, template, text
 from fusion._shown import shown
 
@@ -57,7 +59,9 @@ TypeError
     ``a`` or ``b`` is not numeric, ``a_name`` or ``b_name``{metric} not a string, or ``seed`` not an integer.
 ValueError
     ``a`` or ``b`` is not a non-empty 2-D array of finite values, their shapes differ, or they hold fewer than
-    two sensors (columns) or fewer runs (rows) than rule R4's 100{metric_value}."""
+    two sensors (columns) or fewer runs (rows) than rule R4's 100{metric_value}; or more sensors than the work
+    budget of a :class:`fusion.book.ledger.Conjunction` (``fusion._limits.MAX_WORK``: 100,000 units a sensor and 300
+    a run of it, about 7,700 sensors of 100 runs), counted before any sensor is compared."""
 
 
 def _per_sensor(a: object, b: object, a_name: object, b_name: object, seed: int,
@@ -66,6 +70,10 @@ def _per_sensor(a: object, b: object, a_name: object, b_name: object, seed: int,
     ``part(j, a[:, j - 1], b[:, j - 1], seed)`` for each sensor j = 1, 2, ... joined as the Conjunction of
     ``"sensor j"`` parts."""
     a, b = _paired_metrics(a, b, a_name, b_name)
+    # the Conjunction's own budget, a member per sensor at its runs, counted before any sensor's Comparison is built
+    # (fuzz 68b C5: 100,000 sensors of 100 runs built a Comparison each, 0.16 ms apiece, and were refused by the
+    # Conjunction after 17 CPU-s); the same units as ``Conjunction`` (its ``_MEMBER`` and ``_MEMBER_RUN``, measured there)
+    work((a.shape[1],), "a and b (sensors x runs)", weight=_MEMBER + _MEMBER_RUN * a.shape[0])
     with runs_named("a and b", "a row of a and b per run"):   # no argument reason here (fuzz 29b B6)
         return Conjunction(tuple((f"sensor {j + 1}", part(j + 1, a[:, j], b[:, j], seed))
                                  for j in range(a.shape[1])))

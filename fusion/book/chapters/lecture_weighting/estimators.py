@@ -86,12 +86,17 @@ def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd
         ``s`` not an AwfStudy (E2.1's study), or ``levels`` not a sequence (a list, tuple or 1-D array) of
         numbers.
     ValueError
-        ``levels`` empty, repeating a level, or an entry not a level of the study.
+        ``levels`` empty, repeating a level, or an entry not a level of the study; more entries than the study's
+        levels, counted before any entry is read.
     """
     instance_of(s, AwfStudy, "s")
     tab = _estimates_table(s)
     known = tab.index.get_level_values("X").unique()
     levels = sequence(levels, "levels", minimum=1, what="level")
+    if len(levels) > len(known):   # distinct levels of the study: no more than it holds, counted before any is read
+        # (fuzz 68b: each entry of a long list was read and looked up before distinct refused the repeats)
+        raise ValueError(f"levels must hold distinct levels of the study, at most its {len(known)} (its levels: "
+                         f"{list(known)}), got {len(levels)} entries")
     for i, v in enumerate(levels):
         if scalar(v, f"levels[{i}]") not in known:
             raise ValueError(f"levels[{i}] = {shown(v)} is not a level of the study (its levels: {list(known)})")
