@@ -80,3 +80,21 @@ def test_c3_nested_fields_count_each_time_they_occur() -> None:
 
 def test_c3_a_few_structured_arrays_are_still_glued(monkeypatch: pytest.MonkeyPatch) -> None:
     assert glued(monkeypatch, {"k": [np.zeros(3, dtype=_fields(20)) for _ in range(20)]})["k"] is not None
+
+
+def test_fuzz68a_c5_c6_an_attribute_named_by_anything_but_a_str_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
+    class Float(float):
+        pass
+
+    class Name(str):
+        def startswith(self, *args: object) -> bool:   # hides a display method from a text test
+            return False
+
+    odd = Float(1.5)
+    odd.__dict__[1] = 2   # type: ignore[index]
+    with pytest.raises(TypeError, match=r"values\['k'\].*named by a int"):
+        glued(monkeypatch, {"k": odd})
+    hiding = Float(2.5)
+    hiding.__dict__[Name("_repr_html_")] = lambda: "<b>nan</b>"
+    with pytest.raises(TypeError, match=r"values\['k'\].*named by a Name"):
+        glued(monkeypatch, {"k": hiding})

@@ -346,6 +346,8 @@ def _own_text(v: object, plain: set[type] | None = None, container: bool = False
         meter.scan(sum(stored_len(attrs) for attrs, _ in own), key)
     for attrs, instance in own:
         for name, attr in stored_items(attrs):
+            if type(name) is not str:   # fuzz 68a C5, C6: a name IPython's getattr matches but no text test reads
+                return f"an attribute named by a {type(name).__name__}, not a str"
             text_name = (name.startswith(("_repr_", "_ipython_")) or name == "__html__" if instance   # an Enum
                          else name in _TEXT_NAMES or name.startswith(("_repr_", "_ipython_")))         # member's _name_
             if name == "__dict__" and not instance and not isinstance(attr, types.GetSetDescriptorType):
