@@ -509,8 +509,8 @@ def corrections(t1: ArrayLike | None = None, window: float = 20.0, slips_only: b
     Raises
     ------
     ValueError
-        ``window`` not in (0, :data:`MAX_WINDOW`]; the corrections beyond the work budget (``fusion._limits.MAX_WORK``,
-        25,000 units a character of a reading of ``t1`` printed to 0.1 and 4,000 a value of its grid), naming
+        ``window`` not in (0, 1000] (``MAX_WINDOW``); the corrections beyond the work budget
+        (``fusion._limits.MAX_WORK``, 25,000 units a character of a reading of ``t1`` printed to 0.1 and 4,000 a value of its grid), naming
         ``t1 and window``.
     """
     window = _window(window)
@@ -676,8 +676,8 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
     Raises
     ------
     ValueError
-        ``window`` not in (0, :data:`MAX_WINDOW`] or beyond the work budget (``fusion._limits.MAX_WORK``, 16,000 units
-        a correction: a window up to about 160 °C, 65 °C with ``"slips"``).
+        ``window`` not in (0, 1000] (``MAX_WINDOW``) or beyond the work budget (``fusion._limits.MAX_WORK``,
+        16,000 units a correction: a window up to about 160 °C, 65 °C with ``"slips"``).
     """
     order_search = one_of(order_search, ("mean-consistent", "slips"), "order_search")
     window = _window(window)
