@@ -18,7 +18,7 @@ import array as _array
 import datetime as _dt
 from collections import deque
 from itertools import chain as _chain
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 
 import numpy as np
 
@@ -60,6 +60,18 @@ def _shaped(v: object) -> int | None:
     return n
 
 
+def _stored_len(s: Sequence) -> int:
+    """The entries ``s`` stores: a list or tuple subclass's by the base type's ``len`` (NumPy converts the stored
+    entries whatever its ``len()`` or ``__iter__`` say: a list subclass whose ``len()`` was 1 passed the input budget
+    with 2**25 + 1 entries, fix 77a's note), any other sequence's ``len()``."""
+    return list.__len__(s) if isinstance(s, list) else tuple.__len__(s) if isinstance(s, tuple) else len(s)
+
+
+def _stored(s: Sequence) -> Iterator[object]:
+    """The entries ``s`` stores (``_stored_len``'s rule: a list or tuple subclass's by the base type's iterator)."""
+    return list.__iter__(s) if isinstance(s, list) else tuple.__iter__(s) if isinstance(s, tuple) else iter(s)
+
+
 def sequence_entries(x: object, limit: int) -> float | None:
     """The number of entries the sequence ``x`` converts to, counted up to just beyond ``limit`` before any
     conversion (rule 9, fuzz 33a C1), or None if ``x`` is not a sequence (text is not).
@@ -87,7 +99,7 @@ def sequence_entries(x: object, limit: int) -> float | None:
     while stack:
         s, depth = stack.pop()
         try:
-            n = len(s)
+            n = _stored_len(s)
         except OverflowError:
             return float("inf")
         except Exception:  # noqa: BLE001 (a length that raises: the conversion names the argument)
@@ -95,21 +107,21 @@ def sequence_entries(x: object, limit: int) -> float | None:
         if not isinstance(s, (list, tuple, deque)) or n + total > limit:  # a range's entries are numbers
             total += n
             if total > limit and isinstance(s, (list, tuple, deque)):
-                if n > _EXACT_SCAN or not set(map(type, s)) <= _SCALARS:
+                if n > _EXACT_SCAN or not set(map(type, _stored(s))) <= _SCALARS:
                     return total + 0.5  # its entries, perhaps sequences, not read: at least this many
                 return total + (0.5 if stack else 0)  # flat: its count exact (review 18); others left, at least
         else:
             try:
-                types = set(map(type, s))
+                types = set(map(type, _stored(s)))
                 if types <= _SCALARS:  # a flat sequence of numbers: one pass in C
                     total += n
                     continue
                 if types <= _ROWS:  # rows of numbers (a 2-D list): two passes in C
-                    inner = sum(map(len, s))
-                    if total + inner <= limit and set(map(type, _chain.from_iterable(s))) <= _SCALARS:
+                    inner = sum(map(len, _stored(s)))
+                    if total + inner <= limit and set(map(type, _chain.from_iterable(_stored(s)))) <= _SCALARS:
                         total += inner
                         continue
-                for v in s:
+                for v in _stored(s):
                     m = _shaped(v)
                     if m is not None:
                         total += m

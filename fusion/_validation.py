@@ -248,8 +248,17 @@ def input_size(x: object, name: str) -> None:
     Raises
     ------
     ValueError
-        If its shape holds more than :data:`MAX_INPUT_ELEMENTS` entries, naming ``name``.
+        If its shape holds more than :data:`MAX_INPUT_ELEMENTS` entries, or it is a list or tuple subclass defining
+        its own ``__len__``, ``__iter__`` or ``__getitem__`` (NumPy reads it by them, not by what it stores), naming
+        ``name``.
     """
+    base = list if isinstance(x, list) else tuple if isinstance(x, tuple) else None
+    if base is not None and type(x) is not base:   # fix 77a's note: len() 1 passed the budget with 2**25 + 1 entries
+        own = [m for m in ("__len__", "__iter__", "__getitem__") if getattr(type(x), m) is not getattr(base, m)]
+        if own:   # NumPy reads it by these, the budget by what it stores: the two may disagree (a plain wrong array)
+            raise ValueError(f"{name} must not be a {base.__name__} subclass that reads its entries its own way "
+                             f"({type(x).__name__} defines {', '.join(own)}): its length or entries may not be what "
+                             f"it stores; pass a plain {base.__name__} or an array")
     n = sequence_entries(x, MAX_INPUT_ELEMENTS)
     if n is not None and n > MAX_INPUT_ELEMENTS:  # a lazy range, or a list holding one, counted before it is built
         raise ValueError(f"{name} has {entries_text(n)} entries, beyond the input budget (at most "

@@ -1,0 +1,49 @@
+"""A list or tuple subclass that reads its entries its own way (fix 77a's note): ``len()`` 1 passed the input budget
+with 2**25 + 1 entries, and NumPy converted what ``__iter__`` gave, not what it stores."""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+import pytest
+
+from _helpers import refused_quickly
+
+from fusion._entries import sequence_entries
+from fusion._validation import as_array
+
+
+class _Short(list):
+    def __len__(self) -> int:
+        return 1
+
+
+class _Other(list):
+    def __iter__(self):   # type: ignore[no-untyped-def]
+        return iter([0.0])
+
+
+class _Plain(list):
+    unit = "m"
+
+
+class _Pair(NamedTuple):
+    a: float
+    b: float
+
+
+@pytest.mark.parametrize("cls", [_Short, _Other])
+def test_a_list_subclass_reading_its_own_way_is_refused_by_name(cls: type) -> None:
+    refused_quickly(lambda: as_array(cls([1.0, 2.0]), "x"), ValueError, r"^x must not be a list subclass.*defines __")
+
+
+def test_a_lying_length_no_longer_passes_the_input_budget() -> None:
+    big = _Short([0.0] * 10)
+    assert sequence_entries(big, 5) > 5   # counted by what it stores
+    assert sequence_entries([big], 5) > 5   # inside a plain list too
+
+
+def test_subclasses_that_read_as_their_base_are_still_arrays() -> None:
+    assert as_array(_Plain([1.0, 2.0]), "x").tolist() == [1.0, 2.0]
+    assert np.array_equal(as_array(_Pair(1.0, 2.0), "x"), [1.0, 2.0])
