@@ -367,6 +367,8 @@ def glue_figure(key: str, fig: Figure, alt: str | None = None) -> None:
     # solution move the second), so that layout run is kept, without the render: the PNG bytes stay the same.
     _agg_canvas(fig)
     width = fig.get_figwidth()
+    if _small_text(fig):   # before the PNG's render, as the audit (fuzz 68a D1)
+        _raise_problems(_problems(fig, width))
     engine = fig.get_layout_engine()
     if RELAYOUT_BEFORE_PNG and engine is not None and fig.axes:
         try:
