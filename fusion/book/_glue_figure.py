@@ -124,6 +124,12 @@ EFFECT_DASH = 220
 #: '//' about one artist). 200 axes-sized Rectangles of '//////' ran 0.30 CPU-s, the same small: not by area.
 HATCH_VERTEX = 30
 HATCH_LENGTH = 5_000
+#: Units of a text drawn with a path effect that dashes or ticks its glyph outlines (an effect's own ``dashes``, a
+#: ``PathPatchEffect``'s dashed patch, a ``TickedStroke``), fuzz 68a C1a, C1b: the outlines' length is that of the
+#: glyphs (a 'W' of 40 pt about 240 points), not read without laying the text out in its font, and such a stroke of
+#: 40 'W's of 40 pt dashed (5e-5, 5e-5) ran out of memory after 22.8 CPU-s, 60 ticked every 1e-4 points ran 31.6:
+#: counted beyond the budget (a text is drawn with path effects of no dashes or ticks, ``pe.withStroke`` say).
+TEXT_OUTLINE = MAX_WORK + 1
 
 #: The kinds a figure is tallied by (``_tally``), named once (a header used in several functions, issue 36).
 _PIXELS, _CELLS, _MARKER_VERTICES = "image pixels", "mesh cells", "marker vertices"
@@ -133,10 +139,12 @@ _MARKER_AREA = "hundreds of marker box pixels"
 _DASHES, _TICKS = "dashes", "ticks of ticked strokes"
 _EFFECT_DASHES = "dashes of path effects' own patterns"
 _HATCH_VERTICES, _HATCH_LENGTH = "hatch tile vertices", "hatch tile stroke lengths"
+_TEXT_OUTLINES = "texts dashed or ticked along their glyph outlines by a path effect"
 _WEIGHTS = {"points": POINT, _PIXELS: PIXEL, _FIGURE_PIXELS: FIGURE_PIXEL, _CELLS: CELL, "markers": MARKER,
             _MARKER_VERTICES: MARKER_VERTEX, "artists": ARTIST, "characters": CHARACTER, _EFFECT_MARKERS: EFFECT_MARKER,
             _EFFECT_CHARACTERS: EFFECT_CHARACTER, _MARKER_AREA: MARKER_AREA, _DASHES: DASH,
-            _TICKS: TICK, _EFFECT_DASHES: EFFECT_DASH, _HATCH_VERTICES: HATCH_VERTEX, _HATCH_LENGTH: HATCH_LENGTH}
+            _TICKS: TICK, _EFFECT_DASHES: EFFECT_DASH, _HATCH_VERTICES: HATCH_VERTEX, _HATCH_LENGTH: HATCH_LENGTH,
+            _TEXT_OUTLINES: TEXT_OUTLINE}
 
 
 def _size(*arrays: object) -> int:
@@ -191,13 +199,94 @@ def _collection(a: Collection, tally: dict[str, int]) -> None:
 def _artists(fig: Figure) -> list[Artist]:
     """``fig``'s visible artists, itself included, walked without ``Artist.findobj``'s list sums (quadratic in the
     children: 40,000 texts took 1.6 CPU-s to walk)."""
-    out, stack = [], [fig]
+    out, stack, seen = [], [fig], set()
     while stack:
         a = stack.pop()
+        if id(a) in seen:
+            continue
+        seen.add(id(a))
         if a.get_visible():
             out.append(a)
             stack.extend(a.get_children())
+            stack.extend(_drawn_parts(a))
     return out
+
+
+#: The attributes holding artists an artist draws without listing them among its children (fuzz 68a C2, C3): an
+#: annotation's arrow (``arrow_patch``), a text's box (``_bbox_patch``), a table cell's text (``_text``), an anchored
+#: box's frame (``patch``).
+_PARTS = ("arrow_patch", "_bbox_patch", "_text", "patch")
+
+
+def _drawn_parts(a: Artist) -> list[Artist]:
+    """The artists ``a`` draws but does not list in ``get_children()`` (``_PARTS``), an annotation's arrow and a
+    text's box as stand-ins at their drawn size (``_arrow``, ``_text_box``: their positions are set only when drawn)."""
+    parts = []
+    for name in _PARTS:
+        part = a.__dict__.get(name) if hasattr(a, "__dict__") else None
+        if not isinstance(part, Artist):
+            continue
+        if name == "arrow_patch" and isinstance(a, Text):
+            part = _arrow(a, part)
+        elif name == "_bbox_patch" and isinstance(a, Text):
+            part = _text_box(a, part)
+        parts.append(part)
+    return parts
+
+
+#: A bound of a text's box side in font sizes per character of its longest line plus one per line (a glyph's advance
+#: and a line's height are below 2 font sizes in the book's fonts), for the stand-ins of ``_drawn_parts``.
+_SIZES_PER_CHARACTER = 2.0
+
+
+def _text_sides(t: Text, fig: Figure) -> tuple[float, float]:
+    """A bound in pixels of the width and height of ``t``'s box, read without laying it out: its longest line's
+    characters plus one and its lines, times ``_SIZES_PER_CHARACTER`` font sizes (either way: it may be rotated)."""
+    lines = str(t.get_text()).split("\n")
+    size = float(t.get_fontsize()) * float(fig.dpi) / 72.0 * _SIZES_PER_CHARACTER
+    return (max(len(line) for line in lines) + 1) * size, len(lines) * size
+
+
+def _text_box(t: Text, patch: Artist) -> Artist:
+    """A copy of ``t``'s box patch at a bound of its drawn size (``_text_sides``, its mutation scale the font
+    size in pixels, as ``Text.update_bbox_position_size`` sets them when drawn)."""
+    import copy
+    fig = t.get_figure(root=True)
+    if fig is None or not hasattr(patch, "set_bounds"):
+        return patch
+    box = copy.copy(patch)
+    box.set_bounds(0.0, 0.0, *_text_sides(t, fig))
+    box._mutation_scale = float(t.get_fontsize()) * float(fig.dpi) / 72.0
+    box._parent_figure = fig
+    return box
+
+
+def _arrow(t: Text, arrow: Artist) -> Artist:
+    """A copy of the annotation ``t``'s arrow from beyond its text's anchor to the point it annotates: as far as the
+    anchor plus ``_text_sides`` (the arrow starts in the text's box, ``Annotation.update_positions``), in pixels, its
+    mutation scale and dpi correction as drawn; the arrow itself when its ends cannot be read (not drawable)."""
+    import copy
+    fig = t.get_figure(root=True)
+    if fig is None or not hasattr(t, "_get_position_xy"):
+        return arrow
+    try:
+        renderer = fig._get_renderer()
+        end = np.asarray(t._get_position_xy(renderer), dtype=float)
+        anchor = np.asarray(t._get_xy_transform(renderer, t.anncoords).transform(t.get_position()), dtype=float)
+        span = anchor - end
+        reach = float(np.hypot(*span))
+        direction = span / reach if reach > 0 and np.isfinite(reach) else np.array([1.0, 0.0])
+        start = end + direction * (reach + sum(_text_sides(t, fig)))
+    except (TypeError, ValueError, RuntimeError, AttributeError):
+        return arrow
+    stand_in = copy.copy(arrow)
+    stand_in._posA_posB = [tuple(start), tuple(end)]
+    stand_in.patchA = None
+    props = t.arrowprops if isinstance(t.arrowprops, dict) else {}
+    stand_in._mutation_scale = props.get("mutation_scale", t.get_size())
+    stand_in._dpi_cor = float(fig.dpi) / 72.0
+    stand_in._parent_figure = fig
+    return stand_in
 
 
 def _effects(a: Artist) -> int:
@@ -327,7 +416,7 @@ def _dash_periods(a: Artist) -> list[float]:
         patterns = list(getattr(a, "_linestyles", ()))
     else:
         patterns = [getattr(a, "_dash_pattern", (0, None))]
-    periods = [float(np.sum(seq)) for _, seq in patterns if seq is not None and len(seq)]
+    periods = [_per_dash(seq) for _, seq in patterns if seq is not None and len(seq)]
     if isinstance(a, (Line2D, Patch)) and periods and not (a.get_linewidth() and
                                                            (isinstance(a, Line2D) or a.get_edgecolor()[3])):
         return []
@@ -398,7 +487,30 @@ def _gc_period(dashes: object) -> list[float]:
         seq = np.asarray(dashes["dash_list"], dtype=float).ravel()
     except (TypeError, ValueError):
         return []
-    return [float(np.sum(seq))] if seq.size else []
+    return [_per_dash(seq)] if seq.size else []
+
+
+#: The on/off pairs Agg's dasher keeps of a pattern (``agg::vcgen_dash``'s ``max_dashes``, 32 lengths), fuzz 68a C4.
+_AGG_DASH_PAIRS = 16
+
+
+def _per_dash(seq: object) -> float:
+    """The length in points along a stroke of one dash of the pattern ``seq`` (on/off lengths): Agg's dasher draws
+    one dash per on/off pair (fuzz 68a C4, C4b: a 32-length pattern draws 16 dashes a period), an odd-length pattern
+    repeated twice (as matplotlib passes it); the shorter of its period over its pairs and of the period Agg keeps
+    (``_AGG_DASH_PAIRS``) over those, so a bound either way; the period as is when it is not positive and finite."""
+    lengths = np.asarray(seq, dtype=float).ravel()
+    pairs = lengths.size / 2.0
+    period = float(np.sum(lengths))
+    if not (np.isfinite(period) and period > 0):
+        return period
+    per_dash = period / pairs
+    if lengths.size % 2:
+        lengths = np.concatenate([lengths, lengths])
+    kept = lengths[: 2 * _AGG_DASH_PAIRS]
+    with np.errstate(all="ignore"):
+        kept_per_dash = float(np.sum(kept)) / (kept.size / 2.0)
+    return min(per_dash, kept_per_dash)
 
 
 def _effect_list(a: Artist) -> list:
@@ -453,6 +565,26 @@ def _effect_strokes(a: Artist, tally: dict[str, int]) -> None:
             vertices, length = _hatch_tile(str(hatch))
             tally[_HATCH_VERTICES] += draws * vertices
             tally[_HATCH_LENGTH] += draws * length
+
+
+def _text_strokes(a: Text, tally: dict[str, int]) -> None:
+    """Add to ``tally`` the text ``a``'s path effects' hatch tiles (one a draw) and, when one dashes or ticks its
+    glyph outlines, the text at ``TEXT_OUTLINE`` (fuzz 68a C1a, C1b)."""
+    from matplotlib.patheffects import PathPatchEffect, TickedStroke
+    outlined = False
+    for e in _effect_list(a):
+        if isinstance(e, PathPatchEffect):
+            hatch, outlined = e.patch.get_hatch(), outlined or bool(_dash_periods(e.patch))
+        else:
+            keywords = getattr(e, "_gc", None)
+            keywords = keywords if isinstance(keywords, dict) else {}
+            hatch = keywords.get("hatch")
+            outlined = outlined or isinstance(e, TickedStroke) or bool(_gc_period(keywords.get("dashes")))
+        if hatch:
+            vertices, length = _hatch_tile(str(hatch))
+            tally[_HATCH_VERTICES] += vertices
+            tally[_HATCH_LENGTH] += length
+    tally[_TEXT_OUTLINES] += int(outlined)
 
 
 def _ticks(a: Artist) -> int:
@@ -515,6 +647,8 @@ def _tally(fig: Figure) -> dict[str, int]:
         _under_effects(a, one, effects, tally)
         if isinstance(a, (Line2D, Patch, Collection)) and not isinstance(a, QuadMesh) and _vertices(a) is None:
             _effect_strokes(a, tally)
+        elif isinstance(a, Text):
+            _text_strokes(a, tally)
         tally[_TICKS] += _ticks(a)
     return tally
 

@@ -183,6 +183,8 @@ def audit_figure(fig: Figure) -> list[str]:
         legend covering data, a figure or axes background or axis text colour that is not the book style's (a
         figure drawn in a caller's matplotlib style, not through :func:`fusion.book.style.new_figure`); a size or dpi outside :data:`fusion.book.style.FIGURE_SIDE_RANGE_IN` or
         :data:`fusion.book.style.FIGURE_DPI_RANGE` is reported before drawing (the figure is then not drawn);
+        a text below :data:`MIN_FONT_PT` too, with the breaches found undrawn (fuzz 68a D1: a wrapped text of 1 pt
+        took 13.5 CPU-s to draw);
         a figure matplotlib fails to render (a RuntimeError of its rasteriser: text placed far outside the
         axes, at x = 1e5 say) is reported as not drawable.
 
@@ -200,6 +202,8 @@ def audit_figure(fig: Figure) -> list[str]:
                 if width > MAX_WIDTH_IN + 1e-9 else [])
         _raise_problems(wide + [f"figure not drawn: its {exc}"])
     _agg_canvas(fig)
+    if _small_text(fig):   # before drawing: a wrapped text of 1 pt lays out ~900 words a line (fuzz 68a D1)
+        _raise_problems(_problems(fig, fig.get_figwidth()))
     _drawn(fig.canvas.draw)
     _raise_problems(_problems(fig, fig.get_figwidth()))
     return []
@@ -303,10 +307,14 @@ def _problems(fig: Figure, width: float) -> list[str]:
                 if pts.size and box.count_contains(pts) > 0:
                     problems.append(f"legend covers data ('{artist.get_label()}')")
                     break
-    for t in fig.findobj(Text):
-        if t.get_visible() and t.get_text().strip() and t.get_fontsize() < MIN_FONT_PT - 1e-9:
-            problems.append(f"text '{t.get_text()[:30]}' is {t.get_fontsize():.1f} pt (< {MIN_FONT_PT:g} pt)")
-    return problems
+    return problems + _small_text(fig)
+
+
+def _small_text(fig: Figure) -> list[str]:
+    """The breaches of :data:`MIN_FONT_PT` by ``fig``'s visible texts, read from their sizes (no draw needed)."""
+    return [f"text '{t.get_text()[:30]}' is {t.get_fontsize():.1f} pt (< {MIN_FONT_PT:g} pt)"
+            for t in fig.findobj(Text)
+            if t.get_visible() and t.get_text().strip() and t.get_fontsize() < MIN_FONT_PT - 1e-9]
 
 
 #: Run the figure's layout engine once before the PNG is printed, where the audit's own draw used to run it.
@@ -359,6 +367,8 @@ def glue_figure(key: str, fig: Figure, alt: str | None = None) -> None:
     # solution move the second), so that layout run is kept, without the render: the PNG bytes stay the same.
     _agg_canvas(fig)
     width = fig.get_figwidth()
+    if _small_text(fig):   # before the PNG's render, as the audit (fuzz 68a D1)
+        _raise_problems(_problems(fig, width))
     engine = fig.get_layout_engine()
     if RELAYOUT_BEFORE_PNG and engine is not None and fig.axes:
         try:
