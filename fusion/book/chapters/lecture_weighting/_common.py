@@ -7,6 +7,7 @@ import numpy as np
 
 from fusion.book._t_interval import t_pvalue
 from fusion.book.ledger import Proposition
+from fusion._shown import shown
 from fusion._validation import MAX_STD, MIN_STD, std_scalar
 
 __all__: list[str] = []
@@ -39,5 +40,6 @@ def _std_entries(sig: np.ndarray, name: str) -> np.ndarray:
     if bad.size:
         i = int(bad[0])
         std_scalar(arr[i], f"{name}[{i}]")   # raises, with the rule's own message
-        raise ValueError(f"{name}[{i}] = {arr[i]!r} is not a standard deviation in [{MIN_STD:.3g}, {MAX_STD:.3g}]")
+        raise ValueError(f"{name}[{i}] = {shown(float(arr[i]))} is not a standard deviation in [{MIN_STD:.3g}, "
+                         f"{MAX_STD:.3g}]")
     return sig
