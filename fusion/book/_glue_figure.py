@@ -11,7 +11,7 @@ from matplotlib.collections import Collection, QuadMesh
 from matplotlib.figure import Figure
 from matplotlib.image import FigureImage, _ImageBase
 from matplotlib.lines import Line2D
-from matplotlib.patches import Patch
+from matplotlib.patches import BoxStyle, FancyBboxPatch, Patch
 from matplotlib.path import Path
 from matplotlib.text import Text
 
@@ -241,10 +241,15 @@ _SIZES_PER_CHARACTER = 2.0
 
 def _text_sides(t: Text, fig: Figure) -> tuple[float, float]:
     """A bound in pixels of the width and height of ``t``'s box, read without laying it out: its longest line's
-    characters plus one and its lines, times ``_SIZES_PER_CHARACTER`` font sizes (either way: it may be rotated)."""
+    characters plus one and its lines, times ``_SIZES_PER_CHARACTER`` font sizes (either way: it may be rotated), the
+    height times its line spacing when above 1 (the drawn line pitch, fuzz 69a C4)."""
     lines = str(t.get_text()).split("\n")
     size = float(t.get_fontsize()) * float(fig.dpi) / 72.0 * _SIZES_PER_CHARACTER
-    return (max(len(line) for line in lines) + 1) * size, len(lines) * size
+    try:
+        spacing = max(1.0, float(t.get_linespacing()))
+    except (TypeError, ValueError):
+        spacing = 1.0
+    return (max(len(line) for line in lines) + 1) * size, len(lines) * size * spacing
 
 
 def _text_box(t: Text, patch: Artist) -> Artist:
@@ -633,10 +638,96 @@ def _artist(a: Artist, tally: dict[str, int]) -> None:
         _hatch(a, tally)
 
 
-def _tally(fig: Figure) -> dict[str, int]:
-    """What ``fig`` draws, by kind (``_WEIGHTS``' keys), read from its visible artists without rendering."""
+#: The artist classes the tally weighs, by exact class (``type(a)``, a subclass may draw otherwise), found by the kinds
+#: the book's figures and the glue tests draw (fuzz 69a: a ``Quiver`` makes its arrows and an ``AnnotationBbox`` places
+#: its arrow only when drawn, weighed as nothing): any other visible artist is refused by name (``_unweighed``).
+_WEIGHED = frozenset({
+    "matplotlib.figure.Figure", "matplotlib.figure.SubFigure", "matplotlib.axes._axes.Axes",
+    "matplotlib.axis.XAxis", "matplotlib.axis.YAxis", "matplotlib.axis.XTick", "matplotlib.axis.YTick",
+    "matplotlib.spines.Spine", "matplotlib.colorbar._ColorbarSpine", "matplotlib.legend.Legend",
+    "matplotlib.offsetbox.DrawingArea", "matplotlib.offsetbox.HPacker", "matplotlib.offsetbox.VPacker",
+    "matplotlib.offsetbox.TextArea", "matplotlib.table.Table", "matplotlib.table.Cell",
+    "matplotlib.text.Text", "matplotlib.text.Annotation", "matplotlib.lines.Line2D",
+    "matplotlib.patches.Rectangle", "matplotlib.patches.Polygon", "matplotlib.patches.PathPatch",
+    "matplotlib.patches.Circle", "matplotlib.patches.Ellipse", "matplotlib.patches.Wedge",
+    "matplotlib.patches.StepPatch", "matplotlib.patches.FancyArrowPatch", "matplotlib.patches.FancyBboxPatch",
+    "matplotlib.collections.PathCollection", "matplotlib.collections.LineCollection",
+    "matplotlib.collections.PolyCollection", "matplotlib.collections.FillBetweenPolyCollection",
+    "matplotlib.collections.QuadMesh", "matplotlib.contour.QuadContourSet",
+    "matplotlib.image.AxesImage", "matplotlib.image.FigureImage",
+    "mpl_toolkits.mplot3d.axes3d.Axes3D", "mpl_toolkits.mplot3d.axis3d.XAxis", "mpl_toolkits.mplot3d.axis3d.YAxis",
+    "mpl_toolkits.mplot3d.axis3d.ZAxis", "mpl_toolkits.mplot3d.art3d.Line3D", "mpl_toolkits.mplot3d.art3d.Text3D",
+    "mpl_toolkits.mplot3d.art3d.Poly3DCollection", "mpl_toolkits.mplot3d.art3d.Line3DCollection",
+    "mpl_toolkits.mplot3d.art3d.Path3DCollection", "mpl_toolkits.mplot3d.art3d.Patch3DCollection",
+    "mpl_toolkits.mplot3d.art3d.Patch3D", "mpl_toolkits.mplot3d.art3d.PathPatch3D",
+})
+#: The box styles of a ``FancyBboxPatch`` whose path has a fixed number of vertices; a sawtooth's or roundtooth's
+#: grows as its perimeter over its tooth size (``_box_vertices``), any other (a callable) is refused.
+_FIXED_BOXES = ("Square", "Circle", "Ellipse", "LArrow", "RArrow", "DArrow", "Round", "Round4")
+_TOOTHED_BOXES = ("Sawtooth", "Roundtooth")
+
+
+def _kind(a: Artist) -> str:
+    """The full name of ``a``'s exact class."""
+    return f"{type(a).__module__}.{type(a).__qualname__}"
+
+
+def _unweighed(a: Artist) -> str | None:
+    """Why the tally cannot weigh ``a`` without building more than the budget (a kind not in ``_WEIGHED``, a
+    ``FancyBboxPatch`` of a box style not known), or None."""
+    if _kind(a) not in _WEIGHED:
+        return f"draws a {_kind(a)}, a kind of artist the work budget does not weigh"
+    if isinstance(a, FancyBboxPatch):
+        style = type(a.get_boxstyle())
+        known = style.__module__ == BoxStyle.__module__ and style.__qualname__.startswith("BoxStyle.")
+        if not (known and style.__name__ in _FIXED_BOXES + _TOOTHED_BOXES):
+            return f"draws a FancyBboxPatch of box style {style.__qualname__}, a style the work budget does not weigh"
+    return None
+
+
+def _box_vertices(a: Artist) -> int:
+    """A bound of the vertices of the path of ``a``, a ``FancyBboxPatch`` of a sawtooth or roundtooth box style, read
+    before the path is built (fuzz 69a C1a, C1b: a tooth of 1e-6 built about 1e9 vertices, MemoryError): four per
+    tooth size of its padded perimeter (``BoxStyle.Sawtooth._get_sawtooth_vertices``), the height squeezed by its
+    mutation aspect; 0 for another style (a fixed count, read from its path)."""
+    style = a.get_boxstyle()
+    if type(style).__name__ not in _TOOTHED_BOXES:
+        return 0
+    try:
+        scale = float(a.get_mutation_scale())
+        pad = abs(float(style.pad) * scale)
+        tooth = abs(float(style.pad) * 0.5 if style.tooth_size is None else float(style.tooth_size)) * scale
+        sides = abs(float(a.get_width())) + abs(float(a.get_height()) / float(a.get_mutation_aspect()))
+        with np.errstate(all="ignore"):
+            count = 4.0 * (sides + 4.0 * pad + 2.0 * tooth) / tooth + 16.0
+    except (TypeError, ValueError, ZeroDivisionError):
+        return 2 * MAX_WORK
+    return int(count) if np.isfinite(count) and count < 2 * MAX_WORK else 2 * MAX_WORK
+
+
+def _tally(fig: Figure, key: str | None = None) -> dict[str, int]:
+    """What ``fig`` draws, by kind (``_WEIGHTS``' keys), read from its visible artists without rendering; a
+    sawtooth box of more vertices than the budget counted so without building its path.
+
+    Raises
+    ------
+    ValueError
+        When a visible artist is of a kind it does not weigh (``_unweighed``), naming ``values[key]``.
+    """
     tally = dict.fromkeys(_WEIGHTS, 0)
-    for a in _artists(fig):
+    artists = _artists(fig)
+    for a in artists:
+        why = _unweighed(a)
+        if why is not None:
+            raise ValueError(f"values[{shown(key)}] is a figure that {why} without rendering it (fuzz 69a); draw it "
+                             f"with the kinds of artists the book's figures use")
+    for a in artists:
+        if isinstance(a, FancyBboxPatch):
+            vertices = _box_vertices(a)
+            if vertices * POINT > MAX_WORK:     # beyond the budget: counted so, its path never built
+                tally["artists"] += 1
+                tally["points"] += vertices
+                continue
         effects = _effects(a)
         if not effects:
             _artist(a, tally)
@@ -680,7 +771,7 @@ def figure_units(fig: Figure, key: str) -> int:
     ValueError
         Beyond ``fusion._limits.MAX_WORK`` units, naming ``values[key]``, before the figure is audited or rendered.
     """
-    tally = _tally(fig)
+    tally = _tally(fig, key)
     units = FIGURE + sum(_WEIGHTS[k] * n for k, n in tally.items())
     if units > MAX_WORK:
         drawn = ", ".join(f"{tally[k]:,} {k} at {w:,}" for k, w in _WEIGHTS.items() if tally[k])
