@@ -168,6 +168,8 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
     a = None  # read by the handler below (a signalling NaN entry)
     try:
         a = x if isinstance(x, np.ndarray) else np.asarray(x)
+        if a is not x:   # an object with no shape or length (only ``__array__``) is measured once converted (fuzz 69b D1)
+            input_size(a, name)
         if a.dtype.kind in "US" or (a.dtype.kind == "O" and _holds_text(a)):
             raise TypeError(f"{name} must be numeric (array_like of numbers), got text")
         if a.dtype.kind == "c" or (a.dtype.kind == "O" and _holds_complex(a)):  # np.complex128 entries would
@@ -198,7 +200,7 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
         raise ValueError(f"{name} holds a number beyond the float range (at most {MAX_MAGNITUDE:g} in magnitude)") \
             from None
     except (TypeError, ValueError) as exc:
-        if str(exc).startswith(name + " must be"):
+        if str(exc).startswith((name + " must be", name + " has ")):   # ours (the input budget: fuzz 69b D1)
             raise
         if "complex" in str(exc):
             raise _complex_error(name) from None
@@ -249,12 +251,13 @@ def input_size(x: object, name: str) -> None:
     ------
     ValueError
         If its shape holds more than :data:`MAX_INPUT_ELEMENTS` entries, or it is a list or tuple subclass defining
-        its own ``__len__``, ``__iter__`` or ``__getitem__`` (NumPy reads it by them, not by what it stores), naming
-        ``name``.
+        its own ``__len__``, ``__iter__`` or ``__getitem__``, or an array protocol (``__array__``, the array
+        interface: NumPy reads it by them, not by what it stores; fuzz 69b C1), naming ``name``.
     """
     base = list if isinstance(x, list) else tuple if isinstance(x, tuple) else None
     if base is not None and type(x) is not base:   # fix 77a's note: len() 1 passed the budget with 2**25 + 1 entries
         own = [m for m in ("__len__", "__iter__", "__getitem__") if getattr(type(x), m) is not getattr(base, m)]
+        own += [m for m in ("__array__", "__array_interface__", "__array_struct__") if hasattr(type(x), m)]
         if own:   # NumPy reads it by these, the budget by what it stores: the two may disagree (a plain wrong array)
             raise ValueError(f"{name} must not be a {base.__name__} subclass that reads its entries its own way "
                              f"({type(x).__name__} defines {', '.join(own)}): its length or entries may not be what "

@@ -47,3 +47,29 @@ def test_a_lying_length_no_longer_passes_the_input_budget() -> None:
 def test_subclasses_that_read_as_their_base_are_still_arrays() -> None:
     assert as_array(_Plain([1.0, 2.0]), "x").tolist() == [1.0, 2.0]
     assert np.array_equal(as_array(_Pair(1.0, 2.0), "x"), [1.0, 2.0])
+
+
+class _AsArray(list):
+    def __array__(self, dtype=None, copy=None):   # type: ignore[no-untyped-def]
+        return np.zeros(6_000)
+
+
+class _Shapeless:
+    def __init__(self, n: int) -> None:
+        self.n = n
+
+    def __array__(self, dtype=None, copy=None):   # type: ignore[no-untyped-def]
+        return np.zeros(self.n)
+
+
+def test_fuzz69b_c1_a_list_subclass_with_an_array_protocol_is_refused_by_name() -> None:
+    refused_quickly(lambda: as_array(_AsArray([1.0]), "x"), ValueError, r"^x must not be a list subclass.*__array__")
+
+
+def test_fuzz69b_d1_a_shapeless_array_like_is_measured_once_converted(monkeypatch: pytest.MonkeyPatch) -> None:
+    import fusion._validation as V
+
+    monkeypatch.setattr(V, "MAX_INPUT_ELEMENTS", 100)
+    with pytest.raises(ValueError, match=r"^x has 101 entries.*beyond the input budget"):
+        as_array(_Shapeless(101), "x")
+    assert as_array(_Shapeless(100), "x").shape == (100,)
