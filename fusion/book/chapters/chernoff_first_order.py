@@ -70,7 +70,9 @@ def sigma_point_first_order(gms: list[mx.GaussianMixture] | tuple[mx.GaussianMix
     ------
     ValueError
         As :func:`fusion.estimates.chernoff.first_order_fusion`: ``eps`` off the simplex, or ``gms`` whose product
-        mixture (``S ** N`` component tuples) is beyond the memory or work budget, naming ``gms``.
+        mixture (``S ** N`` component tuples, S the largest mixture's components) is beyond the memory or work budget,
+        or whose sigma points' component densities (``2d S ** N`` points x ``S`` components, each mixture's) are,
+        naming ``gms`` before any array is built (fuzz 69b C3).
     """
     chm._check_mixtures(gms)
     e = ch.check_simplex(eps, len(gms))
@@ -78,7 +80,32 @@ def sigma_point_first_order(gms: list[mx.GaussianMixture] | tuple[mx.GaussianMix
     # the first-order fusion's weight
     tuples, per = product_size(1, len(gms), max(g.weights.size for g in gms), gms[0].dim, "gms", first_order=True)
     work((tuples,), "gms (the product mixture's component tuples)", weight=per)
+    _sigma_point_budget(len(gms), max(g.weights.size for g in gms), gms[0].dim, "gms")
     return _sigma_point_fusion(gms, e, _weighted_component_rows)
+
+
+#: Units (``fusion._limits.MAX_WORK``'s 10 ns) of one sigma point x component x mixture of
+#: :func:`_sigma_point_fusion` (each mixture padded to the largest S, so S**N tuples of 2d points each) are
+#: ``_SP_POINT_BASE + d``: twice the measured 23-26 ns at d = 2 (one mixture of 1 and one of 100 or 150 components:
+#: 0.19 s for 8.0e6, 0.63 s for 2.7e7; 100 x 100: 0.21 s for 8.0e6), 32.5 ns at d = 4 (1 x 60) and 56 ns at d = 8
+#: (1 x 40); process_time, minimum of 2, OPENBLAS_NUM_THREADS=1, the machine shared. Fuzz 69b C2/C3: only the
+#: tuples' first-order weight was counted, so 250 x 250 was refused by an inner ``a`` and 1 x 1500 in chapter 06's
+#: problem ran to a raw MemoryError.
+_SP_POINT_BASE = 3
+#: Arrays of the sigma points' (2d S**N, S) component rows at :func:`_sigma_point_fusion`'s peak: tracemalloc's peak
+#: 4.1 of one (1 x 100 components, d = 2; fuzz 69b C3).
+_SP_ARRAYS = 5
+
+
+def _sigma_point_budget(n: int, s: int, d: int, names: str) -> None:
+    """Refuse :func:`_sigma_point_fusion` of ``n`` mixtures padded to ``s`` components in dimension ``d`` whose
+    (2d s**n, s) component rows are beyond the memory budget or whose density evaluations (those rows for each
+    mixture) are beyond the work budget, naming ``names`` (fuzz 69b C2/C3), before any array is built."""
+    points = 2 * d * s**n
+    allocation((points, s), f"{names} (the sigma points' component densities, {s}**{n} tuples padded to the "
+                            "largest mixture)", arrays=_SP_ARRAYS)
+    work((points, s, n), f"{names} (the sigma points' component densities, {s}**{n} tuples padded to the largest "
+                         "mixture)", weight=_SP_POINT_BASE + d)
 
 
 def _weighted_component_rows(g: mx.GaussianMixture, x: FloatArray, S: int) -> FloatArray:
@@ -216,9 +243,6 @@ _SEARCH_CALLS = 20
 #: Units of a component tuple of one first-order fusion call (the search's): twice the 1.5 us measured at 3,600-10,000
 #: tuples (5.5 ms, 14.6 ms; 9 us a tuple at 100 tuples, whose call overhead :data:`_SIGMA_NODE` covers; fuzz 68b C9).
 _FO_TUPLE = 300
-#: Units of a tuple x component of one :func:`sigma_point_first_order` call: twice the 110 ns measured (47 ms at
-#: S_a = S_b = 60, 222 ms at 100; as above; fuzz 68b C9).
-_SP_TUPLE_COMPONENT = 22
 
 
 #: :func:`sigma_first_order_problem` refuses two mixtures whose exact log Z at ω = 1/2 lies at most this far below
@@ -230,11 +254,17 @@ def _problem_budget(s_a: int, s_b: int, n: int) -> None:
     """The memory and work of :func:`sigma_first_order_problem` by its mixtures' components and grid, refused naming
     ``a, b and n`` before the grid (fuzz 68b C9, C9b): each fused mixture of up to ``s_a * s_b`` components on the
     n x n nodes (two arrays of that shape at once, tracemalloc's peak of ``_logpdf``: 2.00-2.01 of one), the two
-    mixtures' own densities there, and each method's fusions in its search."""
-    tuples, nodes = s_a * s_b, n * n
+    mixtures' own densities there, and each method's fusions in its search, both padded to ``max(s_a, s_b) ** 2``
+    tuples (the sigma-point fusion's 4 points x ``max(s_a, s_b)`` components each; fuzz 69b C2/C3)."""
+    tuples, nodes, s = s_a * s_b, n * n, max(s_a, s_b)
     allocation((tuples, nodes), "a, b and n (the fused mixture's components on the n x n grid)", arrays=2)
+    # both fusions pad a and b to the larger s, so s**2 tuples, of 4 sigma points and s components each in the
+    # sigma-point fusion (fuzz 69b C2/C3: s_a * s_b tuples were counted, so 1 x 200 ran 45 CPU-s and 1 x 1500 to a
+    # raw MemoryError); the weights are those of sigma_point_first_order's own budget
+    allocation((4 * s * s, s), "a, b and n (the sigma points' component densities, both mixtures padded to the "
+               "larger)", arrays=_SP_ARRAYS)
     grid = nodes * (s_a + s_b + 2 * tuples) * _GRID_COMPONENT
-    search = _SEARCH_CALLS * tuples * (_FO_TUPLE + (s_a + s_b) * _SP_TUPLE_COMPONENT)
+    search = _SEARCH_CALLS * s * s * (_FO_TUPLE + 4 * s * 2 * (_SP_POINT_BASE + 2))
     work((1,), "a, b and n (the mixtures' components on the n x n grid and in each method's search)",
          weight=grid + search)
 
@@ -271,8 +301,9 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
     ValueError
         ``a`` or ``b`` not 2-D, ``n`` below 2, an n x n grid beyond the memory budget
         (``fusion._validation.allocation``) or the work budget (``fusion._limits.MAX_WORK``: n about 2,200), ``a`` and
-        ``b`` whose components (their fused mixture's ``S_a * S_b`` on the grid and in each method's search) with
-        ``n`` are beyond those budgets (fuzz 68b C9), before the grid; or ``b`` the same density as ``a`` on the grid
+        ``b`` whose components (their fused mixture's ``S_a * S_b`` on the grid, and in each method's search the
+        ``max(S_a, S_b) ** 2`` padded tuples with the sigma points' densities) with ``n`` are beyond those budgets
+        (fuzz 68b C9, fuzz 69b C2/C3), before the grid; or ``b`` the same density as ``a`` on the grid
         (their Bhattacharyya distance at most :data:`SAME_DENSITY_NATS`; ``a`` itself, or its components reordered or split): every
         exponent then gives the same fusion and ω* is undetermined (fuzz 26b D5: the bounded search returned its
         end point as "exact").
