@@ -230,3 +230,37 @@ def glue_outcome(cases: Mapping[str, str], case: str, refused: str) -> None:
     else:
         assert out[0] == "ValueError", out
         assert re.search(refused, out[2], re.S), out
+
+
+def figure_axes() -> tuple[Any, Any]:
+    """A figure and its one axes, limits (0, 1) x (0, 1): the glue figure tests' canvas."""
+    import matplotlib.pyplot as plt
+
+    fig = plt.figure()
+    ax = fig.add_subplot()
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1)
+    return fig, ax
+
+
+def figure_refused(fig: Any, match: str = r"values\['k'\]") -> None:
+    """``fig`` is refused within 1 CPU-s by its weight (``figure_units``, fast on an old weigher too: the count
+    first), and by glue_all, naming values['k'] (and ``match``); closed after."""
+    import matplotlib.pyplot as plt
+
+    from fusion.book import _glue_figure as F
+    try:
+        refused_quickly(lambda: F.figure_units(fig, "k"), ValueError, match)
+        glue_refused({"k": fig}, ValueError, match)
+    finally:
+        plt.close(fig)
+
+
+def figure_glued(monkeypatch: pytest.MonkeyPatch, fig: Any) -> None:
+    """glue_all glues ``fig`` (audited and rendered; ``myst_nb.glue`` replaced for the test); closed after."""
+    import matplotlib.pyplot as plt
+
+    try:
+        glued(monkeypatch, {"k": fig})
+    finally:
+        plt.close(fig)

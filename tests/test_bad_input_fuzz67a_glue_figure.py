@@ -14,19 +14,13 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from matplotlib.patches import Polygon, Rectangle  # noqa: E402
 
-from _helpers import glue_refused, refused_quickly  # noqa: E402
+from _helpers import figure_axes as _axes, figure_refused as _refused  # noqa: E402
 
 #: A dash pattern of a thousandth of a point (fuzz 67a's), and a path effect's (unscaled by the line width).
 _FINE = (0, (1e-3, 1e-3))
 _FINE_GC = {"dash_offset": 0, "dash_list": [1e-5, 1e-5]}
 
 
-def _axes():
-    fig = plt.figure()
-    ax = fig.add_subplot()
-    ax.set_xlim(0, 1)
-    ax.set_ylim(0, 1)
-    return fig, ax
 
 
 def _glues(monkeypatch: pytest.MonkeyPatch, fig) -> None:
@@ -38,15 +32,6 @@ def _glues(monkeypatch: pytest.MonkeyPatch, fig) -> None:
     glue_all({"k": fig})
 
 
-def _refused(fig) -> None:
-    """``fig`` is refused by its weight within 1 CPU-s (fast on the old code too: the count, not glue_all, first), and
-    by glue_all naming values['k']."""
-    from fusion.book import _glue_figure as F
-    try:
-        refused_quickly(lambda: F.figure_units(fig, "k"), ValueError, r"values\['k'\]")
-        glue_refused({"k": fig}, ValueError)
-    finally:
-        plt.close(fig)
 
 
 def _within(fig) -> int:

@@ -13,36 +13,17 @@ import matplotlib.patheffects as pe  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import pytest  # noqa: E402
 
-from _helpers import glue_refused, glued, refused_quickly  # noqa: E402
+from _helpers import figure_axes as _axes, figure_refused as _refused, figure_glued as _glues  # noqa: E402
+from _helpers import refused_quickly  # noqa: E402
 
 #: A path effect's own dash pattern of a hundred-thousandth of a point (unscaled by the line width).
 _FINE_GC = {"dash_offset": 0, "dash_list": [5e-5, 5e-5]}
 
 
-def _axes():
-    fig = plt.figure()
-    ax = fig.add_subplot()
-    ax.set_xlim(0, 1)
-    ax.set_ylim(0, 1)
-    return fig, ax
 
 
-def _refused(fig) -> None:
-    """``fig`` is refused by its weight within 1 CPU-s, and by glue_all naming values['k']."""
-    from fusion.book import _glue_figure as F
-    try:
-        refused_quickly(lambda: F.figure_units(fig, "k"), ValueError, r"values\['k'\]")
-        glue_refused({"k": fig}, ValueError)
-    finally:
-        plt.close(fig)
 
 
-def _glues(monkeypatch: pytest.MonkeyPatch, fig) -> None:
-    """glue_all glues ``fig`` (audited and rendered; ``myst_nb.glue`` replaced for the test)."""
-    try:
-        glued(monkeypatch, {"k": fig})
-    finally:
-        plt.close(fig)
 
 
 def _text(effect, text: str = "W" * 40):

@@ -14,33 +14,13 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from matplotlib.patches import FancyBboxPatch  # noqa: E402
 
-from _helpers import glue_refused, glued, refused_quickly  # noqa: E402
+from _helpers import figure_axes as _axes, figure_refused as _refused, figure_glued as _glues  # noqa: E402
 
 
-def _axes():
-    fig = plt.figure()
-    ax = fig.add_subplot()
-    ax.set_xlim(0, 1)
-    ax.set_ylim(0, 1)
-    return fig, ax
 
 
-def _refused(fig, match: str = r"values\['k'\]") -> None:
-    """``fig`` is refused within 1 CPU-s by its weight, and by glue_all, naming values['k'] (and ``match``)."""
-    from fusion.book import _glue_figure as F
-    try:
-        refused_quickly(lambda: F.figure_units(fig, "k"), ValueError, match)
-        glue_refused({"k": fig}, ValueError, match)
-    finally:
-        plt.close(fig)
 
 
-def _glues(monkeypatch: pytest.MonkeyPatch, fig) -> None:
-    """glue_all glues ``fig`` (audited and rendered; ``myst_nb.glue`` replaced for the test)."""
-    try:
-        glued(monkeypatch, {"k": fig})
-    finally:
-        plt.close(fig)
 
 
 def _text_box(boxstyle: str, **kw):
