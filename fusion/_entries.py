@@ -48,7 +48,9 @@ _EXACT_SCAN = 2**23
 def _shaped(v: object) -> int | None:
     """The number of entries of an array or an object with an integer tuple ``shape``, else None."""
     try:
-        shape = v.shape if isinstance(v, np.ndarray) else getattr(type(v), "shape", None) and v.shape
+        # an ndarray's own shape, not a subclass's ``shape`` property (fuzz 70b C1: one claiming (2, 2) for 10**9)
+        shape = (np.ndarray.shape.__get__(v) if isinstance(v, np.ndarray)
+                 else getattr(type(v), "shape", None) and v.shape)
     except Exception:  # noqa: BLE001 (an object whose shape raises: the conversion names it)
         return None
     if not isinstance(shape, tuple) or not all(isinstance(d, (int, np.integer)) and not isinstance(d, bool)
@@ -60,16 +62,32 @@ def _shaped(v: object) -> int | None:
     return n
 
 
+def _protocol_size(v: object) -> int | None:
+    """The entries of an object with NumPy's array protocols but no shape, converted once (``np.asarray``: a view
+    when it gives one), or None (fuzz 70b C2: such an entry inside a list was counted 1, then NumPy copied its 10**9
+    entries, a raw MemoryError, in 88 public functions)."""
+    if not (hasattr(v, "__array__") or hasattr(v, "__array_interface__") or hasattr(v, "__array_struct__")):
+        return None
+    try:
+        return int(np.asarray(v).size)
+    except MemoryError:
+        raise
+    except Exception:  # noqa: BLE001 (a conversion that raises: the conversion of the argument names it)
+        return None
+
+
 def _stored_len(s: Sequence) -> int:
     """The entries ``s`` stores: a list or tuple subclass's by the base type's ``len`` (NumPy converts the stored
     entries whatever its ``len()`` or ``__iter__`` say: a list subclass whose ``len()`` was 1 passed the input budget
     with 2**25 + 1 entries, fix 77a's note), any other sequence's ``len()``."""
-    return list.__len__(s) if isinstance(s, list) else tuple.__len__(s) if isinstance(s, tuple) else len(s)
+    t = type(s)   # not ``isinstance``: an object may fake its ``__class__`` (fuzz 70b C3)
+    return list.__len__(s) if issubclass(t, list) else tuple.__len__(s) if issubclass(t, tuple) else len(s)
 
 
 def _stored(s: Sequence) -> Iterator[object]:
     """The entries ``s`` stores (``_stored_len``'s rule: a list or tuple subclass's by the base type's iterator)."""
-    return list.__iter__(s) if isinstance(s, list) else tuple.__iter__(s) if isinstance(s, tuple) else iter(s)
+    t = type(s)
+    return list.__iter__(s) if issubclass(t, list) else tuple.__iter__(s) if issubclass(t, tuple) else iter(s)
 
 
 def sequence_entries(x: object, limit: int) -> float | None:
@@ -123,6 +141,7 @@ def sequence_entries(x: object, limit: int) -> float | None:
                         continue
                 for v in _stored(s):
                     m = _shaped(v)
+                    m = _protocol_size(v) if m is None else m
                     if m is not None:
                         total += m
                     elif (isinstance(v, Sequence) and not isinstance(v, (str, bytes, bytearray))

@@ -254,10 +254,10 @@ def input_size(x: object, name: str) -> None:
         its own ``__len__``, ``__iter__`` or ``__getitem__``, or an array protocol (``__array__``, the array
         interface: NumPy reads it by them, not by what it stores; fuzz 69b C1), naming ``name``.
     """
-    base = list if isinstance(x, list) else tuple if isinstance(x, tuple) else None
+    base = list if issubclass(type(x), list) else tuple if issubclass(type(x), tuple) else None   # fuzz 70b C3
     if base is not None and type(x) is not base:   # fix 77a's note: len() 1 passed the budget with 2**25 + 1 entries
         own = [m for m in ("__len__", "__iter__", "__getitem__") if getattr(type(x), m) is not getattr(base, m)]
-        own += [m for m in ("__array__", "__array_interface__", "__array_struct__") if hasattr(type(x), m)]
+        own += [m for m in ("__array__", "__array_interface__", "__array_struct__") if hasattr(x, m)]   # fuzz 70b C4
         if own:   # NumPy reads it by these, the budget by what it stores: the two may disagree (a plain wrong array)
             raise ValueError(f"{name} must not be a {base.__name__} subclass that reads its entries its own way "
                              f"({type(x).__name__} defines {', '.join(own)}): its length or entries may not be what "
@@ -282,7 +282,7 @@ def input_size(x: object, name: str) -> None:
 def _given_shape(x: object) -> tuple[int, ...] | None:
     """The integer ``shape`` of an array or array-like object, read without converting it (None: no such shape)."""
     try:
-        shape = x.shape if isinstance(x, np.ndarray) else getattr(type(x), "shape", None) and x.shape
+        shape = np.ndarray.shape.__get__(x) if isinstance(x, np.ndarray) else getattr(type(x), "shape", None) and x.shape
     except Exception:  # noqa: BLE001 (an object whose shape raises: the conversion names it)
         return None
     if not isinstance(shape, tuple) or not all(is_integer(d) for d in shape):

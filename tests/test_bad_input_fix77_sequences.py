@@ -73,3 +73,41 @@ def test_fuzz69b_d1_a_shapeless_array_like_is_measured_once_converted(monkeypatc
     with pytest.raises(ValueError, match=r"^x has 101 entries.*beyond the input budget"):
         as_array(_Shapeless(101), "x")
     assert as_array(_Shapeless(100), "x").shape == (100,)
+
+
+class _ClaimsSmall(np.ndarray):
+    @property   # type: ignore[misc]
+    def shape(self):   # type: ignore[no-untyped-def]
+        return (2, 2)
+
+
+class _Huge:
+    def __array__(self, dtype=None, copy=None):   # type: ignore[no-untyped-def]
+        return np.broadcast_to(1.0, (10**9,))
+
+
+class _Faked:
+    __class__ = property(lambda self: list)   # type: ignore[assignment]
+
+    def __array__(self, dtype=None, copy=None):   # type: ignore[no-untyped-def]
+        return np.zeros(3)
+
+
+def test_fuzz70b_c1_an_ndarray_subclass_is_measured_by_its_own_shape() -> None:
+    lying = np.broadcast_to(1.0, (10**9,)).view(_ClaimsSmall)
+    refused_quickly(lambda: as_array(lying, "x"), ValueError, r"^x has 1e\+09 entries")
+
+
+def test_fuzz70b_c2_an_array_like_inside_a_list_is_measured_converted() -> None:
+    refused_quickly(lambda: as_array([_Huge()], "x"), ValueError, r"^x has at least 1e\+09 entries")
+
+
+def test_fuzz70b_c3_a_faked_class_is_no_list() -> None:
+    with pytest.raises(TypeError, match=r"^x must be numeric"):
+        as_array(_Faked(), "x")
+
+
+def test_fuzz70b_c4_an_array_protocol_set_on_the_instance_is_refused() -> None:
+    x = _Plain([1.0])
+    x.__array_interface__ = np.zeros(6_000).__array_interface__   # type: ignore[attr-defined]
+    refused_quickly(lambda: as_array(x, "x"), ValueError, r"^x must not be a list subclass.*__array_interface__")
