@@ -4,6 +4,7 @@ cells, texts, patches, collections drawn per offset) before auditing or renderin
 from __future__ import annotations
 
 import functools
+import gc
 import time
 
 import matplotlib
@@ -145,9 +146,14 @@ def test_a_mesh_is_weighed_by_its_cells_without_building_paths(monkeypatch: pyte
     fig, ax = plt.subplots()
     ax.pcolormesh(np.random.default_rng(0).random((side, side)))
     monkeypatch.setattr(QuadMesh, "get_paths", lambda self: pytest.fail("a mesh's paths built"))
-    t = time.process_time()
-    units = G._glue_work(fig, "k")
-    assert time.process_time() - t < 0.1
+    gc.disable()   # a collection of a full run's heap inside the timed call cost 1.16 CPU-s late in a worker
+    try:
+        t = time.process_time()
+        units = G._glue_work(fig, "k")
+        spent = time.process_time() - t
+    finally:
+        gc.enable()
+    assert spent < 0.1
     assert F._tally(fig)["mesh cells"] == side * side
     assert G._GLUE_VALUE + units <= MAX_WORK
     plt.close(fig)
